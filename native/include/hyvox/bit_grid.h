@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// One bit per voxel, laid out as OpenVDB leaf masks so a non-empty 8×8×8 brick converts
+// to a LeafNode<bool/float,3> value mask with a plain copy:
+//   brick (bx,by,bz) = (i>>3, j>>3, k>>3), stored at brickIndex = (bx*bricks_y + by)*bricks_z + bz;
+//   inside a brick, bit n = (i&7)<<6 | (j&7)<<3 | (k&7) (OpenVDB's LeafNode::coordToOffset),
+//   held in 64-bit word n>>6 at bit n&63 (OpenVDB's NodeMask<3> word layout).
+// On a little-endian machine the same memory read as uint32 words puts bit n in word n>>5 at
+// bit n&31, which is the layout the GL shaders use in their SSBO.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace hyvox {
+
+class BitGrid {
+public:
+    static constexpr int kBrickLog2 = 3;
+    static constexpr int kBrickSize = 8;
+    static constexpr int kWordsPerBrick = 8;  // 512 bits
+
+    BitGrid() = default;
+    explicit BitGrid(std::array<std::int32_t, 3> dims);
+
+    const std::array<std::int32_t, 3>& dims() const { return dims_; }
+    const std::array<std::int32_t, 3>& bricks() const { return bricks_; }
+    std::size_t brickCount() const { return std::size_t(bricks_[0]) * bricks_[1] * bricks_[2]; }
+    std::size_t byteSize() const { return words_.size() * sizeof(std::uint64_t); }
+
+    std::uint64_t* data() { return words_.data(); }
+    const std::uint64_t* data() const { return words_.data(); }
+    std::size_t wordCount() const { return words_.size(); }
+
+    // Word index and bit mask of voxel (i,j,k); the voxel must be inside dims.
+    std::size_t wordIndex(int i, int j, int k) const {
+        const std::size_t brick =
+            (std::size_t(i >> 3) * bricks_[1] + std::size_t(j >> 3)) * bricks_[2] + std::size_t(k >> 3);
+        return brick * kWordsPerBrick + std::size_t(i & 7);
+    }
+    static std::uint64_t bitMask(int j, int k) { return std::uint64_t(1) << (((j & 7) << 3) | (k & 7)); }
+
+    bool inside(int i, int j, int k) const {
+        return i >= 0 && j >= 0 && k >= 0 && i < dims_[0] && j < dims_[1] && k < dims_[2];
+    }
+    bool test(int i, int j, int k) const { return (words_[wordIndex(i, j, k)] & bitMask(j, k)) != 0; }
+    void set(int i, int j, int k) { words_[wordIndex(i, j, k)] |= bitMask(j, k); }
+    // Safe from many threads at once (no locks: one relaxed atomic OR on the word).
+    void setAtomic(int i, int j, int k) {
+        __atomic_fetch_or(&words_[wordIndex(i, j, k)], bitMask(j, k), __ATOMIC_RELAXED);
+    }
+    // OR another grid of the same dims into this one.
+    void merge(const BitGrid& other);
+
+    std::uint64_t count() const;
+    // (i,j,k) of every set voxel, brick by brick (the order of OpenVDB's leaf iteration
+    // is not promised; sort if order matters).
+    std::vector<std::array<std::int32_t, 3>> coords() const;
+
+    bool operator==(const BitGrid& other) const { return dims_ == other.dims_ && words_ == other.words_; }
+
+private:
+    std::array<std::int32_t, 3> dims_{0, 0, 0};
+    std::array<std::int32_t, 3> bricks_{0, 0, 0};
+    std::vector<std::uint64_t> words_;
+};
+
+}  // namespace hyvox

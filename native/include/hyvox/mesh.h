@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// A non-owning view of a triangle mesh (float32 positions N×3, uint32 triangles M×3),
+// and the validated form every backend consumes.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace hyvox {
+
+struct MeshView {
+    const float* positions = nullptr;    // vertex_count * 3 floats, world units
+    std::size_t vertex_count = 0;
+    const std::uint32_t* triangles = nullptr;  // triangle_count * 3 vertex indices
+    std::size_t triangle_count = 0;
+};
+
+struct Bounds {
+    std::array<double, 3> min{0, 0, 0};
+    std::array<double, 3> max{0, 0, 0};
+};
+
+// The result of validate(): the view plus which triangles are usable.
+// Degenerate triangles (a repeated index, or an exactly zero cross product in double
+// precision) are skipped by every backend alike and counted here.
+struct ValidatedMesh {
+    MeshView view;
+    std::vector<std::uint32_t> usable;  // indices of non-degenerate triangles, ascending
+    std::size_t degenerate_count = 0;
+    Bounds bounds;  // of the vertices referenced by usable triangles
+
+    std::array<float, 3> vertex(std::uint32_t triangle, int corner) const {
+        const float* p = view.positions + 3 * std::size_t(view.triangles[3 * std::size_t(triangle) + corner]);
+        return {p[0], p[1], p[2]};
+    }
+};
+
+// Checks the view and throws InvalidInput with a clear message for: null pointers with
+// non-zero counts, an empty mesh, NaN/Inf coordinates, indices out of range, or a mesh whose
+// triangles are all degenerate.
+ValidatedMesh validate(const MeshView& mesh);
+
+}  // namespace hyvox

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hyvox/options.h"
+
+#include <array>
+#include <utility>
+
+#include "hyvox/errors.h"
+
+namespace hyvox {
+namespace {
+
+constexpr std::array<std::pair<Mode, const char*>, 2> kModes{{
+    {Mode::Conservative, "conservative"},
+    {Mode::Thin, "thin"},
+}};
+constexpr std::array<std::pair<Method, const char*>, 6> kMethods{{
+    {Method::Cpu, "cpu"},
+    {Method::Reference, "reference"},
+    {Method::Triangle, "triangle"},
+    {Method::Fragment, "fragment"},
+    {Method::Hybrid, "hybrid"},
+    {Method::Tessellation, "tessellation"},
+}};
+
+template <typename Enum, std::size_t N>
+Enum parseName(const std::array<std::pair<Enum, const char*>, N>& table, const std::string& text, const char* what) {
+    std::string choices;
+    for (const auto& [value, name] : table) {
+        if (text == name) return value;
+        choices += choices.empty() ? name : std::string(", ") + name;
+    }
+    throw InvalidInput("unknown " + std::string(what) + " '" + text + "' (choose one of: " + choices + ")");
+}
+
+template <typename Enum, std::size_t N>
+const char* nameOf(const std::array<std::pair<Enum, const char*>, N>& table, Enum value) {
+    for (const auto& [v, name] : table)
+        if (v == value) return name;
+    return "?";
+}
+
+}  // namespace
+
+const char* toString(Mode mode) { return nameOf(kModes, mode); }
+const char* toString(Method method) { return nameOf(kMethods, method); }
+Mode parseMode(const std::string& text) { return parseName(kModes, text, "mode"); }
+Method parseMethod(const std::string& text) { return parseName(kMethods, text, "method"); }
+
+}  // namespace hyvox

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "hyvox/bit_grid.h"
+
+namespace {
+
+TEST(BitGrid, SetTestAndCoordsRoundTrip) {
+    hyvox::BitGrid grid({19, 9, 33});
+    const std::set<std::array<int, 3>> voxels{{0, 0, 0}, {18, 8, 32}, {7, 7, 7}, {8, 0, 1}, {3, 5, 17}};
+    for (const auto& v : voxels) grid.set(v[0], v[1], v[2]);
+    EXPECT_EQ(grid.count(), voxels.size());
+    for (const auto& v : voxels) EXPECT_TRUE(grid.test(v[0], v[1], v[2]));
+    EXPECT_FALSE(grid.test(1, 0, 0));
+    std::set<std::array<int, 3>> back;
+    for (const auto& c : grid.coords()) back.insert({c[0], c[1], c[2]});
+    EXPECT_EQ(back, voxels);
+}
+
+TEST(BitGrid, LayoutMatchesOpenVdbLeafOffsets) {
+    // OpenVDB LeafNode<T,3>::coordToOffset = (x&7)<<6 | (y&7)<<3 | (z&7), NodeMask word = n>>6.
+    hyvox::BitGrid grid({16, 16, 16});
+    grid.set(8 + 3, 5, 2);
+    const std::size_t brick = (1 * 2 + 0) * 2 + 0;
+    const int n = (3 << 6) | (5 << 3) | 2;
+    EXPECT_EQ(grid.data()[brick * 8 + (n >> 6)], std::uint64_t(1) << (n & 63));
+}
+
+TEST(BitGrid, MergeIsUnion) {
+    hyvox::BitGrid a({10, 10, 10}), b({10, 10, 10});
+    a.set(1, 2, 3);
+    b.set(9, 9, 9);
+    b.setAtomic(1, 2, 3);
+    a.merge(b);
+    EXPECT_EQ(a.count(), 2u);
+    EXPECT_THROW(a.merge(hyvox::BitGrid({9, 10, 10})), std::invalid_argument);
+}
+
+}  // namespace

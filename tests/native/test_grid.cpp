@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gtest/gtest.h>
+
+#include "hyvox/errors.h"
+#include "hyvox/grid.h"
+
+namespace {
+
+hyvox::Bounds box(double x0, double y0, double z0, double x1, double y1, double z1) {
+    hyvox::Bounds b;
+    b.min = {x0, y0, z0};
+    b.max = {x1, y1, z1};
+    return b;
+}
+
+TEST(Grid, ResolutionSpansTheLongestSide) {
+    hyvox::GridOptions options;
+    options.resolution = 64;
+    const auto grid = hyvox::makeGrid(box(-1, 0, 2, 3, 1, 2.5), options);
+    EXPECT_DOUBLE_EQ(grid.voxel_size, 4.0 / 64);
+    EXPECT_EQ(grid.dims[0], 64);
+    EXPECT_EQ(grid.dims[1], 16);
+    EXPECT_EQ(grid.dims[2], 8);
+    EXPECT_EQ(grid.origin[0], -1.0);
+    EXPECT_EQ(grid.origin[2], 2.0);
+}
+
+TEST(Grid, FlatMeshGetsOneVoxelThickness) {
+    hyvox::GridOptions options;
+    options.resolution = 10;
+    const auto grid = hyvox::makeGrid(box(0, 0, 0, 1, 1, 0), options);
+    EXPECT_EQ(grid.dims[2], 1);
+}
+
+TEST(Grid, VoxelSizeOverridesResolutionAndCeilsDims) {
+    hyvox::GridOptions options;
+    options.voxel_size = 0.3;
+    const auto grid = hyvox::makeGrid(box(0, 0, 0, 1, 0.6, 0.25), options);
+    EXPECT_EQ(grid.dims[0], 4);  // ceil(3.33)
+    EXPECT_EQ(grid.dims[2], 1);
+}
+
+TEST(Grid, ExactMultipleGetsExactlyThatManyVoxels) {
+    hyvox::GridOptions options;
+    options.voxel_size = 0.25;
+    const auto grid = hyvox::makeGrid(box(0, 0, 0, 2, 2, 2), options);
+    EXPECT_EQ(grid.dims[0], 8);
+}
+
+TEST(Grid, PaddingAddsVoxelsOnEverySide) {
+    hyvox::GridOptions options;
+    options.voxel_size = 1.0;
+    options.padding = 2;
+    const auto grid = hyvox::makeGrid(box(0, 0, 0, 4, 4, 4), options);
+    EXPECT_EQ(grid.dims[0], 8);
+    EXPECT_EQ(grid.origin[0], -2.0);
+    const auto c = grid.voxelCentre(0, 0, 0);
+    EXPECT_DOUBLE_EQ(c[0], -1.5);
+}
+
+TEST(Grid, OutOfRangeInputsAreClearErrors) {
+    hyvox::GridOptions options;
+    options.resolution = 0;
+    EXPECT_THROW(hyvox::makeGrid(box(0, 0, 0, 1, 1, 1), options), hyvox::InvalidInput);
+    options.resolution = hyvox::kMaxResolution + 1;
+    EXPECT_THROW(hyvox::makeGrid(box(0, 0, 0, 1, 1, 1), options), hyvox::InvalidInput);
+    options.resolution = 16;
+    EXPECT_THROW(hyvox::makeGrid(box(0, 0, 0, 0, 0, 0), options), hyvox::InvalidInput);
+    options.voxel_size = -1.0;
+    EXPECT_THROW(hyvox::makeGrid(box(0, 0, 0, 1, 1, 1), options), hyvox::InvalidInput);
+    options.voxel_size = 1e-9;  // far too many voxels
+    EXPECT_THROW(hyvox::makeGrid(box(0, 0, 0, 1, 1, 1), options), hyvox::InvalidInput);
+}
+
+}  // namespace
