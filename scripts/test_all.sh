@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Sets up a fresh Debian 12 machine and runs every hyvox test:
+#   1. a Release build with warnings as errors: all native, Python and headless-Blender tests;
+#   2. an AddressSanitizer + UndefinedBehaviorSanitizer build of the native code: the native tests.
+# GL tests run on whatever EGL device is there (Mesa llvmpipe without a GPU); none skip.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install_deps.sh
+
+jobs=$(nproc)
+echo "== Release build (-Werror)"
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DHYVOX_WERROR=ON
+cmake --build build -j "$jobs"
+ctest --test-dir build --output-on-failure -j "$jobs"
+
+echo "== ASan + UBSan build of the native code (-Werror)"
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Release -DHYVOX_SANITIZE=ON -DHYVOX_WERROR=ON \
+  -DHYVOX_BUILD_PYTHON=OFF -DHYVOX_BUILD_BENCH=OFF
+cmake --build build-asan -j "$jobs"
+# Mesa's drivers are not instrumented and keep process-lifetime allocations: leak checks off.
+ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-asan --output-on-failure -j "$jobs"
