@@ -14,6 +14,10 @@ struct MeshView {
     std::size_t vertex_count = 0;
     const std::uint32_t* triangles = nullptr;  // triangle_count * 3 vertex indices
     std::size_t triangle_count = 0;
+    // Optional per-vertex attributes (the tessellation method's PN-triangles and
+    // displacement use them); null = absent. Normals need not be unit length.
+    const float* uvs = nullptr;      // vertex_count * 2 (Blender UV: v = 0 is the image's bottom row)
+    const float* normals = nullptr;  // vertex_count * 3; absent: area-weighted vertex normals
 };
 
 struct Bounds {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "hyvox/grid.h"
 
@@ -39,13 +40,30 @@ struct HybridOptions {
     double cutoff = -1.0;
 };
 
+// A grey height image in memory: width × height values, row 0 = the image's top row (as in
+// a PNG file), typically 0..1.
+struct HeightImage {
+    int width = 0;
+    int height = 0;
+    std::vector<float> values;
+    bool empty() const { return values.empty(); }
+};
+
 struct TessellationOptions {
     double gamma = 1.0;  // safety factor γ of Eq. 1
     bool pn_triangles = false;
-    // Displacement (section 3.3); used when displacement_image is non-empty.
+    // Displacement (section 3.3), Blender Displace modifier semantics: each point moves along
+    // the interpolated vertex normal by (texel - midlevel) * strength world units, the texel
+    // sampled bilinearly (clamped at the edges) at the interpolated UV. Used when
+    // displacement_image (an 8/16-bit PNG path) or displacement_pixels is given.
     std::string displacement_image;
+    HeightImage displacement_pixels;  // used when displacement_image is empty
     double displacement_strength = 1.0;
     double displacement_midlevel = 0.5;
+    bool counts = true;               // also fill VoxelizeResult::counts (points per voxel)
+    // Also voxelize with the exact cpu method and report bias / false voxels / watertightness
+    // in stats.metrics (slow: for tests and benchmarks).
+    bool measure_accuracy = false;
 };
 
 struct VoxelizeOptions {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <tuple>
 
 #include "hyvox/errors.h"
 
@@ -35,6 +36,12 @@ ValidatedMesh validate(const MeshView& mesh) {
         for (int a = 0; a < 3; ++a)
             if (!std::isfinite(mesh.positions[3 * v + a]))
                 throw InvalidInput("vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or Inf)");
+
+    for (const auto& [values, width, name] : {std::tuple{mesh.uvs, 2, "UV"}, std::tuple{mesh.normals, 3, "normal"}})
+        if (values)
+            for (std::size_t i = 0; i < mesh.vertex_count * width; ++i)
+                if (!std::isfinite(values[i]))
+                    throw InvalidInput("vertex " + std::to_string(i / width) + " has a non-finite " + name);
 
     ValidatedMesh out;
     out.view = mesh;

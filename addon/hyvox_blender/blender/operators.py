@@ -1,0 +1,203 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""OBJECT_OT_hyvox_voxelize. In the UI (invoke) the native work runs on a worker thread
+polled by a modal timer, with a progress bar, a status bar message and Esc to cancel.
+execute() runs synchronously: background mode, scripts, and redo from the Adjust panel.
+Every HyvoxError becomes a report and {'CANCELLED'} with the scene unchanged."""
+import time
+
+import bpy
+from bpy.props import BoolProperty, FloatProperty, IntProperty
+
+from ..core import summary
+from ..core.errors import CancelledError, HyvoxError
+from ..core.pipeline import Pipeline
+from . import export, importer, properties
+from .gather import gather
+
+# The last run's summary lines (shown in the panel) and record (for scripts).
+last_summary = []
+last_run_record = {}
+
+
+class _Run:
+    """One run's state shared by execute() and the modal path."""
+
+    def __init__(self, context, op):
+        settings, folder, self.override = gather(context, op)
+        self.scene = context.scene
+        self.original_frame = context.scene.frame_current
+        self.op = op
+        sources = export.pick_sources(context.selected_objects, warn=self.warn)
+        self.groups = export.make_groups(sources, settings.separate, context.view_layer.objects.active)
+        self.pipeline = Pipeline(settings, folder, self.export_frame)
+        self.warnings = []
+
+    def warn(self, text):
+        self.op.report({"WARNING"}, text)
+
+    def export_frame(self, frame):
+        if frame is not None and frame != self.scene.frame_current:
+            self.scene.frame_set(frame)
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        return export.export_groups(self.groups, depsgraph, warn=self.warn)
+
+    def restore_frame(self):
+        if self.scene.frame_current != self.original_frame:
+            self.scene.frame_set(self.original_frame)
+
+    def finish(self, context):
+        """Commit the files and import them as volumes (main thread)."""
+        pipeline = self.pipeline
+        pipeline.commit()
+        start = time.perf_counter()
+        objects = importer.import_results(context, pipeline.results, self.override)
+        pipeline.timings.import_ms += (time.perf_counter() - start) * 1000.0
+        lines = summary.long_report(pipeline.results, pipeline.timings)
+        last_summary[:] = lines
+        last_run_record.clear()
+        last_run_record.update(summary.as_dict(pipeline.results, pipeline.timings))
+        for line in lines:
+            print("hyvox:", line)
+        self.op.report({"INFO"}, summary.short_report(pipeline.results, pipeline.timings))
+        return objects
+
+
+class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
+    """Voxelize the selected meshes into OpenVDB volumes aligned with them"""
+    bl_idname = "object.hyvox_voxelize"
+    bl_label = "Voxelize"
+    bl_options = {"REGISTER", "UNDO"}
+
+    # Keyword arguments override the scene's settings for one call (unset ones don't).
+    resolution: properties.resolution_prop(options={"SKIP_SAVE"})
+    voxel_size: FloatProperty(name="Voxel Size", description="Edge length of one voxel; 0: use the "
+                              "resolution", default=0.0, min=0.0, soft_max=10.0, precision=4,
+                              subtype="DISTANCE", unit="LENGTH", options={"SKIP_SAVE"})
+    method: properties.method_prop(options={"SKIP_SAVE"})
+    mode: properties.mode_prop(options={"SKIP_SAVE"})
+    tessellation_gamma: properties.gamma_prop(options={"SKIP_SAVE"})
+    hybrid_cutoff: FloatProperty(name="Cutoff", description="Hybrid cutoff in voxels²; negative: "
+                                 "automatic", default=-1.0, min=-1.0, soft_max=4096.0,
+                                 subtype="NONE", options={"SKIP_SAVE"})
+    separate: properties.separate_prop(options={"SKIP_SAVE"})
+    padding: IntProperty(name="Padding", description="Empty voxels added around the bounds",
+                         default=0, min=0, max=64, subtype="NONE", options={"SKIP_SAVE"})
+    output_dir: properties.output_dir_prop(options={"SKIP_SAVE"})
+    use_frame_range: BoolProperty(name="Frame Range", description="Voxelize every frame of the "
+                                  "range into a .vdb sequence", default=False, options={"SKIP_SAVE"})
+    frame_start: IntProperty(name="Start", description="First frame of the sequence", default=1,
+                             min=0, subtype="TIME", options={"SKIP_SAVE"})
+    frame_end: IntProperty(name="End", description="Last frame of the sequence", default=1,
+                           min=0, subtype="TIME", options={"SKIP_SAVE"})
+
+    _active = None  # the running modal operator's _Run: one run at a time
+
+    @classmethod
+    def poll(cls, context):
+        # Selection problems are reported by execute(), not hidden by a failing poll.
+        return context.scene is not None and context.mode == "OBJECT"
+
+    # -- synchronous ------------------------------------------------------------------
+    def execute(self, context):
+        if OBJECT_OT_hyvox_voxelize._active is not None:
+            self.report({"ERROR"}, "A voxelization is already running")
+            return {"CANCELLED"}
+        run = None
+        try:
+            run = _Run(context, self)
+            run.pipeline.run()
+            run.restore_frame()
+            run.finish(context)
+        except HyvoxError as exc:
+            if run is not None:
+                run.pipeline.discard()
+                run.restore_frame()
+            self.report({"WARNING"} if isinstance(exc, CancelledError) else {"ERROR"}, str(exc))
+            return {"CANCELLED"}
+        return {"FINISHED"}
+
+    # -- interactive ------------------------------------------------------------------
+    def invoke(self, context, event):
+        if bpy.app.background or context.window is None:
+            return self.execute(context)
+        if OBJECT_OT_hyvox_voxelize._active is not None:
+            self.report({"ERROR"}, "A voxelization is already running")
+            return {"CANCELLED"}
+        try:
+            self._run = _Run(context, self)
+            self._run.pipeline.start_next_frame()
+        except HyvoxError as exc:
+            self.report({"ERROR"}, str(exc))
+            if getattr(self, "_run", None) is not None:
+                self._run.restore_frame()
+            return {"CANCELLED"}
+        OBJECT_OT_hyvox_voxelize._active = self._run
+        wm = context.window_manager
+        self._timer = wm.event_timer_add(0.1, window=context.window)
+        wm.progress_begin(0, 100)
+        wm.modal_handler_add(self)
+        self._status(context)
+        return {"RUNNING_MODAL"}
+
+    def modal(self, context, event):
+        run = self._run
+        pipeline = run.pipeline
+        if event.type == "ESC" and event.value == "PRESS":
+            pipeline.cancel()
+            pipeline.wait()  # the native interrupter stops within milliseconds
+            pipeline.discard()
+            run.restore_frame()
+            self._end(context)
+            self.report({"WARNING"}, "Voxelization cancelled")
+            return {"CANCELLED"}
+        if event.type != "TIMER":  # any timer tick is a fine moment to poll
+            return {"PASS_THROUGH"}  # the UI stays usable while the worker runs
+        if pipeline.worker_busy():
+            self._status(context)
+            return {"RUNNING_MODAL"}
+        try:
+            pipeline.finish_frame()
+            if pipeline.start_next_frame():
+                self._status(context)
+                return {"RUNNING_MODAL"}
+            run.restore_frame()
+            run.finish(context)
+        except HyvoxError as exc:
+            pipeline.discard()
+            run.restore_frame()
+            self._end(context)
+            self.report({"WARNING"} if isinstance(exc, CancelledError) else {"ERROR"}, str(exc))
+            return {"CANCELLED"}
+        self._end(context)
+        return {"FINISHED"}
+
+    def _status(self, context):
+        pipeline = self._run.pipeline
+        percent = int(round(pipeline.progress * 100))
+        context.window_manager.progress_update(percent)
+        frame = pipeline.current_frame
+        where = f" frame {frame}," if frame is not None else ""
+        context.workspace.status_text_set(f"Voxelizing ({pipeline.method}){where} {percent}%  -  Esc to cancel")
+
+    def _end(self, context):
+        wm = context.window_manager
+        wm.event_timer_remove(self._timer)
+        wm.progress_end()
+        context.workspace.status_text_set(None)
+        OBJECT_OT_hyvox_voxelize._active = None
+
+
+def menu_entry(self, context):
+    self.layout.separator()
+    self.layout.operator(OBJECT_OT_hyvox_voxelize.bl_idname, icon="VOLUME_DATA")
+
+
+CLASSES = (OBJECT_OT_hyvox_voxelize,)
+
+
+def register():
+    bpy.types.VIEW3D_MT_object.append(menu_entry)
+
+
+def unregister():
+    bpy.types.VIEW3D_MT_object.remove(menu_entry)

@@ -1,0 +1,47 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Where voxels are in the world, and the correction Blender's renderers need.
+
+hyvox files keep OpenVDB's convention: index (i,j,k) is the voxel centre, at world
+origin + (i + 1/2, j + 1/2, k + 1/2) * s (grid transform: scale s, translation origin + s/2).
+Blender 3.4's Cycles and EEVEE sample voxel i over [i, i+1) in index space, i.e. they draw
+every voxel half a voxel towards +x+y+z. We leave the file standard (other tools read it
+right) and move the Volume object by -s/2 on each axis for the Blender versions that
+need it. The headless render test measures this on the Blender it runs in."""
+from typing import Sequence, Tuple
+
+import numpy as np
+
+# First Blender version assumed to render voxel centres where OpenVDB puts them.
+# Only 3.4 is measured here (tests/blender/test_render_alignment.py); an add-on
+# preference can force the correction on or off for versions not yet measured.
+FIRST_CENTRED_VERSION = (3, 5, 0)
+
+
+def needs_half_voxel_shift(version: Sequence[int], override: str = "AUTO") -> bool:
+    if override == "ON":
+        return True
+    if override == "OFF":
+        return False
+    return tuple(version[:3]) < FIRST_CENTRED_VERSION
+
+
+def object_offset(voxel_size: float, version: Sequence[int], override: str = "AUTO"
+                  ) -> Tuple[float, float, float]:
+    """World-space translation for the Volume object (its only transform)."""
+    if not needs_half_voxel_shift(version, override):
+        return (0.0, 0.0, 0.0)
+    half = -0.5 * float(voxel_size)
+    return (half, half, half)
+
+
+def voxel_centres(coords: np.ndarray, origin: Sequence[float], voxel_size: float) -> np.ndarray:
+    """World centres (K,3) float64 of integer voxel coordinates (K,3)."""
+    return np.asarray(origin, dtype=np.float64) + (np.asarray(coords, dtype=np.float64) + 0.5) * voxel_size
+
+
+def voxel_bounds(coords: np.ndarray, origin: Sequence[float], voxel_size: float):
+    """(min corner, max corner) of the union of the voxels' closed boxes."""
+    coords = np.asarray(coords)
+    lo = np.asarray(origin, dtype=np.float64) + coords.min(axis=0) * voxel_size
+    hi = np.asarray(origin, dtype=np.float64) + (coords.max(axis=0) + 1) * voxel_size
+    return lo, hi

@@ -1,0 +1,248 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""A run: for each frame, export (callback into the bpy layer, main thread), then
+voxelize and write every group (main thread in background mode, a worker thread in the
+UI). Files go to staging paths and are renamed into place only when the whole run
+succeeds, so a cancelled or failed run leaves the previous results untouched."""
+import os
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Callable, Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from . import backend, naming
+from .errors import CancelledError, HyvoxError
+from .settings import VoxelizeSettings
+
+
+@dataclass
+class Group:
+    """What becomes one Volume object: one source object, or the whole selection."""
+    name: str
+    sources: List[str]
+
+    @property
+    def key(self) -> str:
+        return naming.group_key(self.sources)
+
+
+@dataclass
+class GroupMesh:
+    group: Group
+    vertices: np.ndarray   # (N,3) float32, world space
+    triangles: np.ndarray  # (M,3) uint32 (what the module uses natively)
+
+
+@dataclass
+class GroupResult:
+    group: Group
+    files: List[str] = field(default_factory=list)  # final paths, one per frame
+    frames: Optional[List[int]] = None
+    voxel_size: float = 0.0
+    origin: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    dims: Tuple[int, int, int] = (0, 0, 0)
+    voxel_counts: List[int] = field(default_factory=list)
+    triangles: int = 0
+    method: str = ""
+    stats: dict = field(default_factory=dict)  # of the last frame
+
+
+@dataclass
+class Timings:
+    """Milliseconds per stage, summed over frames and groups."""
+    export_ms: float = 0.0
+    voxelize_ms: float = 0.0
+    write_ms: float = 0.0
+    import_ms: float = 0.0
+
+    @property
+    def total_ms(self) -> float:
+        return self.export_ms + self.voxelize_ms + self.write_ms + self.import_ms
+
+
+def merge_meshes(parts: Sequence[Tuple[np.ndarray, np.ndarray]]) -> Tuple[np.ndarray, np.ndarray]:
+    """Concatenate (vertices, triangles) pairs into one mesh, offsetting indices."""
+    if len(parts) == 1:
+        return parts[0]
+    offsets = np.cumsum([0] + [len(v) for v, _ in parts[:-1]])
+    vertices = np.concatenate([v for v, _ in parts]).astype(np.float32, copy=False)
+    triangles = np.concatenate([t.astype(np.uint32, copy=False) + np.uint32(o)
+                                for (_, t), o in zip(parts, offsets)])
+    return vertices, triangles
+
+
+ExportFrame = Callable[[Optional[int]], List[GroupMesh]]
+
+
+class Pipeline:
+    def __init__(self, settings: VoxelizeSettings, output_dir: str, export_frame: ExportFrame,
+                 module=None):
+        self.settings = settings.validate()
+        self.output_dir = output_dir
+        self.export_frame = export_frame
+        self.module = module if module is not None else backend.load_module()
+        self.method = backend.resolve_method(self.module, settings)
+        self.frames: List[Optional[int]] = list(settings.frames) if settings.is_sequence else [None]
+        self.results: Dict[str, GroupResult] = {}
+        self.timings = Timings()
+        self._staged: List[Tuple[str, str]] = []  # (staging, final)
+        self._frame_index = 0
+        self._groups_in_frame = 1
+        self._group_index = 0
+        self._token = None
+        self._cancelled = False
+        self._thread: Optional[threading.Thread] = None
+        self._error: Optional[BaseException] = None
+
+    # -- driving the run --------------------------------------------------------------
+    def run(self) -> Dict[str, GroupResult]:
+        """Synchronously (background mode, scripts, redo)."""
+        try:
+            for _ in self.frames:
+                self._work(self._export_next())
+            self.commit()
+        except BaseException:
+            self.discard()
+            raise
+        return self.results
+
+    def start_next_frame(self) -> bool:
+        """Export the next frame (caller's thread: bpy is not thread-safe) and voxelize it
+        on a worker thread. False when every frame is done."""
+        if self._frame_index >= len(self.frames):
+            return False
+        meshes = self._export_next()
+        self._error = None
+        self._thread = threading.Thread(target=self._work_guarded, args=(meshes,),
+                                        name="hyvox-voxelize", daemon=True)
+        self._thread.start()
+        return True
+
+    def worker_busy(self) -> bool:
+        return self._thread is not None and self._thread.is_alive()
+
+    def finish_frame(self) -> None:
+        """After the worker ended: re-raise its error in the caller's thread."""
+        if self._thread is not None:
+            self._thread.join()
+            self._thread = None
+        if self._error is not None:
+            error, self._error = self._error, None
+            raise error
+
+    @property
+    def done(self) -> bool:
+        return self._frame_index >= len(self.frames) and not self.worker_busy()
+
+    def cancel(self) -> None:
+        self._cancelled = True
+        token = self._token
+        if token is not None:
+            token.cancel()
+
+    def wait(self) -> None:
+        if self._thread is not None:
+            self._thread.join()
+
+    @property
+    def progress(self) -> float:
+        """0..1 over all frames and groups."""
+        frames = max(len(self.frames), 1)
+        groups = max(self._groups_in_frame, 1)
+        done_frames = max(self._frame_index - 1, 0) if self.worker_busy() else self._frame_index
+        within = (self._group_index + backend.token_progress(self._token)) / groups
+        if not self.worker_busy():
+            within = 0.0
+        return min((done_frames + within) / frames, 1.0)
+
+    @property
+    def current_frame(self) -> Optional[int]:
+        """The frame being voxelized (None outside sequences)."""
+        return self.frames[max(self._frame_index - 1, 0)]
+
+    # -- staging ----------------------------------------------------------------------
+    def commit(self) -> None:
+        for staging, final in self._staged:
+            os.replace(staging, final)
+        self._staged.clear()
+
+    def discard(self) -> None:
+        for staging, _ in self._staged:
+            try:
+                os.remove(staging)
+            except OSError:
+                pass
+        self._staged.clear()
+
+    # -- work -------------------------------------------------------------------------
+    def _export_next(self) -> List[GroupMesh]:
+        frame = self.frames[self._frame_index]
+        self._frame_index += 1
+        start = time.perf_counter()
+        meshes = self.export_frame(frame)
+        self.timings.export_ms += (time.perf_counter() - start) * 1000.0
+        if not meshes:
+            raise HyvoxError("nothing to voxelize")
+        self._groups_in_frame = len(meshes)
+        self._group_index = 0
+        return meshes
+
+    def _work_guarded(self, meshes: List[GroupMesh]) -> None:
+        try:
+            self._work(meshes)
+        except BaseException as exc:  # handed to the main thread by finish_frame()
+            self._error = exc
+
+    def _work(self, meshes: List[GroupMesh]) -> None:
+        frame = self.frames[self._frame_index - 1]
+        os.makedirs(self.output_dir, exist_ok=True)
+        for index, mesh in enumerate(meshes):
+            self._group_index = index
+            if self._cancelled:
+                raise CancelledError("voxelization cancelled")
+            result = self.results.get(mesh.group.key)
+            if result is None:
+                result = GroupResult(mesh.group, frames=[] if frame is not None else None,
+                                     method=self.method)
+                self.results[mesh.group.key] = result
+            # Every frame of a sequence uses the first frame's voxel size: the Volume
+            # object's half-voxel correction and the look must not change per frame.
+            fixed_size = result.voxel_size if result.voxel_size else None
+            self._token = backend.make_token(self.module)
+            start = time.perf_counter()
+            grid = backend.voxelize(self.module, mesh.vertices, mesh.triangles, self.settings,
+                                    self.method, voxel_size=fixed_size, token=self._token)
+            self.timings.voxelize_ms += (time.perf_counter() - start) * 1000.0
+            if self._cancelled:
+                raise CancelledError("voxelization cancelled")
+
+            final = os.path.join(self.output_dir, naming.volume_file_name(mesh.group.name, frame))
+            staging = naming.staging_path(final)
+            start = time.perf_counter()
+            try:
+                grid.write_vdb(staging)
+            except (OSError, RuntimeError, ValueError) as exc:
+                raise HyvoxError(f"cannot write {final}: {exc}") from exc
+            self.timings.write_ms += (time.perf_counter() - start) * 1000.0
+            self._staged.append((staging, final))
+
+            result.files.append(final)
+            if frame is not None:
+                result.frames.append(frame)
+            result.voxel_size = float(grid.voxel_size)
+            result.origin = tuple(float(x) for x in grid.origin)
+            result.dims = tuple(int(x) for x in grid.dims)
+            stats = dict(getattr(grid, "stats", {}) or {})
+            result.stats = stats
+            result.voxel_counts.append(int(stats.get("voxel_count", _count(grid))))
+            result.triangles = int(len(mesh.triangles))
+        self._group_index = len(meshes)
+
+
+def _count(grid) -> int:
+    for name in ("voxel_count", "count"):
+        value = getattr(grid, name, None)
+        if value is not None:
+            return int(value() if callable(value) else value)
+    return int(len(grid.coords()))

@@ -1,0 +1,136 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Benchmark (not a test): the whole hyvox operator (export, voxelize, write, import)
+against Blender's own Mesh to Volume modifier (surface band of one voxel each side, the
+same voxel size, depsgraph evaluation timed), on Suzanne subdivided to level 4 (252k
+triangles) and level 6 (4M), at 256 and 512 voxels along the longest side.
+
+    blender -b --factory-startup --python bench/bench_blender_addon.py -- --build B \\
+        [--levels 4,6] [--resolutions 256,512] [--repeat 3] [--method cpu] [--json FILE]
+
+Both sides start from the same plain (modifier-applied) mesh so subdivision is not timed.
+Prints a table of medians and where hyvox's time goes."""
+import argparse
+import json
+import os
+import statistics
+import sys
+import tempfile
+import time
+
+import bpy
+
+
+def parse_args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    parser = argparse.ArgumentParser(prog="blender -b --python bench/bench_blender_addon.py --")
+    parser.add_argument("--build", default="build")
+    parser.add_argument("--levels", default="4,6")
+    parser.add_argument("--resolutions", default="256,512")
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--method", default="cpu")
+    parser.add_argument("--json", help="also write the rows as JSON here")
+    return parser.parse_args(argv)
+
+
+def enable_addon(build):
+    import addon_utils
+    sys.path.insert(0, os.path.join(os.path.abspath(build), "addon"))
+    if addon_utils.enable("hyvox_blender", default_set=True, handle_error=None) is None:
+        raise SystemExit(f"could not enable hyvox_blender from {build}/addon")
+
+
+def suzanne(level):
+    for obj in list(bpy.data.objects):
+        bpy.data.objects.remove(obj, do_unlink=True)
+    bpy.ops.mesh.primitive_monkey_add(size=2.0)
+    obj = bpy.context.active_object
+    obj.name = f"Suzanne_L{level}"
+    modifier = obj.modifiers.new("Subdivision", "SUBSURF")
+    modifier.levels = level
+    bpy.ops.object.modifier_apply(modifier=modifier.name)
+    obj.data.calc_loop_triangles()
+    return obj, len(obj.data.loop_triangles)
+
+
+def time_hyvox(obj, voxel_size, method, out):
+    bpy.context.view_layer.objects.active = obj
+    for o in bpy.context.view_layer.objects:
+        o.select_set(o is obj)
+    start = time.perf_counter()
+    bpy.ops.object.hyvox_voxelize(voxel_size=voxel_size, method=method, output_dir=out)
+    total = (time.perf_counter() - start) * 1000.0
+    from hyvox_blender.blender import operators
+    record = dict(operators.last_run_record)
+    return total, record["timings_ms"], record["volumes"][0]["voxel_counts"][0]
+
+
+def time_mesh_to_volume(obj, voxel_size):
+    volume = bpy.data.volumes.new("MeshToVolume")
+    target = bpy.data.objects.new("MeshToVolume", volume)
+    bpy.context.scene.collection.objects.link(target)
+    modifier = target.modifiers.new("MeshToVolume", "MESH_TO_VOLUME")
+    modifier.object = obj
+    modifier.resolution_mode = "VOXEL_SIZE"
+    modifier.voxel_size = voxel_size
+    if hasattr(modifier, "use_fill_volume"):
+        modifier.use_fill_volume = False  # surface band, like hyvox
+    modifier.interior_band_width = voxel_size
+    if hasattr(modifier, "exterior_band_width"):
+        modifier.exterior_band_width = voxel_size
+    start = time.perf_counter()
+    evaluated = target.evaluated_get(bpy.context.evaluated_depsgraph_get()).data
+    ms = (time.perf_counter() - start) * 1000.0
+    assert len(evaluated.grids) >= 1, "Mesh to Volume produced no grid"
+    bpy.data.objects.remove(target, do_unlink=True)
+    bpy.data.volumes.remove(volume)
+    return ms
+
+
+def main():
+    args = parse_args()
+    enable_addon(args.build)
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="hyvox-bench-") as out:
+        for level in [int(x) for x in args.levels.split(",")]:
+            obj, triangles = suzanne(level)
+            extent = max(obj.dimensions)
+            for resolution in [int(x) for x in args.resolutions.split(",")]:
+                voxel_size = extent / resolution
+                runs = [time_hyvox(obj, voxel_size, args.method, out) for _ in range(args.repeat)]
+                m2v = [time_mesh_to_volume(obj, voxel_size) for _ in range(args.repeat)]
+                best = min(runs, key=lambda r: r[0])
+                row = {
+                    "level": level, "triangles": triangles, "resolution": resolution,
+                    "voxel_size": voxel_size, "method": args.method,
+                    "hyvox_ms": statistics.median(r[0] for r in runs),
+                    "mesh_to_volume_ms": statistics.median(m2v),
+                    "voxels": best[2], "breakdown_ms": best[1],
+                }
+                row["speedup"] = row["mesh_to_volume_ms"] / row["hyvox_ms"]
+                rows.append(row)
+                print(f"L{level} {resolution}: hyvox {row['hyvox_ms']:.0f} ms, "
+                      f"Mesh to Volume {row['mesh_to_volume_ms']:.0f} ms", flush=True)
+
+    print(f"\nBlender {bpy.app.version_string}, {os.cpu_count()} CPUs, hyvox method {args.method}, "
+          f"median of {args.repeat}")
+    print("| mesh | triangles | res | hyvox operator ms | Mesh to Volume ms | speed-up | "
+          "export | voxelize | write | import | voxels |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for r in rows:
+        b = r["breakdown_ms"]
+        print(f"| Suzanne L{r['level']} | {r['triangles']:,} | {r['resolution']} | {r['hyvox_ms']:.0f} | "
+              f"{r['mesh_to_volume_ms']:.0f} | {r['speedup']:.1f}x | {b['export']:.0f} | "
+              f"{b['voxelize']:.0f} | {b['write']:.0f} | {b['import']:.0f} | {r['voxels']:,} |")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(rows, f, indent=2)
+
+
+if __name__ == "__main__":
+    try:
+        main()
+    except Exception:
+        import traceback
+        traceback.print_exc()
+        sys.stdout.flush()
+        os._exit(1)

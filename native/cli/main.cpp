@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `hyvox`: every failure becomes a message on stderr and a non-zero exit status
+// (2 usage, 1 error, 130 interrupted); nothing escapes main as a crash.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "cli_args.h"
+#include "hyvox/errors.h"
+#include "hyvox/version.h"
+#include "voxelize_command.h"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+
+extern "C" void onSignal(int) { g_stop.store(true); }
+
+int fail(const std::string& message, int status) {
+    std::fprintf(stderr, "hyvox: error: %s\n", message.c_str());
+    return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using namespace hyvox;
+    // Ctrl-C cancels the voxelization between steps; the .vdb is then never written.
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+    try {
+        const cli::Arguments args = cli::parseArguments(std::vector<std::string>(argv + 1, argv + argc));
+        switch (args.command) {
+            case cli::Command::Help: std::fputs(cli::usageText(), stdout); return 0;
+            case cli::Command::Version: std::printf("hyvox %s\n", version()); return 0;
+            case cli::Command::Voxelize: cli::runVoxelize(args, g_stop); return 0;
+        }
+        return 0;
+    } catch (const cli::UsageError& e) {
+        std::fprintf(stderr, "hyvox: error: %s\n\n%s", e.what(), cli::usageText());
+        return 2;
+    } catch (const Cancelled&) {
+        return fail("interrupted; nothing was written", 130);
+    } catch (const InvalidInput& e) {
+        return fail(e.what(), 1);
+    } catch (const ResourceError& e) {
+        return fail(e.what(), 1);
+    } catch (const BackendError& e) {
+        return fail(e.what(), 1);
+    } catch (const std::bad_alloc&) {
+        return fail("out of memory (try a larger voxel size)", 1);
+    } catch (const std::exception& e) {
+        return fail(std::string("unexpected failure: ") + e.what(), 1);
+    } catch (...) {
+        return fail("unexpected failure of an unknown kind", 1);
+    }
+}

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Accuracy of an approximate voxelization against an exact (conservative) one, measured as
+// the point-tessellated voxelization paper does: bias, false voxels, the six-direction
+// ray-marching watertightness test (section 4.1) and the γ ↔ bias fit of Eq. 3.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "hyvox/bit_grid.h"
+
+namespace hyvox {
+
+struct AccuracyReport {
+    std::uint64_t reference_voxels = 0;
+    std::uint64_t missed_voxels = 0;  // in the reference, not in the result
+    std::uint64_t false_voxels = 0;   // in the result, not in the reference
+    double bias = 0;                  // missed / reference (0 for an empty reference)
+};
+// Both grids must have the same dims (InvalidInput otherwise).
+AccuracyReport compareToReference(const BitGrid& result, const BitGrid& reference);
+// The result's voxels the reference lacks (to check them one by one, e.g. as touches).
+std::vector<std::array<std::int32_t, 3>> falseVoxels(const BitGrid& result, const BitGrid& reference);
+
+// Section 4.1's test: rays along +x, -x, +y, -y, +z, -z through the centre of every pixel of
+// the grid's faces, i.e. one ray per voxel column and direction. Where the ray meets the mesh
+// is read off the exact thin (6-separating) voxelization, which marks a voxel of a column
+// where the surface crosses the column's centre line; the surface there spans the run of
+// consecutive conservative voxels around it. A ray passes when the result's first voxel on
+// it comes no later than one voxel past that run (so it is stopped by the surface it meets
+// first, within one voxel), or when its centre line meets no surface. A ray through a gap
+// runs on to a later surface, or out of the grid, and fails. This is stricter than the
+// paper's "the first voxel hit lies within one voxel of some surface", which a ray through a
+// gap that then hits the back of a closed object would pass.
+struct WatertightReport {
+    std::uint64_t rays = 0;
+    std::uint64_t passed = 0;
+    double share() const { return rays ? double(passed) / double(rays) : 1.0; }
+};
+WatertightReport rayMarchWatertightness(const BitGrid& result, const BitGrid& conservative, const BitGrid& thin);
+
+// Eq. 3: γ = -B · ln(A · p) for the bias p. Least squares of γ against ln p over the samples
+// (needs at least two distinct biases > 0; InvalidInput otherwise).
+struct GammaBiasFit {
+    double A = 0;
+    double B = 0;
+    double gammaFor(double bias) const;  // Eq. 3
+    double biasFor(double gamma) const;  // its inverse: p = exp(-γ / B) / A
+};
+GammaBiasFit fitGammaBias(const std::vector<double>& gammas, const std::vector<double>& biases);
+
+}  // namespace hyvox

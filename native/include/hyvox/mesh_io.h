@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Reading triangle meshes from files (PLY binary/ascii, .ply.gz, OBJ, and whatever else
+// assimp reads) into an owning mesh. Triangles are kept exactly as the file lists them:
+// degenerate and duplicate triangles stay (validate() skips and counts them), so triangle
+// counts match the file.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hyvox/mesh.h"
+
+namespace hyvox {
+
+struct Mesh {
+    std::vector<float> positions;           // vertex_count × 3, world units
+    std::vector<std::uint32_t> triangles;   // triangle_count × 3 vertex indices
+    std::vector<float> colors;              // empty, or vertex_count × 4 (RGBA, 0..1)
+    std::vector<float> uvs;                 // empty, or vertex_count × 2
+
+    std::size_t vertexCount() const { return positions.size() / 3; }
+    std::size_t triangleCount() const { return triangles.size() / 3; }
+    bool hasColors() const { return !colors.empty(); }
+    bool hasUvs() const { return !uvs.empty(); }
+    // A view for voxelize(); valid while this mesh lives and is not modified.
+    MeshView view() const {
+        return MeshView{positions.data(), vertexCount(), triangles.data(), triangleCount()};
+    }
+};
+
+// Reads a mesh file. A name ending in ".gz" is decompressed first and parsed by the
+// extension before ".gz" (e.g. "x.ply.gz" as PLY). Points and lines in the file are
+// ignored; polygons are fan-triangulated. Several meshes in one file are merged, with
+// their node transforms applied. Throws InvalidInput for a missing, unreadable or
+// unparsable file, or one without triangles.
+Mesh readMesh(const std::string& path);
+
+}  // namespace hyvox

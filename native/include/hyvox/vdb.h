@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Writing a voxelization to an OpenVDB file. OpenVDB types stay out of this header (its
+// headers compile slowly); src/io/vdb_grid.h has the grid builders for code that links
+// OpenVDB itself.
+//
+// The file holds:
+//  - "density": a FloatGrid, class fog volume, value 1 on every occupied voxel (active),
+//    background 0. Transform: uniform scale voxel_size, translation origin + voxel_size/2,
+//    so index (i,j,k) is the centre of voxel (i,j,k) (DESIGN.md, "Coordinates").
+//  - "count": a FloatGrid with the per-voxel values of a multi-valued result (only when
+//    result.counts is non-empty), same transform.
+//  Grid metadata: hyvox_version, hyvox_method, hyvox_mode, hyvox_voxel_size, hyvox_origin,
+//  hyvox_dims.
+#include <string>
+
+#include "hyvox/result.h"
+
+namespace hyvox {
+
+// Writes atomically: a temporary file in the same folder, renamed over `path` only after
+// everything was written. On any failure the temporary file is removed, an existing file
+// at `path` is left as it was, and InvalidInput (bad path) or ResourceError (I/O failure)
+// is thrown.
+void writeVdb(const VoxelizeResult& result, const std::string& path);
+
+}  // namespace hyvox

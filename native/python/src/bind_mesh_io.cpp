@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <pybind11/stl/filesystem.h>
+
+#include <filesystem>
+
+#include "bindings.h"
+#include "hyvox/mesh_io.h"
+
+namespace hyvox::python {
+
+void bindMeshIo(py::module_& m) {
+    m.def(
+        "read_mesh",
+        [](const std::filesystem::path& path) {
+            Mesh mesh;
+            {
+                py::gil_scoped_release release;
+                mesh = readMesh(path.string());
+            }
+            const auto n = py::ssize_t(mesh.vertexCount());
+            const auto t = py::ssize_t(mesh.triangleCount());
+            py::object colors = py::none(), uvs = py::none();
+            if (mesh.hasColors()) colors = arrayFromVector(std::move(mesh.colors), {n, 4});
+            if (mesh.hasUvs()) uvs = arrayFromVector(std::move(mesh.uvs), {n, 2});
+            return py::make_tuple(arrayFromVector(std::move(mesh.positions), {n, 3}),
+                                  arrayFromVector(std::move(mesh.triangles), {t, 3}), colors, uvs);
+        },
+        py::arg("path"),
+        "Read a mesh file: (vertices float32 (N,3), triangles uint32 (M,3), colors float32 (N,4) "
+        "or None, uvs float32 (N,2) or None).");
+}
+
+}  // namespace hyvox::python

@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// hyvox.VoxelGrid: a voxelization result held natively (one bit per voxel); numpy arrays
+// are made on request.
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "bindings.h"
+#include "hyvox/result.h"
+#include "hyvox/stats_json.h"
+#include "hyvox/vdb.h"
+
+namespace hyvox::python {
+namespace {
+
+using Grid = std::shared_ptr<VoxelizeResult>;
+
+std::vector<std::int32_t> flatCoords(const VoxelizeResult& r) {
+    const auto ijk = r.occupancy.coords();
+    std::vector<std::int32_t> flat(3 * ijk.size());
+    for (std::size_t n = 0; n < ijk.size(); ++n)
+        for (int a = 0; a < 3; ++a) flat[3 * n + std::size_t(a)] = ijk[n][a];
+    return flat;
+}
+
+py::array_t<std::int32_t> coords(const Grid& g) {
+    std::vector<std::int32_t> flat;
+    {
+        py::gil_scoped_release release;
+        flat = flatCoords(*g);
+    }
+    const auto k = py::ssize_t(flat.size() / 3);
+    return arrayFromVector(std::move(flat), {k, 3});
+}
+
+py::array_t<double> worldCentres(const Grid& g) {
+    std::vector<double> centres;
+    {
+        py::gil_scoped_release release;
+        const auto ijk = g->occupancy.coords();
+        centres.resize(3 * ijk.size());
+        for (std::size_t n = 0; n < ijk.size(); ++n) {
+            const auto c = g->grid.voxelCentre(ijk[n][0], ijk[n][1], ijk[n][2]);
+            for (int a = 0; a < 3; ++a) centres[3 * n + std::size_t(a)] = c[a];
+        }
+    }
+    const auto k = py::ssize_t(centres.size() / 3);
+    return arrayFromVector(std::move(centres), {k, 3});
+}
+
+py::tuple counts(const Grid& g) {
+    std::vector<std::int32_t> ijk(3 * g->counts.size());
+    std::vector<std::uint32_t> values(g->counts.size());
+    for (std::size_t n = 0; n < g->counts.size(); ++n) {
+        const VoxelCount& c = g->counts[n];
+        ijk[3 * n] = c.i;
+        ijk[3 * n + 1] = c.j;
+        ijk[3 * n + 2] = c.k;
+        values[n] = c.count;
+    }
+    const auto k = py::ssize_t(values.size());
+    return py::make_tuple(arrayFromVector(std::move(ijk), {k, 3}), arrayFromVector(std::move(values), {k}));
+}
+
+py::array_t<bool> toDense(const Grid& g) {
+    const auto& d = g->grid.dims;
+    py::array_t<bool> dense({py::ssize_t(d[0]), py::ssize_t(d[1]), py::ssize_t(d[2])});
+    bool* out = dense.mutable_data();
+    {
+        py::gil_scoped_release release;
+        std::fill(out, out + g->grid.voxelCount(), false);
+        for (const auto& ijk : g->occupancy.coords())
+            out[(std::size_t(ijk[0]) * std::size_t(d[1]) + std::size_t(ijk[1])) * std::size_t(d[2]) +
+                std::size_t(ijk[2])] = true;
+    }
+    return dense;
+}
+
+}  // namespace
+
+void bindVoxelGrid(py::module_& m) {
+    py::class_<VoxelizeResult, Grid>(m, "VoxelGrid", R"doc(
+The voxels of one voxelization. Voxel (i, j, k) covers the closed box
+[origin + (i, j, k) * voxel_size, origin + (i + 1, j + 1, k + 1) * voxel_size].)doc")
+        .def("coords", &coords,
+             "(i, j, k) of every occupied voxel as an int32 array of shape (K, 3), in 8x8x8 brick "
+             "order (sort it if order matters).")
+        .def("world_centres", &worldCentres,
+             "World-space centres of the occupied voxels, float64 (K, 3), in the order of coords().")
+        .def("counts", &counts,
+             "Multi-valued results (tessellation): (ijk int32 (K, 3), counts uint32 (K,)); empty arrays "
+             "for single-valued methods.")
+        .def("to_dense", &toDense, "The occupancy as a dense bool array of shape dims, indexed [i, j, k].")
+        .def(
+            "write_vdb",
+            [](const Grid& g, const std::filesystem::path& path) {
+                py::gil_scoped_release release;
+                writeVdb(*g, path.string());
+            },
+            py::arg("path"),
+            "Write an OpenVDB file with a float grid 'density' (1 on occupied voxels; index space = "
+            "voxel centres), plus 'count' for multi-valued results. Atomic: on failure nothing is "
+            "written and an existing file is kept.")
+        .def_property_readonly("origin", [](const Grid& g) { return py::make_tuple(g->grid.origin[0], g->grid.origin[1], g->grid.origin[2]); },
+                               "World position of voxel (0, 0, 0)'s min corner.")
+        .def_property_readonly("voxel_size", [](const Grid& g) { return g->grid.voxel_size; }, "Voxel edge length, world units.")
+        .def_property_readonly("dims", [](const Grid& g) { return py::make_tuple(g->grid.dims[0], g->grid.dims[1], g->grid.dims[2]); },
+                               "Voxels along x, y, z.")
+        .def_property_readonly("voxel_count", [](const Grid& g) { return g->stats.voxel_count; }, "Occupied voxels.")
+        .def_property_readonly("method", [](const Grid& g) { return g->stats.method; })
+        .def_property_readonly("mode", [](const Grid& g) { return g->stats.mode; })
+        .def_property_readonly(
+            "stats",
+            [](const Grid& g) { return py::module_::import("json").attr("loads")(statsToJson(*g)); },
+            "The stats as a dict, the same as the CLI's --stats-json: origin, voxel_size, dims, "
+            "voxel_count, triangles {input, used, degenerate}, timings_ms {stage: ms}, total_ms, metrics.")
+        .def("__len__", [](const Grid& g) { return g->stats.voxel_count; })
+        .def("__repr__", [](const Grid& g) {
+            const auto& d = g->grid.dims;
+            return "<hyvox.VoxelGrid " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]) +
+                   ", " + std::to_string(g->stats.voxel_count) + " voxels, " + g->stats.mode + ", " + g->stats.method + ">";
+        });
+}
+
+}  // namespace hyvox::python

@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// hyvox._core.voxelize: copies the (already converted) numpy input, releases the GIL and
+// runs hyvox::voxelize with an interrupter wired to a CancelToken and a progress callback.
+#include <pybind11/stl.h>
+
+#include <array>
+#include <cstring>
+#include <exception>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "bindings.h"
+#include "cancel_token.h"
+#include "hyvox/errors.h"
+#include "hyvox/voxelize.h"
+
+namespace hyvox::python {
+namespace {
+
+// Exact dtype and layout, or ValueError: the Python layer converts, this only refuses.
+template <typename T>
+std::vector<T> copyRows(const py::array& array, const char* name, const char* dtype, py::ssize_t width = 3) {
+    if (!py::isinstance<py::array_t<T>>(array) || !array.dtype().is(py::dtype::of<T>()))
+        throw py::value_error(std::string(name) + " must be a numpy array of dtype " + dtype);
+    if (array.ndim() != 2 || array.shape(1) != width)
+        throw py::value_error(std::string(name) + " must have shape (count, " + std::to_string(width) + ")");
+    // A private copy: another Python thread may modify the caller's array while the GIL is
+    // released, and validated indices must stay valid.
+    const auto contiguous = py::array_t<T, py::array::c_style>::ensure(array);
+    std::vector<T> copy(std::size_t(contiguous.size()));
+    if (!copy.empty()) std::memcpy(copy.data(), contiguous.data(), copy.size() * sizeof(T));
+    return copy;
+}
+
+// Feeds the CancelToken from worker threads (atomics only) and calls the Python progress
+// callback on the calling thread alone, taking the GIL just for the call. A callback that
+// raises stops the voxelization; its exception is re-raised once native code has returned.
+class PythonInterrupter final : public Interrupter {
+public:
+    PythonInterrupter(std::shared_ptr<CancelToken> token, py::object progress)
+        : token_(std::move(token)),
+          progress_(std::move(progress)),
+          has_progress_(!progress_.is_none()),
+          caller_(std::this_thread::get_id()) {}
+
+    void start(const char*) override {
+        if (token_) token_->begin();
+    }
+    void end() override {
+        if (token_) token_->finish();
+    }
+    bool wasInterrupted(int percent) override {
+        if (percent >= 0 && token_) token_->raiseProgress(percent);
+        if (std::this_thread::get_id() == caller_ && percent > reported_ && has_progress_ && !failed_.load()) {
+            reported_ = percent;
+            py::gil_scoped_acquire acquire;
+            try {
+                progress_(percent);
+            } catch (py::error_already_set&) {
+                error_ = std::current_exception();
+                failed_.store(true);
+            }
+        }
+        return failed_.load(std::memory_order_relaxed) || (token_ && token_->cancelled());
+    }
+    // Called with the GIL held, after the native call.
+    void rethrowCallbackError() {
+        if (error_) {
+            std::exception_ptr error = std::move(error_);
+            error_ = nullptr;
+            std::rethrow_exception(error);
+        }
+    }
+
+private:
+    std::shared_ptr<CancelToken> token_;
+    py::object progress_;
+    bool has_progress_;
+    std::thread::id caller_;
+    int reported_ = -1;  // touched by the calling thread only
+    std::atomic<bool> failed_{false};
+    std::exception_ptr error_;
+};
+
+// Optional per-vertex rows (uvs, normals): one row per vertex, or absent.
+std::vector<float> copyVertexRows(const std::optional<py::array>& array, const char* name, py::ssize_t width,
+                                  std::size_t vertex_count) {
+    if (!array) return {};
+    std::vector<float> rows = copyRows<float>(*array, name, "float32", width);
+    if (rows.size() != vertex_count * std::size_t(width))
+        throw py::value_error(std::string(name) + " must have one row per vertex (" + std::to_string(vertex_count) +
+                              "), got " + std::to_string(rows.size() / std::size_t(width)));
+    return rows;
+}
+
+HeightImage heightImage(const std::optional<py::array>& array) {
+    HeightImage image;
+    if (!array) return image;
+    if (!array->dtype().is(py::dtype::of<float>()) || array->ndim() != 2)
+        throw py::value_error("displacement_pixels must be a float32 array of shape (height, width)");
+    const auto contiguous = py::array_t<float, py::array::c_style>::ensure(*array);
+    image.height = int(contiguous.shape(0));
+    image.width = int(contiguous.shape(1));
+    image.values.assign(contiguous.data(), contiguous.data() + contiguous.size());
+    return image;
+}
+
+std::shared_ptr<VoxelizeResult> voxelizeArrays(
+    const py::array& vertices, const py::array& triangles, std::optional<py::array> uvs,
+    std::optional<py::array> normals, int resolution, std::optional<double> voxel_size,
+    const std::string& mode, const std::string& method, int padding, int threads,
+    std::optional<std::array<double, 3>> origin,
+    std::optional<std::pair<std::array<double, 3>, std::array<double, 3>>> bounds,
+    std::optional<std::uint64_t> memory_budget, const std::string& gl_device, const std::string& shader_dir,
+    double hybrid_cutoff, double tess_gamma, bool pn_triangles, const std::string& displacement_image,
+    double displacement_strength, double displacement_midlevel, std::optional<py::array> displacement_pixels,
+    bool tess_counts, bool tess_measure_accuracy, std::shared_ptr<CancelToken> cancel, py::object progress) {
+    VoxelizeOptions options;
+    options.grid.resolution = resolution;
+    options.grid.voxel_size = voxel_size;
+    options.grid.origin = origin;
+    if (bounds) options.grid.bounds = Bounds{bounds->first, bounds->second};
+    options.grid.padding = padding;
+    options.mode = parseMode(mode);
+    options.method = parseMethod(method);
+    options.threads = threads;
+    if (memory_budget) options.memory_budget = *memory_budget;
+    options.gl.device = gl_device;
+    options.gl.shader_dir = shader_dir;
+    options.hybrid.cutoff = hybrid_cutoff;
+    options.tessellation.gamma = tess_gamma;
+    options.tessellation.pn_triangles = pn_triangles;
+    options.tessellation.displacement_image = displacement_image;
+    options.tessellation.displacement_strength = displacement_strength;
+    options.tessellation.displacement_midlevel = displacement_midlevel;
+    options.tessellation.displacement_pixels = heightImage(displacement_pixels);
+    options.tessellation.counts = tess_counts;
+    options.tessellation.measure_accuracy = tess_measure_accuracy;
+    if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw py::type_error("progress must be callable or None");
+
+    const std::vector<float> positions = copyRows<float>(vertices, "vertices", "float32");
+    const std::vector<std::uint32_t> indices = copyRows<std::uint32_t>(triangles, "triangles", "uint32");
+    const std::vector<float> uv_rows = copyVertexRows(uvs, "uvs", 2, positions.size() / 3);
+    const std::vector<float> normal_rows = copyVertexRows(normals, "normals", 3, positions.size() / 3);
+    MeshView view{positions.data(), positions.size() / 3, indices.data(), indices.size() / 3};
+    if (uvs) view.uvs = uv_rows.data();
+    if (normals) view.normals = normal_rows.data();
+
+    PythonInterrupter interrupter(std::move(cancel), std::move(progress));
+    auto result = std::make_shared<VoxelizeResult>();
+    try {
+        py::gil_scoped_release release;
+        *result = voxelize(view, options, &interrupter);
+    } catch (const Cancelled&) {
+        interrupter.rethrowCallbackError();  // the callback's own exception wins
+        throw;
+    }
+    interrupter.rethrowCallbackError();
+    return result;
+}
+
+}  // namespace
+
+void bindVoxelize(py::module_& m) {
+    const VoxelizeOptions d;  // defaults come from the C++ options, so both stay in sync
+    m.def("voxelize", &voxelizeArrays, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
+          py::arg("uvs") = py::none(), py::arg("normals") = py::none(),
+          py::arg("resolution") = d.grid.resolution, py::arg("voxel_size") = py::none(),
+          py::arg("mode") = toString(d.mode), py::arg("method") = toString(d.method),
+          py::arg("padding") = d.grid.padding, py::arg("threads") = d.threads, py::arg("origin") = py::none(),
+          py::arg("bounds") = py::none(), py::arg("memory_budget") = py::none(), py::arg("gl_device") = d.gl.device,
+          py::arg("shader_dir") = d.gl.shader_dir, py::arg("hybrid_cutoff") = d.hybrid.cutoff,
+          py::arg("tess_gamma") = d.tessellation.gamma, py::arg("pn_triangles") = d.tessellation.pn_triangles,
+          py::arg("displacement_image") = d.tessellation.displacement_image,
+          py::arg("displacement_strength") = d.tessellation.displacement_strength,
+          py::arg("displacement_midlevel") = d.tessellation.displacement_midlevel,
+          py::arg("displacement_pixels") = py::none(), py::arg("tess_counts") = d.tessellation.counts,
+          py::arg("tess_measure_accuracy") = d.tessellation.measure_accuracy,
+          py::arg("cancel") = py::none(), py::arg("progress") = py::none(),
+          "Voxelize float32 (N,3) vertices and uint32 (M,3) triangles (exact dtypes; hyvox.voxelize "
+          "converts). Releases the GIL while it runs.");
+}
+
+}  // namespace hyvox::python

@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Pieces of the hyvox._core module, one file each; module.cpp calls them in order.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <vector>
+
+namespace hyvox::python {
+
+namespace py = pybind11;
+
+void bindErrors(py::module_& m);
+void bindCancelToken(py::module_& m);
+void bindVoxelGrid(py::module_& m);
+void bindVoxelize(py::module_& m);
+void bindMeshIo(py::module_& m);
+
+// A numpy array that takes over a vector's storage (no copy): the vector lives in a
+// capsule that numpy frees with the array.
+template <typename T>
+py::array_t<T> arrayFromVector(std::vector<T>&& data, std::vector<py::ssize_t> shape) {
+    auto* owned = new std::vector<T>(std::move(data));
+    py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+    return py::array_t<T>(shape, owned->data(), free_when_done);
+}
+
+}  // namespace hyvox::python

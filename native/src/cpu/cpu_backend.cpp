@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The 'cpu' method: every triangle's factored test, in parallel over chunks of triangles
+// with TBB. Bits are set with relaxed atomic ORs on whole words (no locks). A triangle covering
+// many columns of its dominant plane is split by rows into tasks of its own, so one big
+// wall cannot leave a core idle.
+#include <atomic>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "core/backends.h"
+#include "core/stopwatch.h"
+#include "cpu/mark_voxels.h"
+#include "cpu/rasterize_small.h"
+#include "cpu/rasterize_triangle.h"
+#include "cpu/triangle_setup.h"
+
+namespace hyvox {
+namespace {
+
+// Columns of the dominant plane above which a triangle's rows become separate tasks.
+constexpr long kSplitColumns = 64 * 64;
+constexpr int kRowsPerTask = 8;
+constexpr std::size_t kTrianglesPerChunk = 1024;
+
+void rasterizeRowsAnyAxis(const cpu::TriangleSetup& t, int row_begin, int row_end, cpu::WordMarker& marker) {
+    switch (t.w) {
+        case 0: cpu::rasterizeRows<0>(t, row_begin, row_end, marker); break;
+        case 1: cpu::rasterizeRows<1>(t, row_begin, row_end, marker); break;
+        default: cpu::rasterizeRows<2>(t, row_begin, row_end, marker); break;
+    }
+}
+
+}  // namespace
+
+void runCpuBackend(const BackendJob& job, VoxelizeResult& result) {
+    Stopwatch watch;
+    const ValidatedMesh& mesh = job.mesh;
+    const auto& usable = mesh.usable;
+    const GridSpec& spec = job.grid;
+    BitGrid& grid = result.occupancy;
+    const Mode mode = job.options.mode;
+    std::atomic<std::size_t> done{0};
+    std::atomic<std::uint64_t> split_triangles{0};
+
+    const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, usable.size(), kTrianglesPerChunk),
+            [&](const tbb::blocked_range<std::size_t>& chunk) {
+                throwIfInterrupted(job.interrupter, int(100 * done.load(std::memory_order_relaxed) / usable.size()));
+                cpu::WordMarker marker(grid);
+                for (std::size_t n = chunk.begin(); n != chunk.end(); ++n) {
+                    const std::uint32_t* idx = mesh.view.triangles + 3 * std::size_t(usable[n]);
+                    std::array<std::array<double, 3>, 3> corners;
+                    for (int c = 0; c < 3; ++c) {
+                        const float* p = mesh.view.positions + 3 * std::size_t(idx[c]);
+                        for (int a = 0; a < 3; ++a)
+                            corners[c][a] = (double(p[a]) - spec.origin[a]) / spec.voxel_size;
+                    }
+                    cpu::TriangleSetup t;
+                    const cpu::SetupKind kind = cpu::setupTriangle(corners, mode, spec.dims, t);
+                    if (kind == cpu::SetupKind::Outside) continue;
+                    if (kind == cpu::SetupKind::SingleVoxel) {
+                        marker.mark(t.lo[0], t.lo[1], t.lo[2]);
+                        continue;
+                    }
+                    if (cpu::fitsSmallPath(t)) {
+                        cpu::rasterizeSmall(t, marker);
+                        continue;
+                    }
+                    const int rows = t.hi[1] - t.lo[1] + 1;
+                    const long columns = long(rows) * (t.hi[0] - t.lo[0] + 1);
+                    if (columns <= kSplitColumns) {
+                        rasterizeRowsAnyAxis(t, t.lo[1], t.hi[1] + 1, marker);
+                        continue;
+                    }
+                    split_triangles.fetch_add(1, std::memory_order_relaxed);
+                    tbb::parallel_for(tbb::blocked_range<int>(t.lo[1], t.hi[1] + 1, kRowsPerTask),
+                                      [&](const tbb::blocked_range<int>& r) {
+                                          throwIfInterrupted(job.interrupter);
+                                          cpu::WordMarker row_marker(grid);
+                                          rasterizeRowsAnyAxis(t, r.begin(), r.end(), row_marker);
+                                      });
+                }
+                done.fetch_add(chunk.size(), std::memory_order_relaxed);
+            });
+    });
+    result.stats.addTiming("voxelize", watch.elapsedMs());
+    result.stats.metrics["split_triangles"] = double(split_triangles.load());
+}
+
+}  // namespace hyvox

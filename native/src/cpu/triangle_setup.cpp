@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "cpu/triangle_setup.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hyvox::cpu {
+namespace {
+
+// Branch-free: normal signs are random per triangle, so branches would mispredict.
+inline double signOf(double x) { return double(x > 0.0) - double(x < 0.0); }
+
+// Edge tests of one projection (a, b) whose winding is sign(n_c), c the third axis of the
+// cyclic triple (a, b, c). A zero winding means the triangle projects to a segment; the
+// tests then pass trivially (the plane test already decides those voxels).
+template <bool Thin>
+inline void setupProjection(const std::array<std::array<double, 3>, 3>& p, double winding, int a, int b,
+                            EdgeTest out[3]) {
+    for (int i = 0; i < 3; ++i) {
+        const auto& from = p[i];
+        const auto& to = p[i == 2 ? 0 : i + 1];
+        EdgeTest& e = out[i];
+        e.na = -winding * (to[b] - from[b]);
+        e.nb = winding * (to[a] - from[a]);
+        e.va = from[a];
+        e.vb = from[b];
+        if constexpr (Thin) {
+            // Voxel centre p + 1/2 against the diamond |da|+|db| <= 1/2 inscribed in the
+            // voxel's projection: the support along (na, nb) is max(|na|, |nb|) / 2.
+            e.offset = 0.5 * (e.na + e.nb) + 0.5 * std::max(std::fabs(e.na), std::fabs(e.nb));
+        } else {
+            // The voxel corner furthest along the inward normal ("critical point").
+            e.offset = std::max(0.0, e.na) + std::max(0.0, e.nb);
+        }
+    }
+}
+
+template <bool Thin>
+SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const std::array<std::int32_t, 3>& dims,
+                TriangleSetup& out) {
+    // Clipped candidate range per unswizzled axis: voxel i's closed box meets [lo, hi] iff
+    // lo - 1 <= i <= hi.
+    int lo[3], hi[3];
+    bool one[3];  // unclipped: the triangle's extent on this axis lies in one voxel's range
+    for (int a = 0; a < 3; ++a) {
+        const double mn = std::min(std::min(c[0][a], c[1][a]), c[2][a]);
+        const double mx = std::max(std::max(c[0][a], c[1][a]), c[2][a]);
+        const int first = ceilToInt(clampCoord(mn)) - 1, last = floorToInt(clampCoord(mx));
+        lo[a] = std::max(0, first);
+        hi[a] = std::min(dims[a] - 1, last);
+        if (lo[a] > hi[a]) return SetupKind::Outside;
+        one[a] = first == last;
+    }
+    if (!Thin && one[0] && one[1] && one[2]) {
+        out.lo = {lo[0], lo[1], lo[2]};
+        return SetupKind::SingleVoxel;
+    }
+
+    const double e0[3] = {c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]};
+    const double e1[3] = {c[2][0] - c[1][0], c[2][1] - c[1][1], c[2][2] - c[1][2]};
+    const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2],
+                         e0[0] * e1[1] - e0[1] * e1[0]};
+    const double an[3] = {std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])};
+    const int w = (an[0] >= an[1] && an[0] >= an[2]) ? 0 : (an[1] >= an[2] ? 1 : 2);
+    if (an[w] == 0.0) return SetupKind::Outside;  // no plane in voxel space: nothing well defined
+    const int u = w == 2 ? 0 : w + 1, v = w == 0 ? 2 : w - 1;  // (w+1)%3, (w+2)%3
+    out.w = w;
+    out.lo = {lo[u], lo[v], lo[w]};
+    out.hi = {hi[u], hi[v], hi[w]};
+
+    // Swizzled corners (u, v, w).
+    std::array<std::array<double, 3>, 3> s;
+    for (int i = 0; i < 3; ++i) s[i] = {c[i][u], c[i][v], c[i][w]};
+    const double sn[3] = {n[u], n[v], n[w]};
+
+    // Projections: (u,v) winds with n_w, (v,w) with n_u, (w,u) with n_v (cyclic triples).
+    // Conservative only: a projection is redundant when the triangle's extent along one of
+    // its two axes lies within one voxel's range. The projected triangle is connected, so
+    // it then has a point inside every candidate voxel's square (its other coordinate
+    // ranges over an interval meeting the square's), and the edge tests would all pass.
+    // Those tests are set to pass trivially; small triangles skip most of the work.
+    auto project = [&](double winding, int a, int b, EdgeTest* tests, bool redundant) {
+        if (!Thin && redundant)
+            for (int i = 0; i < 3; ++i) tests[i] = EdgeTest{0, 0, 0, 0, 0};
+        else
+            setupProjection<Thin>(s, winding, a, b, tests);
+    };
+    project(signOf(sn[2]), 0, 1, out.uv, one[u] || one[v]);
+    project(signOf(sn[0]), 1, 2, out.vw, one[v] || one[w]);
+    project(signOf(sn[1]), 2, 0, out.wu, one[w] || one[u]);
+
+    // The plane, with its normal flipped to point along +w so the depth range is ordered.
+    const double flip = signOf(sn[2]);
+    out.normal = {flip * sn[0], flip * sn[1], flip * sn[2]};
+    out.origin = s[0];
+    if constexpr (Thin) {
+        // Column centre: the plane's depth at (pu + 1/2, pv + 1/2).
+        out.depth_lo_offset = out.depth_hi_offset = 0.5 * (out.normal[0] + out.normal[1]);
+    } else {
+        // The voxel box's extreme corners along the normal in (u, v).
+        out.depth_lo_offset = std::max(0.0, out.normal[0]) + std::max(0.0, out.normal[1]);
+        out.depth_hi_offset = std::min(0.0, out.normal[0]) + std::min(0.0, out.normal[1]);
+    }
+    return SetupKind::Full;
+}
+
+}  // namespace
+
+SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode,
+                        const std::array<std::int32_t, 3>& dims, TriangleSetup& out) {
+    return mode == Mode::Thin ? setup<true>(corners, dims, out) : setup<false>(corners, dims, out);
+}
+
+}  // namespace hyvox::cpu

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Per-triangle precomputation of the factored triangle/voxel test (JCGT 2013 §3.1.2-3.1.3,
+// after Schwarz & Seidel 2010), in voxel space where voxel p covers [p, p+1]^3.
+//
+// The triangle is swizzled so that w is its dominant normal axis and (u, v, w) is a cyclic
+// (right-handed) permutation of (x, y, z): u = (w+1)%3, v = (w+2)%3. The voxelizer walks
+// the (u, v) plane, finds the depth range along w from the plane, and confirms the two
+// remaining projections (v, w) and (w, u).
+//
+// Each projected edge test is  f(p) = na*(pa - Va) + nb*(pb - Vb) + offset >= 0  with p the
+// voxel's integer min corner: written relative to the edge's vertex so that axis-aligned
+// edges and faces lying exactly on voxel planes evaluate exactly (a touch is a pass, so
+// faces on voxel planes mark the voxels on both sides).
+#include <array>
+#include <cstdint>
+
+#include "hyvox/options.h"
+
+namespace hyvox::cpu {
+
+struct EdgeTest {
+    double na, nb;  // inward normal of the projected edge (zero if the projection is a segment)
+    double va, vb;  // the edge's start vertex in the plane's coordinates
+    double offset;  // conservative: max(0,na)+max(0,nb); thin: the inscribed diamond's support
+    double eval(double pa, double pb) const { return na * (pa - va) + nb * (pb - vb) + offset; }
+};
+
+struct TriangleSetup {
+    int w = 2;                     // dominant (depth) axis; u = (w+1)%3, v = (w+2)%3
+    std::array<double, 3> origin;  // swizzled vertex 0 (the plane passes through it)
+    std::array<double, 3> normal;  // swizzled, flipped so normal[2] (the w component) > 0
+    EdgeTest uv[3], vw[3], wu[3];  // the three projections' edge tests
+    // Depth range terms (see voxelizeColumn): conservative uses the box's min/max corner
+    // offsets along the normal, thin the column centre.
+    double depth_lo_offset = 0, depth_hi_offset = 0;
+    // Clipped candidate voxel range in swizzled order (lo > hi: nothing to do).
+    std::array<int, 3> lo{0, 0, 0}, hi{-1, -1, -1};
+};
+
+enum class SetupKind {
+    Outside,      // the bounding box misses the grid: nothing to mark
+    SingleVoxel,  // conservative, and the closed bounding box lies in one voxel's box: that
+                  // voxel (unswizzled, in out.lo) is marked without any test
+    Full,         // run the factored test over out's swizzled range
+};
+
+// Builds the setup from voxel-space corners (dims in unswizzled x, y, z order).
+SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode,
+                        const std::array<std::int32_t, 3>& dims, TriangleSetup& out);
+
+// floor / ceil of values already clamped to a safe int range (the baseline x86-64 target
+// has no inline rounding instruction, and libm calls dominate a small triangle's cost).
+inline int floorToInt(double x) {
+    const int i = int(x);
+    return i - (x < double(i));
+}
+inline int ceilToInt(double x) {
+    const int i = int(x);
+    return i + (x > double(i));
+}
+// Keeps a voxel-space coordinate in a range where int conversion is defined.
+inline double clampCoord(double x) { return x < -1.0e9 ? -1.0e9 : (x > 1.0e9 ? 1.0e9 : x); }
+
+}  // namespace hyvox::cpu

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "gl/gl_worker.h"
+
+#include <cstdlib>
+#include <map>
+
+#include "gl/gl_debug.h"
+#include "gl/shader_library.h"
+
+namespace hyvox::gl {
+
+std::string resolveDeviceSelection(const std::string& device) {
+    if (!device.empty()) return device;
+    const char* env = std::getenv("HYVOX_GL_DEVICE");
+    return (env && *env) ? env : "auto";
+}
+
+GlWorker& GlWorker::get(const std::string& device) {
+    // Workers are deliberately never destroyed: their threads own contexts until the process
+    // ends, and tearing GL down from static destructors races the driver's own atexit hooks.
+    static std::mutex registry_mutex;
+    static auto* registry = new std::map<std::string, GlWorker*>();
+    const std::string selection = resolveDeviceSelection(device);
+    std::lock_guard<std::mutex> lock(registry_mutex);
+    auto found = registry->find(selection);
+    if (found != registry->end()) return *found->second;
+    auto* worker = new GlWorker(selection);  // throws if no context could be made
+    registry->emplace(selection, worker);
+    return *worker;
+}
+
+GlWorker::GlWorker(const std::string& selection) {
+    std::promise<void> ready;
+    auto started = ready.get_future();
+    thread_ = std::thread([this, selection, &ready] { loop(selection, ready); });
+    try {
+        started.get();
+    } catch (...) {
+        thread_.join();
+        throw;
+    }
+    thread_.detach();  // lives as long as the process; see get()
+}
+
+void GlWorker::post(std::function<void()> work) {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        queue_.push_back(std::move(work));
+    }
+    wake_.notify_one();
+}
+
+void GlWorker::loop(const std::string& selection, std::promise<void>& ready) {
+    std::unique_ptr<EglContext> context;
+    try {
+        context = std::make_unique<EglContext>(selection);
+        enableDebugOutput();
+        device_ = context->device();
+        renderer_ = context->renderer();
+        version_ = context->version();
+        programs_ = std::make_unique<ProgramCache>();
+    } catch (...) {
+        ready.set_exception(std::current_exception());
+        return;
+    }
+    ready.set_value();  // `ready` dies with the constructor after this
+    for (;;) {
+        std::function<void()> work;
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            wake_.wait(lock, [this] { return !queue_.empty(); });
+            work = std::move(queue_.front());
+            queue_.pop_front();
+        }
+        work();  // a packaged_task: exceptions travel to the caller's future
+    }
+}
+
+}  // namespace hyvox::gl

@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The GL backend's run, below runGlBackend: also the entry point for the voxel list
+// (section 3.5) and for benchmarks that want the pass timings.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/backends.h"
+#include "hybrid/gl_voxelizer.h"
+
+namespace hyvox::hybrid {
+
+struct GlRun {
+    PassTimes times;
+    double cutoff = 0;  // hybrid: used cutoff; triangle: inf; fragment: 0
+    int search_runs = 0;  // timed runs of the auto-cutoff search (0: given or cached)
+    double prepare_ms = 0, upload_ms = 0, search_ms = 0, voxelize_ms = 0;
+    std::string device;  // GL_RENDERER
+    std::string timer;   // how pass times were taken
+};
+
+// Runs job.options.method (triangle | fragment | hybrid) on the GL worker. Writes the bit
+// grid into `out` (dims = job.grid.dims) or, when voxel_list is given, fills that instead
+// (each set voxel once, unordered; `out` is then untouched).
+GlRun runGl(const BackendJob& job, BitGrid* out, std::vector<std::array<std::int32_t, 3>>* voxel_list = nullptr);
+
+}  // namespace hyvox::hybrid

@@ -1,0 +1,294 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hybrid/gl_voxelizer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+#include "core/stopwatch.h"
+#include "gl/gl_debug.h"
+#include "hybrid/gl_bindings.h"
+#include "hyvox/errors.h"
+
+namespace hyvox::hybrid {
+namespace {
+
+constexpr std::size_t kBrickBytes = 64;  // 512 bits
+
+GLint64 glLimit(GLenum name) {
+    GLint64 value = 0;
+    glGetInteger64v(name, &value);
+    return value;
+}
+
+std::string dimsText(const std::array<std::int32_t, 3>& d) {
+    return std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]);
+}
+
+// The largest bit-grid tile in bytes: one storage block, or less when tests ask for it.
+std::uint64_t tileByteLimit() {
+    std::uint64_t limit = std::uint64_t(glLimit(GL_MAX_SHADER_STORAGE_BLOCK_SIZE));
+    if (const char* env = std::getenv("HYVOX_GL_TILE_BYTES"))
+        if (const unsigned long long forced = std::strtoull(env, nullptr, 10)) limit = std::min<std::uint64_t>(limit, forced);
+    // 32-bit word indices in the shaders.
+    return std::min<std::uint64_t>(limit, std::uint64_t(1) << 33);
+}
+
+// Only active uniforms may be set: a location the compiler dropped is an error in GL.
+bool uniformActive(const gl::Program& program, GLint location) {
+    GLint count = 0;
+    glGetProgramInterfaceiv(program.id(), GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
+    const GLenum property = GL_LOCATION;
+    for (GLint i = 0; i < count; ++i) {
+        GLint value = -1;
+        glGetProgramResourceiv(program.id(), GL_UNIFORM, GLuint(i), 1, &property, 1, nullptr, &value);
+        if (value == location) return true;
+    }
+    return false;
+}
+
+std::string definesFor(Mode mode, bool voxel_list, bool from_large_list) {
+    return std::string("#define HYVOX_THIN ") + (mode == Mode::Thin ? "1" : "0") +
+           "\n#define HYVOX_VOXEL_LIST " + (voxel_list ? "1" : "0") +
+           "\n#define HYVOX_FROM_LARGE_LIST " + (from_large_list ? "1" : "0") + "\n";
+}
+
+void dispatchTriangles(std::uint32_t count, std::uint32_t chunks) {
+    const std::uint32_t groups = (count + HYVOX_LOCAL_SIZE - 1) / HYVOX_LOCAL_SIZE;
+    if (groups == 0) return;
+    GLint max_x = 65535;
+    glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_x);
+    const std::uint32_t gx = std::min<std::uint32_t>(groups, std::uint32_t(max_x));
+    glDispatchCompute(gx, (groups + gx - 1) / gx, chunks);
+}
+
+// The largest bounding-box side of any triangle, in voxels.
+double largestExtent(const GpuMesh& mesh) {
+    double largest = 0;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        for (int a = 0; a < 3; ++a) {
+            double lo = 1e300, hi = -1e300;
+            for (int c = 0; c < 3; ++c) {
+                const GpuVertex& v = mesh.vertices[mesh.triangles[3 * t + c]];
+                const double x = double(v.cell[a]) + double(v.fraction[a]);
+                lo = std::min(lo, x);
+                hi = std::max(hi, x);
+            }
+            largest = std::max(largest, hi - lo);
+        }
+    return largest;
+}
+
+}  // namespace
+
+GlTuning GlTuning::forDevice(bool software) {
+    GlTuning tuning;
+    tuning.wall_timing = software || std::getenv("HYVOX_GL_WALL_TIMING") != nullptr;
+    // 90² columns of at most 4 loop iterations each stay well below 65535.
+    tuning.chunk_side = software ? 90 : 0;
+    return tuning;
+}
+
+GlVoxelizer::GlVoxelizer(const GpuMesh& mesh, const GridSpec& grid, Mode mode, Method method,
+                         const std::string& shader_dir, gl::ProgramCache& programs, const GlTuning& tuning)
+    : grid_(grid), mode_(mode), method_(method), shader_dir_(shader_dir), programs_(programs),
+      triangle_count_(std::uint32_t(mesh.triangleCount())), tuning_(tuning) {
+    if (mesh.triangleCount() > 0x3fffffffull) throw ResourceError("too many triangles for the GL methods");
+    for (int a = 0; a < 3; ++a) bricks_[a] = (grid.dims[a] + 7) / 8;
+
+    // Limits first, before any large allocation.
+    if (method != Method::Triangle) {
+        const std::int32_t largest = std::max({grid.dims[0], grid.dims[1], grid.dims[2]});
+        GLint viewport[2] = {0, 0};
+        glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+        const GLint64 fb = std::min(glLimit(GL_MAX_FRAMEBUFFER_WIDTH), glLimit(GL_MAX_FRAMEBUFFER_HEIGHT));
+        const GLint64 raster_limit = std::min<GLint64>({viewport[0], viewport[1], fb});
+        if (largest > raster_limit)
+            throw ResourceError("a " + dimsText(grid.dims) + " grid exceeds this GL device's " +
+                                std::to_string(raster_limit) + "-pixel framebuffer limit for method '" +
+                                toString(method) + "'; use method 'triangle' or a larger voxel size");
+    }
+    const std::uint64_t slab_bytes = std::uint64_t(bricks_[1]) * std::uint64_t(bricks_[2]) * kBrickBytes;
+    const std::uint64_t tile_limit = tileByteLimit();
+    if (slab_bytes > tile_limit)
+        throw ResourceError("a " + dimsText(grid.dims) + " grid needs " + std::to_string(slab_bytes >> 20) +
+                            " MiB per 8-voxel slab, more than this GL device's storage-block limit of " +
+                            std::to_string(tile_limit >> 20) + " MiB; use a larger voxel size");
+    const int bricks_per_tile = int(std::min<std::uint64_t>(std::uint64_t(bricks_[0]), tile_limit / slab_bytes));
+    for (int x0 = 0; x0 < bricks_[0]; x0 += bricks_per_tile) tiles_.push_back({x0, std::min(bricks_[0], x0 + bricks_per_tile)});
+
+    if (tuning_.chunk_side > 0 && method != Method::Fragment) {
+        // Enough chunks for the largest triangle's bounding box on any plane, clipped to the grid.
+        const double grid_side = double(std::max({grid.dims[0], grid.dims[1], grid.dims[2]}));
+        const double extent = std::min(grid_side, largestExtent(mesh)) + 2.0;
+        const double per_side = std::ceil(extent / tuning_.chunk_side);
+        chunks_ = std::uint32_t(std::min(65535.0, per_side * per_side));
+    }
+
+    vertices_ = gl::Buffer(mesh.vertices.size() * sizeof(GpuVertex), mesh.vertices.data(), 0);
+    triangles_ = gl::Buffer(mesh.triangles.size() * sizeof(std::uint32_t), mesh.triangles.data(), 0);
+    bits_ = gl::Buffer(std::size_t(bricks_per_tile) * slab_bytes, nullptr, 0);
+    if (method == Method::Hybrid) {
+        large_ = gl::Buffer(std::size_t(triangle_count_) * 4, nullptr, 0);
+        draw_ = gl::Buffer(16, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    if (method != Method::Triangle) {
+        glNamedFramebufferParameteri(framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, std::max(grid.dims[0], std::max(grid.dims[1], grid.dims[2])));
+        glNamedFramebufferParameteri(framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, std::max(grid.dims[0], std::max(grid.dims[1], grid.dims[2])));
+    }
+    gl::checkGl("uploading the mesh");
+}
+
+GlVoxelizer::Programs GlVoxelizer::programsFor(bool voxel_list) const {
+    Programs p;
+    if (method_ == Method::Triangle)
+        p.triangle = &programs_.get({{GL_COMPUTE_SHADER, "hybrid/triangle_parallel.comp"}},
+                                    definesFor(mode_, voxel_list, false), shader_dir_);
+    if (method_ == Method::Hybrid)
+        p.classify = &programs_.get({{GL_COMPUTE_SHADER, "hybrid/classify.comp"}}, definesFor(mode_, voxel_list, false),
+                                    shader_dir_);
+    if (method_ != Method::Triangle)
+        p.raster = &programs_.get({{GL_VERTEX_SHADER, "hybrid/fragment_parallel.vert"},
+                                   {GL_GEOMETRY_SHADER, "hybrid/fragment_parallel.geom"},
+                                   {GL_FRAGMENT_SHADER, "hybrid/fragment_parallel.frag"}},
+                                  definesFor(mode_, voxel_list, method_ == Method::Hybrid), shader_dir_);
+    return p;
+}
+
+void GlVoxelizer::setCommonUniforms(const gl::Program& program, const Tile& tile, double cutoff, std::uint32_t capacity) {
+    const GLuint id = program.id();
+    if (uniformActive(program, HYVOX_LOC_GRID_DIMS))
+        glProgramUniform3i(id, HYVOX_LOC_GRID_DIMS, grid_.dims[0], grid_.dims[1], grid_.dims[2]);
+    if (uniformActive(program, HYVOX_LOC_SLAB))
+        glProgramUniform2i(id, HYVOX_LOC_SLAB, tile.brick_x0 * 8, std::min(grid_.dims[0], tile.brick_x1 * 8));
+    if (uniformActive(program, HYVOX_LOC_TRIANGLE_COUNT)) glProgramUniform1ui(id, HYVOX_LOC_TRIANGLE_COUNT, triangle_count_);
+    if (uniformActive(program, HYVOX_LOC_CUTOFF)) glProgramUniform1f(id, HYVOX_LOC_CUTOFF, float(cutoff));
+    const float side = float(std::max({grid_.dims[0], grid_.dims[1], grid_.dims[2]}));
+    if (uniformActive(program, HYVOX_LOC_VIEWPORT)) glProgramUniform2f(id, HYVOX_LOC_VIEWPORT, side, side);
+    if (uniformActive(program, HYVOX_LOC_LIST_CAPACITY)) glProgramUniform1ui(id, HYVOX_LOC_LIST_CAPACITY, capacity);
+    if (uniformActive(program, HYVOX_LOC_CHUNK_SIDE)) glProgramUniform1i(id, HYVOX_LOC_CHUNK_SIDE, tuning_.chunk_side);
+}
+
+void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, PassTimes& times) {
+    bits_.clearToZero();
+    vertices_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_VERTICES);
+    triangles_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_TRIANGLES);
+    bits_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_BITS);
+    if (method_ == Method::Hybrid) {
+        large_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_LARGE);
+        draw_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_DRAW);
+        const std::uint32_t command[4] = {0, 1, 0, 0};  // count, instanceCount, first, baseInstance
+        draw_.upload(0, sizeof(command), command);
+    }
+    const bool pass1 = method_ != Method::Fragment, pass2 = method_ != Method::Triangle;
+    double wall1 = 0, wall2 = 0;
+    Stopwatch wall;
+    if (tuning_.wall_timing) glFinish();
+    if (pass1) {
+        const gl::Program& program = method_ == Method::Triangle ? *p.triangle : *p.classify;
+        program.use();
+        wall.restart();
+        timer1_.begin();
+        dispatchTriangles(triangle_count_, chunks_);
+        gl::TimerQuery::end();
+        if (tuning_.wall_timing) {
+            glFinish();
+            wall1 = wall.elapsedMs();
+        }
+    }
+    if (pass2) {
+        glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        p.raster->use();
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+        const GLint side = std::max({grid_.dims[0], grid_.dims[1], grid_.dims[2]});
+        glViewport(0, 0, side, side);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        for (int i = 0; i < 4; ++i) glEnable(GL_CLIP_DISTANCE0 + i);
+        glBindVertexArray(empty_vao_.id());
+        wall.restart();
+        timer2_.begin();
+        if (method_ == Method::Hybrid) {
+            glBindBuffer(GL_DRAW_INDIRECT_BUFFER, draw_.id());
+            glDrawArraysIndirect(GL_TRIANGLES, nullptr);
+            glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+        } else {
+            glDrawArrays(GL_TRIANGLES, 0, GLsizei(triangle_count_) * 3);
+        }
+        gl::TimerQuery::end();
+        if (tuning_.wall_timing) {
+            glFinish();
+            wall2 = wall.elapsedMs();
+        }
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    if (pass1) times.pass1_gpu_ms += tuning_.wall_timing ? wall1 : timer1_.milliseconds();
+    if (pass2) times.pass2_gpu_ms += tuning_.wall_timing ? wall2 : timer2_.milliseconds();
+    if (method_ == Method::Hybrid) {
+        std::uint32_t vertex_count = 0;
+        draw_.download(0, 4, &vertex_count);
+        times.large_triangles += vertex_count / 3;
+    }
+    ++times.tiles;
+    gl::checkGl(toString(method_));
+}
+
+PassTimes GlVoxelizer::run(double cutoff, BitGrid* out) {
+    const Programs programs = programsFor(false);
+    PassTimes times;
+    for (const Tile& tile : tiles_) {
+        for (const gl::Program* program : {programs.triangle, programs.classify, programs.raster})
+            if (program) setCommonUniforms(*program, tile, cutoff, 0);
+        runTile(tile, programs, cutoff, times);
+        if (out) {
+            Stopwatch watch;
+            // Tiles are whole slabs of bricks: contiguous in the leaf layout, copied in place.
+            const std::size_t offset = std::size_t(tile.brick_x0) * bricks_[1] * bricks_[2] * kBrickBytes;
+            const std::size_t bytes = std::size_t(tile.brick_x1 - tile.brick_x0) * bricks_[1] * bricks_[2] * kBrickBytes;
+            bits_.download(0, bytes, reinterpret_cast<unsigned char*>(out->data()) + offset);
+            gl::checkGl("reading back the bit grid");
+            times.readback_ms += watch.elapsedMs();
+        }
+    }
+    return times;
+}
+
+std::vector<std::array<std::int32_t, 3>> GlVoxelizer::runVoxelList(double cutoff, PassTimes* times_out) {
+    const Programs programs = programsFor(true);
+    PassTimes times;
+    std::vector<std::array<std::int32_t, 3>> voxels;
+    // A first guess of the list's length; a tile that overflows is run again with room for
+    // the count it reported (the count keeps rising past the capacity).
+    std::uint32_t capacity = std::max<std::uint32_t>(1u << 16, std::min<std::uint32_t>(triangle_count_ * 4u, 1u << 26));
+    for (const Tile& tile : tiles_) {
+        for (;;) {
+            if (voxel_list_.size() < 16 + std::size_t(capacity) * 12)
+                voxel_list_ = gl::Buffer(16 + std::size_t(capacity) * 12, nullptr, GL_DYNAMIC_STORAGE_BIT);
+            const std::uint32_t zero = 0;
+            voxel_list_.upload(0, 4, &zero);
+            voxel_list_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_VOXEL_LIST);
+            for (const gl::Program* program : {programs.triangle, programs.classify, programs.raster})
+                if (program) setCommonUniforms(*program, tile, cutoff, capacity);
+            runTile(tile, programs, cutoff, times);
+            std::uint32_t count = 0;
+            voxel_list_.download(0, 4, &count);
+            if (count > capacity) {
+                if (count > (1u << 30)) throw ResourceError("the voxel list would exceed 2^30 voxels");
+                capacity = count;
+                continue;
+            }
+            std::vector<std::uint32_t> entries(std::size_t(count) * 3);
+            if (count) voxel_list_.download(16, entries.size() * 4, entries.data());
+            for (std::size_t i = 0; i < count; ++i)
+                voxels.push_back({std::int32_t(entries[3 * i]), std::int32_t(entries[3 * i + 1]), std::int32_t(entries[3 * i + 2])});
+            break;
+        }
+    }
+    gl::checkGl("reading back the voxel list");
+    if (times_out) *times_out = times;
+    return voxels;
+}
+
+}  // namespace hyvox::hybrid

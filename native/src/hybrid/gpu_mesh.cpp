@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hybrid/gpu_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace hyvox::hybrid {
+namespace {
+
+// Far-away vertices are clamped as the cpu backend clamps them (int conversion stays
+// defined); the clipped part inside the grid is then equally approximate on both.
+double clampCoord(double x) { return std::clamp(x, -1.0e9, 1.0e9); }
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t word) {
+    h ^= word + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    return h * 0xff51afd7ed558ccdull;
+}
+
+std::uint64_t fingerprintOf(const void* data, std::size_t bytes, std::uint64_t h) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    std::size_t i = 0;
+    for (; i + 8 <= bytes; i += 8) {
+        std::uint64_t word;
+        std::memcpy(&word, p + i, 8);
+        h = mix(h, word);
+    }
+    for (; i < bytes; ++i) h = mix(h, p[i]);
+    return h;
+}
+
+}  // namespace
+
+GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid) {
+    GpuMesh out;
+    const MeshView& view = mesh.view;
+    out.vertices.resize(view.vertex_count);
+    const double inv = 1.0 / grid.voxel_size;
+    for (std::size_t v = 0; v < view.vertex_count; ++v) {
+        for (int a = 0; a < 3; ++a) {
+            const double x = clampCoord((double(view.positions[3 * v + a]) - grid.origin[a]) * inv);
+            const double cell = std::floor(x);
+            out.vertices[v].cell[a] = std::int32_t(cell);
+            out.vertices[v].fraction[a] = float(x - cell);
+        }
+    }
+    out.triangles.reserve(mesh.usable.size() * 3);
+    for (std::uint32_t t : mesh.usable)
+        for (int c = 0; c < 3; ++c) out.triangles.push_back(view.triangles[3 * std::size_t(t) + c]);
+    std::uint64_t h = mix(view.vertex_count, out.triangles.size());
+    h = fingerprintOf(view.positions, view.vertex_count * 3 * sizeof(float), h);
+    out.fingerprint = fingerprintOf(out.triangles.data(), out.triangles.size() * sizeof(std::uint32_t), h);
+    return out;
+}
+
+}  // namespace hyvox::hybrid

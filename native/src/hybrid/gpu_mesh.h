@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The mesh as the GL shaders read it: voxel-space vertices split into an exact integer
+// cell and a float fraction (computed in double here), and the usable triangles' indices.
+// Shaders rebuild each triangle relative to its first vertex's cell, so precision does
+// not degrade with distance from the grid origin.
+#include <cstdint>
+#include <vector>
+
+#include "hyvox/grid.h"
+#include "hyvox/mesh.h"
+
+namespace hyvox::hybrid {
+
+struct GpuVertex {  // std430 layout of HyvoxVertex in shaders/common/mesh_input.glsl
+    std::int32_t cell[3];
+    float fraction[3];
+};
+static_assert(sizeof(GpuVertex) == 24, "must match the GLSL struct");
+
+struct GpuMesh {
+    std::vector<GpuVertex> vertices;
+    std::vector<std::uint32_t> triangles;  // 3 per usable triangle
+    std::uint64_t fingerprint = 0;         // of positions and indices (cutoff cache key)
+    std::size_t triangleCount() const { return triangles.size() / 3; }
+};
+
+GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid);
+
+}  // namespace hyvox::hybrid

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "io/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "hyvox/errors.h"
+
+namespace hyvox::io {
+namespace {
+
+std::string errnoText() { return std::strerror(errno); }
+
+std::string folderOf(const std::string& path) {
+    const auto slash = path.find_last_of('/');
+    if (slash == std::string::npos) return ".";
+    if (slash == 0) return "/";
+    return path.substr(0, slash);
+}
+
+std::string baseOf(const std::string& path) {
+    const auto slash = path.find_last_of('/');
+    return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(std::string destination) : destination_(std::move(destination)) {
+    if (destination_.empty()) throw InvalidInput("the output path is empty");
+    const std::string base = baseOf(destination_);
+    if (base.empty() || base == "." || base == "..")
+        throw InvalidInput("the output path '" + destination_ + "' names a folder, not a file");
+    struct stat st {};
+    if (::stat(destination_.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+        throw InvalidInput("the output path '" + destination_ + "' is a folder");
+
+    // Hidden, unique per process and call; O_EXCL so two writers never share a temporary.
+    static std::atomic<unsigned> counter{0};
+    const std::string folder = folderOf(destination_);
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        std::string candidate = folder + "/." + base + ".tmp-" + std::to_string(::getpid()) + "-" +
+                                std::to_string(counter.fetch_add(1));
+        // 0666 and the umask give the permissions a plain fopen would give the final file.
+        const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0) {
+            ::close(fd);
+            temp_ = std::move(candidate);
+            return;
+        }
+        if (errno != EEXIST)
+            throw InvalidInput("cannot write '" + destination_ + "': cannot create a file in folder '" + folder +
+                               "': " + errnoText());
+    }
+    throw ResourceError("cannot write '" + destination_ + "': no free temporary file name in '" + folder + "'");
+}
+
+AtomicFile::~AtomicFile() {
+    if (!committed_ && !temp_.empty()) std::remove(temp_.c_str());
+}
+
+void AtomicFile::commit() {
+    // fsync before rename, so a crash right after cannot leave an empty destination.
+    const int fd = ::open(temp_.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw ResourceError("cannot write '" + destination_ + "': reopening the temporary failed: " + errnoText());
+    const bool synced = ::fsync(fd) == 0;
+    const std::string sync_error = synced ? "" : errnoText();
+    ::close(fd);
+    if (!synced) throw ResourceError("cannot write '" + destination_ + "': fsync failed: " + sync_error);
+    if (std::rename(temp_.c_str(), destination_.c_str()) != 0)
+        throw ResourceError("cannot write '" + destination_ + "': renaming the temporary failed: " + errnoText());
+    committed_ = true;
+}
+
+}  // namespace hyvox::io

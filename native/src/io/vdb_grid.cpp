@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// All of hyvox's OpenVDB code in one translation unit: OpenVDB headers compile slowly.
+#include "io/vdb_grid.h"
+
+#include <openvdb/io/Archive.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <mutex>
+
+#include "hyvox/errors.h"
+#include "hyvox/vdb.h"
+#include "hyvox/version.h"
+#include "io/atomic_file.h"
+
+namespace hyvox::io {
+namespace {
+
+using FloatLeaf = openvdb::FloatTree::LeafNodeType;
+static_assert(FloatLeaf::LOG2DIM == BitGrid::kBrickLog2, "BitGrid bricks must match OpenVDB leaves");
+static_assert(FloatLeaf::NodeMaskType::WORD_COUNT == BitGrid::kWordsPerBrick, "leaf mask is 8 64-bit words");
+
+void addMetadata(openvdb::GridBase& target, const VoxelizeResult& result) {
+    target.setCreator(std::string("hyvox ") + version());
+    target.insertMeta("hyvox_version", openvdb::StringMetadata(version()));
+    target.insertMeta("hyvox_method", openvdb::StringMetadata(result.stats.method));
+    target.insertMeta("hyvox_mode", openvdb::StringMetadata(result.stats.mode));
+    target.insertMeta("hyvox_voxel_size", openvdb::DoubleMetadata(result.grid.voxel_size));
+    const auto& o = result.grid.origin;
+    target.insertMeta("hyvox_origin", openvdb::Vec3DMetadata(openvdb::Vec3d(o[0], o[1], o[2])));
+    const auto& d = result.grid.dims;
+    target.insertMeta("hyvox_dims", openvdb::Vec3IMetadata(openvdb::Vec3i(d[0], d[1], d[2])));
+}
+
+// io::File::write() opens its own std::ofstream and never checks it after writing, so a full
+// disk would go unnoticed. Archive::write() to a stream we own (seekable, exactly what
+// File::write does) lets every write error surface.
+class CheckedArchive : public openvdb::io::Archive {
+public:
+    void writeTo(std::ostream& os, const openvdb::GridCPtrVec& grids) const {
+        write(os, grids, /*seekable=*/true, openvdb::MetaMap());
+    }
+};
+
+}  // namespace
+
+void initializeOpenVdb() {
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid) {
+    auto transform = openvdb::math::Transform::createLinearTransform(grid.voxel_size);
+    const double h = 0.5 * grid.voxel_size;
+    transform->postTranslate(openvdb::Vec3d(grid.origin[0] + h, grid.origin[1] + h, grid.origin[2] + h));
+    return transform;
+}
+
+openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const BitGrid& occupancy) {
+    initializeOpenVdb();
+    auto result = openvdb::FloatGrid::create(0.0f);
+    result->setName("density");
+    result->setGridClass(openvdb::GRID_FOG_VOLUME);
+    result->setTransform(makeTransform(grid));
+
+    const auto bricks = occupancy.bricks();
+    const std::size_t brick_count = occupancy.brickCount();
+    const std::uint64_t* words = occupancy.data();
+    // Leaves are built in parallel (most of the work: 512 floats each) and handed to the
+    // tree serially (addLeaf is not thread-safe, and cheap).
+    using LeafList = std::vector<std::unique_ptr<FloatLeaf>>;
+    tbb::enumerable_thread_specific<LeafList> per_thread;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, brick_count, 256), [&](const auto& range) {
+        LeafList& leaves = per_thread.local();
+        for (std::size_t b = range.begin(); b != range.end(); ++b) {
+            const std::uint64_t* brick = words + b * BitGrid::kWordsPerBrick;
+            std::uint64_t any = 0;
+            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) any |= brick[w];
+            if (!any) continue;
+            const int bz = int(b % std::size_t(bricks[2]));
+            const int by = int((b / std::size_t(bricks[2])) % std::size_t(bricks[1]));
+            const int bx = int(b / (std::size_t(bricks[2]) * std::size_t(bricks[1])));
+            auto leaf = std::make_unique<FloatLeaf>(openvdb::Coord(bx * 8, by * 8, bz * 8), 0.0f, false);
+            auto& mask = leaf->getValueMask();
+            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) mask.template getWord<std::uint64_t>(w) = brick[w];
+            float* values = leaf->buffer().data();
+            for (int n = 0; n < 512; ++n) values[n] = float((brick[n >> 6] >> (n & 63)) & 1u);
+            leaves.push_back(std::move(leaf));
+        }
+    });
+    auto& tree = result->tree();
+    for (LeafList& leaves : per_thread)
+        for (auto& leaf : leaves) tree.addLeaf(leaf.release());
+    return result;
+}
+
+openvdb::FloatGrid::Ptr makeDensityGridVoxelByVoxel(const GridSpec& grid, const BitGrid& occupancy) {
+    initializeOpenVdb();
+    auto result = openvdb::FloatGrid::create(0.0f);
+    result->setName("density");
+    result->setGridClass(openvdb::GRID_FOG_VOLUME);
+    result->setTransform(makeTransform(grid));
+    auto accessor = result->getAccessor();
+    for (const auto& ijk : occupancy.coords()) accessor.setValueOn(openvdb::Coord(ijk[0], ijk[1], ijk[2]), 1.0f);
+    return result;
+}
+
+openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<VoxelCount>& counts) {
+    initializeOpenVdb();
+    auto result = openvdb::FloatGrid::create(0.0f);
+    result->setName("count");
+    result->setGridClass(openvdb::GRID_FOG_VOLUME);
+    result->setTransform(makeTransform(grid));
+    auto accessor = result->getAccessor();
+    for (const VoxelCount& c : counts) accessor.setValueOn(openvdb::Coord(c.i, c.j, c.k), float(c.count));
+    return result;
+}
+
+openvdb::GridPtrVec makeGrids(const VoxelizeResult& result) {
+    openvdb::GridPtrVec grids;
+    grids.push_back(makeDensityGrid(result.grid, result.occupancy));
+    if (!result.counts.empty()) grids.push_back(makeCountGrid(result.grid, result.counts));
+    for (auto& g : grids) addMetadata(*g, result);
+    return grids;
+}
+
+void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path) {
+    initializeOpenVdb();
+    AtomicFile file(path);  // removes its temporary unless commit() succeeds
+    {
+        std::ofstream os;
+        errno = 0;
+        os.exceptions(std::ios::failbit | std::ios::badbit);
+        try {
+            os.open(file.tempPath(), std::ios::out | std::ios::binary | std::ios::trunc);
+            CheckedArchive().writeTo(os, grids);
+            os.close();
+        } catch (const std::ios_base::failure&) {
+            throw ResourceError("writing '" + path + "' failed: " + (errno ? std::strerror(errno) : "I/O error"));
+        } catch (const openvdb::Exception& e) {
+            throw ResourceError("writing '" + path + "' failed: " + e.what());
+        }
+    }
+    file.commit();
+}
+
+}  // namespace hyvox::io
+
+namespace hyvox {
+
+void writeVdb(const VoxelizeResult& result, const std::string& path) {
+    openvdb::GridPtrVec grids = io::makeGrids(result);
+    io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), path);
+}
+
+}  // namespace hyvox

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// OpenVDB grids from voxelization results, for code that links OpenVDB itself (the writer,
+// tests, the benchmark). The public API (hyvox/vdb.h) keeps OpenVDB types out.
+#include <openvdb/openvdb.h>
+
+#include <string>
+#include <vector>
+
+#include "hyvox/bit_grid.h"
+#include "hyvox/grid.h"
+#include "hyvox/result.h"
+
+namespace hyvox::io {
+
+// openvdb::initialize(), once per process.
+void initializeOpenVdb();
+
+// Uniform scale voxel_size, translation origin + voxel_size/2: index (i,j,k) is the centre
+// of voxel (i,j,k).
+openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid);
+
+// "density": 1 on occupied voxels (active), background 0, fog volume. Built a whole 8³ leaf
+// at a time: the BitGrid's brick words are the leaf's value mask, copied as they are.
+openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const BitGrid& occupancy);
+// The same grid set voxel by voxel through an accessor: slow, the tests' reference.
+openvdb::FloatGrid::Ptr makeDensityGridVoxelByVoxel(const GridSpec& grid, const BitGrid& occupancy);
+// "count": the values of a multi-valued result.
+openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<VoxelCount>& counts);
+
+// The grids writeVdb() stores: density, plus count when result.counts is non-empty, each
+// with the hyvox_* metadata.
+openvdb::GridPtrVec makeGrids(const VoxelizeResult& result);
+
+// Writes grids atomically (hyvox::io::AtomicFile); throws InvalidInput / ResourceError.
+void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path);
+
+}  // namespace hyvox::io

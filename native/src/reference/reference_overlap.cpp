@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "reference/reference_overlap.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hyvox::reference {
+namespace {
+
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+
+Vec3 centreOf(const Voxel& voxel) { return {voxel[0] + 0.5, voxel[1] + 0.5, voxel[2] + 0.5}; }
+
+// Akenine-Möller's separating-axis test of a triangle against the closed box centred at
+// the origin with half-size h: separated only if some axis strictly separates them, so a
+// triangle touching a face, edge or corner of the box counts as overlapping.
+bool triangleBoxSat(const Vec3& a, const Vec3& b, const Vec3& c, double h) {
+    const Vec3 verts[3] = {a, b, c};
+    const Vec3 edges[3] = {sub(b, a), sub(c, b), sub(a, c)};
+
+    auto separatedOn = [&](const Vec3& axis) {
+        const double p0 = dot(axis, verts[0]), p1 = dot(axis, verts[1]), p2 = dot(axis, verts[2]);
+        const double r = h * (std::fabs(axis[0]) + std::fabs(axis[1]) + std::fabs(axis[2]));
+        return std::min({p0, p1, p2}) > r || std::max({p0, p1, p2}) < -r;
+    };
+
+    // Triangle normal first: it rejects most voxels of a large triangle's bounding box.
+    if (separatedOn(cross(edges[0], edges[1]))) return false;
+    // The three box normals.
+    for (int axis = 0; axis < 3; ++axis) {
+        const double lo = std::min({a[axis], b[axis], c[axis]});
+        const double hi = std::max({a[axis], b[axis], c[axis]});
+        if (lo > h || hi < -h) return false;
+    }
+    // The nine edge x box-normal axes.
+    for (const Vec3& edge : edges)
+        for (int axis = 0; axis < 3; ++axis) {
+            Vec3 unit{0, 0, 0};
+            unit[axis] = 1.0;
+            if (separatedOn(cross(unit, edge))) return false;
+        }
+    return true;
+}
+
+// Schwarz & Seidel's 6-separating test against the voxel centred at the origin whose box has
+// half-size h (the octahedron and the 2D diamonds inscribed in it have "radius" h).
+bool sixSeparatingTest(const Vec3& a, const Vec3& b, const Vec3& c, double h) {
+    // The triangle's bounding box must meet the box (the edge tests alone would accept
+    // voxels beyond a sharp corner of the triangle).
+    for (int axis = 0; axis < 3; ++axis) {
+        const double lo = std::min({a[axis], b[axis], c[axis]});
+        const double hi = std::max({a[axis], b[axis], c[axis]});
+        if (lo > h || hi < -h) return false;
+    }
+    const Vec3 verts[3] = {a, b, c};
+    const Vec3 edges[3] = {sub(b, a), sub(c, b), sub(a, c)};
+    const Vec3 n = cross(edges[0], edges[1]);
+
+    // Plane against the inscribed octahedron |x|+|y|+|z| <= h: its support in direction n is
+    // h * max|n_i|, and the centre's signed distance (times |n|) is -n.a.
+    const double n_inf = std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
+    if (std::fabs(dot(n, a)) > h * n_inf) return false;
+
+    // Projections onto the planes (u,v) = (x,y), (y,z), (z,x); w is the remaining axis,
+    // whose normal component gives the projected triangle's winding.
+    const int planes[3][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}};
+    for (const auto& plane : planes) {
+        const int u = plane[0], v = plane[1], w = plane[2];
+        const double winding = sign(n[w]);
+        if (winding == 0.0) continue;  // the projection is a segment: the plane test covers it
+        for (int i = 0; i < 3; ++i) {
+            // Inward normal of the projected edge, and the point of the 2D diamond
+            // |u|+|v| <= h furthest along it (support h * max(|nu|, |nv|)).
+            const double nu = -winding * edges[i][v];
+            const double nv = winding * edges[i][u];
+            const double distance = nu * (0.0 - verts[i][u]) + nv * (0.0 - verts[i][v]);
+            if (distance + h * std::max(std::fabs(nu), std::fabs(nv)) < 0.0) return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+Triangle voxelSpaceTriangle(const ValidatedMesh& mesh, std::uint32_t index, const GridSpec& grid) {
+    Triangle t{};
+    for (int corner = 0; corner < 3; ++corner) {
+        const std::array<float, 3> p = mesh.vertex(index, corner);
+        for (int axis = 0; axis < 3; ++axis)
+            t[corner][axis] = (double(p[axis]) - grid.origin[axis]) / grid.voxel_size;
+    }
+    return t;
+}
+
+bool overlaps(const Triangle& triangle, const Voxel& voxel, Mode mode, double delta) {
+    // Work relative to the voxel centre: small numbers, and the box is symmetric.
+    const Vec3 centre = centreOf(voxel);
+    const Vec3 a = sub(triangle[0], centre), b = sub(triangle[1], centre), c = sub(triangle[2], centre);
+    const double h = 0.5 + delta;
+    return mode == Mode::Conservative ? triangleBoxSat(a, b, c, h) : sixSeparatingTest(a, b, c, h);
+}
+
+VoxelRange candidateVoxels(const Triangle& triangle, const std::array<std::int32_t, 3>& dims, double delta) {
+    VoxelRange range;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double lo = std::min({triangle[0][axis], triangle[1][axis], triangle[2][axis]});
+        const double hi = std::max({triangle[0][axis], triangle[1][axis], triangle[2][axis]});
+        // Voxel i's grown box [i - delta, i + 1 + delta] meets [lo, hi] iff
+        // lo - 1 - delta <= i <= hi + delta. Clamp in double before converting to int so
+        // geometry far outside the grid cannot overflow.
+        const double first = std::ceil(std::max(lo - 1.0 - delta, -1.0));
+        const double last = std::floor(std::min(hi + delta, double(dims[axis])));
+        range.lo[axis] = std::max(0, int(first));
+        range.hi[axis] = std::min(dims[axis] - 1, int(last));
+    }
+    return range;
+}
+
+Touch overlapWithin(const Triangle& triangle, const Voxel& voxel, Mode mode, double eps) {
+    return {overlaps(triangle, voxel, mode, eps), overlaps(triangle, voxel, mode, -eps)};
+}
+
+}  // namespace hyvox::reference

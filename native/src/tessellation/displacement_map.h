@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The displacement height image (section 3.3): loaded from an 8/16-bit PNG (grey, grey+alpha,
+// RGB(A) or palette; colour images use Blender's texture intensity, the mean of R, G, B) or
+// taken from a float array, and sampled exactly as the shaders sample their texture.
+#include <string>
+#include <vector>
+
+#include "hyvox/options.h"
+
+namespace hyvox::tessellation {
+
+// Reads a PNG into 0..1 values, row 0 = the file's top row. Throws InvalidInput.
+HeightImage readPngHeight(const std::string& path);
+
+class DisplacementMap {
+public:
+    DisplacementMap() = default;
+    // From the options: the PNG path if given, else the in-memory pixels; empty() when neither.
+    // Throws InvalidInput for an unreadable file or a pixel array of the wrong size / NaNs.
+    static DisplacementMap fromOptions(const TessellationOptions& options);
+    explicit DisplacementMap(const HeightImage& image);
+
+    bool empty() const { return rows_.empty(); }
+    int width() const { return width_; }
+    int height() const { return height_; }
+    // Rows bottom-up (v = 0 first), the order glTexImage2D wants for UV lookups.
+    const std::vector<float>& bottomUpRows() const { return rows_; }
+    float minValue() const { return min_; }
+    float maxValue() const { return max_; }
+
+    // Bilinear at UV (u right, v up), texel centres at (x + 0.5) / width, clamped at the
+    // edges: GL_LINEAR + GL_CLAMP_TO_EDGE.
+    float sample(double u, double v) const;
+
+private:
+    int width_ = 0, height_ = 0;
+    std::vector<float> rows_;
+    float min_ = 0, max_ = 0;
+};
+
+}  // namespace hyvox::tessellation

@@ -1,0 +1,221 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tessellation/gl_tessellation.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "core/stopwatch.h"
+#include "gl/gl_debug.h"
+#include "gl/gl_objects.h"
+#include "gl/gl_worker.h"
+#include "gl/shader_library.h"
+#include "hyvox/errors.h"
+#include "tessellation/bindings.h"
+
+namespace hyvox::tessellation {
+namespace {
+
+// Patches per draw call: keeps gl_VertexID far from overflow and lets a cancel land between draws.
+constexpr std::uint64_t kPatchesPerDraw = 1u << 22;
+
+std::string definesFor(const GpuTessellationInput& in) {
+    std::string defines;
+    if (in.pn_triangles) defines += "#define PN_TRIANGLES 1\n";
+    if (!in.heights.empty()) defines += "#define DISPLACEMENT 1\n";
+    if (in.counts) defines += "#define COUNTS 1\n";
+    return defines;
+}
+
+template <typename T>
+gl::Buffer upload(const std::vector<T>& data) {
+    return gl::Buffer(data.size() * sizeof(T), data.empty() ? nullptr : data.data());
+}
+
+GLint64 maxSsboBytes() {
+    GLint64 bytes = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &bytes);
+    return bytes;
+}
+
+struct Counters {
+    std::uint32_t points, clipped, blocks;
+};
+
+// One complete draw of every patch into freshly cleared buffers.
+Counters drawAll(const GpuTessellationInput& in, const gl::Program& program, const gl::Buffer& bits,
+                 const gl::Buffer& counters, const gl::Buffer& table, const gl::Buffer& pool, std::uint32_t pool_blocks,
+                 bool software, GpuTessellationOutput& out) {
+    // llvmpipe's GL_TIME_ELAPSED is unreliable: there (and with HYVOX_GL_WALL_TIMING, as for
+    // the hybrid method) each pass is timed on the wall clock around glFinish instead.
+    const bool wall_timing = software || std::getenv("HYVOX_GL_WALL_TIMING") != nullptr;
+    // Mesa's llvmpipe (22.3) assembles patches of a plain glDrawArrays(GL_PATCHES) wrongly
+    // beyond a few dozen patches per draw (gl_VertexID no longer matches the patch), so
+    // there each patch is an instance of 3 vertices instead; the vertex shader reads both.
+    const bool instanced = software || std::getenv("HYVOX_TESS_INSTANCED") != nullptr;
+    bits.clearToZero();
+    counters.clearToZero();
+    if (in.counts) {
+        table.clearToZero();
+        pool.clearToZero();
+    }
+    program.use();
+    glUniform3i(HYVOX_LOC_GRID_DIMS, in.dims[0], in.dims[1], in.dims[2]);
+    glUniform1f(HYVOX_TESS_LOC_GAMMA, float(in.gamma));
+    GLint max_level = 64;
+    glGetIntegerv(GL_MAX_TESS_GEN_LEVEL, &max_level);
+    glUniform1f(HYVOX_TESS_LOC_MAX_LEVEL, float(max_level));
+    glUniform1ui(HYVOX_TESS_LOC_SPLIT_COUNT, GLuint(in.plan.splits.size() / 4));
+    if (!in.heights.empty()) {
+        glUniform2i(HYVOX_TESS_LOC_HEIGHT_SIZE, in.height_width, in.height_height);
+        glUniform2f(HYVOX_TESS_LOC_DISPLACE, float(in.strength_voxels), float(in.midlevel));
+    }
+    if (in.counts) glUniform1ui(HYVOX_TESS_LOC_POOL_BLOCKS, pool_blocks);
+    bits.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_BITS);
+    counters.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_COUNTERS);
+    table.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_BRICK_TABLE);
+    pool.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_COUNT_POOL);
+
+    gl::TimerQuery direct_timer, split_timer;
+    double wall_ms[2] = {0, 0};
+
+    auto drawPatches = [&](GLuint mode, std::uint64_t patches, const gl::TimerQuery& timer) {
+        glUniform1ui(HYVOX_TESS_LOC_SPLIT_MODE, mode);
+        if (wall_timing) glFinish();
+        const Stopwatch wall;
+        timer.begin();
+        for (std::uint64_t base = 0; base < patches; base += kPatchesPerDraw) {
+            const std::uint64_t count = std::min(kPatchesPerDraw, patches - base);
+            glUniform1ui(HYVOX_TESS_LOC_PATCH_BASE, GLuint(base));
+            if (instanced) glDrawArraysInstanced(GL_PATCHES, 0, 3, GLsizei(count));
+            else glDrawArrays(GL_PATCHES, 0, GLsizei(3 * count));
+            throwIfInterrupted(in.interrupter);
+        }
+        gl::TimerQuery::end();
+        if (wall_timing) {
+            glFinish();
+            wall_ms[mode] = wall.elapsedMs();
+        }
+    };
+    drawPatches(0, in.plan.direct.size(), direct_timer);
+    drawPatches(1, in.plan.split_patches, split_timer);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    gl::checkGl("tessellation draw");
+    out.direct_gpu_ms += wall_timing ? wall_ms[0] : direct_timer.milliseconds();
+    out.split_gpu_ms += wall_timing ? wall_ms[1] : split_timer.milliseconds();
+    Counters c{};
+    counters.download(0, sizeof(c), &c);
+    return c;
+}
+
+}  // namespace
+
+int maxTessellationLevel(const std::string& device) {
+    return gl::GlWorker::get(device).run([] {
+        GLint level = 0;
+        glGetIntegerv(GL_MAX_TESS_GEN_LEVEL, &level);
+        return int(level);
+    });
+}
+
+GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTessellationInput& in, BitGrid& bits) {
+    gl::GlWorker& worker = gl::GlWorker::get(device);
+    return worker.run([&] {
+        GpuTessellationOutput out;
+        const GLint64 max_ssbo = maxSsboBytes();
+        if (GLint64(bits.byteSize()) > max_ssbo)
+            throw ResourceError("the " + std::to_string(bits.byteSize() >> 20) + " MiB bit grid exceeds this GL device's " +
+                                std::to_string(max_ssbo >> 20) + " MiB storage-buffer limit; lower the resolution");
+        const gl::Program& program = worker.programs().get(
+            {{GL_VERTEX_SHADER, "tessellation/patch.vert"},
+             {GL_TESS_CONTROL_SHADER, "tessellation/patch.tesc"},
+             {GL_TESS_EVALUATION_SHADER, "tessellation/patch.tese"},
+             {GL_GEOMETRY_SHADER, "tessellation/inject.geom"}},
+            definesFor(in), in.shader_dir);
+
+        const gl::Buffer vertices = upload(in.mesh.vertices);
+        const gl::Buffer triangles = upload(in.mesh.triangles);
+        const gl::Buffer normals = upload(in.normals);
+        const gl::Buffer uvs = upload(in.uvs);
+        const gl::Buffer direct = upload(in.plan.direct);
+        const gl::Buffer splits = upload(in.plan.splits);
+        const gl::Buffer heights = upload(in.heights);
+        vertices.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_VERTICES);
+        triangles.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_TRIANGLES);
+        normals.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_NORMALS);
+        uvs.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_UVS);
+        direct.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_PATCHES);
+        splits.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_SPLITS);
+        heights.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_HEIGHTS);
+
+        const gl::Buffer bit_buffer(bits.byteSize(), nullptr);
+        const gl::Buffer counters(4 * sizeof(std::uint32_t), nullptr);
+        const std::size_t brick_count = bits.brickCount();
+        const gl::Buffer table(in.counts ? brick_count * sizeof(std::uint32_t) : 0, nullptr);
+        const std::uint64_t pool_limit = std::min<std::uint64_t>(std::uint64_t(max_ssbo), in.memory_budget);
+
+        gl::VertexArray no_attributes;
+        glBindVertexArray(no_attributes.id());
+        // A surfaceless context has no complete default framebuffer, and draws need one even
+        // with the rasterizer off: an attachment-less 1×1 framebuffer will do.
+        gl::Framebuffer no_attachments;
+        glNamedFramebufferParameteri(no_attachments.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, 1);
+        glNamedFramebufferParameteri(no_attachments.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, 1);
+        glBindFramebuffer(GL_FRAMEBUFFER, no_attachments.id());
+        glPatchParameteri(GL_PATCH_VERTICES, 3);
+        glEnable(GL_RASTERIZER_DISCARD);  // points go to buffers, never to pixels
+        struct RestoreState {
+            ~RestoreState() {
+                glDisable(GL_RASTERIZER_DISCARD);
+                glBindFramebuffer(GL_FRAMEBUFFER, 0);
+                glBindVertexArray(0);
+                glUseProgram(0);
+            }
+        } restore;
+
+        const std::uint64_t cap_blocks = std::max<std::uint64_t>(pool_limit / (512 * sizeof(std::uint32_t)), 1);
+        std::uint32_t pool_blocks =
+            in.counts ? std::uint32_t(std::clamp<std::uint64_t>(in.pool_blocks, 1, std::min<std::uint64_t>(cap_blocks, 0xffffffffull))) : 1;
+        Counters c{};
+        for (;;) {
+            const std::uint64_t pool_bytes = std::uint64_t(pool_blocks) * 512 * sizeof(std::uint32_t);
+            if (in.counts && pool_bytes > pool_limit)
+                throw ResourceError("the point counts need " + std::to_string(pool_bytes >> 20) +
+                                    " MiB, more than this GL device allows (" + std::to_string(pool_limit >> 20) +
+                                    " MiB); turn counts off or lower the resolution");
+            const gl::Buffer pool(in.counts ? pool_bytes : 0, nullptr);
+            ++out.runs;
+            c = drawAll(in, program, bit_buffer, counters, table, pool, pool_blocks, worker.device().software, out);
+            bit_buffer.download(0, bits.byteSize(), bits.data());
+            if (!in.counts) break;
+            out.brick_blocks.resize(brick_count);
+            table.download(0, brick_count * sizeof(std::uint32_t), out.brick_blocks.data());
+            // More block requests than blocks only matters if a brick the bits touch got none
+            // (lost races also take blocks). Then draw once more with one block per touched
+            // brick plus room for races.
+            std::uint64_t touched = 0, missing = 0;
+            for (std::size_t b = 0; b < brick_count; ++b) {
+                const std::uint64_t* w = bits.data() + b * BitGrid::kWordsPerBrick;
+                bool any = false;
+                for (int k = 0; k < BitGrid::kWordsPerBrick; ++k) any = any || w[k] != 0;
+                touched += any ? 1 : 0;
+                missing += any && out.brick_blocks[b] == 0 ? 1 : 0;
+            }
+            if (missing == 0) {
+                out.count_pool.resize(std::size_t(std::min(c.blocks, pool_blocks)) * 512);
+                pool.download(0, out.count_pool.size() * sizeof(std::uint32_t), out.count_pool.data());
+                break;
+            }
+            if (out.runs >= 4) throw BackendError("tessellation: the count pool kept overflowing (internal error)");
+            const std::uint64_t next =
+                std::max<std::uint64_t>(touched + touched / 8 + 64, std::min<std::uint64_t>(2ull * pool_blocks, cap_blocks));
+            pool_blocks = std::uint32_t(std::min<std::uint64_t>(next, 0xffffffffull));
+        }
+        out.points = c.points;
+        out.clipped = c.clipped;
+        return out;
+    });
+}
+
+}  // namespace hyvox::tessellation

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The GPU part of the tessellation method: uploads the mesh and the patch plan, runs the
+// tessellation draw (vertex pull → Eq. 1 factors → surface + displacement → one point per
+// micro-triangle), and reads back bits, point counters and per-voxel counts. Runs on the
+// GL worker thread (gl::GlWorker::run).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hybrid/gpu_mesh.h"
+#include "hyvox/bit_grid.h"
+#include "hyvox/interrupter.h"
+#include "tessellation/patch_plan.h"
+
+namespace hyvox::tessellation {
+
+struct GpuTessellationInput {
+    const hybrid::GpuMesh& mesh;        // triangles = the usable ones, in usable order
+    const std::vector<float>& normals;  // per vertex, unit
+    const std::vector<float>& uvs;      // per vertex
+    const PatchPlan& plan;
+    std::array<std::int32_t, 3> dims;
+    double gamma;
+    bool pn_triangles;
+    // Displacement: empty heights = none.
+    const std::vector<float>& heights;  // rows bottom-up
+    int height_width, height_height;
+    double strength_voxels, midlevel;
+    bool counts;
+    std::uint32_t pool_blocks;           // count blocks to provide (first guess)
+    std::uint64_t memory_budget;         // bytes the count pool may take
+    std::string shader_dir;
+    Interrupter* interrupter;
+};
+
+struct GpuTessellationOutput {
+    std::uint64_t points = 0;   // micro-triangles (points) generated
+    std::uint64_t clipped = 0;  // of which outside the grid
+    std::vector<std::uint32_t> brick_blocks;  // per brick: 0 or 1 + block (when counting)
+    std::vector<std::uint32_t> count_pool;    // 512 counts per block
+    double direct_gpu_ms = 0, split_gpu_ms = 0;
+    int runs = 0;  // 2 when the count pool had to grow
+};
+
+// GL_MAX_TESS_GEN_LEVEL of the worker's context.
+int maxTessellationLevel(const std::string& device);
+
+// Fills `bits` (already sized to dims) and returns the rest.
+GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTessellationInput& input, BitGrid& bits);
+
+}  // namespace hyvox::tessellation

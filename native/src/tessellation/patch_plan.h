@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Which patches the tessellation draw gets: every usable triangle whose Eq. 1 factors fit
+// GL_MAX_TESS_GEN_LEVEL is one patch; the others are split into n² sub-triangles first (the
+// vertex shader derives each sub-triangle from its patch number, so no geometry is written).
+#include <cstdint>
+#include <vector>
+
+#include "hyvox/grid.h"
+#include "hyvox/mesh.h"
+
+namespace hyvox::tessellation {
+
+struct PatchPlan {
+    std::vector<std::uint32_t> direct;  // usable-triangle indices drawn as one patch each
+    std::vector<std::uint32_t> splits;  // 4 per split triangle: usable index, n, first patch, 0
+    std::uint64_t split_patches = 0;    // Σ n²
+    std::uint32_t largest_split = 1;    // largest n
+    // An upper estimate of the 8³ bricks the points reach (sizes the per-voxel count pool):
+    // the union of the small triangles' bounding boxes in bricks, grown by `reach`, plus an
+    // area-based share for triangles spanning many bricks.
+    std::uint64_t brick_estimate = 0;
+};
+
+// `gamma` and `max_level` as in Eq. 1 and GL_MAX_TESS_GEN_LEVEL; `reach` = how far (voxels)
+// points may leave the flat triangle (PN bulge, displacement), `pn_reach` the same as a share
+// of each triangle's largest extent.
+PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double gamma, int max_level, double reach,
+                      double pn_reach);
+
+}  // namespace hyvox::tessellation

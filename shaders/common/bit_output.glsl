@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// One bit per voxel in OpenVDB's leaf layout (hyvox/bit_grid.h), read as uint words:
+// brick b = ((i>>3)*bricks_y + (j>>3))*bricks_z + (k>>3), bit n = (i&7)<<6 | (j&7)<<3 | (k&7),
+// word b*16 + (n>>5), bit n&31. A run writes one tile of whole bricks along x (slab).
+// With HYVOX_VOXEL_LIST the bit grid doubles as the per-voxel mutex of section 3.5: only
+// the invocation that flips a bit from 0 to 1 appends the voxel to the list.
+#include "common/bindings.glsl"
+
+layout(std430, binding = HYVOX_SSBO_BITS) restrict buffer Bits { uint bits[]; };
+layout(location = HYVOX_LOC_GRID_DIMS) uniform ivec3 gridDims;
+layout(location = HYVOX_LOC_SLAB) uniform ivec2 slabX;
+
+#if HYVOX_VOXEL_LIST
+layout(std430, binding = HYVOX_SSBO_VOXEL_LIST) restrict buffer VoxelList {
+    uint voxelListCount;  // may exceed the capacity: the host then retries with more room
+    uint voxelListPad[3];     // entries start at byte 16
+    uint voxelListEntries[];  // x, y, z per voxel
+};
+layout(location = HYVOX_LOC_LIST_CAPACITY) uniform uint voxelListCapacity;
+#endif
+
+// The tile's inclusive voxel range, unswizzled.
+ivec3 clipLow() { return ivec3(slabX.x, 0, 0); }
+ivec3 clipHigh() { return ivec3(slabX.y - 1, gridDims.y - 1, gridDims.z - 1); }
+
+// p: unswizzled global voxel inside the tile.
+void setVoxel(ivec3 p) {
+    const uvec3 bricks = uvec3((gridDims + 7) >> 3);
+    const uint brick = (uint((p.x - slabX.x) >> 3) * bricks.y + uint(p.y >> 3)) * bricks.z + uint(p.z >> 3);
+    const uint n = uint(((p.x & 7) << 6) | ((p.y & 7) << 3) | (p.z & 7));
+    const uint word = brick * 16u + (n >> 5u);
+    const uint mask = 1u << (n & 31u);
+#if HYVOX_VOXEL_LIST
+    const uint before = atomicOr(bits[word], mask);
+    if ((before & mask) == 0u) {
+        const uint slot = atomicAdd(voxelListCount, 1u);
+        if (slot < voxelListCapacity) {
+            voxelListEntries[3u * slot] = uint(p.x);
+            voxelListEntries[3u * slot + 1u] = uint(p.y);
+            voxelListEntries[3u * slot + 2u] = uint(p.z);
+        }
+    }
+#else
+    atomicOr(bits[word], mask);
+#endif
+}

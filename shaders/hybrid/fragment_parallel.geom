@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Fragment-parallel setup (section 3.3): per-triangle values computed once here and passed
+// flat; the triangle is drawn on its dominant plane (swizzle) and dilated after Hertel et
+// al. so every voxel column its projection touches gets a fragment (conservative
+// rasterization, 3.3.2). Clip distances trim the dilation to the bounding box, which keeps
+// slivers (whose dilated corners shoot far out) from flooding the rasterizer.
+#include "common/voxelize_triangle.glsl"
+
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 3) out;
+layout(location = HYVOX_LOC_VIEWPORT) uniform vec2 viewportSize;
+
+flat in uint vTriangle[];
+flat out TriangleSetup gSetup;
+out float gl_ClipDistance[4];
+
+// l = sqrt(2)/2 voxel (half the pixel diagonal), plus 1/64 for the rasterizer's sub-pixel
+// snapping; the fragment shader's exact test removes whatever the extra margin lets in.
+const float kDilation = 0.70710678 + 1.0 / 64.0;
+
+vec2 outwardNormal(vec2 a, vec2 b, float orientation) {
+    const vec2 e = b - a;
+    return orientation * vec2(e.y, -e.x) / length(e);
+}
+
+void main() {
+    const TriangleSetup t = prepareTriangle(vTriangle[0]);
+    if (clippedAway(t)) return;
+
+    ivec3 origin;
+    vec3 w0, w1, w2;
+    loadTriangle(vTriangle[0], origin, w0, w1, w2);
+    vec2 a[3] = vec2[3](swizzleToDominant(w0, t.axis).xy, swizzleToDominant(w1, t.axis).xy,
+                        swizzleToDominant(w2, t.axis).xy);
+    const vec2 e01 = a[1] - a[0], e02 = a[2] - a[0];
+    const float orientation = (e01.x * e02.y - e01.y * e02.x) >= 0.0 ? 1.0 : -1.0;
+    vec2 normals[3];
+    for (int i = 0; i < 3; ++i) normals[i] = outwardNormal(a[i], a[(i + 1) % 3], orientation);
+
+    for (int i = 0; i < 3; ++i) {
+        // Dilated vertex i: where the edges before and after it, each pushed out by l, meet.
+        const vec2 before = normals[(i + 2) % 3], after = normals[i];
+        const float det = before.x * after.y - before.y * after.x;
+        const vec2 offset = kDilation * vec2(after.y - before.y, before.x - after.x) / det;
+        const vec2 window = vec2(t.origin.xy) + a[i] + offset;
+        gl_Position = vec4(window / viewportSize * 2.0 - 1.0, 0.0, 1.0);
+        gl_ClipDistance[0] = window.x - float(t.lo.x);
+        gl_ClipDistance[1] = float(t.hi.x + 1) - window.x;
+        gl_ClipDistance[2] = window.y - float(t.lo.y);
+        gl_ClipDistance[3] = float(t.hi.y + 1) - window.y;
+        gSetup = t;
+        EmitVertex();
+    }
+    EndPrimitive();
+}

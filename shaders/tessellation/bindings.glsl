@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The tessellation method's binding points and uniform locations, on top of the shared ones
+// (bits, vertices, triangles, grid dims). Included by the shaders and by
+// native/src/tessellation/gl_tessellation.cpp, hence nothing but #defines.
+#ifndef HYVOX_TESSELLATION_BINDINGS_GLSL
+#define HYVOX_TESSELLATION_BINDINGS_GLSL
+#include "common/bindings.glsl"
+
+// Shader storage buffers (numbers after the shared ones)
+#define HYVOX_TESS_SSBO_NORMALS 8       // float xyz per vertex, unit length
+#define HYVOX_TESS_SSBO_UVS 9           // float uv per vertex
+#define HYVOX_TESS_SSBO_PATCHES 10      // direct draw: uint triangle per patch
+#define HYVOX_TESS_SSBO_SPLITS 11       // split draw: uvec4(triangle, pieces, first patch, 0)
+#define HYVOX_TESS_SSBO_HEIGHTS 12      // displacement heights, rows bottom-up
+#define HYVOX_TESS_SSBO_COUNTERS 13     // uint points, clipped points, count blocks taken
+#define HYVOX_TESS_SSBO_BRICK_TABLE 14  // uint per 8³ brick: 0 or 1 + its block in the pool
+#define HYVOX_TESS_SSBO_COUNT_POOL 15   // uint counts, 512 per block (OpenVDB leaf order)
+
+// Uniform locations (HYVOX_LOC_GRID_DIMS = 0 is shared)
+#define HYVOX_TESS_LOC_SPLIT_MODE 10     // uint: 0 = direct patches, 1 = pre-split patches
+#define HYVOX_TESS_LOC_PATCH_BASE 11     // uint: first patch of this draw
+#define HYVOX_TESS_LOC_SPLIT_COUNT 12    // uint: entries in the split list
+#define HYVOX_TESS_LOC_GAMMA 13          // float γ of Eq. 1
+#define HYVOX_TESS_LOC_MAX_LEVEL 14      // float GL_MAX_TESS_GEN_LEVEL
+#define HYVOX_TESS_LOC_HEIGHT_SIZE 15    // ivec2 displacement image size
+#define HYVOX_TESS_LOC_DISPLACE 16       // vec2 (strength in voxels, midlevel)
+#define HYVOX_TESS_LOC_POOL_BLOCKS 17    // uint blocks the count pool holds
+
+// Counter slots in HYVOX_TESS_SSBO_COUNTERS
+#define HYVOX_TESS_COUNTER_POINTS 0
+#define HYVOX_TESS_COUNTER_CLIPPED 1
+#define HYVOX_TESS_COUNTER_BLOCKS 2
+
+#endif

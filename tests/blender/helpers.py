@@ -1,0 +1,167 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Shared pieces of the headless add-on tests: enabling the add-on from a build, scene
+set-up, a small PLY reader, and reading .vdb files back with pyopenvdb."""
+import os
+import sys
+import tempfile
+import unittest
+
+import bpy
+import numpy as np
+
+MESH_DIR = os.environ.get("HYVOX_MESH_DIR", os.path.join(
+    os.path.dirname(__file__), "..", "..", "..", "shared", "data", "meshes"))
+
+
+def enable_addon(build_dir):
+    import addon_utils
+    addon_path = os.path.join(build_dir, "addon")
+    if addon_path not in sys.path:
+        sys.path.insert(0, addon_path)
+    module = addon_utils.enable("hyvox_blender", default_set=True, handle_error=None)
+    if module is None:
+        raise RuntimeError(f"could not enable hyvox_blender from {addon_path}")
+    return module
+
+
+def hyvox_module():
+    from hyvox_blender.core import backend
+    return backend.load_module()
+
+
+def clear_scene():
+    """An empty scene without reloading files (which would reset add-on state)."""
+    for obj in list(bpy.data.objects):
+        bpy.data.objects.remove(obj, do_unlink=True)
+    for coll in (bpy.data.meshes, bpy.data.volumes, bpy.data.materials, bpy.data.curves,
+                 bpy.data.cameras, bpy.data.lights):
+        for block in list(coll):
+            coll.remove(block)
+    scene = bpy.context.scene
+    scene.frame_set(1)
+    for prop in ("resolution", "voxel_size", "method", "mode", "separate", "output_dir",
+                 "use_frame_range", "size_mode"):
+        scene.hyvox.property_unset(prop)
+
+
+def read_ply(path):
+    """(vertices float32 (N,3), faces int32 (M,3)) of a binary little-endian PLY whose
+    vertices are x y z floats first and whose faces are uchar-count int lists of 3."""
+    with open(path, "rb") as f:
+        header = []
+        while True:
+            line = f.readline().decode("ascii").strip()
+            header.append(line)
+            if line == "end_header":
+                break
+        data = f.read()
+    counts, vertex_props = {}, []
+    element = None
+    for line in header:
+        parts = line.split()
+        if parts[0] == "element":
+            element = parts[1]
+            counts[element] = int(parts[2])
+        elif parts[0] == "property" and element == "vertex":
+            vertex_props.append(parts[1])
+    assert "format binary_little_endian 1.0" in header, "only binary little-endian PLY here"
+    sizes = {"float": 4, "float32": 4, "double": 8, "uchar": 1, "int": 4, "uint8": 1}
+    stride = sum(sizes[p] for p in vertex_props)
+    nv, nf = counts["vertex"], counts["face"]
+    raw = np.frombuffer(data[:nv * stride], dtype=np.uint8).reshape(nv, stride)
+    vertices = raw[:, :12].copy().view("<f4").reshape(nv, 3)
+    faces = np.frombuffer(data[nv * stride:nv * stride + nf * 13], dtype=np.uint8).reshape(nf, 13)
+    assert (faces[:, 0] == 3).all(), "only triangle faces here"
+    triangles = faces[:, 1:].copy().view("<i4").reshape(nf, 3)
+    return vertices, triangles
+
+
+def mesh_object(name, vertices, faces, location=(0, 0, 0)):
+    mesh = bpy.data.meshes.new(name)
+    mesh.vertices.add(len(vertices))
+    mesh.vertices.foreach_set("co", np.asarray(vertices, np.float32).ravel())
+    faces = np.asarray(faces, np.int32).reshape(len(faces), -1 if len(faces) else 3)
+    mesh.loops.add(faces.size)
+    mesh.loops.foreach_set("vertex_index", faces.ravel())
+    mesh.polygons.add(len(faces))
+    mesh.polygons.foreach_set("loop_start", np.arange(0, faces.size, faces.shape[1], dtype=np.int32))
+    mesh.polygons.foreach_set("loop_total", np.full(len(faces), faces.shape[1], np.int32))
+    mesh.update()
+    obj = bpy.data.objects.new(name, mesh)
+    obj.location = location
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def bunny():
+    vertices, triangles = read_ply(os.path.join(MESH_DIR, "bunny_stanford_69k.ply"))
+    return mesh_object("Bunny", vertices, triangles)
+
+
+def cube(name="Cube", size=2.0, location=(0, 0, 0)):
+    h = size / 2
+    v = [(-h, -h, -h), (h, -h, -h), (h, h, -h), (-h, h, -h), (-h, -h, h), (h, -h, h), (h, h, h), (-h, h, h)]
+    f = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    return mesh_object(name, v, f, location)
+
+
+def select_only(*objects):
+    for obj in bpy.context.view_layer.objects:
+        obj.select_set(False)
+    for obj in objects:
+        obj.select_set(True)
+    bpy.context.view_layer.objects.active = objects[0] if objects else None
+
+
+def read_vdb(path, grid_name="density"):
+    """(ijk (K,3) int64, voxel size, index->world translation, grid) of a .vdb's active
+    voxels. Tiles (count > 1) are expanded."""
+    import pyopenvdb as vdb
+    grid = vdb.read(path, grid_name)
+    coords = []
+    for item in grid.citerOnValues():
+        lo, hi = item.min, item.max
+        if item.count == 1:
+            coords.append(lo)
+        else:
+            r = [np.arange(lo[a], hi[a] + 1) for a in range(3)]
+            coords.extend(np.stack(np.meshgrid(*r, indexing="ij"), -1).reshape(-1, 3).tolist())
+    coords = np.array(coords, dtype=np.int64).reshape(-1, 3)
+    size = np.array(grid.transform.voxelSize(), dtype=np.float64)
+    zero = np.array(grid.transform.indexToWorld((0, 0, 0)), dtype=np.float64)
+    return coords, size, zero, grid
+
+
+def vdb_world_centres(path):
+    coords, size, zero, _ = read_vdb(path)
+    return zero + coords * size
+
+
+def sorted_rows(a, decimals=6):
+    a = np.round(np.asarray(a, dtype=np.float64), decimals)
+    return a[np.lexsort(a.T[::-1])]
+
+
+class AddonTestCase(unittest.TestCase):
+    """Each test starts from an empty scene with its own output folder."""
+
+    def setUp(self):
+        clear_scene()
+        self._tmp = tempfile.TemporaryDirectory(prefix="hyvox-test-")
+        self.out = self._tmp.name
+
+    def tearDown(self):
+        self._tmp.cleanup()
+
+    def voxelize(self, **kw):
+        kw.setdefault("output_dir", self.out)
+        kw.setdefault("method", "cpu")
+        return bpy.ops.object.hyvox_voxelize(**kw)
+
+    def volumes(self):
+        return sorted((o for o in bpy.data.objects if o.type == "VOLUME"), key=lambda o: o.name)
+
+    def scene_state(self):
+        """What 'scene unchanged' compares."""
+        return (sorted(o.name for o in bpy.data.objects), len(bpy.data.volumes),
+                len(bpy.data.materials), bpy.context.scene.frame_current)

@@ -1,0 +1,132 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The interactive (modal) path in a real Blender window, driven by timers:
+
+    xvfb-run -a blender --factory-startup --enable-event-simulate \\
+        --python tests/blender/interactive_modal.py -- BUILD_DIR
+
+1. invoke() runs the voxelization on a worker thread and returns RUNNING_MODAL; the
+   main loop keeps running (timers fire) until the volume appears; undo removes it.
+2. A slow run (the reference method) shows progress, and a simulated Esc cancels it
+   through the native token: no volume, no files, the operator ends.
+Exits 0 on success, 1 on failure (CTest runs it when xvfb-run is installed)."""
+import os
+import sys
+import tempfile
+import time
+import traceback
+
+import bpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import helpers  # noqa: E402
+
+OUT = tempfile.mkdtemp(prefix="hyvox-modal-")
+state = {"step": "start", "t0": 0.0, "ticks": [], "max_gap": 0.0, "progress": []}
+
+
+def fail(message):
+    print("MODAL TEST FAILED:", message, flush=True)
+    os._exit(1)
+
+
+def view3d_override():
+    window = bpy.context.window_manager.windows[0]
+    area = next(a for a in window.screen.areas if a.type == "VIEW_3D")
+    region = next(r for r in area.regions if r.type == "WINDOW")
+    return dict(window=window, area=area, region=region, screen=window.screen)
+
+
+def running():
+    from hyvox_blender.blender.operators import OBJECT_OT_hyvox_voxelize
+    return OBJECT_OT_hyvox_voxelize._active
+
+
+def invoke(**kw):
+    with bpy.context.temp_override(**view3d_override()):
+        return bpy.ops.object.hyvox_voxelize("INVOKE_DEFAULT", output_dir=OUT, **kw)
+
+
+def tick():
+    try:
+        return step()
+    except Exception:
+        traceback.print_exc()
+        fail("exception in the test")
+
+
+def step():
+    now = time.perf_counter()
+    if state["ticks"]:
+        state["max_gap"] = max(state["max_gap"], now - state["ticks"][-1])
+    state["ticks"].append(now)
+    s = state["step"]
+    if s == "start":
+        helpers.clear_scene()
+        cube = helpers.cube()
+        helpers.select_only(cube)
+        result = invoke(method="cpu", resolution=64)
+        print("invoke ->", result, flush=True)
+        if result != {"RUNNING_MODAL"}:
+            fail(f"invoke returned {result}, expected RUNNING_MODAL")
+        state.update(step="wait_first", t0=now, max_gap=0.0, ticks=[now])
+    elif s == "wait_first":
+        if running() is None:
+            if "Cube_voxels" not in bpy.data.objects:
+                fail("the modal run ended without a volume")
+            print("modal run finished; undo", flush=True)
+            with bpy.context.temp_override(**view3d_override()):
+                bpy.ops.ed.undo()
+            state["step"] = "check_undo"
+        elif now - state["t0"] > 30:
+            fail("the modal run did not finish in 30 s")
+    elif s == "check_undo":
+        if "Cube_voxels" in bpy.data.objects:
+            fail("undo did not remove the volume")
+        print("undo removed the volume", flush=True)
+        helpers.clear_scene()
+        bunny = helpers.bunny()
+        helpers.select_only(bunny)
+        for f in os.listdir(OUT):
+            os.remove(os.path.join(OUT, f))
+        result = invoke(method="reference", resolution=256)
+        if result != {"RUNNING_MODAL"}:
+            fail(f"slow invoke returned {result}")
+        state.update(step="slow", t0=now, max_gap=0.0, ticks=[now])
+    elif s == "slow":
+        run = running()
+        if run is None:
+            fail("the slow run ended before it could be cancelled")
+        state["progress"].append(run.pipeline.progress)
+        if now - state["t0"] > 1.5:
+            print("progress samples:", [round(p, 3) for p in state["progress"]], flush=True)
+            print(f"longest main-loop gap while voxelizing: {state['max_gap'] * 1000:.0f} ms", flush=True)
+            if state["max_gap"] > 0.5:
+                fail("the UI stalled while the worker ran")
+            window = bpy.context.window_manager.windows[0]
+            window.event_simulate("ESC", "PRESS")
+            window.event_simulate("ESC", "RELEASE")
+            state.update(step="cancelled", t0=now)
+    elif s == "cancelled":
+        if running() is not None:
+            if now - state["t0"] > 5:
+                fail("Esc did not stop the run within 5 s")
+            return 0.05
+        if any(o.type == "VOLUME" for o in bpy.data.objects):
+            fail("a cancelled run created a volume")
+        if os.listdir(OUT):
+            fail(f"a cancelled run left files: {os.listdir(OUT)}")
+        print(f"Esc cancelled the run in {(now - state['t0']) * 1000:.0f} ms", flush=True)
+        print("MODAL TEST PASSED", flush=True)
+        os._exit(0)
+    return 0.05
+
+
+def main():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    helpers.enable_addon(argv[0] if argv else "build")
+    bpy.app.timers.register(tick, first_interval=1.0)
+    bpy.app.timers.register(lambda: fail("timed out") or None, first_interval=120.0)
+
+
+main()

@@ -1,0 +1,76 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Error paths are reported and leave the scene unchanged."""
+import os
+
+import bpy
+
+import helpers
+from helpers import AddonTestCase
+
+
+class ErrorTest(AddonTestCase):
+    def assert_reported(self, fragment, **kw):
+        before = self.scene_state()
+        with self.assertRaises(RuntimeError) as caught:  # bpy.ops raises on error reports
+            self.voxelize(**kw)
+        self.assertIn(fragment, str(caught.exception))
+        self.assertEqual(self.scene_state(), before)
+        self.assertEqual([f for f in os.listdir(self.out)], [])
+
+    def test_nothing_selected(self):
+        helpers.cube()
+        helpers.select_only()
+        self.assert_reported("Select at least one mesh")
+
+    def test_non_mesh(self):
+        empty = bpy.data.objects.new("Empty", None)
+        bpy.context.scene.collection.objects.link(empty)
+        helpers.select_only(empty)
+        self.assert_reported("not a mesh")
+
+    def test_empty_mesh(self):
+        obj = helpers.mesh_object("Nothing", [], [])
+        helpers.select_only(obj)
+        self.assert_reported("has no faces")
+
+    def test_points_only_mesh(self):
+        obj = bpy.data.objects.new("Points", bpy.data.meshes.new("Points"))
+        obj.data.vertices.add(3)
+        bpy.context.scene.collection.objects.link(obj)
+        helpers.select_only(obj)
+        self.assert_reported("has no faces")
+
+    def test_bad_method_for_this_machine_or_input(self):
+        # A GL method without GL, or the module's own validation: either way a report.
+        cube = helpers.cube()
+        helpers.select_only(cube)
+        before = self.scene_state()
+        try:
+            self.voxelize(method="hybrid", resolution=8)
+        except RuntimeError as exc:
+            self.assertTrue(str(exc))
+            self.assertEqual(self.scene_state(), before)
+
+    def test_rerun_failure_keeps_previous(self):
+        cube = helpers.cube()
+        helpers.select_only(cube)
+        self.voxelize(voxel_size=0.25)
+        before = self.scene_state()
+        path = bpy.path.abspath(self.volumes()[0].data.filepath)
+        stamp = os.path.getmtime(path)
+        cube.data.clear_geometry()
+        with self.assertRaises(RuntimeError):
+            self.voxelize(voxel_size=0.25)
+        self.assertEqual(self.scene_state(), before)
+        self.assertEqual(os.path.getmtime(path), stamp)
+
+    def test_grid_over_memory_budget(self):
+        prefs = bpy.context.preferences.addons["hyvox_blender"].preferences
+        prefs.memory_budget_mb = 16
+        try:
+            cube = helpers.cube()
+            helpers.select_only(cube)
+            # 8192^3 bits = 64 GiB: refused before allocating, reported, nothing changes.
+            self.assert_reported("memory", resolution=8192)
+        finally:
+            prefs.property_unset("memory_budget_mb")

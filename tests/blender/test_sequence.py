@@ -1,0 +1,56 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""A frame range writes one .vdb per frame and plays back as a volume sequence."""
+import os
+
+import bpy
+import numpy as np
+
+import helpers
+from helpers import AddonTestCase
+
+
+class SequenceTest(AddonTestCase):
+    def test_frame_range_sequence(self):
+        cube = helpers.cube(size=1.0)
+        cube.location = (0, 0, 0)
+        cube.keyframe_insert("location", frame=1)
+        cube.location = (3, 0, 0)
+        cube.keyframe_insert("location", frame=4)
+        helpers.select_only(cube)
+        bpy.context.scene.frame_set(2)
+        self.assertEqual(self.voxelize(voxel_size=0.1, frame_start=1, frame_end=4), {"FINISHED"})
+        self.assertEqual(bpy.context.scene.frame_current, 2)  # frame restored
+        files = sorted(f for f in os.listdir(self.out) if f.endswith(".vdb"))
+        self.assertEqual(files, [f"Cube_voxels_{f:04d}.vdb" for f in range(1, 5)])
+        self.assertEqual([f for f in os.listdir(self.out) if "partial" in f], [])
+
+        (obj,) = self.volumes()
+        volume = obj.data
+        self.assertTrue(volume.is_sequence)
+        self.assertEqual((volume.frame_start, volume.frame_duration), (1, 4))
+        xs = []
+        for frame in range(1, 5):
+            bpy.context.scene.frame_set(frame)
+            evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get()).data
+            self.assertEqual(evaluated.grids.frame, frame)
+            self.assertTrue(evaluated.grids.frame_filepath.endswith(f"Cube_voxels_{frame:04d}.vdb"),
+                            evaluated.grids.frame_filepath)
+            centres = helpers.vdb_world_centres(bpy.path.abspath(evaluated.grids.frame_filepath))
+            xs.append(centres[:, 0].mean())
+            # Every frame shares one voxel size.
+            _, size, _, _ = helpers.read_vdb(bpy.path.abspath(evaluated.grids.frame_filepath))
+            np.testing.assert_allclose(size, [0.1] * 3, rtol=1e-6)
+        self.assertTrue(all(b > a for a, b in zip(xs, xs[1:])), xs)  # the cube moves along +x
+        self.assertAlmostEqual(xs[0], 0.0, delta=0.06)
+        self.assertAlmostEqual(xs[-1], 3.0, delta=0.06)
+
+    def test_sequence_starting_later(self):
+        cube = helpers.cube(size=1.0)
+        helpers.select_only(cube)
+        self.voxelize(resolution=8, frame_start=10, frame_end=12)
+        volume = self.volumes()[0].data
+        for frame in (10, 11, 12):
+            bpy.context.scene.frame_set(frame)
+            evaluated = self.volumes()[0].evaluated_get(bpy.context.evaluated_depsgraph_get()).data
+            self.assertTrue(evaluated.grids.frame_filepath.endswith(f"_{frame:04d}.vdb"),
+                            (frame, evaluated.grids.frame_filepath, volume.frame_offset))

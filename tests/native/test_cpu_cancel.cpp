@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Cancellation and threads: an Interrupter that says stop makes voxelize throw
+// hyvox::Cancelled (before or in the middle of the work), start/end are called once each,
+// and the thread count does not change the result.
+#include <gtest/gtest.h>
+
+#include <atomic>
+
+#include "support/test_mesh_loader.h"
+#include "support/triangle_soup.h"
+
+namespace hyvox::test {
+namespace {
+
+class CountingInterrupter : public Interrupter {
+public:
+    explicit CountingInterrupter(int stop_after) : stop_after_(stop_after) {}
+    void start(const char*) override { ++starts; }
+    void end() override { ++ends; }
+    bool wasInterrupted(int) override { return ++calls > stop_after_; }
+    std::atomic<int> calls{0}, starts{0}, ends{0};
+
+private:
+    int stop_after_;
+};
+
+TEST(Cancellation, AlwaysInterruptedThrowsCancelled) {
+    TriangleSoup box;
+    box.addBox({0, 0, 0}, {1, 2, 3});
+    for (Method method : {Method::Cpu, Method::Reference}) {
+        VoxelizeOptions options;
+        options.method = method;
+        options.grid.resolution = 64;
+        CountingInterrupter stop(0);
+        EXPECT_THROW(voxelize(box.view(), options, &stop), Cancelled) << toString(method);
+        EXPECT_EQ(stop.starts.load(), 1);
+        EXPECT_EQ(stop.ends.load(), 1);
+    }
+}
+
+TEST(Cancellation, InterruptedMidwayThrowsCancelled) {
+    const TestMesh dragon = loadTestMesh(meshPath("dragon_stanford_871k.ply.gz"));
+    for (Method method : {Method::Cpu, Method::Reference}) {
+        VoxelizeOptions options;
+        options.method = method;
+        options.grid.resolution = 128;
+        // Let the dispatcher's first check and a few of the backend's chunk checks pass.
+        CountingInterrupter stop(5);
+        EXPECT_THROW(voxelize(dragon.view(), options, &stop), Cancelled) << toString(method);
+        EXPECT_GT(stop.calls.load(), 5);
+        // Never interrupted: the same run completes and checked in between chunks.
+        CountingInterrupter never(1 << 30);
+        const VoxelizeResult result = voxelize(dragon.view(), options, &never);
+        EXPECT_GT(result.stats.voxel_count, 0u);
+        EXPECT_GT(never.calls.load(), 10) << "the backend should check the interrupter between chunks";
+    }
+}
+
+TEST(Threads, ResultDoesNotDependOnTheThreadCount) {
+    const TestMesh sponza = loadTestMesh(meshPath("sponza_crytek_262k_vcolor.ply.gz"));
+    for (Mode mode : {Mode::Conservative, Mode::Thin}) {
+        VoxelizeOptions options;
+        options.grid.resolution = 200;
+        options.mode = mode;
+        options.threads = 1;
+        const VoxelizeResult one = voxelize(sponza.view(), options);
+        options.threads = 0;
+        const VoxelizeResult all = voxelize(sponza.view(), options);
+        options.threads = 3;
+        const VoxelizeResult three = voxelize(sponza.view(), options);
+        EXPECT_TRUE(one.occupancy == all.occupancy);
+        EXPECT_TRUE(one.occupancy == three.occupancy);
+        EXPECT_GT(one.stats.voxel_count, 0u);
+    }
+}
+
+}  // namespace
+}  // namespace hyvox::test

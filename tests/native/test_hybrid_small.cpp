@@ -1,0 +1,295 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The GL methods on small hand-checked cases and their options: faces on voxel planes,
+// sub-voxel triangles, clipping, tiles, the voxel list (section 3.5), the hybrid's two
+// limits (cutoff 0 = fragment-parallel, huge = triangle-parallel), the auto cutoff, stats,
+// and the clear errors (bad shader folder, no such device, grid too large).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include <filesystem>
+
+#include "hybrid/gl_backend_internal.h"
+#include "hyvox/voxelize.h"
+#include "support/test_mesh_loader.h"
+#include "support/triangle_soup.h"
+#include "test_hybrid_oracle.h"
+
+namespace hyvox {
+namespace {
+
+constexpr Method kGlMethods[] = {Method::Triangle, Method::Fragment, Method::Hybrid};
+
+VoxelizeOptions options(Method method, Mode mode = Mode::Conservative) {
+    VoxelizeOptions o;
+    o.method = method;
+    o.mode = mode;
+    o.hybrid.cutoff = 2.0;
+    return o;
+}
+
+// A grid of 8 unit voxels per axis over [0, 8]³ whatever the mesh: voxel_size 1, origin 0.
+VoxelizeOptions unitGrid(Method method, Mode mode = Mode::Conservative) {
+    VoxelizeOptions o = options(method, mode);
+    o.grid.voxel_size = 1.0;
+    o.grid.origin = std::array<double, 3>{0, 0, 0};
+    o.grid.bounds = Bounds{{0, 0, 0}, {8, 8, 8}};
+    return o;
+}
+
+class ScopedEnv {
+public:
+    ScopedEnv(const char* name, const std::string& value) : name_(name) {
+        if (const char* old = std::getenv(name)) old_ = old, had_ = true;
+        setenv(name, value.c_str(), 1);
+    }
+    ~ScopedEnv() {
+        if (had_)
+            setenv(name_, old_.c_str(), 1);
+        else
+            unsetenv(name_);
+    }
+
+private:
+    const char* name_;
+    std::string old_;
+    bool had_ = false;
+};
+
+TEST(GlSmall, FaceOnVoxelPlaneMarksBothSides) {
+    // A square in the plane z = 4 from (1,1) to (3,3): conservative marks columns x,y in
+    // 0..3 (closed boxes touching the edges) on both sides, z = 3 and z = 4.
+    test::TriangleSoup soup;
+    soup.add({1, 1, 4}, {3, 1, 4}, {3, 3, 4});
+    soup.add({1, 1, 4}, {3, 3, 4}, {1, 3, 4});
+    for (Method method : kGlMethods) {
+        SCOPED_TRACE(toString(method));
+        const VoxelizeResult r = voxelize(soup.view(), unitGrid(method));
+        EXPECT_EQ(r.occupancy.count(), 4u * 4u * 2u);
+        for (int x = 0; x <= 3; ++x)
+            for (int y = 0; y <= 3; ++y) {
+                EXPECT_TRUE(r.occupancy.test(x, y, 3));
+                EXPECT_TRUE(r.occupancy.test(x, y, 4));
+            }
+    }
+}
+
+TEST(GlSmall, TinyTriangleInsideOneVoxelSetsOnlyIt) {
+    test::TriangleSoup soup;
+    soup.add({5.2, 2.3, 6.4}, {5.6, 2.4, 6.5}, {5.3, 2.7, 6.8});
+    for (Mode mode : {Mode::Conservative, Mode::Thin})
+        for (Method method : kGlMethods) {
+            SCOPED_TRACE(std::string(toString(method)) + " " + toString(mode));
+            const VoxelizeResult r = voxelize(soup.view(), unitGrid(method, mode));
+            ASSERT_EQ(r.occupancy.count(), 1u);
+            EXPECT_TRUE(r.occupancy.test(5, 2, 6));
+        }
+}
+
+// Random triangles of every size and orientation, some far outside the grid (clipped).
+test::TriangleSoup randomSoup(int count, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> pos(-2.0, 34.0), small(-1.5, 1.5);
+    test::TriangleSoup soup;
+    for (int t = 0; t < count; ++t) {
+        const std::array<double, 3> a{pos(rng), pos(rng), pos(rng)};
+        if (t % 3 == 0) {
+            soup.add(a, {pos(rng), pos(rng), pos(rng)}, {pos(rng), pos(rng), pos(rng)});
+        } else {
+            soup.add(a, {a[0] + small(rng), a[1] + small(rng), a[2] + small(rng)},
+                     {a[0] + small(rng), a[1] + small(rng), a[2] + small(rng)});
+        }
+    }
+    return soup;
+}
+
+TEST(GlSmall, RandomTrianglesMatchOraclesWithClipping) {
+    const test::TriangleSoup soup = randomSoup(300, 7);
+    for (Mode mode : {Mode::Conservative, Mode::Thin}) {
+        VoxelizeOptions o = options(mode == Mode::Conservative ? Method::Reference : Method::Cpu, mode);
+        o.grid.voxel_size = 1.0;
+        o.grid.bounds = Bounds{{0, 0, 0}, {32, 29, 31}};  // clips what lies outside
+        const VoxelizeResult oracle = voxelize(soup.view(), o);
+        for (Method method : kGlMethods) {
+            SCOPED_TRACE(std::string(toString(method)) + " " + toString(mode));
+            o.method = method;
+            const VoxelizeResult r = voxelize(soup.view(), o);
+            const auto cmp = test::compareToOracle(soup.view(), mode, r, oracle);
+            EXPECT_TRUE(cmp.unexplained.empty()) << cmp.summary();
+            EXPECT_GT(cmp.result_voxels, 1000u);
+        }
+    }
+}
+
+test::TestMesh bunny() { return test::loadTestMesh(test::meshPath("bunny_stanford_69k.ply")); }
+
+TEST(GlSmall, HybridLimitsAreFragmentAndTriangleParallel) {
+    const test::TestMesh mesh = bunny();
+    VoxelizeOptions o = options(Method::Triangle);
+    o.grid.resolution = 64;
+    const VoxelizeResult triangle = voxelize(mesh.view(), o);
+    o.method = Method::Fragment;
+    const VoxelizeResult fragment = voxelize(mesh.view(), o);
+    EXPECT_EQ(triangle.occupancy, fragment.occupancy);
+
+    o.method = Method::Hybrid;
+    o.hybrid.cutoff = 0.0;  // everything is large: all rasterized in pass 2
+    const VoxelizeResult all_large = voxelize(mesh.view(), o);
+    EXPECT_EQ(all_large.occupancy, fragment.occupancy);
+    EXPECT_EQ(all_large.stats.metrics.at("large_triangles"), double(all_large.stats.triangles_used));
+
+    o.hybrid.cutoff = 1e30;  // nothing is large: all voxelized in pass 1
+    const VoxelizeResult all_small = voxelize(mesh.view(), o);
+    EXPECT_EQ(all_small.occupancy, triangle.occupancy);
+    EXPECT_EQ(all_small.stats.metrics.at("large_triangles"), 0.0);
+
+    o.hybrid.cutoff = 0.5;  // a mix
+    const VoxelizeResult mixed = voxelize(mesh.view(), o);
+    EXPECT_EQ(mixed.occupancy, triangle.occupancy);
+    EXPECT_GT(mixed.stats.metrics.at("large_triangles"), 0.0);
+    EXPECT_LT(mixed.stats.metrics.at("large_triangles"), double(mixed.stats.triangles_used));
+}
+
+TEST(GlSmall, AutoCutoffSearchesOnceThenUsesTheCache) {
+    const test::TestMesh mesh = test::loadTestMesh(test::meshPath("teapot_utah.ply"));
+    VoxelizeOptions o = options(Method::Hybrid);
+    o.grid.resolution = 48;
+    o.hybrid.cutoff = -1.0;
+    const VoxelizeResult first = voxelize(mesh.view(), o);
+    EXPECT_GT(first.stats.metrics.at("cutoff_search_runs"), 2.0);
+    EXPECT_GT(first.stats.metrics.at("cutoff"), 0.0);
+    const VoxelizeResult second = voxelize(mesh.view(), o);
+    EXPECT_EQ(second.stats.metrics.at("cutoff_search_runs"), 0.0);
+    EXPECT_EQ(second.stats.metrics.at("cutoff"), first.stats.metrics.at("cutoff"));
+    o.method = Method::Triangle;
+    EXPECT_EQ(first.occupancy, voxelize(mesh.view(), o).occupancy);
+}
+
+TEST(GlSmall, StatsReportPassesAndTransfers) {
+    const test::TestMesh mesh = bunny();
+    VoxelizeOptions o = options(Method::Hybrid);
+    o.grid.resolution = 64;
+    const VoxelizeResult r = voxelize(mesh.view(), o);
+    for (const char* key : {"pass1_gpu_ms", "pass2_gpu_ms", "large_triangles", "cutoff", "upload_ms", "readback_ms"})
+        EXPECT_TRUE(r.stats.metrics.count(key)) << key;
+    EXPECT_GT(r.stats.metrics.at("pass1_gpu_ms"), 0.0);
+    EXPECT_EQ(r.stats.voxel_count, r.occupancy.count());
+}
+
+TEST(GlSmall, TilesGiveTheSameVoxels) {
+    const test::TestMesh mesh = bunny();
+    VoxelizeOptions o = options(Method::Hybrid);
+    o.grid.resolution = 96;
+    for (Method method : kGlMethods) {
+        SCOPED_TRACE(toString(method));
+        o.method = method;
+        const VoxelizeResult whole = voxelize(mesh.view(), o);
+        EXPECT_EQ(whole.stats.metrics.at("tiles"), 1.0);
+        // One slab of 8 voxels at 96 voxels is 12 x 12 bricks of 64 bytes: 9216 bytes.
+        ScopedEnv tile("HYVOX_GL_TILE_BYTES", std::to_string(3 * 9216));
+        const VoxelizeResult tiled = voxelize(mesh.view(), o);
+        EXPECT_GE(tiled.stats.metrics.at("tiles"), 3.0);
+        EXPECT_EQ(tiled.occupancy, whole.occupancy);
+    }
+}
+
+TEST(GlSmall, VoxelListHoldsEachSetVoxelOnce) {
+    const test::TestMesh mesh = bunny();
+    for (Method method : kGlMethods) {
+        SCOPED_TRACE(toString(method));
+        VoxelizeOptions o = options(method);
+        o.grid.resolution = 80;
+        const VoxelizeResult bits = voxelize(mesh.view(), o);
+        // Through the backend entry point that also serves voxelize().
+        const ValidatedMesh validated = validate(mesh.view());
+        const GridSpec grid = makeGrid(validated.bounds, o.grid);
+        const BackendJob job{validated, grid, o, nullptr};
+        std::vector<std::array<std::int32_t, 3>> list;
+        ScopedEnv tile("HYVOX_GL_TILE_BYTES", std::to_string(4 * 10 * 10 * 64));  // several tiles too
+        hybrid::runGl(job, nullptr, &list);
+        std::sort(list.begin(), list.end());
+        auto expected = bits.occupancy.coords();
+        std::sort(expected.begin(), expected.end());
+        EXPECT_EQ(list, expected);
+    }
+}
+
+TEST(GlSmall, GridTooLargeForOneSlabIsRefusedClearly) {
+    const test::TestMesh mesh = bunny();
+    VoxelizeOptions o = options(Method::Triangle);
+    o.grid.resolution = 512;
+    ScopedEnv tile("HYVOX_GL_TILE_BYTES", "4096");
+    try {
+        voxelize(mesh.view(), o);
+        FAIL() << "expected ResourceError";
+    } catch (const ResourceError& e) {
+        EXPECT_NE(std::string(e.what()).find("storage-block limit"), std::string::npos) << e.what();
+    }
+}
+
+TEST(GlSmall, MissingShaderFolderIsAClearError) {
+    test::TriangleSoup soup;
+    soup.add({0, 0, 0}, {1, 0, 0}, {0, 1, 1});
+    VoxelizeOptions o = options(Method::Triangle);
+    o.grid.resolution = 8;
+    o.gl.shader_dir = "/nonexistent/hyvox-shaders";
+    try {
+        voxelize(soup.view(), o);
+        FAIL() << "expected BackendError";
+    } catch (const BackendError& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/hyvox-shaders/hybrid/triangle_parallel.comp"), std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(GlSmall, ShaderFolderFromTheEnvironmentIsUsed) {
+    // A copy of shaders/ with a syntax error in one shared file: the error names the file
+    // and quotes the driver's log.
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "hyvox_broken_shaders";
+    std::filesystem::remove_all(dir);
+    std::filesystem::copy(HYVOX_SOURCE_SHADERS, dir, std::filesystem::copy_options::recursive);
+    std::ofstream(dir / "common" / "overlap.glsl", std::ios::app) << "\nthis is not glsl;\n";
+    test::TriangleSoup soup;
+    soup.add({0, 0, 0}, {1, 0, 0}, {0, 1, 1});
+    VoxelizeOptions o = options(Method::Fragment);
+    o.grid.resolution = 8;
+    ScopedEnv env("HYVOX_SHADER_DIR", dir.string());
+    try {
+        voxelize(soup.view(), o);
+        FAIL() << "expected BackendError";
+    } catch (const BackendError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("fragment_parallel"), std::string::npos) << what;
+        EXPECT_NE(what.find("common/overlap.glsl"), std::string::npos) << what;
+        EXPECT_NE(what.find("error"), std::string::npos) << what;
+    }
+    std::filesystem::remove_all(dir);
+    // And the unbroken copy on disk gives the embedded result.
+    ScopedEnv good("HYVOX_SHADER_DIR", HYVOX_SOURCE_SHADERS);
+    EXPECT_EQ(voxelize(soup.view(), o).occupancy.count(), 
+              [&] { ScopedEnv none("HYVOX_SHADER_DIR", ""); return voxelize(soup.view(), o).occupancy.count(); }());
+}
+
+TEST(GlSmall, NoSuchDeviceNamesTheDevicesFound) {
+    test::TriangleSoup soup;
+    soup.add({0, 0, 0}, {1, 0, 0}, {0, 1, 1});
+    VoxelizeOptions o = options(Method::Triangle);
+    o.grid.resolution = 8;
+    ScopedEnv env("HYVOX_GL_DEVICE", "99");
+    try {
+        voxelize(soup.view(), o);
+        FAIL() << "expected BackendError";
+    } catch (const BackendError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("'99'"), std::string::npos) << what;
+        EXPECT_NE(what.find("software"), std::string::npos) << what;  // llvmpipe is always listed
+    }
+    o.gl.device = "software";  // the option wins over the environment
+    EXPECT_GT(voxelize(soup.view(), o).occupancy.count(), 0u);
+}
+
+}  // namespace
+}  // namespace hyvox

@@ -1,0 +1,46 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Run: PYTHONPATH=BUILD/python /usr/bin/python3 -m pytest tests/python
+# (CTest runs this as the test "pytest"). The CLI is taken from $HYVOX_CLI, else from
+# BUILD/hyvox next to BUILD/python; meshes from $HYVOX_MESH_DIR, else ../shared/data/meshes.
+import os
+import pathlib
+
+import pytest
+
+import hyvox
+
+REPO = pathlib.Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="session")
+def mesh_dir() -> pathlib.Path:
+    path = pathlib.Path(os.environ.get("HYVOX_MESH_DIR", REPO.parent / "shared" / "data" / "meshes"))
+    if not (path / "bunny_stanford_69k.ply").exists():
+        pytest.skip(f"shared meshes not found in {path} (set HYVOX_MESH_DIR)")
+    return path
+
+
+@pytest.fixture(scope="session")
+def cli() -> pathlib.Path:
+    default = pathlib.Path(hyvox.__file__).resolve().parents[2] / "hyvox"
+    path = pathlib.Path(os.environ.get("HYVOX_CLI", default))
+    if not path.exists():
+        pytest.skip(f"hyvox CLI not found at {path} (set HYVOX_CLI)")
+    return path
+
+
+@pytest.fixture(scope="session")
+def bunny(mesh_dir):
+    return hyvox.read_mesh(mesh_dir / "bunny_stanford_69k.ply")
+
+
+@pytest.fixture(scope="session")
+def dragon(mesh_dir):
+    return hyvox.read_mesh(mesh_dir / "dragon_stanford_871k.ply.gz")
+
+
+@pytest.fixture()
+def tetrahedron():
+    vertices = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    triangles = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
+    return vertices, triangles

@@ -1,0 +1,151 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The add-on's run pipeline outside Blender: the real hyvox module when it is built
+(PYTHONPATH=B/python), a stand-in for the cancel and failure paths."""
+import os
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "addon"))
+
+from hyvox_blender.core import backend, summary  # noqa: E402
+from hyvox_blender.core.errors import CancelledError, HyvoxError  # noqa: E402
+from hyvox_blender.core.pipeline import Group, GroupMesh, Pipeline  # noqa: E402
+from hyvox_blender.core.settings import VoxelizeSettings  # noqa: E402
+
+
+def cube_mesh(size=2.0, shift=(0.0, 0.0, 0.0)):
+    h = size / 2
+    v = np.array([(-h, -h, -h), (h, -h, -h), (h, h, -h), (-h, h, -h),
+                  (-h, -h, h), (h, -h, h), (h, h, h), (-h, h, h)], np.float32) + np.float32(shift)
+    quads = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    t = np.array([tri for a, b, c, d in quads for tri in ((a, b, c), (a, c, d))], np.uint32)
+    return v, t
+
+
+@pytest.fixture(scope="module")
+def hyvox():
+    return pytest.importorskip("hyvox")
+
+
+def exporter(groups, shifts=None):
+    def export(frame):
+        out = []
+        for g in groups:
+            shift = (0.0, 0.0, 0.0) if frame is None or shifts is None else shifts[frame]
+            v, t = cube_mesh(shift=shift)
+            out.append(GroupMesh(g, v, t))
+        return out
+    return export
+
+
+def test_single_volume(hyvox, tmp_path):
+    settings = VoxelizeSettings(voxel_size=0.25, method="cpu")
+    pipeline = Pipeline(settings, str(tmp_path), exporter([Group("Cube", ["Cube"])]), module=hyvox)
+    results = pipeline.run()
+    (result,) = results.values()
+    assert result.files == [str(tmp_path / "Cube_voxels.vdb")]
+    assert os.path.isfile(result.files[0])
+    assert result.voxel_counts == [8 ** 3 - 6 ** 3]
+    assert result.dims == (8, 8, 8) and result.voxel_size == 0.25
+    assert sorted(os.listdir(tmp_path)) == ["Cube_voxels.vdb"]  # no staging files left
+    assert "296 voxels" in summary.describe_result(result)
+    assert summary.as_dict(results, pipeline.timings)["volumes"][0]["voxel_counts"] == [296]
+
+
+def test_sequence_keeps_first_voxel_size(hyvox, tmp_path):
+    shifts = {1: (0, 0, 0), 2: (1, 0, 0)}
+    settings = VoxelizeSettings(resolution=8, method="cpu", frames=[1, 2])
+    pipeline = Pipeline(settings, str(tmp_path), exporter([Group("C", ["C"])], shifts), module=hyvox)
+    (result,) = pipeline.run().values()
+    assert [os.path.basename(p) for p in result.files] == ["C_voxels_0001.vdb", "C_voxels_0002.vdb"]
+    assert result.frames == [1, 2]
+    assert result.voxel_size == pytest.approx(0.25)
+
+
+def test_threaded_run_matches(hyvox, tmp_path):
+    settings = VoxelizeSettings(resolution=16, method="cpu", frames=[1, 2, 3])
+    pipeline = Pipeline(settings, str(tmp_path), exporter([Group("A", ["A"]), Group("B", ["B"])]),
+                        module=hyvox)
+    while pipeline.start_next_frame():
+        while pipeline.worker_busy():
+            assert 0.0 <= pipeline.progress <= 1.0
+            time.sleep(0.001)
+        pipeline.finish_frame()
+    pipeline.commit()
+    assert pipeline.done
+    assert len(os.listdir(tmp_path)) == 6
+
+
+def test_auto_method_resolves(hyvox):
+    method = backend.resolve_method(hyvox, VoxelizeSettings(method="auto"))
+    assert method in ("hybrid", "cpu")
+
+
+def test_native_errors_become_hyvox_errors(hyvox, tmp_path):
+    def export(frame):
+        v = np.array([[0, 0, 0], [np.nan, 0, 0], [0, 1, 0]], np.float32)
+        return [GroupMesh(Group("Bad", ["Bad"]), v, np.array([[0, 1, 2]], np.uint32))]
+    pipeline = Pipeline(VoxelizeSettings(method="cpu"), str(tmp_path), export, module=hyvox)
+    with pytest.raises(HyvoxError):
+        pipeline.run()
+    assert os.listdir(tmp_path) == []
+
+
+class SlowModule:
+    """Stands in for hyvox: a voxelization that runs until cancelled."""
+    class Cancelled(Exception):
+        pass
+
+    class CancelToken:
+        def __init__(self):
+            self.event = threading.Event()
+            self.progress = -1
+
+        def cancel(self):
+            self.event.set()
+
+    def voxelize(self, vertices, triangles, cancel=None, **kw):
+        cancel.progress = 50
+        if cancel.event.wait(10):
+            raise self.Cancelled()
+        raise AssertionError("never cancelled")
+
+
+def test_cancel_from_main_thread(tmp_path):
+    module = SlowModule()
+    pipeline = Pipeline(VoxelizeSettings(method="cpu"), str(tmp_path),
+                        exporter([Group("Cube", ["Cube"])]), module=module)
+    assert pipeline.start_next_frame()
+    while pipeline.progress == 0.0:
+        time.sleep(0.001)
+    assert pipeline.progress == pytest.approx(0.5)
+    pipeline.cancel()
+    pipeline.wait()
+    with pytest.raises(CancelledError):
+        pipeline.finish_frame()
+    pipeline.discard()
+    assert os.listdir(tmp_path) == []
+
+
+def test_failure_discards_earlier_frames(hyvox, tmp_path):
+    calls = []
+
+    def export(frame):
+        calls.append(frame)
+        if frame == 3:
+            raise HyvoxError("object vanished")
+        v, t = cube_mesh()
+        return [GroupMesh(Group("C", ["C"]), v, t)]
+    (tmp_path / "C_voxels_0001.vdb").write_bytes(b"previous")
+    pipeline = Pipeline(VoxelizeSettings(resolution=8, method="cpu", frames=[1, 2, 3]),
+                        str(tmp_path), export, module=hyvox)
+    with pytest.raises(HyvoxError):
+        pipeline.run()
+    assert calls == [1, 2, 3]
+    # The previous file is untouched and no staging file lingers.
+    assert sorted(os.listdir(tmp_path)) == ["C_voxels_0001.vdb"]
+    assert (tmp_path / "C_voxels_0001.vdb").read_bytes() == b"previous"

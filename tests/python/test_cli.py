@@ -1,0 +1,100 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# The hyvox command-line tool end to end.
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import hyvox
+
+
+def run(cli, *args):
+    return subprocess.run([str(cli), *map(str, args)], capture_output=True, text=True, timeout=300)
+
+
+def test_voxelize_bunny(cli, mesh_dir, tmp_path, bunny):
+    out = tmp_path / "bunny.vdb"
+    stats_path = tmp_path / "stats.json"
+    result = run(cli, "voxelize", mesh_dir / "bunny_stanford_69k.ply", "-o", out, "--resolution", 128,
+                 "--stats-json", stats_path)
+    assert result.returncode == 0, result.stderr
+    assert "voxels" in result.stdout and result.stderr == ""
+    stats = json.loads(stats_path.read_text())
+    for key in ("origin", "voxel_size", "dims", "voxel_count", "triangles", "timings_ms", "metrics"):
+        assert key in stats, key
+    assert stats["triangles"] == {"input": 69451, "used": 69451, "degenerate": 0}
+    assert max(stats["dims"]) == 128
+    assert {"read_mesh", "voxelize", "write_vdb"} <= set(stats["timings_ms"])
+
+    # The file holds exactly what the Python module computes for the same options.
+    expected = hyvox.voxelize(*bunny, resolution=128)
+    assert stats["voxel_count"] == expected.voxel_count
+    assert stats["origin"] == list(expected.origin) and stats["voxel_size"] == expected.voxel_size
+    vdb = pytest.importorskip("pyopenvdb")
+    density = vdb.read(str(out), "density")
+    dense = np.zeros(expected.dims, np.float32)
+    density.copyToArray(dense, ijk=(0, 0, 0))
+    assert np.array_equal(dense == 1.0, expected.to_dense())
+
+
+def test_options(cli, mesh_dir, tmp_path):
+    out = tmp_path / "t.vdb"
+    result = run(cli, "voxelize", mesh_dir / "teapot_utah.ply", f"--output={out}", "--voxel-size", "0.25",
+                 "--mode", "thin", "--method", "cpu", "--padding", "1", "--threads", "1", "-q",
+                 "--stats-json", tmp_path / "s.json")
+    assert result.returncode == 0, result.stderr
+    assert result.stdout == ""
+    stats = json.loads((tmp_path / "s.json").read_text())
+    assert stats["mode"] == "thin" and stats["voxel_size"] == 0.25
+    assert out.exists()
+
+
+def test_help_and_version(cli):
+    result = run(cli, "--help")
+    assert result.returncode == 0 and "usage: hyvox voxelize" in result.stdout
+    result = run(cli, "--version")
+    assert result.returncode == 0 and result.stdout.strip() == f"hyvox {hyvox.__version__}"
+
+
+@pytest.mark.parametrize(
+    "args, status, message",
+    [
+        (["voxelize", "{dir}/missing.ply", "-o", "{out}"], 1, "No such file"),
+        (["voxelize", "{dir}/garbage.ply", "-o", "{out}"], 1, "garbage.ply"),
+        (["voxelize", "{mesh}", "-o", "{out}", "--resolution", "0"], 2, "--resolution"),
+        (["voxelize", "{mesh}", "-o", "{out}", "--resolution", "abc"], 2, "whole number"),
+        (["voxelize", "{mesh}", "-o", "{out}", "--mode", "thick"], 2, "unknown mode"),
+        (["voxelize", "{mesh}", "-o", "{out}", "--bogus"], 2, "unknown option"),
+        (["voxelize", "{mesh}"], 2, "no output file"),
+        (["voxelize", "{mesh}", "-o", "{out}", "--memory-budget-mib", "1", "--resolution", "8192"], 1, "memory budget"),
+        (["frobnicate"], 2, "unknown command"),
+        ([], 2, "no command"),
+    ],
+)
+def test_bad_input_fails_cleanly(cli, mesh_dir, tmp_path, args, status, message):
+    (tmp_path / "garbage.ply").write_text("ply\nthis is not a mesh\n")
+    out = tmp_path / "out.vdb"
+    values = {"dir": tmp_path, "out": out, "mesh": mesh_dir / "teapot_utah.ply"}
+    result = run(cli, *[a.format(**values) for a in args])
+    assert result.returncode == status, result.stderr
+    assert message in result.stderr
+    assert "hyvox: error:" in result.stderr
+    assert not out.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["garbage.ply"]  # no temporaries either
+
+
+def test_unwritable_output_keeps_nothing(cli, mesh_dir, tmp_path):
+    result = run(cli, "voxelize", mesh_dir / "teapot_utah.ply", "-o", tmp_path / "no" / "such" / "dir.vdb")
+    assert result.returncode == 1 and "cannot write" in result.stderr
+    existing = tmp_path / "keep.vdb"
+    existing.write_bytes(b"previous")
+    result = run(cli, "voxelize", mesh_dir / "teapot_utah.ply", "-o", existing, "--resolution", "0")
+    assert result.returncode == 2 and existing.read_bytes() == b"previous"
+
+
+def test_bad_stats_path_fails_before_writing(cli, mesh_dir, tmp_path):
+    out = tmp_path / "out.vdb"
+    result = run(cli, "voxelize", mesh_dir / "teapot_utah.ply", "-o", out, "--stats-json", tmp_path / "no" / "s.json")
+    assert result.returncode == 1 and "does not exist" in result.stderr
+    assert not out.exists()

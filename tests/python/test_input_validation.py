@@ -1,0 +1,154 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# numpy input is checked at the boundary: clear ValueErrors, never a crash.
+import numpy as np
+import pytest
+
+import hyvox
+
+
+def test_package_surface():
+    for name in hyvox.__all__:
+        assert hasattr(hyvox, name), name
+    assert hyvox.METHODS[:2] == ("cpu", "reference")
+    assert hyvox.MODES == ("conservative", "thin")
+    assert issubclass(hyvox.ResourceError, RuntimeError)
+    assert issubclass(hyvox.BackendError, RuntimeError)
+    assert issubclass(hyvox.Cancelled, Exception) and not issubclass(hyvox.Cancelled, RuntimeError)
+
+
+@pytest.mark.parametrize(
+    "vertices, message",
+    [
+        (np.zeros((4, 3), dtype=np.int32), "float32 or float64"),
+        (np.zeros((4, 3), dtype=np.float16), "float32 or float64"),
+        (np.zeros((4, 2), dtype=np.float32), r"shape \(N, 3\)"),
+        (np.zeros(12, dtype=np.float32), r"shape \(N, 3\)"),
+        (np.zeros((4, 3, 1), dtype=np.float32), r"shape \(N, 3\)"),
+    ],
+)
+def test_bad_vertices(tetrahedron, vertices, message):
+    _, triangles = tetrahedron
+    with pytest.raises(ValueError, match=message):
+        hyvox.voxelize(vertices, triangles, resolution=8)
+
+
+@pytest.mark.parametrize(
+    "triangles, message",
+    [
+        (np.zeros((4, 3), dtype=np.float32), "integer dtype"),
+        (np.zeros((4, 3), dtype=bool), "integer dtype"),
+        (np.zeros((4, 4), dtype=np.int32), r"shape \(M, 3\)"),
+        (np.array([[0, 1, -2]]), "negative"),
+        (np.array([[0, 1, 2**33]]), "too large"),
+        (np.array([[0, 1, 7]], dtype=np.uint32), "refers to vertex 7"),
+    ],
+)
+def test_bad_triangles(tetrahedron, triangles, message):
+    vertices, _ = tetrahedron
+    with pytest.raises(ValueError, match=message):
+        hyvox.voxelize(np.asarray(vertices, dtype=np.float32), triangles, resolution=8)
+
+
+def test_bad_values_and_options(tetrahedron):
+    vertices, triangles = tetrahedron
+    nan = np.array(vertices, dtype=np.float32)
+    nan[2, 1] = np.nan
+    with pytest.raises(ValueError, match="non-finite"):
+        hyvox.voxelize(nan, triangles)
+    huge = np.array(vertices, dtype=np.float64) * 1e300  # inf once in float32
+    with pytest.raises(ValueError, match="non-finite"):
+        hyvox.voxelize(huge, triangles)
+    with pytest.raises(ValueError, match="empty"):
+        hyvox.voxelize(np.zeros((0, 3), np.float32), np.zeros((0, 3), np.uint32))
+    with pytest.raises(ValueError, match="degenerate"):
+        hyvox.voxelize(vertices, [[0, 0, 1]])
+    with pytest.raises(ValueError, match="unknown mode"):
+        hyvox.voxelize(vertices, triangles, mode="thick")
+    with pytest.raises(ValueError, match="unknown method"):
+        hyvox.voxelize(vertices, triangles, method="magic")
+    with pytest.raises(ValueError, match="resolution"):
+        hyvox.voxelize(vertices, triangles, resolution=0)
+    with pytest.raises(ValueError, match="origin"):
+        hyvox.voxelize(vertices, triangles, origin=(0, 0))
+    with pytest.raises(hyvox.ResourceError, match="memory budget"):
+        hyvox.voxelize(vertices, triangles, resolution=4096, memory_budget=1 << 20)
+    with pytest.raises(TypeError):
+        hyvox.voxelize(vertices, triangles, cancel=object())
+
+
+def test_float64_and_int64_are_converted(bunny):
+    vertices, triangles = bunny
+    expected = hyvox.voxelize(vertices, triangles, resolution=64)
+    converted = hyvox.voxelize(vertices.astype(np.float64), triangles.astype(np.int64), resolution=64)
+    assert converted.dims == expected.dims and converted.origin == expected.origin
+    assert np.array_equal(converted.coords(), expected.coords())
+    # Non-contiguous views and plain lists are accepted too.
+    strided = np.zeros((len(vertices), 6), np.float32)
+    strided[:, ::2] = vertices
+    from_views = hyvox.voxelize(strided[:, ::2], np.asfortranarray(triangles), resolution=64)
+    assert np.array_equal(from_views.coords(), expected.coords())
+
+
+def test_list_input_and_grid_properties(tetrahedron):
+    vertices, triangles = tetrahedron
+    grid = hyvox.voxelize(vertices, triangles, resolution=8, padding=1)
+    assert grid.dims == (10, 10, 10)
+    assert grid.voxel_size == pytest.approx(1 / 8)
+    assert grid.origin == pytest.approx((-1 / 8,) * 3)
+    coords = grid.coords()
+    assert coords.dtype == np.int32 and coords.shape == (grid.voxel_count, 3) == (len(grid), 3)
+    assert coords.min() >= 0 and (coords.max(axis=0) < grid.dims).all()
+    centres = grid.world_centres()
+    assert centres.dtype == np.float64
+    np.testing.assert_allclose(centres, np.asarray(grid.origin) + (coords + 0.5) * grid.voxel_size)
+    dense = grid.to_dense()
+    assert dense.shape == grid.dims and dense.sum() == grid.voxel_count
+    assert dense[tuple(coords.T)].all()
+    ijk, values = grid.counts()
+    assert ijk.shape == (0, 3) and values.shape == (0,)
+    stats = grid.stats
+    assert stats["voxel_count"] == grid.voxel_count
+    assert stats["triangles"] == {"input": 4, "used": 4, "degenerate": 0}
+    assert stats["dims"] == list(grid.dims) and stats["method"] == "cpu" and stats["mode"] == "conservative"
+    assert "voxelize" in stats["timings_ms"]
+    assert "VoxelGrid" in repr(grid)
+
+
+def test_degenerate_triangles_are_counted(tetrahedron):
+    vertices, triangles = tetrahedron
+    grid = hyvox.voxelize(vertices, triangles + [[1, 1, 2], [0, 1, 3]], resolution=8)
+    assert grid.stats["triangles"] == {"input": 6, "used": 5, "degenerate": 1}
+
+
+def test_read_mesh(mesh_dir, tmp_path):
+    vertices, triangles = hyvox.read_mesh(mesh_dir / "spider_messy.ply")
+    assert vertices.dtype == np.float32 and vertices.shape == (762, 3)
+    assert triangles.dtype == np.uint32 and triangles.shape == (1368, 3)
+    _, _, attrs = hyvox.read_mesh(str(mesh_dir / "spot_uv.ply"), attributes=True)
+    assert set(attrs) == {"uvs"} and attrs["uvs"].shape == (3225, 2)
+    _, _, attrs = hyvox.read_mesh(mesh_dir / "spot_vcolor.ply", attributes=True)
+    assert set(attrs) == {"colors"} and attrs["colors"].shape == (2930, 4)
+    assert 0 <= attrs["colors"].min() and attrs["colors"].max() <= 1
+    with pytest.raises(ValueError, match="No such file"):
+        hyvox.read_mesh(tmp_path / "missing.ply")
+    (tmp_path / "bad.obj").write_text("this is not a mesh\n")
+    with pytest.raises(ValueError, match="bad.obj"):
+        hyvox.read_mesh(tmp_path / "bad.obj")
+
+
+def test_vertex_attribute_checks(tetrahedron):
+    vertices, triangles = tetrahedron
+    with pytest.raises(ValueError, match=r"uvs must have shape \(N, 2\)"):
+        hyvox.voxelize(vertices, triangles, uvs=np.zeros((4, 3)))
+    with pytest.raises(ValueError, match="uvs must have one row per vertex"):
+        hyvox.voxelize(vertices, triangles, uvs=np.zeros((3, 2)))
+    with pytest.raises(ValueError, match="normals must be float32 or float64"):
+        hyvox.voxelize(vertices, triangles, normals=np.zeros((4, 3), dtype=np.int8))
+    bad = np.zeros((4, 3))
+    bad[1, 1] = np.inf
+    with pytest.raises(ValueError, match="non-finite normal"):
+        hyvox.voxelize(vertices, triangles, normals=bad)
+    # Valid attributes change nothing for the exact methods.
+    plain = hyvox.voxelize(vertices, triangles, resolution=8)
+    with_attrs = hyvox.voxelize(vertices, triangles, resolution=8, uvs=np.zeros((4, 2)), normals=np.ones((4, 3)))
+    assert np.array_equal(plain.coords(), with_attrs.coords())

@@ -1,0 +1,126 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# The GIL is released while native code runs, and a CancelToken stops a run from another
+# thread.
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import hyvox
+
+
+class Counter(threading.Thread):
+    """Counts in pure Python (needs the GIL) until stopped."""
+
+    def __init__(self):
+        super().__init__(daemon=True)
+        self.count = 0
+        self.stop = False
+
+    def run(self):
+        while not self.stop:
+            self.count += 1
+
+
+def counting_rate(seconds):
+    counter = Counter()
+    counter.start()
+    time.sleep(seconds)
+    counter.stop = True
+    counter.join()
+    return counter.count / seconds
+
+
+def test_gil_released_during_voxelization(dragon):
+    vertices, triangles = dragon
+    rate = counting_rate(0.3)  # increments per second while this thread sleeps
+    counter = Counter()
+    counter.start()
+    time.sleep(0.05)
+    before = counter.count
+    start = time.perf_counter()
+    grid = hyvox.voxelize(vertices, triangles, resolution=512)
+    elapsed = time.perf_counter() - start
+    during = counter.count - before
+    counter.stop = True
+    counter.join()
+    assert grid.voxel_count > 0
+    # With the GIL held, the counter would stall for the whole native run. Both threads
+    # share a busy 2-core machine, so ask only for a tenth of the idle rate.
+    assert during > 0.1 * rate * elapsed, (during, rate, elapsed)
+
+
+def test_cancel_from_another_thread(dragon):
+    vertices, triangles = dragon
+    token = hyvox.CancelToken()
+    assert token.progress == -1 and not token.cancelled and not token.running
+    seen_running = threading.Event()
+
+    def cancel_when_running():
+        # This loop needs the GIL while the main thread is inside voxelize(): it runs only
+        # because the GIL is released there.
+        deadline = time.monotonic() + 60
+        while not token.running and time.monotonic() < deadline:
+            time.sleep(0.001)
+        seen_running.set()
+        token.cancel()
+
+    canceller = threading.Thread(target=cancel_when_running)
+    canceller.start()
+    start = time.perf_counter()
+    with pytest.raises(hyvox.Cancelled):
+        hyvox.voxelize(vertices, triangles, resolution=2048, method="reference", cancel=token)
+    canceller.join()
+    assert seen_running.is_set() and token.cancelled and not token.running
+    assert time.perf_counter() - start < 30
+    # The token can be reused once reset.
+    token.reset()
+    assert not token.cancelled and token.progress == -1
+
+
+def test_cancelled_before_start(tetrahedron):
+    vertices, triangles = tetrahedron
+    token = hyvox.CancelToken()
+    token.cancel()
+    with pytest.raises(hyvox.Cancelled):
+        hyvox.voxelize(vertices, triangles, resolution=8, cancel=token)
+
+
+def test_progress_reaches_100(bunny):
+    vertices, triangles = bunny
+    token = hyvox.CancelToken()
+    seen = []
+    hyvox.voxelize(vertices, triangles, resolution=128, cancel=token, progress=seen.append)
+    assert seen and seen == sorted(seen) and seen[-1] == 100
+    assert all(isinstance(p, int) for p in seen)
+    assert token.progress == 100 and not token.running
+
+
+def test_progress_callback_exception_propagates(bunny):
+    vertices, triangles = bunny
+
+    def boom(percent):
+        raise KeyError("stop here")
+
+    with pytest.raises(KeyError, match="stop here"):
+        hyvox.voxelize(vertices, triangles, resolution=64, progress=boom)
+    with pytest.raises(TypeError):
+        hyvox.voxelize(vertices, triangles, resolution=64, progress=42)
+
+
+def test_concurrent_voxelizations_agree(bunny):
+    vertices, triangles = bunny
+    expected = hyvox.voxelize(vertices, triangles, resolution=96).coords()
+    results = [None] * 4
+
+    def work(n):
+        results[n] = hyvox.voxelize(vertices, triangles, resolution=96).coords()
+
+    threads = [threading.Thread(target=work, args=(n,)) for n in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for r in results:
+        assert np.array_equal(r, expected)
