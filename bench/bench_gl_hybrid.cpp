@@ -80,16 +80,18 @@ double naiveMs(const hyvox::MeshView& view, const hyvox::VoxelizeOptions& option
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / "hyvox_bench_naive";
     std::filesystem::create_directories(dir / "common");
     for (const auto& [name, text] : gl::embeddedShaders())
-        if (name.rfind("common/", 0) == 0) std::ofstream(dir / name) << text;
+        if (name.rfind("common/", 0) == 0)
+            std::ofstream(dir / name) << text;
     std::ofstream(dir / "naive.comp") << kNaiveShader;
     gl::GlWorker& worker = gl::GlWorker::get(options.gl.device);
     return worker.run([&] {
-        const gl::Program program = gl::buildProgram({{GL_COMPUTE_SHADER, "naive.comp"}},
-                                                     "#define HYVOX_THIN 0\n#define HYVOX_VOXEL_LIST 0\n", dir.string());
+        const gl::Program program = gl::buildProgram(
+            {{GL_COMPUTE_SHADER, "naive.comp"}}, "#define HYVOX_THIN 0\n#define HYVOX_VOXEL_LIST 0\n", dir.string());
         const gl::Buffer vertices(gpu.vertices.size() * sizeof(hybrid::GpuVertex), gpu.vertices.data(), 0);
         const gl::Buffer triangles(gpu.triangles.size() * 4, gpu.triangles.data(), 0);
         std::size_t bricks = 1;
-        for (int a = 0; a < 3; ++a) bricks *= std::size_t((grid.dims[a] + 7) / 8);
+        for (int a = 0; a < 3; ++a)
+            bricks *= std::size_t((grid.dims[a] + 7) / 8);
         const gl::Buffer bits(bricks * 64, nullptr, 0);
         vertices.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_VERTICES);
         triangles.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_TRIANGLES);
@@ -106,7 +108,8 @@ double naiveMs(const hyvox::MeshView& view, const hyvox::VoxelizeOptions& option
             Stopwatch watch;
             glDispatchCompute(std::min<GLuint>(groups, 65535), (groups + 65534) / 65535, 1);
             glFinish();
-            if (r) ms.push_back(watch.elapsedMs());
+            if (r)
+                ms.push_back(watch.elapsedMs());
         }
         gl::checkGl("naive baseline");
         return median(ms);
@@ -163,20 +166,29 @@ int main(int argc, char** argv) {
             }
             return argv[++a];
         };
-        if (arg == "--mesh-dir") mesh_dir = next();
-        else if (arg == "--res") resolutions.push_back(std::atoi(next().c_str()));
-        else if (arg == "--repeat") repeat = std::max(1, std::atoi(next().c_str()));
-        else if (arg == "--mode") options.mode = hyvox::parseMode(next());
-        else if (arg == "--device") options.gl.device = next();
+        if (arg == "--mesh-dir")
+            mesh_dir = next();
+        else if (arg == "--res")
+            resolutions.push_back(std::atoi(next().c_str()));
+        else if (arg == "--repeat")
+            repeat = std::max(1, std::atoi(next().c_str()));
+        else if (arg == "--mode")
+            options.mode = hyvox::parseMode(next());
+        else if (arg == "--device")
+            options.gl.device = next();
         else if (arg == "--cutoff") {
             const std::string v = next();
             options.hybrid.cutoff = v == "auto" ? -1.0 : std::atof(v.c_str());
         } else if (arg == "--help" || arg == "-h") {
-            std::printf("usage: bench_gl_hybrid [--mesh-dir DIR] [--res N]... [--repeat R] [--mode M] [--cutoff auto|X] [--device D] [MESH...|triangle]\n");
+            std::printf(
+                "usage: bench_gl_hybrid [--mesh-dir DIR] [--res N]... [--repeat R] [--mode M] [--cutoff auto|X] "
+                "[--device D] [MESH...|triangle]\n");
             return 0;
-        } else meshes.push_back(arg);
+        } else
+            meshes.push_back(arg);
     }
-    if (resolutions.empty()) resolutions = {128, 256, 512};
+    if (resolutions.empty())
+        resolutions = {128, 256, 512};
     if (meshes.empty())
         meshes = {"bunny_stanford_69k.ply", "dragon_stanford_871k.ply.gz", "happy_buddha_100k.ply",
                   "sponza_crytek_262k_vcolor.ply.gz", "triangle"};
@@ -202,7 +214,8 @@ int main(int argc, char** argv) {
             const Sample fragment = with(hyvox::Method::Fragment);
             const Sample hybrid = with(hyvox::Method::Hybrid);
             const Sample cpu = with(hyvox::Method::Cpu);
-            const double naive = options.mode == hyvox::Mode::Conservative ? naiveMs(mesh.view(), options, repeat) : 0.0;
+            const double naive =
+                options.mode == hyvox::Mode::Conservative ? naiveMs(mesh.view(), options, repeat) : 0.0;
             std::printf("%-20s %7zu %4d | %8.2f | %9.2f %9.2f %9.2f %8.2f %6.0f %8.2f %8.2f | %8.2f %8.2f\n",
                         name.substr(0, name.find('.')).c_str(), mesh.triangleCount(), res, naive, triangle.gpu_ms,
                         fragment.gpu_ms, hybrid.gpu_ms, hybrid.cutoff, hybrid.large, hybrid.pass1_ms, hybrid.pass2_ms,
@@ -210,7 +223,9 @@ int main(int argc, char** argv) {
             std::fflush(stdout);
         }
     }
-    std::printf("(ms; medians of %d runs. naive = one invocation per triangle, brute-force SAT over its\n"
-                " bounding box; GPU columns are pass 1 + pass 2; walls are whole voxelize() calls)\n", repeat);
+    std::printf(
+        "(ms; medians of %d runs. naive = one invocation per triangle, brute-force SAT over its\n"
+        " bounding box; GPU columns are pass 1 + pass 2; walls are whole voxelize() calls)\n",
+        repeat);
     return 0;
 }

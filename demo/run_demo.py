@@ -102,8 +102,8 @@ def build_scene(args):
     floor.name = "Floor"
 
     camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
-    camera.location = (0.0, -11.0, 3.2)
-    camera.rotation_euler = (1.33, 0.0, 0.0)
+    camera.location = (0.0, -10.5, 2.3)
+    camera.rotation_euler = (1.44, 0.0, 0.0)
     camera.data.lens = 32
     scene.collection.objects.link(camera)
     scene.camera = camera

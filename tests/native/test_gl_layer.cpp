@@ -26,7 +26,8 @@ TEST(GlLayer, ListsASoftwareDevice) {
     const auto devices = listEglDevices();
     ASSERT_FALSE(devices.empty());
     bool software = false;
-    for (const auto& d : devices) software |= d.software;
+    for (const auto& d : devices)
+        software |= d.software;
     EXPECT_TRUE(software) << "Mesa's software EGL device (llvmpipe) is the CI fallback";
 }
 
@@ -96,9 +97,10 @@ TEST(GlLayer, ObjectsAreMoveOnlyOwners) {
 TEST(GlLayer, CompileErrorsNameTheFileAndQuoteTheLog) {
     const std::string dir = ::testing::TempDir() + "/hyvox_layer_shaders";
     std::system(("mkdir -p " + dir + "/common").c_str());
-    std::ofstream(dir + "/common/helper.glsl") << "// SPDX-License-Identifier: GPL-3.0-or-later\nfloat helper() { return 1.0 }\n";
-    std::ofstream(dir + "/broken.comp")
-        << "// SPDX-License-Identifier: GPL-3.0-or-later\n#include \"common/helper.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+    std::ofstream(dir + "/common/helper.glsl")
+        << "// SPDX-License-Identifier: GPL-3.0-or-later\nfloat helper() { return 1.0 }\n";
+    std::ofstream(dir + "/broken.comp") << "// SPDX-License-Identifier: GPL-3.0-or-later\n#include "
+                                           "\"common/helper.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
     GlWorker::get().run([&] {
         try {
             buildProgram({{GL_COMPUTE_SHADER, "broken.comp"}}, "", dir);
@@ -128,7 +130,8 @@ TEST(GlLayer, EmbeddedShadersMatchTheSourceTree) {
 // Binding points and uniform locations the drivers assign must equal the C++ values.
 GLint blockBinding(GLuint program, const char* block) {
     const GLuint index = glGetProgramResourceIndex(program, GL_SHADER_STORAGE_BLOCK, block);
-    if (index == GL_INVALID_INDEX) return -1;
+    if (index == GL_INVALID_INDEX)
+        return -1;
     const GLenum property = GL_BUFFER_BINDING;
     GLint value = -1;
     glGetProgramResourceiv(program, GL_SHADER_STORAGE_BLOCK, index, 1, &property, 1, nullptr, &value);
@@ -143,21 +146,30 @@ TEST(GlLayer, BindingPointsMatchBetweenGlslAndCpp) {
         std::istringstream words(line);
         std::string define, name;
         int value = 0;
-        if (words >> define >> name >> value && define == "#define") glsl[name] = value;
+        if (words >> define >> name >> value && define == "#define")
+            glsl[name] = value;
     }
-    const std::map<std::string, int> cpp{
-        {"HYVOX_SSBO_BITS", HYVOX_SSBO_BITS}, {"HYVOX_SSBO_VERTICES", HYVOX_SSBO_VERTICES},
-        {"HYVOX_SSBO_TRIANGLES", HYVOX_SSBO_TRIANGLES}, {"HYVOX_SSBO_LARGE", HYVOX_SSBO_LARGE},
-        {"HYVOX_SSBO_DRAW", HYVOX_SSBO_DRAW}, {"HYVOX_SSBO_VOXEL_LIST", HYVOX_SSBO_VOXEL_LIST},
-        {"HYVOX_LOC_GRID_DIMS", HYVOX_LOC_GRID_DIMS}, {"HYVOX_LOC_SLAB", HYVOX_LOC_SLAB},
-        {"HYVOX_LOC_TRIANGLE_COUNT", HYVOX_LOC_TRIANGLE_COUNT}, {"HYVOX_LOC_CUTOFF", HYVOX_LOC_CUTOFF},
-        {"HYVOX_LOC_VIEWPORT", HYVOX_LOC_VIEWPORT}, {"HYVOX_LOC_LIST_CAPACITY", HYVOX_LOC_LIST_CAPACITY},
-        {"HYVOX_LOC_CHUNK_SIDE", HYVOX_LOC_CHUNK_SIDE}, {"HYVOX_LOCAL_SIZE", HYVOX_LOCAL_SIZE}};
-    for (const auto& [name, value] : cpp) EXPECT_EQ(glsl[name], value) << name;
+    const std::map<std::string, int> cpp{{"HYVOX_SSBO_BITS", HYVOX_SSBO_BITS},
+                                         {"HYVOX_SSBO_VERTICES", HYVOX_SSBO_VERTICES},
+                                         {"HYVOX_SSBO_TRIANGLES", HYVOX_SSBO_TRIANGLES},
+                                         {"HYVOX_SSBO_LARGE", HYVOX_SSBO_LARGE},
+                                         {"HYVOX_SSBO_DRAW", HYVOX_SSBO_DRAW},
+                                         {"HYVOX_SSBO_VOXEL_LIST", HYVOX_SSBO_VOXEL_LIST},
+                                         {"HYVOX_LOC_GRID_DIMS", HYVOX_LOC_GRID_DIMS},
+                                         {"HYVOX_LOC_SLAB", HYVOX_LOC_SLAB},
+                                         {"HYVOX_LOC_TRIANGLE_COUNT", HYVOX_LOC_TRIANGLE_COUNT},
+                                         {"HYVOX_LOC_CUTOFF", HYVOX_LOC_CUTOFF},
+                                         {"HYVOX_LOC_VIEWPORT", HYVOX_LOC_VIEWPORT},
+                                         {"HYVOX_LOC_LIST_CAPACITY", HYVOX_LOC_LIST_CAPACITY},
+                                         {"HYVOX_LOC_CHUNK_SIDE", HYVOX_LOC_CHUNK_SIDE},
+                                         {"HYVOX_LOCAL_SIZE", HYVOX_LOCAL_SIZE}};
+    for (const auto& [name, value] : cpp)
+        EXPECT_EQ(glsl[name], value) << name;
 
     // ...and what the linked programs report.
     GlWorker::get().run([] {
-        const std::string defines = "#define HYVOX_THIN 0\n#define HYVOX_VOXEL_LIST 1\n#define HYVOX_FROM_LARGE_LIST 1\n";
+        const std::string defines =
+            "#define HYVOX_THIN 0\n#define HYVOX_VOXEL_LIST 1\n#define HYVOX_FROM_LARGE_LIST 1\n";
         const Program classify = buildProgram({{GL_COMPUTE_SHADER, "hybrid/classify.comp"}}, defines, "");
         EXPECT_EQ(blockBinding(classify.id(), "Bits"), HYVOX_SSBO_BITS);
         EXPECT_EQ(blockBinding(classify.id(), "Vertices"), HYVOX_SSBO_VERTICES);

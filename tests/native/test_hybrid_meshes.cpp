@@ -70,16 +70,19 @@ TEST_P(GlMeshTest, MatchesOraclesInBothModes) {
 std::vector<MeshCase> meshCases() {
     std::vector<MeshCase> cases;
     for (const std::string& file : test::listMeshFiles())
-        for (int resolution : {64, 128}) cases.push_back({file, resolution});
+        for (int resolution : {64, 128})
+            cases.push_back({file, resolution});
     cases.push_back({"bunny_stanford_69k.ply", 256});
     cases.push_back({"sponza_crytek_262k_vcolor.ply.gz", 256});
     return cases;
 }
 
 std::string caseName(const ::testing::TestParamInfo<MeshCase>& info) {
-    std::string name = info.param.file.substr(0, info.param.file.find('.')) + "_" + std::to_string(info.param.resolution);
+    std::string name =
+        info.param.file.substr(0, info.param.file.find('.')) + "_" + std::to_string(info.param.resolution);
     for (char& c : name)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+        if (!std::isalnum(static_cast<unsigned char>(c)))
+            c = '_';
     return name;
 }
 
@@ -99,7 +102,8 @@ TEST(GlMeshes, SceneSpanningTriangleAt256) {
 
 // Thin voxelizations of closed meshes leave no 6-connected path from outside to inside.
 TEST(GlMeshes, ThinIsSixSeparatingOnClosedMeshes) {
-    for (const auto& [file, resolution] : {std::pair<std::string, int>{"spot_vcolor.ply", 64}, {"armadillo_52k.ply", 96}}) {
+    for (const auto& [file, resolution] :
+         {std::pair<std::string, int>{"spot_vcolor.ply", 64}, {"armadillo_52k.ply", 96}}) {
         const test::TestMesh mesh = test::loadTestMesh(test::meshPath(file));
         for (Method method : kGlMethods) {
             SCOPED_TRACE(file + " " + toString(method));

@@ -27,7 +27,8 @@ std::string OracleComparison::summary() const {
     out << "result " << result_voxels << " voxels, oracle " << oracle_voxels << "; result-only " << result_only
         << ", oracle-only " << oracle_only << ", touches " << touches << ", unexplained " << unexplained.size();
     for (std::size_t n = 0; n < std::min<std::size_t>(5, unexplained.size()); ++n)
-        out << (n ? " " : " e.g. ") << "(" << unexplained[n][0] << "," << unexplained[n][1] << "," << unexplained[n][2] << ")";
+        out << (n ? " " : " e.g. ") << "(" << unexplained[n][0] << "," << unexplained[n][1] << "," << unexplained[n][2]
+            << ")";
     return out.str();
 }
 
@@ -40,13 +41,16 @@ OracleComparison compareToOracle(const MeshView& mesh, Mode mode, const Voxelize
     for (std::size_t w = 0; w < diff.wordCount(); ++w)
         diff.data()[w] = result.occupancy.data()[w] ^ oracle.occupancy.data()[w];
     const auto voxels = diff.coords();
-    for (const auto& v : voxels) ++(result.occupancy.test(v[0], v[1], v[2]) ? cmp.result_only : cmp.oracle_only);
-    if (voxels.empty()) return cmp;
+    for (const auto& v : voxels)
+        ++(result.occupancy.test(v[0], v[1], v[2]) ? cmp.result_only : cmp.oracle_only);
+    if (voxels.empty())
+        return cmp;
 
     // A disagreement is a touch iff some triangle meets the eps-grown voxel and none meets
     // the eps-shrunk one (the reference's own rule, in double precision).
     std::unordered_map<std::uint64_t, std::size_t> index;
-    for (std::size_t n = 0; n < voxels.size(); ++n) index[key(voxels[n][0], voxels[n][1], voxels[n][2])] = n;
+    for (std::size_t n = 0; n < voxels.size(); ++n)
+        index[key(voxels[n][0], voxels[n][1], voxels[n][2])] = n;
     std::vector<std::atomic<bool>> grown(voxels.size()), shrunk(voxels.size());
     const ValidatedMesh validated = validate(mesh);
     const GridSpec& grid = result.grid;
@@ -55,15 +59,19 @@ OracleComparison compareToOracle(const MeshView& mesh, Mode mode, const Voxelize
                           for (std::size_t t = chunk.begin(); t != chunk.end(); ++t) {
                               const auto tri = reference::voxelSpaceTriangle(validated, validated.usable[t], grid);
                               const auto range = reference::candidateVoxels(tri, grid.dims, eps);
-                              if (range.empty()) continue;
+                              if (range.empty())
+                                  continue;
                               for (int i = range.lo[0]; i <= range.hi[0]; ++i)
                                   for (int j = range.lo[1]; j <= range.hi[1]; ++j)
                                       for (int k = range.lo[2]; k <= range.hi[2]; ++k) {
-                                          if (!diff.test(i, j, k)) continue;
+                                          if (!diff.test(i, j, k))
+                                              continue;
                                           const std::size_t n = index.at(key(i, j, k));
                                           const auto touch = reference::overlapWithin(tri, {i, j, k}, mode, eps);
-                                          if (touch.grown) grown[n] = true;
-                                          if (touch.shrunk) shrunk[n] = true;
+                                          if (touch.grown)
+                                              grown[n] = true;
+                                          if (touch.shrunk)
+                                              shrunk[n] = true;
                                       }
                           }
                       });
@@ -90,8 +98,10 @@ std::uint64_t countSixLeaks(const MeshView& mesh, const VoxelizeResult& result, 
                 lo[a] = std::min(lo[a], p[a + 1]);
                 hi[a] = std::max(hi[a], p[a + 1]);
             }
-        for (int j = std::max(0, int(std::ceil(lo[0] - 0.5))); j <= std::min(d[1] - 1, int(std::floor(hi[0] - 0.5))); ++j)
-            for (int k = std::max(0, int(std::ceil(lo[1] - 0.5))); k <= std::min(d[2] - 1, int(std::floor(hi[1] - 0.5))); ++k) {
+        for (int j = std::max(0, int(std::ceil(lo[0] - 0.5))); j <= std::min(d[1] - 1, int(std::floor(hi[0] - 0.5)));
+             ++j)
+            for (int k = std::max(0, int(std::ceil(lo[1] - 0.5)));
+                 k <= std::min(d[2] - 1, int(std::floor(hi[1] - 0.5))); ++k) {
                 const double y = j + 0.5, z = k + 0.5;
                 double w[3];
                 for (int c = 0; c < 3; ++c) {
@@ -101,9 +111,11 @@ std::uint64_t countSixLeaks(const MeshView& mesh, const VoxelizeResult& result, 
                 }
                 const bool pos = w[0] >= 0 && w[1] >= 0 && w[2] >= 0, neg = w[0] <= 0 && w[1] <= 0 && w[2] <= 0;
                 const double sum = w[0] + w[1] + w[2];
-                if ((!pos && !neg) || sum == 0) continue;
+                if ((!pos && !neg) || sum == 0)
+                    continue;
                 double x = 0;
-                for (int c = 0; c < 3; ++c) x += w[c] / sum * tri[c][0];
+                for (int c = 0; c < 3; ++c)
+                    x += w[c] / sum * tri[c][0];
                 crossings[std::size_t(j) * d[2] + k].push_back(x);
             }
     }
@@ -123,21 +135,25 @@ std::uint64_t countSixLeaks(const MeshView& mesh, const VoxelizeResult& result, 
                 }
             }
         }
-    if (inside_count) *inside_count = inside_total;
+    if (inside_count)
+        *inside_count = inside_total;
 
     // Flood the empty voxels from the grid's faces, 6-connected.
     std::vector<char> reached(inside.size(), 0);
     std::deque<std::array<int, 3>> queue;
     auto push = [&](int i, int j, int k) {
-        if (i < 0 || j < 0 || k < 0 || i >= d[0] || j >= d[1] || k >= d[2]) return;
-        if (reached[at(i, j, k)] || result.occupancy.test(i, j, k)) return;
+        if (i < 0 || j < 0 || k < 0 || i >= d[0] || j >= d[1] || k >= d[2])
+            return;
+        if (reached[at(i, j, k)] || result.occupancy.test(i, j, k))
+            return;
         reached[at(i, j, k)] = 1;
         queue.push_back({i, j, k});
     };
     for (int i = 0; i < d[0]; ++i)
         for (int j = 0; j < d[1]; ++j)
             for (int k = 0; k < d[2]; ++k)
-                if (i == 0 || j == 0 || k == 0 || i == d[0] - 1 || j == d[1] - 1 || k == d[2] - 1) push(i, j, k);
+                if (i == 0 || j == 0 || k == 0 || i == d[0] - 1 || j == d[1] - 1 || k == d[2] - 1)
+                    push(i, j, k);
     while (!queue.empty()) {
         const auto v = queue.front();
         queue.pop_front();
@@ -149,7 +165,8 @@ std::uint64_t countSixLeaks(const MeshView& mesh, const VoxelizeResult& result, 
         push(v[0], v[1], v[2] - 1);
     }
     std::uint64_t leaks = 0;
-    for (std::size_t n = 0; n < inside.size(); ++n) leaks += inside[n] && reached[n];
+    for (std::size_t n = 0; n < inside.size(); ++n)
+        leaks += inside[n] && reached[n];
     return leaks;
 }
 

@@ -43,7 +43,8 @@ VoxelizeOptions unitGrid(Method method, Mode mode = Mode::Conservative) {
 class ScopedEnv {
 public:
     ScopedEnv(const char* name, const std::string& value) : name_(name) {
-        if (const char* old = std::getenv(name)) old_ = old, had_ = true;
+        if (const char* old = std::getenv(name))
+            old_ = old, had_ = true;
         setenv(name, value.c_str(), 1);
     }
     ~ScopedEnv() {
@@ -124,7 +125,33 @@ TEST(GlSmall, RandomTrianglesMatchOraclesWithClipping) {
     }
 }
 
-test::TestMesh bunny() { return test::loadTestMesh(test::meshPath("bunny_stanford_69k.ply")); }
+// Slivers: tiny projected area (small for the hybrid's pass 1) but long, so one compute
+// invocation walks hundreds of columns (on llvmpipe, in chunks).
+TEST(GlSmall, LongSliversMatchTheReference) {
+    test::TriangleSoup soup;
+    soup.add({1.0, 1.0, 1.0}, {250.5, 200.25, 120.0}, {1.5, 1.25, 1.0});
+    soup.add({3.0, 250.0, 7.0}, {240.0, 2.0, 9.0}, {3.01, 250.0, 7.4});
+    soup.add({0.0, 0.0, 0.0}, {255.0, 255.0, 255.0}, {0.0, 0.0, 0.5});
+    VoxelizeOptions o = options(Method::Reference);
+    o.grid.voxel_size = 1.0;
+    o.grid.bounds = Bounds{{0, 0, 0}, {256, 256, 256}};
+    o.hybrid.cutoff = 100.0;  // their projected areas are 30-64 voxel units²
+    const VoxelizeResult oracle = voxelize(soup.view(), o);
+    for (Method method : kGlMethods) {
+        SCOPED_TRACE(toString(method));
+        o.method = method;
+        const VoxelizeResult r = voxelize(soup.view(), o);
+        const auto cmp = test::compareToOracle(soup.view(), Mode::Conservative, r, oracle);
+        EXPECT_TRUE(cmp.unexplained.empty()) << cmp.summary();
+        if (method == Method::Hybrid) {
+            EXPECT_EQ(r.stats.metrics.at("large_triangles"), 0.0);
+        }
+    }
+}
+
+test::TestMesh bunny() {
+    return test::loadTestMesh(test::meshPath("bunny_stanford_69k.ply"));
+}
 
 TEST(GlSmall, HybridLimitsAreFragmentAndTriangleParallel) {
     const test::TestMesh mesh = bunny();
@@ -240,7 +267,8 @@ TEST(GlSmall, MissingShaderFolderIsAClearError) {
         voxelize(soup.view(), o);
         FAIL() << "expected BackendError";
     } catch (const BackendError& e) {
-        EXPECT_NE(std::string(e.what()).find("/nonexistent/hyvox-shaders/hybrid/triangle_parallel.comp"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/hyvox-shaders/hybrid/triangle_parallel.comp"),
+                  std::string::npos)
             << e.what();
     }
 }
@@ -269,8 +297,21 @@ TEST(GlSmall, ShaderFolderFromTheEnvironmentIsUsed) {
     std::filesystem::remove_all(dir);
     // And the unbroken copy on disk gives the embedded result.
     ScopedEnv good("HYVOX_SHADER_DIR", HYVOX_SOURCE_SHADERS);
-    EXPECT_EQ(voxelize(soup.view(), o).occupancy.count(), 
-              [&] { ScopedEnv none("HYVOX_SHADER_DIR", ""); return voxelize(soup.view(), o).occupancy.count(); }());
+    EXPECT_EQ(voxelize(soup.view(), o).occupancy.count(), [&] {
+        ScopedEnv none("HYVOX_SHADER_DIR", "");
+        return voxelize(soup.view(), o).occupancy.count();
+    }());
+}
+
+TEST(GlSmall, CancellationStopsAndTheWorkerCarriesOn) {
+    struct StopAtOnce : Interrupter {
+        bool wasInterrupted(int) override { return true; }
+    } stop;
+    const test::TestMesh mesh = bunny();
+    VoxelizeOptions o = options(Method::Hybrid);
+    o.grid.resolution = 32;
+    EXPECT_THROW(voxelize(mesh.view(), o, &stop), Cancelled);
+    EXPECT_GT(voxelize(mesh.view(), o).occupancy.count(), 0u);
 }
 
 TEST(GlSmall, NoSuchDeviceNamesTheDevicesFound) {

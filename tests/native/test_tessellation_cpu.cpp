@@ -11,6 +11,8 @@
 
 #include "hyvox/accuracy.h"
 #include "hyvox/errors.h"
+#include "hyvox/voxelize.h"
+#include "support/triangle_soup.h"
 #include "tessellation/cpu_subdivide.h"
 #include "tessellation/displacement_map.h"
 #include "tessellation/surface.h"
@@ -182,25 +184,26 @@ TEST(Accuracy, BiasAndFalseVoxels) {
     EXPECT_EQ(extra[0], (std::array<std::int32_t, 3>{5, 5, 5}));
 }
 
-// The surface of a 6³ box inside an 8³ grid (voxels 1..6 on the faces).
-BitGrid boxShell() {
-    BitGrid g({8, 8, 8});
-    for (int i = 1; i <= 6; ++i)
-        for (int j = 1; j <= 6; ++j)
-            for (int k = 1; k <= 6; ++k)
-                if (i == 1 || i == 6 || j == 1 || j == 6 || k == 1 || k == 6) g.set(i, j, k);
-    return g;
-}
-
 TEST(Accuracy, WatertightnessCatchesAHoleThatABackWallWouldHide) {
-    const BitGrid reference = boxShell();
-    EXPECT_EQ(rayMarchWatertightness(reference, reference, reference).share(), 1.0);
-    EXPECT_EQ(rayMarchWatertightness(reference, reference, reference).rays, 6u * 64u);
-    BitGrid holed = reference;
-    holed.data()[holed.wordIndex(3, 3, 1)] &= ~BitGrid::bitMask(3, 1);  // a hole in the k = 1 face
-    const WatertightReport r = rayMarchWatertightness(holed, reference, reference);
-    // Only the +z ray through column (3,3) slips through (and hits the far face at k = 6);
-    // the rays along x and y meet the hole's voxel at the side of their first run, not first.
+    // A box with faces at voxel centres (1.5 .. 6.5 in an 8³ grid of unit voxels): each face
+    // is one voxel thick in its exact conservative voxelization.
+    test::TriangleSoup box;
+    box.addBox({1.5, 1.5, 1.5}, {6.5, 6.5, 6.5});
+    const ValidatedMesh mesh = validate(box.view());
+    VoxelizeOptions o;
+    o.method = Method::Cpu;
+    o.grid.voxel_size = 1.0;
+    o.grid.origin = std::array<double, 3>{0, 0, 0};
+    o.grid.bounds = Bounds{{0, 0, 0}, {8, 8, 8}};
+    const VoxelizeResult exact = voxelize(box.view(), o);
+    const WatertightReport whole = rayMarchWatertightness(exact.occupancy, exact.occupancy, mesh, exact.grid);
+    EXPECT_EQ(whole.rays, 6u * 64u);
+    EXPECT_EQ(whole.passed, whole.rays);
+    BitGrid holed = exact.occupancy;
+    holed.data()[holed.wordIndex(3, 3, 1)] &= ~BitGrid::bitMask(3, 1);  // a hole in the z = 1.5 face
+    const WatertightReport r = rayMarchWatertightness(holed, exact.occupancy, mesh, exact.grid);
+    // Only the +z ray through column (3,3) slips through (to the far face at k = 6); the rays
+    // along x and y meet the hole's voxel inside the run of their first face, not first.
     EXPECT_EQ(r.rays - r.passed, 1u);
 }
 

@@ -92,7 +92,8 @@ def test_half_voxel_shift_by_version():
     assert alignment.needs_half_voxel_shift((9, 0, 0), "ON")
     assert not alignment.needs_half_voxel_shift((3, 4, 1), "OFF")
     assert alignment.object_offset(0.5, (3, 4, 1)) == (-0.25, -0.25, -0.25)
-    assert alignment.object_offset(0.5, (4, 2, 0)) == (0.0, 0.0, 0.0)
+    assert alignment.needs_half_voxel_shift((4, 2, 0))
+    assert alignment.object_offset(0.5, (5, 0, 0)) == (0.0, 0.0, 0.0)
 
 
 def test_voxel_centres_and_bounds():

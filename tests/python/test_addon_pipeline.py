@@ -149,3 +149,13 @@ def test_failure_discards_earlier_frames(hyvox, tmp_path):
     # The previous file is untouched and no staging file lingers.
     assert sorted(os.listdir(tmp_path)) == ["C_voxels_0001.vdb"]
     assert (tmp_path / "C_voxels_0001.vdb").read_bytes() == b"previous"
+
+
+def test_names_that_clean_alike_get_their_own_files(hyvox, tmp_path):
+    groups = [Group("a/b", ["a/b"]), Group("a_b", ["a_b"])]
+    pipeline = Pipeline(VoxelizeSettings(resolution=8, method="cpu"), str(tmp_path),
+                        exporter(groups), module=hyvox)
+    results = pipeline.run()
+    files = [r.files[0] for r in results.values()]
+    assert len(set(files)) == 2
+    assert len(os.listdir(tmp_path)) == 2

@@ -82,6 +82,8 @@ def test_float64_and_int64_are_converted(bunny):
     converted = hyvox.voxelize(vertices.astype(np.float64), triangles.astype(np.int64), resolution=64)
     assert converted.dims == expected.dims and converted.origin == expected.origin
     assert np.array_equal(converted.coords(), expected.coords())
+    big_endian = hyvox.voxelize(vertices.astype(">f4"), triangles.astype(">u4"), resolution=64)
+    assert np.array_equal(big_endian.coords(), expected.coords())
     # Non-contiguous views and plain lists are accepted too.
     strided = np.zeros((len(vertices), 6), np.float32)
     strided[:, ::2] = vertices

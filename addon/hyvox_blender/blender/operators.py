@@ -30,7 +30,6 @@ class _Run:
         sources = export.pick_sources(context.selected_objects, warn=self.warn)
         self.groups = export.make_groups(sources, settings.separate, context.view_layer.objects.active)
         self.pipeline = Pipeline(settings, folder, self.export_frame)
-        self.warnings = []
 
     def warn(self, text):
         self.op.report({"WARNING"}, text)

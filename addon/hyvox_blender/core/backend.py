@@ -9,7 +9,7 @@ from typing import Optional
 import numpy as np
 
 from .errors import CancelledError, HyvoxError, ModuleMissingError
-from .settings import GL_METHODS, VoxelizeSettings
+from .settings import VoxelizeSettings
 
 _module = None
 _gl_probe = {}  # gl_device -> bool, probed once per session: creating an EGL context is slow

@@ -6,6 +6,7 @@ succeeds, so a cancelled or failed run leaves the previous results untouched."""
 import os
 import threading
 import time
+import zlib
 from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
@@ -87,6 +88,7 @@ class Pipeline:
         self.results: Dict[str, GroupResult] = {}
         self.timings = Timings()
         self._staged: List[Tuple[str, str]] = []  # (staging, final)
+        self._paths: Dict[str, str] = {}  # final path -> group key that owns it
         self._frame_index = 0
         self._groups_in_frame = 1
         self._group_index = 0
@@ -188,6 +190,16 @@ class Pipeline:
         self._group_index = 0
         return meshes
 
+    def _final_path(self, group: Group, frame: Optional[int]) -> str:
+        """The group's file; names that clean up to the same file name ("a/b", "a_b") get
+        a suffix from their sources so no two volumes share a file."""
+        path = os.path.join(self.output_dir, naming.volume_file_name(group.name, frame))
+        owner = self._paths.setdefault(path, group.key)
+        if owner != group.key:
+            unique = f"{group.name}_{zlib.crc32(group.key.encode()):08x}"
+            path = os.path.join(self.output_dir, naming.volume_file_name(unique, frame))
+        return path
+
     def _work_guarded(self, meshes: List[GroupMesh]) -> None:
         try:
             self._work(meshes)
@@ -217,7 +229,7 @@ class Pipeline:
             if self._cancelled:
                 raise CancelledError("voxelization cancelled")
 
-            final = os.path.join(self.output_dir, naming.volume_file_name(mesh.group.name, frame))
+            final = self._final_path(mesh.group, frame)
             staging = naming.staging_path(final)
             start = time.perf_counter()
             try:

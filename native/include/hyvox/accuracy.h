@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "hyvox/bit_grid.h"
+#include "hyvox/grid.h"
+#include "hyvox/mesh.h"
 
 namespace hyvox {
 
@@ -23,21 +25,23 @@ AccuracyReport compareToReference(const BitGrid& result, const BitGrid& referenc
 std::vector<std::array<std::int32_t, 3>> falseVoxels(const BitGrid& result, const BitGrid& reference);
 
 // Section 4.1's test: rays along +x, -x, +y, -y, +z, -z through the centre of every pixel of
-// the grid's faces, i.e. one ray per voxel column and direction. Where the ray meets the mesh
-// is read off the exact thin (6-separating) voxelization, which marks a voxel of a column
-// where the surface crosses the column's centre line; the surface there spans the run of
-// consecutive conservative voxels around it. A ray passes when the result's first voxel on
-// it comes no later than one voxel past that run (so it is stopped by the surface it meets
-// first, within one voxel), or when its centre line meets no surface. A ray through a gap
-// runs on to a later surface, or out of the grid, and fails. This is stricter than the
-// paper's "the first voxel hit lies within one voxel of some surface", which a ray through a
-// gap that then hits the back of a closed object would pass.
+// the grid's faces, i.e. one ray per voxel column and direction. Each ray is cast against
+// the mesh (double precision) for the point where it first meets the surface; the surface
+// there spans the run of consecutive `conservative` voxels from that point on. A ray passes
+// when the result's first voxel on it comes no later than that run's end, or one voxel past
+// the crossing, whichever is further (so the ray is stopped by the surface it meets first,
+// within one voxel), or when it meets no surface. A ray through a gap runs on to a later
+// surface, or out of the grid, and fails. This is stricter than the paper's "the first voxel
+// hit lies within one voxel of some surface", which a ray through a gap that then hits the
+// back of a closed object would pass.
 struct WatertightReport {
     std::uint64_t rays = 0;
     std::uint64_t passed = 0;
     double share() const { return rays ? double(passed) / double(rays) : 1.0; }
 };
-WatertightReport rayMarchWatertightness(const BitGrid& result, const BitGrid& conservative, const BitGrid& thin);
+// `conservative` is the exact conservative voxelization of `mesh` on `grid`.
+WatertightReport rayMarchWatertightness(const BitGrid& result, const BitGrid& conservative, const ValidatedMesh& mesh,
+                                        const GridSpec& grid);
 
 // Eq. 3: γ = -B · ln(A · p) for the bias p. Least squares of γ against ln p over the samples
 // (needs at least two distinct biases > 0; InvalidInput otherwise).

@@ -21,7 +21,7 @@ namespace {
 // Exact dtype and layout, or ValueError: the Python layer converts, this only refuses.
 template <typename T>
 std::vector<T> copyRows(const py::array& array, const char* name, const char* dtype, py::ssize_t width = 3) {
-    if (!py::isinstance<py::array_t<T>>(array) || !array.dtype().is(py::dtype::of<T>()))
+    if (!py::isinstance<py::array_t<T>>(array))  // dtype equivalent to T, native byte order
         throw py::value_error(std::string(name) + " must be a numpy array of dtype " + dtype);
     if (array.ndim() != 2 || array.shape(1) != width)
         throw py::value_error(std::string(name) + " must have shape (count, " + std::to_string(width) + ")");
@@ -97,7 +97,7 @@ std::vector<float> copyVertexRows(const std::optional<py::array>& array, const c
 HeightImage heightImage(const std::optional<py::array>& array) {
     HeightImage image;
     if (!array) return image;
-    if (!array->dtype().is(py::dtype::of<float>()) || array->ndim() != 2)
+    if (!py::isinstance<py::array_t<float>>(*array) || array->ndim() != 2)
         throw py::value_error("displacement_pixels must be a float32 array of shape (height, width)");
     const auto contiguous = py::array_t<float, py::array::c_style>::ensure(*array);
     image.height = int(contiguous.shape(0));

@@ -15,20 +15,25 @@ std::vector<EGLDeviceEXT> queryDevices() {
     if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") &&
         !epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base"))
         return {};
-    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) return {};
+    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device"))
+        return {};
     EGLint count = 0;
-    if (!eglQueryDevicesEXT(0, nullptr, &count) || count <= 0) return {};
+    if (!eglQueryDevicesEXT(0, nullptr, &count) || count <= 0)
+        return {};
     std::vector<EGLDeviceEXT> devices(static_cast<std::size_t>(count));
-    if (!eglQueryDevicesEXT(count, devices.data(), &count)) return {};
+    if (!eglQueryDevicesEXT(count, devices.data(), &count))
+        return {};
     devices.resize(static_cast<std::size_t>(count));
     return devices;
 }
 
 bool hasToken(const char* list, const char* token) {
-    if (!list) return false;
+    if (!list)
+        return false;
     const std::size_t n = std::strlen(token);
     for (const char* p = list; (p = std::strstr(p, token)) != nullptr; p += n)
-        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0'))
+            return true;
     return false;
 }
 
@@ -39,14 +44,17 @@ EglDeviceInfo describe(EGLDeviceEXT device, int index) {
     info.software = hasToken(extensions, "EGL_MESA_device_software");
     if (hasToken(extensions, "EGL_EXT_device_drm")) {
         const char* node = eglQueryDeviceStringEXT(device, EGL_DRM_DEVICE_FILE_EXT);
-        if (node) info.name = node;
+        if (node)
+            info.name = node;
     }
-    if (info.name.empty()) info.name = info.software ? "software" : "unnamed";
+    if (info.name.empty())
+        info.name = info.software ? "software" : "unnamed";
     return info;
 }
 
 std::string deviceList(const std::vector<EglDeviceInfo>& devices) {
-    if (devices.empty()) return "no EGL devices (is EGL_EXT_platform_device available?)";
+    if (devices.empty())
+        return "no EGL devices (is EGL_EXT_platform_device available?)";
     std::string text;
     for (const auto& d : devices)
         text += (text.empty() ? "" : ", ") + std::to_string(d.index) + ": " + d.name +
@@ -79,10 +87,14 @@ bool tryCreate(EGLDeviceEXT device, EGLDisplay& display, EGLContext& context, st
             return false;
         }
     }
-    const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
-                                         EGL_CONTEXT_MINOR_VERSION, 5,
-                                         EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                         EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE,
+    const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                         4,
+                                         EGL_CONTEXT_MINOR_VERSION,
+                                         5,
+                                         EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                         EGL_CONTEXT_OPENGL_DEBUG,
+                                         EGL_TRUE,
                                          EGL_NONE};
     context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attributes);
     if (context == EGL_NO_CONTEXT) {
@@ -103,29 +115,33 @@ bool tryCreate(EGLDeviceEXT device, EGLDisplay& display, EGLContext& context, st
 std::vector<EglDeviceInfo> listEglDevices() {
     std::vector<EglDeviceInfo> out;
     const auto devices = queryDevices();
-    for (std::size_t i = 0; i < devices.size(); ++i) out.push_back(describe(devices[i], int(i)));
+    for (std::size_t i = 0; i < devices.size(); ++i)
+        out.push_back(describe(devices[i], int(i)));
     return out;
 }
 
 EglContext::EglContext(const std::string& selection) {
     const auto devices = queryDevices();
     std::vector<EglDeviceInfo> infos;
-    for (std::size_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], int(i)));
+    for (std::size_t i = 0; i < devices.size(); ++i)
+        infos.push_back(describe(devices[i], int(i)));
 
     // The order to try: an explicit index alone; otherwise hardware first, then software.
     std::vector<int> order;
     if (selection.empty() || selection == "auto" || selection == "software") {
         for (const auto& d : infos)
-            if (!d.software && selection != "software") order.push_back(d.index);
+            if (!d.software && selection != "software")
+                order.push_back(d.index);
         for (const auto& d : infos)
-            if (d.software) order.push_back(d.index);
+            if (d.software)
+                order.push_back(d.index);
     } else {
         char* end = nullptr;
         const long index = std::strtol(selection.c_str(), &end, 10);
         if (end == selection.c_str() || *end != '\0' || index < 0 || index >= long(infos.size()))
-            throw BackendError("GL device '" + selection +
-                               "' does not exist (choose auto, software or an index); EGL devices: " +
-                               deviceList(infos));
+            throw BackendError(
+                "GL device '" + selection +
+                "' does not exist (choose auto, software or an index); EGL devices: " + deviceList(infos));
         order.push_back(int(index));
     }
 
@@ -156,12 +172,13 @@ EglContext::EglContext(const std::string& selection) {
         reasons += "; " + std::to_string(index) + ": " + why;
     }
     throw BackendError("no EGL device offers an OpenGL 4.5 core context (selection '" +
-                       (selection.empty() ? std::string("auto") : selection) + "'); EGL devices: " +
-                       deviceList(infos) + reasons);
+                       (selection.empty() ? std::string("auto") : selection) + "'); EGL devices: " + deviceList(infos) +
+                       reasons);
 }
 
 EglContext::~EglContext() {
-    if (!context_) return;
+    if (!context_)
+        return;
     eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(display_, context_);
     eglReleaseThread();

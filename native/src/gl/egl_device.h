@@ -9,8 +9,8 @@
 namespace hyvox::gl {
 
 struct EglDeviceInfo {
-    int index = -1;        // position in eglQueryDevicesEXT's list
-    std::string name;      // DRM node or "software"
+    int index = -1;         // position in eglQueryDevicesEXT's list
+    std::string name;       // DRM node or "software"
     bool software = false;  // Mesa's software device (llvmpipe)
 };
 

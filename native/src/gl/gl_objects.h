@@ -30,7 +30,8 @@ public:
 protected:
     explicit GlObject(GLuint adopted) : id_(adopted) {}
     void reset() {
-        if (id_) Traits::destroy(id_);
+        if (id_)
+            Traits::destroy(id_);
         id_ = 0;
     }
 
@@ -39,15 +40,27 @@ private:
 };
 
 struct BufferTraits {
-    static GLuint create() { GLuint id = 0; glCreateBuffers(1, &id); return id; }
+    static GLuint create() {
+        GLuint id = 0;
+        glCreateBuffers(1, &id);
+        return id;
+    }
     static void destroy(GLuint id) { glDeleteBuffers(1, &id); }
 };
 struct VertexArrayTraits {
-    static GLuint create() { GLuint id = 0; glCreateVertexArrays(1, &id); return id; }
+    static GLuint create() {
+        GLuint id = 0;
+        glCreateVertexArrays(1, &id);
+        return id;
+    }
     static void destroy(GLuint id) { glDeleteVertexArrays(1, &id); }
 };
 struct FramebufferTraits {
-    static GLuint create() { GLuint id = 0; glCreateFramebuffers(1, &id); return id; }
+    static GLuint create() {
+        GLuint id = 0;
+        glCreateFramebuffers(1, &id);
+        return id;
+    }
     static void destroy(GLuint id) { glDeleteFramebuffers(1, &id); }
 };
 struct ProgramTraits {
@@ -55,7 +68,11 @@ struct ProgramTraits {
     static void destroy(GLuint id) { glDeleteProgram(id); }
 };
 struct TimerQueryTraits {
-    static GLuint create() { GLuint id = 0; glCreateQueries(GL_TIME_ELAPSED, 1, &id); return id; }
+    static GLuint create() {
+        GLuint id = 0;
+        glCreateQueries(GL_TIME_ELAPSED, 1, &id);
+        return id;
+    }
     static void destroy(GLuint id) { glDeleteQueries(1, &id); }
 };
 
@@ -90,7 +107,10 @@ using Framebuffer = GlObject<FramebufferTraits>;
 class Shader {
 public:
     explicit Shader(GLenum stage) : id_(glCreateShader(stage)) {}
-    ~Shader() { if (id_) glDeleteShader(id_); }
+    ~Shader() {
+        if (id_)
+            glDeleteShader(id_);
+    }
     Shader(Shader&& other) noexcept : id_(std::exchange(other.id_, 0)) {}
     Shader& operator=(Shader&& other) noexcept {
         std::swap(id_, other.id_);

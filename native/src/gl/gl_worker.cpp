@@ -10,7 +10,8 @@
 namespace hyvox::gl {
 
 std::string resolveDeviceSelection(const std::string& device) {
-    if (!device.empty()) return device;
+    if (!device.empty())
+        return device;
     const char* env = std::getenv("HYVOX_GL_DEVICE");
     return (env && *env) ? env : "auto";
 }
@@ -23,7 +24,8 @@ GlWorker& GlWorker::get(const std::string& device) {
     const std::string selection = resolveDeviceSelection(device);
     std::lock_guard<std::mutex> lock(registry_mutex);
     auto found = registry->find(selection);
-    if (found != registry->end()) return *found->second;
+    if (found != registry->end())
+        return *found->second;
     auto* worker = new GlWorker(selection);  // throws if no context could be made
     registry->emplace(selection, worker);
     return *worker;
@@ -32,7 +34,8 @@ GlWorker& GlWorker::get(const std::string& device) {
 GlWorker::GlWorker(const std::string& selection) {
     std::promise<void> ready;
     auto started = ready.get_future();
-    thread_ = std::thread([this, selection, &ready] { loop(selection, ready); });
+    // The promise moves into the thread, so nothing it touches dies with this constructor.
+    thread_ = std::thread([this, selection, promise = std::move(ready)]() mutable { loop(selection, promise); });
     try {
         started.get();
     } catch (...) {
@@ -63,7 +66,7 @@ void GlWorker::loop(const std::string& selection, std::promise<void>& ready) {
         ready.set_exception(std::current_exception());
         return;
     }
-    ready.set_value();  // `ready` dies with the constructor after this
+    ready.set_value();
     for (;;) {
         std::function<void()> work;
         {

@@ -25,11 +25,13 @@ double largestProjectedArea(const GpuMesh& mesh) {
         double p[3][3];
         for (int c = 0; c < 3; ++c) {
             const GpuVertex& v = mesh.vertices[mesh.triangles[3 * t + c]];
-            for (int a = 0; a < 3; ++a) p[c][a] = double(v.cell[a]) + double(v.fraction[a]);
+            for (int a = 0; a < 3; ++a)
+                p[c][a] = double(v.cell[a]) + double(v.fraction[a]);
         }
         const double e0[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
         const double e1[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
-        const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
+        const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2],
+                             e0[0] * e1[1] - e0[1] * e1[0]};
         largest = std::max({largest, std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
     }
     return 0.5 * largest;
@@ -82,7 +84,7 @@ GlRun runGl(const BackendJob& job, BitGrid* out, std::vector<std::array<std::int
         if (voxel_list) {
             *voxel_list = voxelizer.runVoxelList(cutoff, &run.times);
         } else {
-            run.times = voxelizer.run(cutoff, out);
+            run.times = voxelizer.run(cutoff, out, [&] { throwIfInterrupted(job.interrupter); });
         }
         run.voxelize_ms = gl_watch.restart() - run.times.readback_ms;
     });
@@ -96,7 +98,8 @@ void runGlBackend(const BackendJob& job, VoxelizeResult& result) {
     Stats& stats = result.stats;
     stats.addTiming("gl_prepare", run.prepare_ms);
     stats.addTiming("gl_upload", run.upload_ms);
-    if (run.search_runs) stats.addTiming("gl_cutoff_search", run.search_ms);
+    if (run.search_runs)
+        stats.addTiming("gl_cutoff_search", run.search_ms);
     stats.addTiming("gl_voxelize", run.voxelize_ms);
     stats.addTiming("gl_readback", run.times.readback_ms);
     stats.metrics["upload_ms"] = run.upload_ms;

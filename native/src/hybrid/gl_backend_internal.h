@@ -14,7 +14,7 @@ namespace hyvox::hybrid {
 
 struct GlRun {
     PassTimes times;
-    double cutoff = 0;  // hybrid: used cutoff; triangle: inf; fragment: 0
+    double cutoff = 0;    // hybrid: used cutoff; triangle: inf; fragment: 0
     int search_runs = 0;  // timed runs of the auto-cutoff search (0: given or cached)
     double prepare_ms = 0, upload_ms = 0, search_ms = 0, voxelize_ms = 0;
     std::string device;  // GL_RENDERER

@@ -30,7 +30,8 @@ std::string dimsText(const std::array<std::int32_t, 3>& d) {
 std::uint64_t tileByteLimit() {
     std::uint64_t limit = std::uint64_t(glLimit(GL_MAX_SHADER_STORAGE_BLOCK_SIZE));
     if (const char* env = std::getenv("HYVOX_GL_TILE_BYTES"))
-        if (const unsigned long long forced = std::strtoull(env, nullptr, 10)) limit = std::min<std::uint64_t>(limit, forced);
+        if (const unsigned long long forced = std::strtoull(env, nullptr, 10))
+            limit = std::min<std::uint64_t>(limit, forced);
     // 32-bit word indices in the shaders.
     return std::min<std::uint64_t>(limit, std::uint64_t(1) << 33);
 }
@@ -43,41 +44,48 @@ bool uniformActive(const gl::Program& program, GLint location) {
     for (GLint i = 0; i < count; ++i) {
         GLint value = -1;
         glGetProgramResourceiv(program.id(), GL_UNIFORM, GLuint(i), 1, &property, 1, nullptr, &value);
-        if (value == location) return true;
+        if (value == location)
+            return true;
     }
     return false;
 }
 
 std::string definesFor(Mode mode, bool voxel_list, bool from_large_list) {
-    return std::string("#define HYVOX_THIN ") + (mode == Mode::Thin ? "1" : "0") +
-           "\n#define HYVOX_VOXEL_LIST " + (voxel_list ? "1" : "0") +
-           "\n#define HYVOX_FROM_LARGE_LIST " + (from_large_list ? "1" : "0") + "\n";
+    return std::string("#define HYVOX_THIN ") + (mode == Mode::Thin ? "1" : "0") + "\n#define HYVOX_VOXEL_LIST " +
+           (voxel_list ? "1" : "0") + "\n#define HYVOX_FROM_LARGE_LIST " + (from_large_list ? "1" : "0") + "\n";
 }
 
 void dispatchTriangles(std::uint32_t count, std::uint32_t chunks) {
     const std::uint32_t groups = (count + HYVOX_LOCAL_SIZE - 1) / HYVOX_LOCAL_SIZE;
-    if (groups == 0) return;
+    if (groups == 0)
+        return;
     GLint max_x = 65535;
     glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_x);
     const std::uint32_t gx = std::min<std::uint32_t>(groups, std::uint32_t(max_x));
     glDispatchCompute(gx, (groups + gx - 1) / gx, chunks);
 }
 
-// The largest bounding-box side of any triangle, in voxels.
-double largestExtent(const GpuMesh& mesh) {
-    double largest = 0;
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-        for (int a = 0; a < 3; ++a) {
-            double lo = 1e300, hi = -1e300;
-            for (int c = 0; c < 3; ++c) {
-                const GpuVertex& v = mesh.vertices[mesh.triangles[3 * t + c]];
-                const double x = double(v.cell[a]) + double(v.fraction[a]);
-                lo = std::min(lo, x);
-                hi = std::max(hi, x);
-            }
-            largest = std::max(largest, hi - lo);
+// Per triangle: the largest side of its bounding box and its area projected on its dominant
+// plane, in voxel units (llvmpipe's chunk count; see GlTuning::chunk_side).
+void measureTriangles(const GpuMesh& mesh, std::vector<float>& extent, std::vector<float>& area) {
+    extent.resize(mesh.triangleCount());
+    area.resize(mesh.triangleCount());
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        double p[3][3];
+        for (int c = 0; c < 3; ++c) {
+            const GpuVertex& v = mesh.vertices[mesh.triangles[3 * t + c]];
+            for (int a = 0; a < 3; ++a) p[c][a] = double(v.cell[a]) + double(v.fraction[a]);
         }
-    return largest;
+        double side = 0;
+        for (int a = 0; a < 3; ++a)
+            side = std::max(side, std::max({p[0][a], p[1][a], p[2][a]}) - std::min({p[0][a], p[1][a], p[2][a]}));
+        const double e0[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+        const double e1[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+        const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2],
+                             e0[0] * e1[1] - e0[1] * e1[0]};
+        extent[t] = float(side);
+        area[t] = float(0.5 * std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])}));
+    }
 }
 
 }  // namespace
@@ -92,10 +100,18 @@ GlTuning GlTuning::forDevice(bool software) {
 
 GlVoxelizer::GlVoxelizer(const GpuMesh& mesh, const GridSpec& grid, Mode mode, Method method,
                          const std::string& shader_dir, gl::ProgramCache& programs, const GlTuning& tuning)
-    : grid_(grid), mode_(mode), method_(method), shader_dir_(shader_dir), programs_(programs),
-      triangle_count_(std::uint32_t(mesh.triangleCount())), tuning_(tuning) {
-    if (mesh.triangleCount() > 0x3fffffffull) throw ResourceError("too many triangles for the GL methods");
-    for (int a = 0; a < 3; ++a) bricks_[a] = (grid.dims[a] + 7) / 8;
+    : grid_(grid),
+      mode_(mode),
+      method_(method),
+      shader_dir_(shader_dir),
+      programs_(programs),
+      triangle_count_(std::uint32_t(mesh.triangleCount())),
+      tuning_(tuning) {
+    // Draw calls count vertices (3 per triangle) in a GLsizei.
+    if (mesh.triangleCount() > 0x2aaaaaaaull)
+        throw ResourceError("too many triangles for the GL methods (at most 715 million)");
+    for (int a = 0; a < 3; ++a)
+        bricks_[a] = (grid.dims[a] + 7) / 8;
 
     // Limits first, before any large allocation.
     if (method != Method::Triangle) {
@@ -116,15 +132,10 @@ GlVoxelizer::GlVoxelizer(const GpuMesh& mesh, const GridSpec& grid, Mode mode, M
                             " MiB per 8-voxel slab, more than this GL device's storage-block limit of " +
                             std::to_string(tile_limit >> 20) + " MiB; use a larger voxel size");
     const int bricks_per_tile = int(std::min<std::uint64_t>(std::uint64_t(bricks_[0]), tile_limit / slab_bytes));
-    for (int x0 = 0; x0 < bricks_[0]; x0 += bricks_per_tile) tiles_.push_back({x0, std::min(bricks_[0], x0 + bricks_per_tile)});
+    for (int x0 = 0; x0 < bricks_[0]; x0 += bricks_per_tile)
+        tiles_.push_back({x0, std::min(bricks_[0], x0 + bricks_per_tile)});
 
-    if (tuning_.chunk_side > 0 && method != Method::Fragment) {
-        // Enough chunks for the largest triangle's bounding box on any plane, clipped to the grid.
-        const double grid_side = double(std::max({grid.dims[0], grid.dims[1], grid.dims[2]}));
-        const double extent = std::min(grid_side, largestExtent(mesh)) + 2.0;
-        const double per_side = std::ceil(extent / tuning_.chunk_side);
-        chunks_ = std::uint32_t(std::min(65535.0, per_side * per_side));
-    }
+    if (tuning_.chunk_side > 0 && method != Method::Fragment) measureTriangles(mesh, extents_, areas_);
 
     vertices_ = gl::Buffer(mesh.vertices.size() * sizeof(GpuVertex), mesh.vertices.data(), 0);
     triangles_ = gl::Buffer(mesh.triangles.size() * sizeof(std::uint32_t), mesh.triangles.data(), 0);
@@ -134,8 +145,10 @@ GlVoxelizer::GlVoxelizer(const GpuMesh& mesh, const GridSpec& grid, Mode mode, M
         draw_ = gl::Buffer(16, nullptr, GL_DYNAMIC_STORAGE_BIT);
     }
     if (method != Method::Triangle) {
-        glNamedFramebufferParameteri(framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, std::max(grid.dims[0], std::max(grid.dims[1], grid.dims[2])));
-        glNamedFramebufferParameteri(framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, std::max(grid.dims[0], std::max(grid.dims[1], grid.dims[2])));
+        glNamedFramebufferParameteri(framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH,
+                                     std::max(grid.dims[0], std::max(grid.dims[1], grid.dims[2])));
+        glNamedFramebufferParameteri(framebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT,
+                                     std::max(grid.dims[0], std::max(grid.dims[1], grid.dims[2])));
     }
     gl::checkGl("uploading the mesh");
 }
@@ -156,18 +169,24 @@ GlVoxelizer::Programs GlVoxelizer::programsFor(bool voxel_list) const {
     return p;
 }
 
-void GlVoxelizer::setCommonUniforms(const gl::Program& program, const Tile& tile, double cutoff, std::uint32_t capacity) {
+void GlVoxelizer::setCommonUniforms(const gl::Program& program, const Tile& tile, double cutoff,
+                                    std::uint32_t capacity) {
     const GLuint id = program.id();
     if (uniformActive(program, HYVOX_LOC_GRID_DIMS))
         glProgramUniform3i(id, HYVOX_LOC_GRID_DIMS, grid_.dims[0], grid_.dims[1], grid_.dims[2]);
     if (uniformActive(program, HYVOX_LOC_SLAB))
         glProgramUniform2i(id, HYVOX_LOC_SLAB, tile.brick_x0 * 8, std::min(grid_.dims[0], tile.brick_x1 * 8));
-    if (uniformActive(program, HYVOX_LOC_TRIANGLE_COUNT)) glProgramUniform1ui(id, HYVOX_LOC_TRIANGLE_COUNT, triangle_count_);
-    if (uniformActive(program, HYVOX_LOC_CUTOFF)) glProgramUniform1f(id, HYVOX_LOC_CUTOFF, float(cutoff));
+    if (uniformActive(program, HYVOX_LOC_TRIANGLE_COUNT))
+        glProgramUniform1ui(id, HYVOX_LOC_TRIANGLE_COUNT, triangle_count_);
+    if (uniformActive(program, HYVOX_LOC_CUTOFF))
+        glProgramUniform1f(id, HYVOX_LOC_CUTOFF, float(cutoff));
     const float side = float(std::max({grid_.dims[0], grid_.dims[1], grid_.dims[2]}));
-    if (uniformActive(program, HYVOX_LOC_VIEWPORT)) glProgramUniform2f(id, HYVOX_LOC_VIEWPORT, side, side);
-    if (uniformActive(program, HYVOX_LOC_LIST_CAPACITY)) glProgramUniform1ui(id, HYVOX_LOC_LIST_CAPACITY, capacity);
-    if (uniformActive(program, HYVOX_LOC_CHUNK_SIDE)) glProgramUniform1i(id, HYVOX_LOC_CHUNK_SIDE, tuning_.chunk_side);
+    if (uniformActive(program, HYVOX_LOC_VIEWPORT))
+        glProgramUniform2f(id, HYVOX_LOC_VIEWPORT, side, side);
+    if (uniformActive(program, HYVOX_LOC_LIST_CAPACITY))
+        glProgramUniform1ui(id, HYVOX_LOC_LIST_CAPACITY, capacity);
+    if (uniformActive(program, HYVOX_LOC_CHUNK_SIDE))
+        glProgramUniform1i(id, HYVOX_LOC_CHUNK_SIDE, tuning_.chunk_side);
 }
 
 void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, PassTimes& times) {
@@ -184,13 +203,14 @@ void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, Pa
     const bool pass1 = method_ != Method::Fragment, pass2 = method_ != Method::Triangle;
     double wall1 = 0, wall2 = 0;
     Stopwatch wall;
-    if (tuning_.wall_timing) glFinish();
+    if (tuning_.wall_timing)
+        glFinish();
     if (pass1) {
         const gl::Program& program = method_ == Method::Triangle ? *p.triangle : *p.classify;
         program.use();
         wall.restart();
         timer1_.begin();
-        dispatchTriangles(triangle_count_, chunks_);
+        dispatchTriangles(triangle_count_, chunksFor(cutoff));
         gl::TimerQuery::end();
         if (tuning_.wall_timing) {
             glFinish();
@@ -205,7 +225,8 @@ void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, Pa
         glViewport(0, 0, side, side);
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_CULL_FACE);
-        for (int i = 0; i < 4; ++i) glEnable(GL_CLIP_DISTANCE0 + i);
+        for (int i = 0; i < 4; ++i)
+            glEnable(GL_CLIP_DISTANCE0 + i);
         glBindVertexArray(empty_vao_.id());
         wall.restart();
         timer2_.begin();
@@ -224,8 +245,10 @@ void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, Pa
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    if (pass1) times.pass1_gpu_ms += tuning_.wall_timing ? wall1 : timer1_.milliseconds();
-    if (pass2) times.pass2_gpu_ms += tuning_.wall_timing ? wall2 : timer2_.milliseconds();
+    if (pass1)
+        times.pass1_gpu_ms += tuning_.wall_timing ? wall1 : timer1_.milliseconds();
+    if (pass2)
+        times.pass2_gpu_ms += tuning_.wall_timing ? wall2 : timer2_.milliseconds();
     if (method_ == Method::Hybrid) {
         std::uint32_t vertex_count = 0;
         draw_.download(0, 4, &vertex_count);
@@ -235,18 +258,35 @@ void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, Pa
     gl::checkGl(toString(method_));
 }
 
-PassTimes GlVoxelizer::run(double cutoff, BitGrid* out) {
+std::uint32_t GlVoxelizer::chunksFor(double cutoff) const {
+    if (extents_.empty()) return 1;
+    // Only triangles pass 1 voxelizes count: all for `triangle`, the small ones for `hybrid`
+    // (with a margin for the shader's float area against this double one).
+    const double small_limit = method_ == Method::Triangle ? INFINITY : cutoff * 1.001 + 1e-3;
+    float largest = 0;
+    for (std::size_t t = 0; t < extents_.size(); ++t)
+        if (areas_[t] <= small_limit) largest = std::max(largest, extents_[t]);
+    const double grid_side = double(std::max({grid_.dims[0], grid_.dims[1], grid_.dims[2]}));
+    const double per_side = std::ceil((std::min(grid_side, double(largest)) + 2.0) / tuning_.chunk_side);
+    return std::uint32_t(std::min(65535.0, per_side * per_side));
+}
+
+PassTimes GlVoxelizer::run(double cutoff, BitGrid* out, const std::function<void()>& before_tile) {
     const Programs programs = programsFor(false);
     PassTimes times;
     for (const Tile& tile : tiles_) {
+        if (before_tile)
+            before_tile();
         for (const gl::Program* program : {programs.triangle, programs.classify, programs.raster})
-            if (program) setCommonUniforms(*program, tile, cutoff, 0);
+            if (program)
+                setCommonUniforms(*program, tile, cutoff, 0);
         runTile(tile, programs, cutoff, times);
         if (out) {
             Stopwatch watch;
             // Tiles are whole slabs of bricks: contiguous in the leaf layout, copied in place.
             const std::size_t offset = std::size_t(tile.brick_x0) * bricks_[1] * bricks_[2] * kBrickBytes;
-            const std::size_t bytes = std::size_t(tile.brick_x1 - tile.brick_x0) * bricks_[1] * bricks_[2] * kBrickBytes;
+            const std::size_t bytes =
+                std::size_t(tile.brick_x1 - tile.brick_x0) * bricks_[1] * bricks_[2] * kBrickBytes;
             bits_.download(0, bytes, reinterpret_cast<unsigned char*>(out->data()) + offset);
             gl::checkGl("reading back the bit grid");
             times.readback_ms += watch.elapsedMs();
@@ -261,7 +301,8 @@ std::vector<std::array<std::int32_t, 3>> GlVoxelizer::runVoxelList(double cutoff
     std::vector<std::array<std::int32_t, 3>> voxels;
     // A first guess of the list's length; a tile that overflows is run again with room for
     // the count it reported (the count keeps rising past the capacity).
-    std::uint32_t capacity = std::max<std::uint32_t>(1u << 16, std::min<std::uint32_t>(triangle_count_ * 4u, 1u << 26));
+    std::uint32_t capacity =
+        std::uint32_t(std::clamp<std::uint64_t>(std::uint64_t(triangle_count_) * 4u, 1u << 16, 1u << 24));
     for (const Tile& tile : tiles_) {
         for (;;) {
             if (voxel_list_.size() < 16 + std::size_t(capacity) * 12)
@@ -270,24 +311,29 @@ std::vector<std::array<std::int32_t, 3>> GlVoxelizer::runVoxelList(double cutoff
             voxel_list_.upload(0, 4, &zero);
             voxel_list_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_VOXEL_LIST);
             for (const gl::Program* program : {programs.triangle, programs.classify, programs.raster})
-                if (program) setCommonUniforms(*program, tile, cutoff, capacity);
+                if (program)
+                    setCommonUniforms(*program, tile, cutoff, capacity);
             runTile(tile, programs, cutoff, times);
             std::uint32_t count = 0;
             voxel_list_.download(0, 4, &count);
             if (count > capacity) {
-                if (count > (1u << 30)) throw ResourceError("the voxel list would exceed 2^30 voxels");
+                if (count > (1u << 30))
+                    throw ResourceError("the voxel list would exceed 2^30 voxels");
                 capacity = count;
                 continue;
             }
             std::vector<std::uint32_t> entries(std::size_t(count) * 3);
-            if (count) voxel_list_.download(16, entries.size() * 4, entries.data());
+            if (count)
+                voxel_list_.download(16, entries.size() * 4, entries.data());
             for (std::size_t i = 0; i < count; ++i)
-                voxels.push_back({std::int32_t(entries[3 * i]), std::int32_t(entries[3 * i + 1]), std::int32_t(entries[3 * i + 2])});
+                voxels.push_back(
+                    {std::int32_t(entries[3 * i]), std::int32_t(entries[3 * i + 1]), std::int32_t(entries[3 * i + 2])});
             break;
         }
     }
     gl::checkGl("reading back the voxel list");
-    if (times_out) *times_out = times;
+    if (times_out)
+        *times_out = times;
     return voxels;
 }
 

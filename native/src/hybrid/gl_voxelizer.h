@@ -9,6 +9,7 @@
 // place. Limits are checked before anything big is allocated.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -22,8 +23,8 @@
 namespace hyvox::hybrid {
 
 struct PassTimes {
-    double pass1_gpu_ms = 0;  // compute: triangle-parallel, or hybrid classify + small triangles
-    double pass2_gpu_ms = 0;  // rasterization: fragment-parallel, or hybrid's large triangles
+    double pass1_gpu_ms = 0;            // compute: triangle-parallel, or hybrid classify + small triangles
+    double pass2_gpu_ms = 0;            // rasterization: fragment-parallel, or hybrid's large triangles
     std::uint64_t large_triangles = 0;  // hybrid: triangles deferred to pass 2 (summed over tiles)
     double readback_ms = 0;
     int tiles = 0;
@@ -47,8 +48,9 @@ public:
     GlVoxelizer(const GpuMesh& mesh, const GridSpec& grid, Mode mode, Method method, const std::string& shader_dir,
                 gl::ProgramCache& programs, const GlTuning& tuning);
 
-    // Runs every tile; writes bits into `out` (dims = grid dims) unless it is null (timing runs).
-    PassTimes run(double cutoff, BitGrid* out);
+    // Runs every tile; writes bits into `out` (dims = grid dims) unless it is null (timing
+    // runs). before_tile (optional) runs before each tile: a place to throw Cancelled.
+    PassTimes run(double cutoff, BitGrid* out, const std::function<void()>& before_tile = {});
 
     // Section 3.5: the set voxels as a list (x, y, z), each once, in no particular order.
     std::vector<std::array<std::int32_t, 3>> runVoxelList(double cutoff, PassTimes* times = nullptr);
@@ -81,7 +83,10 @@ private:
     gl::Framebuffer framebuffer_;
     gl::TimerQuery timer1_, timer2_;
     GlTuning tuning_;
-    std::uint32_t chunks_ = 1;  // compute work groups along z: chunks of the largest triangle
+    // llvmpipe only: per-triangle bounding-box side and projected area, for chunksFor().
+    std::vector<float> extents_, areas_;
+    // Compute work groups along z: chunks of the largest triangle pass 1 voxelizes.
+    std::uint32_t chunksFor(double cutoff) const;
 };
 
 }  // namespace hyvox::hybrid

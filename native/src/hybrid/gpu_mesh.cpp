@@ -10,7 +10,9 @@ namespace {
 
 // Far-away vertices are clamped as the cpu backend clamps them (int conversion stays
 // defined); the clipped part inside the grid is then equally approximate on both.
-double clampCoord(double x) { return std::clamp(x, -1.0e9, 1.0e9); }
+double clampCoord(double x) {
+    return std::clamp(x, -1.0e9, 1.0e9);
+}
 
 std::uint64_t mix(std::uint64_t h, std::uint64_t word) {
     h ^= word + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
@@ -25,7 +27,8 @@ std::uint64_t fingerprintOf(const void* data, std::size_t bytes, std::uint64_t h
         std::memcpy(&word, p + i, 8);
         h = mix(h, word);
     }
-    for (; i < bytes; ++i) h = mix(h, p[i]);
+    for (; i < bytes; ++i)
+        h = mix(h, p[i]);
     return h;
 }
 
@@ -46,7 +49,8 @@ GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid) {
     }
     out.triangles.reserve(mesh.usable.size() * 3);
     for (std::uint32_t t : mesh.usable)
-        for (int c = 0; c < 3; ++c) out.triangles.push_back(view.triangles[3 * std::size_t(t) + c]);
+        for (int c = 0; c < 3; ++c)
+            out.triangles.push_back(view.triangles[3 * std::size_t(t) + c]);
     std::uint64_t h = mix(view.vertex_count, out.triangles.size());
     h = fingerprintOf(view.positions, view.vertex_count * 3 * sizeof(float), h);
     out.fingerprint = fingerprintOf(out.triangles.data(), out.triangles.size() * sizeof(std::uint32_t), h);

@@ -63,9 +63,7 @@ Counters drawAll(const GpuTessellationInput& in, const gl::Program& program, con
     program.use();
     glUniform3i(HYVOX_LOC_GRID_DIMS, in.dims[0], in.dims[1], in.dims[2]);
     glUniform1f(HYVOX_TESS_LOC_GAMMA, float(in.gamma));
-    GLint max_level = 64;
-    glGetIntegerv(GL_MAX_TESS_GEN_LEVEL, &max_level);
-    glUniform1f(HYVOX_TESS_LOC_MAX_LEVEL, float(max_level));
+    glUniform1f(HYVOX_TESS_LOC_MAX_LEVEL, float(in.max_level));
     glUniform1ui(HYVOX_TESS_LOC_SPLIT_COUNT, GLuint(in.plan.splits.size() / 4));
     if (!in.heights.empty()) {
         glUniform2i(HYVOX_TESS_LOC_HEIGHT_SIZE, in.height_width, in.height_height);
@@ -85,14 +83,16 @@ Counters drawAll(const GpuTessellationInput& in, const gl::Program& program, con
         if (wall_timing) glFinish();
         const Stopwatch wall;
         timer.begin();
-        for (std::uint64_t base = 0; base < patches; base += kPatchesPerDraw) {
+        bool cancelled = false;
+        for (std::uint64_t base = 0; base < patches && !cancelled; base += kPatchesPerDraw) {
             const std::uint64_t count = std::min(kPatchesPerDraw, patches - base);
             glUniform1ui(HYVOX_TESS_LOC_PATCH_BASE, GLuint(base));
             if (instanced) glDrawArraysInstanced(GL_PATCHES, 0, 3, GLsizei(count));
             else glDrawArrays(GL_PATCHES, 0, GLsizei(3 * count));
-            throwIfInterrupted(in.interrupter);
+            cancelled = in.interrupter && in.interrupter->wasInterrupted();
         }
-        gl::TimerQuery::end();
+        gl::TimerQuery::end();  // before any throw: an open query would break the next run
+        if (cancelled) throw Cancelled();
         if (wall_timing) {
             glFinish();
             wall_ms[mode] = wall.elapsedMs();

@@ -4,6 +4,7 @@
 // tessellation draw (vertex pull → Eq. 1 factors → surface + displacement → one point per
 // micro-triangle), and reads back bits, point counters and per-voxel counts. Runs on the
 // GL worker thread (gl::GlWorker::run).
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@ struct GpuTessellationInput {
     const std::vector<float>& normals;  // per vertex, unit
     const std::vector<float>& uvs;      // per vertex
     const PatchPlan& plan;
+    int max_level;                      // GL_MAX_TESS_GEN_LEVEL the plan was made for
     std::array<std::int32_t, 3> dims;
     double gamma;
     bool pn_triangles;

@@ -1,0 +1,62 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The headless pipeline entry point (hyvox_blender/cli_blender.py) in a child Blender:
+frame chunks, stats JSON, saving, and exit code 1 on failure."""
+import json
+import os
+import subprocess
+
+import bpy
+
+import helpers
+from helpers import AddonTestCase
+
+
+def cli_path():
+    import hyvox_blender
+    return os.path.join(os.path.dirname(hyvox_blender.__file__), "cli_blender.py")
+
+
+class CliScriptTest(AddonTestCase):
+    def run_cli(self, blend, *args):
+        command = [bpy.app.binary_path, "-b", "--factory-startup", "-noaudio", blend,
+                   "--python", cli_path(), "--", *args]
+        return subprocess.run(command, capture_output=True, text=True, timeout=120)
+
+    def save_scene(self):
+        cube = helpers.cube(size=1.0)
+        cube.keyframe_insert("location", frame=1)
+        cube.location = (2, 0, 0)
+        cube.keyframe_insert("location", frame=4)
+        blend = os.path.join(self.out, "scene.blend")
+        bpy.ops.wm.save_as_mainfile(filepath=blend, copy=True)
+        return blend
+
+    def test_frame_chunk_stats_and_save(self):
+        blend = self.save_scene()
+        vdb_dir = os.path.join(self.out, "vdb")
+        stats = os.path.join(self.out, "stats.json")
+        saved = os.path.join(self.out, "voxelized.blend")
+        done = self.run_cli(blend, "--frames", "3-4", "--output", vdb_dir, "--resolution", "16",
+                            "--method", "cpu", "--objects", "Cube", "--stats-json", stats,
+                            "--save", saved)
+        self.assertEqual(done.returncode, 0, done.stdout[-2000:] + done.stderr[-2000:])
+        self.assertEqual(sorted(os.listdir(vdb_dir)), ["Cube_voxels_0003.vdb", "Cube_voxels_0004.vdb"])
+        with open(stats) as f:
+            record = json.load(f)
+        (volume,) = record["volumes"]
+        self.assertEqual(volume["frames"], [3, 4])
+        self.assertEqual(len(volume["voxel_counts"]), 2)
+        self.assertIn("voxelize", record["timings_ms"])
+        with bpy.data.libraries.load(saved) as (data_from, _):
+            self.assertIn("Cube_voxels", data_from.objects)
+
+    def test_failure_exits_1(self):
+        blend = self.save_scene()
+        done = self.run_cli(blend, "--objects", "NoSuchObject", "--output", self.out)
+        self.assertEqual(done.returncode, 1)
+        self.assertIn("NoSuchObject", done.stderr)
+        done = self.run_cli(blend, "--objects", "Cube", "--method", "tessellation",
+                            "--resolution", "8", "--output", self.out)
+        if done.returncode != 0:  # the method is not built here: reported, exit code 1
+            self.assertEqual(done.returncode, 1)
+            self.assertIn("hyvox: error", done.stderr)
