@@ -18,11 +18,18 @@ struct TriangleSurface {
 TriangleSurface loadSurface(uint tri) {
     TriangleSurface s;
     loadTriangle(tri, s.origin, s.p[0], s.p[1], s.p[2]);
+#if defined(PN_TRIANGLES) || defined(DISPLACEMENT)
     for (int c = 0; c < 3; ++c) {
         const uint v = triangleIndices[3u * tri + uint(c)];
         s.n[c] = vec3(normalData[3u * v], normalData[3u * v + 1u], normalData[3u * v + 2u]);
         s.uv[c] = vec2(uvData[2u * v], uvData[2u * v + 1u]);
     }
+#else
+    for (int c = 0; c < 3; ++c) {  // flat points need neither (the host uploads none)
+        s.n[c] = vec3(0.0);
+        s.uv[c] = vec2(0.0);
+    }
+#endif
     return s;
 }
 

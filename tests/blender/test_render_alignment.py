@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Rendered alignment: Cycles draws the voxelized 2x2x2 cube where the cube is.
+"""Rendered alignment: Cycles and EEVEE draw the voxelized 2x2x2 cube where the cube is.
 
 Orthographic camera straight down -z, white background, the volume a pure absorber.
 Along a row through the cube's middle, the side wall (one voxel thick, 2 units deep)
@@ -21,7 +21,7 @@ PIXELS = 96        # image width and height
 ORTHO = 3.0        # world units across the image
 
 
-def setup_render(scene, volume_obj):
+def setup_render(scene, volume_obj, engine="CYCLES"):
     material = bpy.data.materials.new("Absorber")
     material.use_nodes = True
     nodes = material.node_tree.nodes
@@ -54,7 +54,12 @@ def setup_render(scene, volume_obj):
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
     scene.world = world
 
-    scene.render.engine = "CYCLES"
+    scene.render.engine = engine
+    # EEVEE: fine froxels, so its volume edges are sharp enough to measure.
+    scene.eevee.volumetric_tile_size = "2"
+    scene.eevee.volumetric_samples = 128
+    scene.eevee.volumetric_start, scene.eevee.volumetric_end = 5.0, 15.0
+    scene.eevee.taa_render_samples = 8
     scene.cycles.device = "CPU"
     scene.cycles.samples = 16
     scene.cycles.use_denoising = False  # Debian's Blender has no OpenImageDenoise
@@ -101,20 +106,26 @@ class RenderAlignmentTest(AddonTestCase):
         return [world_x(crossing(rows)), world_x(crossing(rows, True)),
                 world_x(crossing(cols)), world_x(crossing(cols, True))]
 
-    def test_cube_lines_up(self):
+    def check_engine(self, engine):
         cube = helpers.cube(size=2.0)
         helpers.select_only(cube)
         self.assertEqual(self.voxelize(voxel_size=SIZE), {"FINISHED"})
         (obj,) = self.volumes()
         cube.hide_render = True
-        setup_render(bpy.context.scene, obj)
+        setup_render(bpy.context.scene, obj, engine)
         edges = self.render_edges()
-        print("50% crossings (world):", ["%.4f" % e for e in edges], "voxel", SIZE)
+        print(engine, "50% crossings (world):", ["%.4f" % e for e in edges], "voxel", SIZE)
         errors = np.abs(np.abs(edges) - 1.0)
         self.assertLess(errors.max(), SIZE / 4, f"edges {edges}")
         # The crossings move with the object: without the correction they must be off.
         if any(obj.location):
             obj.location = (0, 0, 0)
             shifted = self.render_edges()
-            print("uncorrected crossings:", ["%.4f" % e for e in shifted])
+            print(engine, "uncorrected crossings:", ["%.4f" % e for e in shifted])
             self.assertGreater(np.abs(np.abs(shifted) - 1.0).max(), SIZE / 4)
+
+    def test_cycles(self):
+        self.check_engine("CYCLES")
+
+    def test_eevee(self):
+        self.check_engine("BLENDER_EEVEE")

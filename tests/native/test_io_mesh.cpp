@@ -186,6 +186,22 @@ TEST(IoMesh, ObjKeepsTrianglesAndSharedVertices) {
     EXPECT_EQ(mesh.triangles[6], mesh.triangles[7]);
 }
 
+TEST(IoMesh, StlSoupIsWelded) {
+    TempDir dir;
+    const fs::path path = dir.write("two.stl",
+                                    "solid two\n"
+                                    "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
+                                    "endloop\nendfacet\n"
+                                    "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0\n"
+                                    "endloop\nendfacet\n"
+                                    "endsolid two\n");
+    const hyvox::Mesh mesh = hyvox::readMesh(path.string());
+    EXPECT_EQ(mesh.triangleCount(), 2u);
+    EXPECT_EQ(mesh.vertexCount(), 4u);
+    EXPECT_EQ(mesh.triangles[0], mesh.triangles[3]);  // the shared corners are one vertex
+    EXPECT_EQ(mesh.triangles[2], mesh.triangles[4]);
+}
+
 TEST(IoMesh, ClearErrors) {
     TempDir dir;
     auto message = [](const std::string& path) -> std::string {

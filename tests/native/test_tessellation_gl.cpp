@@ -424,5 +424,19 @@ TEST(TessellationApi, BadOptionsAreClearErrors) {
     EXPECT_THROW(voxelize(no_uvs, o), InvalidInput);
 }
 
+TEST(TessellationApi, CancelStopsTheRunAndTheNextRunWorks) {
+    const FlatSquare square;
+    // Lets the planning milestone pass, then cancels at the first check between draws.
+    struct CancelAfter : Interrupter {
+        int calls = 0;
+        bool wasInterrupted(int) override { return ++calls > 2; }
+    } cancel;
+    const VoxelizeOptions o = optionsFor(Method::Tessellation, 64, 1.0);
+    EXPECT_THROW(voxelize(square.view(), o, &cancel), Cancelled);
+    EXPECT_GT(cancel.calls, 2);
+    const VoxelizeResult r = voxelize(square.view(), o);
+    EXPECT_EQ(r.stats.voxel_count, 64u * 64u);  // the square lies in one layer of voxels
+}
+
 }  // namespace
 }  // namespace hyvox

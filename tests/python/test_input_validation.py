@@ -154,3 +154,20 @@ def test_vertex_attribute_checks(tetrahedron):
     plain = hyvox.voxelize(vertices, triangles, resolution=8)
     with_attrs = hyvox.voxelize(vertices, triangles, resolution=8, uvs=np.zeros((4, 2)), normals=np.ones((4, 3)))
     assert np.array_equal(plain.coords(), with_attrs.coords())
+
+
+def test_every_option_reaches_the_native_options(tetrahedron):
+    # The GL and tessellation options are ignored by cpu, but must be accepted and mapped.
+    vertices, triangles = tetrahedron
+    grid = hyvox.voxelize(
+        vertices, triangles, 8, None, "thin", "cpu", 1, 1, (-0.5, -0.5, -0.5),
+        bounds=((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)), memory_budget=1 << 30, gl_device="software",
+        shader_dir="", hybrid_cutoff=2.0, tess_gamma=1.5, pn_triangles=True, displacement_image="",
+        displacement_strength=0.1, displacement_midlevel=0.5, displacement_pixels=np.zeros((4, 4)),
+        tess_counts=False, tess_measure_accuracy=False,
+    )
+    assert grid.mode == "thin" and grid.method == "cpu"
+    assert grid.voxel_size == pytest.approx(0.25) and grid.dims == (10, 10, 10)  # 2 / 8, plus padding
+    assert grid.origin == pytest.approx((-0.75, -0.75, -0.75))
+    with pytest.raises(ValueError, match="displacement_pixels"):
+        hyvox.voxelize(vertices, triangles, displacement_pixels=np.zeros(4))

@@ -70,7 +70,7 @@ def test_cancel_from_another_thread(dragon):
     canceller.start()
     start = time.perf_counter()
     with pytest.raises(hyvox.Cancelled):
-        hyvox.voxelize(vertices, triangles, resolution=2048, method="reference", cancel=token)
+        hyvox.voxelize(vertices, triangles, resolution=1024, method="reference", cancel=token)
     canceller.join()
     assert seen_running.is_set() and token.cancelled and not token.running
     assert time.perf_counter() - start < 30

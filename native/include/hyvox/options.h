@@ -54,8 +54,10 @@ struct TessellationOptions {
     bool pn_triangles = false;
     // Displacement (section 3.3), Blender Displace modifier semantics: each point moves along
     // the interpolated vertex normal by (texel - midlevel) * strength world units, the texel
-    // sampled bilinearly (clamped at the edges) at the interpolated UV. Used when
-    // displacement_image (an 8/16-bit PNG path) or displacement_pixels is given.
+    // sampled bilinearly (clamped at the edges) at the interpolated UV; needs MeshView::uvs.
+    // Used when displacement_image (an 8/16-bit PNG path) or displacement_pixels is given.
+    // The grid is laid out from the undisplaced mesh: points that leave it are dropped and
+    // counted (stats.metrics["points_clipped"]); give GridOptions bounds or padding for room.
     std::string displacement_image;
     HeightImage displacement_pixels;  // used when displacement_image is empty
     double displacement_strength = 1.0;

@@ -63,8 +63,10 @@ void runCpuBackend(const BackendJob& job, VoxelizeResult& result) {
                     cpu::TriangleSetup t;
                     const cpu::SetupKind kind = cpu::setupTriangle(corners, mode, spec.dims, t);
                     if (kind == cpu::SetupKind::Outside) continue;
-                    if (kind == cpu::SetupKind::SingleVoxel) {
-                        marker.mark(t.lo[0], t.lo[1], t.lo[2]);
+                    if (kind == cpu::SetupKind::AllCandidates) {
+                        for (int i = t.lo[0]; i <= t.hi[0]; ++i)
+                            for (int j = t.lo[1]; j <= t.hi[1]; ++j)
+                                for (int k = t.lo[2]; k <= t.hi[2]; ++k) marker.mark(i, j, k);
                         continue;
                     }
                     if (cpu::fitsSmallPath(t)) {

@@ -51,9 +51,13 @@ SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const std::array<
         if (lo[a] > hi[a]) return SetupKind::Outside;
         one[a] = first == last;
     }
-    if (!Thin && one[0] && one[1] && one[2]) {
+    // Within one voxel's range along two axes, the triangle lies in one column of voxels;
+    // its extent along the third axis is an interval meeting every candidate's range, so
+    // each candidate's closed box holds a point of it. (Most triangles of a fine mesh.)
+    if (!Thin && int(one[0]) + int(one[1]) + int(one[2]) >= 2) {
         out.lo = {lo[0], lo[1], lo[2]};
-        return SetupKind::SingleVoxel;
+        out.hi = {hi[0], hi[1], hi[2]};
+        return SetupKind::AllCandidates;
     }
 
     const double e0[3] = {c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]};

@@ -40,8 +40,9 @@ struct TriangleSetup {
 
 enum class SetupKind {
     Outside,      // the bounding box misses the grid: nothing to mark
-    SingleVoxel,  // conservative, and the closed bounding box lies in one voxel's box: that
-                  // voxel (unswizzled, in out.lo) is marked without any test
+    AllCandidates,  // conservative, and the triangle's extent lies within one voxel's range
+                    // along at least two axes: every candidate voxel (unswizzled, out.lo to
+                    // out.hi) holds a point of the triangle and is marked without any test
     Full,         // run the factored test over out's swizzled range
 };
 

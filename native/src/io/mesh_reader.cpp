@@ -116,7 +116,7 @@ struct Appender {
     }
 };
 
-// Assimp's OBJ importer gives every face corner its own vertex. Welding corners whose
+// Assimp's OBJ and STL importers give every face corner its own vertex. Welding corners whose
 // attributes are bitwise equal restores the file's shared vertices (and vertex count)
 // without touching any triangle.
 void weldIdenticalVertices(Mesh& mesh) {
@@ -165,7 +165,9 @@ Mesh readMesh(const std::string& path) {
     checkReadable(path);
     const std::string lower_path = lower(path);
     const bool gzipped = endsWith(lower_path, ".gz");
-    const std::string extension = gzipped ? innerExtension(lower_path) : lower_path.substr(lower_path.find_last_of('.') + 1);
+    const auto dot = lower_path.find_last_of('.');
+    const std::string extension =
+        gzipped ? innerExtension(lower_path) : (dot == std::string::npos ? "" : lower_path.substr(dot + 1));
 
     Assimp::Importer importer;
     const unsigned flags = aiProcess_Triangulate;
@@ -192,7 +194,7 @@ Mesh readMesh(const std::string& path) {
         if (!seen[m]) appender.append(*scene->mMeshes[m], aiMatrix4x4());
 
     if (mesh.triangleCount() == 0) throw InvalidInput("mesh file '" + path + "' contains no triangles");
-    if (extension == "obj") weldIdenticalVertices(mesh);
+    if (extension == "obj" || extension == "stl") weldIdenticalVertices(mesh);
     return mesh;
 }
 

@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tessellation/patch_plan.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 
 #include "hyvox/errors.h"
@@ -10,63 +14,72 @@
 
 namespace hyvox::tessellation {
 
-PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double gamma, int max_level, double reach,
-                      double pn_reach) {
-    PatchPlan plan;
+PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double gamma, int max_level, bool estimate_bricks,
+                      double reach, double pn_reach) {
     std::array<std::int32_t, 3> bricks{};
     for (int a = 0; a < 3; ++a) bricks[a] = (grid.dims[a] + 7) / 8;
-    std::vector<bool> reached(static_cast<std::size_t>(bricks[0]) * bricks[1] * bricks[2], false);
-    plan.direct.reserve(mesh.usable.size());
+    std::vector<std::uint8_t> reached(estimate_bricks ? static_cast<std::size_t>(bricks[0]) * bricks[1] * bricks[2] : 0, 0);
+    std::atomic<std::uint64_t> large_estimate{0};
+    std::vector<std::uint32_t> pieces(mesh.usable.size());
     const double inv = 1.0 / grid.voxel_size;
-    for (std::size_t u = 0; u < mesh.usable.size(); ++u) {
-        Vec3f p[3];
-        double d[3][3];
-        for (int c = 0; c < 3; ++c) {
-            const auto v = mesh.vertex(mesh.usable[u], c);
+
+    // Per triangle, in parallel: its split count and the bricks its points can reach.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.usable.size(), 4096), [&](const auto& range) {
+        for (std::size_t u = range.begin(); u != range.end(); ++u) {
+            Vec3f p[3];
+            double d[3][3];
+            for (int c = 0; c < 3; ++c) {
+                const auto v = mesh.vertex(mesh.usable[u], c);
+                for (int a = 0; a < 3; ++a) {
+                    d[c][a] = (double(v[a]) - grid.origin[a]) * inv;
+                    p[c][a] = float(d[c][a]);
+                }
+            }
+            const PatchFactors factors = patchFactors(p[0], p[1], p[2], gamma);
+            pieces[u] = std::uint32_t(presplitPieces(factors, max_level));
+            if (!estimate_bricks) continue;
+            const double grow = reach + pn_reach * factors.largest() / gamma;
+            std::array<int, 3> lo{}, hi{};
+            std::uint64_t box = 1;
             for (int a = 0; a < 3; ++a) {
-                d[c][a] = (double(v[a]) - grid.origin[a]) * inv;
-                p[c][a] = float(d[c][a]);
+                const double mn = std::min({d[0][a], d[1][a], d[2][a]}) - grow;
+                const double mx = std::max({d[0][a], d[1][a], d[2][a]}) + grow;
+                lo[a] = int(std::clamp(std::floor(mn / 8), 0.0, double(bricks[a] - 1)));
+                hi[a] = int(std::clamp(std::floor(mx / 8), 0.0, double(bricks[a] - 1)));
+                box *= std::uint64_t(hi[a] - lo[a] + 1);
+            }
+            if (box <= 27) {
+                for (int x = lo[0]; x <= hi[0]; ++x)
+                    for (int y = lo[1]; y <= hi[1]; ++y)
+                        for (int z = lo[2]; z <= hi[2]; ++z)
+                            __atomic_store_n(&reached[(std::size_t(x) * bricks[1] + y) * bricks[2] + z], 1,
+                                             __ATOMIC_RELAXED);
+            } else {
+                // A plane crosses a brick over at least ~64 voxel units²: 3× that covers
+                // obliques and the bricks the triangle only grazes along its boundary.
+                const double e1[3] = {d[1][0] - d[0][0], d[1][1] - d[0][1], d[1][2] - d[0][2]};
+                const double e2[3] = {d[2][0] - d[0][0], d[2][1] - d[0][1], d[2][2] - d[0][2]};
+                const double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
+                             cz = e1[0] * e2[1] - e1[1] * e2[0];
+                const double area = 0.5 * std::sqrt(cx * cx + cy * cy + cz * cz);
+                large_estimate += std::uint64_t(3.0 * (area + grow * std::sqrt(area)) / 64.0) + 27;
             }
         }
-        const double e1[3] = {d[1][0] - d[0][0], d[1][1] - d[0][1], d[1][2] - d[0][2]};
-        const double e2[3] = {d[2][0] - d[0][0], d[2][1] - d[0][1], d[2][2] - d[0][2]};
-        const double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
-                     cz = e1[0] * e2[1] - e1[1] * e2[0];
-        const double area = 0.5 * std::sqrt(cx * cx + cy * cy + cz * cz);
-        const PatchFactors factors = patchFactors(p[0], p[1], p[2], 1.0);
-        const double grow = reach + pn_reach * factors.largest();
-        std::array<int, 3> lo{}, hi{};
-        std::uint64_t box = 1;
-        for (int a = 0; a < 3; ++a) {
-            const double mn = std::min({d[0][a], d[1][a], d[2][a]}) - grow, mx = std::max({d[0][a], d[1][a], d[2][a]}) + grow;
-            lo[a] = int(std::clamp(std::floor(mn / 8), 0.0, double(bricks[a] - 1)));
-            hi[a] = int(std::clamp(std::floor(mx / 8), 0.0, double(bricks[a] - 1)));
-            box *= std::uint64_t(hi[a] - lo[a] + 1);
-        }
-        if (box <= 27) {
-            for (int x = lo[0]; x <= hi[0]; ++x)
-                for (int y = lo[1]; y <= hi[1]; ++y)
-                    for (int z = lo[2]; z <= hi[2]; ++z) {
-                        auto cell = reached[(std::size_t(x) * bricks[1] + y) * bricks[2] + z];
-                        if (!cell) {
-                            cell = true;
-                            ++plan.brick_estimate;
-                        }
-                    }
-        } else {
-            // A plane crosses a brick over at least ~64 voxel units²: 3× that covers obliques and
-            // the bricks the triangle only grazes along its boundary.
-            plan.brick_estimate += std::uint64_t(3.0 * (area + grow * std::sqrt(area)) / 64.0) + 27;
-        }
-        const int n = presplitPieces(patchFactors(p[0], p[1], p[2], gamma), max_level);
+    });
+
+    PatchPlan plan;
+    plan.brick_estimate = large_estimate + std::uint64_t(std::count(reached.begin(), reached.end(), 1));
+    plan.direct.reserve(mesh.usable.size());
+    for (std::size_t u = 0; u < pieces.size(); ++u) {
+        const std::uint64_t n = pieces[u];
         if (n == 1) {
             plan.direct.push_back(std::uint32_t(u));
             continue;
         }
-        if (plan.split_patches + std::uint64_t(n) * n > (1ull << 31))
+        if (plan.split_patches + n * n > (1ull << 31))
             throw ResourceError("the tessellation pre-split would need more than 2^31 patches; lower gamma or the resolution");
         plan.splits.insert(plan.splits.end(), {std::uint32_t(u), std::uint32_t(n), std::uint32_t(plan.split_patches), 0u});
-        plan.split_patches += std::uint64_t(n) * n;
+        plan.split_patches += n * n;
         plan.largest_split = std::max(plan.largest_split, std::uint32_t(n));
     }
     return plan;

@@ -22,10 +22,10 @@ struct PatchPlan {
     std::uint64_t brick_estimate = 0;
 };
 
-// `gamma` and `max_level` as in Eq. 1 and GL_MAX_TESS_GEN_LEVEL; `reach` = how far (voxels)
-// points may leave the flat triangle (PN bulge, displacement), `pn_reach` the same as a share
-// of each triangle's largest extent.
-PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double gamma, int max_level, double reach,
-                      double pn_reach);
+// `gamma` and `max_level` as in Eq. 1 and GL_MAX_TESS_GEN_LEVEL. With `estimate_bricks`:
+// `reach` = how far (voxels) points may leave the flat triangle (displacement), `pn_reach`
+// the same as a share of each triangle's largest extent (PN bulge).
+PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double gamma, int max_level, bool estimate_bricks,
+                      double reach, double pn_reach);
 
 }  // namespace hyvox::tessellation

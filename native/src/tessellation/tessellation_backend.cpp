@@ -4,6 +4,7 @@
 // VoxelizeResult::counts and, when asked, measure the result against the exact cpu method.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "core/backends.h"
@@ -80,7 +81,11 @@ void runTessellationBackend(const BackendJob& job, VoxelizeResult& result) {
     Stopwatch watch;
     const tessellation::DisplacementMap map = tessellation::DisplacementMap::fromOptions(options);
     checkOptions(options, job.mesh, !map.empty());
-    const tessellation::Surface surface(job.mesh, job.grid);
+    // Normals and UVs only matter to PN-triangles and displacement; flat runs skip them.
+    const bool curved = options.pn_triangles || !map.empty();
+    std::optional<tessellation::Surface> surface;
+    if (curved) surface.emplace(job.mesh, job.grid);
+    const std::vector<float> none;
     const hybrid::GpuMesh gpu_mesh = hybrid::makeGpuMesh(job.mesh, job.grid);
     const int max_level = tessellation::maxTessellationLevel(job.options.gl.device);
     // How far points may leave the flat triangles: the displacement's largest offset, and
@@ -90,22 +95,22 @@ void runTessellationBackend(const BackendJob& job, VoxelizeResult& result) {
                     : std::max(std::abs(map.maxValue() - options.displacement_midlevel),
                                std::abs(map.minValue() - options.displacement_midlevel)) *
                           std::abs(options.displacement_strength) / job.grid.voxel_size;
-    const tessellation::PatchPlan plan = tessellation::planPatches(
-        job.mesh, job.grid, options.gamma, max_level, displacement_reach + 1.0, options.pn_triangles ? 0.5 : 0.0);
+    const tessellation::PatchPlan plan =
+        tessellation::planPatches(job.mesh, job.grid, options.gamma, max_level, options.counts,
+                                  displacement_reach + 1.0, options.pn_triangles ? 0.5 : 0.0);
     result.stats.addTiming("plan", watch.restart());
     throwIfInterrupted(job.interrupter, 10);
 
-    const std::vector<float> no_heights;
     const tessellation::GpuTessellationInput input{
         gpu_mesh,
-        surface.normals(),
-        surface.uvs(),
+        curved ? surface->normals() : none,
+        curved ? surface->uvs() : none,
         plan,
         max_level,
         job.grid.dims,
         options.gamma,
         options.pn_triangles,
-        map.empty() ? no_heights : map.bottomUpRows(),
+        map.empty() ? none : map.bottomUpRows(),
         map.width(),
         map.height(),
         options.displacement_strength / job.grid.voxel_size,
