@@ -12,7 +12,7 @@ packages=(
   libglm-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-openvdb
   libgtest-dev libbenchmark-dev
-  blender
+  blender xvfb xauth                                                # add-on tests (modal path in a window)
 )
 
 missing=()

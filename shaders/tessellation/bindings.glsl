@@ -25,6 +25,7 @@
 #define HYVOX_TESS_LOC_HEIGHT_SIZE 15    // ivec2 displacement image size
 #define HYVOX_TESS_LOC_DISPLACE 16       // vec2 (strength in voxels, midlevel)
 #define HYVOX_TESS_LOC_POOL_BLOCKS 17    // uint blocks the count pool holds
+#define HYVOX_TESS_LOC_PREFILLED 18      // uint: 1 = the brick table is filled in, take no blocks
 
 // Counter slots in HYVOX_TESS_SSBO_COUNTERS
 #define HYVOX_TESS_COUNTER_POINTS 0

@@ -19,6 +19,7 @@ layout(std430, binding = HYVOX_TESS_SSBO_COUNTERS) coherent restrict buffer Coun
 layout(std430, binding = HYVOX_TESS_SSBO_BRICK_TABLE) coherent restrict buffer BrickTable { uint brickBlock[]; };
 layout(std430, binding = HYVOX_TESS_SSBO_COUNT_POOL) coherent restrict buffer CountPool { uint countPool[]; };
 layout(location = HYVOX_TESS_LOC_POOL_BLOCKS) uniform uint poolBlocks;
+layout(location = HYVOX_TESS_LOC_PREFILLED) uniform uint prefilled;
 #endif
 
 void main() {
@@ -38,10 +39,10 @@ void main() {
     if ((bits[word] & mask) == 0u) atomicOr(bits[word], mask);
 #ifdef COUNTS
     uint block = brickBlock[brick];
-    if (block == 0u) {
+    if (block == 0u && prefilled == 0u) {
         // Lock-free first touch: take a fresh block, publish it unless another point won the
         // race (then use the winner's and leave ours unused). Running out is detected on the
-        // host from the block counter, which then retries with a bigger pool.
+        // host, which then draws again into a table it filled in from this run's bits.
         const uint mine = atomicAdd(counters[HYVOX_TESS_COUNTER_BLOCKS], 1u) + 1u;
         if (mine <= poolBlocks) {
             const uint previous = atomicCompSwap(brickBlock[brick], 0u, mine);

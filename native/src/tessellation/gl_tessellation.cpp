@@ -39,6 +39,13 @@ GLint64 maxSsboBytes() {
     return bytes;
 }
 
+bool brickTouched(const BitGrid& bits, std::size_t brick) {
+    const std::uint64_t* w = bits.data() + brick * BitGrid::kWordsPerBrick;
+    for (int k = 0; k < BitGrid::kWordsPerBrick; ++k)
+        if (w[k]) return true;
+    return false;
+}
+
 struct Counters {
     std::uint32_t points, clipped, blocks;
 };
@@ -46,7 +53,7 @@ struct Counters {
 // One complete draw of every patch into freshly cleared buffers.
 Counters drawAll(const GpuTessellationInput& in, const gl::Program& program, const gl::Buffer& bits,
                  const gl::Buffer& counters, const gl::Buffer& table, const gl::Buffer& pool, std::uint32_t pool_blocks,
-                 bool software, GpuTessellationOutput& out) {
+                 bool prefilled, bool software, GpuTessellationOutput& out) {
     // llvmpipe's GL_TIME_ELAPSED is unreliable: there (and with HYVOX_GL_WALL_TIMING, as for
     // the hybrid method) each pass is timed on the wall clock around glFinish instead.
     const bool wall_timing = software || std::getenv("HYVOX_GL_WALL_TIMING") != nullptr;
@@ -57,7 +64,7 @@ Counters drawAll(const GpuTessellationInput& in, const gl::Program& program, con
     bits.clearToZero();
     counters.clearToZero();
     if (in.counts) {
-        table.clearToZero();
+        if (!prefilled) table.clearToZero();
         pool.clearToZero();
     }
     program.use();
@@ -69,7 +76,10 @@ Counters drawAll(const GpuTessellationInput& in, const gl::Program& program, con
         glUniform2i(HYVOX_TESS_LOC_HEIGHT_SIZE, in.height_width, in.height_height);
         glUniform2f(HYVOX_TESS_LOC_DISPLACE, float(in.strength_voxels), float(in.midlevel));
     }
-    if (in.counts) glUniform1ui(HYVOX_TESS_LOC_POOL_BLOCKS, pool_blocks);
+    if (in.counts) {
+        glUniform1ui(HYVOX_TESS_LOC_POOL_BLOCKS, pool_blocks);
+        glUniform1ui(HYVOX_TESS_LOC_PREFILLED, prefilled ? 1u : 0u);
+    }
     bits.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_BITS);
     counters.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_COUNTERS);
     table.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_BRICK_TABLE);
@@ -174,43 +184,42 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
             }
         } restore;
 
+        // Counts, first try: blocks handed out on first touch, the pool sized from the plan's
+        // brick estimate with room for the blocks lost races take (lanes of one SIMD group
+        // reaching a new brick together each take one). If a touched brick still got none,
+        // the bits of that run say exactly which bricks are touched: number them on the host
+        // and draw again into that table, which needs no allocation and cannot run out.
         const std::uint64_t cap_blocks = std::max<std::uint64_t>(pool_limit / (512 * sizeof(std::uint32_t)), 1);
-        std::uint32_t pool_blocks =
-            in.counts ? std::uint32_t(std::clamp<std::uint64_t>(in.pool_blocks, 1, std::min<std::uint64_t>(cap_blocks, 0xffffffffull))) : 1;
-        Counters c{};
-        for (;;) {
-            const std::uint64_t pool_bytes = std::uint64_t(pool_blocks) * 512 * sizeof(std::uint32_t);
-            if (in.counts && pool_bytes > pool_limit)
-                throw ResourceError("the point counts need " + std::to_string(pool_bytes >> 20) +
+        auto poolFor = [&](std::uint64_t blocks) {
+            if (blocks * 512 * sizeof(std::uint32_t) > pool_limit)
+                throw ResourceError("the point counts need " + std::to_string((blocks * 2048) >> 20) +
                                     " MiB, more than this GL device allows (" + std::to_string(pool_limit >> 20) +
                                     " MiB); turn counts off or lower the resolution");
-            const gl::Buffer pool(in.counts ? pool_bytes : 0, nullptr);
-            ++out.runs;
-            c = drawAll(in, program, bit_buffer, counters, table, pool, pool_blocks, worker.device().software, out);
-            bit_buffer.download(0, bits.byteSize(), bits.data());
-            if (!in.counts) break;
+            return gl::Buffer(in.counts ? blocks * 512 * sizeof(std::uint32_t) : 0, nullptr);
+        };
+        const std::uint32_t first_blocks = std::uint32_t(
+            std::min<std::uint64_t>({2 * std::uint64_t(in.pool_blocks) + 256, cap_blocks, brick_count + 256}));
+        gl::Buffer pool = poolFor(in.counts ? first_blocks : 1);
+        out.runs = 1;
+        Counters c = drawAll(in, program, bit_buffer, counters, table, pool, first_blocks, false, worker.device().software, out);
+        bit_buffer.download(0, bits.byteSize(), bits.data());
+        if (in.counts) {
             out.brick_blocks.resize(brick_count);
             table.download(0, brick_count * sizeof(std::uint32_t), out.brick_blocks.data());
-            // More block requests than blocks only matters if a brick the bits touch got none
-            // (lost races also take blocks). Then draw once more with one block per touched
-            // brick plus room for races.
-            std::uint64_t touched = 0, missing = 0;
-            for (std::size_t b = 0; b < brick_count; ++b) {
-                const std::uint64_t* w = bits.data() + b * BitGrid::kWordsPerBrick;
-                bool any = false;
-                for (int k = 0; k < BitGrid::kWordsPerBrick; ++k) any = any || w[k] != 0;
-                touched += any ? 1 : 0;
-                missing += any && out.brick_blocks[b] == 0 ? 1 : 0;
+            std::uint32_t used = std::min(c.blocks, first_blocks);
+            bool missing = false;
+            for (std::size_t b = 0; b < brick_count && !missing; ++b)
+                missing = out.brick_blocks[b] == 0 && brickTouched(bits, b);
+            if (missing) {
+                used = 0;
+                for (std::size_t b = 0; b < brick_count; ++b) out.brick_blocks[b] = brickTouched(bits, b) ? ++used : 0;
+                table.upload(0, brick_count * sizeof(std::uint32_t), out.brick_blocks.data());
+                pool = poolFor(used);
+                out.runs = 2;
+                c = drawAll(in, program, bit_buffer, counters, table, pool, used, true, worker.device().software, out);
             }
-            if (missing == 0) {
-                out.count_pool.resize(std::size_t(std::min(c.blocks, pool_blocks)) * 512);
-                pool.download(0, out.count_pool.size() * sizeof(std::uint32_t), out.count_pool.data());
-                break;
-            }
-            if (out.runs >= 4) throw BackendError("tessellation: the count pool kept overflowing (internal error)");
-            const std::uint64_t next =
-                std::max<std::uint64_t>(touched + touched / 8 + 64, std::min<std::uint64_t>(2ull * pool_blocks, cap_blocks));
-            pool_blocks = std::uint32_t(std::min<std::uint64_t>(next, 0xffffffffull));
+            out.count_pool.resize(std::size_t(used) * 512);
+            pool.download(0, out.count_pool.size() * sizeof(std::uint32_t), out.count_pool.data());
         }
         out.points = c.points;
         out.clipped = c.clipped;

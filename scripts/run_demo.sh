@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# The main job on a fresh Debian 12 machine: install the packages, build hyvox, then let a
+# headless Blender voxelize a demo scene (Stanford bunny + Suzanne) with the add-on. Writes
+# out/demo/: the .blend, the .vdb files and a Cycles render PNG; prints the stats.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install_deps.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$(nproc)"
+blender -b --factory-startup --python demo/run_demo.py -- --build build --output out/demo "$@"
