@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "voxelize_command.h"
 
+#include <tbb/global_control.h>
+
 #include <chrono>
+#include <memory>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -65,6 +68,11 @@ void printSummary(const Arguments& args, const Mesh& mesh, const VoxelizeResult&
 }  // namespace
 
 void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
+    // --threads bounds the whole run (the .vdb tree is also built in parallel), not only the backend.
+    std::unique_ptr<tbb::global_control> thread_limit;
+    if (args.options.threads > 0)
+        thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                             std::size_t(args.options.threads));
     checkOutputFolder(args.output_path, "the output");
     if (!args.stats_json_path.empty()) checkOutputFolder(args.stats_json_path, "the stats");
     auto start = std::chrono::steady_clock::now();

@@ -28,6 +28,7 @@ std::vector<T> copyRows(const py::array& array, const char* name, const char* dt
     // A private copy: another Python thread may modify the caller's array while the GIL is
     // released, and validated indices must stay valid.
     const auto contiguous = py::array_t<T, py::array::c_style>::ensure(array);
+    if (!contiguous) throw py::error_already_set();
     std::vector<T> copy(std::size_t(contiguous.size()));
     if (!copy.empty()) std::memcpy(copy.data(), contiguous.data(), copy.size() * sizeof(T));
     return copy;
@@ -100,6 +101,7 @@ HeightImage heightImage(const std::optional<py::array>& array) {
     if (!py::isinstance<py::array_t<float>>(*array) || array->ndim() != 2)
         throw py::value_error("displacement_pixels must be a float32 array of shape (height, width)");
     const auto contiguous = py::array_t<float, py::array::c_style>::ensure(*array);
+    if (!contiguous) throw py::error_already_set();
     image.height = int(contiguous.shape(0));
     image.width = int(contiguous.shape(1));
     image.values.assign(contiguous.data(), contiguous.data() + contiguous.size());

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The 'cpu' method: every triangle's factored test, in parallel over chunks of triangles
-// with TBB. Bits are set with relaxed atomic ORs on whole words (no locks). A triangle covering
-// many columns of its dominant plane is split by rows into tasks of its own, so one big
-// wall cannot leave a core idle.
+// with TBB. Bits are set with relaxed atomic ORs on whole words (no locks). A triangle
+// covering many columns of its dominant plane is split by rows into tasks of its own, so
+// one big wall cannot leave a core idle. Small triangles take shortcuts that decide the
+// same voxels (triangle_setup.h, rasterize_small.h).
 #include <atomic>
 
 #include <tbb/blocked_range.h>

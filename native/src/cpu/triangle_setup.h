@@ -39,11 +39,11 @@ struct TriangleSetup {
 };
 
 enum class SetupKind {
-    Outside,      // the bounding box misses the grid: nothing to mark
+    Outside,        // the bounding box misses the grid: nothing to mark
     AllCandidates,  // conservative, and the triangle's extent lies within one voxel's range
                     // along at least two axes: every candidate voxel (unswizzled, out.lo to
                     // out.hi) holds a point of the triangle and is marked without any test
-    Full,         // run the factored test over out's swizzled range
+    Full,           // run the factored test over out's swizzled range
 };
 
 // Builds the setup from voxel-space corners (dims in unswizzled x, y, z order).
