@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
                     continue;
                 }
                 const auto& m = tess.result.stats.metrics;
-                const double gpu_ms = m.at("pass1_gpu_ms") + m.at("pass2_gpu_ms");
+                const double gpu_ms = m.at("pass0_gpu_ms") + m.at("pass1_gpu_ms") + m.at("pass2_gpu_ms");
                 hyvox::AccuracyReport acc, acc_thin;
                 if (cpu.error.empty()) {
                     acc = compareToReference(tess.result.occupancy, cpu.result.occupancy);

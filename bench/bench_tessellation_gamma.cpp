@@ -42,7 +42,8 @@ int main(int argc, char** argv) {
             biases.push_back(acc.bias);
             std::printf("%8.3f %10.5f %12.0f %12llu %10.2f\n", gamma, acc.bias, r.stats.metrics.at("points"),
                         (unsigned long long)r.stats.voxel_count,
-                        r.stats.metrics.at("pass1_gpu_ms") + r.stats.metrics.at("pass2_gpu_ms"));
+                        r.stats.metrics.at("pass0_gpu_ms") + r.stats.metrics.at("pass1_gpu_ms") +
+                            r.stats.metrics.at("pass2_gpu_ms"));
         }
         const hyvox::GammaBiasFit fit = hyvox::fitGammaBias(gammas, biases);
         std::printf("# Eq. 3 fit: gamma = -B ln(A p) with A = %.5g, B = %.5g\n", fit.A, fit.B);

@@ -1,10 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Section 3.2: each micro-triangle becomes one point at its centroid, injected into the grid
-// straight from here (the rasterizer is off): a bit per voxel (atomicOr, OpenVDB leaf layout
-// of hyvox/bit_grid.h) and, with COUNTS, the number of points per voxel. Integer atomic adds
-// commute, so counts are the same on every run. Counts live in 512-entry blocks handed out
-// to 8³ bricks on first touch, so only bricks the surface reaches cost memory.
-#include "tessellation/bindings.glsl"
+// straight from here (the rasterizer is off).
+#include "tessellation/inject.glsl"
 
 layout(triangles) in;
 layout(points, max_vertices = 1) out;
@@ -12,45 +9,4 @@ layout(points, max_vertices = 1) out;
 in vec3 tePosition[];
 flat in ivec3 teOrigin[];
 
-layout(location = HYVOX_LOC_GRID_DIMS) uniform ivec3 gridDims;
-layout(std430, binding = HYVOX_SSBO_BITS) coherent restrict buffer Bits { uint bits[]; };
-layout(std430, binding = HYVOX_TESS_SSBO_COUNTERS) coherent restrict buffer Counters { uint counters[]; };
-#ifdef COUNTS
-layout(std430, binding = HYVOX_TESS_SSBO_BRICK_TABLE) coherent restrict buffer BrickTable { uint brickBlock[]; };
-layout(std430, binding = HYVOX_TESS_SSBO_COUNT_POOL) coherent restrict buffer CountPool { uint countPool[]; };
-layout(location = HYVOX_TESS_LOC_POOL_BLOCKS) uniform uint poolBlocks;
-layout(location = HYVOX_TESS_LOC_PREFILLED) uniform uint prefilled;
-#endif
-
-void main() {
-    const vec3 pointPosition = (tePosition[0] + tePosition[1] + tePosition[2]) / 3.0;
-    atomicAdd(counters[HYVOX_TESS_COUNTER_POINTS], 1u);
-    const ivec3 voxel = teOrigin[0] + ivec3(floor(pointPosition));
-    if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, gridDims))) {
-        atomicAdd(counters[HYVOX_TESS_COUNTER_CLIPPED], 1u);
-        return;
-    }
-    const uvec3 v = uvec3(voxel);
-    const uvec3 bricks = (uvec3(gridDims) + 7u) >> 3u;
-    const uint brick = ((v.x >> 3u) * bricks.y + (v.y >> 3u)) * bricks.z + (v.z >> 3u);
-    const uint n = ((v.x & 7u) << 6u) | ((v.y & 7u) << 3u) | (v.z & 7u);
-    const uint word = brick * 16u + (n >> 5u), mask = 1u << (n & 31u);
-    // Dense meshes put many points in one voxel: skip the atomic when the bit is already set.
-    if ((bits[word] & mask) == 0u) atomicOr(bits[word], mask);
-#ifdef COUNTS
-    uint block = brickBlock[brick];
-    if (block == 0u && prefilled == 0u) {
-        // Lock-free first touch: take a fresh block, publish it unless another point won the
-        // race (then use the winner's and leave ours unused). Running out is detected on the
-        // host, which then draws again into a table it filled in from this run's bits.
-        const uint mine = atomicAdd(counters[HYVOX_TESS_COUNTER_BLOCKS], 1u) + 1u;
-        if (mine <= poolBlocks) {
-            const uint previous = atomicCompSwap(brickBlock[brick], 0u, mine);
-            block = previous == 0u ? mine : previous;
-        } else {
-            block = atomicOr(brickBlock[brick], 0u);  // another point may have won meanwhile
-        }
-    }
-    if (block != 0u) atomicAdd(countPool[(block - 1u) * 512u + n], 1u);
-#endif
-}
+void main() { injectPoint(teOrigin[0], (tePosition[0] + tePosition[1] + tePosition[2]) / 3.0); }

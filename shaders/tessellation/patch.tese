@@ -19,21 +19,7 @@ out vec3 tePosition;  // voxel space, relative to teOrigin
 flat out ivec3 teOrigin;
 
 #ifdef DISPLACEMENT
-layout(std430, binding = HYVOX_TESS_SSBO_HEIGHTS) readonly restrict buffer Heights { float heights[]; };
-layout(location = HYVOX_TESS_LOC_HEIGHT_SIZE) uniform ivec2 heightSize;
-layout(location = HYVOX_TESS_LOC_DISPLACE) uniform vec2 displace;  // strength (voxels), midlevel
-
-// GL_LINEAR + GL_CLAMP_TO_EDGE by hand, so the CPU twin (DisplacementMap::sample) matches
-// bit for bit in spirit rather than up to a GPU's 8-bit filter weights.
-float height(vec2 uv) {
-    const vec2 x = uv * vec2(heightSize) - 0.5;
-    const vec2 f = floor(x), a = x - f;
-    const ivec2 hi = heightSize - 1;
-    const ivec2 i0 = ivec2(clamp(f, vec2(0.0), vec2(hi))), i1 = ivec2(clamp(f + 1.0, vec2(0.0), vec2(hi)));
-    const float h00 = heights[i0.y * heightSize.x + i0.x], h10 = heights[i0.y * heightSize.x + i1.x];
-    const float h01 = heights[i1.y * heightSize.x + i0.x], h11 = heights[i1.y * heightSize.x + i1.x];
-    return mix(mix(h00, h10, a.x), mix(h01, h11, a.x), a.y);
-}
+#include "tessellation/height.glsl"
 #endif
 
 void main() {
@@ -54,7 +40,7 @@ void main() {
     const vec3 n = normalize(w.x * tcN[0] + w.y * tcN[1] + w.z * tcN[2]);
 #endif
     const vec2 uv = w.x * tcUv[0] + w.y * tcUv[1] + w.z * tcUv[2];
-    p += n * ((height(uv) - displace.y) * displace.x);
+    p += n * displacement(uv);
 #endif
     tePosition = p;
     teOrigin = tcOrigin;

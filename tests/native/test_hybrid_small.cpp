@@ -15,6 +15,7 @@
 #include "hybrid/gl_backend_internal.h"
 #include "hyvox/voxelize.h"
 #include "support/test_mesh_loader.h"
+#include "support/voxel_checks.h"
 #include "support/triangle_soup.h"
 #include "test_hybrid_oracle.h"
 
@@ -75,6 +76,28 @@ TEST(GlSmall, FaceOnVoxelPlaneMarksBothSides) {
                 EXPECT_TRUE(r.occupancy.test(x, y, 3));
                 EXPECT_TRUE(r.occupancy.test(x, y, 4));
             }
+    }
+}
+
+TEST(GlSmall, BoxOnVoxelPlanesMatchesTheReferenceWithoutHoles) {
+    // Architecture-style input: every face on a voxel plane, every edge on a voxel edge.
+    test::TriangleSoup soup;
+    soup.addBox({2, 1, 3}, {6, 7, 5});
+    soup.addBox({0, 0, 0}, {8, 8, 8});
+    for (Mode mode : {Mode::Conservative, Mode::Thin}) {
+        VoxelizeOptions o = unitGrid(mode == Mode::Conservative ? Method::Reference : Method::Cpu, mode);
+        const VoxelizeResult oracle = voxelize(soup.view(), o);
+        for (Method method : kGlMethods) {
+            SCOPED_TRACE(std::string(toString(method)) + " " + toString(mode));
+            o.method = method;
+            const VoxelizeResult r = voxelize(soup.view(), o);
+            EXPECT_EQ(r.occupancy, oracle.occupancy);  // exact here: all coordinates are integers
+            if (mode == Mode::Conservative) {
+                std::uint64_t samples = 0;
+                EXPECT_EQ(test::countHoles(soup.view(), r, &samples, nullptr), 0u);
+                EXPECT_GT(samples, 100u);
+            }
+        }
     }
 }
 

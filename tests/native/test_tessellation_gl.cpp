@@ -344,6 +344,46 @@ TEST(TessellationDisplacement, LowPolyPlusMapMatchesCpuSubdividedAndDisplaced) {
     }
 }
 
+TEST(TessellationDisplacement, WholeTrianglesGetTheirDisplacedCentroid) {
+    // A finely split square at a coarse grid: every triangle's factors are below 1, so the
+    // compute pass injects one point per triangle. Expected: the centroid of its corners,
+    // each displaced along +z by (height(uv) - midlevel) * strength, computed here in double.
+    const FlatSquare square;
+    Mesh fine = tessellation::midpointSubdivide(square.view(), 5);  // 2048 triangles
+    MeshView view = fine.view();
+    view.uvs = fine.uvs.data();
+    HeightImage image{16, 16, {}};
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) image.values.push_back(float(0.5 + 0.4 * std::sin(x * 0.9 + y * 0.4)));
+    VoxelizeOptions o = optionsFor(Method::Tessellation, 16, 1.0);
+    o.grid.bounds = Bounds{{0, 0, -0.3}, {1, 1, 0.3}};
+    o.tessellation.displacement_pixels = image;
+    o.tessellation.displacement_strength = 0.5;
+    o.tessellation.displacement_midlevel = 0.5;
+    const VoxelizeResult r = voxelize(view, o);
+    ASSERT_EQ(r.stats.metrics.at("triangles_whole"), double(fine.triangleCount()));
+    ASSERT_EQ(r.stats.metrics.at("points"), double(fine.triangleCount()));
+
+    const tessellation::DisplacementMap map(image);
+    std::map<std::array<std::int32_t, 3>, std::uint32_t> expected;
+    for (std::size_t t = 0; t < fine.triangleCount(); ++t) {
+        std::array<double, 3> centroid{0, 0, 0};
+        for (int c = 0; c < 3; ++c) {
+            const std::uint32_t v = fine.triangles[3 * t + c];
+            const double height = (map.sample(fine.uvs[2 * v], fine.uvs[2 * v + 1]) - 0.5) * 0.5;
+            const double p[3] = {fine.positions[3 * v], fine.positions[3 * v + 1], fine.positions[3 * v + 2] + height};
+            for (int a = 0; a < 3; ++a) centroid[a] += p[a] / 3.0;
+        }
+        std::array<std::int32_t, 3> voxel{};
+        for (int a = 0; a < 3; ++a)
+            voxel[a] = std::int32_t(std::floor((centroid[a] - r.grid.origin[a]) / r.grid.voxel_size));
+        ++expected[voxel];
+    }
+    std::map<std::array<std::int32_t, 3>, std::uint32_t> got;
+    for (const auto& c : r.counts) got[{c.i, c.j, c.k}] = c.count;
+    EXPECT_EQ(got, expected);
+}
+
 // --- options, stats and errors -------------------------------------------------------------
 
 TEST(TessellationApi, CountsAreDeterministicAndAccuracyIsReported) {

@@ -55,8 +55,12 @@ std::string definesFor(Mode mode, bool voxel_list, bool from_large_list) {
            (voxel_list ? "1" : "0") + "\n#define HYVOX_FROM_LARGE_LIST " + (from_large_list ? "1" : "0") + "\n";
 }
 
-void dispatchTriangles(std::uint32_t count, std::uint32_t chunks) {
-    const std::uint32_t groups = (count + HYVOX_LOCAL_SIZE - 1) / HYVOX_LOCAL_SIZE;
+void dispatchTriangles(const gl::Program& program, std::uint32_t count, std::uint32_t chunks) {
+    // The program's own work-group size (HYVOX_LOCAL_SIZE unless a shader folder says otherwise).
+    GLint local[3] = {HYVOX_LOCAL_SIZE, 1, 1};
+    glGetProgramiv(program.id(), GL_COMPUTE_WORK_GROUP_SIZE, local);
+    const std::uint32_t size = std::uint32_t(std::max(1, local[0]));
+    const std::uint32_t groups = (count + size - 1) / size;
     if (groups == 0)
         return;
     GLint max_x = 65535;
@@ -210,7 +214,7 @@ void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, Pa
         program.use();
         wall.restart();
         timer1_.begin();
-        dispatchTriangles(triangle_count_, chunksFor(cutoff));
+        dispatchTriangles(program, triangle_count_, chunksFor(cutoff));
         gl::TimerQuery::end();
         if (tuning_.wall_timing) {
             glFinish();

@@ -51,7 +51,16 @@ struct Counters {
 };
 
 // One complete draw of every patch into freshly cleared buffers.
-Counters drawAll(const GpuTessellationInput& in, const gl::Program& program, const gl::Buffer& bits,
+struct Programs {
+    const gl::Program& whole;  // compute: triangles left whole
+    const gl::Program& draw;   // vertex → tessellation → geometry
+};
+struct PatchLists {
+    const gl::Buffer& whole;
+    const gl::Buffer& direct;
+};
+
+Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const PatchLists& lists, const gl::Buffer& bits,
                  const gl::Buffer& counters, const gl::Buffer& table, const gl::Buffer& pool, std::uint32_t pool_blocks,
                  bool prefilled, bool software, GpuTessellationOutput& out) {
     // llvmpipe's GL_TIME_ELAPSED is unreliable: there (and with HYVOX_GL_WALL_TIMING, as for
@@ -67,23 +76,54 @@ Counters drawAll(const GpuTessellationInput& in, const gl::Program& program, con
         if (!prefilled) table.clearToZero();
         pool.clearToZero();
     }
-    program.use();
-    glUniform3i(HYVOX_LOC_GRID_DIMS, in.dims[0], in.dims[1], in.dims[2]);
-    glUniform1f(HYVOX_TESS_LOC_GAMMA, float(in.gamma));
-    glUniform1f(HYVOX_TESS_LOC_MAX_LEVEL, float(in.max_level));
-    glUniform1ui(HYVOX_TESS_LOC_SPLIT_COUNT, GLuint(in.plan.splits.size() / 4));
-    if (!in.heights.empty()) {
-        glUniform2i(HYVOX_TESS_LOC_HEIGHT_SIZE, in.height_width, in.height_height);
-        glUniform2f(HYVOX_TESS_LOC_DISPLACE, float(in.strength_voxels), float(in.midlevel));
-    }
-    if (in.counts) {
-        glUniform1ui(HYVOX_TESS_LOC_POOL_BLOCKS, pool_blocks);
-        glUniform1ui(HYVOX_TESS_LOC_PREFILLED, prefilled ? 1u : 0u);
-    }
+    // The uniforms both programs share.
+    auto setShared = [&](const gl::Program& program) {
+        program.use();
+        glUniform3i(HYVOX_LOC_GRID_DIMS, in.dims[0], in.dims[1], in.dims[2]);
+        if (!in.heights.empty()) {
+            glUniform2i(HYVOX_TESS_LOC_HEIGHT_SIZE, in.height_width, in.height_height);
+            glUniform2f(HYVOX_TESS_LOC_DISPLACE, float(in.strength_voxels), float(in.midlevel));
+        }
+        if (in.counts) {
+            glUniform1ui(HYVOX_TESS_LOC_POOL_BLOCKS, pool_blocks);
+            glUniform1ui(HYVOX_TESS_LOC_PREFILLED, prefilled ? 1u : 0u);
+        }
+    };
     bits.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_BITS);
     counters.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_COUNTERS);
     table.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_BRICK_TABLE);
     pool.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_COUNT_POOL);
+
+    // Pass 0: one point per triangle the tessellator would leave whole.
+    gl::TimerQuery whole_timer;
+    double whole_wall = 0;
+    {
+        setShared(programs.whole);
+        lists.whole.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_PATCHES);
+        const std::uint64_t count = in.plan.whole.size();
+        glUniform1ui(HYVOX_TESS_LOC_SPLIT_COUNT, GLuint(count));
+        if (wall_timing) glFinish();
+        const Stopwatch wall;
+        whole_timer.begin();
+        constexpr std::uint64_t kPerDispatch = std::uint64_t(HYVOX_LOCAL_SIZE) * 65535;
+        for (std::uint64_t base = 0; base < count; base += kPerDispatch) {
+            glUniform1ui(HYVOX_TESS_LOC_PATCH_BASE, GLuint(base));
+            const std::uint64_t n = std::min(kPerDispatch, count - base);
+            glDispatchCompute(GLuint((n + HYVOX_LOCAL_SIZE - 1) / HYVOX_LOCAL_SIZE), 1, 1);
+        }
+        gl::TimerQuery::end();
+        if (wall_timing) {
+            glFinish();
+            whole_wall = wall.elapsedMs();
+        }
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        lists.direct.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_PATCHES);
+    }
+
+    setShared(programs.draw);
+    glUniform1f(HYVOX_TESS_LOC_GAMMA, float(in.gamma));
+    glUniform1f(HYVOX_TESS_LOC_MAX_LEVEL, float(in.max_level));
+    glUniform1ui(HYVOX_TESS_LOC_SPLIT_COUNT, GLuint(in.plan.splits.size() / 4));
 
     gl::TimerQuery direct_timer, split_timer;
     double wall_ms[2] = {0, 0};
@@ -112,6 +152,7 @@ Counters drawAll(const GpuTessellationInput& in, const gl::Program& program, con
     drawPatches(1, in.plan.split_patches, split_timer);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     gl::checkGl("tessellation draw");
+    out.whole_gpu_ms += wall_timing ? whole_wall : whole_timer.milliseconds();
     out.direct_gpu_ms += wall_timing ? wall_ms[0] : direct_timer.milliseconds();
     out.split_gpu_ms += wall_timing ? wall_ms[1] : split_timer.milliseconds();
     Counters c{};
@@ -137,17 +178,20 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
         if (GLint64(bits.byteSize()) > max_ssbo)
             throw ResourceError("the " + std::to_string(bits.byteSize() >> 20) + " MiB bit grid exceeds this GL device's " +
                                 std::to_string(max_ssbo >> 20) + " MiB storage-buffer limit; lower the resolution");
-        const gl::Program& program = worker.programs().get(
-            {{GL_VERTEX_SHADER, "tessellation/patch.vert"},
-             {GL_TESS_CONTROL_SHADER, "tessellation/patch.tesc"},
-             {GL_TESS_EVALUATION_SHADER, "tessellation/patch.tese"},
-             {GL_GEOMETRY_SHADER, "tessellation/inject.geom"}},
-            definesFor(in), in.shader_dir);
+        const std::string defines = definesFor(in);
+        const Programs programs{
+            worker.programs().get({{GL_COMPUTE_SHADER, "tessellation/whole_triangles.comp"}}, defines, in.shader_dir),
+            worker.programs().get({{GL_VERTEX_SHADER, "tessellation/patch.vert"},
+                                   {GL_TESS_CONTROL_SHADER, "tessellation/patch.tesc"},
+                                   {GL_TESS_EVALUATION_SHADER, "tessellation/patch.tese"},
+                                   {GL_GEOMETRY_SHADER, "tessellation/inject.geom"}},
+                                  defines, in.shader_dir)};
 
         const gl::Buffer vertices = upload(in.mesh.vertices);
         const gl::Buffer triangles = upload(in.mesh.triangles);
         const gl::Buffer normals = upload(in.normals);
         const gl::Buffer uvs = upload(in.uvs);
+        const gl::Buffer whole = upload(in.plan.whole);
         const gl::Buffer direct = upload(in.plan.direct);
         const gl::Buffer splits = upload(in.plan.splits);
         const gl::Buffer heights = upload(in.heights);
@@ -155,7 +199,6 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
         triangles.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_TRIANGLES);
         normals.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_NORMALS);
         uvs.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_UVS);
-        direct.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_PATCHES);
         splits.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_SPLITS);
         heights.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_HEIGHTS);
 
@@ -165,6 +208,7 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
         const gl::Buffer table(in.counts ? brick_count * sizeof(std::uint32_t) : 0, nullptr);
         const std::uint64_t pool_limit = std::min<std::uint64_t>(std::uint64_t(max_ssbo), in.memory_budget);
 
+        const PatchLists lists{whole, direct};
         gl::VertexArray no_attributes;
         glBindVertexArray(no_attributes.id());
         // A surfaceless context has no complete default framebuffer, and draws need one even
@@ -201,7 +245,7 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
             std::min<std::uint64_t>({2 * std::uint64_t(in.pool_blocks) + 256, cap_blocks, brick_count + 256}));
         gl::Buffer pool = poolFor(in.counts ? first_blocks : 1);
         out.runs = 1;
-        Counters c = drawAll(in, program, bit_buffer, counters, table, pool, first_blocks, false, worker.device().software, out);
+        Counters c = drawAll(in, programs, lists, bit_buffer, counters, table, pool, first_blocks, false, worker.device().software, out);
         bit_buffer.download(0, bits.byteSize(), bits.data());
         if (in.counts) {
             out.brick_blocks.resize(brick_count);
@@ -216,7 +260,7 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
                 table.upload(0, brick_count * sizeof(std::uint32_t), out.brick_blocks.data());
                 pool = poolFor(used);
                 out.runs = 2;
-                c = drawAll(in, program, bit_buffer, counters, table, pool, used, true, worker.device().software, out);
+                c = drawAll(in, programs, lists, bit_buffer, counters, table, pool, used, true, worker.device().software, out);
             }
             out.count_pool.resize(std::size_t(used) * 512);
             pool.download(0, out.count_pool.size() * sizeof(std::uint32_t), out.count_pool.data());

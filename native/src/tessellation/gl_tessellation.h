@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// The GPU part of the tessellation method: uploads the mesh and the patch plan, runs the
-// tessellation draw (vertex pull → Eq. 1 factors → surface + displacement → one point per
-// micro-triangle), and reads back bits, point counters and per-voxel counts. Runs on the
-// GL worker thread (gl::GlWorker::run).
+// The GPU part of the tessellation method: uploads the mesh and the patch plan, injects the
+// points of triangles left whole (compute), runs the tessellation draw (vertex pull → Eq. 1
+// factors → surface + displacement → one point per micro-triangle), and reads back bits,
+// point counters and per-voxel counts. Runs on the GL worker thread (gl::GlWorker::run).
 #include <array>
 #include <cstdint>
 #include <string>
@@ -41,7 +41,7 @@ struct GpuTessellationOutput {
     std::uint64_t clipped = 0;  // of which outside the grid
     std::vector<std::uint32_t> brick_blocks;  // per brick: 0 or 1 + block (when counting)
     std::vector<std::uint32_t> count_pool;    // 512 counts per block
-    double direct_gpu_ms = 0, split_gpu_ms = 0;
+    double whole_gpu_ms = 0, direct_gpu_ms = 0, split_gpu_ms = 0;
     int runs = 0;  // 2 when the count pool had to grow
 };
 

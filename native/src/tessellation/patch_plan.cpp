@@ -20,7 +20,7 @@ PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double ga
     for (int a = 0; a < 3; ++a) bricks[a] = (grid.dims[a] + 7) / 8;
     std::vector<std::uint8_t> reached(estimate_bricks ? static_cast<std::size_t>(bricks[0]) * bricks[1] * bricks[2] : 0, 0);
     std::atomic<std::uint64_t> large_estimate{0};
-    std::vector<std::uint32_t> pieces(mesh.usable.size());
+    std::vector<std::uint32_t> pieces(mesh.usable.size());  // 0 = whole, 1 = one patch, n = n² patches
     const double inv = 1.0 / grid.voxel_size;
 
     // Per triangle, in parallel: its split count and the bricks its points can reach.
@@ -36,7 +36,7 @@ PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double ga
                 }
             }
             const PatchFactors factors = patchFactors(p[0], p[1], p[2], gamma);
-            pieces[u] = std::uint32_t(presplitPieces(factors, max_level));
+            pieces[u] = factors.largest() <= 1.0 ? 0u : std::uint32_t(presplitPieces(factors, max_level));
             if (!estimate_bricks) continue;
             const double grow = reach + pn_reach * factors.largest() / gamma;
             std::array<int, 3> lo{}, hi{};
@@ -69,9 +69,15 @@ PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double ga
 
     PatchPlan plan;
     plan.brick_estimate = large_estimate + std::uint64_t(std::count(reached.begin(), reached.end(), 1));
-    plan.direct.reserve(mesh.usable.size());
+    const std::size_t whole = std::size_t(std::count(pieces.begin(), pieces.end(), 0u));
+    plan.whole.reserve(whole);
+    plan.direct.reserve(mesh.usable.size() - whole);
     for (std::size_t u = 0; u < pieces.size(); ++u) {
         const std::uint64_t n = pieces[u];
+        if (n == 0) {
+            plan.whole.push_back(std::uint32_t(u));
+            continue;
+        }
         if (n == 1) {
             plan.direct.push_back(std::uint32_t(u));
             continue;

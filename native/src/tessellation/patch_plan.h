@@ -3,6 +3,7 @@
 // Which patches the tessellation draw gets: every usable triangle whose Eq. 1 factors fit
 // GL_MAX_TESS_GEN_LEVEL is one patch; the others are split into n² sub-triangles first (the
 // vertex shader derives each sub-triangle from its patch number, so no geometry is written).
+// Triangles the tessellator would not subdivide at all skip the draw.
 #include <cstdint>
 #include <vector>
 
@@ -12,6 +13,9 @@
 namespace hyvox::tessellation {
 
 struct PatchPlan {
+    // Usable-triangle indices whose factors are all <= 1: the tessellator would return them
+    // whole, so a compute pass injects their one point each without the tessellation draw.
+    std::vector<std::uint32_t> whole;
     std::vector<std::uint32_t> direct;  // usable-triangle indices drawn as one patch each
     std::vector<std::uint32_t> splits;  // 4 per split triangle: usable index, n, first patch, 0
     std::uint64_t split_patches = 0;    // Σ n²

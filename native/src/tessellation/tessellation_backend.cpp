@@ -133,12 +133,14 @@ void runTessellationBackend(const BackendJob& job, VoxelizeResult& result) {
     m["gamma"] = options.gamma;
     m["points"] = double(out.points);
     m["points_clipped"] = double(out.clipped);
+    m["triangles_whole"] = double(plan.whole.size());
     m["patches_direct"] = double(plan.direct.size());
     m["patches_split"] = double(plan.split_patches);
     m["split_triangles"] = double(plan.splits.size() / 4);
     m["largest_split"] = double(plan.largest_split);
     m["max_tess_level"] = double(max_level);
-    m["pass1_gpu_ms"] = out.direct_gpu_ms;  // whole triangles
+    m["pass0_gpu_ms"] = out.whole_gpu_ms;   // triangles left whole (compute)
+    m["pass1_gpu_ms"] = out.direct_gpu_ms;  // tessellated triangles
     m["pass2_gpu_ms"] = out.split_gpu_ms;   // pre-split triangles
     m["gpu_runs"] = double(out.runs);
     if (options.measure_accuracy) {
