@@ -32,24 +32,17 @@ HeightImage readPngHeight(const std::string& path) {
     out.width = int(image.width);
     out.height = int(image.height);
     out.values.resize(std::size_t(image.width) * image.height);
-    bool ok = false;
-    if (sixteen) {
-        std::vector<png_uint_16> raw(count);
-        ok = png_image_finish_read(&image, nullptr, raw.data(), 0, nullptr);
-        for (std::size_t p = 0; ok && p < out.values.size(); ++p) {
+    // Decode into `raw` (8- or 16-bit samples) and average each pixel's channels to 0..1.
+    auto decode = [&](auto raw, double maximum) {
+        if (!png_image_finish_read(&image, nullptr, raw.data(), 0, nullptr)) return false;
+        for (std::size_t p = 0; p < out.values.size(); ++p) {
             double sum = 0;
             for (int c = 0; c < channels; ++c) sum += raw[p * channels + c];
-            out.values[p] = float(sum / (channels * 65535.0));
+            out.values[p] = float(sum / (channels * maximum));
         }
-    } else {
-        std::vector<png_byte> raw(count);
-        ok = png_image_finish_read(&image, nullptr, raw.data(), 0, nullptr);
-        for (std::size_t p = 0; ok && p < out.values.size(); ++p) {
-            double sum = 0;
-            for (int c = 0; c < channels; ++c) sum += raw[p * channels + c];
-            out.values[p] = float(sum / (channels * 255.0));
-        }
-    }
+        return true;
+    };
+    const bool ok = sixteen ? decode(std::vector<png_uint_16>(count), 65535.0) : decode(std::vector<png_byte>(count), 255.0);
     if (!ok) throw InvalidInput("displacement image '" + path + "' could not be decoded: " + image.message);
     return out;
 }
