@@ -171,3 +171,17 @@ def test_every_option_reaches_the_native_options(tetrahedron):
     assert grid.origin == pytest.approx((-0.75, -0.75, -0.75))
     with pytest.raises(ValueError, match="displacement_pixels"):
         hyvox.voxelize(vertices, triangles, displacement_pixels=np.zeros(4))
+
+
+def test_gl_devices_lists_the_software_device():
+    # Mesa's llvmpipe is always there on the test machines (libegl-mesa0); a GPU adds more.
+    devices = hyvox.gl_devices()
+    assert any(d["software"] for d in devices), devices
+    for d in devices:
+        assert set(d) == {"index", "name", "software"}
+    # Each listed index is a valid device choice for the GL methods.
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=np.float32)
+    t = np.array([[0, 1, 2]], dtype=np.uint32)
+    software = next(d for d in devices if d["software"])
+    grid = hyvox.voxelize(v, t, resolution=4, method="hybrid", gl_device=str(software["index"]))
+    assert grid.voxel_count == hyvox.voxelize(v, t, resolution=4, method="cpu").voxel_count

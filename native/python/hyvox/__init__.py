@@ -24,6 +24,7 @@ from ._core import (
     CancelToken,
     ResourceError,
     VoxelGrid,
+    gl_devices,
 )
 
 __version__: str = _core.__version__
@@ -39,6 +40,7 @@ __all__ = [
     "ResourceError",
     "VoxelGrid",
     "__version__",
+    "gl_devices",
     "read_mesh",
     "voxelize",
 ]

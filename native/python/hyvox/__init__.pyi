@@ -11,6 +11,7 @@ from ._core import Cancelled as Cancelled
 from ._core import CancelToken as CancelToken
 from ._core import ResourceError as ResourceError
 from ._core import VoxelGrid as VoxelGrid
+from ._core import gl_devices as gl_devices
 
 __version__: str
 METHODS: Tuple[str, ...]

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Stubs of the compiled module hyvox._core (private: use the hyvox package).
 import os
-from typing import Callable, Optional, Sequence, Tuple, Union
+from typing import Dict, Callable, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -84,3 +84,4 @@ def read_mesh(
     Optional[npt.NDArray[np.float32]],
     Optional[npt.NDArray[np.float32]],
 ]: ...
+def gl_devices() -> list[Dict[str, Union[int, str, bool]]]: ...

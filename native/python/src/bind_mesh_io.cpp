@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "bindings.h"
+#include "hyvox/gl_devices.h"
 #include "hyvox/mesh_io.h"
 
 namespace hyvox::python {
@@ -28,6 +29,17 @@ void bindMeshIo(py::module_& m) {
         py::arg("path"),
         "Read a mesh file: (vertices float32 (N,3), triangles uint32 (M,3), colors float32 (N,4) "
         "or None, uvs float32 (N,2) or None).");
+
+    m.def(
+        "gl_devices",
+        [] {
+            py::list devices;
+            for (const auto& d : listGlDevices())
+                devices.append(py::dict(py::arg("index") = d.index, py::arg("name") = d.name,
+                                        py::arg("software") = d.software));
+            return devices;
+        },
+        "The EGL devices the GL methods can use: [{'index', 'name', 'software'}]. Creates no context.");
 }
 
 }  // namespace hyvox::python
