@@ -12,6 +12,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "hyvox/zero_page_allocator.h"
+
 namespace hyvox {
 
 class BitGrid {
@@ -62,7 +64,7 @@ public:
 private:
     std::array<std::int32_t, 3> dims_{0, 0, 0};
     std::array<std::int32_t, 3> bricks_{0, 0, 0};
-    std::vector<std::uint64_t> words_;
+    std::vector<std::uint64_t, ZeroPageAllocator<std::uint64_t>> words_;
 };
 
 }  // namespace hyvox

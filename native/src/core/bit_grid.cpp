@@ -10,7 +10,7 @@ BitGrid::BitGrid(std::array<std::int32_t, 3> dims) : dims_(dims) {
         if (dims[a] < 1) throw std::invalid_argument("BitGrid dimensions must be positive");
         bricks_[a] = (dims[a] + kBrickSize - 1) >> kBrickLog2;
     }
-    words_.assign(brickCount() * kWordsPerBrick, 0);
+    words_.resize(brickCount() * kWordsPerBrick);  // zero: see ZeroPageAllocator
 }
 
 void BitGrid::merge(const BitGrid& other) {
