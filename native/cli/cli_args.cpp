@@ -53,8 +53,12 @@ const char* usageText() {
            "  --stats-json FILE        write origin, voxel size, dims, counts and timings as JSON\n"
            "  --gl-device D            GL methods: '' auto, 'software', or a device index\n"
            "  --hybrid-cutoff C        hybrid: large-triangle cutoff in voxel units^2 (<0: auto)\n"
-           "  --tess-gamma G           tessellation: safety factor gamma (default 1)\n"
+           "  --tess-gamma G, --gamma G  tessellation: safety factor gamma (default 1)\n"
            "  --pn-triangles           tessellation: PN-triangle smoothing\n"
+           "  --displacement IMG       tessellation: displace along the normals by an 8/16-bit PNG\n"
+           "                           height image sampled at the mesh's UVs (Blender Displace)\n"
+           "  --strength S             tessellation: displacement strength in mesh units (default 1)\n"
+           "  --midlevel M             tessellation: height that stays in place (default 0.5)\n"
            "  -q, --quiet              print nothing on success\n"
            "  -h, --help               show this help\n"
            "  --version                show the version\n";
@@ -125,8 +129,14 @@ Arguments parseArguments(const std::vector<std::string>& args) {
             o.gl.device = value();
         } else if (option == "--hybrid-cutoff") {
             o.hybrid.cutoff = parseNumber(option, value());
-        } else if (option == "--tess-gamma") {
+        } else if (option == "--tess-gamma" || option == "--gamma") {
             o.tessellation.gamma = parseNumber(option, value());
+        } else if (option == "--displacement") {
+            o.tessellation.displacement_image = value();
+        } else if (option == "--strength") {
+            o.tessellation.displacement_strength = parseNumber(option, value());
+        } else if (option == "--midlevel") {
+            o.tessellation.displacement_midlevel = parseNumber(option, value());
         } else if (option == "--pn-triangles") {
             noValue();
             o.tessellation.pn_triangles = true;

@@ -25,7 +25,9 @@ struct Mesh {
     bool hasUvs() const { return !uvs.empty(); }
     // A view for voxelize(); valid while this mesh lives and is not modified.
     MeshView view() const {
-        return MeshView{positions.data(), vertexCount(), triangles.data(), triangleCount()};
+        MeshView v{positions.data(), vertexCount(), triangles.data(), triangleCount()};
+        v.uvs = hasUvs() ? uvs.data() : nullptr;  // the tessellation method's displacement reads them
+        return v;
     }
 };
 
