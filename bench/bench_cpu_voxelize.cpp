@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
 #include "hyvox/voxelize.h"
 #include "support/test_mesh_loader.h"
 
@@ -44,13 +45,7 @@ int main(int argc, char** argv) {
     int repeat = 7;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
-        auto next = [&]() -> std::string {
-            if (a + 1 >= argc) {
-                std::fprintf(stderr, "%s needs a value\n", arg.c_str());
-                std::exit(2);
-            }
-            return argv[++a];
-        };
+        auto next = [&] { return hyvox::bench::optionValue(argc, argv, a); };
         if (arg == "--res") resolutions.push_back(std::atoi(next().c_str()));
         else if (arg == "--mode") options.mode = hyvox::parseMode(next());
         else if (arg == "--method") options.method = hyvox::parseMethod(next());

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "bench_args.h"
 #include "core/stopwatch.h"
 #include "gl/gl_debug.h"
 #include "gl/gl_objects.h"
@@ -159,13 +160,7 @@ int main(int argc, char** argv) {
     options.hybrid.cutoff = -1.0;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
-        auto next = [&]() -> std::string {
-            if (a + 1 >= argc) {
-                std::fprintf(stderr, "%s needs a value\n", arg.c_str());
-                std::exit(2);
-            }
-            return argv[++a];
-        };
+        auto next = [&] { return hyvox::bench::optionValue(argc, argv, a); };
         if (arg == "--mesh-dir")
             mesh_dir = next();
         else if (arg == "--res")

@@ -156,6 +156,7 @@ def main():
         shader.inputs["Density"].default_value *= 4.0
 
     blend = os.path.join(output, "demo.blend")
+    bpy.context.preferences.filepaths.save_version = 0  # saved twice below: no demo.blend1
     bpy.ops.wm.save_as_mainfile(filepath=blend)
     png = os.path.join(output, "render.png")
     render_settings(bpy.context.scene, args, png)

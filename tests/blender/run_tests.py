@@ -30,6 +30,11 @@ def main(argv):
         names = sorted(f[:-3] for f in os.listdir(HERE) if f.startswith("test_") and f.endswith(".py"))
     suite = unittest.TestSuite(loader.loadTestsFromName(name) for name in names)
     result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
+    # wasSuccessful() is also true when nothing ran or everything was skipped: CTest would
+    # report those as passes, so they fail here.
+    if result.testsRun == 0 or result.skipped:
+        print(f"FAILED: {result.testsRun} tests ran, {len(result.skipped)} skipped (skips are not allowed)")
+        return 1
     return 0 if result.wasSuccessful() else 1
 
 

@@ -40,16 +40,20 @@ class ErrorTest(AddonTestCase):
         helpers.select_only(obj)
         self.assert_reported("has no faces")
 
-    def test_bad_method_for_this_machine_or_input(self):
-        # A GL method without GL, or the module's own validation: either way a report.
-        cube = helpers.cube()
-        helpers.select_only(cube)
-        before = self.scene_state()
+    def test_gl_method_without_its_device(self):
+        # A GL method whose device is missing is reported. (This used to run the hybrid on
+        # whatever GL there was and passed whether or not it failed; llvmpipe is always
+        # there, so ask for an EGL device index that no machine here has.)
+        prefs = bpy.context.preferences.addons["hyvox_blender"].preferences
+        prefs.gl_device = "INDEX"
+        prefs.gl_device_index = 63
         try:
-            self.voxelize(method="hybrid", resolution=8)
-        except RuntimeError as exc:
-            self.assertTrue(str(exc))
-            self.assertEqual(self.scene_state(), before)
+            cube = helpers.cube()
+            helpers.select_only(cube)
+            self.assert_reported("does not exist", method="hybrid", resolution=8)
+        finally:
+            prefs.property_unset("gl_device")
+            prefs.property_unset("gl_device_index")
 
     def test_rerun_failure_keeps_previous(self):
         cube = helpers.cube()

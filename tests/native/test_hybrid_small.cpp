@@ -17,7 +17,6 @@
 #include "support/test_mesh_loader.h"
 #include "support/voxel_checks.h"
 #include "support/triangle_soup.h"
-#include "test_hybrid_oracle.h"
 
 namespace hyvox {
 namespace {
@@ -141,7 +140,7 @@ TEST(GlSmall, RandomTrianglesMatchOraclesWithClipping) {
             SCOPED_TRACE(std::string(toString(method)) + " " + toString(mode));
             o.method = method;
             const VoxelizeResult r = voxelize(soup.view(), o);
-            const auto cmp = test::compareToOracle(soup.view(), mode, r, oracle);
+            const auto cmp = test::compareResults(soup.view(), mode, r, oracle);
             EXPECT_TRUE(cmp.unexplained.empty()) << cmp.summary();
             EXPECT_GT(cmp.result_voxels, 1000u);
         }
@@ -164,7 +163,7 @@ TEST(GlSmall, LongSliversMatchTheReference) {
         SCOPED_TRACE(toString(method));
         o.method = method;
         const VoxelizeResult r = voxelize(soup.view(), o);
-        const auto cmp = test::compareToOracle(soup.view(), Mode::Conservative, r, oracle);
+        const auto cmp = test::compareResults(soup.view(), Mode::Conservative, r, oracle);
         EXPECT_TRUE(cmp.unexplained.empty()) << cmp.summary();
         if (method == Method::Hybrid) {
             EXPECT_EQ(r.stats.metrics.at("large_triangles"), 0.0);

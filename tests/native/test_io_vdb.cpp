@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
 #include <sys/resource.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <csignal>
@@ -16,6 +15,7 @@
 #include "hyvox/errors.h"
 #include "hyvox/vdb.h"
 #include "io/vdb_grid.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -44,22 +44,7 @@ hyvox::VoxelizeResult sampleResult(std::uint32_t seed = 7, double fill = 0.05) {
     return r;
 }
 
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        path = fs::temp_directory_path() / ("hyvox-test-io-" + std::to_string(::getpid()) + "-" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
-    std::vector<std::string> names() const {
-        std::vector<std::string> out;
-        for (const auto& e : fs::directory_iterator(path)) out.push_back(e.path().filename().string());
-        std::sort(out.begin(), out.end());
-        return out;
-    }
-};
+using hyvox::test::TempDir;
 
 using Ijk = std::array<std::int32_t, 3>;
 
@@ -212,6 +197,7 @@ TEST(IoVdb, UnwritableFolderFailsWithoutAFile) {
     EXPECT_TRUE(dir.names().empty());
     try {
         hyvox::writeVdb(sampleResult(), (dir.path / "missing" / "out.vdb").string());
+        ADD_FAILURE() << "expected InvalidInput";  // else the message check below never runs
     } catch (const hyvox::InvalidInput& e) {
         EXPECT_NE(std::string(e.what()).find("missing"), std::string::npos) << e.what();
     }

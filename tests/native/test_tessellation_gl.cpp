@@ -16,9 +16,9 @@
 #include "hyvox/accuracy.h"
 #include "hyvox/errors.h"
 #include "hyvox/voxelize.h"
-#include "reference/reference_overlap.h"
 #include "support/test_mesh_loader.h"
 #include "support/triangle_soup.h"
+#include "support/voxel_checks.h"
 #include "tessellation/cpu_subdivide.h"
 #include "tessellation/displacement_map.h"
 
@@ -43,40 +43,22 @@ std::uint64_t countSum(const VoxelizeResult& r) {
     return sum;
 }
 
-// Voxels of `result` missing from `conservative` that no triangle touches within eps
-// (reference oracle, double precision): these would be real false voxels.
-std::vector<std::array<std::int32_t, 3>> falseBeyondTouch(const MeshView& mesh, const VoxelizeResult& result,
-                                                          const BitGrid& conservative, double eps) {
-    const auto extra = falseVoxels(result.occupancy, conservative);
-    if (extra.empty()) return {};
-    std::set<std::array<std::int32_t, 3>> unexplained(extra.begin(), extra.end());
-    const ValidatedMesh validated = validate(mesh);
-    for (std::uint32_t t : validated.usable) {
-        if (unexplained.empty()) break;
-        const auto tri = reference::voxelSpaceTriangle(validated, t, result.grid);
-        const auto range = reference::candidateVoxels(tri, result.grid.dims, eps);
-        if (range.empty()) continue;
-        for (auto it = unexplained.begin(); it != unexplained.end();) {
-            const auto& v = *it;
-            const bool inside = v[0] >= range.lo[0] && v[0] <= range.hi[0] && v[1] >= range.lo[1] &&
-                                v[1] <= range.hi[1] && v[2] >= range.lo[2] && v[2] <= range.hi[2];
-            if (inside && reference::overlapWithin(tri, {v[0], v[1], v[2]}, Mode::Conservative, eps).grown)
-                it = unexplained.erase(it);
-            else
-                ++it;
-        }
-    }
-    return {unexplained.begin(), unexplained.end()};
+// Voxels only `result` has, beyond the exact conservative set, that are not touches within
+// eps (the shared oracle check, double precision): these would be real false voxels. The
+// conservative voxels it lacks are the method's bias, measured apart.
+std::uint64_t falseBeyondTouch(const MeshView& mesh, const VoxelizeResult& result, const VoxelizeResult& conservative,
+                               double eps) {
+    return test::compareResults(mesh, Mode::Conservative, result, conservative, eps).unexplained_result_only;
 }
 
-BitGrid conservativeVoxels(const MeshView& mesh, VoxelizeOptions o) {
+VoxelizeResult conservativeVoxels(const MeshView& mesh, VoxelizeOptions o) {
     o.method = Method::Cpu;
     o.mode = Mode::Conservative;
-    return voxelize(mesh, o).occupancy;
+    return voxelize(mesh, o);
 }
 
-WatertightReport watertightness(const MeshView& mesh, const VoxelizeResult& r, const BitGrid& conservative) {
-    return rayMarchWatertightness(r.occupancy, conservative, validate(mesh), r.grid);
+WatertightReport watertightness(const MeshView& mesh, const VoxelizeResult& r, const VoxelizeResult& conservative) {
+    return rayMarchWatertightness(r.occupancy, conservative.occupancy, validate(mesh), r.grid);
 }
 
 // --- real meshes: bias, false voxels, watertightness, counts -------------------------------
@@ -99,18 +81,18 @@ class TessellationMeshes : public ::testing::TestWithParam<std::tuple<MeshCase, 
 TEST_P(TessellationMeshes, BiasFallsWithGammaAndNothingFalseOrLeaking) {
     const auto [mesh_case, resolution] = GetParam();
     const test::TestMesh mesh = test::loadTestMesh(test::meshPath(mesh_case.file));
-    const BitGrid conservative = conservativeVoxels(mesh.view(), optionsFor(Method::Cpu, resolution));
+    const VoxelizeResult conservative = conservativeVoxels(mesh.view(), optionsFor(Method::Cpu, resolution));
     double previous_bias = 1.0;
     for (double gamma : {1.0, 2.0, 4.0}) {
         const VoxelizeResult r = voxelize(mesh.view(), optionsFor(Method::Tessellation, resolution, gamma));
-        const AccuracyReport acc = compareToReference(r.occupancy, conservative);
+        const AccuracyReport acc = compareToReference(r.occupancy, conservative.occupancy);
         const WatertightReport rays = watertightness(mesh.view(), r, conservative);
         std::printf("%s @%d γ=%g: %llu points, %llu voxels, bias %.4f, false %llu, watertight %.6f (%llu rays fail), "
                     "%.0f ms\n",
                     mesh_case.file, resolution, gamma, (unsigned long long)r.stats.metrics.at("points"),
                     (unsigned long long)r.stats.voxel_count, acc.bias, (unsigned long long)acc.false_voxels,
                     rays.share(), (unsigned long long)(rays.rays - rays.passed), r.stats.metrics.at("pass1_gpu_ms"));
-        EXPECT_TRUE(falseBeyondTouch(mesh.view(), r, conservative, kTouchEps).empty())
+        EXPECT_EQ(falseBeyondTouch(mesh.view(), r, conservative, kTouchEps), 0u)
             << acc.false_voxels << " false voxels, not all touches";
         EXPECT_LE(acc.bias, gamma == 1.0 ? 0.20 : (gamma == 2.0 ? 0.12 : 0.05)) << "γ=" << gamma;
         EXPECT_LT(acc.bias, previous_bias) << "γ=" << gamma;
@@ -148,7 +130,7 @@ void expectGapFree(const test::TriangleSoup& soup, int resolution) {
     for (double gamma : {1.0, 2.0}) {
         const VoxelizeOptions o = optionsFor(Method::Tessellation, resolution, gamma);
         const VoxelizeResult r = voxelize(soup.view(), o);
-        const BitGrid conservative = conservativeVoxels(soup.view(), o);
+        const VoxelizeResult conservative = conservativeVoxels(soup.view(), o);
         const WatertightReport rays = watertightness(soup.view(), r, conservative);
         std::printf("%zu triangles @%d γ=%g: %g split triangles (n <= %g), %g points, watertight %.6f (%llu rays fail)\n",
                     soup.triangles.size() / 3, resolution, gamma, r.stats.metrics.at("split_triangles"),
@@ -162,7 +144,7 @@ void expectGapFree(const test::TriangleSoup& soup, int resolution) {
         }
         EXPECT_EQ(countSum(r), std::uint64_t(r.stats.metrics.at("points")));
         // Points on a triangle 512 voxels wide carry float rounding of ~3e-5 voxel.
-        EXPECT_TRUE(falseBeyondTouch(soup.view(), r, conservative, 1e-4).empty());
+        EXPECT_EQ(falseBeyondTouch(soup.view(), r, conservative, 1e-4), 0u);
     }
 }
 
@@ -400,11 +382,11 @@ TEST(TessellationApi, CountsAreDeterministicAndAccuracyIsReported) {
         ASSERT_EQ(a.counts[i].count, b.counts[i].count);
         ASSERT_TRUE(a.occupancy.test(a.counts[i].i, a.counts[i].j, a.counts[i].k));
     }
-    const BitGrid conservative = conservativeVoxels(mesh.view(), o);
-    const AccuracyReport acc = compareToReference(a.occupancy, conservative);
+    const VoxelizeResult conservative = conservativeVoxels(mesh.view(), o);
+    const AccuracyReport acc = compareToReference(a.occupancy, conservative.occupancy);
     EXPECT_DOUBLE_EQ(a.stats.metrics.at("bias"), acc.bias);
     EXPECT_EQ(a.stats.metrics.at("false_voxels"), double(acc.false_voxels));
-    EXPECT_EQ(a.stats.metrics.at("reference_voxels"), double(conservative.count()));
+    EXPECT_EQ(a.stats.metrics.at("reference_voxels"), double(conservative.occupancy.count()));
     EXPECT_EQ(a.stats.metrics.at("watertight_share"), watertightness(mesh.view(), a, conservative).share());
     // Binary only: the same bits without the count pool.
     o.tessellation.counts = false;

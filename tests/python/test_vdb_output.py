@@ -4,9 +4,9 @@
 import numpy as np
 import pytest
 
-import hyvox
+import pyopenvdb as vdb  # the test interpreter has it (tests/python/CMakeLists.txt): no skip
 
-vdb = pytest.importorskip("pyopenvdb")
+import hyvox
 
 
 def dense_from_vdb(grid, dims):
@@ -66,10 +66,9 @@ def test_write_vdb_is_atomic(tetrahedron, tmp_path):
 
 def test_multi_valued_counts_grid(bunny, tmp_path):
     vertices, triangles = bunny
-    try:
-        grid = hyvox.voxelize(vertices, triangles, resolution=48, method="tessellation")
-    except hyvox.BackendError as error:  # no GL 4.5 device here
-        pytest.skip(str(error))
+    # Mesa's llvmpipe is always there on the test machines, as for the native GL tests,
+    # which never skip: a BackendError here is a failure.
+    grid = hyvox.voxelize(vertices, triangles, resolution=48, method="tessellation")
     ijk, counts = grid.counts()
     assert ijk.dtype == np.int32 and counts.dtype == np.uint32 and len(ijk) == len(counts) > 0
     path = tmp_path / "tess.vdb"

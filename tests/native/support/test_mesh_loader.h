@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hyvox/mesh.h"
+#include "support/mesh_arrays.h"
 
 namespace hyvox::test {
 
@@ -15,14 +16,7 @@ struct TestMesh {
     std::string name;
     std::vector<float> positions;
     std::vector<std::uint32_t> triangles;
-    MeshView view() const {
-        MeshView v;
-        v.positions = positions.data();
-        v.vertex_count = positions.size() / 3;
-        v.triangles = triangles.data();
-        v.triangle_count = triangles.size() / 3;
-        return v;
-    }
+    MeshView view() const { return viewOf(positions, triangles); }
 };
 
 // Throws std::runtime_error on anything unexpected.

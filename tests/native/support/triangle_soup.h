@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hyvox/voxelize.h"
+#include "support/mesh_arrays.h"
 
 namespace hyvox::test {
 
@@ -32,14 +33,7 @@ struct TriangleSoup {
             add(corner(q[0]), corner(q[2]), corner(q[3]));
         }
     }
-    MeshView view() const {
-        MeshView v;
-        v.positions = positions.data();
-        v.vertex_count = positions.size() / 3;
-        v.triangles = triangles.data();
-        v.triangle_count = triangles.size() / 3;
-        return v;
-    }
+    MeshView view() const { return viewOf(positions, triangles); }
 };
 
 using VoxelList = std::vector<std::array<std::int32_t, 3>>;

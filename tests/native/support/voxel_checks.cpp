@@ -5,8 +5,10 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <mutex>
 #include <sstream>
+#include <stdexcept>
 #include <unordered_map>
 
 #include <tbb/blocked_range.h>
@@ -29,37 +31,38 @@ std::uint64_t key(const Voxel& v) {
 
 std::string Comparison::summary() const {
     std::ostringstream out;
-    out << "cpu " << cpu_voxels << " voxels (" << cpu_ms << " ms), reference " << reference_voxels << " ("
-        << reference_ms << " ms); disagreements: cpu-only " << cpu_only << ", reference-only " << reference_only
-        << ", of which touches " << touches << ", unexplained " << unexplained.size() << " (check " << check_ms
-        << " ms)";
+    out << "result " << result_voxels << " voxels";
+    if (result_ms > 0) out << " (" << result_ms << " ms)";
+    out << ", oracle " << oracle_voxels;
+    if (oracle_ms > 0) out << " (" << oracle_ms << " ms)";
+    out << "; disagreements: result-only " << result_only << ", oracle-only " << oracle_only << ", of which touches "
+        << touches << ", unexplained " << unexplained.size() << " (" << unexplained_result_only
+        << " result-only; check " << check_ms << " ms)";
+    for (std::size_t n = 0; n < std::min<std::size_t>(5, unexplained.size()); ++n)
+        out << (n ? " " : " e.g. ") << "(" << unexplained[n][0] << "," << unexplained[n][1] << "," << unexplained[n][2]
+            << ")";
     return out.str();
 }
 
-Comparison compareWithReference(const MeshView& mesh, VoxelizeOptions options, double eps) {
+Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult& result,
+                          const VoxelizeResult& oracle, double eps) {
+    // XOR-ing the bit words below is only meaningful (and in bounds) on the same grid.
+    if (result.grid.dims != oracle.grid.dims || result.grid.origin != oracle.grid.origin ||
+        result.grid.voxel_size != oracle.grid.voxel_size)
+        throw std::invalid_argument("compareResults: the two results are on different grids");
     Comparison cmp;
-    auto start = std::chrono::steady_clock::now();
-    options.method = Method::Cpu;
-    const VoxelizeResult cpu = voxelize(mesh, options);
-    cmp.cpu_ms = msSince(start);
-    start = std::chrono::steady_clock::now();
-    options.method = Method::Reference;
-    const VoxelizeResult ref = voxelize(mesh, options);
-    cmp.reference_ms = msSince(start);
-    cmp.cpu_voxels = cpu.occupancy.count();
-    cmp.reference_voxels = ref.occupancy.count();
-    start = std::chrono::steady_clock::now();
+    const auto start = std::chrono::steady_clock::now();
+    cmp.result_voxels = result.occupancy.count();
+    cmp.oracle_voxels = oracle.occupancy.count();
 
     // The disagreements, as a bit grid (for lookups) and a list.
-    BitGrid diff(cpu.grid.dims);
-    for (std::size_t w = 0; w < diff.wordCount(); ++w) diff.data()[w] = cpu.occupancy.data()[w] ^ ref.occupancy.data()[w];
+    BitGrid diff(result.grid.dims);
+    for (std::size_t w = 0; w < diff.wordCount(); ++w)
+        diff.data()[w] = result.occupancy.data()[w] ^ oracle.occupancy.data()[w];
     std::vector<Voxel> voxels;
     for (const auto& c : diff.coords()) {
         voxels.push_back({c[0], c[1], c[2]});
-        if (cpu.occupancy.test(c[0], c[1], c[2]))
-            ++cmp.cpu_only;
-        else
-            ++cmp.reference_only;
+        ++(result.occupancy.test(c[0], c[1], c[2]) ? cmp.result_only : cmp.oracle_only);
     }
     if (voxels.empty()) {
         cmp.check_ms = msSince(start);
@@ -73,7 +76,7 @@ Comparison compareWithReference(const MeshView& mesh, VoxelizeOptions options, d
     for (auto& s : shrunk) s = false;
 
     const ValidatedMesh validated = validate(mesh);
-    const GridSpec& grid = cpu.grid;
+    const GridSpec& grid = result.grid;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, validated.usable.size(), 512),
                       [&](const tbb::blocked_range<std::size_t>& chunk) {
                           for (std::size_t t = chunk.begin(); t != chunk.end(); ++t) {
@@ -85,19 +88,42 @@ Comparison compareWithReference(const MeshView& mesh, VoxelizeOptions options, d
                                       for (int k = range.lo[2]; k <= range.hi[2]; ++k) {
                                           if (!diff.test(i, j, k)) continue;
                                           const std::size_t n = index.at(key({i, j, k}));
-                                          const auto touch = reference::overlapWithin(tri, {i, j, k}, options.mode, eps);
+                                          const auto touch = reference::overlapWithin(tri, {i, j, k}, mode, eps);
                                           if (touch.grown) grown[n] = true;
                                           if (touch.shrunk) shrunk[n] = true;
                                       }
                           }
                       });
     for (std::size_t n = 0; n < voxels.size(); ++n) {
-        if (grown[n] && !shrunk[n])
+        if (grown[n] && !shrunk[n]) {
             ++cmp.touches;
-        else
+        } else {
             cmp.unexplained.push_back(voxels[n]);
+            if (result.occupancy.test(voxels[n][0], voxels[n][1], voxels[n][2])) ++cmp.unexplained_result_only;
+        }
     }
     cmp.check_ms = msSince(start);
+    return cmp;
+}
+
+Comparison compareWithReference(const MeshView& mesh, const VoxelizeResult& result, VoxelizeOptions options,
+                                double eps) {
+    const auto start = std::chrono::steady_clock::now();
+    options.method = Method::Reference;
+    const VoxelizeResult ref = voxelize(mesh, options);
+    const double reference_ms = msSince(start);
+    Comparison cmp = compareResults(mesh, options.mode, result, ref, eps);
+    cmp.oracle_ms = reference_ms;
+    return cmp;
+}
+
+Comparison compareWithReference(const MeshView& mesh, VoxelizeOptions options, double eps) {
+    const auto start = std::chrono::steady_clock::now();
+    options.method = Method::Cpu;
+    const VoxelizeResult cpu = voxelize(mesh, options);
+    const double cpu_ms = msSince(start);
+    Comparison cmp = compareWithReference(mesh, cpu, options, eps);
+    cmp.result_ms = cpu_ms;
     return cmp;
 }
 
@@ -167,6 +193,94 @@ std::uint64_t countHoles(const MeshView& mesh, const VoxelizeResult& result, std
                       });
     if (samples) *samples = total;
     return holes;
+}
+
+// inside[(i*dy + j)*dz + k]: is the point (i+1/2, j+1/2+dy', k+1/2+dz') inside the mesh, by the
+// parity of a ray along +x? The tiny irrational offsets keep the rays off mesh edges and
+// vertices; they move the point by far less than a voxel, so an empty voxel's answer is
+// that of its centre (a surface passing between them would have marked the voxel).
+std::vector<char> insideByParity(const MeshView& mesh, const GridSpec& grid) {
+    const int nx = grid.dims[0], ny = grid.dims[1], nz = grid.dims[2];
+    const double oy = 0.5 + 1.1e-6 * std::sqrt(2.0), oz = 0.5 + 0.7e-6 * std::sqrt(3.0);
+    std::vector<std::vector<double>> crossings(std::size_t(ny) * nz);
+    const ValidatedMesh v = validate(mesh);
+    for (std::uint32_t t : v.usable) {
+        double p[3][3];
+        for (int c = 0; c < 3; ++c) {
+            const auto q = v.vertex(t, c);
+            for (int a = 0; a < 3; ++a) p[c][a] = (double(q[a]) - grid.origin[a]) / grid.voxel_size;
+        }
+        const double ymin = std::min({p[0][1], p[1][1], p[2][1]}), ymax = std::max({p[0][1], p[1][1], p[2][1]});
+        const double zmin = std::min({p[0][2], p[1][2], p[2][2]}), zmax = std::max({p[0][2], p[1][2], p[2][2]});
+        for (int j = std::max(0, int(std::floor(ymin - oy))); j <= std::min(ny - 1, int(std::ceil(ymax - oy))); ++j)
+            for (int k = std::max(0, int(std::floor(zmin - oz))); k <= std::min(nz - 1, int(std::ceil(zmax - oz))); ++k) {
+                const double y = j + oy, z = k + oz;
+                // Point in the projected (y,z) triangle: all edge functions of one sign.
+                double e[3];
+                for (int c = 0; c < 3; ++c) {
+                    const double* a = p[c];
+                    const double* b = p[(c + 1) % 3];
+                    e[c] = (b[1] - a[1]) * (z - a[2]) - (b[2] - a[2]) * (y - a[1]);
+                }
+                const bool in = (e[0] > 0 && e[1] > 0 && e[2] > 0) || (e[0] < 0 && e[1] < 0 && e[2] < 0);
+                if (!in) continue;
+                const double area = e[0] + e[1] + e[2];
+                // Barycentric interpolation of x at the hit.
+                const double x = (e[1] * p[0][0] + e[2] * p[1][0] + e[0] * p[2][0]) / area;
+                crossings[std::size_t(j) * nz + k].push_back(x);
+            }
+    }
+    std::vector<char> inside(std::size_t(nx) * ny * nz, 0);
+    for (int j = 0; j < ny; ++j)
+        for (int k = 0; k < nz; ++k) {
+            auto& xs = crossings[std::size_t(j) * nz + k];
+            std::sort(xs.begin(), xs.end());
+            std::size_t passed = 0;
+            for (int i = 0; i < nx; ++i) {
+                while (passed < xs.size() && xs[passed] < i + 0.5) ++passed;
+                inside[(std::size_t(i) * ny + j) * nz + k] = char(passed % 2);
+            }
+        }
+    return inside;
+}
+
+Separation floodFromBoundary(const BitGrid& bits, const std::vector<char>& inside) {
+    const auto d = bits.dims();
+    auto id = [&](int i, int j, int k) { return (std::size_t(i) * d[1] + j) * d[2] + k; };
+    const std::size_t count = std::size_t(d[0]) * d[1] * d[2];
+    std::vector<char> seen(count, 0);
+    std::deque<std::array<int, 3>> queue;
+    for (int i = 0; i < d[0]; ++i)
+        for (int j = 0; j < d[1]; ++j)
+            for (int k = 0; k < d[2]; ++k) {
+                const bool boundary = i == 0 || j == 0 || k == 0 || i == d[0] - 1 || j == d[1] - 1 || k == d[2] - 1;
+                if (boundary && !bits.test(i, j, k)) {
+                    seen[id(i, j, k)] = 1;
+                    queue.push_back({i, j, k});
+                }
+            }
+    const int steps[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    while (!queue.empty()) {
+        const auto p = queue.front();
+        queue.pop_front();
+        for (const auto& s : steps) {
+            const int i = p[0] + s[0], j = p[1] + s[1], k = p[2] + s[2];
+            if (!bits.inside(i, j, k) || seen[id(i, j, k)] || bits.test(i, j, k)) continue;
+            seen[id(i, j, k)] = 1;
+            queue.push_back({i, j, k});
+        }
+    }
+    Separation out;
+    for (int i = 0; i < d[0]; ++i)
+        for (int j = 0; j < d[1]; ++j)
+            for (int k = 0; k < d[2]; ++k) {
+                if (bits.test(i, j, k)) continue;
+                const bool in = inside[id(i, j, k)];
+                out.reached += seen[id(i, j, k)];
+                out.inside_empty += in;
+                out.inside_reached += in && seen[id(i, j, k)];
+            }
+    return out;
 }
 
 }  // namespace hyvox::test
