@@ -115,7 +115,9 @@ def step():
             print("ticks:", [round((b - a) * 1000) for a, b in zip(state["ticks"], state["ticks"][1:])], flush=True)
             print("progress samples:", [round(p, 3) for p in state["progress"]], flush=True)
             print(f"longest main-loop gap while voxelizing: {state['max_gap'] * 1000:.0f} ms", flush=True)
-            if state["max_gap"] > 0.5:
+            # A run on the main thread would block it for the whole run (seconds); the bound
+            # leaves room for a loaded CI machine without hiding a real freeze.
+            if state["max_gap"] > 0.9:
                 fail("the UI stalled while the worker ran")
             window = bpy.context.window_manager.windows[0]
             window.event_simulate("ESC", "PRESS")
