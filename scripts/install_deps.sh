@@ -9,7 +9,6 @@ packages=(
   libopenvdb-dev libboost-dev libimath-dev libtbb-dev zlib1g-dev   # OpenVDB headers need Boost
   libassimp-dev libpng-dev                                          # mesh and image reading
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri              # headless GL (Mesa llvmpipe)
-  libglm-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-openvdb
   libgtest-dev libbenchmark-dev
   blender xvfb xauth                                                # add-on tests (modal path in a window)
