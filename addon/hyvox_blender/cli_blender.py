@@ -85,6 +85,9 @@ def main(argv):
         kwargs["separate"] = True
     if args.frames:
         frames = parse_frame_range(args.frames)
+        if frames != list(range(frames[0], frames[-1] + 1)):
+            # The operator voxelizes every frame from start to end; a step would be lost.
+            raise SystemExit("hyvox: --frames takes START-END; a frame step is not supported")
         kwargs.update(frame_start=frames[0], frame_end=frames[-1])
 
     bpy.ops.object.hyvox_voxelize(**kwargs)  # RuntimeError with the report on failure

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Shared pieces of the headless add-on tests: enabling the add-on from a build, scene
-set-up, a small PLY reader, and reading .vdb files back with pyopenvdb."""
+set-up, and reading .vdb files back with pyopenvdb."""
 import os
 import sys
 import tempfile
@@ -44,38 +44,6 @@ def clear_scene():
         scene.hyvox.property_unset(prop)
 
 
-def read_ply(path):
-    """(vertices float32 (N,3), faces int32 (M,3)) of a binary little-endian PLY whose
-    vertices are x y z floats first and whose faces are uchar-count int lists of 3."""
-    with open(path, "rb") as f:
-        header = []
-        while True:
-            line = f.readline().decode("ascii").strip()
-            header.append(line)
-            if line == "end_header":
-                break
-        data = f.read()
-    counts, vertex_props = {}, []
-    element = None
-    for line in header:
-        parts = line.split()
-        if parts[0] == "element":
-            element = parts[1]
-            counts[element] = int(parts[2])
-        elif parts[0] == "property" and element == "vertex":
-            vertex_props.append(parts[1])
-    assert "format binary_little_endian 1.0" in header, "only binary little-endian PLY here"
-    sizes = {"float": 4, "float32": 4, "double": 8, "uchar": 1, "int": 4, "uint8": 1}
-    stride = sum(sizes[p] for p in vertex_props)
-    nv, nf = counts["vertex"], counts["face"]
-    raw = np.frombuffer(data[:nv * stride], dtype=np.uint8).reshape(nv, stride)
-    vertices = raw[:, :12].copy().view("<f4").reshape(nv, 3)
-    faces = np.frombuffer(data[nv * stride:nv * stride + nf * 13], dtype=np.uint8).reshape(nf, 13)
-    assert (faces[:, 0] == 3).all(), "only triangle faces here"
-    triangles = faces[:, 1:].copy().view("<i4").reshape(nf, 3)
-    return vertices, triangles
-
-
 def mesh_object(name, vertices, faces, location=(0, 0, 0)):
     mesh = bpy.data.meshes.new(name)
     mesh.vertices.add(len(vertices))
@@ -93,9 +61,13 @@ def mesh_object(name, vertices, faces, location=(0, 0, 0)):
     return obj
 
 
+def bunny_arrays():
+    """(vertices, triangles) of the Stanford bunny as in the file (hyvox.read_mesh)."""
+    return hyvox_module().read_mesh(os.path.join(MESH_DIR, "bunny_stanford_69k.ply"))
+
+
 def bunny():
-    vertices, triangles = read_ply(os.path.join(MESH_DIR, "bunny_stanford_69k.ply"))
-    return mesh_object("Bunny", vertices, triangles)
+    return mesh_object("Bunny", *bunny_arrays())
 
 
 def cube(name="Cube", size=2.0, location=(0, 0, 0)):

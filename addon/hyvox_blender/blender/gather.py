@@ -10,14 +10,6 @@ from ..core.settings import VoxelizeSettings
 from .properties import preferences
 
 
-def _picker(scene_settings, op):
-    def pick(name):
-        if op is not None and op.properties.is_property_set(name):
-            return getattr(op, name)
-        return getattr(scene_settings, name)
-    return pick
-
-
 def _op_set(op, name) -> bool:
     return op is not None and op.properties.is_property_set(name)
 
@@ -25,7 +17,9 @@ def _op_set(op, name) -> bool:
 def gather(context, op=None):
     """(settings, output folder, half-voxel override) for this run."""
     scene_settings = context.scene.hyvox
-    pick = _picker(scene_settings, op)
+
+    def pick(name):
+        return getattr(op if _op_set(op, name) else scene_settings, name)
 
     if _op_set(op, "voxel_size") and op.voxel_size > 0:
         voxel_size = op.voxel_size

@@ -3,7 +3,6 @@
 sequence), an object named "<source>_voxels" carrying the half-voxel correction, a
 Principled Volume material reading `density`. Re-running replaces the previous result of
 the same source and keeps the material the artist may have tweaked."""
-import os
 from typing import Dict, List
 
 import bpy
@@ -109,6 +108,3 @@ def import_results(context, results: Dict[str, GroupResult], alignment_override:
         created.append(obj)
     return created
 
-
-def result_files_exist(results: Dict[str, GroupResult]) -> bool:
-    return all(os.path.exists(p) for r in results.values() for p in r.files)

@@ -2,7 +2,6 @@
 """The one place that talks to the compiled hyvox module: finding it, choosing the
 method, calling voxelize with a cancel token, turning its errors into HyvoxError."""
 import importlib
-import inspect
 import threading
 from typing import Optional
 
@@ -37,44 +36,29 @@ def load_module():
     raise ModuleMissingError("the compiled hyvox module was not found (" + "; ".join(errors) + ")")
 
 
-def set_module(module) -> None:
-    """Use this module instead of searching (tests, pipelines with their own build)."""
-    global _module
-    _module = module
-    _gl_probe.clear()
-
-
-def _is_software(device) -> bool:
-    if isinstance(device, dict):
-        return bool(device.get("software", True))
-    return bool(getattr(device, "software", True))
-
-
 def gl_available(module, gl_device: str = "") -> bool:
     """Whether a hardware GL device can run the GL methods here. Mesa's llvmpipe runs them
     too, but about 8x slower than the CPU method (bunny at 256: 330 vs 40 ms), so "auto"
-    only picks a GL method for hardware. Needs the module to list its EGL devices; without
-    that list the answer is no (explicit GL methods still work)."""
+    only picks a GL method for hardware."""
     with _lock:
         if gl_device in _gl_probe:
             return _gl_probe[gl_device]
         ok = False
-        lister = getattr(module, "gl_devices", None)
-        if lister is not None and gl_device != "software":
+        if gl_device != "software":
             try:
-                devices = list(lister())
-                if gl_device.isdigit():
-                    devices = [d for i, d in enumerate(devices) if str(i) == gl_device]
-                ok = any(not _is_software(d) for d in devices)
-            except Exception:
-                ok = False
+                devices = module.gl_devices()
+            except Exception:  # no EGL here at all
+                devices = []
+            if gl_device.isdigit():
+                devices = [d for d in devices if d["index"] == int(gl_device)]
+            ok = any(not d["software"] for d in devices)
         if ok:
             # The device exists; make sure a context and the shaders really work here.
             tri_v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=np.float32)
             tri_t = np.array([[0, 1, 2]], dtype=np.uint32)
             try:
                 module.voxelize(tri_v, tri_t, resolution=4, method="hybrid",
-                                **_gl_kwargs(module, gl_device))
+                                gl_device=gl_device or None)
             except Exception:
                 ok = False
         _gl_probe[gl_device] = ok
@@ -87,35 +71,16 @@ def resolve_method(module, settings: VoxelizeSettings) -> str:
     return "hybrid" if gl_available(module, settings.gl_device) else "cpu"
 
 
-def _accepts(module, name: str) -> bool:
-    """Only pass options the module knows, so the add-on works with builds that predate
-    an option (the signature when Python can read it, else the docstring)."""
-    try:
-        return name in inspect.signature(module.voxelize).parameters
-    except (TypeError, ValueError):
-        doc = getattr(module.voxelize, "__doc__", "") or ""
-        return name + "=" in doc or name + ":" in doc
-
-
-def _gl_kwargs(module, gl_device: str) -> dict:
-    return {"gl_device": gl_device} if gl_device and _accepts(module, "gl_device") else {}
-
-
 def make_token(module):
-    """A fresh cancel/progress token, or None when the module has none."""
-    cls = getattr(module, "CancelToken", None)
-    return cls() if cls is not None else None
+    """A fresh cancel/progress token."""
+    return module.CancelToken()
 
 
 def token_progress(token) -> float:
     """0..1 progress of the running call (the token counts percent, -1 before start)."""
     if token is None:
         return 0.0
-    try:
-        percent = float(getattr(token, "progress", -1))
-    except (TypeError, ValueError):
-        return 0.0
-    return min(max(percent, 0.0) / 100.0, 1.0)
+    return min(max(float(token.progress), 0.0) / 100.0, 1.0)
 
 
 def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: VoxelizeSettings,
@@ -139,16 +104,15 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: Voxe
         "tess_gamma": settings.tessellation_gamma if method == "tessellation" else None,
     }
     for name, value in optional.items():
-        if value is not None and _accepts(module, name):
+        if value is not None:
             kwargs[name] = value
     kwargs.update(settings.extra)
     if token is not None:
         kwargs["cancel"] = token
-    cancelled = getattr(module, "Cancelled", None)
     try:
         return module.voxelize(vertices, triangles, **kwargs)
     except Exception as exc:  # every native failure becomes a report, never a crash
-        if cancelled is not None and isinstance(exc, cancelled):
+        if isinstance(exc, module.Cancelled):
             raise CancelledError("voxelization cancelled") from exc
         if isinstance(exc, MemoryError):
             raise HyvoxError("out of memory: lower the resolution or raise the memory budget") from exc

@@ -245,16 +245,8 @@ class Pipeline:
             result.voxel_size = float(grid.voxel_size)
             result.origin = tuple(float(x) for x in grid.origin)
             result.dims = tuple(int(x) for x in grid.dims)
-            stats = dict(getattr(grid, "stats", {}) or {})
-            result.stats = stats
-            result.voxel_counts.append(int(stats.get("voxel_count", _count(grid))))
+            result.stats = dict(grid.stats)
+            result.voxel_counts.append(int(grid.voxel_count))
             result.triangles = int(len(mesh.triangles))
         self._group_index = len(meshes)
 
-
-def _count(grid) -> int:
-    for name in ("voxel_count", "count"):
-        value = getattr(grid, name, None)
-        if value is not None:
-            return int(value() if callable(value) else value)
-    return int(len(grid.coords()))

@@ -7,7 +7,6 @@ from typing import List, Optional
 from .errors import SettingsError
 
 METHODS = ("auto", "hybrid", "triangle", "fragment", "tessellation", "cpu", "reference")
-GL_METHODS = ("hybrid", "triangle", "fragment", "tessellation")
 MODES = ("conservative", "thin")
 
 MIN_RESOLUTION = 1
