@@ -54,7 +54,9 @@ int main(int argc, char** argv) {
         else meshes.push_back(arg);
     }
     if (meshes.empty()) {
-        std::fprintf(stderr, "usage: bench_cpu_voxelize MESH... [--res N]... [--mode M] [--method M] [--repeat R]\n");
+        std::fprintf(stderr,
+                     "usage: bench_cpu_voxelize MESH... [--res N]... [--mode M] [--method M] [--repeat R] "
+                     "[--threads T]\n");
         return 2;
     }
     if (resolutions.empty()) resolutions = {256, 512};

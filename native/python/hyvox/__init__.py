@@ -52,14 +52,18 @@ def _is_float32_or_64(dtype: np.dtype) -> bool:
     return dtype.kind == "f" and dtype.itemsize in (4, 8)  # either byte order
 
 
-def _as_vertices(vertices) -> np.ndarray:
-    array = np.asarray(vertices)
+def _as_float_rows(values, name: str, width: int) -> np.ndarray:
+    array = np.asarray(values)
     if not _is_float32_or_64(array.dtype):
-        raise ValueError(f"vertices must be float32 or float64, got dtype {array.dtype}")
-    if array.ndim != 2 or array.shape[1] != 3:
-        raise ValueError(f"vertices must have shape (N, 3), got {array.shape}")
+        raise ValueError(f"{name} must be float32 or float64, got dtype {array.dtype}")
+    if array.ndim != 2 or array.shape[1] != width:
+        raise ValueError(f"{name} must have shape (N, {width}), got {array.shape}")
+    return np.ascontiguousarray(array, dtype=np.float32)
+
+
+def _as_vertices(vertices) -> np.ndarray:
     with np.errstate(over="ignore"):  # values beyond float32 become inf: rejected natively as non-finite
-        return np.ascontiguousarray(array, dtype=np.float32)
+        return _as_float_rows(vertices, "vertices", 3)
 
 
 def _as_triangles(triangles) -> np.ndarray:
@@ -78,14 +82,7 @@ def _as_triangles(triangles) -> np.ndarray:
 
 
 def _as_vertex_rows(values, name: str, width: int) -> Optional[np.ndarray]:
-    if values is None:
-        return None
-    array = np.asarray(values)
-    if not _is_float32_or_64(array.dtype):
-        raise ValueError(f"{name} must be float32 or float64, got dtype {array.dtype}")
-    if array.ndim != 2 or array.shape[1] != width:
-        raise ValueError(f"{name} must have shape (N, {width}), got {array.shape}")
-    return np.ascontiguousarray(array, dtype=np.float32)
+    return None if values is None else _as_float_rows(values, name, width)
 
 
 def voxelize(

@@ -61,12 +61,22 @@ openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid) {
     return transform;
 }
 
-openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const BitGrid& occupancy) {
+namespace {
+
+// An empty fog-volume float grid (background 0) named `name`, on grid's transform.
+openvdb::FloatGrid::Ptr makeFogGrid(const char* name, const GridSpec& grid) {
     initializeOpenVdb();
     auto result = openvdb::FloatGrid::create(0.0f);
-    result->setName("density");
+    result->setName(name);
     result->setGridClass(openvdb::GRID_FOG_VOLUME);
     result->setTransform(makeTransform(grid));
+    return result;
+}
+
+}  // namespace
+
+openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const BitGrid& occupancy) {
+    auto result = makeFogGrid("density", grid);
 
     const auto bricks = occupancy.bricks();
     const std::size_t brick_count = occupancy.brickCount();
@@ -100,22 +110,14 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const BitGrid& occ
 }
 
 openvdb::FloatGrid::Ptr makeDensityGridVoxelByVoxel(const GridSpec& grid, const BitGrid& occupancy) {
-    initializeOpenVdb();
-    auto result = openvdb::FloatGrid::create(0.0f);
-    result->setName("density");
-    result->setGridClass(openvdb::GRID_FOG_VOLUME);
-    result->setTransform(makeTransform(grid));
+    auto result = makeFogGrid("density", grid);
     auto accessor = result->getAccessor();
     for (const auto& ijk : occupancy.coords()) accessor.setValueOn(openvdb::Coord(ijk[0], ijk[1], ijk[2]), 1.0f);
     return result;
 }
 
 openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<VoxelCount>& counts) {
-    initializeOpenVdb();
-    auto result = openvdb::FloatGrid::create(0.0f);
-    result->setName("count");
-    result->setGridClass(openvdb::GRID_FOG_VOLUME);
-    result->setTransform(makeTransform(grid));
+    auto result = makeFogGrid("count", grid);
     auto accessor = result->getAccessor();
     for (const VoxelCount& c : counts) accessor.setValueOn(openvdb::Coord(c.i, c.j, c.k), float(c.count));
     return result;
