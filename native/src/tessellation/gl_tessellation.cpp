@@ -11,6 +11,7 @@
 #include "gl/gl_objects.h"
 #include "gl/gl_worker.h"
 #include "gl/shader_library.h"
+#include "hybrid/gl_voxelizer.h"
 #include "hyvox/errors.h"
 #include "tessellation/bindings.h"
 
@@ -63,9 +64,9 @@ struct PatchLists {
 Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const PatchLists& lists, const gl::Buffer& bits,
                  const gl::Buffer& counters, const gl::Buffer& table, const gl::Buffer& pool, std::uint32_t pool_blocks,
                  bool prefilled, bool software, GpuTessellationOutput& out) {
-    // llvmpipe's GL_TIME_ELAPSED is unreliable: there (and with HYVOX_GL_WALL_TIMING, as for
-    // the hybrid method) each pass is timed on the wall clock around glFinish instead.
-    const bool wall_timing = software || std::getenv("HYVOX_GL_WALL_TIMING") != nullptr;
+    // llvmpipe's GL_TIME_ELAPSED is unreliable: there (and with HYVOX_GL_WALL_TIMING) each
+    // pass is timed on the wall clock around glFinish instead, by the hybrid method's rule.
+    const bool wall_timing = hybrid::GlTuning::forDevice(software).wall_timing;
     // Mesa's llvmpipe (22.3) assembles patches of a plain glDrawArrays(GL_PATCHES) wrongly
     // beyond a few dozen patches per draw (gl_VertexID no longer matches the patch), so
     // there each patch is an instance of 3 vertices instead; the vertex shader reads both.

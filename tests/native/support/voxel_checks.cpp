@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <deque>
 #include <mutex>
@@ -14,14 +13,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/stopwatch.h"
 #include "reference/reference_overlap.h"
 
 namespace hyvox::test {
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 std::uint64_t key(const Voxel& v) {
     return (std::uint64_t(std::uint32_t(v[0])) << 42) | (std::uint64_t(std::uint32_t(v[1])) << 21) | std::uint32_t(v[2]);
@@ -51,7 +47,7 @@ Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult&
         result.grid.voxel_size != oracle.grid.voxel_size)
         throw std::invalid_argument("compareResults: the two results are on different grids");
     Comparison cmp;
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch watch;
     cmp.result_voxels = result.occupancy.count();
     cmp.oracle_voxels = oracle.occupancy.count();
 
@@ -65,7 +61,7 @@ Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult&
         ++(result.occupancy.test(c[0], c[1], c[2]) ? cmp.result_only : cmp.oracle_only);
     }
     if (voxels.empty()) {
-        cmp.check_ms = msSince(start);
+        cmp.check_ms = watch.elapsedMs();
         return cmp;
     }
 
@@ -102,26 +98,26 @@ Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult&
             if (result.occupancy.test(voxels[n][0], voxels[n][1], voxels[n][2])) ++cmp.unexplained_result_only;
         }
     }
-    cmp.check_ms = msSince(start);
+    cmp.check_ms = watch.elapsedMs();
     return cmp;
 }
 
 Comparison compareWithReference(const MeshView& mesh, const VoxelizeResult& result, VoxelizeOptions options,
                                 double eps) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch watch;
     options.method = Method::Reference;
     const VoxelizeResult ref = voxelize(mesh, options);
-    const double reference_ms = msSince(start);
+    const double reference_ms = watch.elapsedMs();
     Comparison cmp = compareResults(mesh, options.mode, result, ref, eps);
     cmp.oracle_ms = reference_ms;
     return cmp;
 }
 
 Comparison compareWithReference(const MeshView& mesh, VoxelizeOptions options, double eps) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch watch;
     options.method = Method::Cpu;
     const VoxelizeResult cpu = voxelize(mesh, options);
-    const double cpu_ms = msSince(start);
+    const double cpu_ms = watch.elapsedMs();
     Comparison cmp = compareWithReference(mesh, cpu, options, eps);
     cmp.result_ms = cpu_ms;
     return cmp;
