@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// One bit per voxel in OpenVDB's leaf layout (hyvox/bit_grid.h), read as uint words:
-// brick b = ((i>>3)*bricks_y + (j>>3))*bricks_z + (k>>3), bit n = (i&7)<<6 | (j&7)<<3 | (k&7),
-// word b*16 + (n>>5), bit n&31. A run writes one tile of whole bricks along x (slab).
+// One bit per voxel in OpenVDB's leaf layout (common/leaf_layout.glsl). A run writes one
+// tile of whole bricks along x (slab); bricks are counted from the tile's first one.
 // With HYVOX_VOXEL_LIST the bit grid doubles as the per-voxel mutex of section 3.5: only
 // the invocation that flips a bit from 0 to 1 appends the voxel to the list.
 #include "common/bindings.glsl"
+#include "common/leaf_layout.glsl"
 
 layout(std430, binding = HYVOX_SSBO_BITS) restrict buffer Bits { uint bits[]; };
 layout(location = HYVOX_LOC_GRID_DIMS) uniform ivec3 gridDims;
@@ -25,11 +25,10 @@ ivec3 clipHigh() { return ivec3(slabX.y - 1, gridDims.y - 1, gridDims.z - 1); }
 
 // p: unswizzled global voxel inside the tile.
 void setVoxel(ivec3 p) {
-    const uvec3 bricks = uvec3((gridDims + 7) >> 3);
-    const uint brick = (uint((p.x - slabX.x) >> 3) * bricks.y + uint(p.y >> 3)) * bricks.z + uint(p.z >> 3);
-    const uint n = uint(((p.x & 7) << 6) | ((p.y & 7) << 3) | (p.z & 7));
-    const uint word = brick * 16u + (n >> 5u);
-    const uint mask = 1u << (n & 31u);
+    const uvec3 inTile = uvec3(p - ivec3(slabX.x, 0, 0));  // slabX.x is a multiple of 8
+    const uint n = leafBit(inTile);
+    const uint word = leafWord(leafBrick(inTile, leafBrickCounts(gridDims)), n);
+    const uint mask = leafMask(n);
 #if HYVOX_VOXEL_LIST
     const uint before = atomicOr(bits[word], mask);
     if ((before & mask) == 0u) {

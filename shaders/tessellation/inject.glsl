@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Section 3.2's point injection, shared by the geometry shader (one point per micro-triangle)
 // and the compute shader (one point per triangle the tessellator would leave whole): a bit
-// per voxel (atomicOr, OpenVDB leaf layout of hyvox/bit_grid.h) and, with COUNTS, the number
-// of points per voxel. Integer atomic adds commute, so counts are the same on every run.
+// per voxel (atomicOr, common/leaf_layout.glsl) and, with COUNTS, the number of points per
+// voxel. Integer atomic adds commute, so counts are the same on every run.
 // Counts live in 512-entry blocks handed out to 8³ bricks on first touch, so only bricks
 // the surface reaches cost memory.
 #include "tessellation/bindings.glsl"
+#include "common/leaf_layout.glsl"
 
 layout(location = HYVOX_LOC_GRID_DIMS) uniform ivec3 gridDims;
 layout(std430, binding = HYVOX_SSBO_BITS) coherent restrict buffer Bits { uint bits[]; };
@@ -26,10 +27,9 @@ void injectPoint(ivec3 origin, vec3 local) {
         return;
     }
     const uvec3 v = uvec3(voxel);
-    const uvec3 bricks = (uvec3(gridDims) + 7u) >> 3u;
-    const uint brick = ((v.x >> 3u) * bricks.y + (v.y >> 3u)) * bricks.z + (v.z >> 3u);
-    const uint n = ((v.x & 7u) << 6u) | ((v.y & 7u) << 3u) | (v.z & 7u);
-    const uint word = brick * 16u + (n >> 5u), mask = 1u << (n & 31u);
+    const uint brick = leafBrick(v, leafBrickCounts(gridDims));
+    const uint n = leafBit(v);
+    const uint word = leafWord(brick, n), mask = leafMask(n);
     // Dense meshes put many points in one voxel: skip the atomic when the bit is already set.
     if ((bits[word] & mask) == 0u) atomicOr(bits[word], mask);
 #ifdef COUNTS

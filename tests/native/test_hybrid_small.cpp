@@ -14,9 +14,10 @@
 
 #include "hybrid/gl_backend_internal.h"
 #include "hyvox/voxelize.h"
+#include "support/scoped_env.h"
 #include "support/test_mesh_loader.h"
-#include "support/voxel_checks.h"
 #include "support/triangle_soup.h"
+#include "support/voxel_checks.h"
 
 namespace hyvox {
 namespace {
@@ -40,25 +41,7 @@ VoxelizeOptions unitGrid(Method method, Mode mode = Mode::Conservative) {
     return o;
 }
 
-class ScopedEnv {
-public:
-    ScopedEnv(const char* name, const std::string& value) : name_(name) {
-        if (const char* old = std::getenv(name))
-            old_ = old, had_ = true;
-        setenv(name, value.c_str(), 1);
-    }
-    ~ScopedEnv() {
-        if (had_)
-            setenv(name_, old_.c_str(), 1);
-        else
-            unsetenv(name_);
-    }
-
-private:
-    const char* name_;
-    std::string old_;
-    bool had_ = false;
-};
+using test::ScopedEnv;
 
 TEST(GlSmall, FaceOnVoxelPlaneMarksBothSides) {
     // A square in the plane z = 4 from (1,1) to (3,3): conservative marks columns x,y in

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <cstdio>
 #include <map>
 #include <ostream>
@@ -16,6 +17,7 @@
 #include "hyvox/accuracy.h"
 #include "hyvox/errors.h"
 #include "hyvox/voxelize.h"
+#include "support/scoped_env.h"
 #include "support/test_mesh_loader.h"
 #include "support/triangle_soup.h"
 #include "support/voxel_checks.h"
@@ -465,6 +467,30 @@ TEST(TessellationApi, BadOptionsAreClearErrors) {
     MeshView no_uvs = square.view();
     no_uvs.uvs = nullptr;
     EXPECT_THROW(voxelize(no_uvs, o), InvalidInput);
+}
+
+TEST(TessellationApi, ShaderFolderFromTheEnvironmentIsUsed) {
+    // HYVOX_SHADER_DIR reaches this method too: a copy of shaders/ whose point injection does
+    // not compile gives a BackendError naming that file, and the unbroken copy on disk gives
+    // the embedded shaders' voxels.
+    const FlatSquare square;
+    const VoxelizeOptions o = optionsFor(Method::Tessellation, 32, 1.0);
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "hyvox_broken_tess_shaders";
+    std::filesystem::remove_all(dir);
+    std::filesystem::copy(HYVOX_SOURCE_SHADERS, dir, std::filesystem::copy_options::recursive);
+    std::ofstream(dir / "tessellation" / "inject.glsl", std::ios::app) << "\nthis is not glsl;\n";
+    {
+        test::ScopedEnv broken("HYVOX_SHADER_DIR", dir.string());
+        try {
+            voxelize(square.view(), o);
+            FAIL() << "expected BackendError";
+        } catch (const BackendError& e) {
+            EXPECT_NE(std::string(e.what()).find("tessellation/inject.glsl"), std::string::npos) << e.what();
+        }
+    }
+    std::filesystem::remove_all(dir);
+    const test::ScopedEnv good("HYVOX_SHADER_DIR", HYVOX_SOURCE_SHADERS);
+    EXPECT_EQ(voxelize(square.view(), o).occupancy.count(), 32u * 32u);
 }
 
 TEST(TessellationApi, CancelStopsTheRunAndTheNextRunWorks) {

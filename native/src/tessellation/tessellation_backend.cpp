@@ -9,6 +9,7 @@
 
 #include "core/backends.h"
 #include "core/stopwatch.h"
+#include "gl/shader_library.h"
 #include "hybrid/gpu_mesh.h"
 #include "hyvox/accuracy.h"
 #include "hyvox/errors.h"
@@ -118,7 +119,7 @@ void runTessellationBackend(const BackendJob& job, VoxelizeResult& result) {
         options.counts,
         std::uint32_t(std::min<std::uint64_t>(plan.brick_estimate + 64, result.occupancy.brickCount())),
         job.options.memory_budget,
-        job.options.gl.shader_dir,
+        gl::resolveShaderDir(job.options.gl.shader_dir),
         job.interrupter,
     };
     const tessellation::GpuTessellationOutput out =
