@@ -17,12 +17,6 @@
 
 namespace {
 
-double stageMs(const hyvox::Stats& stats, const std::string& stage) {
-    for (const auto& [name, ms] : stats.timings_ms)
-        if (name == stage) return ms;
-    return 0.0;
-}
-
 // CPU time of the whole process: on a shared machine it shows the work done even when
 // other processes take turns on the cores (wall time then overstates it).
 double cpuMs() {
@@ -73,7 +67,7 @@ int main(int argc, char** argv) {
                 const double cpu_before = cpuMs();
                 const hyvox::VoxelizeResult result = hyvox::voxelize(mesh.view(), options);
                 cpu.push_back(cpuMs() - cpu_before);
-                stage.push_back(stageMs(result.stats, "voxelize"));
+                stage.push_back(result.stats.timingMs("voxelize"));
                 double sum = 0;
                 for (const auto& t : result.stats.timings_ms) sum += t.second;
                 total.push_back(sum);

@@ -98,12 +98,6 @@ Measured inChild(const std::function<Measured()>& work) {
     return m;
 }
 
-double stageMs(const hyvox::Stats& stats, const std::string& stage) {
-    for (const auto& [name, ms] : stats.timings_ms)
-        if (name == stage) return ms;
-    return 0.0;
-}
-
 struct Row {
     std::string mesh;
     int resolution = 0;
@@ -135,7 +129,7 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
             const double t2 = nowMs();
             call.push_back(t1 - t0);
             with_vdb.push_back(t2 - t0);
-            stage.push_back(stageMs(result.stats, "voxelize"));
+            stage.push_back(result.stats.timingMs("voxelize"));
             m.voxels = result.stats.voxel_count;
             m.voxel_size = result.grid.voxel_size;
         }

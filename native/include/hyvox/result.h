@@ -24,6 +24,12 @@ struct Stats {
     std::map<std::string, double> metrics;
 
     void addTiming(std::string stage, double ms) { timings_ms.emplace_back(std::move(stage), ms); }
+    // Milliseconds of one stage, 0 when it did not run.
+    double timingMs(const std::string& stage) const {
+        for (const auto& [name, ms] : timings_ms)
+            if (name == stage) return ms;
+        return 0.0;
+    }
 };
 
 // A voxel with a value (multi-valued output such as the tessellation method's point counts).
