@@ -79,7 +79,9 @@ class TessellationMeshes : public ::testing::TestWithParam<std::tuple<MeshCase, 
 // with the bias strictly falling as γ grows (against the thin, 6-separating set the same γ=1
 // points miss only 0.3-0.6%: they lie between the two). Watertightness (the strict ray test)
 // at γ=1 leaves a few pinholes where the tessellator's rings space points just over a voxel
-// apart (e.g. 5 rays of 786k on the Buddha at 256); from γ=2 on there are none.
+// apart (e.g. 5 rays of 786k on the Buddha at 256); from γ=2 on there are none. Other
+// readings of Eq. 1 (fractional-odd partitioning, Euclidean edge length) do not change this
+// picture: bench/README.md, "Other readings of Eq. 1".
 TEST_P(TessellationMeshes, BiasFallsWithGammaAndNothingFalseOrLeaking) {
     const auto [mesh_case, resolution] = GetParam();
     const test::TestMesh mesh = test::loadTestMesh(test::meshPath(mesh_case.file));
