@@ -47,6 +47,20 @@ def test_write_vdb_round_trip(bunny, tmp_path, mode):
     np.testing.assert_allclose(corner, grid.origin, rtol=0, atol=1e-12)
 
 
+def test_write_vdb_threads_give_the_same_file_contents(bunny, tmp_path):
+    vertices, triangles = bunny
+    grid = hyvox.voxelize(vertices, triangles, resolution=64)
+    one, every = tmp_path / "one.vdb", tmp_path / "every.vdb"
+    grid.write_vdb(one, threads=1)
+    grid.write_vdb(every)
+    a, b = vdb.read(str(one), "density"), vdb.read(str(every), "density")
+    assert a.activeVoxelCount() == b.activeVoxelCount() == grid.voxel_count
+    assert np.array_equal(dense_from_vdb(a, grid.dims), dense_from_vdb(b, grid.dims))
+    with pytest.raises(ValueError, match="threads"):
+        grid.write_vdb(tmp_path / "bad.vdb", threads=-1)
+    assert not (tmp_path / "bad.vdb").exists()
+
+
 def test_write_vdb_is_atomic(tetrahedron, tmp_path):
     vertices, triangles = tetrahedron
     grid = hyvox.voxelize(vertices, triangles, resolution=8)

@@ -21,7 +21,7 @@ namespace hyvox {
 // Writes atomically: a temporary file in the same folder, renamed over `path` only after
 // everything was written. On any failure the temporary file is removed, an existing file
 // at `path` is left as it was, and InvalidInput (bad path) or ResourceError (I/O failure)
-// is thrown.
-void writeVdb(const VoxelizeResult& result, const std::string& path);
+// is thrown. The grids are built on up to `threads` cores (0 = all), like VoxelizeOptions.
+void writeVdb(const VoxelizeResult& result, const std::string& path, int threads = 0);
 
 }  // namespace hyvox

@@ -95,14 +95,14 @@ The voxels of one voxelization. Voxel (i, j, k) covers the closed box
         .def("to_dense", &toDense, "The occupancy as a dense bool array of shape dims, indexed [i, j, k].")
         .def(
             "write_vdb",
-            [](const Grid& g, const std::filesystem::path& path) {
+            [](const Grid& g, const std::filesystem::path& path, int threads) {
                 py::gil_scoped_release release;
-                writeVdb(*g, path.string());
+                writeVdb(*g, path.string(), threads);
             },
-            py::arg("path"),
+            py::arg("path"), py::arg("threads") = 0,
             "Write an OpenVDB file with a float grid 'density' (1 on occupied voxels; index space = "
             "voxel centres), plus 'count' for multi-valued results. Atomic: on failure nothing is "
-            "written and an existing file is kept.")
+            "written and an existing file is kept. threads: cores used to build the grids, 0 = all.")
         .def_property_readonly("origin", [](const Grid& g) { return py::make_tuple(g->grid.origin[0], g->grid.origin[1], g->grid.origin[2]); },
                                "World position of voxel (0, 0, 0)'s min corner.")
         .def_property_readonly("voxel_size", [](const Grid& g) { return g->grid.voxel_size; }, "Voxel edge length, world units.")

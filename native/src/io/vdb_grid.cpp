@@ -6,6 +6,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <cerrno>
 #include <cstring>
@@ -155,9 +156,13 @@ void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path
 
 namespace hyvox {
 
-void writeVdb(const VoxelizeResult& result, const std::string& path) {
-    openvdb::GridPtrVec grids = io::makeGrids(result);
-    io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), path);
+void writeVdb(const VoxelizeResult& result, const std::string& path, int threads) {
+    if (threads < 0) throw InvalidInput("writeVdb: threads must be >= 0 (0 = all cores)");
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        openvdb::GridPtrVec grids = io::makeGrids(result);
+        io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), path);
+    });
 }
 
 }  // namespace hyvox
