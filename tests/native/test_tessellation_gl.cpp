@@ -79,16 +79,25 @@ class TessellationMeshes : public ::testing::TestWithParam<std::tuple<MeshCase, 
 // with the bias strictly falling as γ grows (against the thin, 6-separating set the same γ=1
 // points miss only 0.3-0.6%: they lie between the two). Watertightness (the strict ray test)
 // at γ=1 leaves a few pinholes where the tessellator's rings space points just over a voxel
-// apart (e.g. 5 rays of 786k on the Buddha at 256); from γ=2 on there are none. Other
-// readings of Eq. 1 (fractional-odd partitioning, Euclidean edge length) do not change this
-// picture: bench/README.md, "Other readings of Eq. 1".
+// apart (e.g. 5 rays of 786k on the Buddha at 256, enough for a flood from outside to fill
+// its inside); from γ=2 on no ray fails and no flood gets in. Other readings of Eq. 1
+// (fractional-odd partitioning, Euclidean edge length) do not change this picture:
+// bench/README.md, "Other readings of Eq. 1".
 TEST_P(TessellationMeshes, BiasFallsWithGammaAndNothingFalseOrLeaking) {
     const auto [mesh_case, resolution] = GetParam();
     const test::TestMesh mesh = test::loadTestMesh(test::meshPath(mesh_case.file));
-    const VoxelizeResult conservative = conservativeVoxels(mesh.view(), optionsFor(Method::Cpu, resolution));
+    // One empty layer all around, so the flood below reaches the whole outside.
+    auto padded = [&](Method method, double gamma) {
+        VoxelizeOptions o = optionsFor(method, resolution, gamma);
+        o.grid.padding = 1;
+        return o;
+    };
+    const VoxelizeResult conservative = conservativeVoxels(mesh.view(), padded(Method::Cpu, 1.0));
+    const std::vector<char> inside = mesh_case.closed ? test::insideByParity(mesh.view(), conservative.grid)
+                                                      : std::vector<char>();
     double previous_bias = 1.0;
     for (double gamma : {1.0, 2.0, 4.0}) {
-        const VoxelizeResult r = voxelize(mesh.view(), optionsFor(Method::Tessellation, resolution, gamma));
+        const VoxelizeResult r = voxelize(mesh.view(), padded(Method::Tessellation, gamma));
         const AccuracyReport acc = compareToReference(r.occupancy, conservative.occupancy);
         const WatertightReport rays = watertightness(mesh.view(), r, conservative);
         std::printf("%s @%d γ=%g: %llu points, %llu voxels, bias %.4f, false %llu, watertight %.6f (%llu rays fail), "
@@ -102,10 +111,17 @@ TEST_P(TessellationMeshes, BiasFallsWithGammaAndNothingFalseOrLeaking) {
         EXPECT_LT(acc.bias, previous_bias) << "γ=" << gamma;
         previous_bias = acc.bias;
         if (mesh_case.closed) {
+            // Independent of the ray test: the empty voxels 6-connected to the outside must
+            // not reach a voxel whose centre is inside the mesh (parity of a ray, in double).
+            const test::Separation flood = test::floodFromBoundary(r.occupancy, inside);
+            std::printf("  flood: %llu empty inside, %llu of them reached from outside\n",
+                        (unsigned long long)flood.inside_empty, (unsigned long long)flood.inside_reached);
+            EXPECT_GT(flood.inside_empty, 0u);
             if (gamma == 1.0) {
                 EXPECT_GE(rays.share(), 0.9999);
             } else {
                 EXPECT_EQ(rays.passed, rays.rays) << "γ=" << gamma;
+                EXPECT_EQ(flood.inside_reached, 0u) << "γ=" << gamma;
             }
         }
         EXPECT_EQ(countSum(r), std::uint64_t(r.stats.metrics.at("points")));
