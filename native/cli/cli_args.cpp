@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "cli_args.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -32,14 +33,37 @@ double parseNumber(const std::string& option, const std::string& text) {
     return value;
 }
 
+// "1,1.5,2": at least two positive, strictly ascending numbers (the fit needs two points,
+// and a sorted table reads as the curve it is).
+std::vector<double> parseGammaList(const std::string& option, const std::string& text) {
+    std::vector<double> gammas;
+    std::size_t begin = 0;
+    while (begin <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', begin), text.size());
+        const double gamma = parseNumber(option, text.substr(begin, comma - begin));
+        if (!(gamma > 0)) throw UsageError(option + " needs gammas > 0, got " + text);
+        if (!gammas.empty() && !(gamma > gammas.back()))
+            throw UsageError(option + " needs ascending gammas, got " + text);
+        gammas.push_back(gamma);
+        begin = comma + 1;
+    }
+    if (gammas.size() < 2) throw UsageError(option + " needs at least two gammas to fit Eq. 3, got " + text);
+    return gammas;
+}
+
 }  // namespace
 
 const char* usageText() {
     return "usage: hyvox voxelize MESH -o OUT.vdb [options]\n"
+           "       hyvox gamma-sweep MESH [--gammas 1,1.5,2,3,4,6] [options]\n"
            "       hyvox --help | --version\n"
            "\n"
-           "Voxelizes the surface of a triangle mesh (PLY, PLY.GZ, OBJ, ...) into an OpenVDB file\n"
-           "with a float grid 'density' (1 on occupied voxels).\n"
+           "voxelize: voxelizes the surface of a triangle mesh (PLY, PLY.GZ, OBJ, ...) into an\n"
+           "OpenVDB file with a float grid 'density' (1 on occupied voxels).\n"
+           "gamma-sweep: voxelizes the mesh with the tessellation method at each gamma, prints the\n"
+           "share of the exact conservative voxels it misses (bias) and fits Eq. 3,\n"
+           "gamma = -B ln(A bias), to tell the gamma a bias needs. Takes the grid, GL and\n"
+           "tessellation options below (not --method, --mode, --gamma, -o).\n"
            "\n"
            "options:\n"
            "  -o, --output FILE        the .vdb file to write (written atomically)\n"
@@ -51,6 +75,7 @@ const char* usageText() {
            "  --threads T              CPU threads, 0 = all cores (default 0)\n"
            "  --memory-budget-mib M    refuse grids whose bits need more (default 4096)\n"
            "  --stats-json FILE        write origin, voxel size, dims, counts and timings as JSON\n"
+           "                           (gamma-sweep: its table and fit)\n"
            "  --gl-device D            GL methods: '' auto, 'software', or a device index\n"
            "  --hybrid-cutoff C        hybrid: large-triangle cutoff in voxel units^2 (<0: auto)\n"
            "  --tess-gamma G, --gamma G  tessellation: safety factor gamma (default 1)\n"
@@ -59,6 +84,7 @@ const char* usageText() {
            "                           height image sampled at the mesh's UVs (Blender Displace)\n"
            "  --strength S             tessellation: displacement strength in mesh units (default 1)\n"
            "  --midlevel M             tessellation: height that stays in place (default 0.5)\n"
+           "  --gammas G1,G2,...       gamma-sweep: the gammas to try, at least two (default 1,1.5,2,3,4,6)\n"
            "  -q, --quiet              print nothing on success\n"
            "  -h, --help               show this help\n"
            "  --version                show the version\n";
@@ -72,8 +98,21 @@ Arguments parseArguments(const std::vector<std::string>& args) {
         out.command = Command::Version;
         return out;
     }
-    if (args[0] != "voxelize") throw UsageError("unknown command '" + args[0] + "' (the command is 'voxelize')");
-    out.command = Command::Voxelize;
+    if (args[0] == "voxelize") {
+        out.command = Command::Voxelize;
+    } else if (args[0] == "gamma-sweep") {
+        out.command = Command::GammaSweep;
+        out.options.method = Method::Tessellation;
+        out.options.tessellation.counts = false;  // the sweep needs only the occupancy
+        out.gammas = {1, 1.5, 2, 3, 4, 6};
+    } else {
+        throw UsageError("unknown command '" + args[0] + "' (the commands are 'voxelize' and 'gamma-sweep')");
+    }
+    const bool sweep = out.command == Command::GammaSweep;
+    auto voxelizeOnly = [&](const std::string& option, const char* why) {
+        if (sweep) throw UsageError(option + " is not a gamma-sweep option: " + why);
+    };
+    const char* kFixedMethod = "the sweep always compares the tessellation method with the exact conservative voxels";
 
     for (std::size_t a = 1; a < args.size(); ++a) {
         std::string option = args[a];
@@ -98,6 +137,7 @@ Arguments parseArguments(const std::vector<std::string>& args) {
             out.command = Command::Help;
             return out;
         } else if (option == "-o" || option == "--output") {
+            voxelizeOnly(option, "the sweep writes no .vdb (--stats-json writes its table)");
             out.output_path = value();
         } else if (option == "--resolution") {
             o.grid.resolution = int(parseInteger(option, value(), 1, kMaxResolution));
@@ -106,12 +146,14 @@ Arguments parseArguments(const std::vector<std::string>& args) {
             if (!(s > 0)) throw UsageError("--voxel-size must be positive");
             o.grid.voxel_size = s;
         } else if (option == "--mode") {
+            voxelizeOnly(option, kFixedMethod);
             try {
                 o.mode = parseMode(value());
             } catch (const InvalidInput& e) {
                 throw UsageError(e.what());
             }
         } else if (option == "--method") {
+            voxelizeOnly(option, kFixedMethod);
             try {
                 o.method = parseMethod(value());
             } catch (const InvalidInput& e) {
@@ -130,7 +172,11 @@ Arguments parseArguments(const std::vector<std::string>& args) {
         } else if (option == "--hybrid-cutoff") {
             o.hybrid.cutoff = parseNumber(option, value());
         } else if (option == "--tess-gamma" || option == "--gamma") {
+            voxelizeOnly(option, "it takes --gammas G1,G2,...");
             o.tessellation.gamma = parseNumber(option, value());
+        } else if (option == "--gammas") {
+            if (!sweep) throw UsageError("--gammas belongs to gamma-sweep; voxelize takes one --gamma");
+            out.gammas = parseGammaList(option, value());
         } else if (option == "--displacement") {
             o.tessellation.displacement_image = value();
         } else if (option == "--strength") {
@@ -152,7 +198,7 @@ Arguments parseArguments(const std::vector<std::string>& args) {
         }
     }
     if (out.mesh_path.empty()) throw UsageError("no mesh file given");
-    if (out.output_path.empty()) throw UsageError("no output file given (-o OUT.vdb)");
+    if (!sweep && out.output_path.empty()) throw UsageError("no output file given (-o OUT.vdb)");
     return out;
 }
 

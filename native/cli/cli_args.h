@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// Command-line parsing for `hyvox voxelize`: plain code, no dependency, every mistake a
-// UsageError with a message that says what to type instead.
+// Command-line parsing for `hyvox voxelize` and `hyvox gamma-sweep`: plain code, no
+// dependency, every mistake a UsageError with a message that says what to type instead.
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -15,7 +15,7 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-enum class Command { Help, Version, Voxelize };
+enum class Command { Help, Version, Voxelize, GammaSweep };
 
 struct Arguments {
     Command command = Command::Help;
@@ -24,6 +24,7 @@ struct Arguments {
     std::string stats_json_path;  // empty: none
     bool quiet = false;
     VoxelizeOptions options;
+    std::vector<double> gammas;  // gamma-sweep: the safety factors to try, ascending
 };
 
 Arguments parseArguments(const std::vector<std::string>& args);  // args without argv[0]

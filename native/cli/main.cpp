@@ -12,6 +12,7 @@
 #include "cli_args.h"
 #include "hyvox/errors.h"
 #include "hyvox/version.h"
+#include "gamma_sweep_command.h"
 #include "voxelize_command.h"
 
 namespace {
@@ -30,7 +31,7 @@ int fail(const std::string& message, int status) {
 
 int main(int argc, char** argv) {
     using namespace hyvox;
-    // Ctrl-C cancels the voxelization between steps; the .vdb is then never written.
+    // Ctrl-C cancels a voxelization between steps; the .vdb is then never written.
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
     try {
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
             case cli::Command::Help: std::fputs(cli::usageText(), stdout); return 0;
             case cli::Command::Version: std::printf("hyvox %s\n", version()); return 0;
             case cli::Command::Voxelize: cli::runVoxelize(args, g_stop); return 0;
+            case cli::Command::GammaSweep: cli::runGammaSweep(args, g_stop); return 0;
         }
         return 0;
     } catch (const cli::UsageError& e) {

@@ -1,14 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "voxelize_command.h"
 
-#include <tbb/global_control.h>
-
 #include <chrono>
-#include <memory>
 #include <cstdio>
-#include <filesystem>
 #include <string>
 
+#include "command_support.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/stats_json.h"
@@ -17,33 +14,6 @@
 
 namespace hyvox::cli {
 namespace {
-
-class StopFlagInterrupter final : public Interrupter {
-public:
-    explicit StopFlagInterrupter(const std::atomic<bool>& stop) : stop_(stop) {}
-    bool wasInterrupted(int) override { return stop_.load(std::memory_order_relaxed); }
-
-private:
-    const std::atomic<bool>& stop_;
-};
-
-// Fails before the (possibly long) voxelization when an output could not be written anyway.
-// The writers still check everything themselves; this only saves the wait.
-void checkOutputFolder(const std::string& path, const char* what) {
-    namespace fs = std::filesystem;
-    std::error_code error;
-    if (fs::is_directory(fs::path(path), error))
-        throw InvalidInput(std::string("cannot write ") + what + " '" + path + "': it is a folder");
-    fs::path folder = fs::path(path).parent_path();
-    if (folder.empty()) folder = ".";
-    if (!fs::is_directory(folder, error))
-        throw InvalidInput(std::string("cannot write ") + what + " '" + path + "': folder '" + folder.string() +
-                           "' does not exist");
-}
-
-double msSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 void printSummary(const Arguments& args, const Mesh& mesh, const VoxelizeResult& r) {
     const Stats& s = r.stats;
@@ -68,11 +38,7 @@ void printSummary(const Arguments& args, const Mesh& mesh, const VoxelizeResult&
 }  // namespace
 
 void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
-    // --threads bounds the whole run (the .vdb tree is also built in parallel), not only the backend.
-    std::unique_ptr<tbb::global_control> thread_limit;
-    if (args.options.threads > 0)
-        thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                             std::size_t(args.options.threads));
+    const auto thread_limit = limitThreads(args.options.threads);
     checkOutputFolder(args.output_path, "the output");
     if (!args.stats_json_path.empty()) checkOutputFolder(args.stats_json_path, "the stats");
     auto start = std::chrono::steady_clock::now();

@@ -68,6 +68,13 @@ def test_help_and_version(cli):
         (["voxelize", "{mesh}", "-o", "{out}", "--bogus"], 2, "unknown option"),
         (["voxelize", "{mesh}"], 2, "no output file"),
         (["voxelize", "{mesh}", "-o", "{out}", "--memory-budget-mib", "1", "--resolution", "8192"], 1, "memory budget"),
+        (["voxelize", "{mesh}", "-o", "{out}", "--gammas", "1,2"], 2, "belongs to gamma-sweep"),
+        (["gamma-sweep", "{mesh}", "-o", "{out}"], 2, "writes no .vdb"),
+        (["gamma-sweep", "{mesh}", "--method", "cpu"], 2, "not a gamma-sweep option"),
+        (["gamma-sweep", "{mesh}", "--gammas", "2"], 2, "at least two"),
+        (["gamma-sweep", "{mesh}", "--gammas", "2,1"], 2, "ascending"),
+        (["gamma-sweep", "{mesh}", "--gammas", "0,1"], 2, "> 0"),
+        (["gamma-sweep", "{mesh}", "--gammas", "1,x"], 2, "finite number"),
         (["frobnicate"], 2, "unknown command"),
         ([], 2, "no command"),
     ],
@@ -98,3 +105,33 @@ def test_bad_stats_path_fails_before_writing(cli, mesh_dir, tmp_path):
     result = run(cli, "voxelize", mesh_dir / "teapot_utah.ply", "-o", out, "--stats-json", tmp_path / "no" / "s.json")
     assert result.returncode == 1 and "does not exist" in result.stderr
     assert not out.exists()
+
+
+def test_gamma_sweep_matches_the_module_and_a_least_squares_fit(cli, mesh_dir, tmp_path):
+    # Each row's bias is recounted here from the module's own voxels (exact conservative
+    # cpu set minus the tessellation set at that gamma), and the fit of Eq. 3 is redone with
+    # numpy: gamma = c0 + c1 ln(bias), B = -c1, A = exp(c0 / c1).
+    mesh = mesh_dir / "happy_buddha_100k.ply"
+    stats_path = tmp_path / "sweep.json"
+    result = run(cli, "gamma-sweep", mesh, "--resolution", 96, "--gammas", "1,2,4", "--stats-json", stats_path)
+    assert result.returncode == 0, result.stderr
+    assert "Eq. 3 fit" in result.stdout and "needs gamma" in result.stdout
+    sweep = json.loads(stats_path.read_text())
+    assert [row["gamma"] for row in sweep["rows"]] == [1, 2, 4]
+
+    vertices, triangles = hyvox.read_mesh(mesh)
+    exact = hyvox.voxelize(vertices, triangles, resolution=96)
+    assert sweep["reference_voxels"] == exact.voxel_count and sweep["dims"] == list(exact.dims)
+    reference = {tuple(c) for c in exact.coords()}
+    biases = []
+    for row in sweep["rows"]:
+        points = hyvox.voxelize(vertices, triangles, resolution=96, method="tessellation", tess_gamma=row["gamma"])
+        missed = len(reference - {tuple(c) for c in points.coords()})
+        assert row["missed_voxels"] == missed and row["voxels"] == points.voxel_count
+        assert row["bias"] == pytest.approx(missed / len(reference), rel=1e-12)
+        biases.append(row["bias"])
+    assert biases[0] > biases[1] > biases[2] > 0
+
+    c1, c0 = np.polyfit(np.log(biases), [1.0, 2.0, 4.0], 1)
+    assert sweep["fit"]["B"] == pytest.approx(-c1, rel=1e-9)
+    assert sweep["fit"]["A"] == pytest.approx(np.exp(c0 / c1), rel=1e-9)

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "gamma_sweep_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command_support.h"
+#include "hyvox/accuracy.h"
+#include "hyvox/hyvox.h"
+#include "hyvox/mesh_io.h"
+#include "hyvox/stats_json.h"
+#include "hyvox/version.h"
+
+namespace hyvox::cli {
+namespace {
+
+struct SweepRow {
+    double gamma = 0;
+    AccuracyReport accuracy;
+    double points = 0;
+    std::uint64_t voxels = 0;
+    double ms = 0;  // the whole voxelize() call, GL context already running
+};
+
+std::string sweepJson(const GridSpec& grid, std::uint64_t reference_voxels, const std::vector<SweepRow>& rows,
+                      const GammaBiasFit* fit) {
+    std::ostringstream json;
+    json.precision(17);
+    json << "{\"hyvox_version\": \"" << version() << "\", \"dims\": [" << grid.dims[0] << ", " << grid.dims[1] << ", "
+         << grid.dims[2] << "], \"voxel_size\": " << grid.voxel_size << ", \"reference_voxels\": " << reference_voxels
+         << ", \"rows\": [";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const SweepRow& r = rows[i];
+        json << (i ? ", " : "") << "{\"gamma\": " << r.gamma << ", \"bias\": " << r.accuracy.bias
+             << ", \"missed_voxels\": " << r.accuracy.missed_voxels << ", \"points\": " << r.points
+             << ", \"voxels\": " << r.voxels << ", \"ms\": " << r.ms << "}";
+    }
+    json << "], \"fit\": ";
+    if (fit)
+        json << "{\"A\": " << fit->A << ", \"B\": " << fit->B << "}";
+    else
+        json << "null";
+    json << "}\n";
+    return json.str();
+}
+
+}  // namespace
+
+void runGammaSweep(const Arguments& args, const std::atomic<bool>& stop) {
+    const auto thread_limit = limitThreads(args.options.threads);
+    if (!args.stats_json_path.empty()) checkOutputFolder(args.stats_json_path, "the stats");
+    const Mesh mesh = readMesh(args.mesh_path);
+    StopFlagInterrupter interrupter(stop);
+
+    VoxelizeOptions exact_options = args.options;
+    exact_options.method = Method::Cpu;
+    exact_options.mode = Mode::Conservative;
+    const VoxelizeResult exact = voxelize(mesh.view(), exact_options, &interrupter);
+    const GridSpec& grid = exact.grid;
+    if (!args.quiet) {
+        std::printf("hyvox %s gamma-sweep: %s, %zu triangles, %d x %d x %d voxels; conservative reference %llu voxels\n",
+                    version(), args.mesh_path.c_str(), mesh.triangleCount(), grid.dims[0], grid.dims[1], grid.dims[2],
+                    (unsigned long long)exact.stats.voxel_count);
+        std::printf("%8s %10s %12s %12s %10s\n", "gamma", "bias", "points", "voxels", "ms");
+    }
+
+    // One untimed run first, so the first row's time does not include starting the GL
+    // context and compiling the shaders.
+    voxelize(mesh.view(), args.options, &interrupter);
+
+    std::vector<SweepRow> rows;
+    std::vector<double> gammas, biases;
+    for (double gamma : args.gammas) {
+        VoxelizeOptions options = args.options;
+        options.tessellation.gamma = gamma;
+        const auto start = std::chrono::steady_clock::now();
+        const VoxelizeResult r = voxelize(mesh.view(), options, &interrupter);
+        SweepRow row{gamma, compareToReference(r.occupancy, exact.occupancy), r.stats.metrics.at("points"),
+                     r.stats.voxel_count, msSince(start)};
+        if (!args.quiet)
+            std::printf("%8.3f %10.5f %12.0f %12llu %10.1f\n", gamma, row.accuracy.bias, row.points,
+                        (unsigned long long)row.voxels, row.ms);
+        std::fflush(stdout);
+        rows.push_back(row);
+        gammas.push_back(gamma);
+        biases.push_back(row.accuracy.bias);
+    }
+
+    // No fit when the points already cover everything at all but one gamma: say so, and
+    // still leave the table (and its JSON) behind.
+    std::optional<GammaBiasFit> fit;
+    try {
+        fit = fitGammaBias(gammas, biases);
+    } catch (const InvalidInput& e) {
+        if (!args.quiet) std::printf("no Eq. 3 fit: %s\n", e.what());
+    }
+    if (fit && !args.quiet) {
+        std::printf("Eq. 3 fit: gamma = -B ln(A bias) with A = %.5g, B = %.5g\n", fit->A, fit->B);
+        for (double p : {0.05, 0.02, 0.01, 0.005})
+            std::printf("  bias %5.3f needs gamma %.3f\n", p, fit->gammaFor(p));
+    }
+    if (!args.stats_json_path.empty())
+        writeTextFileAtomic(args.stats_json_path, sweepJson(grid, exact.stats.voxel_count, rows, fit ? &*fit : nullptr));
+}
+
+}  // namespace hyvox::cli
