@@ -74,9 +74,14 @@ def main(argv):
     kwargs = {}
     if args.output:
         kwargs["output_dir"] = os.path.abspath(args.output)
-    if args.resolution:
+    # Given values are checked here: the operator would clamp a 0 silently.
+    if args.resolution is not None:
+        if args.resolution < 1:
+            raise SystemExit(f"--resolution must be at least 1, got {args.resolution}")
         kwargs["resolution"] = args.resolution
-    if args.voxel_size:
+    if args.voxel_size is not None:
+        if not args.voxel_size > 0:
+            raise SystemExit(f"--voxel-size must be positive, got {args.voxel_size}")
         kwargs["voxel_size"] = args.voxel_size
     for name in ("method", "mode"):
         if getattr(args, name):

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Binding points and uniform locations, declared once: the GLSL includes this file and so
 // does the C++ driver (native/src/hybrid/gl_bindings.h), which is why it holds nothing but
-// #defines. tests/native/test_gl_bindings.cpp checks the linked programs agree.
+// #defines. tests/native/test_gl_layer.cpp checks the linked programs agree.
 #ifndef HYVOX_BINDINGS_GLSL
 #define HYVOX_BINDINGS_GLSL
 

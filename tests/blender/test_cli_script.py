@@ -55,8 +55,8 @@ class CliScriptTest(AddonTestCase):
         done = self.run_cli(blend, "--objects", "NoSuchObject", "--output", self.out)
         self.assertEqual(done.returncode, 1)
         self.assertIn("NoSuchObject", done.stderr)
-        done = self.run_cli(blend, "--objects", "Cube", "--method", "tessellation",
-                            "--resolution", "8", "--output", self.out)
-        if done.returncode != 0:  # the method is not built here: reported, exit code 1
-            self.assertEqual(done.returncode, 1)
-            self.assertIn("hyvox: error", done.stderr)
+        # A value the operator would clamp silently is refused, and nothing is written.
+        done = self.run_cli(blend, "--objects", "Cube", "--resolution", "0", "--output", self.out)
+        self.assertEqual(done.returncode, 1)
+        self.assertIn("hyvox: error: --resolution must be at least 1", done.stderr)
+        self.assertFalse(os.path.isdir(self.out) and os.listdir(self.out))

@@ -95,19 +95,20 @@ TEST(GlLayer, ObjectsAreMoveOnlyOwners) {
 }
 
 TEST(GlLayer, CompileErrorsNameTheFileAndQuoteTheLog) {
-    const std::string dir = ::testing::TempDir() + "/hyvox_layer_shaders";
-    std::system(("mkdir -p " + dir + "/common").c_str());
-    std::ofstream(dir + "/common/helper.glsl")
+    const test::TempDir temp;
+    const std::string dir = temp.path.string();
+    std::filesystem::create_directories(temp.path / "common");
+    std::ofstream(temp.path / "common" / "helper.glsl")
         << "// SPDX-License-Identifier: GPL-3.0-or-later\nfloat helper() { return 1.0 }\n";
-    std::ofstream(dir + "/broken.comp") << "// SPDX-License-Identifier: GPL-3.0-or-later\n#include "
-                                           "\"common/helper.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+    std::ofstream(temp.path / "broken.comp") << "// SPDX-License-Identifier: GPL-3.0-or-later\n#include "
+                                                "\"common/helper.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
     GlWorker::get().run([&] {
         try {
             buildProgram({{GL_COMPUTE_SHADER, "broken.comp"}}, "", dir);
             ADD_FAILURE() << "expected BackendError";
         } catch (const BackendError& e) {
             const std::string what = e.what();
-            EXPECT_NE(what.find("shaders/broken.comp"), std::string::npos) << what;
+            EXPECT_NE(what.find(dir + "/broken.comp"), std::string::npos) << what;
             EXPECT_NE(what.find("1=common/helper.glsl"), std::string::npos) << what;
             EXPECT_NE(what.find("1:2"), std::string::npos) << "log points at source 1, line 2: " << what;
         }
@@ -139,34 +140,8 @@ GLint blockBinding(GLuint program, const char* block) {
 }
 
 TEST(GlLayer, BindingPointsMatchBetweenGlslAndCpp) {
-    // The numbers C++ compiled in, against what the embedded GLSL text says...
-    std::istringstream text(embeddedShaders().at("common/bindings.glsl"));
-    std::map<std::string, int> glsl;
-    for (std::string line; std::getline(text, line);) {
-        std::istringstream words(line);
-        std::string define, name;
-        int value = 0;
-        if (words >> define >> name >> value && define == "#define")
-            glsl[name] = value;
-    }
-    const std::map<std::string, int> cpp{{"HYVOX_SSBO_BITS", HYVOX_SSBO_BITS},
-                                         {"HYVOX_SSBO_VERTICES", HYVOX_SSBO_VERTICES},
-                                         {"HYVOX_SSBO_TRIANGLES", HYVOX_SSBO_TRIANGLES},
-                                         {"HYVOX_SSBO_LARGE", HYVOX_SSBO_LARGE},
-                                         {"HYVOX_SSBO_DRAW", HYVOX_SSBO_DRAW},
-                                         {"HYVOX_SSBO_VOXEL_LIST", HYVOX_SSBO_VOXEL_LIST},
-                                         {"HYVOX_LOC_GRID_DIMS", HYVOX_LOC_GRID_DIMS},
-                                         {"HYVOX_LOC_SLAB", HYVOX_LOC_SLAB},
-                                         {"HYVOX_LOC_TRIANGLE_COUNT", HYVOX_LOC_TRIANGLE_COUNT},
-                                         {"HYVOX_LOC_CUTOFF", HYVOX_LOC_CUTOFF},
-                                         {"HYVOX_LOC_VIEWPORT", HYVOX_LOC_VIEWPORT},
-                                         {"HYVOX_LOC_LIST_CAPACITY", HYVOX_LOC_LIST_CAPACITY},
-                                         {"HYVOX_LOC_CHUNK_SIDE", HYVOX_LOC_CHUNK_SIDE},
-                                         {"HYVOX_LOCAL_SIZE", HYVOX_LOCAL_SIZE}};
-    for (const auto& [name, value] : cpp)
-        EXPECT_EQ(glsl[name], value) << name;
-
-    // ...and what the linked programs report.
+    // C++ includes the very same bindings.glsl, so only the driver can disagree: what the
+    // linked programs report must be the values C++ binds and sets.
     GlWorker::get().run([] {
         const std::string defines =
             "#define HYVOX_THIN 0\n#define HYVOX_VOXEL_LIST 1\n#define HYVOX_FROM_LARGE_LIST 1\n";

@@ -35,14 +35,6 @@ def test_settings_voxel_size_wins_over_resolution():
     assert VoxelizeSettings(frames=[1, 2]).is_sequence
 
 
-def test_settings_overrides():
-    base = VoxelizeSettings()
-    changed = base.with_overrides(resolution=64, method="cpu")
-    assert (changed.resolution, changed.method, base.resolution) == (64, "cpu", 256)
-    with pytest.raises(SettingsError):
-        base.with_overrides(colour="red")
-
-
 @pytest.mark.parametrize("text,frames", [
     ("7", [7]), ("1-4", [1, 2, 3, 4]), ("0-6:3", [0, 3, 6]), (" 10-12 ", [10, 11, 12]),
 ])
@@ -62,7 +54,13 @@ def test_file_names():
     assert naming.volume_file_name("Suzanne", 12345) == "Suzanne_voxels_12345.vdb"
     # Unsafe characters and trailing digits (Blender would read them as a frame number).
     assert naming.volume_file_name("a/b:c*") == "a_b_c_voxels.vdb"
-    assert naming.safe_file_stem("Cube.001") == "Cube.001_v"
+    # One plain object keeps its name; groups and names a file cannot hold get a hash of
+    # their sources, so two different results never share a file.
+    assert naming.result_stem("Cube.001", "Cube.001", 1) == "Cube.001"
+    ab = naming.result_stem("A_and_1_more", naming.group_key(["A", "B"]), 2)
+    ac = naming.result_stem("A_and_1_more", naming.group_key(["A", "C"]), 2)
+    assert ab.startswith("A_and_1_more_") and ac.startswith("A_and_1_more_") and ab != ac
+    assert naming.result_stem("a/b", "a/b", 1) != naming.result_stem("a_b", "a_b", 1) == "a_b"
     assert naming.object_name("Bunny") == "Bunny_voxels"
 
 
@@ -94,15 +92,6 @@ def test_half_voxel_shift_by_version():
     assert alignment.object_offset(0.5, (3, 4, 1)) == (-0.25, -0.25, -0.25)
     assert alignment.needs_half_voxel_shift((4, 2, 0))
     assert alignment.object_offset(0.5, (5, 0, 0)) == (0.0, 0.0, 0.0)
-
-
-def test_voxel_centres_and_bounds():
-    coords = np.array([[0, 0, 0], [3, 1, 2]])
-    centres = alignment.voxel_centres(coords, (1.0, 2.0, 3.0), 0.5)
-    np.testing.assert_allclose(centres, [[1.25, 2.25, 3.25], [2.75, 2.75, 4.25]])
-    lo, hi = alignment.voxel_bounds(coords, (1.0, 2.0, 3.0), 0.5)
-    np.testing.assert_allclose(lo, [1, 2, 3])
-    np.testing.assert_allclose(hi, [3, 3, 4.5])
 
 
 def test_merge_meshes_offsets_indices():

@@ -78,7 +78,7 @@ def test_threaded_run_matches(hyvox, tmp_path):
             time.sleep(0.001)
         pipeline.finish_frame()
     pipeline.commit()
-    assert pipeline.done
+    assert not pipeline.worker_busy() and not pipeline.start_next_frame()
     assert len(os.listdir(tmp_path)) == 6
 
 
@@ -166,3 +166,30 @@ def test_names_that_clean_alike_get_their_own_files(hyvox, tmp_path):
     files = [r.files[0] for r in results.values()]
     assert len(set(files)) == 2
     assert len(os.listdir(tmp_path)) == 2
+
+
+def test_groups_of_the_same_name_keep_their_own_files_across_runs(hyvox, tmp_path):
+    # {A, B} then {A, C}: both volumes are called "A_and_1_more", and the second run must
+    # not overwrite the file the first run's volume still reads.
+    def run(sources, resolution):  # different resolutions: different file contents
+        group = Group("A_and_1_more", sources)
+        pipeline = Pipeline(VoxelizeSettings(resolution=resolution, method="cpu"), str(tmp_path),
+                            exporter([group]), module=hyvox)
+        (result,) = pipeline.run().values()
+        return result.files[0]
+    first = run(["A", "B"], 8)
+    before = open(first, "rb").read()
+    second = run(["A", "C"], 6)
+    assert first != second
+    assert open(first, "rb").read() == before
+    assert sorted(os.listdir(tmp_path)) == sorted(os.path.basename(p) for p in (first, second))
+
+
+def test_an_output_folder_that_cannot_be_made_is_a_hyvox_error(hyvox, tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_bytes(b"")
+    pipeline = Pipeline(VoxelizeSettings(resolution=8, method="cpu"), str(blocker / "out"),
+                        exporter([Group("C", ["C"])]), module=hyvox)
+    with pytest.raises(HyvoxError, match="cannot create the output folder"):
+        pipeline.run()
+    assert os.listdir(tmp_path) == ["file"]

@@ -4,6 +4,7 @@ polled by a modal timer, with a progress bar, a status bar message and Esc to ca
 execute() runs synchronously: background mode, scripts, and redo from the Adjust panel.
 Every HyvoxError becomes a report and {'CANCELLED'} with the scene unchanged."""
 import time
+import traceback
 
 import bpy
 from bpy.props import BoolProperty, FloatProperty, IntProperty
@@ -107,13 +108,22 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
             run.pipeline.run()
             run.restore_frame()
             run.finish(context)
-        except HyvoxError as exc:
+        except Exception as exc:
             if run is not None:
                 run.pipeline.discard()
                 run.restore_frame()
-            self.report({"WARNING"} if isinstance(exc, CancelledError) else {"ERROR"}, str(exc))
+            self._report_failure(exc)
             return {"CANCELLED"}
         return {"FINISHED"}
+
+    def _report_failure(self, exc):
+        """A HyvoxError is the artist's to read; anything else is a bug in hyvox, reported
+        with its traceback on the console instead of leaving a half-finished run behind."""
+        if isinstance(exc, HyvoxError):
+            self.report({"WARNING"} if isinstance(exc, CancelledError) else {"ERROR"}, str(exc))
+            return
+        traceback.print_exception(type(exc), exc, exc.__traceback__)
+        self.report({"ERROR"}, f"hyvox failed unexpectedly ({type(exc).__name__}: {exc}); see the console")
 
     # -- interactive ------------------------------------------------------------------
     def invoke(self, context, event):
@@ -125,8 +135,8 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
         try:
             self._run = _Run(context, self)
             self._run.pipeline.start_next_frame()
-        except HyvoxError as exc:
-            self.report({"ERROR"}, str(exc))
+        except Exception as exc:
+            self._report_failure(exc)
             if getattr(self, "_run", None) is not None:
                 self._run.restore_frame()
             return {"CANCELLED"}
@@ -161,11 +171,11 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
                 return {"RUNNING_MODAL"}
             run.restore_frame()
             run.finish(context)
-        except HyvoxError as exc:
+        except Exception as exc:  # whatever it is, the run ends here: no operator left locked
             pipeline.discard()
             run.restore_frame()
             self._end(context)
-            self.report({"WARNING"} if isinstance(exc, CancelledError) else {"ERROR"}, str(exc))
+            self._report_failure(exc)
             return {"CANCELLED"}
         self._end(context)
         return {"FINISHED"}

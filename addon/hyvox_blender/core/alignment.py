@@ -9,8 +9,6 @@ right) and move the Volume object by -s/2 on each axis for the Blender versions 
 need it. The headless render test measures this on the Blender it runs in."""
 from typing import Sequence, Tuple
 
-import numpy as np
-
 # First Blender version assumed to render voxel centres where OpenVDB puts them.
 # Measured on 3.4 (tests/blender/test_render_alignment.py: uncorrected edges are off by
 # s/2, corrected ones by < 0.01 s). Cycles' NanoVDB sampler still reads voxels at
@@ -36,15 +34,3 @@ def object_offset(voxel_size: float, version: Sequence[int], override: str = "AU
     half = -0.5 * float(voxel_size)
     return (half, half, half)
 
-
-def voxel_centres(coords: np.ndarray, origin: Sequence[float], voxel_size: float) -> np.ndarray:
-    """World centres (K,3) float64 of integer voxel coordinates (K,3)."""
-    return np.asarray(origin, dtype=np.float64) + (np.asarray(coords, dtype=np.float64) + 0.5) * voxel_size
-
-
-def voxel_bounds(coords: np.ndarray, origin: Sequence[float], voxel_size: float):
-    """(min corner, max corner) of the union of the voxels' closed boxes."""
-    coords = np.asarray(coords)
-    lo = np.asarray(origin, dtype=np.float64) + coords.min(axis=0) * voxel_size
-    hi = np.asarray(origin, dtype=np.float64) + (coords.max(axis=0) + 1) * voxel_size
-    return lo, hi

@@ -4,6 +4,7 @@ and replaces its previous result instead of piling up copies."""
 import os
 import re
 import tempfile
+import zlib
 from typing import Optional, Sequence
 
 CACHE_FOLDER = "hyvox_cache"
@@ -15,20 +16,21 @@ def _clean(name: str) -> str:
     return re.sub(r"[^A-Za-z0-9._-]+", "_", name).strip("._") or "volume"
 
 
-def safe_file_stem(name: str) -> str:
-    """A file-system-safe stem: Blender names may hold '/', ':', '*' or non-ASCII;
-    digits at the end would be read as a frame number by Blender, so end with a letter."""
-    stem = _clean(name)
-    if stem[-1].isdigit():
-        stem += "_v"
-    return stem
-
-
 def volume_file_name(source_name: str, frame: Optional[int] = None) -> str:
     stem = _clean(source_name) + VOXELS_SUFFIX  # ends in a letter: no stray frame number
     if frame is None:
         return stem + ".vdb"
     return f"{stem}_{frame:0{FRAME_DIGITS}d}.vdb"
+
+
+def result_stem(group_name: str, key: str, sources: int) -> str:
+    """The stem of a result's files. One object's name is unique in Blender and kept as it
+    is; a group of several objects ("A_and_1_more") or a name a file cannot hold ("a/b" and
+    "a_b" both clean to "a_b") gets a hash of its sources, so no two results share a file,
+    in one run or across runs."""
+    if sources == 1 and _clean(group_name) == group_name:
+        return group_name
+    return f"{group_name}_{zlib.crc32(key.encode()):08x}"
 
 
 def staging_path(final_path: str) -> str:

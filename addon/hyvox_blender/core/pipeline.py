@@ -6,7 +6,6 @@ succeeds, so a cancelled or failed run leaves the previous results untouched."""
 import os
 import threading
 import time
-import zlib
 from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
@@ -88,7 +87,6 @@ class Pipeline:
         self.results: Dict[str, GroupResult] = {}
         self.timings = Timings()
         self._staged: List[Tuple[str, str]] = []  # (staging, final)
-        self._paths: Dict[str, str] = {}  # final path -> group key that owns it
         self._frame_index = 0
         self._groups_in_frame = 1
         self._group_index = 0
@@ -133,10 +131,6 @@ class Pipeline:
             error, self._error = self._error, None
             raise error
 
-    @property
-    def done(self) -> bool:
-        return self._frame_index >= len(self.frames) and not self.worker_busy()
-
     def cancel(self) -> None:
         self._cancelled = True
         token = self._token
@@ -165,9 +159,15 @@ class Pipeline:
 
     # -- staging ----------------------------------------------------------------------
     def commit(self) -> None:
-        for staging, final in self._staged:
-            os.replace(staging, final)
-        self._staged.clear()
+        """Rename every staged file into place; a failure leaves the rest staged for
+        discard() and becomes a HyvoxError."""
+        while self._staged:
+            staging, final = self._staged[0]
+            try:
+                os.replace(staging, final)
+            except OSError as exc:
+                raise HyvoxError(f"cannot write {final}: {exc}") from exc
+            self._staged.pop(0)
 
     def discard(self) -> None:
         for staging, _ in self._staged:
@@ -191,14 +191,8 @@ class Pipeline:
         return meshes
 
     def _final_path(self, group: Group, frame: Optional[int]) -> str:
-        """The group's file; names that clean up to the same file name ("a/b", "a_b") get
-        a suffix from their sources so no two volumes share a file."""
-        path = os.path.join(self.output_dir, naming.volume_file_name(group.name, frame))
-        owner = self._paths.setdefault(path, group.key)
-        if owner != group.key:
-            unique = f"{group.name}_{zlib.crc32(group.key.encode()):08x}"
-            path = os.path.join(self.output_dir, naming.volume_file_name(unique, frame))
-        return path
+        stem = naming.result_stem(group.name, group.key, len(group.sources))
+        return os.path.join(self.output_dir, naming.volume_file_name(stem, frame))
 
     def _work_guarded(self, meshes: List[GroupMesh]) -> None:
         try:
@@ -208,7 +202,10 @@ class Pipeline:
 
     def _work(self, meshes: List[GroupMesh]) -> None:
         frame = self.frames[self._frame_index - 1]
-        os.makedirs(self.output_dir, exist_ok=True)
+        try:
+            os.makedirs(self.output_dir, exist_ok=True)
+        except OSError as exc:
+            raise HyvoxError(f"cannot create the output folder {self.output_dir}: {exc}") from exc
         for index, mesh in enumerate(meshes):
             self._group_index = index
             if self._cancelled:

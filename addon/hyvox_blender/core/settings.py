@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """One settings object per run, gathered once from the scene, the operator's keyword
 arguments and the add-on preferences (the glTF exporter's pattern), then validated."""
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import List, Optional
 
 from .errors import SettingsError
@@ -23,7 +23,6 @@ class VoxelizeSettings:
     hybrid_cutoff: float = -1.0    # < 0: the module picks (auto)
     padding: int = 0               # empty voxels around the bounds
     separate: bool = False         # one volume per object instead of one for the selection
-    output_dir: str = ""           # absolute folder; resolved by the bpy layer
     frames: Optional[List[int]] = None  # None: the current frame only, no sequence
     threads: int = 0
     gl_device: str = ""            # "" auto, "software", or an EGL device index "0", "1"...
@@ -33,12 +32,6 @@ class VoxelizeSettings:
     @property
     def is_sequence(self) -> bool:
         return self.frames is not None
-
-    def with_overrides(self, **overrides) -> "VoxelizeSettings":
-        unknown = set(overrides) - set(self.__dataclass_fields__)
-        if unknown:
-            raise SettingsError("unknown setting(s): " + ", ".join(sorted(unknown)))
-        return replace(self, **overrides)
 
     def validate(self) -> "VoxelizeSettings":
         if self.method not in METHODS:
