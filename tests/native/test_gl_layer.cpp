@@ -7,6 +7,7 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -18,6 +19,7 @@
 #include "gl/shader_library.h"
 #include "hybrid/gl_bindings.h"
 #include "hyvox/errors.h"
+#include "support/temp_dir.h"
 
 namespace hyvox::gl {
 namespace {

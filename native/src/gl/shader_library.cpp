@@ -102,6 +102,8 @@ ResolvedSource resolveShader(const std::string& name, const std::string& dir, co
 }
 
 Program buildProgram(const std::vector<ShaderStage>& stages, const std::string& defines, const std::string& dir) {
+    // Errors name the file where it was read: the folder given, or the embedded shaders/.
+    const std::string folder = dir.empty() ? std::string("shaders") : dir;
     Program program;
     std::vector<Shader> shaders;
     for (const auto& s : stages) {
@@ -117,7 +119,7 @@ Program buildProgram(const std::vector<ShaderStage>& stages, const std::string& 
             glGetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &length);
             std::string log(std::size_t(length > 0 ? length : 1), '\0');
             glGetShaderInfoLog(shader.id(), GLsizei(log.size()), nullptr, log.data());
-            throw BackendError("compiling " + stageName(s.stage) + " shader shaders/" + s.file +
+            throw BackendError("compiling " + stageName(s.stage) + " shader " + folder + "/" + s.file +
                                " failed (source strings: " + fileList(source.files) + "):\n" + log.c_str());
         }
         glAttachShader(program.id(), shader.id());
@@ -135,7 +137,7 @@ Program buildProgram(const std::vector<ShaderStage>& stages, const std::string& 
         glGetProgramInfoLog(program.id(), GLsizei(log.size()), nullptr, log.data());
         std::string names;
         for (const auto& s : stages)
-            names += (names.empty() ? "shaders/" : " + shaders/") + s.file;
+            names += (names.empty() ? "" : " + ") + folder + "/" + s.file;
         throw BackendError("linking " + names + " failed:\n" + log.c_str());
     }
     return program;

@@ -231,9 +231,11 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
 
         // Counts, first try: blocks handed out on first touch, the pool sized from the plan's
         // brick estimate with room for the blocks lost races take (lanes of one SIMD group
-        // reaching a new brick together each take one). If a touched brick still got none,
-        // the bits of that run say exactly which bricks are touched: number them on the host
-        // and draw again into that table, which needs no allocation and cannot run out.
+        // reaching a new brick together each take one). If the pool ran out at all, some
+        // point may have dropped its count (even in a brick another point later gave a
+        // block), so the bits of that run, which say exactly which bricks are touched, are
+        // numbered on the host and everything is drawn again into that table, which needs no
+        // allocation and cannot run out.
         const std::uint64_t cap_blocks = std::max<std::uint64_t>(pool_limit / (512 * sizeof(std::uint32_t)), 1);
         auto poolFor = [&](std::uint64_t blocks) {
             if (blocks * 512 * sizeof(std::uint32_t) > pool_limit)
@@ -251,11 +253,8 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
         if (in.counts) {
             out.brick_blocks.resize(brick_count);
             table.download(0, brick_count * sizeof(std::uint32_t), out.brick_blocks.data());
-            std::uint32_t used = std::min(c.blocks, first_blocks);
-            bool missing = false;
-            for (std::size_t b = 0; b < brick_count && !missing; ++b)
-                missing = out.brick_blocks[b] == 0 && brickTouched(bits, b);
-            if (missing) {
+            std::uint32_t used = c.blocks;
+            if (c.blocks > first_blocks) {
                 used = 0;
                 for (std::size_t b = 0; b < brick_count; ++b) out.brick_blocks[b] = brickTouched(bits, b) ? ++used : 0;
                 table.upload(0, brick_count * sizeof(std::uint32_t), out.brick_blocks.data());
