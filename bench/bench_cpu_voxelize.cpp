@@ -68,9 +68,7 @@ int main(int argc, char** argv) {
                 const hyvox::VoxelizeResult result = hyvox::voxelize(mesh.view(), options);
                 cpu.push_back(cpuMs() - cpu_before);
                 stage.push_back(result.stats.timingMs("voxelize"));
-                double sum = 0;
-                for (const auto& t : result.stats.timings_ms) sum += t.second;
-                total.push_back(sum);
+                total.push_back(result.stats.totalMs());
                 voxels = result.stats.voxel_count;
             }
             std::printf("%-34s %5d %-12s %10.2f %10.2f %10.2f %10.2f %12llu\n", mesh.name.c_str(), res,

@@ -27,12 +27,8 @@ void printSummary(const Arguments& args, const Mesh& mesh, const VoxelizeResult&
     std::printf("  voxels   %llu occupied (%s, %s)\n", (unsigned long long)s.voxel_count, s.mode.c_str(),
                 s.method.c_str());
     std::printf("  time ms ");
-    double total = 0;
-    for (const auto& [stage, ms] : s.timings_ms) {
-        std::printf(" %s %.1f,", stage.c_str(), ms);
-        total += ms;
-    }
-    std::printf(" total %.1f\n", total);
+    for (const auto& [stage, ms] : s.timings_ms) std::printf(" %s %.1f,", stage.c_str(), ms);
+    std::printf(" total %.1f\n", s.totalMs());
 }
 
 }  // namespace

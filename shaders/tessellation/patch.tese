@@ -3,6 +3,7 @@
 // map, moves it along the interpolated normal by (height - midlevel) · strength: Blender's
 // Displace modifier, sampled at the interpolated UV (section 3.3).
 #include "tessellation/bindings.glsl"
+#include "tessellation/surface_eval.glsl"
 
 layout(triangles, equal_spacing, ccw) in;
 
@@ -24,23 +25,20 @@ flat out ivec3 teOrigin;
 
 void main() {
     const vec3 w = gl_TessCoord.x * tcBary[0] + gl_TessCoord.y * tcBary[1] + gl_TessCoord.z * tcBary[2];
+    const TriangleSurface s = TriangleSurface(tcOrigin, tcP, tcN, tcUv);
 #ifdef PN_TRIANGLES
-    vec3 p = tcP[0] * (w.x * w.x * w.x) + tcP[1] * (w.y * w.y * w.y) + tcP[2] * (w.z * w.z * w.z) +
-             tcB[0] * (3.0 * w.x * w.x * w.y) + tcB[1] * (3.0 * w.x * w.y * w.y) + tcB[5] * (3.0 * w.x * w.x * w.z) +
-             tcB[2] * (3.0 * w.y * w.y * w.z) + tcB[4] * (3.0 * w.x * w.z * w.z) + tcB[3] * (3.0 * w.y * w.z * w.z) +
-             tcB[6] * (6.0 * w.x * w.y * w.z);
+    const PnCoefficients pn = PnCoefficients(tcB, tcNe);
+    vec3 p = pnPosition(s, pn, w);
 #else
-    vec3 p = w.x * tcP[0] + w.y * tcP[1] + w.z * tcP[2];
+    vec3 p = flatPosition(s, w);
 #endif
 #ifdef DISPLACEMENT
 #ifdef PN_TRIANGLES
-    const vec3 n = normalize(tcN[0] * (w.x * w.x) + tcN[1] * (w.y * w.y) + tcN[2] * (w.z * w.z) +
-                             tcNe[0] * (w.x * w.y) + tcNe[1] * (w.y * w.z) + tcNe[2] * (w.x * w.z));
+    const vec3 n = pnNormal(s, pn, w);
 #else
-    const vec3 n = normalize(w.x * tcN[0] + w.y * tcN[1] + w.z * tcN[2]);
+    const vec3 n = flatNormal(s, w);
 #endif
-    const vec2 uv = w.x * tcUv[0] + w.y * tcUv[1] + w.z * tcUv[2];
-    p += n * displacement(uv);
+    p += n * displacement(surfaceUv(s, w));
 #endif
     tePosition = p;
     teOrigin = tcOrigin;

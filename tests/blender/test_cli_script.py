@@ -59,4 +59,4 @@ class CliScriptTest(AddonTestCase):
         done = self.run_cli(blend, "--objects", "Cube", "--resolution", "0", "--output", self.out)
         self.assertEqual(done.returncode, 1)
         self.assertIn("hyvox: error: --resolution must be at least 1", done.stderr)
-        self.assertFalse(os.path.isdir(self.out) and os.listdir(self.out))
+        self.assertEqual([f for f in os.listdir(self.out) if f != "scene.blend"], [])

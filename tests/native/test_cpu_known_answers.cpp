@@ -166,6 +166,18 @@ TEST(KnownAnswers, TriangleSpanningAndClippedByTheGrid) {
                 if (i + j + k <= 12.5 && i + j + k + 3 >= 12.5) expected.push_back({i, j, k});
     for (Method method : kMethods)
         EXPECT_EQ(sortedVoxels(run(slanted, unitGrid(8), Mode::Conservative, method)), expected) << toString(method);
+
+    // Triangles far beyond the grid on either side of every axis (past int range in voxel
+    // units) add nothing: the candidate ranges are clamped before any int conversion.
+    TriangleSoup far = flat;
+    for (double d : {-1e12, 1e12}) {
+        far.add({d, 0, 0}, {d, 1, 0}, {d, 0, 1});
+        far.add({0, d, 0}, {1, d, 0}, {0, d, 1});
+        far.add({0, 0, d}, {1, 0, d}, {0, 1, d});
+    }
+    for (Method method : kMethods)
+        for (Mode mode : {Mode::Conservative, Mode::Thin})
+            EXPECT_EQ(sortedVoxels(run(far, unitGrid(8), mode, method)), layer) << toString(method);
 }
 
 TEST(KnownAnswers, BadInputGivesClearErrors) {

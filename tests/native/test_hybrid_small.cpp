@@ -15,6 +15,7 @@
 #include "hybrid/gl_backend_internal.h"
 #include "hyvox/voxelize.h"
 #include "support/scoped_env.h"
+#include "support/temp_dir.h"
 #include "support/test_mesh_loader.h"
 #include "support/triangle_soup.h"
 #include "support/voxel_checks.h"
@@ -281,8 +282,8 @@ TEST(GlSmall, MissingShaderFolderIsAClearError) {
 TEST(GlSmall, ShaderFolderFromTheEnvironmentIsUsed) {
     // A copy of shaders/ with a syntax error in one shared file: the error names the file
     // and quotes the driver's log.
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "hyvox_broken_shaders";
-    std::filesystem::remove_all(dir);
+    const test::TempDir temp;
+    const std::filesystem::path dir = temp.path / "shaders";
     std::filesystem::copy(HYVOX_SOURCE_SHADERS, dir, std::filesystem::copy_options::recursive);
     std::ofstream(dir / "common" / "overlap.glsl", std::ios::app) << "\nthis is not glsl;\n";
     test::TriangleSoup soup;
@@ -299,12 +300,11 @@ TEST(GlSmall, ShaderFolderFromTheEnvironmentIsUsed) {
         EXPECT_NE(what.find("common/overlap.glsl"), std::string::npos) << what;
         EXPECT_NE(what.find("error"), std::string::npos) << what;
     }
-    std::filesystem::remove_all(dir);
     // And the unbroken copy on disk gives the embedded result.
     ScopedEnv good("HYVOX_SHADER_DIR", HYVOX_SOURCE_SHADERS);
-    EXPECT_EQ(voxelize(soup.view(), o).occupancy.count(), [&] {
+    EXPECT_EQ(voxelize(soup.view(), o).occupancy, [&] {
         ScopedEnv none("HYVOX_SHADER_DIR", "");
-        return voxelize(soup.view(), o).occupancy.count();
+        return voxelize(soup.view(), o).occupancy;
     }());
 }
 

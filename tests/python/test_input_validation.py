@@ -173,6 +173,37 @@ def test_every_option_reaches_the_native_options(tetrahedron):
         hyvox.voxelize(vertices, triangles, displacement_pixels=np.zeros(4))
 
 
+def test_tessellation_options_take_effect():
+    # Each option must change what the tessellation method does, so a binding that dropped
+    # or swapped one fails here (the cpu call above ignores them all).
+    v = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], np.float32)
+    t = np.array([[0, 1, 2], [0, 2, 3]], np.uint32)
+    uvs = v[:, :2].copy()
+    normals = np.tile(np.float32([0, 0, 1]), (4, 1))
+    bounds = ((0, 0, -0.5), (1, 1, 0.5))
+    def run(normals=normals, **kw):
+        return hyvox.voxelize(v, t, 16, method="tessellation", gl_device="software", bounds=bounds,
+                              uvs=uvs, normals=normals, **kw)
+    flat = run()
+    assert flat.voxel_count == 16 * 16 and len(flat.counts()[0]) == flat.voxel_count  # counts on by default
+    assert len(run(tess_counts=False).counts()[0]) == 0
+    assert "bias" in run(tess_measure_accuracy=True).stats["metrics"]
+    assert "bias" not in flat.stats["metrics"]
+    assert run(tess_gamma=3.0).stats["metrics"]["points"] > flat.stats["metrics"]["points"]
+    # A ramp height image lifts the square by up to `strength` (0.25 = 4 voxels) at u = 1.
+    ramp = np.tile(np.linspace(0.0, 1.0, 8, dtype=np.float32), (8, 1))
+    lifted = run(displacement_pixels=ramp, displacement_strength=0.25, displacement_midlevel=0.0)
+    assert lifted.coords()[:, 2].max() >= flat.coords()[:, 2].max() + 3
+    # Normals leaning outwards make the PN-triangles bulge upwards; flat ones do not.
+    dome = np.hstack([v[:, :2] - 0.5, np.ones((4, 1), np.float32)])
+    assert run(dome, pn_triangles=True).coords()[:, 2].max() > flat.coords()[:, 2].max()
+    assert np.array_equal(run(dome).to_dense(), flat.to_dense())
+    # A midlevel equal to every height leaves the square where it was.
+    still = run(displacement_pixels=np.full((8, 8), 0.5, np.float32), displacement_strength=0.25,
+                displacement_midlevel=0.5)
+    assert np.array_equal(still.to_dense(), flat.to_dense())
+
+
 def test_gl_devices_lists_the_software_device():
     # Mesa's llvmpipe is always there on the test machines (libegl-mesa0); a GPU adds more.
     devices = hyvox.gl_devices()

@@ -74,7 +74,8 @@ def test_cancel_from_another_thread(dragon):
         deadline = time.monotonic() + 60
         while not token.running and time.monotonic() < deadline:
             time.sleep(0.001)
-        seen_running.set()
+        if token.running:
+            seen_running.set()
         token.cancel()
 
     canceller = threading.Thread(target=cancel_when_running)

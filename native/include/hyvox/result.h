@@ -24,6 +24,11 @@ struct Stats {
     std::map<std::string, double> metrics;
 
     void addTiming(std::string stage, double ms) { timings_ms.emplace_back(std::move(stage), ms); }
+    double totalMs() const {
+        double total = 0;
+        for (const auto& stage : timings_ms) total += stage.second;
+        return total;
+    }
     // Milliseconds of one stage, 0 when it did not run.
     double timingMs(const std::string& stage) const {
         for (const auto& [name, ms] : timings_ms)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 
 #include "core/stopwatch.h"
 #include "gl/gl_debug.h"
@@ -96,7 +97,8 @@ void measureTriangles(const GpuMesh& mesh, std::vector<float>& extent, std::vect
 
 GlTuning GlTuning::forDevice(bool software) {
     GlTuning tuning;
-    tuning.wall_timing = software || std::getenv("HYVOX_GL_WALL_TIMING") != nullptr;
+    const char* forced = std::getenv("HYVOX_GL_WALL_TIMING");  // "1" forces it; unset, "" or "0" do not
+    tuning.wall_timing = software || (forced != nullptr && *forced != '\0' && std::string(forced) != "0");
     // 90² columns of at most 4 loop iterations each stay well below 65535.
     tuning.chunk_side = software ? 90 : 0;
     return tuning;

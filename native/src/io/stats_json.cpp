@@ -74,15 +74,13 @@ std::string statsToJson(const VoxelizeResult& result) {
     // Stage names are keys; a stage that ran twice gets "#2", "#3" so no key repeats.
     out << "  \"timings_ms\": {";
     std::set<std::string> used;
-    double total = 0;
     for (std::size_t t = 0; t < s.timings_ms.size(); ++t) {
         std::string key = s.timings_ms[t].first;
         for (int n = 2; !used.insert(key).second; ++n) key = s.timings_ms[t].first + "#" + std::to_string(n);
         out << (t ? ", " : "") << quote(key) << ": " << number(s.timings_ms[t].second);
-        total += s.timings_ms[t].second;
     }
     out << "},\n";
-    out << "  \"total_ms\": " << number(total) << ",\n";
+    out << "  \"total_ms\": " << number(s.totalMs()) << ",\n";
     out << "  \"metrics\": {";
     bool first = true;
     for (const auto& [name, value] : s.metrics) {

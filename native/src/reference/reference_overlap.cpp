@@ -111,10 +111,11 @@ VoxelRange candidateVoxels(const Triangle& triangle, const std::array<std::int32
         const double lo = std::min({triangle[0][axis], triangle[1][axis], triangle[2][axis]});
         const double hi = std::max({triangle[0][axis], triangle[1][axis], triangle[2][axis]});
         // Voxel i's grown box [i - delta, i + 1 + delta] meets [lo, hi] iff
-        // lo - 1 - delta <= i <= hi + delta. Clamp in double before converting to int so
-        // geometry far outside the grid cannot overflow.
-        const double first = std::ceil(std::max(lo - 1.0 - delta, -1.0));
-        const double last = std::floor(std::min(hi + delta, double(dims[axis])));
+        // lo - 1 - delta <= i <= hi + delta. Clamp both ends in double before converting to
+        // int so geometry far outside the grid, on either side, cannot overflow.
+        const double outside = double(dims[axis]);
+        const double first = std::ceil(std::clamp(lo - 1.0 - delta, -1.0, outside));
+        const double last = std::floor(std::clamp(hi + delta, -1.0, outside));
         range.lo[axis] = std::max(0, int(first));
         range.hi[axis] = std::min(dims[axis] - 1, int(last));
     }
