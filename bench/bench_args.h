@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// Command-line helper shared by the benchmark programs (never part of the library, so a
-// usage error may end the process).
+// Helpers shared by the benchmark programs (never part of the library, so a usage error
+// may end the process).
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace hyvox::bench {
 
@@ -16,6 +18,14 @@ inline std::string optionValue(int argc, char** argv, int& a) {
         std::exit(2);
     }
     return argv[++a];
+}
+
+// The median of repeated timings (mean of the middle two for an even count; 0 for none).
+inline double median(std::vector<double> values) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 }  // namespace hyvox::bench

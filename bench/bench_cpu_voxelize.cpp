@@ -7,13 +7,14 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <ctime>
 #include <string>
 #include <vector>
 
 #include "bench_args.h"
 #include "hyvox/voxelize.h"
-#include "support/test_mesh_loader.h"
+#include "hyvox/mesh_io.h"
 
 namespace {
 
@@ -23,11 +24,6 @@ double cpuMs() {
     timespec ts{};
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
 }
 
 }  // namespace
@@ -58,7 +54,8 @@ int main(int argc, char** argv) {
     std::printf("%-34s %5s %-12s %10s %10s %10s %10s %12s\n", "mesh", "res", "mode", "voxel_ms", "min_ms", "total_ms",
                 "cpu_ms", "voxels");
     for (const std::string& path : meshes) {
-        const hyvox::test::TestMesh mesh = hyvox::test::loadTestMesh(path);
+        const hyvox::Mesh mesh = hyvox::readMesh(path);
+        const std::string name = std::filesystem::path(path).filename().string();
         for (int res : resolutions) {
             options.grid.resolution = res;
             std::vector<double> stage, total, cpu;
@@ -71,9 +68,9 @@ int main(int argc, char** argv) {
                 total.push_back(result.stats.totalMs());
                 voxels = result.stats.voxel_count;
             }
-            std::printf("%-34s %5d %-12s %10.2f %10.2f %10.2f %10.2f %12llu\n", mesh.name.c_str(), res,
-                        hyvox::toString(options.mode), median(stage), *std::min_element(stage.begin(), stage.end()),
-                        median(total), median(cpu),
+            std::printf("%-34s %5d %-12s %10.2f %10.2f %10.2f %10.2f %12llu\n", name.c_str(), res,
+                        hyvox::toString(options.mode), hyvox::bench::median(stage), *std::min_element(stage.begin(), stage.end()),
+                        hyvox::bench::median(total), hyvox::bench::median(cpu),
                         static_cast<unsigned long long>(voxels));
             std::fflush(stdout);
         }

@@ -29,7 +29,7 @@
 
 namespace {
 
-double median(std::vector<double> v);
+using hyvox::bench::median;
 
 // The baseline the issue sets: one invocation per triangle, brute-force 13-axis SAT
 // (Akenine-Moller) of every voxel in the triangle's bounding box. Bench-only, so it lives
@@ -115,11 +115,6 @@ double naiveMs(const hyvox::MeshView& view, const hyvox::VoxelizeOptions& option
         gl::checkGl("naive baseline");
         return median(ms);
     });
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
 struct Sample {

@@ -30,6 +30,8 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
+#include "core/stopwatch.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/version.h"
@@ -37,15 +39,7 @@
 
 namespace {
 
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-double nowMs() {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+using hyvox::bench::median;
 
 // kB fields of /proc/self/status (VmRSS, VmHWM).
 long statusKb(const char* field) {
@@ -122,13 +116,11 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
         std::vector<double> stage, call, with_vdb;
         Measured m;
         for (int r = 0; r < runs; ++r) {
-            const double t0 = nowMs();
+            hyvox::Stopwatch watch;
             hyvox::VoxelizeResult result = hyvox::voxelize(mesh.view(), options);
-            const double t1 = nowMs();
+            call.push_back(watch.elapsedMs());
             auto vdb = hyvox::io::makeDensityGrid(result.grid, result.occupancy);
-            const double t2 = nowMs();
-            call.push_back(t1 - t0);
-            with_vdb.push_back(t2 - t0);
+            with_vdb.push_back(watch.elapsedMs());
             stage.push_back(result.stats.timingMs("voxelize"));
             m.voxels = result.stats.voxel_count;
             m.voxel_size = result.grid.voxel_size;
@@ -164,10 +156,10 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
         std::vector<double> times;
         Measured m;
         for (int r = 0; r < runs; ++r) {
-            const double t0 = nowMs();
+            hyvox::Stopwatch watch;
             auto udf = openvdb::tools::meshToUnsignedDistanceField<openvdb::FloatGrid>(*transform, points, triangles,
                                                                                        quads, 1.0f);
-            times.push_back(nowMs() - t0);
+            times.push_back(watch.elapsedMs());
             m.voxels = udf->activeVoxelCount();
         }
         m.openvdb_ms = median(times);
@@ -198,10 +190,7 @@ int main(int argc, char** argv) {
         std::string csv_path;
         for (int a = 1; a < argc; ++a) {
             const std::string arg = argv[a];
-            auto value = [&]() -> std::string {
-                if (a + 1 >= argc) throw std::runtime_error(arg + " needs a value");
-                return argv[++a];
-            };
+            auto value = [&] { return hyvox::bench::optionValue(argc, argv, a); };
             if (arg == "--runs") runs = std::max(1, std::atoi(value().c_str()));
             else if (arg == "--res") resolutions.push_back(std::atoi(value().c_str()));
             else if (arg == "--mesh-dir") mesh_dir = value();

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
 #include "hyvox/accuracy.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/voxelize.h"
@@ -73,10 +74,11 @@ int main(int argc, char** argv) {
     std::vector<std::string> meshes;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
-        if (arg == "--res" && i + 1 < argc) resolutions = parseList(argv[++i]);
-        else if (arg == "--gamma" && i + 1 < argc) gamma = std::atof(argv[++i]);
-        else if (arg == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
-        else if (arg == "--csv" && i + 1 < argc) csv_path = argv[++i];
+        auto next = [&] { return hyvox::bench::optionValue(argc, argv, i); };
+        if (arg == "--res") resolutions = parseList(next());
+        else if (arg == "--gamma") gamma = std::atof(next().c_str());
+        else if (arg == "--repeat") repeat = std::max(1, std::atoi(next().c_str()));
+        else if (arg == "--csv") csv_path = next();
         else meshes.push_back(arg);
     }
     if (meshes.empty()) {
