@@ -197,32 +197,23 @@ test::TriangleSoup icosphere(int levels, std::vector<float>* uvs) {
                                       {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                                       {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
                                       {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-    auto unit = [](std::array<double, 3> p) {
-        const double len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-        return std::array<double, 3>{p[0] / len, p[1] / len, p[2] / len};
-    };
-    for (auto& p : v) p = unit(p);
-    for (int level = 0; level < levels; ++level) {
-        std::map<std::pair<int, int>, int> mid;
-        auto midpoint = [&](int a, int b) {
-            const auto key = std::minmax(a, b);
-            auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            v.push_back(unit({(v[a][0] + v[b][0]) / 2, (v[a][1] + v[b][1]) / 2, (v[a][2] + v[b][2]) / 2}));
-            return mid[key] = int(v.size() - 1);
-        };
-        std::vector<std::array<int, 3>> next;
-        for (const auto& tri : f) {
-            const int ab = midpoint(tri[0], tri[1]), bc = midpoint(tri[1], tri[2]), ca = midpoint(tri[2], tri[0]);
-            next.insert(next.end(), {{tri[0], ab, ca}, {tri[1], bc, ab}, {tri[2], ca, bc}, {ab, bc, ca}});
-        }
-        f.swap(next);
-    }
-    test::TriangleSoup soup;
+    test::TriangleSoup icosahedron;
     for (const auto& p : v)
-        for (double x : p) soup.positions.push_back(float(x));
+        for (double x : p) icosahedron.positions.push_back(float(x));
     for (const auto& tri : f)
-        for (int i : tri) soup.triangles.push_back(std::uint32_t(i));
+        for (int i : tri) icosahedron.triangles.push_back(std::uint32_t(i));
+    // Midpoint subdivision (the library's, shared edges shared), then every vertex onto the
+    // unit sphere.
+    const Mesh fine = tessellation::midpointSubdivide(icosahedron.view(), levels);
+    test::TriangleSoup soup;
+    soup.triangles = fine.triangles;
+    v.clear();
+    for (std::size_t i = 0; i < fine.vertexCount(); ++i) {
+        const double x = fine.positions[3 * i], y = fine.positions[3 * i + 1], z = fine.positions[3 * i + 2];
+        const double len = std::sqrt(x * x + y * y + z * z);
+        v.push_back({x / len, y / len, z / len});
+        for (double c : v.back()) soup.positions.push_back(float(c));
+    }
     if (uvs)
         for (const auto& p : v) {
             uvs->push_back(float(0.5 + std::atan2(p[1], p[0]) / (2 * kPi)));

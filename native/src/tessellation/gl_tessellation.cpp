@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cstdlib>
 
-#include "core/stopwatch.h"
 #include "gl/gl_debug.h"
 #include "gl/gl_objects.h"
+#include "gl/pass_timer.h"
 #include "gl/gl_worker.h"
 #include "gl/shader_library.h"
 #include "hybrid/gl_voxelizer.h"
@@ -64,8 +64,7 @@ struct PatchLists {
 Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const PatchLists& lists, const gl::Buffer& bits,
                  const gl::Buffer& counters, const gl::Buffer& table, const gl::Buffer& pool, std::uint32_t pool_blocks,
                  bool prefilled, bool software, GpuTessellationOutput& out) {
-    // llvmpipe's GL_TIME_ELAPSED is unreliable: there (and with HYVOX_GL_WALL_TIMING) each
-    // pass is timed on the wall clock around glFinish instead, by the hybrid method's rule.
+    // Timer queries, or the wall clock where they are unreliable: the hybrid method's rule.
     const bool wall_timing = hybrid::GlTuning::forDevice(software).wall_timing;
     // Mesa's llvmpipe (22.3) assembles patches of a plain glDrawArrays(GL_PATCHES) wrongly
     // beyond a few dozen patches per draw (gl_VertexID no longer matches the patch), so
@@ -96,15 +95,12 @@ Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const
     pool.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_COUNT_POOL);
 
     // Pass 0: one point per triangle the tessellator would leave whole.
-    gl::TimerQuery whole_timer;
-    double whole_wall = 0;
+    gl::PassTimer whole_timer(wall_timing);
     {
         setShared(programs.whole);
         lists.whole.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_PATCHES);
         const std::uint64_t count = in.plan.whole.size();
         glUniform1ui(HYVOX_TESS_LOC_SPLIT_COUNT, GLuint(count));
-        if (wall_timing) glFinish();
-        const Stopwatch wall;
         whole_timer.begin();
         constexpr std::uint64_t kPerDispatch = std::uint64_t(HYVOX_LOCAL_SIZE) * 65535;
         for (std::uint64_t base = 0; base < count; base += kPerDispatch) {
@@ -112,11 +108,7 @@ Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const
             const std::uint64_t n = std::min(kPerDispatch, count - base);
             glDispatchCompute(GLuint((n + HYVOX_LOCAL_SIZE - 1) / HYVOX_LOCAL_SIZE), 1, 1);
         }
-        gl::TimerQuery::end();
-        if (wall_timing) {
-            glFinish();
-            whole_wall = wall.elapsedMs();
-        }
+        whole_timer.end();
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         lists.direct.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_PATCHES);
     }
@@ -126,13 +118,9 @@ Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const
     glUniform1f(HYVOX_TESS_LOC_MAX_LEVEL, float(in.max_level));
     glUniform1ui(HYVOX_TESS_LOC_SPLIT_COUNT, GLuint(in.plan.splits.size() / 4));
 
-    gl::TimerQuery direct_timer, split_timer;
-    double wall_ms[2] = {0, 0};
-
-    auto drawPatches = [&](GLuint mode, std::uint64_t patches, const gl::TimerQuery& timer) {
+    gl::PassTimer direct_timer(wall_timing), split_timer(wall_timing);
+    auto drawPatches = [&](GLuint mode, std::uint64_t patches, gl::PassTimer& timer) {
         glUniform1ui(HYVOX_TESS_LOC_SPLIT_MODE, mode);
-        if (wall_timing) glFinish();
-        const Stopwatch wall;
         timer.begin();
         bool cancelled = false;
         for (std::uint64_t base = 0; base < patches && !cancelled; base += kPatchesPerDraw) {
@@ -142,20 +130,16 @@ Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const
             else glDrawArrays(GL_PATCHES, 0, GLsizei(3 * count));
             cancelled = in.interrupter && in.interrupter->wasInterrupted();
         }
-        gl::TimerQuery::end();  // before any throw: an open query would break the next run
+        timer.end();
         if (cancelled) throw Cancelled();
-        if (wall_timing) {
-            glFinish();
-            wall_ms[mode] = wall.elapsedMs();
-        }
     };
     drawPatches(0, in.plan.direct.size(), direct_timer);
     drawPatches(1, in.plan.split_patches, split_timer);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     gl::checkGl("tessellation draw");
-    out.whole_gpu_ms += wall_timing ? whole_wall : whole_timer.milliseconds();
-    out.direct_gpu_ms += wall_timing ? wall_ms[0] : direct_timer.milliseconds();
-    out.split_gpu_ms += wall_timing ? wall_ms[1] : split_timer.milliseconds();
+    out.whole_gpu_ms += whole_timer.milliseconds();
+    out.direct_gpu_ms += direct_timer.milliseconds();
+    out.split_gpu_ms += split_timer.milliseconds();
     Counters c{};
     counters.download(0, sizeof(c), &c);
     return c;
@@ -230,8 +214,9 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
         } restore;
 
         // Counts, first try: blocks handed out on first touch, the pool sized from the plan's
-        // brick estimate with room for the blocks lost races take (lanes of one SIMD group
-        // reaching a new brick together each take one). If the pool ran out at all, some
+        // brick estimate (doubled, plus a margin) with room for the blocks lost races take
+        // (lanes of one SIMD group reaching a new brick together each take one), never more
+        // than every brick plus that room. If the pool ran out at all, some
         // point may have dropped its count (even in a brick another point later gave a
         // block), so the bits of that run, which say exactly which bricks are touched, are
         // numbered on the host and everything is drawn again into that table, which needs no
@@ -245,7 +230,7 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
             return gl::Buffer(in.counts ? blocks * 512 * sizeof(std::uint32_t) : 0, nullptr);
         };
         const std::uint32_t first_blocks = std::uint32_t(
-            std::min<std::uint64_t>({2 * std::uint64_t(in.pool_blocks) + 256, cap_blocks, brick_count + 256}));
+            std::min<std::uint64_t>({2 * (in.plan.brick_estimate + 64) + 256, brick_count + 256, cap_blocks}));
         gl::Buffer pool = poolFor(in.counts ? first_blocks : 1);
         out.runs = 1;
         Counters c = drawAll(in, programs, lists, bit_buffer, counters, table, pool, first_blocks, false, worker.device().software, out);

@@ -30,7 +30,6 @@ struct GpuTessellationInput {
     int height_width, height_height;
     double strength_voxels, midlevel;
     bool counts;
-    std::uint32_t pool_blocks;           // count blocks to provide (first guess)
     std::uint64_t memory_budget;         // bytes the count pool may take
     std::string shader_dir;
     Interrupter* interrupter;

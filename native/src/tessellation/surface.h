@@ -28,11 +28,8 @@ public:
     // normals are the mesh's own (normalized) or area-weighted ones; UVs are zero if absent.
     Surface(const ValidatedMesh& mesh, const GridSpec& grid);
 
-    std::size_t vertexCount() const { return positions_.size() / 3; }
-    const std::vector<float>& positions() const { return positions_; }  // voxel space, N×3
-    const std::vector<float>& normals() const { return normals_; }      // unit, N×3
-    const std::vector<float>& uvs() const { return uvs_; }              // N×2
-    const std::uint32_t* triangles() const { return triangles_; }        // the mesh's indices
+    const std::vector<float>& normals() const { return normals_; }  // unit, N×3
+    const std::vector<float>& uvs() const { return uvs_; }          // N×2
 
     // The corner positions of triangle t (voxel space).
     std::array<std::array<float, 3>, 3> corners(std::uint32_t t) const;

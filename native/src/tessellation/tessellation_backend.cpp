@@ -117,7 +117,6 @@ void runTessellationBackend(const BackendJob& job, VoxelizeResult& result) {
         options.displacement_strength / job.grid.voxel_size,
         options.displacement_midlevel,
         options.counts,
-        std::uint32_t(std::min<std::uint64_t>(plan.brick_estimate + 64, result.occupancy.brickCount())),
         job.options.memory_budget,
         gl::resolveShaderDir(job.options.gl.shader_dir),
         job.interrupter,
