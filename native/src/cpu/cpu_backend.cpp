@@ -54,10 +54,9 @@ void runCpuBackend(const BackendJob& job, VoxelizeResult& result) {
                 throwIfInterrupted(job.interrupter, int(100 * done.load(std::memory_order_relaxed) / usable.size()));
                 cpu::WordMarker marker(grid);
                 for (std::size_t n = chunk.begin(); n != chunk.end(); ++n) {
-                    const std::uint32_t* idx = mesh.view.triangles + 3 * std::size_t(usable[n]);
                     std::array<std::array<double, 3>, 3> corners;
                     for (int c = 0; c < 3; ++c) {
-                        const float* p = mesh.view.positions + 3 * std::size_t(idx[c]);
+                        const std::array<float, 3> p = mesh.vertex(usable[n], c);
                         for (int a = 0; a < 3; ++a)
                             corners[c][a] = (double(p[a]) - spec.origin[a]) / spec.voxel_size;
                     }

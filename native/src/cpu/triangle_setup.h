@@ -23,7 +23,6 @@ struct EdgeTest {
     double na, nb;  // inward normal of the projected edge (zero if the projection is a segment)
     double va, vb;  // the edge's start vertex in the plane's coordinates
     double offset;  // conservative: max(0,na)+max(0,nb); thin: the inscribed diamond's support
-    double eval(double pa, double pb) const { return na * (pa - va) + nb * (pb - vb) + offset; }
 };
 
 struct TriangleSetup {
@@ -31,8 +30,8 @@ struct TriangleSetup {
     std::array<double, 3> origin;  // swizzled vertex 0 (the plane passes through it)
     std::array<double, 3> normal;  // swizzled, flipped so normal[2] (the w component) > 0
     EdgeTest uv[3], vw[3], wu[3];  // the three projections' edge tests
-    // Depth range terms (see voxelizeColumn): conservative uses the box's min/max corner
-    // offsets along the normal, thin the column centre.
+    // Depth range terms (see rasterizeRows, rasterize_triangle.h): conservative uses the
+    // box's min/max corner offsets along the normal, thin the column centre.
     double depth_lo_offset = 0, depth_hi_offset = 0;
     // Clipped candidate voxel range in swizzled order (lo > hi: nothing to do).
     std::array<int, 3> lo{0, 0, 0}, hi{-1, -1, -1};

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <string>
 
 #include "hyvox/errors.h"
@@ -23,6 +24,22 @@ std::string folderOf(const std::string& path) {
     if (slash == std::string::npos) return ".";
     if (slash == 0) return "/";
     return path.substr(0, slash);
+}
+
+// Whether a failure to create a file says the path is unusable (the caller's mistake) rather
+// than the system being out of something (disk space, quota, descriptors) or failing.
+bool isPathError(int error) {
+    switch (error) {
+        case EACCES:
+        case EPERM:
+        case ENOENT:
+        case ENOTDIR:
+        case EROFS:
+        case ENAMETOOLONG:
+        case EISDIR:
+        case ELOOP: return true;
+        default: return false;
+    }
 }
 
 std::string baseOf(const std::string& path) {
@@ -54,9 +71,12 @@ AtomicFile::AtomicFile(std::string destination) : destination_(std::move(destina
             temp_ = std::move(candidate);
             return;
         }
-        if (errno != EEXIST)
-            throw InvalidInput("cannot write '" + destination_ + "': cannot create a file in folder '" + folder +
-                               "': " + errnoText());
+        const int error = errno;
+        if (error == EEXIST) continue;
+        const std::string message = "cannot write '" + destination_ + "': cannot create a file in folder '" + folder +
+                                    "': " + std::strerror(error);
+        if (isPathError(error)) throw InvalidInput(message);
+        throw ResourceError(message);
     }
     throw ResourceError("cannot write '" + destination_ + "': no free temporary file name in '" + folder + "'");
 }
@@ -76,6 +96,22 @@ void AtomicFile::commit() {
     if (std::rename(temp_.c_str(), destination_.c_str()) != 0)
         throw ResourceError("cannot write '" + destination_ + "': renaming the temporary failed: " + errnoText());
     committed_ = true;
+}
+
+void AtomicFile::writeWith(const std::function<void(std::ostream&)>& write) {
+    {
+        std::ofstream os;
+        errno = 0;  // so a failure below never quotes an older error
+        os.exceptions(std::ios::failbit | std::ios::badbit);
+        try {
+            os.open(temp_, std::ios::out | std::ios::binary | std::ios::trunc);
+            write(os);
+            os.close();
+        } catch (const std::ios_base::failure&) {
+            throw ResourceError("writing '" + destination_ + "' failed: " + (errno ? std::strerror(errno) : "I/O error"));
+        }
+    }
+    commit();
 }
 
 }  // namespace hyvox::io

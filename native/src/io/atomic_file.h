@@ -4,6 +4,8 @@
 // otherwise: readers of the destination never see a half-written file, and a failed write
 // leaves an existing file untouched. The temporary is in the same folder so the rename
 // stays on one file system (atomic on POSIX).
+#include <functional>
+#include <ostream>
 #include <string>
 
 namespace hyvox::io {
@@ -11,16 +13,21 @@ namespace hyvox::io {
 class AtomicFile {
 public:
     // Creates an empty, unique temporary file; throws InvalidInput when the destination's
-    // folder is missing or not writable, or the destination is a folder.
+    // folder is missing or not writable, or the destination is a folder, and ResourceError
+    // when the system is out of a resource (disk space, quota, file descriptors, I/O error).
     explicit AtomicFile(std::string destination);
     ~AtomicFile();
     AtomicFile(const AtomicFile&) = delete;
     AtomicFile& operator=(const AtomicFile&) = delete;
 
     const std::string& tempPath() const { return temp_; }
-    const std::string& destination() const { return destination_; }
     // Flushes the temporary to disk and renames it over the destination; throws ResourceError.
     void commit();
+    // Opens the temporary as a binary stream that throws on failure, calls write(stream),
+    // closes and checks the stream, then commit()s. A stream failure becomes ResourceError
+    // ("writing '<destination>' failed: <errno text, or I/O error>"); anything else write
+    // throws passes through unchanged. On any throw the destination is left as it was.
+    void writeWith(const std::function<void(std::ostream&)>& write);
 
 private:
     std::string destination_;

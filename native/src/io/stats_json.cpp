@@ -3,15 +3,13 @@
 // a dependency (Debian's nlohmann-json3-dev is not installed here).
 #include "hyvox/stats_json.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
+#include <cstdlib>
+#include <ostream>
 #include <set>
 #include <sstream>
 
-#include "hyvox/errors.h"
 #include "hyvox/version.h"
 #include "io/atomic_file.h"
 
@@ -92,14 +90,7 @@ std::string statsToJson(const VoxelizeResult& result) {
 }
 
 void writeTextFileAtomic(const std::string& path, const std::string& text) {
-    io::AtomicFile file(path);
-    {
-        std::ofstream os(file.tempPath(), std::ios::out | std::ios::binary | std::ios::trunc);
-        os << text;
-        os.close();
-        if (!os) throw ResourceError("writing '" + path + "' failed: " + (errno ? std::strerror(errno) : "I/O error"));
-    }
-    file.commit();
+    io::AtomicFile(path).writeWith([&](std::ostream& os) { os << text; });
 }
 
 }  // namespace hyvox

@@ -8,11 +8,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <memory>
 #include <mutex>
+#include <ostream>
 
 #include "hyvox/errors.h"
 #include "hyvox/vdb.h"
@@ -134,22 +132,14 @@ openvdb::GridPtrVec makeGrids(const VoxelizeResult& result) {
 
 void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path) {
     initializeOpenVdb();
-    AtomicFile file(path);  // removes its temporary unless commit() succeeds
-    {
-        std::ofstream os;
-        errno = 0;
-        os.exceptions(std::ios::failbit | std::ios::badbit);
+    // The temporary is removed unless the whole write and commit succeed.
+    AtomicFile(path).writeWith([&](std::ostream& os) {
         try {
-            os.open(file.tempPath(), std::ios::out | std::ios::binary | std::ios::trunc);
             CheckedArchive().writeTo(os, grids);
-            os.close();
-        } catch (const std::ios_base::failure&) {
-            throw ResourceError("writing '" + path + "' failed: " + (errno ? std::strerror(errno) : "I/O error"));
         } catch (const openvdb::Exception& e) {
             throw ResourceError("writing '" + path + "' failed: " + e.what());
         }
-    }
-    file.commit();
+    });
 }
 
 }  // namespace hyvox::io
