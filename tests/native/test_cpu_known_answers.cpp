@@ -25,15 +25,6 @@ VoxelizeResult run(const TriangleSoup& soup, const GridOptions& grid, Mode mode,
     return voxelize(soup.view(), options);
 }
 
-// A grid with voxel (i,j,k) = world [i,i+1]x[j,j+1]x[k,k+1] * size, dims n^3.
-GridOptions unitGrid(int n, double size = 1.0) {
-    GridOptions g;
-    g.voxel_size = size;
-    g.origin = std::array<double, 3>{0, 0, 0};
-    g.bounds = Bounds{{0, 0, 0}, {n * size, n * size, n * size}};
-    return g;
-}
-
 // Voxels of `dims` whose closed box meets the surface of the voxel-space box [lo, hi]
 // (integer corners): those meeting the closed box minus those strictly inside the open box.
 VoxelList boxShell(const std::array<int, 3>& dims, const std::array<int, 3>& lo, const std::array<int, 3>& hi) {

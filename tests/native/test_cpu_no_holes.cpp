@@ -7,6 +7,7 @@
 
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "support/test_mesh_loader.h"
 #include "support/triangle_soup.h"
@@ -38,24 +39,22 @@ TEST_P(MeshHoles, EverySurfacePointIsCovered) {
     expectNoHoles(mesh.view(), options, file + " @" + std::to_string(resolution));
 }
 
-std::string caseName(const ::testing::TestParamInfo<Case>& info) {
-    std::string name = std::get<0>(info.param);
-    name = name.substr(0, name.find('.'));
-    std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
-    return name + "_" + std::to_string(std::get<1>(info.param));
+// Every shared mesh once (at 128, dragon res2 and igea at 64), bunny and sponza also at 256.
+std::vector<Case> meshCases() {
+    std::vector<Case> cases;
+    for (const std::string& file : sharedMeshFiles()) {
+        const bool coarse = file == "dragon_stanford_res2_203k.ply.gz" || file == "igea_cyberware_268k.ply.gz";
+        cases.push_back({file, coarse ? 64 : 128});
+        if (file == "bunny_stanford_69k.ply" || file == "sponza_crytek_262k_vcolor.ply.gz") cases.push_back({file, 256});
+    }
+    return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    SharedMeshes, MeshHoles,
-    ::testing::Values(Case{"armadillo_52k.ply", 128}, Case{"bunny_stanford_69k.ply", 128},
-                      Case{"bunny_stanford_69k.ply", 256}, Case{"dragon_stanford_871k.ply.gz", 128},
-                      Case{"dragon_stanford_res2_203k.ply.gz", 64}, Case{"dragon_stanford_res3_48k.ply", 128},
-                      Case{"elephant_holes.ply", 128}, Case{"happy_buddha_100k.ply", 128},
-                      Case{"igea_cyberware_268k.ply.gz", 64}, Case{"shark_holes.ply", 128},
-                      Case{"spider_messy.ply", 128}, Case{"sponza_crytek_262k_vcolor.ply.gz", 128},
-                      Case{"sponza_crytek_262k_vcolor.ply.gz", 256}, Case{"spot_uv.ply", 128},
-                      Case{"spot_vcolor.ply", 128}, Case{"teapot_utah.ply", 128}),
-    caseName);
+std::string caseName(const ::testing::TestParamInfo<Case>& info) {
+    return meshCaseName(std::get<0>(info.param), std::get<1>(info.param));
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedMeshes, MeshHoles, ::testing::ValuesIn(meshCases()), caseName);
 
 TEST(NoHoles, FacesOnVoxelPlanes) {
     // A box whose size is a multiple of the voxel size: every face lies on voxel planes.
@@ -76,9 +75,7 @@ TEST(NoHoles, FacesOnVoxelPlanes) {
         TriangleSoup tri;
         tri.add(a, b, c);
         VoxelizeOptions on_plane;
-        on_plane.grid.voxel_size = 1.0;
-        on_plane.grid.origin = std::array<double, 3>{0, 0, 0};
-        on_plane.grid.bounds = Bounds{{0, 0, 0}, {8, 8, 8}};
+        on_plane.grid = unitGrid(8);
         expectNoHoles(tri.view(), on_plane, "triangle on plane axis " + std::to_string(w));
     }
 }

@@ -6,7 +6,6 @@
 
 #include <string>
 #include <tuple>
-#include <vector>
 
 #include "support/test_mesh_loader.h"
 #include "support/triangle_soup.h"
@@ -25,24 +24,11 @@ TEST_P(ThinSeparates, InsideIsNotReachedFromTheBoundary) {
     options.grid.padding = 1;  // an empty layer all around, so the outside is connected
     options.mode = Mode::Thin;
     const VoxelizeResult result = voxelize(mesh.view(), options);
-    const std::vector<char> inside = insideByParity(mesh.view(), result.grid);
-    const Separation s = floodFromBoundary(result.occupancy, inside);
+    const Separation s = expectSixSeparating(mesh.view(), result);
     std::printf("[ separate ] %s @%d thin: %llu voxels, %llu empty reached, %llu empty inside, %llu inside reached\n",
                 file.c_str(), resolution, static_cast<unsigned long long>(result.stats.voxel_count),
                 static_cast<unsigned long long>(s.reached), static_cast<unsigned long long>(s.inside_empty),
                 static_cast<unsigned long long>(s.inside_reached));
-    EXPECT_GT(s.reached, 0u);
-    EXPECT_GT(s.inside_empty, 0u) << "the mesh should enclose empty voxels";
-    EXPECT_EQ(s.inside_reached, 0u) << "a 6-connected path of empty voxels leaks into the inside";
-
-    // Negative control: the same check must notice a leak when one slab of the surface is
-    // removed (otherwise it would prove nothing).
-    BitGrid cut = result.occupancy;
-    BitGrid open(cut.dims());
-    const int mid = cut.dims()[0] / 2;
-    for (const auto& c : cut.coords())
-        if (c[0] != mid) open.set(c[0], c[1], c[2]);
-    EXPECT_GT(floodFromBoundary(open, inside).inside_reached, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(WatertightMeshes, ThinSeparates,
@@ -59,6 +45,8 @@ TEST(ThinSeparation, UnitCube) {
     options.grid.padding = 1;
     options.mode = Mode::Thin;
     const VoxelizeResult result = voxelize(cube.view(), options);
+    // Faces on voxel planes with padding 1 mark the whole boundary layer, so nothing is
+    // reached from it: expectSixSeparating's reached > 0 does not apply here.
     const Separation s = floodFromBoundary(result.occupancy, insideByParity(cube.view(), result.grid));
     EXPECT_EQ(s.inside_reached, 0u);
     EXPECT_GT(s.inside_empty, 0u);

@@ -5,8 +5,6 @@
 // They run on llvmpipe (Mesa's software EGL device) where there is no GPU, and never skip.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cstdlib>
 #include <iostream>
 #include <ostream>
 #include <string>
@@ -39,10 +37,7 @@ void checkMesh(const MeshView& mesh, int resolution, const std::string& label) {
             SCOPED_TRACE(label + " @" + std::to_string(resolution) + " " + toString(method) + " " + toString(mode));
             const VoxelizeResult result = voxelize(mesh, optionsFor(method, mode, resolution));
             const auto cmp = test::compareResults(mesh, mode, result, oracle);
-            EXPECT_TRUE(cmp.unexplained.empty()) << cmp.summary();
-            // Touches are rare (at most 7 per case on llvmpipe): the cpu tests' bound, so a
-            // systematic shift cannot hide as "touches".
-            EXPECT_LE(cmp.touches, std::max<std::uint64_t>(10, cmp.oracle_voxels / 10000)) << cmp.summary();
+            test::expectMatchesOracle(cmp);  // touches: at most 7 per case on llvmpipe
             if (cmp.result_only + cmp.oracle_only > 0)  // touches are counted, and shown
                 std::cout << "  " << label << " @" << resolution << " " << toString(method) << " " << toString(mode)
                           << ": " << cmp.summary() << "\n";
@@ -75,11 +70,8 @@ TEST_P(GlMeshTest, MatchesOraclesInBothModes) {
 }
 
 std::vector<MeshCase> meshCases() {
-    // CTest lists the cases by running this binary without its test environment: fall back to
-    // the build's mesh folder so every mesh is registered (and run) there too.
-    if (test::meshDir().empty()) setenv("HYVOX_MESH_DIR", HYVOX_DEFAULT_MESH_DIR, 0);
     std::vector<MeshCase> cases;
-    for (const std::string& file : test::listMeshFiles())
+    for (const std::string& file : test::sharedMeshFiles())
         for (int resolution : {64, 128})
             cases.push_back({file, resolution});
     cases.push_back({"bunny_stanford_69k.ply", 256});
@@ -88,19 +80,15 @@ std::vector<MeshCase> meshCases() {
 }
 
 std::string caseName(const ::testing::TestParamInfo<MeshCase>& info) {
-    std::string name =
-        info.param.file.substr(0, info.param.file.find('.')) + "_" + std::to_string(info.param.resolution);
-    for (char& c : name)
-        if (!std::isalnum(static_cast<unsigned char>(c)))
-            c = '_';
-    return name;
+    return test::meshCaseName(info.param.file, info.param.resolution);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedMeshes, GlMeshTest, ::testing::ValuesIn(meshCases()), caseName);
 
 TEST(GlMeshes, TheSharedMeshesAreThere) {
-    // The parameterized suite would silently shrink without them.
-    EXPECT_GE(test::listMeshFiles().size(), 10u) << "HYVOX_MESH_DIR=" << test::meshDir();
+    // The suite runs on test::sharedMeshFiles(): it must be the folder's listing (as in
+    // CpuVsReference.MeshListIsComplete), or meshes would be skipped silently.
+    EXPECT_EQ(test::listMeshFiles(), test::sharedMeshFiles()) << "HYVOX_MESH_DIR=" << test::meshDir();
 }
 
 // The pathological case of section 3.2: one triangle spanning the whole scene.
@@ -119,11 +107,7 @@ TEST(GlMeshes, ThinIsSixSeparatingOnClosedMeshes) {
             SCOPED_TRACE(file + " " + toString(method));
             VoxelizeOptions o = optionsFor(method, Mode::Thin, resolution);
             o.grid.padding = 1;
-            const VoxelizeResult result = voxelize(mesh.view(), o);
-            const std::vector<char> inside = test::insideByParity(mesh.view(), result.grid);
-            const test::Separation s = test::floodFromBoundary(result.occupancy, inside);
-            EXPECT_EQ(s.inside_reached, 0u) << "a 6-connected path of empty voxels leaks into the inside";
-            EXPECT_GT(s.inside_empty, 1000u) << "the mesh should enclose empty voxels";
+            test::expectSixSeparating(mesh.view(), voxelize(mesh.view(), o), 1000);
         }
     }
 }

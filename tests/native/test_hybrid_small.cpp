@@ -33,12 +33,10 @@ VoxelizeOptions options(Method method, Mode mode = Mode::Conservative) {
     return o;
 }
 
-// A grid of 8 unit voxels per axis over [0, 8]³ whatever the mesh: voxel_size 1, origin 0.
-VoxelizeOptions unitGrid(Method method, Mode mode = Mode::Conservative) {
+// options() on a grid of 8 unit voxels per axis over [0, 8]³ whatever the mesh.
+VoxelizeOptions onUnitGrid(Method method, Mode mode = Mode::Conservative) {
     VoxelizeOptions o = options(method, mode);
-    o.grid.voxel_size = 1.0;
-    o.grid.origin = std::array<double, 3>{0, 0, 0};
-    o.grid.bounds = Bounds{{0, 0, 0}, {8, 8, 8}};
+    o.grid = test::unitGrid(8);
     return o;
 }
 
@@ -52,7 +50,7 @@ TEST(GlSmall, FaceOnVoxelPlaneMarksBothSides) {
     soup.add({1, 1, 4}, {3, 3, 4}, {1, 3, 4});
     for (Method method : kGlMethods) {
         SCOPED_TRACE(toString(method));
-        const VoxelizeResult r = voxelize(soup.view(), unitGrid(method));
+        const VoxelizeResult r = voxelize(soup.view(), onUnitGrid(method));
         EXPECT_EQ(r.occupancy.count(), 4u * 4u * 2u);
         for (int x = 0; x <= 3; ++x)
             for (int y = 0; y <= 3; ++y) {
@@ -68,7 +66,7 @@ TEST(GlSmall, BoxOnVoxelPlanesMatchesTheReferenceWithoutHoles) {
     soup.addBox({2, 1, 3}, {6, 7, 5});
     soup.addBox({0, 0, 0}, {8, 8, 8});
     for (Mode mode : {Mode::Conservative, Mode::Thin}) {
-        VoxelizeOptions o = unitGrid(mode == Mode::Conservative ? Method::Reference : Method::Cpu, mode);
+        VoxelizeOptions o = onUnitGrid(mode == Mode::Conservative ? Method::Reference : Method::Cpu, mode);
         const VoxelizeResult oracle = voxelize(soup.view(), o);
         for (Method method : kGlMethods) {
             SCOPED_TRACE(std::string(toString(method)) + " " + toString(mode));
@@ -90,7 +88,7 @@ TEST(GlSmall, TinyTriangleInsideOneVoxelSetsOnlyIt) {
     for (Mode mode : {Mode::Conservative, Mode::Thin})
         for (Method method : kGlMethods) {
             SCOPED_TRACE(std::string(toString(method)) + " " + toString(mode));
-            const VoxelizeResult r = voxelize(soup.view(), unitGrid(method, mode));
+            const VoxelizeResult r = voxelize(soup.view(), onUnitGrid(method, mode));
             ASSERT_EQ(r.occupancy.count(), 1u);
             EXPECT_TRUE(r.occupancy.test(5, 2, 6));
         }

@@ -4,6 +4,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <dirent.h>
@@ -118,6 +119,23 @@ std::vector<std::string> listMeshFiles() {
     }
     std::sort(files.begin(), files.end());
     return files;
+}
+
+const std::vector<std::string>& sharedMeshFiles() {
+    static const std::vector<std::string> files = {
+        "armadillo_52k.ply",          "bunny_stanford_69k.ply",   "dragon_stanford_871k.ply.gz",
+        "dragon_stanford_res2_203k.ply.gz", "dragon_stanford_res3_48k.ply", "elephant_holes.ply",
+        "happy_buddha_100k.ply",      "igea_cyberware_268k.ply.gz", "shark_holes.ply",
+        "spider_messy.ply",           "sponza_crytek_262k_vcolor.ply.gz", "spot_uv.ply",
+        "spot_vcolor.ply",            "teapot_utah.ply",
+    };
+    return files;
+}
+
+std::string meshCaseName(const std::string& file, int resolution) {
+    std::string name = file.substr(0, file.find('.')) + "_" + std::to_string(resolution);
+    std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+    return name;
 }
 
 }  // namespace hyvox::test

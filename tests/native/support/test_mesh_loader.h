@@ -29,4 +29,15 @@ std::vector<std::string> listMeshFiles();
 // meshDir() + "/" + file.
 std::string meshPath(const std::string& file);
 
+// The shared meshes every mesh suite runs on, sorted by name: the one list, fixed in code so
+// the suites register the same cases whether or not the folder can be read. A test compares it
+// with listMeshFiles() (CpuVsReference.MeshListIsComplete), so no mesh is added or removed
+// without the suites noticing.
+const std::vector<std::string>& sharedMeshFiles();
+
+// A GoogleTest case name for `file` at `resolution`: the name up to its first '.', then
+// "_<resolution>", with every non-alphanumeric character as '_' ("spot_uv.ply", 64 ->
+// "spot_uv_64").
+std::string meshCaseName(const std::string& file, int resolution);
+
 }  // namespace hyvox::test

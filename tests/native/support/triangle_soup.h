@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// Small hand-built meshes for known-answer tests, and the voxel set of a result as a
-// sorted list for exact comparisons.
+// Small hand-built meshes for known-answer tests, a unit grid to voxelize them on, and the
+// voxel set of a result as a sorted list for exact comparisons.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -35,6 +35,16 @@ struct TriangleSoup {
     }
     MeshView view() const { return viewOf(positions, triangles); }
 };
+
+// A grid with voxel (i,j,k) = world [i,i+1]x[j,j+1]x[k,k+1] * size, dims n^3, whatever the
+// mesh: voxel size `size`, origin 0, bounds [0, n * size]^3.
+inline GridOptions unitGrid(int n, double size = 1.0) {
+    GridOptions g;
+    g.voxel_size = size;
+    g.origin = std::array<double, 3>{0, 0, 0};
+    g.bounds = Bounds{{0, 0, 0}, {n * size, n * size, n * size}};
+    return g;
+}
 
 using VoxelList = std::vector<std::array<std::int32_t, 3>>;
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "support/voxel_checks.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -102,25 +104,24 @@ Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult&
     return cmp;
 }
 
-Comparison compareWithReference(const MeshView& mesh, const VoxelizeResult& result, VoxelizeOptions options,
-                                double eps) {
-    const Stopwatch watch;
+Comparison compareWithReference(const MeshView& mesh, VoxelizeOptions options, double eps) {
+    Stopwatch watch;
+    options.method = Method::Cpu;
+    const VoxelizeResult cpu = voxelize(mesh, options);
+    const double cpu_ms = watch.restart();
     options.method = Method::Reference;
     const VoxelizeResult ref = voxelize(mesh, options);
     const double reference_ms = watch.elapsedMs();
-    Comparison cmp = compareResults(mesh, options.mode, result, ref, eps);
+    Comparison cmp = compareResults(mesh, options.mode, cpu, ref, eps);
+    cmp.result_ms = cpu_ms;
     cmp.oracle_ms = reference_ms;
     return cmp;
 }
 
-Comparison compareWithReference(const MeshView& mesh, VoxelizeOptions options, double eps) {
-    const Stopwatch watch;
-    options.method = Method::Cpu;
-    const VoxelizeResult cpu = voxelize(mesh, options);
-    const double cpu_ms = watch.elapsedMs();
-    Comparison cmp = compareWithReference(mesh, cpu, options, eps);
-    cmp.result_ms = cpu_ms;
-    return cmp;
+void expectMatchesOracle(const Comparison& cmp) {
+    EXPECT_GT(cmp.oracle_voxels, 0u) << cmp.summary();
+    EXPECT_TRUE(cmp.unexplained.empty()) << cmp.summary();
+    EXPECT_LE(cmp.touches, std::max<std::uint64_t>(10, cmp.oracle_voxels / 10000)) << cmp.summary();
 }
 
 std::uint64_t countHoles(const MeshView& mesh, const VoxelizeResult& result, std::uint64_t* samples,
@@ -277,6 +278,21 @@ Separation floodFromBoundary(const BitGrid& bits, const std::vector<char>& insid
                 out.inside_reached += in && seen[id(i, j, k)];
             }
     return out;
+}
+
+Separation expectSixSeparating(const MeshView& mesh, const VoxelizeResult& result, std::uint64_t min_inside_empty) {
+    const std::vector<char> inside = insideByParity(mesh, result.grid);
+    const Separation s = floodFromBoundary(result.occupancy, inside);
+    EXPECT_GT(s.reached, 0u);
+    EXPECT_GT(s.inside_empty, min_inside_empty) << "the mesh should enclose empty voxels";
+    EXPECT_EQ(s.inside_reached, 0u) << "a 6-connected path of empty voxels leaks into the inside";
+
+    BitGrid open(result.occupancy.dims());
+    const int mid = open.dims()[0] / 2;
+    for (const auto& c : result.occupancy.coords())
+        if (c[0] != mid) open.set(c[0], c[1], c[2]);
+    EXPECT_GT(floodFromBoundary(open, inside).inside_reached, 0u) << "negative control: slab x = " << mid << " removed";
+    return s;
 }
 
 }  // namespace hyvox::test

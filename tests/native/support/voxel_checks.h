@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Oracle-side checks shared by the voxelizer tests (cpu, GL, tessellation): equality of two
-// voxel sets up to proven touches, and the no-holes surface sampling.
+// voxel sets up to proven touches, the no-holes surface sampling, and 6-separation.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -33,12 +33,14 @@ struct Comparison {
 Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult& result,
                           const VoxelizeResult& oracle, double eps = 1e-5);
 
-// Runs the `reference` backend with `options` (method replaced) and compares `result` with it.
-Comparison compareWithReference(const MeshView& mesh, const VoxelizeResult& result, VoxelizeOptions options,
-                                double eps = 1e-5);
-
-// Runs `cpu` and `reference` with the same options (method ignored) and compares them.
+// Runs `cpu` and `reference` with the same options (method ignored) and compares them
+// (`cpu` is the result, `reference` the oracle; both timed).
 Comparison compareWithReference(const MeshView& mesh, VoxelizeOptions options, double eps = 1e-5);
+
+// The acceptance rule for a comparison (GoogleTest expectations): a non-empty oracle, no
+// unexplained disagreement, and touches rare, at most max(10, oracle voxels / 10000), so a
+// systematic shift cannot hide as "touches".
+void expectMatchesOracle(const Comparison& cmp);
 
 // Dense samples on every usable triangle (a barycentric lattice with spacing <= 1/2 voxel,
 // vertices and edges included); returns the number of samples (in voxel space) that lie in
@@ -61,5 +63,13 @@ struct Separation {
 
 // Floods the empty voxels of `bits` from the grid's faces, 6-connected.
 Separation floodFromBoundary(const BitGrid& bits, const std::vector<char>& inside);
+
+// GoogleTest expectations that the thin voxelization `result` of the closed `mesh` (with an
+// empty layer all around, e.g. padding 1) is 6-separating: the flood from the boundary
+// reaches empty voxels, more than `min_inside_empty` empty voxels are inside, and none of
+// them is reached. Negative control: with the slab x = dims/2 of the surface removed, the
+// same check must find a leak (otherwise it would prove nothing). Returns the flood's counts.
+Separation expectSixSeparating(const MeshView& mesh, const VoxelizeResult& result,
+                               std::uint64_t min_inside_empty = 0);
 
 }  // namespace hyvox::test
