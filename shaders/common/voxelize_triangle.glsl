@@ -25,8 +25,6 @@ TriangleSetup prepareLoaded(LoadedTriangle l) {
                          swizzleToDominant(clipHigh(), axis));
 }
 
-TriangleSetup prepareTriangle(uint tri) { return prepareLoaded(loadForVoxelizing(tri)); }
-
 // Area of the projection on the dominant plane, voxel units² (the hybrid's classifier).
 float projectedArea(LoadedTriangle l) { return 0.5 * max(abs(l.n.x), max(abs(l.n.y), abs(l.n.z))); }
 

@@ -24,14 +24,12 @@ vec2 outwardNormal(vec2 a, vec2 b, float orientation) {
 }
 
 void main() {
-    const TriangleSetup t = prepareTriangle(vTriangle[0]);
+    const LoadedTriangle l = loadForVoxelizing(vTriangle[0]);
+    const TriangleSetup t = prepareLoaded(l);
     if (clippedAway(t)) return;
 
-    ivec3 origin;
-    vec3 w0, w1, w2;
-    loadTriangle(vTriangle[0], origin, w0, w1, w2);
-    vec2 a[3] = vec2[3](swizzleToDominant(w0, t.axis).xy, swizzleToDominant(w1, t.axis).xy,
-                        swizzleToDominant(w2, t.axis).xy);
+    vec2 a[3] = vec2[3](swizzleToDominant(l.v0, t.axis).xy, swizzleToDominant(l.v1, t.axis).xy,
+                        swizzleToDominant(l.v2, t.axis).xy);
     const vec2 e01 = a[1] - a[0], e02 = a[2] - a[0];
     const float orientation = (e01.x * e02.y - e01.y * e02.x) >= 0.0 ? 1.0 : -1.0;
     vec2 normals[3];

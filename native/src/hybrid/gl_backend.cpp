@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <string>
 
 #include "core/backends.h"
 #include "core/stopwatch.h"
@@ -21,20 +22,9 @@ namespace {
 // The largest projected area on a dominant plane, in voxel units² (the search's upper end).
 double largestProjectedArea(const GpuMesh& mesh) {
     double largest = 0;
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-        double p[3][3];
-        for (int c = 0; c < 3; ++c) {
-            const GpuVertex& v = mesh.vertices[mesh.triangles[3 * t + c]];
-            for (int a = 0; a < 3; ++a)
-                p[c][a] = double(v.cell[a]) + double(v.fraction[a]);
-        }
-        const double e0[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
-        const double e1[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
-        const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2],
-                             e0[0] * e1[1] - e0[1] * e1[0]};
-        largest = std::max({largest, std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
-    }
-    return 0.5 * largest;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        largest = std::max(largest, projectedArea(triangleCorners(mesh, t)));
+    return largest;
 }
 
 std::string cacheKey(const GpuMesh& mesh, const GridSpec& grid, Mode mode, const gl::GlWorker& worker) {
@@ -54,13 +44,11 @@ GlRun runGl(const BackendJob& job, BitGrid* out, std::vector<std::array<std::int
     run.prepare_ms = watch.restart();
     gl::GlWorker& worker = gl::GlWorker::get(job.options.gl.device);
     const std::string shader_dir = gl::resolveShaderDir(job.options.gl.shader_dir);
-    run.device = worker.renderer();
 
     worker.run([&] {
         Stopwatch gl_watch;
         const GlTuning tuning = GlTuning::forDevice(worker.device().software);
         GlVoxelizer voxelizer(mesh, job.grid, job.options.mode, method, shader_dir, worker.programs(), tuning);
-        run.timer = tuning.wall_timing ? "wall clock around glFinish" : "GL_TIME_ELAPSED";
         glFinish();
         run.upload_ms = gl_watch.restart();
         throwIfInterrupted(job.interrupter);

@@ -4,7 +4,6 @@
 // (section 3.5) and for benchmarks that want the pass timings.
 #include <array>
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include "core/backends.h"
@@ -17,8 +16,6 @@ struct GlRun {
     double cutoff = 0;    // hybrid: used cutoff; triangle: inf; fragment: 0
     int search_runs = 0;  // timed runs of the auto-cutoff search (0: given or cached)
     double prepare_ms = 0, upload_ms = 0, search_ms = 0, voxelize_ms = 0;
-    std::string device;  // GL_RENDERER
-    std::string timer;   // how pass times were taken
 };
 
 // Runs job.options.method (triangle | fragment | hybrid) on the GL worker. Writes the bit

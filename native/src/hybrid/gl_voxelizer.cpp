@@ -37,18 +37,19 @@ std::uint64_t tileByteLimit() {
     return std::min<std::uint64_t>(limit, std::uint64_t(1) << 33);
 }
 
-// Only active uniforms may be set: a location the compiler dropped is an error in GL.
-bool uniformActive(const gl::Program& program, GLint location) {
+// The locations (bit i: location i) of the program's active uniforms.
+std::uint32_t activeUniforms(const gl::Program& program) {
     GLint count = 0;
     glGetProgramInterfaceiv(program.id(), GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
     const GLenum property = GL_LOCATION;
+    std::uint32_t active = 0;
     for (GLint i = 0; i < count; ++i) {
-        GLint value = -1;
-        glGetProgramResourceiv(program.id(), GL_UNIFORM, GLuint(i), 1, &property, 1, nullptr, &value);
-        if (value == location)
-            return true;
+        GLint location = -1;
+        glGetProgramResourceiv(program.id(), GL_UNIFORM, GLuint(i), 1, &property, 1, nullptr, &location);
+        if (location >= 0 && location < 32)
+            active |= std::uint32_t(1) << location;
     }
-    return false;
+    return active;
 }
 
 std::string definesFor(Mode mode, bool voxel_list, bool from_large_list) {
@@ -76,20 +77,12 @@ void measureTriangles(const GpuMesh& mesh, std::vector<float>& extent, std::vect
     extent.resize(mesh.triangleCount());
     area.resize(mesh.triangleCount());
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-        double p[3][3];
-        for (int c = 0; c < 3; ++c) {
-            const GpuVertex& v = mesh.vertices[mesh.triangles[3 * t + c]];
-            for (int a = 0; a < 3; ++a) p[c][a] = double(v.cell[a]) + double(v.fraction[a]);
-        }
+        const TriangleCorners p = triangleCorners(mesh, t);
         double side = 0;
         for (int a = 0; a < 3; ++a)
             side = std::max(side, std::max({p[0][a], p[1][a], p[2][a]}) - std::min({p[0][a], p[1][a], p[2][a]}));
-        const double e0[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
-        const double e1[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
-        const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2],
-                             e0[0] * e1[1] - e0[1] * e1[0]};
         extent[t] = float(side);
-        area[t] = float(0.5 * std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])}));
+        area[t] = float(projectedArea(p));
     }
 }
 
@@ -159,40 +152,52 @@ GlVoxelizer::GlVoxelizer(const GpuMesh& mesh, const GridSpec& grid, Mode mode, M
     gl::checkGl("uploading the mesh");
 }
 
-GlVoxelizer::Programs GlVoxelizer::programsFor(bool voxel_list) const {
-    Programs p;
+const GlVoxelizer::Programs& GlVoxelizer::programsFor(bool voxel_list) {
+    Programs& p = programs_by_list_[voxel_list ? 1 : 0];
+    if (p.built)
+        return p;
     if (method_ == Method::Triangle)
-        p.triangle = &programs_.get({{GL_COMPUTE_SHADER, "hybrid/triangle_parallel.comp"}},
-                                    definesFor(mode_, voxel_list, false), shader_dir_);
+        p.triangle.program = &programs_.get({{GL_COMPUTE_SHADER, "hybrid/triangle_parallel.comp"}},
+                                            definesFor(mode_, voxel_list, false), shader_dir_);
     if (method_ == Method::Hybrid)
-        p.classify = &programs_.get({{GL_COMPUTE_SHADER, "hybrid/classify.comp"}}, definesFor(mode_, voxel_list, false),
-                                    shader_dir_);
+        p.classify.program = &programs_.get({{GL_COMPUTE_SHADER, "hybrid/classify.comp"}},
+                                            definesFor(mode_, voxel_list, false), shader_dir_);
     if (method_ != Method::Triangle)
-        p.raster = &programs_.get({{GL_VERTEX_SHADER, "hybrid/fragment_parallel.vert"},
-                                   {GL_GEOMETRY_SHADER, "hybrid/fragment_parallel.geom"},
-                                   {GL_FRAGMENT_SHADER, "hybrid/fragment_parallel.frag"}},
-                                  definesFor(mode_, voxel_list, method_ == Method::Hybrid), shader_dir_);
+        p.raster.program = &programs_.get({{GL_VERTEX_SHADER, "hybrid/fragment_parallel.vert"},
+                                           {GL_GEOMETRY_SHADER, "hybrid/fragment_parallel.geom"},
+                                           {GL_FRAGMENT_SHADER, "hybrid/fragment_parallel.frag"}},
+                                          definesFor(mode_, voxel_list, method_ == Method::Hybrid), shader_dir_);
+    for (Stage* stage : {&p.triangle, &p.classify, &p.raster})
+        if (stage->program)
+            stage->active = activeUniforms(*stage->program);
+    p.built = true;
     return p;
 }
 
-void GlVoxelizer::setCommonUniforms(const gl::Program& program, const Tile& tile, double cutoff,
-                                    std::uint32_t capacity) {
-    const GLuint id = program.id();
-    if (uniformActive(program, HYVOX_LOC_GRID_DIMS))
-        glProgramUniform3i(id, HYVOX_LOC_GRID_DIMS, grid_.dims[0], grid_.dims[1], grid_.dims[2]);
-    if (uniformActive(program, HYVOX_LOC_SLAB))
-        glProgramUniform2i(id, HYVOX_LOC_SLAB, tile.brick_x0 * 8, std::min(grid_.dims[0], tile.brick_x1 * 8));
-    if (uniformActive(program, HYVOX_LOC_TRIANGLE_COUNT))
-        glProgramUniform1ui(id, HYVOX_LOC_TRIANGLE_COUNT, triangle_count_);
-    if (uniformActive(program, HYVOX_LOC_CUTOFF))
-        glProgramUniform1f(id, HYVOX_LOC_CUTOFF, float(cutoff));
+template <typename Set>
+void GlVoxelizer::setUniform(const Programs& programs, GLint location, const Set& set) const {
+    for (const Stage* stage : {&programs.triangle, &programs.classify, &programs.raster})
+        if (stage->program && (stage->active >> location & 1u))
+            set(stage->program->id());
+}
+
+void GlVoxelizer::setRunUniforms(const Programs& p, double cutoff) const {
     const float side = float(std::max({grid_.dims[0], grid_.dims[1], grid_.dims[2]}));
-    if (uniformActive(program, HYVOX_LOC_VIEWPORT))
-        glProgramUniform2f(id, HYVOX_LOC_VIEWPORT, side, side);
-    if (uniformActive(program, HYVOX_LOC_LIST_CAPACITY))
-        glProgramUniform1ui(id, HYVOX_LOC_LIST_CAPACITY, capacity);
-    if (uniformActive(program, HYVOX_LOC_CHUNK_SIDE))
-        glProgramUniform1i(id, HYVOX_LOC_CHUNK_SIDE, tuning_.chunk_side);
+    setUniform(p, HYVOX_LOC_GRID_DIMS, [&](GLuint id) {
+        glProgramUniform3i(id, HYVOX_LOC_GRID_DIMS, grid_.dims[0], grid_.dims[1], grid_.dims[2]);
+    });
+    setUniform(p, HYVOX_LOC_TRIANGLE_COUNT,
+               [&](GLuint id) { glProgramUniform1ui(id, HYVOX_LOC_TRIANGLE_COUNT, triangle_count_); });
+    setUniform(p, HYVOX_LOC_CUTOFF, [&](GLuint id) { glProgramUniform1f(id, HYVOX_LOC_CUTOFF, float(cutoff)); });
+    setUniform(p, HYVOX_LOC_VIEWPORT, [&](GLuint id) { glProgramUniform2f(id, HYVOX_LOC_VIEWPORT, side, side); });
+    setUniform(p, HYVOX_LOC_CHUNK_SIDE,
+               [&](GLuint id) { glProgramUniform1i(id, HYVOX_LOC_CHUNK_SIDE, tuning_.chunk_side); });
+}
+
+void GlVoxelizer::setTileUniforms(const Programs& p, const Tile& tile) const {
+    setUniform(p, HYVOX_LOC_SLAB, [&](GLuint id) {
+        glProgramUniform2i(id, HYVOX_LOC_SLAB, tile.brick_x0 * 8, std::min(grid_.dims[0], tile.brick_x1 * 8));
+    });
 }
 
 void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, PassTimes& times) {
@@ -212,7 +217,7 @@ void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, Pa
     if (tuning_.wall_timing)
         glFinish();
     if (pass1) {
-        const gl::Program& program = method_ == Method::Triangle ? *p.triangle : *p.classify;
+        const gl::Program& program = method_ == Method::Triangle ? *p.triangle.program : *p.classify.program;
         program.use();
         wall.restart();
         timer1_.begin();
@@ -225,7 +230,7 @@ void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, Pa
     }
     if (pass2) {
         glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-        p.raster->use();
+        p.raster.program->use();
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
         const GLint side = std::max({grid_.dims[0], grid_.dims[1], grid_.dims[2]});
         glViewport(0, 0, side, side);
@@ -278,14 +283,13 @@ std::uint32_t GlVoxelizer::chunksFor(double cutoff) const {
 }
 
 PassTimes GlVoxelizer::run(double cutoff, BitGrid* out, const std::function<void()>& before_tile) {
-    const Programs programs = programsFor(false);
+    const Programs& programs = programsFor(false);
+    setRunUniforms(programs, cutoff);
     PassTimes times;
     for (const Tile& tile : tiles_) {
         if (before_tile)
             before_tile();
-        for (const gl::Program* program : {programs.triangle, programs.classify, programs.raster})
-            if (program)
-                setCommonUniforms(*program, tile, cutoff, 0);
+        setTileUniforms(programs, tile);
         runTile(tile, programs, cutoff, times);
         if (out) {
             Stopwatch watch;
@@ -302,32 +306,46 @@ PassTimes GlVoxelizer::run(double cutoff, BitGrid* out, const std::function<void
 }
 
 std::vector<std::array<std::int32_t, 3>> GlVoxelizer::runVoxelList(double cutoff, PassTimes* times_out) {
-    const Programs programs = programsFor(true);
+    const Programs& programs = programsFor(true);
+    setRunUniforms(programs, cutoff);
     PassTimes times;
     std::vector<std::array<std::int32_t, 3>> voxels;
+    // The list is one storage block (16 bytes of count, then 12 per voxel), unlike the bit
+    // grid not tiled; the shader's 32-bit word indices allow at most 2^30 entries besides.
+    const std::uint64_t block_bytes = std::uint64_t(std::max<GLint64>(glLimit(GL_MAX_SHADER_STORAGE_BLOCK_SIZE), 16));
+    const std::uint32_t max_capacity = std::uint32_t(std::min<std::uint64_t>((block_bytes - 16) / 12, 1u << 30));
     // A first guess of the list's length; a tile that overflows is run again with room for
     // the count it reported (the count keeps rising past the capacity).
-    std::uint32_t capacity =
-        std::uint32_t(std::clamp<std::uint64_t>(std::uint64_t(triangle_count_) * 4u, 1u << 16, 1u << 24));
+    std::uint32_t capacity = std::min(
+        max_capacity,
+        std::uint32_t(std::clamp<std::uint64_t>(std::uint64_t(triangle_count_) * 4u, 1u << 16, 1u << 24)));
     for (const Tile& tile : tiles_) {
+        setTileUniforms(programs, tile);
         for (;;) {
             if (voxel_list_.size() < 16 + std::size_t(capacity) * 12)
                 voxel_list_ = gl::Buffer(16 + std::size_t(capacity) * 12, nullptr, GL_DYNAMIC_STORAGE_BIT);
             const std::uint32_t zero = 0;
             voxel_list_.upload(0, 4, &zero);
             voxel_list_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_VOXEL_LIST);
-            for (const gl::Program* program : {programs.triangle, programs.classify, programs.raster})
-                if (program)
-                    setCommonUniforms(*program, tile, cutoff, capacity);
-            runTile(tile, programs, cutoff, times);
+            setUniform(programs, HYVOX_LOC_LIST_CAPACITY,
+                       [&](GLuint id) { glProgramUniform1ui(id, HYVOX_LOC_LIST_CAPACITY, capacity); });
+            PassTimes attempt;
+            runTile(tile, programs, cutoff, attempt);
+            times.pass1_gpu_ms += attempt.pass1_gpu_ms;  // a retried run's work took time too
+            times.pass2_gpu_ms += attempt.pass2_gpu_ms;
             std::uint32_t count = 0;
             voxel_list_.download(0, 4, &count);
             if (count > capacity) {
-                if (count > (1u << 30))
-                    throw ResourceError("the voxel list would exceed 2^30 voxels");
+                if (count > max_capacity)
+                    throw ResourceError("the voxel list needs " + std::to_string(count) +
+                                        " voxels in one tile, more than the " + std::to_string(max_capacity) +
+                                        " that fit this GL device's storage-block limit of " +
+                                        std::to_string(block_bytes >> 20) + " MiB; use a larger voxel size");
                 capacity = count;
                 continue;
             }
+            times.large_triangles += attempt.large_triangles;
+            times.tiles += attempt.tiles;
             std::vector<std::uint32_t> entries(std::size_t(count) * 3);
             if (count)
                 voxel_list_.download(16, entries.size() * 4, entries.data());

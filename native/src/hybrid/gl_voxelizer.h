@@ -61,14 +61,24 @@ private:
     struct Tile {
         int brick_x0, brick_x1;  // [x0, x1) in bricks
     };
-    struct Programs {
-        const gl::Program* triangle = nullptr;
-        const gl::Program* classify = nullptr;
-        const gl::Program* raster = nullptr;
+    // A program and its active uniform locations (bit i: location i), found once: only
+    // active uniforms may be set (a location the compiler dropped is an error in GL).
+    struct Stage {
+        const gl::Program* program = nullptr;
+        std::uint32_t active = 0;
     };
-    Programs programsFor(bool voxel_list) const;
+    struct Programs {
+        Stage triangle, classify, raster;
+        bool built = false;
+    };
+    // Built on first use, then kept for this voxelizer's runs ([voxel_list]).
+    const Programs& programsFor(bool voxel_list);
     void runTile(const Tile& tile, const Programs& programs, double cutoff, PassTimes& times);
-    void setCommonUniforms(const gl::Program& program, const Tile& tile, double cutoff, std::uint32_t capacity);
+    // Calls set(program id) for each of the programs that uses uniform `location`.
+    template <typename Set>
+    void setUniform(const Programs& programs, GLint location, const Set& set) const;
+    void setRunUniforms(const Programs& programs, double cutoff) const;  // the same for every tile
+    void setTileUniforms(const Programs& programs, const Tile& tile) const;
 
     const GridSpec& grid_;
     Mode mode_;
@@ -78,6 +88,7 @@ private:
     std::uint32_t triangle_count_;
     std::array<std::int32_t, 3> bricks_;
     std::vector<Tile> tiles_;
+    Programs programs_by_list_[2];
     gl::Buffer vertices_, triangles_, bits_, large_, draw_, voxel_list_;
     gl::VertexArray empty_vao_;
     gl::Framebuffer framebuffer_;

@@ -5,14 +5,10 @@
 #include <cmath>
 #include <cstring>
 
+#include "cpu/triangle_setup.h"
+
 namespace hyvox::hybrid {
 namespace {
-
-// Far-away vertices are clamped as the cpu backend clamps them (int conversion stays
-// defined); the clipped part inside the grid is then equally approximate on both.
-double clampCoord(double x) {
-    return std::clamp(x, -1.0e9, 1.0e9);
-}
 
 std::uint64_t mix(std::uint64_t h, std::uint64_t word) {
     h ^= word + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
@@ -41,7 +37,9 @@ GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid) {
     const double inv = 1.0 / grid.voxel_size;
     for (std::size_t v = 0; v < view.vertex_count; ++v) {
         for (int a = 0; a < 3; ++a) {
-            const double x = clampCoord((double(view.positions[3 * v + a]) - grid.origin[a]) * inv);
+            // Far-away vertices are clamped as the cpu backend clamps them (int conversion
+            // stays defined); the clipped part inside the grid is then equally approximate on both.
+            const double x = cpu::clampCoord((double(view.positions[3 * v + a]) - grid.origin[a]) * inv);
             const double cell = std::floor(x);
             out.vertices[v].cell[a] = std::int32_t(cell);
             out.vertices[v].fraction[a] = float(x - cell);
@@ -55,6 +53,24 @@ GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid) {
     h = fingerprintOf(view.positions, view.vertex_count * 3 * sizeof(float), h);
     out.fingerprint = fingerprintOf(out.triangles.data(), out.triangles.size() * sizeof(std::uint32_t), h);
     return out;
+}
+
+TriangleCorners triangleCorners(const GpuMesh& mesh, std::size_t t) {
+    TriangleCorners p;
+    for (int c = 0; c < 3; ++c) {
+        const GpuVertex& v = mesh.vertices[mesh.triangles[3 * t + c]];
+        for (int a = 0; a < 3; ++a)
+            p[c][a] = double(v.cell[a]) + double(v.fraction[a]);
+    }
+    return p;
+}
+
+double projectedArea(const TriangleCorners& p) {
+    const double e0[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double e1[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2],
+                         e0[0] * e1[1] - e0[1] * e1[0]};
+    return 0.5 * std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
 }
 
 }  // namespace hyvox::hybrid

@@ -4,6 +4,8 @@
 // cell and a float fraction (computed in double here), and the usable triangles' indices.
 // Shaders rebuild each triangle relative to its first vertex's cell, so precision does
 // not degrade with distance from the grid origin.
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -26,5 +28,13 @@ struct GpuMesh {
 };
 
 GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid);
+
+// Triangle t's corners in voxel space (cell + fraction, in double).
+using TriangleCorners = std::array<std::array<double, 3>, 3>;
+TriangleCorners triangleCorners(const GpuMesh& mesh, std::size_t t);
+
+// The triangle's area projected on its dominant plane, in voxel units² (the measure the
+// hybrid's classifier compares with the cutoff).
+double projectedArea(const TriangleCorners& p);
 
 }  // namespace hyvox::hybrid
