@@ -9,6 +9,7 @@
 
 #include "core/stopwatch.h"
 #include "gl/gl_debug.h"
+#include "gl/pass_timer.h"
 #include "hybrid/gl_bindings.h"
 #include "hyvox/errors.h"
 
@@ -212,21 +213,13 @@ void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, Pa
         draw_.upload(0, sizeof(command), command);
     }
     const bool pass1 = method_ != Method::Fragment, pass2 = method_ != Method::Triangle;
-    double wall1 = 0, wall2 = 0;
-    Stopwatch wall;
-    if (tuning_.wall_timing)
-        glFinish();
+    gl::PassTimer timer1(tuning_.wall_timing), timer2(tuning_.wall_timing);
     if (pass1) {
         const gl::Program& program = method_ == Method::Triangle ? *p.triangle.program : *p.classify.program;
         program.use();
-        wall.restart();
-        timer1_.begin();
+        timer1.begin();
         dispatchTriangles(program, triangle_count_, chunksFor(cutoff));
-        gl::TimerQuery::end();
-        if (tuning_.wall_timing) {
-            glFinish();
-            wall1 = wall.elapsedMs();
-        }
+        timer1.end();
     }
     if (pass2) {
         glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -239,8 +232,7 @@ void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, Pa
         for (int i = 0; i < 4; ++i)
             glEnable(GL_CLIP_DISTANCE0 + i);
         glBindVertexArray(empty_vao_.id());
-        wall.restart();
-        timer2_.begin();
+        timer2.begin();
         if (method_ == Method::Hybrid) {
             glBindBuffer(GL_DRAW_INDIRECT_BUFFER, draw_.id());
             glDrawArraysIndirect(GL_TRIANGLES, nullptr);
@@ -248,18 +240,14 @@ void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, Pa
         } else {
             glDrawArrays(GL_TRIANGLES, 0, GLsizei(triangle_count_) * 3);
         }
-        gl::TimerQuery::end();
-        if (tuning_.wall_timing) {
-            glFinish();
-            wall2 = wall.elapsedMs();
-        }
+        timer2.end();
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     if (pass1)
-        times.pass1_gpu_ms += tuning_.wall_timing ? wall1 : timer1_.milliseconds();
+        times.pass1_gpu_ms += timer1.milliseconds();
     if (pass2)
-        times.pass2_gpu_ms += tuning_.wall_timing ? wall2 : timer2_.milliseconds();
+        times.pass2_gpu_ms += timer2.milliseconds();
     if (method_ == Method::Hybrid) {
         std::uint32_t vertex_count = 0;
         draw_.download(0, 4, &vertex_count);

@@ -92,7 +92,6 @@ private:
     gl::Buffer vertices_, triangles_, bits_, large_, draw_, voxel_list_;
     gl::VertexArray empty_vao_;
     gl::Framebuffer framebuffer_;
-    gl::TimerQuery timer1_, timer2_;
     GlTuning tuning_;
     // llvmpipe only: per-triangle bounding-box side and projected area, for chunksFor().
     std::vector<float> extents_, areas_;
