@@ -3,19 +3,18 @@
 // whole, so the vertex-to-geometry pipeline is skipped and one thread per triangle injects
 // the same point the geometry shader would: the centroid of the (displaced) corners. PN
 // evaluation leaves corners where they are, so PN-triangles need nothing more here.
+#include "common/compute_index.glsl"
 #include "tessellation/surface.glsl"
 #include "tessellation/inject.glsl"
 #ifdef DISPLACEMENT
 #include "tessellation/height.glsl"
 #endif
 
-layout(local_size_x = HYVOX_LOCAL_SIZE) in;
 layout(std430, binding = HYVOX_TESS_SSBO_PATCHES) readonly restrict buffer Whole { uint wholeTriangles[]; };
-layout(location = HYVOX_TESS_LOC_PATCH_BASE) uniform uint patchBase;
 layout(location = HYVOX_TESS_LOC_SPLIT_COUNT) uniform uint wholeCount;
 
 void main() {
-    const uint index = patchBase + gl_GlobalInvocationID.x;
+    const uint index = invocationTriangle();
     if (index >= wholeCount) return;
     const TriangleSurface s = loadSurface(wholeTriangles[index]);
     vec3 p[3] = s.p;

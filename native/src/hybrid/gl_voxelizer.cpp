@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/stopwatch.h"
+#include "gl/compute_dispatch.h"
 #include "gl/gl_debug.h"
 #include "gl/pass_timer.h"
 #include "hybrid/gl_bindings.h"
@@ -56,20 +57,6 @@ std::uint32_t activeUniforms(const gl::Program& program) {
 std::string definesFor(Mode mode, bool voxel_list, bool from_large_list) {
     return std::string("#define HYVOX_THIN ") + (mode == Mode::Thin ? "1" : "0") + "\n#define HYVOX_VOXEL_LIST " +
            (voxel_list ? "1" : "0") + "\n#define HYVOX_FROM_LARGE_LIST " + (from_large_list ? "1" : "0") + "\n";
-}
-
-void dispatchTriangles(const gl::Program& program, std::uint32_t count, std::uint32_t chunks) {
-    // The program's own work-group size (HYVOX_LOCAL_SIZE unless a shader folder says otherwise).
-    GLint local[3] = {HYVOX_LOCAL_SIZE, 1, 1};
-    glGetProgramiv(program.id(), GL_COMPUTE_WORK_GROUP_SIZE, local);
-    const std::uint32_t size = std::uint32_t(std::max(1, local[0]));
-    const std::uint32_t groups = (count + size - 1) / size;
-    if (groups == 0)
-        return;
-    GLint max_x = 65535;
-    glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_x);
-    const std::uint32_t gx = std::min<std::uint32_t>(groups, std::uint32_t(max_x));
-    glDispatchCompute(gx, (groups + gx - 1) / gx, chunks);
 }
 
 // Per triangle: the largest side of its bounding box and its area projected on its dominant
@@ -218,7 +205,7 @@ void GlVoxelizer::runTile(const Tile& tile, const Programs& p, double cutoff, Pa
         const gl::Program& program = method_ == Method::Triangle ? *p.triangle.program : *p.classify.program;
         program.use();
         timer1.begin();
-        dispatchTriangles(program, triangle_count_, chunksFor(cutoff));
+        gl::dispatchPerItem(program, triangle_count_, chunksFor(cutoff));
         timer1.end();
     }
     if (pass2) {

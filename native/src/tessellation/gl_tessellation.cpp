@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "gl/compute_dispatch.h"
 #include "gl/gl_debug.h"
 #include "gl/gl_objects.h"
 #include "gl/pass_timer.h"
@@ -102,12 +103,7 @@ Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const
         const std::uint64_t count = in.plan.whole.size();
         glUniform1ui(HYVOX_TESS_LOC_SPLIT_COUNT, GLuint(count));
         whole_timer.begin();
-        constexpr std::uint64_t kPerDispatch = std::uint64_t(HYVOX_LOCAL_SIZE) * 65535;
-        for (std::uint64_t base = 0; base < count; base += kPerDispatch) {
-            glUniform1ui(HYVOX_TESS_LOC_PATCH_BASE, GLuint(base));
-            const std::uint64_t n = std::min(kPerDispatch, count - base);
-            glDispatchCompute(GLuint((n + HYVOX_LOCAL_SIZE - 1) / HYVOX_LOCAL_SIZE), 1, 1);
-        }
+        gl::dispatchPerItem(programs.whole, count);
         whole_timer.end();
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         lists.direct.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_PATCHES);
