@@ -8,7 +8,18 @@
 #include <string>
 #include <vector>
 
+#include "hyvox/option_schema.h"
+
 namespace hyvox::bench {
+
+// The environment variables the options schema names (HYVOX_GL_DEVICE, HYVOX_SHADER_DIR,
+// HYVOX_GL_TILE_BYTES, ...), set and not empty, read into `options` as the CLI reads them:
+// the library itself reads none. A bad value throws InvalidInput with the schema's message.
+inline void readEnvironment(VoxelizeOptions& options) {
+    for (const OptionSpec& spec : optionSchema())
+        if (const char* value = spec.env ? std::getenv(spec.env) : nullptr; value && *value)
+            setOption(options, spec.name, parseOptionText(spec, value));
+}
 
 // The value that follows the option argv[a], advancing a past it; a missing value prints
 // "<option> needs a value" and exits with status 2.

@@ -18,12 +18,12 @@
 
 #include "bench_args.h"
 #include "core/stopwatch.h"
+#include "gl/bindings.h"
 #include "gl/gl_debug.h"
 #include "gl/gl_objects.h"
 #include "gl/gl_worker.h"
+#include "gl/gpu_mesh.h"
 #include "gl/shader_library.h"
-#include "hybrid/gl_bindings.h"
-#include "hybrid/gpu_mesh.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/voxelize.h"
 
@@ -77,7 +77,7 @@ double naiveMs(const hyvox::MeshView& view, const hyvox::VoxelizeOptions& option
     using namespace hyvox;
     const ValidatedMesh mesh = validate(view);
     const GridSpec grid = makeGrid(mesh.bounds, options.grid);
-    const hybrid::GpuMesh gpu = hybrid::makeGpuMesh(mesh, grid);
+    const gl::GpuMesh gpu = gl::makeGpuMesh(mesh, grid);
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / "hyvox_bench_naive";
     std::filesystem::create_directories(dir / "common");
     for (const auto& [name, text] : gl::embeddedShaders())
@@ -88,12 +88,9 @@ double naiveMs(const hyvox::MeshView& view, const hyvox::VoxelizeOptions& option
     return worker.run([&] {
         const gl::Program program = gl::buildProgram(
             {{GL_COMPUTE_SHADER, "naive.comp"}}, "#define HYVOX_THIN 0\n#define HYVOX_VOXEL_LIST 0\n", dir.string());
-        const gl::Buffer vertices(gpu.vertices.size() * sizeof(hybrid::GpuVertex), gpu.vertices.data(), 0);
+        const gl::Buffer vertices(gpu.vertices.size() * sizeof(gl::GpuVertex), gpu.vertices.data(), 0);
         const gl::Buffer triangles(gpu.triangles.size() * 4, gpu.triangles.data(), 0);
-        std::size_t bricks = 1;
-        for (int a = 0; a < 3; ++a)
-            bricks *= std::size_t((grid.dims[a] + 7) / 8);
-        const gl::Buffer bits(bricks * 64, nullptr, 0);
+        const gl::Buffer bits(grid.bricks().total() * BitGrid::kWordsPerBrick * sizeof(std::uint64_t), nullptr, 0);
         vertices.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_VERTICES);
         triangles.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_TRIANGLES);
         bits.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_BITS);
@@ -129,13 +126,12 @@ Sample runMedian(const hyvox::MeshView& mesh, hyvox::VoxelizeOptions options, in
         hyvox::Stopwatch watch;
         const hyvox::VoxelizeResult result = hyvox::voxelize(mesh, options);
         wall.push_back(watch.elapsedMs());
-        const auto& m = result.stats.metrics;
-        auto get = [&](const char* key) { return m.count(key) ? m.at(key) : 0.0; };
-        gpu.push_back(get("gpu_ms"));
-        pass1.push_back(get("pass1_gpu_ms"));
-        pass2.push_back(get("pass2_gpu_ms"));
-        s.large = get("large_triangles");
-        s.cutoff = get("cutoff");
+        const hyvox::HybridStats h = result.stats.hybrid.value_or(hyvox::HybridStats{});  // none for cpu
+        gpu.push_back(h.pass1_gpu_ms + h.pass2_gpu_ms);
+        pass1.push_back(h.pass1_gpu_ms);
+        pass2.push_back(h.pass2_gpu_ms);
+        s.large = double(h.large_triangles);
+        s.cutoff = h.cutoff;
     }
     s.gpu_ms = median(gpu);
     s.pass1_ms = median(pass1);
@@ -153,6 +149,7 @@ int main(int argc, char** argv) {
     int repeat = 5;
     hyvox::VoxelizeOptions options;
     options.hybrid.cutoff = -1.0;
+    hyvox::bench::readEnvironment(options);
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
         auto next = [&] { return hyvox::bench::optionValue(argc, argv, a); };

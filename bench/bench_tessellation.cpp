@@ -19,7 +19,7 @@
 #include "hyvox/accuracy.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/voxelize.h"
-#include "tessellation/cpu_subdivide.h"
+#include "support/subdivide.h"
 
 namespace {
 
@@ -98,12 +98,13 @@ int main(int argc, char** argv) {
             if (factor > 1) {
                 int levels = 0;
                 for (int f = factor; f > 1; f /= 4) ++levels;  // 4 → 1 level, 16 → 2
-                mesh = hyvox::tessellation::midpointSubdivide(mesh.view(), levels);
+                mesh = hyvox::test::midpointSubdivide(mesh.view(), levels);
             }
             std::string name = path.substr(path.find_last_of('/') + 1);
             if (factor > 1) name += " x" + std::to_string(factor);
             for (int res : resolutions) {
                 hyvox::VoxelizeOptions options;
+                hyvox::bench::readEnvironment(options);
                 options.grid.resolution = res;
                 options.method = hyvox::Method::Cpu;
                 const Timed cpu = timeMethod(mesh, options, repeat);
@@ -118,8 +119,8 @@ int main(int argc, char** argv) {
                                 tess.error.c_str());
                     continue;
                 }
-                const auto& m = tess.result.stats.metrics;
-                const double gpu_ms = m.at("pass0_gpu_ms") + m.at("pass1_gpu_ms") + m.at("pass2_gpu_ms");
+                const hyvox::TessellationStats& m = tess.result.stats.tessellation.value();
+                const double gpu_ms = m.pass0_gpu_ms + m.pass1_gpu_ms + m.pass2_gpu_ms;
                 hyvox::AccuracyReport acc, acc_thin;
                 if (cpu.error.empty()) {
                     acc = compareToReference(tess.result.occupancy, cpu.result.occupancy);
@@ -132,7 +133,7 @@ int main(int argc, char** argv) {
                 if (hybrid.error.empty()) std::snprintf(hybrid_ms, sizeof hybrid_ms, "%.1f", hybrid.best_ms);
                 else std::snprintf(hybrid_ms, sizeof hybrid_ms, "n/a");
                 std::printf("| %s | %zu | %d | %.1f | %s | %.1f (%.1f) | %.0f | %.2f%% | %.2f%% | %llu |\n", name.c_str(),
-                            mesh.triangleCount(), res, cpu.best_ms, hybrid_ms, tess.best_ms, gpu_ms, m.at("points"),
+                            mesh.triangleCount(), res, cpu.best_ms, hybrid_ms, tess.best_ms, gpu_ms, double(m.points),
                             100.0 * acc.bias, 100.0 * acc_thin.bias, (unsigned long long)acc.false_voxels);
                 std::fflush(stdout);
                 if (csv) {
@@ -142,7 +143,7 @@ int main(int argc, char** argv) {
                         std::fprintf(csv, "%s,%zu,%d,hybrid,%.3f,,,%llu,,,\n", name.c_str(), mesh.triangleCount(), res,
                                      hybrid.best_ms, (unsigned long long)hybrid.result.stats.voxel_count);
                     std::fprintf(csv, "%s,%zu,%d,tessellation,%.3f,%.3f,%.0f,%llu,%.6f,%.6f,%llu\n", name.c_str(),
-                                 mesh.triangleCount(), res, tess.best_ms, gpu_ms, m.at("points"),
+                                 mesh.triangleCount(), res, tess.best_ms, gpu_ms, double(m.points),
                                  (unsigned long long)tess.result.stats.voxel_count, acc.bias, acc_thin.bias,
                                  (unsigned long long)acc.false_voxels);
                     std::fflush(csv);

@@ -65,8 +65,8 @@ def main():
     gammas = [float(g) for g in sys.argv[3:]] or [1.0, 2.0, 4.0]
     vertices, triangles = hyvox.read_mesh(path)
     vertices, triangles = np.asarray(vertices, np.float64), np.asarray(triangles, np.int64)
-    conservative = hyvox.voxelize(vertices, triangles, resolution, method="cpu")
-    thin = hyvox.voxelize(vertices, triangles, resolution, method="cpu", mode="thin")
+    conservative = hyvox.voxelize(vertices, triangles, resolution=resolution, method="cpu")
+    thin = hyvox.voxelize(vertices, triangles, resolution=resolution, method="cpu", mode="thin")
     dims = tuple(conservative.dims)
     in_voxels = (vertices - np.array(conservative.origin)) / conservative.voxel_size
     references = {
@@ -78,7 +78,7 @@ def main():
           ", ".join(f"{name} {len(keys)} voxels" for name, keys in references.items()))
     print("gamma  " + "  ".join(f"bias vs {name:>12}" for name in references))
     for gamma in gammas:
-        points = grid_keys(hyvox.voxelize(vertices, triangles, resolution, method="tessellation", tess_gamma=gamma))
+        points = grid_keys(hyvox.voxelize(vertices, triangles, resolution=resolution, method="tessellation", tess_gamma=gamma))
         print(f"{gamma:5.2f}  " + "  ".join(f"{1 - np.isin(keys, points).mean():20.4%}" for keys in references.values()))
 
 

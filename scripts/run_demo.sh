@@ -7,6 +7,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/install_deps.sh
+# Debian's cmake/ctest and python3 first: a pyenv (or other) python3 earlier on PATH would
+# otherwise become the Python home of Debian's Blender when ctest starts it.
+export PATH="/usr/bin:/bin:$PATH"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j "$(nproc)"
 blender -b --factory-startup --python demo/run_demo.py -- --build build --output out/demo "$@"

@@ -8,6 +8,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/install_deps.sh
+# Debian's cmake/ctest and python3 first: a pyenv (or other) python3 earlier on PATH would
+# otherwise become the Python home of Debian's Blender when ctest starts it.
+export PATH="/usr/bin:/bin:$PATH"
 
 jobs=$(nproc)
 echo "== Release build (-Werror)"

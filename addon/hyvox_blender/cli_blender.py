@@ -3,8 +3,8 @@
 
     blender -b scene.blend --python B/addon/hyvox_blender/cli_blender.py -- \\
         --frames 1-10 --output DIR --resolution 256 [--voxel-size S] [--method cpu] \\
-        [--mode conservative|thin] [--objects A,B] [--separate] [--save OUT.blend] \\
-        [--stats-json FILE]
+        [--mode conservative|thin] [--tess-gamma G] [--hybrid-cutoff C] [--padding P] \\
+        [--objects A,B] [--separate] [--save OUT.blend] [--stats-json FILE]
 
 Voxelizes the named objects (default: the selection, or every visible mesh when nothing
 is selected) with the add-on's operator, so the result is the same as in the UI. A frame
@@ -17,21 +17,29 @@ import sys
 
 
 def parse_args(argv):
+    """Options of the add-on's own (output, frames, objects...) plus the voxelize options the
+    operator takes, with the schema's names, types and help (hyvox.OPTIONS). Values are
+    checked by the operator, which refuses them with the schema's message."""
+    from hyvox_blender.blender.properties import SCENE_OPTIONS, option_spec
+    from hyvox_blender.core.backend import AUTO_METHOD
     parser = argparse.ArgumentParser(prog="blender -b FILE --python cli_blender.py --",
                                      description="Voxelize objects of a .blend into OpenVDB volumes.")
     parser.add_argument("--output", "-o", help="folder for the .vdb files (default: next to the .blend)")
-    size = parser.add_mutually_exclusive_group()
-    size.add_argument("--resolution", "-r", type=int, help="voxels along the longest side")
-    size.add_argument("--voxel-size", type=float, help="voxel edge length in scene units")
-    parser.add_argument("--method", choices=["auto", "hybrid", "triangle", "fragment", "tessellation",
-                                             "cpu", "reference"])
-    parser.add_argument("--mode", choices=["conservative", "thin"])
+    types = {"int": int, "float": float, "choice": str, "str": str}
+    for name in ("method",) + SCENE_OPTIONS:
+        spec = option_spec(name)
+        flags = [spec.cli_flag] + (["-r"] if name == "resolution" else [])
+        choices = ([AUTO_METHOD] if name == "method" else []) + list(spec.choices) or None
+        parser.add_argument(*flags, dest=name, type=types[spec.type], choices=choices, help=spec.help)
     parser.add_argument("--frames", help="frame range, e.g. 1-10 (one .vdb per frame)")
     parser.add_argument("--objects", help="comma-separated object names")
     parser.add_argument("--separate", action="store_true", help="one volume per object")
     parser.add_argument("--save", help="save the .blend with the volumes to this path")
     parser.add_argument("--stats-json", help="write origin, voxel size, counts and timings here")
-    return parser.parse_args(argv)
+    args = parser.parse_args(argv)
+    if args.resolution is not None and args.voxel_size is not None:
+        parser.error("give --resolution or --voxel-size, not both")
+    return args
 
 
 def enable_addon():
@@ -65,27 +73,16 @@ def choose_objects(names):
 
 def main(argv):
     import bpy
-    args = parse_args(argv)
     enable_addon()
+    args = parse_args(argv)
     from hyvox_blender.blender import operators
+    from hyvox_blender.blender.properties import SCENE_OPTIONS
     from hyvox_blender.core.settings import parse_frame_range
 
     choose_objects(args.objects.split(",") if args.objects else None)
-    kwargs = {}
+    kwargs = {name: getattr(args, name) for name in ("method",) + SCENE_OPTIONS if getattr(args, name) is not None}
     if args.output:
         kwargs["output_dir"] = os.path.abspath(args.output)
-    # Given values are checked here: the operator would clamp a 0 silently.
-    if args.resolution is not None:
-        if args.resolution < 1:
-            raise SystemExit(f"--resolution must be at least 1, got {args.resolution}")
-        kwargs["resolution"] = args.resolution
-    if args.voxel_size is not None:
-        if not args.voxel_size > 0:
-            raise SystemExit(f"--voxel-size must be positive, got {args.voxel_size}")
-        kwargs["voxel_size"] = args.voxel_size
-    for name in ("method", "mode"):
-        if getattr(args, name):
-            kwargs[name] = getattr(args, name)
     if args.separate:
         kwargs["separate"] = True
     if args.frames:

@@ -2,35 +2,21 @@
 #include "cli_args.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <limits>
 
 #include "hyvox/errors.h"
+#include "hyvox/option_schema.h"
 
 namespace hyvox::cli {
 namespace {
 
-long long parseInteger(const std::string& option, const std::string& text, long long lo, long long hi) {
-    errno = 0;
-    char* end = nullptr;
-    const long long value = std::strtoll(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno == ERANGE)
-        throw UsageError(option + " needs a whole number, got '" + text + "'");
-    if (value < lo || value > hi)
-        throw UsageError(option + " must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", got " +
-                         text);
-    return value;
-}
-
-double parseNumber(const std::string& option, const std::string& text) {
-    errno = 0;
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value))
-        throw UsageError(option + " needs a finite number, got '" + text + "'");
-    return value;
+// The voxelize options gamma-sweep sets itself, and why.
+const char* sweepFixes(const std::string& name) {
+    if (name == "mode" || name == "method")
+        return "the sweep always compares the tessellation method with the exact conservative voxels";
+    if (name == "tess_gamma") return "it takes --gammas G1,G2,...";
+    return nullptr;
 }
 
 // "1,1.5,2": at least two positive, strictly ascending numbers (the fit needs two points,
@@ -40,7 +26,11 @@ std::vector<double> parseGammaList(const std::string& option, const std::string&
     std::size_t begin = 0;
     while (begin <= text.size()) {
         const std::size_t comma = std::min(text.find(',', begin), text.size());
-        const double gamma = parseNumber(option, text.substr(begin, comma - begin));
+        const std::string part = text.substr(begin, comma - begin);
+        char* end = nullptr;
+        const double gamma = std::strtod(part.c_str(), &end);
+        if (part.empty() || *end != '\0' || !std::isfinite(gamma))
+            throw UsageError(option + " needs finite numbers, got '" + part + "'");
         if (!(gamma > 0)) throw UsageError(option + " needs gammas > 0, got " + text);
         if (!gammas.empty() && !(gamma > gammas.back()))
             throw UsageError(option + " needs ascending gammas, got " + text);
@@ -51,43 +41,79 @@ std::vector<double> parseGammaList(const std::string& option, const std::string&
     return gammas;
 }
 
+// The spec a command-line flag names ("--voxel-size", an alias, or "--no-pn-triangles" for a
+// flag's false), or null.
+const OptionSpec* specForFlag(const std::string& flag, bool& negated) {
+    for (const OptionSpec& spec : optionSchema()) {
+        const std::string own = spec.cliFlag();
+        negated = spec.type == OptionType::Flag && flag == "--no-" + own.substr(2);
+        if (flag == own || negated) return &spec;
+        for (const char* alias : spec.cli_aliases)
+            if (flag == alias) return &spec;
+    }
+    negated = false;
+    return nullptr;
+}
+
+std::string placeholder(const OptionSpec& spec) {
+    switch (spec.type) {
+        case OptionType::Integer: return " N";
+        case OptionType::Number: return " X";
+        case OptionType::Flag: return "";
+        case OptionType::Text: return " TEXT";
+        case OptionType::Choice: {
+            std::string choices;
+            for (const char* c : spec.choices) choices += (choices.empty() ? " " : "|") + std::string(c);
+            return choices;
+        }
+        case OptionType::Vector3: return " X,Y,Z";
+        case OptionType::Box: return " X0,Y0,Z0,X1,Y1,Z1";
+    }
+    return "";
+}
+
+std::string optionHelp(const OptionSpec& spec) {
+    std::string flag = "  " + spec.cliFlag() + placeholder(spec);
+    if (spec.type == OptionType::Flag) flag += ", --no-" + spec.cliFlag().substr(2);
+    for (const char* alias : spec.cli_aliases) flag += std::string(", ") + alias + placeholder(spec);
+    std::string line = flag + "\n      " + spec.help;
+    if (*spec.unit) line += std::string(" [") + spec.unit + "]";
+    if (!spec.nullable) {
+        const std::string value = formatOptionValue(spec.get(VoxelizeOptions{}));
+        line += " (default " + (value == "''" ? std::string("none") : value) + ")";
+    }
+    if (spec.env) line += std::string(" (env ") + spec.env + ")";
+    return line + "\n";
+}
+
 }  // namespace
 
-const char* usageText() {
-    return "usage: hyvox voxelize MESH -o OUT.vdb [options]\n"
-           "       hyvox gamma-sweep MESH [--gammas 1,1.5,2,3,4,6] [options]\n"
-           "       hyvox --help | --version\n"
-           "\n"
-           "voxelize: voxelizes the surface of a triangle mesh (PLY, PLY.GZ, OBJ, ...) into an\n"
-           "OpenVDB file with a float grid 'density' (1 on occupied voxels).\n"
-           "gamma-sweep: voxelizes the mesh with the tessellation method at each gamma, prints the\n"
-           "share of the exact conservative voxels it misses (bias) and fits Eq. 3,\n"
-           "gamma = -B ln(A bias), to tell the gamma a bias needs. Takes the grid, GL and\n"
-           "tessellation options below (not --method, --mode, --gamma, -o).\n"
-           "\n"
-           "options:\n"
-           "  -o, --output FILE        the .vdb file to write (written atomically)\n"
-           "  --resolution N           voxels along the mesh's longest side (default 256)\n"
-           "  --voxel-size S           voxel edge in mesh units (overrides --resolution)\n"
-           "  --mode MODE              conservative (26-separating, default) | thin (6-separating)\n"
-           "  --method METHOD          cpu (default) | reference | triangle | fragment | hybrid | tessellation\n"
-           "  --padding P              empty voxels added on every side (default 0)\n"
-           "  --threads T              CPU threads, 0 = all cores (default 0)\n"
-           "  --memory-budget-mib M    refuse grids whose bits need more (default 4096)\n"
-           "  --stats-json FILE        write origin, voxel size, dims, counts and timings as JSON\n"
-           "                           (gamma-sweep: its table and fit)\n"
-           "  --gl-device D            GL methods: '' auto, 'software', or a device index\n"
-           "  --hybrid-cutoff C        hybrid: large-triangle cutoff in voxel units^2 (<0: auto)\n"
-           "  --tess-gamma G, --gamma G  tessellation: safety factor gamma (default 1)\n"
-           "  --pn-triangles           tessellation: PN-triangle smoothing\n"
-           "  --displacement IMG       tessellation: displace along the normals by an 8/16-bit PNG\n"
-           "                           height image sampled at the mesh's UVs (Blender Displace)\n"
-           "  --strength S             tessellation: displacement strength in mesh units (default 1)\n"
-           "  --midlevel M             tessellation: height that stays in place (default 0.5)\n"
-           "  --gammas G1,G2,...       gamma-sweep: the gammas to try, at least two (default 1,1.5,2,3,4,6)\n"
-           "  -q, --quiet              print nothing on success\n"
-           "  -h, --help               show this help\n"
-           "  --version                show the version\n";
+std::string usageText() {
+    std::string text =
+        "usage: hyvox voxelize MESH -o OUT.vdb [options]\n"
+        "       hyvox gamma-sweep MESH [--gammas 1,1.5,2,3,4,6] [options]\n"
+        "       hyvox --help | --version\n"
+        "\n"
+        "voxelize: voxelizes the surface of a triangle mesh (PLY, PLY.GZ, OBJ, ...) into an\n"
+        "OpenVDB file with a float grid 'density' (1 on occupied voxels).\n"
+        "gamma-sweep: voxelizes the mesh with the tessellation method at each gamma, prints the\n"
+        "share of the exact conservative voxels it misses (bias) and fits Eq. 3,\n"
+        "gamma = -B ln(A bias), to tell the gamma a bias needs. Takes the voxelize options\n"
+        "below except --mode, --method and --tess-gamma.\n"
+        "\n"
+        "command options:\n"
+        "  -o, --output FILE\n      the .vdb file to write (written atomically)\n"
+        "  --stats-json FILE\n      write the grid, counts, timings, options and the method's figures as JSON\n"
+        "      (gamma-sweep: its table and fit)\n"
+        "  --gammas G1,G2,...\n      gamma-sweep: the gammas to try, at least two (default 1,1.5,2,3,4,6)\n"
+        "  -q, --quiet\n      print nothing on success\n"
+        "  -h, --help\n      show this help\n"
+        "  --version\n      show the version\n"
+        "\n"
+        "voxelize options (the same names as hyvox.voxelize's keywords; a flag's value may also\n"
+        "be given as --name=true|false; environment variables apply unless the flag is given):\n";
+    for (const OptionSpec& spec : optionSchema()) text += optionHelp(spec);
+    return text;
 }
 
 Arguments parseArguments(const std::vector<std::string>& args) {
@@ -108,11 +134,12 @@ Arguments parseArguments(const std::vector<std::string>& args) {
     } else {
         throw UsageError("unknown command '" + args[0] + "' (the commands are 'voxelize' and 'gamma-sweep')");
     }
+    try {
+        applyEnvironment(out.options, [](const char* variable) -> const char* { return std::getenv(variable); });
+    } catch (const InvalidInput& e) {
+        throw UsageError(e.what());
+    }
     const bool sweep = out.command == Command::GammaSweep;
-    auto voxelizeOnly = [&](const std::string& option, const char* why) {
-        if (sweep) throw UsageError(option + " is not a gamma-sweep option: " + why);
-    };
-    const char* kFixedMethod = "the sweep always compares the tessellation method with the exact conservative voxels";
 
     for (std::size_t a = 1; a < args.size(); ++a) {
         std::string option = args[a];
@@ -132,63 +159,38 @@ Arguments parseArguments(const std::vector<std::string>& args) {
         auto noValue = [&] {
             if (inline_value) throw UsageError(option + " takes no value");
         };
-        VoxelizeOptions& o = out.options;
+        bool negated = false;
         if (option == "-h" || option == "--help") {
             out.command = Command::Help;
             return out;
         } else if (option == "-o" || option == "--output") {
-            voxelizeOnly(option, "the sweep writes no .vdb (--stats-json writes its table)");
+            if (sweep) throw UsageError(option + " is not a gamma-sweep option: the sweep writes no .vdb "
+                                                 "(--stats-json writes its table)");
             out.output_path = value();
-        } else if (option == "--resolution") {
-            o.grid.resolution = int(parseInteger(option, value(), 1, kMaxResolution));
-        } else if (option == "--voxel-size") {
-            const double s = parseNumber(option, value());
-            if (!(s > 0)) throw UsageError("--voxel-size must be positive");
-            o.grid.voxel_size = s;
-        } else if (option == "--mode") {
-            voxelizeOnly(option, kFixedMethod);
-            try {
-                o.mode = parseMode(value());
-            } catch (const InvalidInput& e) {
-                throw UsageError(e.what());
-            }
-        } else if (option == "--method") {
-            voxelizeOnly(option, kFixedMethod);
-            try {
-                o.method = parseMethod(value());
-            } catch (const InvalidInput& e) {
-                throw UsageError(e.what());
-            }
-        } else if (option == "--padding") {
-            o.grid.padding = int(parseInteger(option, value(), 0, 1024));
-        } else if (option == "--threads") {
-            o.threads = int(parseInteger(option, value(), 0, 4096));
-        } else if (option == "--memory-budget-mib") {
-            o.memory_budget = std::uint64_t(parseInteger(option, value(), 1, 1ll << 30)) << 20;
         } else if (option == "--stats-json") {
             out.stats_json_path = value();
-        } else if (option == "--gl-device") {
-            o.gl.device = value();
-        } else if (option == "--hybrid-cutoff") {
-            o.hybrid.cutoff = parseNumber(option, value());
-        } else if (option == "--tess-gamma" || option == "--gamma") {
-            voxelizeOnly(option, "it takes --gammas G1,G2,...");
-            o.tessellation.gamma = parseNumber(option, value());
         } else if (option == "--gammas") {
-            if (!sweep) throw UsageError("--gammas belongs to gamma-sweep; voxelize takes one --gamma");
+            if (!sweep) throw UsageError("--gammas belongs to gamma-sweep; voxelize takes one --tess-gamma");
             out.gammas = parseGammaList(option, value());
-        } else if (option == "--displacement") {
-            o.tessellation.displacement_image = value();
-        } else if (option == "--strength") {
-            o.tessellation.displacement_strength = parseNumber(option, value());
-        } else if (option == "--midlevel") {
-            o.tessellation.displacement_midlevel = parseNumber(option, value());
-        } else if (option == "--pn-triangles") {
-            noValue();
-            o.tessellation.pn_triangles = true;
         } else if (option == "-q" || option == "--quiet") {
             noValue();
             out.quiet = true;
+        } else if (const OptionSpec* spec = specForFlag(option, negated)) {
+            if (sweep)
+                if (const char* why = sweepFixes(spec->name))
+                    throw UsageError(option + " is not a gamma-sweep option: " + why);
+            try {
+                OptionValue parsed;
+                if (spec->type == OptionType::Flag && !inline_value)
+                    parsed = !negated;
+                else if (negated)
+                    throw UsageError(option + " takes no value");
+                else
+                    parsed = parseOptionText(*spec, value());
+                setOption(out.options, spec->name, parsed);
+            } catch (const InvalidInput& e) {  // the schema's message, after the flag as typed
+                throw UsageError(option + ": " + e.what());
+            }
         } else if (!option.empty() && option[0] == '-' && option != "-") {
             throw UsageError("unknown option '" + option + "'");
         } else if (out.mesh_path.empty()) {

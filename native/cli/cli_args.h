@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// Command-line parsing for `hyvox voxelize` and `hyvox gamma-sweep`: plain code, no
-// dependency, every mistake a UsageError with a message that says what to type instead.
+// Command-line parsing for `hyvox voxelize` and `hyvox gamma-sweep`: the voxelize options
+// and their help come from the options schema (hyvox/option_schema.h); every mistake is a
+// UsageError with the schema's message.
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -27,7 +28,8 @@ struct Arguments {
     std::vector<double> gammas;  // gamma-sweep: the safety factors to try, ascending
 };
 
-Arguments parseArguments(const std::vector<std::string>& args);  // args without argv[0]
-const char* usageText();
+// args without argv[0]; the options start from the environment variables the schema names.
+Arguments parseArguments(const std::vector<std::string>& args);
+std::string usageText();
 
 }  // namespace hyvox::cli

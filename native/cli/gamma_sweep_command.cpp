@@ -79,7 +79,7 @@ void runGammaSweep(const Arguments& args, const std::atomic<bool>& stop) {
         options.tessellation.gamma = gamma;
         const auto start = std::chrono::steady_clock::now();
         const VoxelizeResult r = voxelize(mesh.view(), options, &interrupter);
-        SweepRow row{gamma, compareToReference(r.occupancy, exact.occupancy), r.stats.metrics.at("points"),
+        SweepRow row{gamma, compareToReference(r.occupancy, exact.occupancy), double(r.stats.tessellation->points),
                      r.stats.voxel_count, msSince(start)};
         if (!args.quiet)
             std::printf("%8.3f %10.5f %12.0f %12llu %10.1f\n", gamma, row.accuracy.bias, row.points,

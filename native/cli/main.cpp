@@ -37,14 +37,14 @@ int main(int argc, char** argv) {
     try {
         const cli::Arguments args = cli::parseArguments(std::vector<std::string>(argv + 1, argv + argc));
         switch (args.command) {
-            case cli::Command::Help: std::fputs(cli::usageText(), stdout); return 0;
+            case cli::Command::Help: std::fputs(cli::usageText().c_str(), stdout); return 0;
             case cli::Command::Version: std::printf("hyvox %s\n", version()); return 0;
             case cli::Command::Voxelize: cli::runVoxelize(args, g_stop); return 0;
             case cli::Command::GammaSweep: cli::runGammaSweep(args, g_stop); return 0;
         }
         return 0;
     } catch (const cli::UsageError& e) {
-        std::fprintf(stderr, "hyvox: error: %s\n\n%s", e.what(), cli::usageText());
+        std::fprintf(stderr, "hyvox: error: %s\n(hyvox --help lists the commands and options)\n", e.what());
         return 2;
     } catch (const Cancelled&) {
         return fail("interrupted; nothing was written", 130);

@@ -72,6 +72,7 @@ def step():
         helpers.clear_scene()
         cube = helpers.cube()
         helpers.select_only(cube)
+        bpy.context.scene.hyvox.padding = 1  # from the scene, not the operator's default
         result = invoke(method="cpu", resolution=64)
         print("invoke ->", result, flush=True)
         if result != {"RUNNING_MODAL"}:
@@ -81,6 +82,12 @@ def step():
         if running() is None:
             if "Cube_voxels" not in bpy.data.objects:
                 fail("the modal run ended without a volume")
+            # The redo panel (Adjust Last Operation) shows the values the run used.
+            last = bpy.context.window_manager.operators[-1]
+            shown = (last.bl_idname, last.properties.resolution, last.properties.padding, last.properties.method)
+            if shown != ("OBJECT_OT_hyvox_voxelize", 64, 1, "cpu"):
+                fail(f"the redo panel shows {shown}, not what the run used")
+            bpy.context.scene.hyvox.property_unset("padding")
             print("modal run finished; undo", flush=True)
             with bpy.context.temp_override(**view3d_override()):
                 bpy.ops.ed.undo()

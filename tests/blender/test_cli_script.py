@@ -55,8 +55,8 @@ class CliScriptTest(AddonTestCase):
         done = self.run_cli(blend, "--objects", "NoSuchObject", "--output", self.out)
         self.assertEqual(done.returncode, 1)
         self.assertIn("NoSuchObject", done.stderr)
-        # A value the operator would clamp silently is refused, and nothing is written.
+        # A value out of the schema's limits is refused with its message, and nothing is written.
         done = self.run_cli(blend, "--objects", "Cube", "--resolution", "0", "--output", self.out)
         self.assertEqual(done.returncode, 1)
-        self.assertIn("hyvox: error: --resolution must be at least 1", done.stderr)
+        self.assertIn("resolution must be a whole number between 1 and 16384, got 0", done.stderr)
         self.assertEqual([f for f in os.listdir(self.out) if f != "scene.blend"], [])

@@ -70,11 +70,11 @@ class ErrorTest(AddonTestCase):
 
     def test_grid_over_memory_budget(self):
         prefs = bpy.context.preferences.addons["hyvox_blender"].preferences
-        prefs.memory_budget_mb = 16
+        prefs.memory_budget_mib = 16
         try:
             cube = helpers.cube()
             helpers.select_only(cube)
             # 8192^3 bits = 64 GiB: refused before allocating, reported, nothing changes.
             self.assert_reported("memory", resolution=8192)
         finally:
-            prefs.property_unset("memory_budget_mb")
+            prefs.property_unset("memory_budget_mib")

@@ -29,14 +29,4 @@ TEST(BitGrid, LayoutMatchesOpenVdbLeafOffsets) {
     EXPECT_EQ(grid.data()[brick * 8 + (n >> 6)], std::uint64_t(1) << (n & 63));
 }
 
-TEST(BitGrid, MergeIsUnion) {
-    hyvox::BitGrid a({10, 10, 10}), b({10, 10, 10});
-    a.set(1, 2, 3);
-    b.set(9, 9, 9);
-    b.setAtomic(1, 2, 3);
-    a.merge(b);
-    EXPECT_EQ(a.count(), 2u);
-    EXPECT_THROW(a.merge(hyvox::BitGrid({9, 10, 10})), std::invalid_argument);
-}
-
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "reference/reference_overlap.h"
 #include "support/triangle_soup.h"
+#include "support/voxel_checks.h"
 
 namespace hyvox::test {
 namespace {
@@ -217,7 +218,6 @@ TEST(KnownAnswers, BadInputGivesClearErrors) {
 }
 
 TEST(KnownAnswers, TouchToleranceSeparatesTouchesFromOverlaps) {
-    using reference::overlapWithin;
     // Touches voxel (0,0,0) exactly at its corner (1,1,1) from outside.
     const reference::Triangle corner_touch{{{1, 1, 1}, {2, 1.5, 1.2}, {1.3, 2, 1.7}}};
     EXPECT_TRUE(reference::overlaps(corner_touch, {0, 0, 0}, Mode::Conservative));

@@ -17,7 +17,7 @@
 #include "gl/gl_objects.h"
 #include "gl/gl_worker.h"
 #include "gl/shader_library.h"
-#include "hybrid/gl_bindings.h"
+#include "gl/bindings.h"
 #include "hyvox/errors.h"
 #include "support/temp_dir.h"
 

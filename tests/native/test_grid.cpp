@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 
+#include "hyvox/bit_grid.h"
 #include "hyvox/errors.h"
 #include "hyvox/grid.h"
 
@@ -70,6 +71,29 @@ TEST(Grid, OutOfRangeInputsAreClearErrors) {
     EXPECT_THROW(hyvox::makeGrid(box(0, 0, 0, 1, 1, 1), options), hyvox::InvalidInput);
     options.voxel_size = 1e-9;  // far too many voxels
     EXPECT_THROW(hyvox::makeGrid(box(0, 0, 0, 1, 1, 1), options), hyvox::InvalidInput);
+}
+
+TEST(Grid, SpecFormulasFollowTheConvention) {
+    hyvox::GridSpec grid;
+    grid.origin = {-1, 2, 0.5};
+    grid.voxel_size = 0.25;
+    grid.dims = {17, 8, 9};
+    EXPECT_EQ(grid.toVoxel(std::array<double, 3>{-1, 2, 0.5}), (std::array<double, 3>{0, 0, 0}));
+    EXPECT_EQ(grid.toVoxel(std::array<float, 3>{0.0f, 2.5f, -0.25f}), (std::array<double, 3>{4, 2, -3}));
+    EXPECT_EQ(grid.maxSide(), 17);
+    EXPECT_EQ(grid.dimsText(), "17x8x9");
+    // ceil(dims / 8) bricks, numbered with x slowest and z fastest.
+    const hyvox::BrickLayout bricks = grid.bricks();
+    EXPECT_EQ(bricks.counts, (std::array<std::int32_t, 3>{3, 1, 2}));
+    EXPECT_EQ(bricks.total(), 6u);
+    EXPECT_EQ(bricks.index(2, 0, 1), 5u);
+    EXPECT_EQ(bricks.indexOfVoxel(16, 7, 8), 5u);
+    EXPECT_EQ(bricks.indexOfVoxel(15, 7, 7), 2u);
+    for (std::size_t b = 0; b < bricks.total(); ++b) {
+        const auto at = bricks.at(b);
+        EXPECT_EQ(bricks.index(at[0], at[1], at[2]), b);
+    }
+    EXPECT_EQ(hyvox::BitGrid(grid.dims).bricks().counts, bricks.counts);
 }
 
 }  // namespace

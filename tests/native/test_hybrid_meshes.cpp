@@ -42,8 +42,8 @@ void checkMesh(const MeshView& mesh, int resolution, const std::string& label) {
                 std::cout << "  " << label << " @" << resolution << " " << toString(method) << " " << toString(mode)
                           << ": " << cmp.summary() << "\n";
             if (method == Method::Hybrid) {
-                EXPECT_GE(result.stats.metrics.at("large_triangles"), 0.0);
-                EXPECT_EQ(result.stats.metrics.at("cutoff"), 4.0);
+                ASSERT_TRUE(result.stats.hybrid.has_value());
+                EXPECT_EQ(result.stats.hybrid->cutoff, 4.0);
             }
             if (mode == Mode::Conservative) {
                 std::uint64_t samples = 0;

@@ -5,16 +5,15 @@
 // and the clear errors (bad shader folder, no such device, grid too large).
 #include <gtest/gtest.h>
 
-#include <cstdlib>
+#include <stdexcept>
 #include <fstream>
 #include <random>
 #include <string>
 
 #include <filesystem>
 
-#include "hybrid/gl_backend_internal.h"
+#include "hybrid/hybrid_run.h"
 #include "hyvox/voxelize.h"
-#include "support/scoped_env.h"
 #include "support/temp_dir.h"
 #include "support/test_mesh_loader.h"
 #include "support/triangle_soup.h"
@@ -40,7 +39,11 @@ VoxelizeOptions onUnitGrid(Method method, Mode mode = Mode::Conservative) {
     return o;
 }
 
-using test::ScopedEnv;
+// The hybrid section of a GL method's stats (every GL method's run has one).
+const HybridStats& hybridStats(const VoxelizeResult& r) {
+    if (!r.stats.hybrid) throw std::runtime_error("no hybrid stats in a GL method's result");
+    return *r.stats.hybrid;
+}
 
 TEST(GlSmall, FaceOnVoxelPlaneMarksBothSides) {
     // A square in the plane z = 4 from (1,1) to (3,3): conservative marks columns x,y in
@@ -148,7 +151,7 @@ TEST(GlSmall, LongSliversMatchTheReference) {
         const auto cmp = test::compareResults(soup.view(), Mode::Conservative, r, oracle);
         EXPECT_TRUE(cmp.unexplained.empty()) << cmp.summary();
         if (method == Method::Hybrid) {
-            EXPECT_EQ(r.stats.metrics.at("large_triangles"), 0.0);
+            EXPECT_EQ(hybridStats(r).large_triangles, 0u);
         }
     }
 }
@@ -170,18 +173,18 @@ TEST(GlSmall, HybridLimitsAreFragmentAndTriangleParallel) {
     o.hybrid.cutoff = 0.0;  // everything is large: all rasterized in pass 2
     const VoxelizeResult all_large = voxelize(mesh.view(), o);
     EXPECT_EQ(all_large.occupancy, fragment.occupancy);
-    EXPECT_EQ(all_large.stats.metrics.at("large_triangles"), double(all_large.stats.triangles_used));
+    EXPECT_EQ(hybridStats(all_large).large_triangles, all_large.stats.triangles_used);
 
     o.hybrid.cutoff = 1e30;  // nothing is large: all voxelized in pass 1
     const VoxelizeResult all_small = voxelize(mesh.view(), o);
     EXPECT_EQ(all_small.occupancy, triangle.occupancy);
-    EXPECT_EQ(all_small.stats.metrics.at("large_triangles"), 0.0);
+    EXPECT_EQ(hybridStats(all_small).large_triangles, 0u);
 
     o.hybrid.cutoff = 0.5;  // a mix
     const VoxelizeResult mixed = voxelize(mesh.view(), o);
     EXPECT_EQ(mixed.occupancy, triangle.occupancy);
-    EXPECT_GT(mixed.stats.metrics.at("large_triangles"), 0.0);
-    EXPECT_LT(mixed.stats.metrics.at("large_triangles"), double(mixed.stats.triangles_used));
+    EXPECT_GT(hybridStats(mixed).large_triangles, 0u);
+    EXPECT_LT(hybridStats(mixed).large_triangles, mixed.stats.triangles_used);
 }
 
 TEST(GlSmall, AutoCutoffSearchesOnceThenUsesTheCache) {
@@ -190,11 +193,11 @@ TEST(GlSmall, AutoCutoffSearchesOnceThenUsesTheCache) {
     o.grid.resolution = 48;
     o.hybrid.cutoff = -1.0;
     const VoxelizeResult first = voxelize(mesh.view(), o);
-    EXPECT_GT(first.stats.metrics.at("cutoff_search_runs"), 2.0);
-    EXPECT_GT(first.stats.metrics.at("cutoff"), 0.0);
+    EXPECT_GT(hybridStats(first).cutoff_search_runs, 2u);
+    EXPECT_GT(hybridStats(first).cutoff, 0.0);
     const VoxelizeResult second = voxelize(mesh.view(), o);
-    EXPECT_EQ(second.stats.metrics.at("cutoff_search_runs"), 0.0);
-    EXPECT_EQ(second.stats.metrics.at("cutoff"), first.stats.metrics.at("cutoff"));
+    EXPECT_EQ(hybridStats(second).cutoff_search_runs, 0u);
+    EXPECT_EQ(hybridStats(second).cutoff, hybridStats(first).cutoff);
     o.method = Method::Triangle;
     EXPECT_EQ(first.occupancy, voxelize(mesh.view(), o).occupancy);
 }
@@ -204,9 +207,11 @@ TEST(GlSmall, StatsReportPassesAndTransfers) {
     VoxelizeOptions o = options(Method::Hybrid);
     o.grid.resolution = 64;
     const VoxelizeResult r = voxelize(mesh.view(), o);
-    for (const char* key : {"pass1_gpu_ms", "pass2_gpu_ms", "large_triangles", "cutoff", "upload_ms", "readback_ms"})
-        EXPECT_TRUE(r.stats.metrics.count(key)) << key;
-    EXPECT_GT(r.stats.metrics.at("pass1_gpu_ms"), 0.0);
+    // The hybrid section and no other backend's.
+    ASSERT_TRUE(r.stats.hybrid.has_value());
+    EXPECT_FALSE(r.stats.cpu || r.stats.reference || r.stats.tessellation);
+    EXPECT_GT(r.stats.hybrid->pass1_gpu_ms, 0.0);
+    EXPECT_EQ(r.stats.hybrid->cutoff, 2.0);  // the options' cutoff, reported
     EXPECT_EQ(r.stats.voxel_count, r.occupancy.count());
 }
 
@@ -217,12 +222,13 @@ TEST(GlSmall, TilesGiveTheSameVoxels) {
     for (Method method : kGlMethods) {
         SCOPED_TRACE(toString(method));
         o.method = method;
+        o.gl.tile_bytes = 0;
         const VoxelizeResult whole = voxelize(mesh.view(), o);
-        EXPECT_EQ(whole.stats.metrics.at("tiles"), 1.0);
+        EXPECT_EQ(hybridStats(whole).tiles, 1u);
         // One slab of 8 voxels at 96 voxels is 12 x 12 bricks of 64 bytes: 9216 bytes.
-        ScopedEnv tile("HYVOX_GL_TILE_BYTES", std::to_string(3 * 9216));
+        o.gl.tile_bytes = 3 * 9216;
         const VoxelizeResult tiled = voxelize(mesh.view(), o);
-        EXPECT_GE(tiled.stats.metrics.at("tiles"), 3.0);
+        EXPECT_GE(hybridStats(tiled).tiles, 3u);
         EXPECT_EQ(tiled.occupancy, whole.occupancy);
     }
 }
@@ -237,10 +243,10 @@ TEST(GlSmall, VoxelListHoldsEachSetVoxelOnce) {
         // Through the backend entry point that also serves voxelize().
         const ValidatedMesh validated = validate(mesh.view());
         const GridSpec grid = makeGrid(validated.bounds, o.grid);
+        o.gl.tile_bytes = 4 * 10 * 10 * 64;  // several tiles too
         const BackendJob job{validated, grid, o, nullptr};
         std::vector<std::array<std::int32_t, 3>> list;
-        ScopedEnv tile("HYVOX_GL_TILE_BYTES", std::to_string(4 * 10 * 10 * 64));  // several tiles too
-        hybrid::runGl(job, nullptr, &list);
+        hybrid::runHybrid(job, nullptr, &list);
         std::sort(list.begin(), list.end());
         auto expected = bits.occupancy.coords();
         std::sort(expected.begin(), expected.end());
@@ -252,7 +258,7 @@ TEST(GlSmall, GridTooLargeForOneSlabIsRefusedClearly) {
     const test::TestMesh mesh = bunny();
     VoxelizeOptions o = options(Method::Triangle);
     o.grid.resolution = 512;
-    ScopedEnv tile("HYVOX_GL_TILE_BYTES", "4096");
+    o.gl.tile_bytes = 4096;
     try {
         voxelize(mesh.view(), o);
         FAIL() << "expected ResourceError";
@@ -277,7 +283,7 @@ TEST(GlSmall, MissingShaderFolderIsAClearError) {
     }
 }
 
-TEST(GlSmall, ShaderFolderFromTheEnvironmentIsUsed) {
+TEST(GlSmall, ShaderFolderFromTheOptionsIsUsed) {
     // A copy of shaders/ with a syntax error in one shared file: the error names the file
     // and quotes the driver's log.
     const test::TempDir temp;
@@ -288,7 +294,7 @@ TEST(GlSmall, ShaderFolderFromTheEnvironmentIsUsed) {
     soup.add({0, 0, 0}, {1, 0, 0}, {0, 1, 1});
     VoxelizeOptions o = options(Method::Fragment);
     o.grid.resolution = 8;
-    ScopedEnv env("HYVOX_SHADER_DIR", dir.string());
+    o.gl.shader_dir = dir.string();
     try {
         voxelize(soup.view(), o);
         FAIL() << "expected BackendError";
@@ -299,11 +305,10 @@ TEST(GlSmall, ShaderFolderFromTheEnvironmentIsUsed) {
         EXPECT_NE(what.find("error"), std::string::npos) << what;
     }
     // And the unbroken copy on disk gives the embedded result.
-    ScopedEnv good("HYVOX_SHADER_DIR", HYVOX_SOURCE_SHADERS);
-    EXPECT_EQ(voxelize(soup.view(), o).occupancy, [&] {
-        ScopedEnv none("HYVOX_SHADER_DIR", "");
-        return voxelize(soup.view(), o).occupancy;
-    }());
+    o.gl.shader_dir = HYVOX_SOURCE_SHADERS;
+    const BitGrid from_disk = voxelize(soup.view(), o).occupancy;
+    o.gl.shader_dir = "";
+    EXPECT_EQ(from_disk, voxelize(soup.view(), o).occupancy);
 }
 
 TEST(GlSmall, CancellationStopsAndTheWorkerCarriesOn) {
@@ -322,7 +327,7 @@ TEST(GlSmall, NoSuchDeviceNamesTheDevicesFound) {
     soup.add({0, 0, 0}, {1, 0, 0}, {0, 1, 1});
     VoxelizeOptions o = options(Method::Triangle);
     o.grid.resolution = 8;
-    ScopedEnv env("HYVOX_GL_DEVICE", "99");
+    o.gl.device = "99";
     try {
         voxelize(soup.view(), o);
         FAIL() << "expected BackendError";
@@ -331,7 +336,7 @@ TEST(GlSmall, NoSuchDeviceNamesTheDevicesFound) {
         EXPECT_NE(what.find("'99'"), std::string::npos) << what;
         EXPECT_NE(what.find("software"), std::string::npos) << what;  // llvmpipe is always listed
     }
-    o.gl.device = "software";  // the option wins over the environment
+    o.gl.device = "software";
     EXPECT_GT(voxelize(soup.view(), o).occupancy.count(), 0u);
 }
 

@@ -20,14 +20,17 @@ TEST(IoStatsJson, HoldsTheFields) {
     r.stats.addTiming("validate", 1.5);
     r.stats.addTiming("voxelize", 2.5);
     r.stats.addTiming("voxelize", 1.0);
-    r.stats.metrics["bias"] = 0.25;
-    r.stats.metrics["odd \"name\"\n"] = std::nan("");
+    hyvox::HybridStats hybrid;
+    hybrid.pass1_gpu_ms = 0.25;
+    hybrid.cutoff = std::nan("");
+    r.stats.hybrid = hybrid;
+    r.stats.options.gl.shader_dir = "odd \"dir\"\n";
     const std::string json = hyvox::statsToJson(r);
     for (const char* part :
          {"\"method\": \"cpu\"", "\"mode\": \"thin\"", "\"origin\": [-1.5, 0.25, 3]", "\"voxel_size\": 0.1",
           "\"dims\": [10, 20, 30]", "\"voxel_count\": 1234",
           "\"triangles\": {\"input\": 12, \"used\": 10, \"degenerate\": 2}", "\"validate\": 1.5",
-          "\"voxelize\": 2.5", "\"voxelize#2\": 1", "\"total_ms\": 5", "\"bias\": 0.25",
-          "\"odd \\\"name\\\"\\n\": null"})
+          "\"voxelize\": 2.5", "\"voxelize#2\": 1", "\"total_ms\": 5", "\"hybrid\": {\"pass1_gpu_ms\": 0.25",
+          "\"cutoff\": null", "\"shader_dir\": \"odd \\\"dir\\\"\\n\""})
         EXPECT_NE(json.find(part), std::string::npos) << part << "\n" << json;
 }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The tessellation method's CPU pieces, no GL needed: Eq. 1 factors and the pre-split,
-// PN-triangles, the displacement image (PNG and sampling), subdivision, and the accuracy
-// metrics (bias, false voxels, ray-marching watertightness, the Eq. 3 fit).
+// The tessellation method's CPU pieces, no GL needed: Eq. 1 factors and the pre-split, the
+// vertex normals, the displacement image (PNG), the tests' CPU twins of the surface (PN,
+// sampling) and subdivision, and the accuracy measures (bias, false voxels, ray-marching
+// watertightness, the Eq. 3 fit).
 #include <gtest/gtest.h>
 #include <png.h>
 
@@ -12,16 +13,20 @@
 #include "hyvox/accuracy.h"
 #include "hyvox/errors.h"
 #include "hyvox/voxelize.h"
+#include "support/subdivide.h"
+#include "support/surface_twin.h"
 #include "support/triangle_soup.h"
-#include "tessellation/cpu_subdivide.h"
 #include "tessellation/displacement_map.h"
-#include "tessellation/surface.h"
+#include "tessellation/surface_attributes.h"
 #include "tessellation/tess_factors.h"
 
 namespace hyvox {
 namespace {
 
 using namespace tessellation;
+using test::SurfacePoint;
+using test::SurfaceTwin;
+using test::Vec3d;
 
 TEST(TessellationFactors, EquationOneUsesTheLargestAxisExtent) {
     // Edge (0,0,0)-(3,-5,1): extents 3, 5, 1 voxels -> 5 at γ = 1, 10 at γ = 2.
@@ -66,7 +71,7 @@ GridSpec unitGrid() {
 TEST(TessellationSurface, PnTrianglesInterpolateCornersAndBulgeTowardsTheSphere) {
     const Octahedron octa;
     const ValidatedMesh mesh = validate(octa.view());
-    const Surface surface(mesh, unitGrid());
+    const SurfaceTwin surface(mesh, unitGrid());
     for (std::uint32_t t = 0; t < 8; ++t) {
         const auto corners = surface.corners(t);
         for (int c = 0; c < 3; ++c) {
@@ -89,19 +94,19 @@ TEST(TessellationSurface, PnTrianglesInterpolateCornersAndBulgeTowardsTheSphere)
 
 TEST(TessellationSurface, AreaWeightedNormalsPointOutwards) {
     const Octahedron octa;
-    const Surface surface(validate(octa.view()), unitGrid());
+    const SurfaceAttributes attributes(validate(octa.view()), unitGrid());
     for (std::size_t v = 0; v < 6; ++v)
-        for (int a = 0; a < 3; ++a) EXPECT_NEAR(surface.normals()[3 * v + a], octa.positions[3 * v + a], 1e-6);
+        for (int a = 0; a < 3; ++a) EXPECT_NEAR(attributes.normals()[3 * v + a], octa.positions[3 * v + a], 1e-6);
 }
 
 TEST(DisplacementMap, SamplesLikeGlLinearClampToEdge) {
     // 2×2, row 0 = top: top row 0, 1; bottom row 2, 3.
     const DisplacementMap map(HeightImage{2, 2, {0, 1, 2, 3}});
-    EXPECT_FLOAT_EQ(map.sample(0.25, 0.25), 2.0f);  // bottom-left texel centre
-    EXPECT_FLOAT_EQ(map.sample(0.75, 0.75), 1.0f);  // top-right
-    EXPECT_FLOAT_EQ(map.sample(0.5, 0.5), 1.5f);    // the mean of all four
-    EXPECT_FLOAT_EQ(map.sample(0.0, 0.0), 2.0f);    // clamped at the edge
-    EXPECT_FLOAT_EQ(map.sample(-5.0, 9.0), 0.0f);   // far outside: the top-left texel
+    EXPECT_FLOAT_EQ(test::sampleHeight(map, 0.25, 0.25), 2.0f);  // bottom-left texel centre
+    EXPECT_FLOAT_EQ(test::sampleHeight(map, 0.75, 0.75), 1.0f);  // top-right
+    EXPECT_FLOAT_EQ(test::sampleHeight(map, 0.5, 0.5), 1.5f);    // the mean of all four
+    EXPECT_FLOAT_EQ(test::sampleHeight(map, 0.0, 0.0), 2.0f);    // clamped at the edge
+    EXPECT_FLOAT_EQ(test::sampleHeight(map, -5.0, 9.0), 0.0f);   // far outside: the top-left texel
     EXPECT_THROW(DisplacementMap(HeightImage{2, 2, {0, 1, 2}}), InvalidInput);
 }
 
@@ -143,10 +148,10 @@ TEST(DisplacementMap, ReadsEightAndSixteenBitGreyPng) {
 
 TEST(CpuSubdivide, MidpointSubdivisionQuadruplesAndSharesEdges) {
     const Octahedron octa;
-    const Mesh once = midpointSubdivide(octa.view(), 1);
+    const Mesh once = test::midpointSubdivide(octa.view(), 1);
     EXPECT_EQ(once.triangleCount(), 32u);
     EXPECT_EQ(once.vertexCount(), 6u + 12u);  // one new vertex per edge
-    const Mesh twice = midpointSubdivide(octa.view(), 2);
+    const Mesh twice = test::midpointSubdivide(octa.view(), 2);
     EXPECT_EQ(twice.triangleCount(), 128u);
     EXPECT_EQ(twice.uvs.size(), 2 * twice.vertexCount());
 }
@@ -158,7 +163,7 @@ TEST(CpuSubdivide, SubdivideAndDisplaceMovesVerticesAlongTheNormal) {
     options.displacement_pixels = HeightImage{1, 1, {1.0f}};
     options.displacement_strength = 0.25;
     options.displacement_midlevel = 0.5;
-    const Mesh out = subdivideAndDisplace(mesh, unitGrid(), options, 3);
+    const Mesh out = test::subdivideAndDisplace(mesh, unitGrid(), options, 3);
     EXPECT_EQ(out.triangleCount(), 8u * 9u);
     // Corner vertices sit on the unit sphere with radial normals: displaced to r = 1.125.
     const float* p = out.positions.data();

@@ -13,16 +13,17 @@
 #include <map>
 #include <ostream>
 #include <set>
+#include <stdexcept>
 
 #include "hyvox/accuracy.h"
 #include "hyvox/errors.h"
 #include "hyvox/voxelize.h"
-#include "support/scoped_env.h"
+#include "support/subdivide.h"
+#include "support/surface_twin.h"
 #include "support/temp_dir.h"
 #include "support/test_mesh_loader.h"
 #include "support/triangle_soup.h"
 #include "support/voxel_checks.h"
-#include "tessellation/cpu_subdivide.h"
 #include "tessellation/displacement_map.h"
 
 namespace hyvox {
@@ -38,6 +39,12 @@ VoxelizeOptions optionsFor(Method method, int resolution, double gamma = 1.0, Mo
     o.grid.resolution = resolution;
     o.tessellation.gamma = gamma;
     return o;
+}
+
+// The tessellation section of the method's stats.
+const TessellationStats& tess(const VoxelizeResult& r) {
+    if (!r.stats.tessellation) throw std::runtime_error("no tessellation stats in the result");
+    return *r.stats.tessellation;
 }
 
 std::uint64_t countSum(const VoxelizeResult& r) {
@@ -103,9 +110,9 @@ TEST_P(TessellationMeshes, BiasFallsWithGammaAndNothingFalseOrLeaking) {
         const WatertightReport rays = watertightness(mesh.view(), r, conservative);
         std::printf("%s @%d γ=%g: %llu points, %llu voxels, bias %.4f, false %llu, watertight %.6f (%llu rays fail), "
                     "%.0f ms\n",
-                    mesh_case.file, resolution, gamma, (unsigned long long)r.stats.metrics.at("points"),
+                    mesh_case.file, resolution, gamma, (unsigned long long)tess(r).points,
                     (unsigned long long)r.stats.voxel_count, acc.bias, (unsigned long long)acc.false_voxels,
-                    rays.share(), (unsigned long long)(rays.rays - rays.passed), r.stats.metrics.at("pass1_gpu_ms"));
+                    rays.share(), (unsigned long long)(rays.rays - rays.passed), tess(r).pass1_gpu_ms);
         EXPECT_EQ(falseBeyondTouch(mesh.view(), r, conservative, kTouchEps), 0u)
             << acc.false_voxels << " false voxels, not all touches";
         EXPECT_LE(acc.bias, gamma == 1.0 ? 0.20 : (gamma == 2.0 ? 0.12 : 0.05)) << "γ=" << gamma;
@@ -125,8 +132,8 @@ TEST_P(TessellationMeshes, BiasFallsWithGammaAndNothingFalseOrLeaking) {
                 EXPECT_EQ(flood.inside_reached, 0u) << "γ=" << gamma;
             }
         }
-        EXPECT_EQ(countSum(r), std::uint64_t(r.stats.metrics.at("points")));
-        EXPECT_EQ(r.stats.metrics.at("points_clipped"), 0.0);
+        EXPECT_EQ(countSum(r), tess(r).points);
+        EXPECT_EQ(tess(r).points_clipped, 0u);
         EXPECT_EQ(r.counts.size(), r.stats.voxel_count);
     }
 }
@@ -153,17 +160,18 @@ void expectGapFree(const test::TriangleSoup& soup, int resolution) {
         const VoxelizeResult r = voxelize(soup.view(), o);
         const VoxelizeResult conservative = conservativeVoxels(soup.view(), o);
         const WatertightReport rays = watertightness(soup.view(), r, conservative);
-        std::printf("%zu triangles @%d γ=%g: %g split triangles (n <= %g), %g points, watertight %.6f (%llu rays fail)\n",
-                    soup.triangles.size() / 3, resolution, gamma, r.stats.metrics.at("split_triangles"),
-                    r.stats.metrics.at("largest_split"), r.stats.metrics.at("points"), rays.share(),
+        std::printf("%zu triangles @%d γ=%g: %llu split triangles (n <= %llu), %llu points, watertight %.6f (%llu rays "
+                    "fail)\n",
+                    soup.triangles.size() / 3, resolution, gamma, (unsigned long long)tess(r).split_triangles,
+                    (unsigned long long)tess(r).largest_split, (unsigned long long)tess(r).points, rays.share(),
                     (unsigned long long)(rays.rays - rays.passed));
-        EXPECT_GT(r.stats.metrics.at("split_triangles"), 0.0);
+        EXPECT_GT(tess(r).split_triangles, 0u);
         if (gamma == 1.0) {
             EXPECT_GE(rays.share(), 0.9999);
         } else {
             EXPECT_EQ(rays.passed, rays.rays);
         }
-        EXPECT_EQ(countSum(r), std::uint64_t(r.stats.metrics.at("points")));
+        EXPECT_EQ(countSum(r), tess(r).points);
         // Points on a triangle 512 voxels wide carry float rounding of ~3e-5 voxel.
         EXPECT_EQ(falseBeyondTouch(soup.view(), r, conservative, 1e-4), 0u);
     }
@@ -202,9 +210,8 @@ test::TriangleSoup icosphere(int levels, std::vector<float>* uvs) {
         for (double x : p) icosahedron.positions.push_back(float(x));
     for (const auto& tri : f)
         for (int i : tri) icosahedron.triangles.push_back(std::uint32_t(i));
-    // Midpoint subdivision (the library's, shared edges shared), then every vertex onto the
-    // unit sphere.
-    const Mesh fine = tessellation::midpointSubdivide(icosahedron.view(), levels);
+    // Midpoint subdivision (shared edges shared), then every vertex onto the unit sphere.
+    const Mesh fine = test::midpointSubdivide(icosahedron.view(), levels);
     test::TriangleSoup soup;
     soup.triangles = fine.triangles;
     v.clear();
@@ -244,7 +251,7 @@ TEST(TessellationPn, LowPolySphereLandsCloserToTheSphere) {
     std::printf("icosphere(80) @128: mean distance to the sphere: flat %.3f, PN %.3f voxels\n", d_flat, d_pn);
     EXPECT_LT(d_pn, 0.5 * d_flat);
     EXPECT_LT(d_pn, 1.0);
-    EXPECT_EQ(countSum(pn), std::uint64_t(pn.stats.metrics.at("points")));
+    EXPECT_EQ(countSum(pn), tess(pn).points);
 }
 
 // Two triangles over the unit square at z = 0, UV = xy, normals +z.
@@ -284,7 +291,7 @@ TEST(TessellationDisplacement, FlatSquareFollowsASineHeightImage) {
         for (int a = 0; a <= 8; ++a)
             for (int b = 0; b <= 8; ++b) {
                 const double x = centre[0] + (a / 8.0 - 0.5) * s, y = centre[1] + (b / 8.0 - 0.5) * s;
-                nearest = std::min(nearest, std::abs(centre[2] - (map.sample(x, y) - 0.5) * 0.3) / s);
+                nearest = std::min(nearest, std::abs(centre[2] - (test::sampleHeight(map, x, y) - 0.5) * 0.3) / s);
             }
         worst = std::max(worst, nearest);
         columns.insert({c[0], c[1]});
@@ -293,7 +300,7 @@ TEST(TessellationDisplacement, FlatSquareFollowsASineHeightImage) {
                 (unsigned long long)r.stats.voxel_count, worst, columns.size(), 128 * 128);
     EXPECT_LE(worst, 1.0);
     EXPECT_EQ(columns.size(), std::size_t(128 * 128));  // every column of the square has a point
-    EXPECT_EQ(r.stats.metrics.at("points_clipped"), 0.0);
+    EXPECT_EQ(tess(r).points_clipped, 0u);
 }
 
 TEST(TessellationDisplacement, LowPolyPlusMapMatchesCpuSubdividedAndDisplaced) {
@@ -316,7 +323,7 @@ TEST(TessellationDisplacement, LowPolyPlusMapMatchesCpuSubdividedAndDisplaced) {
     VoxelizeOptions exact = o;
     exact.method = Method::Cpu;
     const GridSpec grid = voxelize(view, exact).grid;  // the grid both runs share
-    const Mesh dense = tessellation::subdivideAndDisplace(validated, grid, o.tessellation, 96);
+    const Mesh dense = test::subdivideAndDisplace(validated, grid, o.tessellation, 96);
     const VoxelizeResult reference = voxelize(dense.view(), exact);
     // Stated bounds: the points sample the displaced surface like they sample a plain mesh,
     // so the bias against the conservative set behaves as on the real meshes (a little more
@@ -343,7 +350,7 @@ TEST(TessellationDisplacement, WholeTrianglesGetTheirDisplacedCentroid) {
     // compute pass injects one point per triangle. Expected: the centroid of its corners,
     // each displaced along +z by (height(uv) - midlevel) * strength, computed here in double.
     const FlatSquare square;
-    Mesh fine = tessellation::midpointSubdivide(square.view(), 5);  // 2048 triangles
+    Mesh fine = test::midpointSubdivide(square.view(), 5);  // 2048 triangles
     MeshView view = fine.view();
     view.uvs = fine.uvs.data();
     HeightImage image{16, 16, {}};
@@ -355,8 +362,8 @@ TEST(TessellationDisplacement, WholeTrianglesGetTheirDisplacedCentroid) {
     o.tessellation.displacement_strength = 0.5;
     o.tessellation.displacement_midlevel = 0.5;
     const VoxelizeResult r = voxelize(view, o);
-    ASSERT_EQ(r.stats.metrics.at("triangles_whole"), double(fine.triangleCount()));
-    ASSERT_EQ(r.stats.metrics.at("points"), double(fine.triangleCount()));
+    ASSERT_EQ(tess(r).triangles_whole, fine.triangleCount());
+    ASSERT_EQ(tess(r).points, fine.triangleCount());
 
     const tessellation::DisplacementMap map(image);
     std::map<std::array<std::int32_t, 3>, std::uint32_t> expected;
@@ -364,13 +371,13 @@ TEST(TessellationDisplacement, WholeTrianglesGetTheirDisplacedCentroid) {
         std::array<double, 3> centroid{0, 0, 0};
         for (int c = 0; c < 3; ++c) {
             const std::uint32_t v = fine.triangles[3 * t + c];
-            const double height = (map.sample(fine.uvs[2 * v], fine.uvs[2 * v + 1]) - 0.5) * 0.5;
+            const double height = (test::sampleHeight(map, fine.uvs[2 * v], fine.uvs[2 * v + 1]) - 0.5) * 0.5;
             const double p[3] = {fine.positions[3 * v], fine.positions[3 * v + 1], fine.positions[3 * v + 2] + height};
             for (int a = 0; a < 3; ++a) centroid[a] += p[a] / 3.0;
         }
+        const std::array<double, 3> in_voxels = r.grid.toVoxel(centroid);
         std::array<std::int32_t, 3> voxel{};
-        for (int a = 0; a < 3; ++a)
-            voxel[a] = std::int32_t(std::floor((centroid[a] - r.grid.origin[a]) / r.grid.voxel_size));
+        for (int a = 0; a < 3; ++a) voxel[a] = std::int32_t(std::floor(in_voxels[a]));
         ++expected[voxel];
     }
     std::map<std::array<std::int32_t, 3>, std::uint32_t> got;
@@ -380,10 +387,9 @@ TEST(TessellationDisplacement, WholeTrianglesGetTheirDisplacedCentroid) {
 
 // --- options, stats and errors -------------------------------------------------------------
 
-TEST(TessellationApi, CountsAreDeterministicAndAccuracyIsReported) {
+TEST(TessellationApi, CountsAreDeterministicAndAccuracyIsMeasured) {
     const test::TestMesh mesh = test::loadTestMesh(test::meshPath("dragon_stanford_res3_48k.ply"));
     VoxelizeOptions o = optionsFor(Method::Tessellation, 128, 2.0);
-    o.tessellation.measure_accuracy = true;
     const VoxelizeResult a = voxelize(mesh.view(), o);
     const VoxelizeResult b = voxelize(mesh.view(), o);
     ASSERT_EQ(a.counts.size(), b.counts.size());
@@ -394,8 +400,8 @@ TEST(TessellationApi, CountsAreDeterministicAndAccuracyIsReported) {
         ASSERT_EQ(a.counts[i].count, b.counts[i].count);
         ASSERT_TRUE(a.occupancy.test(a.counts[i].i, a.counts[i].j, a.counts[i].k));
     }
-    // The reported figures against the exact voxels, counted here voxel by voxel (not through
-    // compareToReference, which the backend itself uses).
+    // Accuracy is a utility the caller runs on the exact cpu voxels (hyvox/accuracy.h): its
+    // figures against the same voxels counted here one by one.
     const VoxelizeResult conservative = conservativeVoxels(mesh.view(), o);
     VoxelizeOptions thin_options = o;
     thin_options.mode = Mode::Thin;
@@ -414,17 +420,15 @@ TEST(TessellationApi, CountsAreDeterministicAndAccuracyIsReported) {
                 thin_missed += thin.occupancy.test(i, j, k) && !got;
             }
     ASSERT_GT(missed, 0u);  // γ=2 misses some: the bias below is not a trivial 0 = 0
-    EXPECT_EQ(a.stats.metrics.at("reference_voxels"), double(reference));
-    EXPECT_EQ(a.stats.metrics.at("missed_voxels"), double(missed));
-    EXPECT_EQ(a.stats.metrics.at("false_voxels"), double(false_voxels));
-    EXPECT_DOUBLE_EQ(a.stats.metrics.at("bias"), double(missed) / double(reference));
-    EXPECT_DOUBLE_EQ(a.stats.metrics.at("bias_thin"), double(thin_missed) / double(thin_reference));
-    // Only the wiring of this stat: the ray test itself is checked against hand-worked
-    // cases in test_tessellation_cpu.cpp and by the flood fill in the mesh tests above.
-    EXPECT_EQ(a.stats.metrics.at("watertight_share"), watertightness(mesh.view(), a, conservative).share());
+    const AccuracyReport accuracy = compareToReference(a.occupancy, conservative.occupancy);
+    EXPECT_EQ(accuracy.reference_voxels, reference);
+    EXPECT_EQ(accuracy.missed_voxels, missed);
+    EXPECT_EQ(accuracy.false_voxels, false_voxels);
+    EXPECT_DOUBLE_EQ(accuracy.bias, double(missed) / double(reference));
+    EXPECT_DOUBLE_EQ(compareToReference(a.occupancy, thin.occupancy).bias,
+                     double(thin_missed) / double(thin_reference));
     // Binary only: the same bits without the count pool.
     o.tessellation.counts = false;
-    o.tessellation.measure_accuracy = false;
     const VoxelizeResult bits = voxelize(mesh.view(), o);
     EXPECT_TRUE(bits.counts.empty());
     EXPECT_TRUE(bits.occupancy == a.occupancy);
@@ -454,7 +458,7 @@ TEST(TessellationApi, PngDisplacementMatchesThePixelArray) {
     const VoxelizeResult from_pixels = voxelize(square.view(), o);
     std::filesystem::remove(path);
     EXPECT_TRUE(from_png.occupancy == from_pixels.occupancy);
-    EXPECT_EQ(from_png.stats.metrics.at("points_clipped"), 0.0);
+    EXPECT_EQ(tess(from_png).points_clipped, 0u);
     // The ramp climbs from (0 - 0.25) * 0.5 to (252/255 - 0.25) * 0.5 along x.
     const auto coords = from_png.occupancy.coords();
     int lowest = 1 << 30, highest = -1;
@@ -481,29 +485,27 @@ TEST(TessellationApi, BadOptionsAreClearErrors) {
     EXPECT_THROW(voxelize(no_uvs, o), InvalidInput);
 }
 
-TEST(TessellationApi, ShaderFolderFromTheEnvironmentIsUsed) {
-    // HYVOX_SHADER_DIR reaches this method too: a copy of shaders/ whose point injection does
-    // not compile gives a BackendError naming that file, and the unbroken copy on disk gives
-    // the embedded shaders' voxels.
+TEST(TessellationApi, ShaderFolderFromTheOptionsIsUsed) {
+    // GlOptions::shader_dir reaches this method too: a copy of shaders/ whose point injection
+    // does not compile gives a BackendError naming that file, and the unbroken copy on disk
+    // gives the embedded shaders' voxels.
     const FlatSquare square;
-    const VoxelizeOptions o = optionsFor(Method::Tessellation, 32, 1.0);
+    VoxelizeOptions o = optionsFor(Method::Tessellation, 32, 1.0);
     const test::TempDir temp;
     const std::filesystem::path dir = temp.path / "shaders";
     std::filesystem::copy(HYVOX_SOURCE_SHADERS, dir, std::filesystem::copy_options::recursive);
     std::ofstream(dir / "tessellation" / "inject.glsl", std::ios::app) << "\nthis is not glsl;\n";
-    {
-        test::ScopedEnv broken("HYVOX_SHADER_DIR", dir.string());
-        try {
-            voxelize(square.view(), o);
-            FAIL() << "expected BackendError";
-        } catch (const BackendError& e) {
-            EXPECT_NE(std::string(e.what()).find("tessellation/inject.glsl"), std::string::npos) << e.what();
-        }
+    o.gl.shader_dir = dir.string();
+    try {
+        voxelize(square.view(), o);
+        FAIL() << "expected BackendError";
+    } catch (const BackendError& e) {
+        EXPECT_NE(std::string(e.what()).find("tessellation/inject.glsl"), std::string::npos) << e.what();
     }
-    const test::ScopedEnv good("HYVOX_SHADER_DIR", HYVOX_SOURCE_SHADERS);
+    o.gl.shader_dir = HYVOX_SOURCE_SHADERS;
     const BitGrid from_disk = voxelize(square.view(), o).occupancy;
     EXPECT_EQ(from_disk.count(), 32u * 32u);  // the square lies in one layer of voxels
-    const test::ScopedEnv embedded("HYVOX_SHADER_DIR", "");
+    o.gl.shader_dir = "";
     EXPECT_EQ(from_disk, voxelize(square.view(), o).occupancy);
 }
 

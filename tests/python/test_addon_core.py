@@ -20,8 +20,8 @@ def test_core_never_imports_bpy():
 
 @pytest.mark.parametrize("bad", [
     dict(method="magic"), dict(mode="thick"), dict(resolution=0), dict(resolution=100000),
-    dict(voxel_size=-1.0), dict(tessellation_gamma=0.0), dict(padding=-1),
-    dict(frames=[]), dict(frames=[-2, -1]), dict(memory_budget_mb=0),
+    dict(voxel_size=-1.0), dict(tess_gamma=0.0), dict(padding=-1),
+    dict(frames=[]), dict(frames=[-2, -1]), dict(memory_budget_mib=0),
 ])
 def test_settings_rejected(bad):
     with pytest.raises(SettingsError):
@@ -30,7 +30,7 @@ def test_settings_rejected(bad):
 
 def test_settings_voxel_size_wins_over_resolution():
     settings = VoxelizeSettings(resolution=0, voxel_size=0.1).validate()
-    assert settings.voxel_size == 0.1
+    assert settings.voxelize_options() == {"voxel_size": 0.1}
     assert not settings.is_sequence
     assert VoxelizeSettings(frames=[1, 2]).is_sequence
 

@@ -21,7 +21,7 @@ def test_voxelize_bunny(cli, mesh_dir, tmp_path, bunny):
     assert result.returncode == 0, result.stderr
     assert "voxels" in result.stdout and result.stderr == ""
     stats = json.loads(stats_path.read_text())
-    for key in ("origin", "voxel_size", "dims", "voxel_count", "triangles", "timings_ms", "metrics"):
+    for key in ("origin", "voxel_size", "dims", "voxel_count", "triangles", "timings_ms", "options", "cpu"):
         assert key in stats, key
     assert stats["triangles"] == {"input": 69451, "used": 69451, "degenerate": 0}
     assert max(stats["dims"]) == 128

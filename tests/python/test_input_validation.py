@@ -71,7 +71,7 @@ def test_bad_values_and_options(tetrahedron):
     with pytest.raises(ValueError, match="origin"):
         hyvox.voxelize(vertices, triangles, origin=(0, 0))
     with pytest.raises(hyvox.ResourceError, match="memory budget"):
-        hyvox.voxelize(vertices, triangles, resolution=4096, memory_budget=1 << 20)
+        hyvox.voxelize(vertices, triangles, resolution=4096, memory_budget_mib=1)
     with pytest.raises(TypeError):
         hyvox.voxelize(vertices, triangles, cancel=object())
 
@@ -160,11 +160,11 @@ def test_every_option_reaches_the_native_options(tetrahedron):
     # The GL and tessellation options are ignored by cpu, but must be accepted and mapped.
     vertices, triangles = tetrahedron
     grid = hyvox.voxelize(
-        vertices, triangles, 8, None, "thin", "cpu", 1, 1, (-0.5, -0.5, -0.5),
-        bounds=((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)), memory_budget=1 << 30, gl_device="software",
-        shader_dir="", hybrid_cutoff=2.0, tess_gamma=1.5, pn_triangles=True, displacement_image="",
-        displacement_strength=0.1, displacement_midlevel=0.5, displacement_pixels=np.zeros((4, 4)),
-        tess_counts=False, tess_measure_accuracy=False,
+        vertices, triangles, resolution=8, voxel_size=None, mode="thin", method="cpu", padding=1, threads=1,
+        origin=(-0.5, -0.5, -0.5), bounds=((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)), memory_budget_mib=1024,
+        gl_device="software", shader_dir="", hybrid_cutoff=2.0, tess_gamma=1.5, pn_triangles=True,
+        displacement_image="", displacement_strength=0.1, displacement_midlevel=0.5,
+        displacement_pixels=np.zeros((4, 4)), tess_counts=False,
     )
     assert grid.mode == "thin" and grid.method == "cpu"
     assert grid.voxel_size == pytest.approx(0.25) and grid.dims == (10, 10, 10)  # 2 / 8, plus padding
@@ -182,14 +182,12 @@ def test_tessellation_options_take_effect():
     normals = np.tile(np.float32([0, 0, 1]), (4, 1))
     bounds = ((0, 0, -0.5), (1, 1, 0.5))
     def run(normals=normals, **kw):
-        return hyvox.voxelize(v, t, 16, method="tessellation", gl_device="software", bounds=bounds,
+        return hyvox.voxelize(v, t, resolution=16, method="tessellation", gl_device="software", bounds=bounds,
                               uvs=uvs, normals=normals, **kw)
     flat = run()
     assert flat.voxel_count == 16 * 16 and len(flat.counts()[0]) == flat.voxel_count  # counts on by default
     assert len(run(tess_counts=False).counts()[0]) == 0
-    assert "bias" in run(tess_measure_accuracy=True).stats["metrics"]
-    assert "bias" not in flat.stats["metrics"]
-    assert run(tess_gamma=3.0).stats["metrics"]["points"] > flat.stats["metrics"]["points"]
+    assert run(tess_gamma=3.0).stats["tessellation"]["points"] > flat.stats["tessellation"]["points"]
     # A ramp height image lifts the square by up to `strength` (0.25 = 4 voxels) at u = 1.
     ramp = np.tile(np.linspace(0.0, 1.0, 8, dtype=np.float32), (8, 1))
     lifted = run(displacement_pixels=ramp, displacement_strength=0.25, displacement_midlevel=0.0)

@@ -7,57 +7,43 @@ import bpy
 
 from ..core import naming
 from ..core.settings import VoxelizeSettings
-from .properties import preferences
+from .properties import PREFERENCE_OPTIONS, SCENE_OPTIONS, preferences
 
 
 def _op_set(op, name) -> bool:
     return op is not None and op.properties.is_property_set(name)
 
 
-def gather(context, op=None):
-    """(settings, output folder, half-voxel override) for this run."""
+def used_values(context, op=None) -> dict:
+    """Every operator property's value for this run: the operator's where a script (or the
+    redo panel) set it, else the scene's."""
     scene_settings = context.scene.hyvox
-
-    def pick(name):
-        return getattr(op if _op_set(op, name) else scene_settings, name)
-
-    if _op_set(op, "voxel_size") and op.voxel_size > 0:
-        voxel_size = op.voxel_size
-    elif _op_set(op, "resolution"):
-        voxel_size = 0.0
-    elif scene_settings.size_mode == "VOXEL_SIZE":
-        voxel_size = scene_settings.voxel_size
-    else:
-        voxel_size = 0.0
-
-    if _op_set(op, "hybrid_cutoff"):
-        cutoff = op.hybrid_cutoff  # negative: auto
-    else:
-        cutoff = -1.0 if scene_settings.hybrid_cutoff_auto else scene_settings.hybrid_cutoff
-
-    use_range = pick("use_frame_range")
+    names = [p.identifier for p in scene_settings.bl_rna.properties if p.identifier not in {"rna_type", "name"}]
+    used = {name: getattr(op if _op_set(op, name) else scene_settings, name) for name in names}
+    # A script that gives one of the sizes means that one.
+    if not _op_set(op, "size_mode"):
+        if _op_set(op, "voxel_size"):
+            used["size_mode"] = "VOXEL_SIZE"
+        elif _op_set(op, "resolution"):
+            used["size_mode"] = "RESOLUTION"
     if not _op_set(op, "use_frame_range") and (_op_set(op, "frame_start") or _op_set(op, "frame_end")):
-        use_range = True
-    frames = None
-    if use_range:
-        start, end = pick("frame_start"), pick("frame_end")
-        frames = list(range(start, end + 1))
+        used["use_frame_range"] = True
+    return used
+
+
+def gather(context, op=None):
+    """(settings, output folder, half-voxel override, the values used) for this run."""
+    used = used_values(context, op)
+    options = {name: used[name] for name in SCENE_OPTIONS}
+    options.pop("resolution" if used["size_mode"] == "VOXEL_SIZE" else "voxel_size")
+    frames = list(range(used["frame_start"], used["frame_end"] + 1)) if used["use_frame_range"] else None
 
     prefs = preferences(context)
-    settings = VoxelizeSettings(
-        resolution=pick("resolution"),
-        voxel_size=voxel_size,
-        method=pick("method"),
-        mode=pick("mode"),
-        tessellation_gamma=pick("tessellation_gamma"),
-        hybrid_cutoff=cutoff,
-        padding=pick("padding"),
-        separate=pick("separate"),
-        frames=frames,
-        gl_device=prefs.gl_device_string if prefs is not None else "",
-        memory_budget_mb=prefs.memory_budget_mb if prefs is not None else 4096,
-    )
-    folder = pick("output_dir")
+    if prefs is not None:
+        options["gl_device"] = prefs.gl_device_string
+        options.update({name: getattr(prefs, name) for name in PREFERENCE_OPTIONS})
+    settings = VoxelizeSettings(method=used["method"], separate=used["separate"], frames=frames, **options)
+    folder = used["output_dir"]
     folder = bpy.path.abspath(folder) if folder else naming.default_output_dir(bpy.data.filepath)
     override = prefs.alignment_fix if prefs is not None else "AUTO"
-    return settings, os.path.normpath(folder), override
+    return settings, os.path.normpath(folder), override, used

@@ -7,7 +7,6 @@ import time
 import traceback
 
 import bpy
-from bpy.props import BoolProperty, FloatProperty, IntProperty
 
 from ..core import summary
 from ..core.errors import CancelledError, HyvoxError
@@ -24,13 +23,17 @@ class _Run:
     """One run's state shared by execute() and the modal path."""
 
     def __init__(self, context, op):
-        settings, folder, self.override = gather(context, op)
+        settings, folder, self.override, used = gather(context, op)
         self.scene = context.scene
         self.original_frame = context.scene.frame_current
         self.op = op
         sources = export.pick_sources(context.selected_objects, warn=self.warn)
         self.groups = export.make_groups(sources, settings.separate, context.view_layer.objects.active)
-        self.pipeline = Pipeline(settings, folder, self.export_frame)
+        self.pipeline = Pipeline(settings, folder, self.export_frame)  # validates the settings
+        # The redo panel shows, and a redo repeats, exactly what this run used.
+        for name, value in used.items():
+            setattr(op, name, value)
+        self.used = used
 
     def warn(self, text):
         self.op.report({"WARNING"}, text)
@@ -56,6 +59,7 @@ class _Run:
         last_summary[:] = lines
         last_run_record.clear()
         last_run_record.update(summary.as_dict(pipeline.results, pipeline.timings))
+        last_run_record["settings"] = dict(self.used)
         for line in lines:
             print("hyvox:", line)
         self.op.report({"INFO"}, summary.short_report(pipeline.results, pipeline.timings))
@@ -68,27 +72,10 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
     bl_label = "Voxelize"
     bl_options = {"REGISTER", "UNDO"}
 
-    # Keyword arguments override the scene's settings for one call (unset ones don't).
-    resolution: properties.resolution_prop(options={"SKIP_SAVE"})
-    voxel_size: FloatProperty(name="Voxel Size", description="Edge length of one voxel; 0: use the "
-                              "resolution", default=0.0, min=0.0, soft_max=10.0, precision=4,
-                              subtype="DISTANCE", unit="LENGTH", options={"SKIP_SAVE"})
-    method: properties.method_prop(options={"SKIP_SAVE"})
-    mode: properties.mode_prop(options={"SKIP_SAVE"})
-    tessellation_gamma: properties.gamma_prop(options={"SKIP_SAVE"})
-    hybrid_cutoff: FloatProperty(name="Cutoff", description="Hybrid cutoff in voxels²; negative: "
-                                 "automatic", default=-1.0, min=-1.0, soft_max=4096.0,
-                                 subtype="NONE", options={"SKIP_SAVE"})
-    separate: properties.separate_prop(options={"SKIP_SAVE"})
-    padding: IntProperty(name="Padding", description="Empty voxels added around the bounds",
-                         default=0, min=0, max=64, subtype="NONE", options={"SKIP_SAVE"})
-    output_dir: properties.output_dir_prop(options={"SKIP_SAVE"})
-    use_frame_range: BoolProperty(name="Frame Range", description="Voxelize every frame of the "
-                                  "range into a .vdb sequence", default=False, options={"SKIP_SAVE"})
-    frame_start: IntProperty(name="Start", description="First frame of the sequence", default=1,
-                             min=0, subtype="TIME", options={"SKIP_SAVE"})
-    frame_end: IntProperty(name="End", description="Last frame of the sequence", default=1,
-                           min=0, subtype="TIME", options={"SKIP_SAVE"})
+    # Keyword arguments override the scene's settings for one call (unset ones don't); the
+    # same definitions as the Scene's, from the options schema (limits as soft limits: see
+    # properties.schema_property).
+    __annotations__ = properties.scene_and_operator_properties(operator=True)
 
     _active = None  # the running modal operator's _Run: one run at a time
 

@@ -1,96 +1,149 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The Scene's voxelize settings (scene.hyvox) and the add-on preferences. The operator
-declares the same names so scripts can override any of them for one call."""
+"""The Scene's voxelize settings (scene.hyvox), the add-on preferences, and the builder both
+they and the operator take their properties from.
+
+Every property that stands for a hyvox option is made from the native options schema
+(hyvox.OPTIONS): its name, description, default, limits and choices are the schema's, so
+the add-on cannot drift from the CLI and the Python module. Blender's limits are inclusive:
+an exclusive minimum (voxel size > 0) becomes min + EXCLUSIVE_STEP."""
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
-from ..core import settings as core_settings
+from ..core import backend
 
-METHOD_ITEMS = [
-    ("auto", "Auto", "Hybrid GL voxelizer when OpenGL 4.5 works on this machine, else CPU"),
-    ("hybrid", "Hybrid (GPU)", "Triangle- and fragment-parallel passes split by triangle size (exact)"),
-    ("triangle", "Triangle (GPU)", "One GPU thread per triangle (exact; best for many small triangles)"),
-    ("fragment", "Fragment (GPU)", "Rasterized, one fragment per voxel column (exact; best for large triangles)"),
-    ("tessellation", "Tessellation (GPU)", "Adaptive point tessellation (approximate, fast; may miss a few voxels)"),
-    ("cpu", "CPU", "Exact multi-threaded CPU voxelizer (no GPU needed)"),
-    ("reference", "Reference", "Brute-force exact oracle (slow; for checking results)"),
-]
-MODE_ITEMS = [
-    ("conservative", "Conservative", "Every voxel the surface touches (26-separating)"),
-    ("thin", "Thin", "The thinnest surface that still separates inside from outside (6-separating)"),
-]
+FLOAT_LIMIT = 3.4028234e38   # Blender float properties are float32
+INT_LIMIT = 2**31 - 1        # ... and int properties int32
+EXCLUSIVE_STEP = 1e-6
+
+# How the choices of the schema's enums read in the UI; a choice missing here still
+# appears, under its own name.
+CHOICE_LABELS = {
+    "method": {
+        backend.AUTO_METHOD: ("Auto", "Hybrid GL voxelizer when a GPU runs OpenGL 4.5 here, else CPU"),
+        "hybrid": ("Hybrid (GPU)", "Triangle- and fragment-parallel passes split by triangle size (exact)"),
+        "triangle": ("Triangle (GPU)", "One GPU thread per triangle (exact; best for many small triangles)"),
+        "fragment": ("Fragment (GPU)", "Rasterized, one fragment per voxel column (exact; best for large triangles)"),
+        "tessellation": ("Tessellation (GPU)", "Adaptive point tessellation (approximate, fast; may miss a few voxels)"),
+        "cpu": ("CPU", "Exact multi-threaded CPU voxelizer (no GPU needed)"),
+        "reference": ("Reference", "Brute-force exact oracle (slow; for checking results)"),
+    },
+    "mode": {
+        "conservative": ("Conservative", "Every voxel the surface touches (26-separating)"),
+        "thin": ("Thin", "The thinnest surface that still separates inside from outside (6-separating)"),
+    },
+}
 SIZE_ITEMS = [
     ("RESOLUTION", "Resolution", "Number of voxels along the longest side of the bounds"),
     ("VOXEL_SIZE", "Voxel Size", "Size of one voxel in scene units"),
 ]
 
-# Shared definitions: the Scene group and the operator must not drift apart.
-def resolution_prop(**kw):
-    return IntProperty(name="Resolution", description="Voxels along the longest side of the bounding box",
-                       default=256, min=core_settings.MIN_RESOLUTION, max=core_settings.MAX_RESOLUTION,
-                       soft_min=8, soft_max=2048, subtype="NONE", **kw)
+
+def option_spec(name):
+    return backend.load_module().option(name)
 
 
-def voxel_size_prop(**kw):
-    return FloatProperty(name="Voxel Size", description="Edge length of one voxel",
-                         default=0.05, min=1e-6, soft_min=1e-4, soft_max=10.0, precision=4,
-                         step=1, subtype="DISTANCE", unit="LENGTH", **kw)
+def hard_limits(spec):
+    """The schema's limits as Blender's inclusive, float32/int32 hard limits."""
+    low = spec.min + (EXCLUSIVE_STEP if spec.min_exclusive else 0.0)
+    bound = INT_LIMIT if spec.type == "int" else FLOAT_LIMIT
+    return max(low, -bound), min(spec.max, bound)
 
 
-def method_prop(**kw):
-    return EnumProperty(name="Method", description="Voxelization algorithm", items=METHOD_ITEMS,
-                        default="auto", **kw)
+def _description(spec):
+    text = spec.help[:1].upper() + spec.help[1:]
+    return f"{text} [{spec.unit}]" if spec.unit else text
 
 
-def mode_prop(**kw):
-    return EnumProperty(name="Mode", description="Which voxels count as touched by the surface",
-                        items=MODE_ITEMS, default="conservative", **kw)
+def schema_property(name, operator=False, default=None, soft=None, extra_items=(), **kw):
+    """A bpy property for schema option `name`. The Scene's has the schema's limits as hard
+    limits. The operator's (operator=True) has them as soft limits only, so that a script's
+    out-of-range value reaches execute() and is refused with the schema's message instead of
+    being clamped silently. default: for options whose schema default is unset (None);
+    soft: (soft_min, soft_max) within the limits for the UI's slider; extra_items: enum
+    items before the schema's choices."""
+    spec = option_spec(name)
+    value = spec.default if default is None else default
+    common = dict(name=spec.label, description=_description(spec), **kw)
+    if spec.type in ("int", "float"):
+        low, high = hard_limits(spec)
+        soft_low, soft_high = soft if soft is not None else (low, high)
+        soft_low, soft_high = max(soft_low, low), min(soft_high, high)
+        if spec.type == "int":
+            limits = dict(soft_min=int(soft_low), soft_max=int(soft_high))
+            if not operator:
+                limits.update(min=int(low), max=int(high))
+            return IntProperty(default=int(value), subtype="NONE", **limits, **common)
+        limits = dict(soft_min=soft_low, soft_max=soft_high)
+        if not operator:
+            limits.update(min=low, max=high)
+        unit = {"world units": dict(subtype="DISTANCE", unit="LENGTH")}.get(spec.unit, dict(subtype="NONE"))
+        return FloatProperty(default=float(value), precision=4, **limits, **unit, **common)
+    if spec.type == "choice":
+        labels = CHOICE_LABELS.get(name, {})
+        items = [(c, *labels.get(c, (c.title(), c))) for c in list(extra_items) + list(spec.choices)]
+        return EnumProperty(items=items, default=value, **common)
+    if spec.type == "bool":
+        return BoolProperty(default=bool(value), **common)
+    if spec.type == "str":
+        return StringProperty(default=value, **common)
+    raise TypeError(f"option {name} ({spec.type}) has no Blender property")
 
 
-def gamma_prop(**kw):
-    return FloatProperty(name="Tessellation γ", description="Safety factor of the tessellation level: "
-                         "higher misses fewer voxels and costs more points", default=1.0,
-                         min=0.1, max=16.0, soft_min=0.5, soft_max=4.0, subtype="FACTOR", **kw)
+# The voxelize settings an artist sets per scene; the operator declares the same names.
+def scene_and_operator_properties(operator=False):
+    skip = {"options": {"SKIP_SAVE"}} if operator else {}
+    return {
+        "size_mode": EnumProperty(name="Size", description="Set the grid by resolution or by voxel size",
+                                  items=SIZE_ITEMS, default="RESOLUTION", **skip),
+        "resolution": schema_property("resolution", operator, soft=(8, 2048), **skip),
+        "voxel_size": schema_property("voxel_size", operator, default=0.05, soft=(1e-4, 10.0), **skip),
+        "method": schema_property("method", operator, default=backend.AUTO_METHOD,
+                                  extra_items=(backend.AUTO_METHOD,), **skip),
+        "mode": schema_property("mode", operator, **skip),
+        "tess_gamma": schema_property("tess_gamma", operator, soft=(0.5, 4.0), **skip),
+        "hybrid_cutoff": schema_property("hybrid_cutoff", operator, soft=(-1.0, 4096.0), **skip),
+        "padding": schema_property("padding", operator, soft=(0, 64), **skip),
+        "separate": BoolProperty(name="One Volume per Object", description="Make one volume for every "
+                                 "selected object instead of one for the whole selection", default=False, **skip),
+        "output_dir": StringProperty(name="Output Folder", description="Where the .vdb files go; empty: a "
+                                     "hyvox_cache folder next to the .blend, or the temp folder if unsaved",
+                                     default="", subtype="DIR_PATH", **skip),
+        "use_frame_range": BoolProperty(name="Frame Range", description="Voxelize every frame of a range "
+                                        "into a .vdb sequence", default=False, **skip),
+        "frame_start": IntProperty(name="Start", description="First frame of the sequence", default=1,
+                                   min=0, subtype="TIME", **skip),
+        "frame_end": IntProperty(name="End", description="Last frame of the sequence", default=250,
+                                 min=0, subtype="TIME", **skip),
+    }
 
 
-def cutoff_prop(**kw):
-    return FloatProperty(name="Cutoff", description="Projected triangle area (voxels²) above which "
-                         "the hybrid method rasterizes a triangle", default=16.0, min=0.0,
-                         soft_max=4096.0, subtype="NONE", **kw)
-
-
-def separate_prop(**kw):
-    return BoolProperty(name="One Volume per Object", description="Make one volume for every selected "
-                        "object instead of one for the whole selection", default=False, **kw)
-
-
-def output_dir_prop(**kw):
-    return StringProperty(name="Output Folder", description="Where the .vdb files go; empty: a "
-                          "hyvox_cache folder next to the .blend, or the temp folder if unsaved",
-                          default="", subtype="DIR_PATH", **kw)
+# The settings that stand for schema options, by the property's (= the option's) name.
+SCENE_OPTIONS = ("resolution", "voxel_size", "mode", "tess_gamma", "hybrid_cutoff", "padding")
+PREFERENCE_OPTIONS = ("threads", "memory_budget_mib")
 
 
 class HyvoxSceneSettings(bpy.types.PropertyGroup):
-    size_mode: EnumProperty(name="Size", description="Set the grid by resolution or by voxel size",
-                            items=SIZE_ITEMS, default="RESOLUTION")
-    resolution: resolution_prop()
-    voxel_size: voxel_size_prop()
-    method: method_prop()
-    mode: mode_prop()
-    tessellation_gamma: gamma_prop()
-    hybrid_cutoff_auto: BoolProperty(name="Auto Cutoff", description="Let the hybrid method find the "
-                                     "fastest cutoff for this mesh and resolution", default=True)
-    hybrid_cutoff: cutoff_prop()
-    separate: separate_prop()
-    padding: IntProperty(name="Padding", description="Empty voxels added around the bounds",
-                         default=0, min=0, max=64, subtype="NONE")
-    output_dir: output_dir_prop()
-    use_frame_range: BoolProperty(name="Frame Range", description="Voxelize every frame of a range into "
-                                  "a .vdb sequence", default=False)
-    frame_start: IntProperty(name="Start", description="First frame of the sequence", default=1,
-                             min=0, subtype="TIME")
-    frame_end: IntProperty(name="End", description="Last frame of the sequence", default=250,
-                           min=0, subtype="TIME")
+    __annotations__ = scene_and_operator_properties()
+
+
+def _preferences_properties():
+    device = option_spec("gl_device")
+    return {
+        "gl_device": EnumProperty(name=device.label, description=_description(device),
+                                  items=[("AUTO", "Automatic", "A hardware GPU if there is one, else software"),
+                                         ("SOFTWARE", "Software", "Mesa's llvmpipe (slow; always works)"),
+                                         ("INDEX", "By Index", "The EGL device with the index below")],
+                                  default="AUTO"),
+        "gl_device_index": IntProperty(name="Device Index", description="Index of the EGL device to use",
+                                       default=0, min=0, max=63, subtype="NONE"),
+        "memory_budget_mib": schema_property("memory_budget_mib", soft=(16, 65536)),
+        "threads": schema_property("threads", soft=(0, 64)),
+        "alignment_fix": EnumProperty(name="Half-Voxel Fix", description="Move volumes by half a voxel to "
+                                      "match how this Blender draws OpenVDB voxel centres",
+                                      items=[("AUTO", "Automatic", "By Blender version"),
+                                             ("ON", "On", "Always correct"),
+                                             ("OFF", "Off", "Never correct")], default="AUTO"),
+    }
 
 
 ADDON_NAME = __package__.rpartition(".")[0]
@@ -98,22 +151,7 @@ ADDON_NAME = __package__.rpartition(".")[0]
 
 class HyvoxPreferences(bpy.types.AddonPreferences):
     bl_idname = ADDON_NAME
-
-    gl_device: EnumProperty(name="GPU Device", description="EGL device the GL methods run on",
-                            items=[("AUTO", "Automatic", "A hardware GPU if there is one, else software"),
-                                   ("SOFTWARE", "Software", "Mesa's llvmpipe (slow; always works)"),
-                                   ("INDEX", "By Index", "The EGL device with the index below")],
-                            default="AUTO")
-    gl_device_index: IntProperty(name="Device Index", description="Index of the EGL device to use",
-                                 default=0, min=0, max=63, subtype="NONE")
-    memory_budget_mb: IntProperty(name="Memory Budget (MiB)", description="Largest voxel grid "
-                                  "(one bit per voxel) to allocate; bigger requests are refused",
-                                  default=4096, min=16, max=1 << 20, subtype="UNSIGNED")
-    alignment_fix: EnumProperty(name="Half-Voxel Fix", description="Move volumes by half a voxel to "
-                                "match how this Blender draws OpenVDB voxel centres",
-                                items=[("AUTO", "Automatic", "By Blender version"),
-                                       ("ON", "On", "Always correct"),
-                                       ("OFF", "Off", "Never correct")], default="AUTO")
+    __annotations__ = _preferences_properties()
 
     def draw(self, context):
         layout = self.layout
@@ -122,7 +160,8 @@ class HyvoxPreferences(bpy.types.AddonPreferences):
         sub = row.row()
         sub.enabled = self.gl_device == "INDEX"
         sub.prop(self, "gl_device_index")
-        layout.prop(self, "memory_budget_mb")
+        layout.prop(self, "memory_budget_mib")
+        layout.prop(self, "threads")
         layout.prop(self, "alignment_fix")
 
     @property
@@ -144,3 +183,4 @@ def register():
 
 def unregister():
     del bpy.types.Scene.hyvox
+

@@ -27,13 +27,9 @@ class VIEW3D_PT_hyvox_voxelize(bpy.types.Panel):
         col.prop(settings, "method")
         col.prop(settings, "mode")
         if settings.method == "tessellation":
-            col.prop(settings, "tessellation_gamma")
+            col.prop(settings, "tess_gamma")
         if settings.method in {"hybrid", "auto"}:
-            row = col.row(heading="Hybrid Cutoff")
-            row.prop(settings, "hybrid_cutoff_auto", text="Auto")
-            sub = row.row()
-            sub.enabled = not settings.hybrid_cutoff_auto
-            sub.prop(settings, "hybrid_cutoff", text="")
+            col.prop(settings, "hybrid_cutoff")
         col.prop(settings, "padding")
         col.prop(settings, "separate")
         col.prop(settings, "output_dir")

@@ -3,12 +3,16 @@
 method, calling voxelize with a cancel token, turning its errors into HyvoxError."""
 import importlib
 import threading
-from typing import Optional
+from typing import TYPE_CHECKING, Optional
 
 import numpy as np
 
 from .errors import CancelledError, HyvoxError, ModuleMissingError
-from .settings import VoxelizeSettings
+
+if TYPE_CHECKING:
+    from .settings import VoxelizeSettings
+
+AUTO_METHOD = "auto"  # the add-on's own method: hybrid when a GPU runs GL here, else cpu
 
 _module = None
 _gl_probe = {}  # gl_device -> bool, probed once per session: creating an EGL context is slow
@@ -57,18 +61,17 @@ def gl_available(module, gl_device: str = "") -> bool:
             tri_v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=np.float32)
             tri_t = np.array([[0, 1, 2]], dtype=np.uint32)
             try:
-                module.voxelize(tri_v, tri_t, resolution=4, method="hybrid",
-                                gl_device=gl_device or None)
+                module.voxelize(tri_v, tri_t, resolution=4, method="hybrid", gl_device=gl_device)
             except Exception:
                 ok = False
         _gl_probe[gl_device] = ok
         return ok
 
 
-def resolve_method(module, settings: VoxelizeSettings) -> str:
-    if settings.method != "auto":
+def resolve_method(module, settings: "VoxelizeSettings") -> str:
+    if settings.method != AUTO_METHOD:
         return settings.method
-    return "hybrid" if gl_available(module, settings.gl_device) else "cpu"
+    return "hybrid" if gl_available(module, settings.options.get("gl_device", "")) else "cpu"
 
 
 def make_token(module):
@@ -83,30 +86,15 @@ def token_progress(token) -> float:
     return min(max(float(token.progress), 0.0) / 100.0, 1.0)
 
 
-def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: VoxelizeSettings,
+def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "VoxelizeSettings",
              method: str, voxel_size: Optional[float] = None, token=None):
     """hyvox.voxelize with the run's settings; voxel_size (when given) wins over the
     settings, so every frame of a sequence shares the first frame's voxel size."""
-    kwargs = {"mode": settings.mode, "method": method}
-    size = voxel_size or settings.voxel_size
-    if size:
-        kwargs["voxel_size"] = float(size)
-    else:
-        kwargs["resolution"] = int(settings.resolution)
-    if settings.padding:
-        kwargs["padding"] = int(settings.padding)
-    if settings.threads:
-        kwargs["threads"] = int(settings.threads)
-    optional = {
-        "memory_budget": int(settings.memory_budget_mb) << 20,
-        "gl_device": settings.gl_device or None,
-        "hybrid_cutoff": settings.hybrid_cutoff if method == "hybrid" and settings.hybrid_cutoff >= 0 else None,
-        "tess_gamma": settings.tessellation_gamma if method == "tessellation" else None,
-    }
-    for name, value in optional.items():
-        if value is not None:
-            kwargs[name] = value
-    kwargs.update(settings.extra)
+    kwargs = settings.voxelize_options()
+    kwargs["method"] = method
+    if voxel_size:
+        kwargs.pop("resolution", None)
+        kwargs["voxel_size"] = float(voxel_size)
     if token is not None:
         kwargs["cancel"] = token
     try:

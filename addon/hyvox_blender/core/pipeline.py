@@ -230,7 +230,7 @@ class Pipeline:
             staging = naming.staging_path(final)
             start = time.perf_counter()
             try:
-                grid.write_vdb(staging, threads=int(self.settings.threads))
+                grid.write_vdb(staging, threads=int(self.settings.options.get("threads", 0)))
             except (OSError, RuntimeError, ValueError) as exc:
                 raise HyvoxError(f"cannot write {final}: {exc}") from exc
             self.timings.write_ms += (time.perf_counter() - start) * 1000.0

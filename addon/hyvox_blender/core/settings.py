@@ -1,54 +1,45 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """One settings object per run, gathered once from the scene, the operator's keyword
-arguments and the add-on preferences (the glTF exporter's pattern), then validated."""
-from dataclasses import dataclass, field
-from typing import List, Optional
+arguments and the add-on preferences (the glTF exporter's pattern), then validated by the
+native options schema."""
+from typing import Any, Dict, List, Optional
 
+from . import backend
+from .backend import AUTO_METHOD
 from .errors import SettingsError
 
-METHODS = ("auto", "hybrid", "triangle", "fragment", "tessellation", "cpu", "reference")
-MODES = ("conservative", "thin")
 
-MIN_RESOLUTION = 1
-MAX_RESOLUTION = 8192
-
-
-@dataclass
 class VoxelizeSettings:
-    resolution: int = 256          # voxels along the longest side of each volume's bounds
-    voxel_size: float = 0.0        # world units; > 0 overrides resolution
-    method: str = "auto"           # "auto": hybrid when GL works here, else cpu
-    mode: str = "conservative"
-    tessellation_gamma: float = 1.0
-    hybrid_cutoff: float = -1.0    # < 0: the module picks (auto)
-    padding: int = 0               # empty voxels around the bounds
-    separate: bool = False         # one volume per object instead of one for the selection
-    frames: Optional[List[int]] = None  # None: the current frame only, no sequence
-    threads: int = 0
-    gl_device: str = ""            # "" auto, "software", or an EGL device index "0", "1"...
-    memory_budget_mb: int = 4096
-    extra: dict = field(default_factory=dict)  # passed through to hyvox.voxelize
+    """method (a hyvox method or "auto"), separate, frames, and the hyvox.voxelize options
+    by their schema names (hyvox.OPTIONS); an option left out takes the native default."""
+
+    def __init__(self, method: str = AUTO_METHOD, separate: bool = False,
+                 frames: Optional[List[int]] = None, **options: Any):
+        self.method = method
+        self.separate = separate          # one volume per object instead of one for the selection
+        self.frames = frames              # None: the current frame only, no sequence
+        self.options: Dict[str, Any] = options
 
     @property
     def is_sequence(self) -> bool:
         return self.frames is not None
 
+    def voxelize_options(self) -> Dict[str, Any]:
+        """The options hyvox.voxelize gets: a voxel size replaces the resolution."""
+        options = dict(self.options)
+        if options.get("voxel_size") is not None:
+            options.pop("resolution", None)
+        else:
+            options.pop("voxel_size", None)
+        return options
+
     def validate(self) -> "VoxelizeSettings":
-        if self.method not in METHODS:
-            raise SettingsError(f"method must be one of {', '.join(METHODS)}, not {self.method!r}")
-        if self.mode not in MODES:
-            raise SettingsError(f"mode must be one of {', '.join(MODES)}, not {self.mode!r}")
-        if self.voxel_size < 0 or self.voxel_size != self.voxel_size:
-            raise SettingsError(f"voxel size must be positive, not {self.voxel_size}")
-        if self.voxel_size == 0 and not MIN_RESOLUTION <= self.resolution <= MAX_RESOLUTION:
-            raise SettingsError(
-                f"resolution must be in {MIN_RESOLUTION}..{MAX_RESOLUTION}, not {self.resolution}")
-        if self.tessellation_gamma <= 0:
-            raise SettingsError("tessellation gamma must be positive")
-        if self.padding < 0:
-            raise SettingsError("padding cannot be negative")
-        if self.memory_budget_mb <= 0:
-            raise SettingsError("memory budget must be positive")
+        """Refuses with the schema's own message (the one the CLI and hyvox.voxelize give)."""
+        module = backend.load_module()
+        if self.method != AUTO_METHOD:
+            self._check(module, "method", self.method)
+        for name, value in self.voxelize_options().items():
+            self._check(module, name, value)
         if self.frames is not None:
             if not self.frames:
                 raise SettingsError("the frame range is empty")
@@ -57,6 +48,13 @@ class VoxelizeSettings:
                 # which cannot carry a sign.
                 raise SettingsError("volume sequences cannot start before frame 0")
         return self
+
+    @staticmethod
+    def _check(module, name: str, value: Any) -> None:
+        try:
+            module.check_option(name, value)
+        except (ValueError, TypeError) as exc:
+            raise SettingsError(str(exc)) from None
 
 
 def parse_frame_range(text: str) -> List[int]:

@@ -2,7 +2,7 @@
 #pragma once
 // One bit per voxel, laid out as OpenVDB leaf masks so a non-empty 8×8×8 brick converts
 // to a LeafNode<bool/float,3> value mask with a plain copy:
-//   brick (bx,by,bz) = (i>>3, j>>3, k>>3), stored at brickIndex = (bx*bricks_y + by)*bricks_z + bz;
+//   brick (bx,by,bz) = (i>>3, j>>3, k>>3), stored at BrickLayout::index = (bx*bricks_y + by)*bricks_z + bz;
 //   inside a brick, bit n = (i&7)<<6 | (j&7)<<3 | (k&7) (OpenVDB's LeafNode::coordToOffset),
 //   held in 64-bit word n>>6 at bit n&63 (OpenVDB's NodeMask<3> word layout).
 // On a little-endian machine the same memory read as uint32 words puts bit n in word n>>5 at
@@ -12,22 +12,21 @@
 #include <cstdint>
 #include <vector>
 
+#include "hyvox/grid.h"
 #include "hyvox/zero_page_allocator.h"
 
 namespace hyvox {
 
 class BitGrid {
 public:
-    static constexpr int kBrickLog2 = 3;
-    static constexpr int kBrickSize = 8;
     static constexpr int kWordsPerBrick = 8;  // 512 bits
 
     BitGrid() = default;
     explicit BitGrid(std::array<std::int32_t, 3> dims);
 
     const std::array<std::int32_t, 3>& dims() const { return dims_; }
-    const std::array<std::int32_t, 3>& bricks() const { return bricks_; }
-    std::size_t brickCount() const { return std::size_t(bricks_[0]) * bricks_[1] * bricks_[2]; }
+    const BrickLayout& bricks() const { return bricks_; }
+    std::size_t brickCount() const { return bricks_.total(); }
     std::size_t byteSize() const { return words_.size() * sizeof(std::uint64_t); }
 
     std::uint64_t* data() { return words_.data(); }
@@ -36,9 +35,7 @@ public:
 
     // Word index and bit mask of voxel (i,j,k); the voxel must be inside dims.
     std::size_t wordIndex(int i, int j, int k) const {
-        const std::size_t brick =
-            (std::size_t(i >> 3) * bricks_[1] + std::size_t(j >> 3)) * bricks_[2] + std::size_t(k >> 3);
-        return brick * kWordsPerBrick + std::size_t(i & 7);
+        return bricks_.indexOfVoxel(i, j, k) * kWordsPerBrick + std::size_t(i & 7);
     }
     static std::uint64_t bitMask(int j, int k) { return std::uint64_t(1) << (((j & 7) << 3) | (k & 7)); }
 
@@ -51,8 +48,6 @@ public:
     void setAtomic(int i, int j, int k) {
         __atomic_fetch_or(&words_[wordIndex(i, j, k)], bitMask(j, k), __ATOMIC_RELAXED);
     }
-    // OR another grid of the same dims into this one.
-    void merge(const BitGrid& other);
 
     std::uint64_t count() const;
     // (i,j,k) of every set voxel, brick by brick (the order of OpenVDB's leaf iteration
@@ -63,7 +58,7 @@ public:
 
 private:
     std::array<std::int32_t, 3> dims_{0, 0, 0};
-    std::array<std::int32_t, 3> bricks_{0, 0, 0};
+    BrickLayout bricks_;
     std::vector<std::uint64_t, ZeroPageAllocator<std::uint64_t>> words_;
 };
 

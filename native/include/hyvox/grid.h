@@ -2,14 +2,42 @@
 #pragma once
 // The voxel grid convention shared by every backend (see DESIGN.md, "Coordinates"):
 // voxel (i,j,k) covers the closed box [origin + (i,j,k)·s, origin + (i+1,j+1,k+1)·s].
-// Shaders and voxelizers work in voxel space p' = (p - origin) / s.
+// Shaders and voxelizers work in voxel space p' = (p - origin) / s. The formulas of the
+// grid (to voxel space, sides, the 8³ bricks of the bit layout) are written here once.
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "hyvox/mesh.h"
 
 namespace hyvox {
+
+// The 8³ bricks (OpenVDB leaves) that cover a grid of voxels, in the order of the bit
+// layout (hyvox/bit_grid.h): brick (bx,by,bz) is number (bx·ny + by)·nz + bz.
+struct BrickLayout {
+    static constexpr int kLog2 = 3;
+    static constexpr int kSide = 8;
+    std::array<std::int32_t, 3> counts{0, 0, 0};  // bricks per axis: ceil(dims / 8)
+
+    static BrickLayout over(const std::array<std::int32_t, 3>& dims) {
+        BrickLayout layout;
+        for (int a = 0; a < 3; ++a) layout.counts[a] = (dims[a] + kSide - 1) >> kLog2;
+        return layout;
+    }
+    std::size_t total() const { return std::size_t(counts[0]) * std::size_t(counts[1]) * std::size_t(counts[2]); }
+    std::size_t index(int bx, int by, int bz) const {
+        return (std::size_t(bx) * std::size_t(counts[1]) + std::size_t(by)) * std::size_t(counts[2]) + std::size_t(bz);
+    }
+    // The brick of voxel (i,j,k).
+    std::size_t indexOfVoxel(int i, int j, int k) const { return index(i >> kLog2, j >> kLog2, k >> kLog2); }
+    std::array<std::int32_t, 3> at(std::size_t index) const {
+        const std::size_t nz = std::size_t(counts[2]), ny = std::size_t(counts[1]);
+        return {std::int32_t(index / (nz * ny)), std::int32_t((index / nz) % ny), std::int32_t(index % nz)};
+    }
+};
 
 struct GridSpec {
     std::array<double, 3> origin{0, 0, 0};  // world position of voxel (0,0,0)'s min corner
@@ -19,11 +47,23 @@ struct GridSpec {
     std::uint64_t voxelCount() const {
         return std::uint64_t(dims[0]) * std::uint64_t(dims[1]) * std::uint64_t(dims[2]);
     }
+    std::int32_t maxSide() const { return std::max({dims[0], dims[1], dims[2]}); }
+    std::string dimsText() const;  // "64x16x8", for messages
     // World position of voxel (i,j,k)'s centre (OpenVDB's index-space convention).
     std::array<double, 3> voxelCentre(int i, int j, int k) const {
         return {origin[0] + (i + 0.5) * voxel_size, origin[1] + (j + 0.5) * voxel_size,
                 origin[2] + (k + 0.5) * voxel_size};
     }
+    // A world point in voxel space, p' = (p - origin) / s, in double: every backend and test
+    // computes it this one way, so they all round a vertex alike.
+    std::array<double, 3> toVoxel(const std::array<double, 3>& world) const {
+        return {(world[0] - origin[0]) / voxel_size, (world[1] - origin[1]) / voxel_size,
+                (world[2] - origin[2]) / voxel_size};
+    }
+    std::array<double, 3> toVoxel(const std::array<float, 3>& world) const {
+        return toVoxel(std::array<double, 3>{double(world[0]), double(world[1]), double(world[2])});
+    }
+    BrickLayout bricks() const { return BrickLayout::over(dims); }
 };
 
 struct GridOptions {
@@ -37,8 +77,10 @@ struct GridOptions {
 constexpr int kMaxResolution = 16384;
 
 // Applies the convention: origin = bounds min (unless given), s = longest extent / resolution
-// (unless given), dims = ceil(extent / s) per axis, at least 1. Throws InvalidInput for a
-// resolution or voxel size out of range or a zero-extent mesh without a voxel size.
+// (unless given), dims = ceil(extent / s) per axis, at least 1. Throws InvalidInput for an
+// option outside the schema's limits (hyvox/option_schema.h, the same message voxelize()
+// gives), a zero-extent mesh without a voxel size, or more than kMaxResolution voxels along
+// an axis.
 GridSpec makeGrid(const Bounds& mesh_bounds, const GridOptions& options);
 
 }  // namespace hyvox

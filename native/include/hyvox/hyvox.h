@@ -6,6 +6,7 @@
 #include "hyvox/grid.h"
 #include "hyvox/interrupter.h"
 #include "hyvox/mesh.h"
+#include "hyvox/option_schema.h"
 #include "hyvox/options.h"
 #include "hyvox/result.h"
 #include "hyvox/voxelize.h"

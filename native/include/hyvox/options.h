@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
+// The options of one voxelization as plain structs. Their names, defaults, limits, units and
+// help live in one place, the schema (hyvox/option_schema.h), from which every front door
+// (CLI, Python, the Blender add-on) is derived; voxelize() checks every field against it.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -22,15 +25,27 @@ enum class Method {
     Tessellation,  // GL adaptive point tessellation (approximate, multi-valued)
 };
 
+// The schema's names of each value ("conservative", "cpu", ...), and back: parse* throws
+// InvalidInput naming the choices.
 const char* toString(Mode mode);
 const char* toString(Method method);
-// Parse "conservative"/"thin" and "cpu"/"reference"/...; throw InvalidInput naming the choices.
 Mode parseMode(const std::string& text);
 Method parseMethod(const std::string& text);
+std::vector<const char*> modeNames();    // in enum order
+std::vector<const char*> methodNames();
 
 struct GlOptions {
-    std::string device;  // "" = auto (hardware first, then software); "software"; or an index "0", "1"...
-    std::string shader_dir;  // "" = embedded shaders (HYVOX_SHADER_DIR env var also overrides)
+    std::string device;      // "" = auto (hardware first, then software); "software"; or an index "0", "1"...
+    std::string shader_dir;  // "" = the shaders embedded in the library; else a copy of shaders/ to read
+    // Largest bit-grid tile in bytes; 0 = one shader storage block (the device's limit).
+    // Smaller values force tiling (tests of the tile borders).
+    std::uint64_t tile_bytes = 0;
+    // Time GL passes by the wall clock around glFinish instead of GPU timer queries
+    // (always on for Mesa's llvmpipe, whose timer queries miss compute work).
+    bool wall_timing = false;
+    // Tessellation: one instance per patch instead of one plain patch draw (always on for
+    // llvmpipe, which assembles long patch draws wrongly).
+    bool tess_instanced = false;
 };
 
 struct HybridOptions {
@@ -41,7 +56,7 @@ struct HybridOptions {
 };
 
 // A grey height image in memory: width × height values, row 0 = the image's top row (as in
-// a PNG file), typically 0..1.
+// a PNG file), typically 0..1. Data, not an option: passed beside the schema's options.
 struct HeightImage {
     int width = 0;
     int height = 0;
@@ -57,26 +72,25 @@ struct TessellationOptions {
     // sampled bilinearly (clamped at the edges) at the interpolated UV; needs MeshView::uvs.
     // Used when displacement_image (an 8/16-bit PNG path) or displacement_pixels is given.
     // The grid is laid out from the undisplaced mesh: points that leave it are dropped and
-    // counted (stats.metrics["points_clipped"]); give GridOptions bounds or padding for room.
+    // counted (TessellationStats::points_clipped); give GridOptions bounds or padding for room.
     std::string displacement_image;
     HeightImage displacement_pixels;  // used when displacement_image is empty
     double displacement_strength = 1.0;
     double displacement_midlevel = 0.5;
-    bool counts = true;               // also fill VoxelizeResult::counts (points per voxel)
-    // Also voxelize with the exact cpu method and report bias / false voxels / watertightness
-    // in stats.metrics (slow: for tests and benchmarks).
-    bool measure_accuracy = false;
+    bool counts = true;  // also fill VoxelizeResult::counts (points per voxel)
 };
 
 struct VoxelizeOptions {
     GridOptions grid;
     Mode mode = Mode::Conservative;
     Method method = Method::Cpu;
-    int threads = 0;                                 // CPU threads; 0 = all cores
-    std::uint64_t memory_budget = 4ull << 30;        // bytes for the bit grid; bigger grids are refused
+    int threads = 0;                        // CPU threads; 0 = all cores
+    std::uint64_t memory_budget_mib = 4096;  // what the run may allocate for voxels; larger grids are refused
     GlOptions gl;
     HybridOptions hybrid;
     TessellationOptions tessellation;
+
+    std::uint64_t memoryBudgetBytes() const { return memory_budget_mib << 20; }
 };
 
 }  // namespace hyvox

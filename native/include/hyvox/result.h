@@ -1,15 +1,91 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 #include <cstdint>
-#include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "hyvox/bit_grid.h"
 #include "hyvox/grid.h"
+#include "hyvox/options.h"
 
 namespace hyvox {
+
+// Each backend's own figures, one typed section per backend. `visit(f)` calls
+// f(name, value) for every field: the JSON writer (and through it the Python dict and the
+// CLI's --stats-json) takes the names from there, so a new figure is one field and one line.
+
+struct CpuStats {
+    std::uint64_t split_triangles = 0;  // large triangles cut into pieces for the thread pool
+    template <typename F>
+    void visit(F&& f) const {
+        f("split_triangles", split_triangles);
+    }
+};
+
+struct ReferenceStats {
+    std::uint64_t voxel_tests = 0;  // triangle/box tests run
+    template <typename F>
+    void visit(F&& f) const {
+        f("voxel_tests", voxel_tests);
+    }
+};
+
+// Methods triangle, fragment and hybrid (JCGT 2013: Pass 1 = compute, Pass 2 = raster).
+struct HybridStats {
+    double pass1_gpu_ms = 0;  // triangle-parallel compute, or hybrid classify + small triangles
+    double pass2_gpu_ms = 0;  // fragment-parallel raster, or hybrid's large triangles
+    double upload_ms = 0;
+    double readback_ms = 0;
+    std::uint64_t tiles = 0;            // slabs the grid ran in
+    double cutoff = 0;                  // voxel units² used (triangle: inf, fragment: 0)
+    std::uint64_t large_triangles = 0;  // hybrid: triangles sent to pass 2 (summed over tiles)
+    std::uint64_t cutoff_search_runs = 0;  // timed runs of the auto-cutoff search (0: given or cached)
+    template <typename F>
+    void visit(F&& f) const {
+        f("pass1_gpu_ms", pass1_gpu_ms);
+        f("pass2_gpu_ms", pass2_gpu_ms);
+        f("upload_ms", upload_ms);
+        f("readback_ms", readback_ms);
+        f("tiles", tiles);
+        f("cutoff", cutoff);
+        f("large_triangles", large_triangles);
+        f("cutoff_search_runs", cutoff_search_runs);
+    }
+};
+
+struct TessellationStats {
+    double gamma = 0;
+    std::uint64_t points = 0;          // micro-triangles, one point each
+    std::uint64_t points_clipped = 0;  // of which outside the grid (displacement)
+    std::uint64_t triangles_whole = 0;  // small enough for one point (compute pass)
+    std::uint64_t patches_direct = 0;   // tessellated as they are
+    std::uint64_t patches_split = 0;    // pieces of pre-split triangles
+    std::uint64_t split_triangles = 0;  // triangles pre-split (factor over the GL limit)
+    std::uint64_t largest_split = 0;    // most pieces one triangle was cut into
+    std::uint64_t max_tess_level = 0;   // GL_MAX_TESS_GEN_LEVEL
+    double pass0_gpu_ms = 0;  // whole triangles (compute)
+    double pass1_gpu_ms = 0;  // tessellated triangles
+    double pass2_gpu_ms = 0;  // pre-split triangles
+    std::uint64_t gpu_runs = 0;  // 2 when the count pool had to grow
+    template <typename F>
+    void visit(F&& f) const {
+        f("gamma", gamma);
+        f("points", points);
+        f("points_clipped", points_clipped);
+        f("triangles_whole", triangles_whole);
+        f("patches_direct", patches_direct);
+        f("patches_split", patches_split);
+        f("split_triangles", split_triangles);
+        f("largest_split", largest_split);
+        f("max_tess_level", max_tess_level);
+        f("pass0_gpu_ms", pass0_gpu_ms);
+        f("pass1_gpu_ms", pass1_gpu_ms);
+        f("pass2_gpu_ms", pass2_gpu_ms);
+        f("gpu_runs", gpu_runs);
+    }
+};
 
 struct Stats {
     std::string method;
@@ -20,8 +96,13 @@ struct Stats {
     std::uint64_t voxel_count = 0;
     // Stage name -> milliseconds, in the order the stages ran (validate, grid, voxelize, ...).
     std::vector<std::pair<std::string, double>> timings_ms;
-    // Backend-specific figures: pass1_gpu_ms, pass2_gpu_ms, large_triangles, cutoff, bias, ...
-    std::map<std::string, double> metrics;
+    // The options the run used (after the front door read its environment variables).
+    VoxelizeOptions options;
+    // The section of the backend that ran; the others stay empty.
+    std::optional<CpuStats> cpu;
+    std::optional<ReferenceStats> reference;
+    std::optional<HybridStats> hybrid;  // triangle, fragment and hybrid
+    std::optional<TessellationStats> tessellation;
 
     void addTiming(std::string stage, double ms) { timings_ms.emplace_back(std::move(stage), ms); }
     double totalMs() const {
@@ -34,6 +115,14 @@ struct Stats {
         for (const auto& [name, ms] : timings_ms)
             if (name == stage) return ms;
         return 0.0;
+    }
+    // Calls f(section name, section) for the section that is set.
+    template <typename F>
+    void visitSections(F&& f) const {
+        if (cpu) f("cpu", *cpu);
+        if (reference) f("reference", *reference);
+        if (hybrid) f("hybrid", *hybrid);
+        if (tessellation) f("tessellation", *tessellation);
     }
 };
 

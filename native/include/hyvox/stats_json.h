@@ -3,7 +3,8 @@
 // The stats of a voxelization as JSON, for scripts and the benchmark:
 // {"hyvox_version", "method", "mode", "origin": [x,y,z], "voxel_size", "dims": [x,y,z],
 //  "voxel_count", "triangles": {"input","used","degenerate"}, "timings_ms": {stage: ms},
-//  "total_ms", "metrics": {name: value}}.
+//  "total_ms", "options": {schema name: value used}, and the backend's section
+//  "cpu" | "reference" | "hybrid" | "tessellation": {figure: value}}.
 #include <string>
 
 #include "hyvox/result.h"

@@ -13,23 +13,37 @@ with s = grid.voxel_size; the .vdb's index space is voxel centres.
 from __future__ import annotations
 
 import os
-from typing import Callable, Optional, Sequence, Tuple, Union
+from typing import Callable, Optional, Tuple, Union
 
 import numpy as np
 
 from . import _core
 from ._core import (
+    OPTIONS,
     BackendError,
     Cancelled,
     CancelToken,
+    Options,
+    OptionSpec,
     ResourceError,
     VoxelGrid,
+    check_option,
     gl_devices,
 )
 
 __version__: str = _core.__version__
-METHODS: Tuple[str, ...] = tuple(_core.METHODS)
-MODES: Tuple[str, ...] = tuple(_core.MODES)
+
+
+def option(name: str) -> OptionSpec:
+    """The schema entry of one option (KeyError for an unknown name)."""
+    for spec in OPTIONS:
+        if spec.name == name:
+            return spec
+    raise KeyError(name)
+
+
+METHODS: Tuple[str, ...] = tuple(option("method").choices)
+MODES: Tuple[str, ...] = tuple(option("mode").choices)
 
 __all__ = [
     "BackendError",
@@ -37,10 +51,15 @@ __all__ = [
     "Cancelled",
     "METHODS",
     "MODES",
+    "OPTIONS",
+    "OptionSpec",
+    "Options",
     "ResourceError",
     "VoxelGrid",
     "__version__",
+    "check_option",
     "gl_devices",
+    "option",
     "read_mesh",
     "voxelize",
 ]
@@ -88,110 +107,71 @@ def _as_vertex_rows(values, name: str, width: int) -> Optional[np.ndarray]:
 def voxelize(
     vertices,
     triangles,
-    resolution: int = 256,
-    voxel_size: Optional[float] = None,
-    mode: str = "conservative",
-    method: str = "cpu",
-    padding: int = 0,
-    threads: int = 0,
-    origin: Optional[Sequence[float]] = None,
-    progress: Optional[Callable[[int], object]] = None,
-    cancel: Optional[CancelToken] = None,
     *,
     uvs=None,
     normals=None,
-    bounds: Optional[Tuple[Sequence[float], Sequence[float]]] = None,
-    memory_budget: Optional[int] = None,
-    gl_device: Optional[str] = None,
-    shader_dir: Optional[str] = None,
-    hybrid_cutoff: Optional[float] = None,
-    tess_gamma: Optional[float] = None,
-    pn_triangles: Optional[bool] = None,
-    displacement_image: Optional[str] = None,
-    displacement_strength: Optional[float] = None,
-    displacement_midlevel: Optional[float] = None,
     displacement_pixels=None,
-    tess_counts: Optional[bool] = None,
-    tess_measure_accuracy: Optional[bool] = None,
+    progress: Optional[Callable[[int], object]] = None,
+    cancel: Optional[CancelToken] = None,
+    **options,
 ) -> VoxelGrid:
     """Voxelize the surface of a triangle mesh.
 
     vertices: (N, 3) float32 or float64 (converted to float32), world units.
     triangles: (M, 3) integer vertex indices (converted to uint32; negative or too large
         values raise ValueError). Degenerate triangles are skipped and counted in stats.
-    resolution: voxels along the longest side of the mesh bounds; voxel_size overrides it.
-    mode: "conservative" (every voxel the surface touches, 26-separating) or "thin"
-        (6-separating). method: one of hyvox.METHODS ("cpu" is exact and needs no GPU).
-    padding: empty voxels added on every side. threads: CPU threads, 0 = all cores.
-    origin: world position of voxel (0, 0, 0)'s min corner (default: bounds min).
+    uvs, normals: optional per-vertex (N, 2) / (N, 3) floats (tessellation: displacement
+        lookup, PN-triangles; absent normals are area-weighted vertex normals).
+    displacement_pixels: a (height, width) float height image (row 0 = top), used by the
+        tessellation method instead of displacement_image.
     progress: called on this thread with the percent done (int), while the voxelization
         waits; raising in it stops the voxelization and the exception propagates.
     cancel: a hyvox.CancelToken; token.cancel() from any thread raises hyvox.Cancelled here.
-    bounds: ((x0, y0, z0), (x1, y1, z1)) grid bounds instead of the mesh's; geometry outside
-        is clipped. memory_budget: bytes allowed for the bit grid (default 4 GiB).
-    gl_device, shader_dir: GL methods ("" = auto device, "software", or an index).
-    hybrid_cutoff: the hybrid method's large-triangle area cutoff in voxel units^2 (<0: auto).
-    uvs, normals: optional per-vertex (N, 2) / (N, 3) floats (tessellation: displacement
-        lookup, PN-triangles; absent normals are area-weighted vertex normals).
-    tess_gamma, pn_triangles, displacement_image/_strength/_midlevel: tessellation method;
-        displacement_pixels: a (height, width) float height image (row 0 = top) used instead
-        of displacement_image; tess_counts: fill VoxelGrid.counts(); tess_measure_accuracy:
-        also run the exact cpu method and put bias / false voxels in stats["metrics"].
-    Unset (None) options take the native defaults.
+    **options: the options of hyvox.OPTIONS by name (listed below). Unset or None options take
+        the native default, after the environment variables the schema names.
 
-    The GIL is released while native code runs. Raises ValueError for bad input,
+    The GIL is released while native code runs. Raises ValueError for bad input or an option
+    out of its limits, TypeError for an unknown option or a value of the wrong kind,
     hyvox.ResourceError (a RuntimeError) when the grid does not fit the memory budget,
     hyvox.BackendError (a RuntimeError) when the method cannot run here, hyvox.Cancelled.
     """
-    options = {
-        "gl_device": gl_device,
-        "shader_dir": shader_dir,
-        "hybrid_cutoff": hybrid_cutoff,
-        "tess_gamma": tess_gamma,
-        "pn_triangles": pn_triangles,
-        "displacement_image": displacement_image,
-        "displacement_strength": displacement_strength,
-        "displacement_midlevel": displacement_midlevel,
-        "tess_counts": tess_counts,
-        "tess_measure_accuracy": tess_measure_accuracy,
-    }
-    extra = {name: value for name, value in options.items() if value is not None}
-    if origin is not None:
-        origin = tuple(float(x) for x in origin)
-        if len(origin) != 3:
-            raise ValueError("origin must have 3 coordinates")
-    if bounds is not None:
-        low, high = (tuple(float(x) for x in corner) for corner in bounds)
-        if len(low) != 3 or len(high) != 3:
-            raise ValueError("bounds must be ((x0, y0, z0), (x1, y1, z1))")
-        bounds = (low, high)
+    native_options = Options()
+    native_options.apply_environment()
+    for name, value in options.items():
+        native_options.set(name, value)
     if cancel is not None and not isinstance(cancel, CancelToken):
         raise TypeError("cancel must be a hyvox.CancelToken or None")
-    if voxel_size is not None:
-        voxel_size = float(voxel_size)
+    pixels = None
     if displacement_pixels is not None:
         pixels = np.asarray(displacement_pixels)
         if pixels.ndim != 2 or not np.issubdtype(pixels.dtype, np.number):
             raise ValueError(f"displacement_pixels must be a numeric (height, width) array, got {pixels.shape}")
-        extra["displacement_pixels"] = np.ascontiguousarray(pixels, dtype=np.float32)
+        pixels = np.ascontiguousarray(pixels, dtype=np.float32)
     return _core.voxelize(
         _as_vertices(vertices),
         _as_triangles(triangles),
+        native_options,
         uvs=_as_vertex_rows(uvs, "uvs", 2),
         normals=_as_vertex_rows(normals, "normals", 3),
-        resolution=int(resolution),
-        voxel_size=voxel_size,
-        mode=mode,
-        method=method,
-        padding=int(padding),
-        threads=int(threads),
-        origin=origin,
-        bounds=bounds,
-        memory_budget=memory_budget,
+        displacement_pixels=pixels,
         cancel=cancel,
         progress=progress,
-        **extra,
     )
+
+
+def _options_doc() -> str:
+    """The option list of voxelize()'s docstring, from the schema."""
+    lines = ["", "    Options (hyvox.OPTIONS; the CLI flag is --name with '-' for '_'):"]
+    for spec in OPTIONS:
+        default = "unset" if spec.nullable else repr(spec.default)
+        unit = f" [{spec.unit}]" if spec.unit else ""
+        env = f"; env {spec.env}" if spec.env else ""
+        lines.append(f"    {spec.name} ({spec.type}, {spec.requirement}; default {default}{env}):")
+        lines.append(f"        {spec.help}{unit}")
+    return "\n".join(lines) + "\n"
+
+
+voxelize.__doc__ = (voxelize.__doc__ or "") + _options_doc()
 
 
 def read_mesh(path: Union[str, os.PathLike], attributes: bool = False):

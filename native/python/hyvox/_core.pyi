@@ -1,14 +1,12 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Stubs of the compiled module hyvox._core (private: use the hyvox package).
 import os
-from typing import Dict, Callable, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
 __version__: str
-METHODS: Tuple[str, ...]
-MODES: Tuple[str, ...]
 
 class Cancelled(Exception): ...
 class ResourceError(RuntimeError): ...
@@ -47,32 +45,58 @@ class VoxelGrid:
     def stats(self) -> dict: ...
     def __len__(self) -> int: ...
 
+class OptionSpec:
+    @property
+    def name(self) -> str: ...
+    @property
+    def type(self) -> str: ...
+    @property
+    def group(self) -> str: ...
+    @property
+    def label(self) -> str: ...
+    @property
+    def unit(self) -> str: ...
+    @property
+    def help(self) -> str: ...
+    @property
+    def nullable(self) -> bool: ...
+    @property
+    def min(self) -> float: ...
+    @property
+    def max(self) -> float: ...
+    @property
+    def min_exclusive(self) -> bool: ...
+    @property
+    def choices(self) -> List[str]: ...
+    @property
+    def cli_flag(self) -> str: ...
+    @property
+    def cli_aliases(self) -> List[str]: ...
+    @property
+    def env(self) -> Optional[str]: ...
+    @property
+    def default(self) -> Any: ...
+    @property
+    def requirement(self) -> str: ...
+
+OPTIONS: Tuple[OptionSpec, ...]
+
+class Options:
+    def __init__(self, **values: Any) -> None: ...
+    def set(self, name: str, value: Any) -> None: ...
+    def get(self, name: str) -> Any: ...
+    def apply_environment(self) -> None: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+
+def check_option(name: str, value: Any) -> None: ...
 def voxelize(
     vertices: npt.NDArray[np.float32],
     triangles: npt.NDArray[np.uint32],
+    options: Options,
     *,
     uvs: Optional[npt.NDArray[np.float32]] = ...,
     normals: Optional[npt.NDArray[np.float32]] = ...,
-    resolution: int = ...,
-    voxel_size: Optional[float] = ...,
-    mode: str = ...,
-    method: str = ...,
-    padding: int = ...,
-    threads: int = ...,
-    origin: Optional[Tuple[float, float, float]] = ...,
-    bounds: Optional[Tuple[Sequence[float], Sequence[float]]] = ...,
-    memory_budget: Optional[int] = ...,
-    gl_device: str = ...,
-    shader_dir: str = ...,
-    hybrid_cutoff: float = ...,
-    tess_gamma: float = ...,
-    pn_triangles: bool = ...,
-    displacement_image: str = ...,
-    displacement_strength: float = ...,
-    displacement_midlevel: float = ...,
     displacement_pixels: Optional[npt.NDArray[np.float32]] = ...,
-    tess_counts: bool = ...,
-    tess_measure_accuracy: bool = ...,
     cancel: Optional[CancelToken] = ...,
     progress: Optional[Callable[[int], object]] = ...,
 ) -> VoxelGrid: ...

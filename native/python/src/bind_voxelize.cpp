@@ -3,12 +3,12 @@
 // runs hyvox::voxelize with an interrupter wired to a CancelToken and a progress callback.
 #include <pybind11/stl.h>
 
-#include <array>
 #include <cstring>
 #include <exception>
 #include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "bindings.h"
 #include "cancel_token.h"
@@ -108,37 +108,12 @@ HeightImage heightImage(const std::optional<py::array>& array) {
     return image;
 }
 
-std::shared_ptr<VoxelizeResult> voxelizeArrays(
-    const py::array& vertices, const py::array& triangles, std::optional<py::array> uvs,
-    std::optional<py::array> normals, int resolution, std::optional<double> voxel_size,
-    const std::string& mode, const std::string& method, int padding, int threads,
-    std::optional<std::array<double, 3>> origin,
-    std::optional<std::pair<std::array<double, 3>, std::array<double, 3>>> bounds,
-    std::optional<std::uint64_t> memory_budget, const std::string& gl_device, const std::string& shader_dir,
-    double hybrid_cutoff, double tess_gamma, bool pn_triangles, const std::string& displacement_image,
-    double displacement_strength, double displacement_midlevel, std::optional<py::array> displacement_pixels,
-    bool tess_counts, bool tess_measure_accuracy, std::shared_ptr<CancelToken> cancel, py::object progress) {
-    VoxelizeOptions options;
-    options.grid.resolution = resolution;
-    options.grid.voxel_size = voxel_size;
-    options.grid.origin = origin;
-    if (bounds) options.grid.bounds = Bounds{bounds->first, bounds->second};
-    options.grid.padding = padding;
-    options.mode = parseMode(mode);
-    options.method = parseMethod(method);
-    options.threads = threads;
-    if (memory_budget) options.memory_budget = *memory_budget;
-    options.gl.device = gl_device;
-    options.gl.shader_dir = shader_dir;
-    options.hybrid.cutoff = hybrid_cutoff;
-    options.tessellation.gamma = tess_gamma;
-    options.tessellation.pn_triangles = pn_triangles;
-    options.tessellation.displacement_image = displacement_image;
-    options.tessellation.displacement_strength = displacement_strength;
-    options.tessellation.displacement_midlevel = displacement_midlevel;
+std::shared_ptr<VoxelizeResult> voxelizeArrays(const py::array& vertices, const py::array& triangles,
+                                               VoxelizeOptions options, std::optional<py::array> uvs,
+                                               std::optional<py::array> normals,
+                                               std::optional<py::array> displacement_pixels,
+                                               std::shared_ptr<CancelToken> cancel, py::object progress) {
     options.tessellation.displacement_pixels = heightImage(displacement_pixels);
-    options.tessellation.counts = tess_counts;
-    options.tessellation.measure_accuracy = tess_measure_accuracy;
     if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw py::type_error("progress must be callable or None");
 
     const std::vector<float> positions = copyRows<float>(vertices, "vertices", "float32");
@@ -165,23 +140,11 @@ std::shared_ptr<VoxelizeResult> voxelizeArrays(
 }  // namespace
 
 void bindVoxelize(py::module_& m) {
-    const VoxelizeOptions d;  // defaults come from the C++ options, so both stay in sync
-    m.def("voxelize", &voxelizeArrays, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
-          py::arg("uvs") = py::none(), py::arg("normals") = py::none(),
-          py::arg("resolution") = d.grid.resolution, py::arg("voxel_size") = py::none(),
-          py::arg("mode") = toString(d.mode), py::arg("method") = toString(d.method),
-          py::arg("padding") = d.grid.padding, py::arg("threads") = d.threads, py::arg("origin") = py::none(),
-          py::arg("bounds") = py::none(), py::arg("memory_budget") = py::none(), py::arg("gl_device") = d.gl.device,
-          py::arg("shader_dir") = d.gl.shader_dir, py::arg("hybrid_cutoff") = d.hybrid.cutoff,
-          py::arg("tess_gamma") = d.tessellation.gamma, py::arg("pn_triangles") = d.tessellation.pn_triangles,
-          py::arg("displacement_image") = d.tessellation.displacement_image,
-          py::arg("displacement_strength") = d.tessellation.displacement_strength,
-          py::arg("displacement_midlevel") = d.tessellation.displacement_midlevel,
-          py::arg("displacement_pixels") = py::none(), py::arg("tess_counts") = d.tessellation.counts,
-          py::arg("tess_measure_accuracy") = d.tessellation.measure_accuracy,
+    m.def("voxelize", &voxelizeArrays, py::arg("vertices"), py::arg("triangles"), py::arg("options"), py::kw_only(),
+          py::arg("uvs") = py::none(), py::arg("normals") = py::none(), py::arg("displacement_pixels") = py::none(),
           py::arg("cancel") = py::none(), py::arg("progress") = py::none(),
           "Voxelize float32 (N,3) vertices and uint32 (M,3) triangles (exact dtypes; hyvox.voxelize "
-          "converts). Releases the GIL while it runs.");
+          "converts) with an Options object. Releases the GIL while it runs.");
 }
 
 }  // namespace hyvox::python

@@ -14,6 +14,7 @@ namespace py = pybind11;
 void bindErrors(py::module_& m);
 void bindCancelToken(py::module_& m);
 void bindVoxelGrid(py::module_& m);
+void bindOptions(py::module_& m);
 void bindVoxelize(py::module_& m);
 void bindMeshIo(py::module_& m);
 

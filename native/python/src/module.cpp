@@ -3,7 +3,6 @@
 // whose __init__.py converts and checks numpy input before it reaches this module.
 #include "bindings.h"
 #include "hyvox/errors.h"
-#include "hyvox/options.h"
 #include "hyvox/version.h"
 
 namespace hyvox::python {
@@ -31,15 +30,9 @@ PYBIND11_MODULE(_core, m) {
     using namespace hyvox::python;
     m.doc() = "hyvox native core (private; import hyvox instead)";
     m.attr("__version__") = hyvox::version();
-    py::list methods, modes;
-    for (auto method : {hyvox::Method::Cpu, hyvox::Method::Reference, hyvox::Method::Triangle, hyvox::Method::Fragment,
-                        hyvox::Method::Hybrid, hyvox::Method::Tessellation})
-        methods.append(hyvox::toString(method));
-    for (auto mode : {hyvox::Mode::Conservative, hyvox::Mode::Thin}) modes.append(hyvox::toString(mode));
-    m.attr("METHODS") = py::tuple(methods);
-    m.attr("MODES") = py::tuple(modes);
     bindErrors(m);
     bindCancelToken(m);
+    bindOptions(m);
     bindVoxelGrid(m);
     bindVoxelize(m);
     bindMeshIo(m);

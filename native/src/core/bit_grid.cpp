@@ -5,17 +5,10 @@
 
 namespace hyvox {
 
-BitGrid::BitGrid(std::array<std::int32_t, 3> dims) : dims_(dims) {
-    for (int a = 0; a < 3; ++a) {
+BitGrid::BitGrid(std::array<std::int32_t, 3> dims) : dims_(dims), bricks_(BrickLayout::over(dims)) {
+    for (int a = 0; a < 3; ++a)
         if (dims[a] < 1) throw std::invalid_argument("BitGrid dimensions must be positive");
-        bricks_[a] = (dims[a] + kBrickSize - 1) >> kBrickLog2;
-    }
     words_.resize(brickCount() * kWordsPerBrick);  // zero: see ZeroPageAllocator
-}
-
-void BitGrid::merge(const BitGrid& other) {
-    if (other.dims_ != dims_) throw std::invalid_argument("BitGrid::merge: dimensions differ");
-    for (std::size_t w = 0; w < words_.size(); ++w) words_[w] |= other.words_[w];
 }
 
 std::uint64_t BitGrid::count() const {
@@ -27,10 +20,11 @@ std::uint64_t BitGrid::count() const {
 std::vector<std::array<std::int32_t, 3>> BitGrid::coords() const {
     std::vector<std::array<std::int32_t, 3>> out;
     out.reserve(count());
-    for (std::int32_t bx = 0; bx < bricks_[0]; ++bx)
-        for (std::int32_t by = 0; by < bricks_[1]; ++by)
-            for (std::int32_t bz = 0; bz < bricks_[2]; ++bz) {
-                const std::size_t brick = (std::size_t(bx) * bricks_[1] + by) * bricks_[2] + bz;
+    const auto& n = bricks_.counts;
+    for (std::int32_t bx = 0; bx < n[0]; ++bx)
+        for (std::int32_t by = 0; by < n[1]; ++by)
+            for (std::int32_t bz = 0; bz < n[2]; ++bz) {
+                const std::size_t brick = bricks_.index(bx, by, bz);
                 for (int x = 0; x < kWordsPerBrick; ++x) {
                     std::uint64_t word = words_[brick * kWordsPerBrick + x];
                     while (word) {

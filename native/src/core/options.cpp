@@ -3,6 +3,7 @@
 
 #include <array>
 #include <utility>
+#include <vector>
 
 #include "hyvox/errors.h"
 
@@ -39,8 +40,17 @@ const char* nameOf(const std::array<std::pair<Enum, const char*>, N>& table, Enu
     return "?";
 }
 
+template <typename Enum, std::size_t N>
+std::vector<const char*> namesOf(const std::array<std::pair<Enum, const char*>, N>& table) {
+    std::vector<const char*> names;
+    for (const auto& entry : table) names.push_back(entry.second);
+    return names;
+}
+
 }  // namespace
 
+std::vector<const char*> modeNames() { return namesOf(kModes); }
+std::vector<const char*> methodNames() { return namesOf(kMethods); }
 const char* toString(Mode mode) { return nameOf(kModes, mode); }
 const char* toString(Method method) { return nameOf(kMethods, method); }
 Mode parseMode(const std::string& text) { return parseName(kModes, text, "mode"); }

@@ -54,12 +54,9 @@ void runCpuBackend(const BackendJob& job, VoxelizeResult& result) {
                 throwIfInterrupted(job.interrupter, int(100 * done.load(std::memory_order_relaxed) / usable.size()));
                 cpu::WordMarker marker(grid);
                 for (std::size_t n = chunk.begin(); n != chunk.end(); ++n) {
-                    std::array<std::array<double, 3>, 3> corners;
-                    for (int c = 0; c < 3; ++c) {
-                        const std::array<float, 3> p = mesh.vertex(usable[n], c);
-                        for (int a = 0; a < 3; ++a)
-                            corners[c][a] = (double(p[a]) - spec.origin[a]) / spec.voxel_size;
-                    }
+                    const std::array<std::array<double, 3>, 3> corners{spec.toVoxel(mesh.vertex(usable[n], 0)),
+                                                                       spec.toVoxel(mesh.vertex(usable[n], 1)),
+                                                                       spec.toVoxel(mesh.vertex(usable[n], 2))};
                     cpu::TriangleSetup t;
                     const cpu::SetupKind kind = cpu::setupTriangle(corners, mode, spec.dims, t);
                     if (kind == cpu::SetupKind::Outside) continue;
@@ -91,7 +88,7 @@ void runCpuBackend(const BackendJob& job, VoxelizeResult& result) {
             });
     });
     result.stats.addTiming("voxelize", watch.elapsedMs());
-    result.stats.metrics["split_triangles"] = double(split_triangles.load());
+    result.stats.cpu = CpuStats{split_triangles.load()};
 }
 
 }  // namespace hyvox

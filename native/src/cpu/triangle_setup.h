@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 
+#include "core/clamp_coord.h"
 #include "hyvox/options.h"
 
 namespace hyvox::cpu {
@@ -49,8 +50,9 @@ enum class SetupKind {
 SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode,
                         const std::array<std::int32_t, 3>& dims, TriangleSetup& out);
 
-// floor / ceil of values already clamped to a safe int range (the baseline x86-64 target
-// has no inline rounding instruction, and libm calls dominate a small triangle's cost).
+// floor / ceil of values already clamped to a safe int range by clampCoord (the baseline
+// x86-64 target has no inline rounding instruction, and libm calls dominate a small
+// triangle's cost).
 inline int floorToInt(double x) {
     const int i = int(x);
     return i - (x < double(i));
@@ -59,7 +61,5 @@ inline int ceilToInt(double x) {
     const int i = int(x);
     return i + (x > double(i));
 }
-// Keeps a voxel-space coordinate in a range where int conversion is defined.
-inline double clampCoord(double x) { return x < -1.0e9 ? -1.0e9 : (x > 1.0e9 ? 1.0e9 : x); }
 
 }  // namespace hyvox::cpu

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "common/bindings.glsl"
+#include "gl/bindings.h"
 
 namespace hyvox::gl {
 

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "gl/gl_worker.h"
 
-#include <cstdlib>
 #include <map>
 
 #include "gl/gl_debug.h"
@@ -9,19 +8,12 @@
 
 namespace hyvox::gl {
 
-std::string resolveDeviceSelection(const std::string& device) {
-    if (!device.empty())
-        return device;
-    const char* env = std::getenv("HYVOX_GL_DEVICE");
-    return (env && *env) ? env : "auto";
-}
-
 GlWorker& GlWorker::get(const std::string& device) {
     // Workers are deliberately never destroyed: their threads own contexts until the process
     // ends, and tearing GL down from static destructors races the driver's own atexit hooks.
     static std::mutex registry_mutex;
     static auto* registry = new std::map<std::string, GlWorker*>();
-    const std::string selection = resolveDeviceSelection(device);
+    const std::string selection = device.empty() ? "auto" : device;  // one worker for both spellings
     std::lock_guard<std::mutex> lock(registry_mutex);
     auto found = registry->find(selection);
     if (found != registry->end())
@@ -60,7 +52,6 @@ void GlWorker::loop(const std::string& selection, std::promise<void>& ready) {
         enableDebugOutput();
         device_ = context->device();
         renderer_ = context->renderer();
-        version_ = context->version();
         programs_ = std::make_unique<ProgramCache>();
     } catch (...) {
         ready.set_exception(std::current_exception());

@@ -28,7 +28,7 @@ class ProgramCache;
 
 class GlWorker {
 public:
-    // The worker for a device selection ("" = HYVOX_GL_DEVICE, else auto; see EglContext).
+    // The worker for a device selection (GlOptions::device: "" = auto; see EglContext).
     // Made on first use and kept for the process lifetime; a failure to make the context is
     // thrown (BackendError) and not cached, so a later call may try again.
     static GlWorker& get(const std::string& device = "");
@@ -44,7 +44,6 @@ public:
 
     const EglDeviceInfo& device() const { return device_; }
     const std::string& renderer() const { return renderer_; }
-    const std::string& version() const { return version_; }
     // Compiled programs, keyed by stages + defines; use only inside run().
     ProgramCache& programs() { return *programs_; }
 
@@ -61,11 +60,8 @@ private:
     std::deque<std::function<void()>> queue_;
     std::thread thread_;
     EglDeviceInfo device_;
-    std::string renderer_, version_;
+    std::string renderer_;
     std::unique_ptr<ProgramCache> programs_;
 };
-
-// The selection GlWorker::get uses for an empty device option: HYVOX_GL_DEVICE or "auto".
-std::string resolveDeviceSelection(const std::string& device);
 
 }  // namespace hyvox::gl

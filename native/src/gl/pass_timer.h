@@ -2,7 +2,7 @@
 #pragma once
 // The GPU time of one pass of a GL method: a GL_TIME_ELAPSED query on hardware, or the
 // wall clock around glFinish where queries are unreliable (llvmpipe reads ~0 for compute)
-// or HYVOX_GL_WALL_TIMING asks for it (hybrid::GlTuning decides which).
+// or GlOptions::wall_timing asks for it (gl::GlTuning decides which).
 #include "core/stopwatch.h"
 #include "gl/gl_objects.h"
 

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "gl/shader_library.h"
 
-#include <cstdlib>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -68,13 +67,6 @@ std::string fileList(const std::vector<std::string>& files) {
 
 }  // namespace
 
-std::string resolveShaderDir(const std::string& option) {
-    if (!option.empty())
-        return option;
-    const char* env = std::getenv("HYVOX_SHADER_DIR");
-    return env ? env : "";
-}
-
 std::string shaderText(const std::string& name, const std::string& dir) {
     if (dir.empty()) {
         const auto& embedded = embeddedShaders();
@@ -86,8 +78,7 @@ std::string shaderText(const std::string& name, const std::string& dir) {
     const std::string path = dir + "/" + name;
     std::ifstream file(path, std::ios::binary);
     if (!file)
-        throw BackendError("cannot read shader '" + path +
-                           "' (shader folder from GlOptions::shader_dir or HYVOX_SHADER_DIR)");
+        throw BackendError("cannot read shader '" + path + "' (shader folder from GlOptions::shader_dir)");
     std::ostringstream text;
     text << file.rdbuf();
     return text.str();

@@ -20,9 +20,6 @@ public:
     AtomicFile(const AtomicFile&) = delete;
     AtomicFile& operator=(const AtomicFile&) = delete;
 
-    const std::string& tempPath() const { return temp_; }
-    // Flushes the temporary to disk and renames it over the destination; throws ResourceError.
-    void commit();
     // Opens the temporary as a binary stream that throws on failure, calls write(stream),
     // closes and checks the stream, then commit()s. A stream failure becomes ResourceError
     // ("writing '<destination>' failed: <errno text, or I/O error>"); anything else write
@@ -30,6 +27,9 @@ public:
     void writeWith(const std::function<void(std::ostream&)>& write);
 
 private:
+    // Flushes the temporary to disk and renames it over the destination; throws ResourceError.
+    void commit();
+
     std::string destination_;
     std::string temp_;
     bool committed_ = false;

@@ -9,7 +9,9 @@
 #include <ostream>
 #include <set>
 #include <sstream>
+#include <variant>
 
+#include "hyvox/option_schema.h"
 #include "hyvox/version.h"
 #include "io/atomic_file.h"
 
@@ -52,6 +54,21 @@ std::string number(double value) {
 
 std::string number(std::uint64_t value) { return std::to_string(value); }
 
+std::string json(const OptionValue& value) {
+    struct Json {
+        std::string operator()(std::monostate) const { return "null"; }
+        std::string operator()(std::int64_t v) const { return std::to_string(v); }
+        std::string operator()(double v) const { return number(v); }
+        std::string operator()(bool v) const { return v ? "true" : "false"; }
+        std::string operator()(const std::string& v) const { return quote(v); }
+        std::string operator()(const std::array<double, 3>& v) const {
+            return "[" + number(v[0]) + ", " + number(v[1]) + ", " + number(v[2]) + "]";
+        }
+        std::string operator()(const Bounds& b) const { return "[" + (*this)(b.min) + ", " + (*this)(b.max) + "]"; }
+    };
+    return std::visit(Json{}, value);
+}
+
 }  // namespace
 
 std::string statsToJson(const VoxelizeResult& result) {
@@ -79,13 +96,27 @@ std::string statsToJson(const VoxelizeResult& result) {
     }
     out << "},\n";
     out << "  \"total_ms\": " << number(s.totalMs()) << ",\n";
-    out << "  \"metrics\": {";
+    // The options the run used, by their schema names (unset ones are left out).
+    out << "  \"options\": {";
     bool first = true;
-    for (const auto& [name, value] : s.metrics) {
-        out << (first ? "" : ", ") << quote(name) << ": " << number(value);
+    for (const OptionSpec& spec : optionSchema()) {
+        const OptionValue value = spec.get(s.options);
+        if (std::holds_alternative<std::monostate>(value)) continue;
+        out << (first ? "" : ", ") << quote(spec.name) << ": " << json(value);
         first = false;
     }
-    out << "}\n}\n";
+    out << "}";
+    // The backend's own section: "cpu", "reference", "hybrid" or "tessellation".
+    s.visitSections([&](const char* section, const auto& figures) {
+        out << ",\n  " << quote(section) << ": {";
+        bool first_field = true;
+        figures.visit([&](const char* name, auto value) {
+            out << (first_field ? "" : ", ") << quote(name) << ": " << number(value);
+            first_field = false;
+        });
+        out << "}";
+    });
+    out << "\n}\n";
     return out.str();
 }
 

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <array>
 #include <memory>
 #include <mutex>
 #include <ostream>
@@ -21,7 +22,7 @@ namespace hyvox::io {
 namespace {
 
 using FloatLeaf = openvdb::FloatTree::LeafNodeType;
-static_assert(FloatLeaf::LOG2DIM == BitGrid::kBrickLog2, "BitGrid bricks must match OpenVDB leaves");
+static_assert(FloatLeaf::LOG2DIM == BrickLayout::kLog2, "BitGrid bricks must match OpenVDB leaves");
 static_assert(FloatLeaf::NodeMaskType::WORD_COUNT == BitGrid::kWordsPerBrick, "leaf mask is 8 64-bit words");
 
 void addMetadata(openvdb::GridBase& target, const VoxelizeResult& result) {
@@ -77,8 +78,8 @@ openvdb::FloatGrid::Ptr makeFogGrid(const char* name, const GridSpec& grid) {
 openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const BitGrid& occupancy) {
     auto result = makeFogGrid("density", grid);
 
-    const auto bricks = occupancy.bricks();
-    const std::size_t brick_count = occupancy.brickCount();
+    const BrickLayout& bricks = occupancy.bricks();
+    const std::size_t brick_count = bricks.total();
     const std::uint64_t* words = occupancy.data();
     // Leaves are built in parallel (most of the work: 512 floats each) and handed to the
     // tree serially (addLeaf is not thread-safe, and cheap).
@@ -91,10 +92,10 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const BitGrid& occ
             std::uint64_t any = 0;
             for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) any |= brick[w];
             if (!any) continue;
-            const int bz = int(b % std::size_t(bricks[2]));
-            const int by = int((b / std::size_t(bricks[2])) % std::size_t(bricks[1]));
-            const int bx = int(b / (std::size_t(bricks[2]) * std::size_t(bricks[1])));
-            auto leaf = std::make_unique<FloatLeaf>(openvdb::Coord(bx * 8, by * 8, bz * 8), 0.0f, false);
+            const std::array<std::int32_t, 3> at = bricks.at(b);
+            const int side = BrickLayout::kSide;
+            const openvdb::Coord origin(at[0] * side, at[1] * side, at[2] * side);
+            auto leaf = std::make_unique<FloatLeaf>(origin, 0.0f, false);
             auto& mask = leaf->getValueMask();
             for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) mask.template getWord<std::uint64_t>(w) = brick[w];
             float* values = leaf->buffer().data();
@@ -105,13 +106,6 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const BitGrid& occ
     auto& tree = result->tree();
     for (LeafList& leaves : per_thread)
         for (auto& leaf : leaves) tree.addLeaf(leaf.release());
-    return result;
-}
-
-openvdb::FloatGrid::Ptr makeDensityGridVoxelByVoxel(const GridSpec& grid, const BitGrid& occupancy) {
-    auto result = makeFogGrid("density", grid);
-    auto accessor = result->getAccessor();
-    for (const auto& ijk : occupancy.coords()) accessor.setValueOn(openvdb::Coord(ijk[0], ijk[1], ijk[2]), 1.0f);
     return result;
 }
 

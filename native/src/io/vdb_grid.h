@@ -23,8 +23,6 @@ openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid);
 // "density": 1 on occupied voxels (active), background 0, fog volume. Built a whole 8³ leaf
 // at a time: the BitGrid's brick words are the leaf's value mask, copied as they are.
 openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const BitGrid& occupancy);
-// The same grid set voxel by voxel through an accessor: slow, the tests' reference.
-openvdb::FloatGrid::Ptr makeDensityGridVoxelByVoxel(const GridSpec& grid, const BitGrid& occupancy);
 // "count": the values of a multi-valued result.
 openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<VoxelCount>& counts);
 

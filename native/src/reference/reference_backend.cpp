@@ -45,7 +45,7 @@ void runReferenceBackend(const BackendJob& job, VoxelizeResult& result) {
                           });
     });
     result.stats.addTiming("voxelize", watch.elapsedMs());
-    result.stats.metrics["voxel_tests"] = double(tests.load());
+    result.stats.reference = ReferenceStats{tests.load()};
 }
 
 }  // namespace hyvox

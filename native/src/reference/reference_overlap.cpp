@@ -88,13 +88,8 @@ bool sixSeparatingTest(const Vec3& a, const Vec3& b, const Vec3& c, double h) {
 }  // namespace
 
 Triangle voxelSpaceTriangle(const ValidatedMesh& mesh, std::uint32_t index, const GridSpec& grid) {
-    Triangle t{};
-    for (int corner = 0; corner < 3; ++corner) {
-        const std::array<float, 3> p = mesh.vertex(index, corner);
-        for (int axis = 0; axis < 3; ++axis)
-            t[corner][axis] = (double(p[axis]) - grid.origin[axis]) / grid.voxel_size;
-    }
-    return t;
+    return {grid.toVoxel(mesh.vertex(index, 0)), grid.toVoxel(mesh.vertex(index, 1)),
+            grid.toVoxel(mesh.vertex(index, 2))};
 }
 
 bool overlaps(const Triangle& triangle, const Voxel& voxel, Mode mode, double delta) {
@@ -120,10 +115,6 @@ VoxelRange candidateVoxels(const Triangle& triangle, const std::array<std::int32
         range.hi[axis] = std::min(dims[axis] - 1, int(last));
     }
     return range;
-}
-
-Touch overlapWithin(const Triangle& triangle, const Voxel& voxel, Mode mode, double eps) {
-    return {overlaps(triangle, voxel, mode, eps), overlaps(triangle, voxel, mode, -eps)};
 }
 
 }  // namespace hyvox::reference

@@ -41,14 +41,4 @@ struct VoxelRange {
 };
 VoxelRange candidateVoxels(const Triangle& triangle, const std::array<std::int32_t, 3>& dims, double delta = 0.0);
 
-// How a voxel relates to a triangle within a tolerance: `grown` = it overlaps the voxel
-// grown by eps, `shrunk` = it overlaps the voxel shrunk by eps. A backend's answer for a
-// voxel with grown && !shrunk is a "touch": either answer is right within eps.
-struct Touch {
-    bool grown = false;
-    bool shrunk = false;
-    bool isTouch() const { return grown && !shrunk; }
-};
-Touch overlapWithin(const Triangle& triangle, const Voxel& voxel, Mode mode, double eps);
-
 }  // namespace hyvox::reference

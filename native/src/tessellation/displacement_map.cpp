@@ -69,19 +69,4 @@ DisplacementMap DisplacementMap::fromOptions(const TessellationOptions& options)
     return {};
 }
 
-float DisplacementMap::sample(double u, double v) const {
-    // GL's bilinear filter: texel coordinate x = u·W - 0.5, neighbours clamped to the edge.
-    const double x = u * width_ - 0.5, y = v * height_ - 0.5;
-    const double fx = std::floor(x), fy = std::floor(y);
-    const double ax = x - fx, ay = y - fy;
-    auto texel = [&](double tx, double ty) {
-        const int ix = int(std::clamp(tx, 0.0, double(width_ - 1)));
-        const int iy = int(std::clamp(ty, 0.0, double(height_ - 1)));
-        return double(rows_[std::size_t(iy) * width_ + ix]);
-    };
-    const double bottom = texel(fx, fy) * (1 - ax) + texel(fx + 1, fy) * ax;
-    const double top = texel(fx, fy + 1) * (1 - ax) + texel(fx + 1, fy + 1) * ax;
-    return float(bottom * (1 - ay) + top * ay);
-}
-
 }  // namespace hyvox::tessellation

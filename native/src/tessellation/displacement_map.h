@@ -2,7 +2,8 @@
 #pragma once
 // The displacement height image (section 3.3): loaded from an 8/16-bit PNG (grey, grey+alpha,
 // RGB(A) or palette; colour images use Blender's texture intensity, the mean of R, G, B) or
-// taken from a float array, and sampled exactly as the shaders sample their texture.
+// taken from a float array, laid out as the shaders sample it (GL_LINEAR, clamped at the
+// edges; tests/native/support/surface_twin.h samples it the same way on the CPU).
 #include <string>
 #include <vector>
 
@@ -28,10 +29,6 @@ public:
     const std::vector<float>& bottomUpRows() const { return rows_; }
     float minValue() const { return min_; }
     float maxValue() const { return max_; }
-
-    // Bilinear at UV (u right, v up), texel centres at (x + 0.5) / width, clamped at the
-    // edges: GL_LINEAR + GL_CLAMP_TO_EDGE.
-    float sample(double u, double v) const;
 
 private:
     int width_ = 0, height_ = 0;

@@ -4,15 +4,17 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
-#include <cstdlib>
 
+#include "gl/active_uniforms.h"
+#include "gl/bindings.h"
 #include "gl/compute_dispatch.h"
 #include "gl/gl_debug.h"
+#include "gl/gl_limits.h"
 #include "gl/gl_objects.h"
-#include "gl/pass_timer.h"
+#include "gl/gl_tuning.h"
 #include "gl/gl_worker.h"
+#include "gl/pass_timer.h"
 #include "gl/shader_library.h"
-#include "hybrid/gl_voxelizer.h"
 #include "hyvox/errors.h"
 #include "tessellation/bindings.h"
 
@@ -35,12 +37,6 @@ gl::Buffer upload(const std::vector<T>& data) {
     return gl::Buffer(data.size() * sizeof(T), data.empty() ? nullptr : data.data());
 }
 
-GLint64 maxSsboBytes() {
-    GLint64 bytes = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &bytes);
-    return bytes;
-}
-
 bool brickTouched(const BitGrid& bits, std::size_t brick) {
     const std::uint64_t* w = bits.data() + brick * BitGrid::kWordsPerBrick;
     for (int k = 0; k < BitGrid::kWordsPerBrick; ++k)
@@ -54,8 +50,12 @@ struct Counters {
 
 // One complete draw of every patch into freshly cleared buffers.
 struct Programs {
-    const gl::Program& whole;  // compute: triangles left whole
-    const gl::Program& draw;   // vertex → tessellation → geometry
+    gl::ActiveProgram whole;  // compute: triangles left whole
+    gl::ActiveProgram draw;   // vertex → tessellation → geometry
+    template <typename Set>
+    void setUniform(GLint location, const Set& set) const {
+        gl::setUniform({&whole, &draw}, location, set);
+    }
 };
 struct PatchLists {
     const gl::Buffer& whole;
@@ -64,65 +64,74 @@ struct PatchLists {
 
 Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const PatchLists& lists, const gl::Buffer& bits,
                  const gl::Buffer& counters, const gl::Buffer& table, const gl::Buffer& pool, std::uint32_t pool_blocks,
-                 bool prefilled, bool software, GpuTessellationOutput& out) {
-    // Timer queries, or the wall clock where they are unreliable: the hybrid method's rule.
-    const bool wall_timing = hybrid::GlTuning::forDevice(software).wall_timing;
-    // Mesa's llvmpipe (22.3) assembles patches of a plain glDrawArrays(GL_PATCHES) wrongly
-    // beyond a few dozen patches per draw (gl_VertexID no longer matches the patch), so
-    // there each patch is an instance of 3 vertices instead; the vertex shader reads both.
-    const bool instanced = software || std::getenv("HYVOX_TESS_INSTANCED") != nullptr;
+                 bool prefilled, const gl::GlTuning& tuning, GpuTessellationOutput& out) {
     bits.clearToZero();
     counters.clearToZero();
     if (in.counts) {
         if (!prefilled) table.clearToZero();
         pool.clearToZero();
     }
-    // The uniforms both programs share.
-    auto setShared = [&](const gl::Program& program) {
-        program.use();
-        glUniform3i(HYVOX_LOC_GRID_DIMS, in.dims[0], in.dims[1], in.dims[2]);
-        if (!in.heights.empty()) {
-            glUniform2i(HYVOX_TESS_LOC_HEIGHT_SIZE, in.height_width, in.height_height);
-            glUniform2f(HYVOX_TESS_LOC_DISPLACE, float(in.strength_voxels), float(in.midlevel));
-        }
-        if (in.counts) {
-            glUniform1ui(HYVOX_TESS_LOC_POOL_BLOCKS, pool_blocks);
-            glUniform1ui(HYVOX_TESS_LOC_PREFILLED, prefilled ? 1u : 0u);
-        }
-    };
+    // The uniforms both programs share (each set where the program uses it).
+    programs.setUniform(HYVOX_LOC_GRID_DIMS, [&](GLuint id) {
+        glProgramUniform3i(id, HYVOX_LOC_GRID_DIMS, in.dims[0], in.dims[1], in.dims[2]);
+    });
+    if (!in.heights.empty()) {
+        programs.setUniform(HYVOX_TESS_LOC_HEIGHT_SIZE, [&](GLuint id) {
+            glProgramUniform2i(id, HYVOX_TESS_LOC_HEIGHT_SIZE, in.height_width, in.height_height);
+        });
+        programs.setUniform(HYVOX_TESS_LOC_DISPLACE, [&](GLuint id) {
+            glProgramUniform2f(id, HYVOX_TESS_LOC_DISPLACE, float(in.strength_voxels), float(in.midlevel));
+        });
+    }
+    if (in.counts) {
+        programs.setUniform(HYVOX_TESS_LOC_POOL_BLOCKS,
+                            [&](GLuint id) { glProgramUniform1ui(id, HYVOX_TESS_LOC_POOL_BLOCKS, pool_blocks); });
+        programs.setUniform(HYVOX_TESS_LOC_PREFILLED,
+                            [&](GLuint id) { glProgramUniform1ui(id, HYVOX_TESS_LOC_PREFILLED, prefilled ? 1u : 0u); });
+    }
     bits.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_BITS);
     counters.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_COUNTERS);
     table.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_BRICK_TABLE);
     pool.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_COUNT_POOL);
 
     // Pass 0: one point per triangle the tessellator would leave whole.
-    gl::PassTimer whole_timer(wall_timing);
+    gl::PassTimer whole_timer(tuning.wall_timing);
     {
-        setShared(programs.whole);
+        const gl::Program& whole = *programs.whole.program();
+        whole.use();
         lists.whole.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_PATCHES);
         const std::uint64_t count = in.plan.whole.size();
-        glUniform1ui(HYVOX_TESS_LOC_SPLIT_COUNT, GLuint(count));
+        gl::setUniform({&programs.whole}, HYVOX_TESS_LOC_SPLIT_COUNT,
+                       [&](GLuint id) { glProgramUniform1ui(id, HYVOX_TESS_LOC_SPLIT_COUNT, GLuint(count)); });
         whole_timer.begin();
-        gl::dispatchPerItem(programs.whole, count);
+        gl::dispatchPerItem(whole, count);
         whole_timer.end();
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         lists.direct.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_PATCHES);
     }
 
-    setShared(programs.draw);
-    glUniform1f(HYVOX_TESS_LOC_GAMMA, float(in.gamma));
-    glUniform1f(HYVOX_TESS_LOC_MAX_LEVEL, float(in.max_level));
-    glUniform1ui(HYVOX_TESS_LOC_SPLIT_COUNT, GLuint(in.plan.splits.size() / 4));
+    programs.draw.program()->use();
+    auto setDrawUniform = [&](GLint location, const auto& set) { gl::setUniform({&programs.draw}, location, set); };
+    setDrawUniform(HYVOX_TESS_LOC_GAMMA,
+                   [&](GLuint id) { glProgramUniform1f(id, HYVOX_TESS_LOC_GAMMA, float(in.gamma)); });
+    setDrawUniform(HYVOX_TESS_LOC_MAX_LEVEL,
+                   [&](GLuint id) { glProgramUniform1f(id, HYVOX_TESS_LOC_MAX_LEVEL, float(in.max_level)); });
+    setDrawUniform(HYVOX_TESS_LOC_SPLIT_COUNT, [&](GLuint id) {
+        glProgramUniform1ui(id, HYVOX_TESS_LOC_SPLIT_COUNT, GLuint(in.plan.splits.size() / 4));
+    });
 
-    gl::PassTimer direct_timer(wall_timing), split_timer(wall_timing);
+    gl::PassTimer direct_timer(tuning.wall_timing), split_timer(tuning.wall_timing);
     auto drawPatches = [&](GLuint mode, std::uint64_t patches, gl::PassTimer& timer) {
-        glUniform1ui(HYVOX_TESS_LOC_SPLIT_MODE, mode);
+        setDrawUniform(HYVOX_TESS_LOC_SPLIT_MODE,
+                       [&](GLuint id) { glProgramUniform1ui(id, HYVOX_TESS_LOC_SPLIT_MODE, mode); });
         timer.begin();
         bool cancelled = false;
         for (std::uint64_t base = 0; base < patches && !cancelled; base += kPatchesPerDraw) {
             const std::uint64_t count = std::min(kPatchesPerDraw, patches - base);
-            glUniform1ui(HYVOX_TESS_LOC_PATCH_BASE, GLuint(base));
-            if (instanced) glDrawArraysInstanced(GL_PATCHES, 0, 3, GLsizei(count));
+            setDrawUniform(HYVOX_TESS_LOC_PATCH_BASE,
+                           [&](GLuint id) { glProgramUniform1ui(id, HYVOX_TESS_LOC_PATCH_BASE, GLuint(base)); });
+            // One instance per patch where plain patch draws are assembled wrongly (GlTuning).
+            if (tuning.tess_instanced) glDrawArraysInstanced(GL_PATCHES, 0, 3, GLsizei(count));
             else glDrawArrays(GL_PATCHES, 0, GLsizei(3 * count));
             cancelled = in.interrupter && in.interrupter->wasInterrupted();
         }
@@ -151,22 +160,24 @@ int maxTessellationLevel(const std::string& device) {
     });
 }
 
-GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTessellationInput& in, BitGrid& bits) {
-    gl::GlWorker& worker = gl::GlWorker::get(device);
+GpuTessellationOutput runGpuTessellation(const GpuTessellationInput& in, BitGrid& bits) {
+    gl::GlWorker& worker = gl::GlWorker::get(in.gl.device);
     return worker.run([&] {
         GpuTessellationOutput out;
-        const GLint64 max_ssbo = maxSsboBytes();
+        const gl::GlTuning tuning = gl::GlTuning::forDevice(worker.device().software, in.gl);
+        const GLint64 max_ssbo = gl::glLimit(GL_MAX_SHADER_STORAGE_BLOCK_SIZE);
         if (GLint64(bits.byteSize()) > max_ssbo)
             throw ResourceError("the " + std::to_string(bits.byteSize() >> 20) + " MiB bit grid exceeds this GL device's " +
                                 std::to_string(max_ssbo >> 20) + " MiB storage-buffer limit; lower the resolution");
         const std::string defines = definesFor(in);
         const Programs programs{
-            worker.programs().get({{GL_COMPUTE_SHADER, "tessellation/whole_triangles.comp"}}, defines, in.shader_dir),
-            worker.programs().get({{GL_VERTEX_SHADER, "tessellation/patch.vert"},
-                                   {GL_TESS_CONTROL_SHADER, "tessellation/patch.tesc"},
-                                   {GL_TESS_EVALUATION_SHADER, "tessellation/patch.tese"},
-                                   {GL_GEOMETRY_SHADER, "tessellation/inject.geom"}},
-                                  defines, in.shader_dir)};
+            gl::ActiveProgram(worker.programs().get({{GL_COMPUTE_SHADER, "tessellation/whole_triangles.comp"}}, defines,
+                                                    in.gl.shader_dir)),
+            gl::ActiveProgram(worker.programs().get({{GL_VERTEX_SHADER, "tessellation/patch.vert"},
+                                                     {GL_TESS_CONTROL_SHADER, "tessellation/patch.tesc"},
+                                                     {GL_TESS_EVALUATION_SHADER, "tessellation/patch.tese"},
+                                                     {GL_GEOMETRY_SHADER, "tessellation/inject.geom"}},
+                                                    defines, in.gl.shader_dir))};
 
         const gl::Buffer vertices = upload(in.mesh.vertices);
         const gl::Buffer triangles = upload(in.mesh.triangles);
@@ -187,7 +198,7 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
         const gl::Buffer counters(4 * sizeof(std::uint32_t), nullptr);
         const std::size_t brick_count = bits.brickCount();
         const gl::Buffer table(in.counts ? brick_count * sizeof(std::uint32_t) : 0, nullptr);
-        const std::uint64_t pool_limit = std::min<std::uint64_t>(std::uint64_t(max_ssbo), in.memory_budget);
+        const std::uint64_t pool_limit = std::min<std::uint64_t>(std::uint64_t(max_ssbo), in.memory_budget_bytes);
 
         const PatchLists lists{whole, direct};
         gl::VertexArray no_attributes;
@@ -229,7 +240,7 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
             std::min<std::uint64_t>({2 * (in.plan.brick_estimate + 64) + 256, brick_count + 256, cap_blocks}));
         gl::Buffer pool = poolFor(in.counts ? first_blocks : 1);
         out.runs = 1;
-        Counters c = drawAll(in, programs, lists, bit_buffer, counters, table, pool, first_blocks, false, worker.device().software, out);
+        Counters c = drawAll(in, programs, lists, bit_buffer, counters, table, pool, first_blocks, false, tuning, out);
         bit_buffer.download(0, bits.byteSize(), bits.data());
         if (in.counts) {
             out.brick_blocks.resize(brick_count);
@@ -241,7 +252,7 @@ GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTes
                 table.upload(0, brick_count * sizeof(std::uint32_t), out.brick_blocks.data());
                 pool = poolFor(used);
                 out.runs = 2;
-                c = drawAll(in, programs, lists, bit_buffer, counters, table, pool, used, true, worker.device().software, out);
+                c = drawAll(in, programs, lists, bit_buffer, counters, table, pool, used, true, tuning, out);
             }
             out.count_pool.resize(std::size_t(used) * 512);
             pool.download(0, out.count_pool.size() * sizeof(std::uint32_t), out.count_pool.data());

@@ -9,15 +9,16 @@
 #include <string>
 #include <vector>
 
-#include "hybrid/gpu_mesh.h"
+#include "gl/gpu_mesh.h"
 #include "hyvox/bit_grid.h"
 #include "hyvox/interrupter.h"
+#include "hyvox/options.h"
 #include "tessellation/patch_plan.h"
 
 namespace hyvox::tessellation {
 
 struct GpuTessellationInput {
-    const hybrid::GpuMesh& mesh;        // triangles = the usable ones, in usable order
+    const gl::GpuMesh& mesh;            // triangles = the usable ones, in usable order
     const std::vector<float>& normals;  // per vertex, unit
     const std::vector<float>& uvs;      // per vertex
     const PatchPlan& plan;
@@ -30,8 +31,8 @@ struct GpuTessellationInput {
     int height_width, height_height;
     double strength_voxels, midlevel;
     bool counts;
-    std::uint64_t memory_budget;         // bytes the count pool may take
-    std::string shader_dir;
+    std::uint64_t memory_budget_bytes;   // what the count pool may take
+    const GlOptions& gl;                 // device, shader folder, timing and draw choices
     Interrupter* interrupter;
 };
 
@@ -48,6 +49,6 @@ struct GpuTessellationOutput {
 int maxTessellationLevel(const std::string& device);
 
 // Fills `bits` (already sized to dims) and returns the rest.
-GpuTessellationOutput runGpuTessellation(const std::string& device, const GpuTessellationInput& input, BitGrid& bits);
+GpuTessellationOutput runGpuTessellation(const GpuTessellationInput& input, BitGrid& bits);
 
 }  // namespace hyvox::tessellation

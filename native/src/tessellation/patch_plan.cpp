@@ -16,24 +16,19 @@ namespace hyvox::tessellation {
 
 PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double gamma, int max_level, bool estimate_bricks,
                       double reach, double pn_reach) {
-    std::array<std::int32_t, 3> bricks{};
-    for (int a = 0; a < 3; ++a) bricks[a] = (grid.dims[a] + 7) / 8;
-    std::vector<std::uint8_t> reached(estimate_bricks ? static_cast<std::size_t>(bricks[0]) * bricks[1] * bricks[2] : 0, 0);
+    const BrickLayout bricks = grid.bricks();
+    std::vector<std::uint8_t> reached(estimate_bricks ? bricks.total() : 0, 0);
     std::atomic<std::uint64_t> large_estimate{0};
     std::vector<std::uint32_t> pieces(mesh.usable.size());  // 0 = whole, 1 = one patch, n = n² patches
-    const double inv = 1.0 / grid.voxel_size;
 
     // Per triangle, in parallel: its split count and the bricks its points can reach.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.usable.size(), 4096), [&](const auto& range) {
         for (std::size_t u = range.begin(); u != range.end(); ++u) {
             Vec3f p[3];
-            double d[3][3];
+            std::array<double, 3> d[3];
             for (int c = 0; c < 3; ++c) {
-                const auto v = mesh.vertex(mesh.usable[u], c);
-                for (int a = 0; a < 3; ++a) {
-                    d[c][a] = (double(v[a]) - grid.origin[a]) * inv;
-                    p[c][a] = float(d[c][a]);
-                }
+                d[c] = grid.toVoxel(mesh.vertex(mesh.usable[u], c));
+                for (int a = 0; a < 3; ++a) p[c][a] = float(d[c][a]);
             }
             const PatchFactors factors = patchFactors(p[0], p[1], p[2], gamma);
             pieces[u] = factors.largest() <= 1.0 ? 0u : std::uint32_t(presplitPieces(factors, max_level));
@@ -44,16 +39,16 @@ PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double ga
             for (int a = 0; a < 3; ++a) {
                 const double mn = std::min({d[0][a], d[1][a], d[2][a]}) - grow;
                 const double mx = std::max({d[0][a], d[1][a], d[2][a]}) + grow;
-                lo[a] = int(std::clamp(std::floor(mn / 8), 0.0, double(bricks[a] - 1)));
-                hi[a] = int(std::clamp(std::floor(mx / 8), 0.0, double(bricks[a] - 1)));
+                const double last = double(bricks.counts[a] - 1);
+                lo[a] = int(std::clamp(std::floor(mn / BrickLayout::kSide), 0.0, last));
+                hi[a] = int(std::clamp(std::floor(mx / BrickLayout::kSide), 0.0, last));
                 box *= std::uint64_t(hi[a] - lo[a] + 1);
             }
             if (box <= 27) {
                 for (int x = lo[0]; x <= hi[0]; ++x)
                     for (int y = lo[1]; y <= hi[1]; ++y)
                         for (int z = lo[2]; z <= hi[2]; ++z)
-                            __atomic_store_n(&reached[(std::size_t(x) * bricks[1] + y) * bricks[2] + z], 1,
-                                             __ATOMIC_RELAXED);
+                            __atomic_store_n(&reached[bricks.index(x, y, z)], 1, __ATOMIC_RELAXED);
             } else {
                 // A plane crosses a brick over at least ~64 voxel units²: 3× that covers
                 // obliques and the bricks the triangle only grazes along its boundary.

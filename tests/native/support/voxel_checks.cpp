@@ -42,6 +42,10 @@ std::string Comparison::summary() const {
     return out.str();
 }
 
+Touch overlapWithin(const reference::Triangle& triangle, const Voxel& voxel, Mode mode, double eps) {
+    return {reference::overlaps(triangle, voxel, mode, eps), reference::overlaps(triangle, voxel, mode, -eps)};
+}
+
 Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult& result,
                           const VoxelizeResult& oracle, double eps) {
     // XOR-ing the bit words below is only meaningful (and in bounds) on the same grid.
@@ -86,7 +90,7 @@ Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult&
                                       for (int k = range.lo[2]; k <= range.hi[2]; ++k) {
                                           if (!diff.test(i, j, k)) continue;
                                           const std::size_t n = index.at(key({i, j, k}));
-                                          const auto touch = reference::overlapWithin(tri, {i, j, k}, mode, eps);
+                                          const Touch touch = overlapWithin(tri, {i, j, k}, mode, eps);
                                           if (touch.grown) grown[n] = true;
                                           if (touch.shrunk) shrunk[n] = true;
                                       }
@@ -151,10 +155,7 @@ std::uint64_t countHoles(const MeshView& mesh, const VoxelizeResult& result, std
                           std::uint64_t local_holes = 0, local_total = 0;
                           for (std::size_t t = chunk.begin(); t != chunk.end(); ++t) {
                               std::array<std::array<double, 3>, 3> v;
-                              for (int c = 0; c < 3; ++c) {
-                                  const auto p = validated.vertex(validated.usable[t], c);
-                                  for (int a = 0; a < 3; ++a) v[c][a] = (double(p[a]) - grid.origin[a]) / grid.voxel_size;
-                              }
+                              for (int c = 0; c < 3; ++c) v[c] = grid.toVoxel(validated.vertex(validated.usable[t], c));
                               double longest = 0;
                               for (int c = 0; c < 3; ++c) {
                                   double len2 = 0;
@@ -202,11 +203,8 @@ std::vector<char> insideByParity(const MeshView& mesh, const GridSpec& grid) {
     std::vector<std::vector<double>> crossings(std::size_t(ny) * nz);
     const ValidatedMesh v = validate(mesh);
     for (std::uint32_t t : v.usable) {
-        double p[3][3];
-        for (int c = 0; c < 3; ++c) {
-            const auto q = v.vertex(t, c);
-            for (int a = 0; a < 3; ++a) p[c][a] = (double(q[a]) - grid.origin[a]) / grid.voxel_size;
-        }
+        std::array<double, 3> p[3];
+        for (int c = 0; c < 3; ++c) p[c] = grid.toVoxel(v.vertex(t, c));
         const double ymin = std::min({p[0][1], p[1][1], p[2][1]}), ymax = std::max({p[0][1], p[1][1], p[2][1]});
         const double zmin = std::min({p[0][2], p[1][2], p[2][2]}), zmax = std::max({p[0][2], p[1][2], p[2][2]});
         for (int j = std::max(0, int(std::floor(ymin - oy))); j <= std::min(ny - 1, int(std::ceil(ymax - oy))); ++j)
@@ -215,8 +213,8 @@ std::vector<char> insideByParity(const MeshView& mesh, const GridSpec& grid) {
                 // Point in the projected (y,z) triangle: all edge functions of one sign.
                 double e[3];
                 for (int c = 0; c < 3; ++c) {
-                    const double* a = p[c];
-                    const double* b = p[(c + 1) % 3];
+                    const std::array<double, 3>& a = p[c];
+                    const std::array<double, 3>& b = p[(c + 1) % 3];
                     e[c] = (b[1] - a[1]) * (z - a[2]) - (b[2] - a[2]) * (y - a[1]);
                 }
                 const bool in = (e[0] > 0 && e[1] > 0 && e[2] > 0) || (e[0] < 0 && e[1] < 0 && e[2] < 0);

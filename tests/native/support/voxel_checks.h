@@ -8,10 +8,22 @@
 #include <vector>
 
 #include "hyvox/voxelize.h"
+#include "reference/reference_overlap.h"
 
 namespace hyvox::test {
 
 using Voxel = std::array<int, 3>;
+
+// How a voxel relates to a triangle within a tolerance, by the reference's overlap rule:
+// `grown` = it overlaps the voxel grown by eps, `shrunk` = it overlaps the voxel shrunk by
+// eps. A backend's answer for a voxel with grown && !shrunk is a "touch": either answer is
+// right within eps.
+struct Touch {
+    bool grown = false;
+    bool shrunk = false;
+    bool isTouch() const { return grown && !shrunk; }
+};
+Touch overlapWithin(const reference::Triangle& triangle, const Voxel& voxel, Mode mode, double eps);
 
 // Two voxelizations of one mesh on one grid, compared voxel by voxel. "result" is the set
 // under test, "oracle" the one it must equal (the `reference` backend in conservative mode,

@@ -3,7 +3,7 @@
 // The mesh as the GL shaders read it: voxel-space vertices split into an exact integer
 // cell and a float fraction (computed in double here), and the usable triangles' indices.
 // Shaders rebuild each triangle relative to its first vertex's cell, so precision does
-// not degrade with distance from the grid origin.
+// not degrade with distance from the grid origin. Both GL methods upload it.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -12,7 +12,7 @@
 #include "hyvox/grid.h"
 #include "hyvox/mesh.h"
 
-namespace hyvox::hybrid {
+namespace hyvox::gl {
 
 struct GpuVertex {  // std430 layout of HyvoxVertex in shaders/common/mesh_input.glsl
     std::int32_t cell[3];
@@ -37,4 +37,4 @@ TriangleCorners triangleCorners(const GpuMesh& mesh, std::size_t t);
 // hybrid's classifier compares with the cutoff).
 double projectedArea(const TriangleCorners& p);
 
-}  // namespace hyvox::hybrid
+}  // namespace hyvox::gl

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "tessellation/surface.h"
+#include "support/surface_twin.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
-namespace hyvox::tessellation {
+namespace hyvox::test {
 namespace {
 
 Vec3d load(const std::vector<float>& v, std::uint32_t i) {
@@ -13,9 +15,6 @@ Vec3d add(const Vec3d& a, const Vec3d& b) { return {a[0] + b[0], a[1] + b[1], a[
 Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 Vec3d mul(const Vec3d& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
 double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 Vec3d normalized(const Vec3d& a) {
     const double len = std::sqrt(dot(a, a));
     return len > 0 ? mul(a, 1.0 / len) : Vec3d{0, 0, 1};
@@ -23,49 +22,45 @@ Vec3d normalized(const Vec3d& a) {
 
 }  // namespace
 
-Surface::Surface(const ValidatedMesh& mesh, const GridSpec& grid) : triangles_(mesh.view.triangles) {
-    const std::size_t n = mesh.view.vertex_count;
-    positions_.resize(3 * n);
-    for (std::size_t i = 0; i < 3 * n; ++i)
-        positions_[i] = float((double(mesh.view.positions[i]) - grid.origin[i % 3]) / grid.voxel_size);
-
-    std::vector<double> normals(3 * n, 0.0);
-    if (mesh.view.normals) {
-        for (std::size_t i = 0; i < 3 * n; ++i) normals[i] = mesh.view.normals[i];
-    } else {
-        // Area-weighted: the unnormalized face normal is twice the area times the unit normal.
-        for (std::uint32_t t : mesh.usable) {
-            const std::uint32_t* idx = triangles_ + 3 * std::size_t(t);
-            const Vec3d a = load(positions_, idx[0]), b = load(positions_, idx[1]), c = load(positions_, idx[2]);
-            const Vec3d face = cross(sub(b, a), sub(c, a));
-            for (int corner = 0; corner < 3; ++corner)
-                for (int axis = 0; axis < 3; ++axis) normals[3 * std::size_t(idx[corner]) + axis] += face[axis];
-        }
-    }
-    normals_.resize(3 * n);
-    for (std::size_t v = 0; v < n; ++v) {
-        const Vec3d unit = normalized({normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]});
-        for (int axis = 0; axis < 3; ++axis) normals_[3 * v + axis] = float(unit[axis]);
-    }
-    uvs_.assign(2 * n, 0.0f);
-    if (mesh.view.uvs) uvs_.assign(mesh.view.uvs, mesh.view.uvs + 2 * n);
+float sampleHeight(const tessellation::DisplacementMap& map, double u, double v) {
+    // GL's bilinear filter: texel coordinate x = u·W - 0.5, neighbours clamped to the edge.
+    const int width = map.width(), height = map.height();
+    const std::vector<float>& rows = map.bottomUpRows();
+    const double x = u * width - 0.5, y = v * height - 0.5;
+    const double fx = std::floor(x), fy = std::floor(y);
+    const double ax = x - fx, ay = y - fy;
+    auto texel = [&](double tx, double ty) {
+        const int ix = int(std::clamp(tx, 0.0, double(width - 1)));
+        const int iy = int(std::clamp(ty, 0.0, double(height - 1)));
+        return double(rows[std::size_t(iy) * width + ix]);
+    };
+    const double bottom = texel(fx, fy) * (1 - ax) + texel(fx + 1, fy) * ax;
+    const double top = texel(fx, fy + 1) * (1 - ax) + texel(fx + 1, fy + 1) * ax;
+    return float(bottom * (1 - ay) + top * ay);
 }
 
-std::array<std::array<float, 3>, 3> Surface::corners(std::uint32_t t) const {
+SurfaceTwin::SurfaceTwin(const ValidatedMesh& mesh, const GridSpec& grid)
+    : attributes_(mesh, grid), triangles_(mesh.view.triangles) {}
+
+std::array<std::array<float, 3>, 3> SurfaceTwin::corners(std::uint32_t t) const {
     std::array<std::array<float, 3>, 3> out{};
+    const std::vector<float>& positions = attributes_.positions();
     for (int c = 0; c < 3; ++c)
-        for (int axis = 0; axis < 3; ++axis) out[c][axis] = positions_[3 * std::size_t(triangles_[3 * t + c]) + axis];
+        for (int axis = 0; axis < 3; ++axis) out[c][axis] = positions[3 * std::size_t(triangles_[3 * t + c]) + axis];
     return out;
 }
 
-SurfacePoint Surface::evaluate(std::uint32_t t, const Vec3d& w, bool pn) const {
+SurfacePoint SurfaceTwin::evaluate(std::uint32_t t, const Vec3d& w, bool pn) const {
     const std::uint32_t* idx = triangles_ + 3 * std::size_t(t);
-    const Vec3d p[3] = {load(positions_, idx[0]), load(positions_, idx[1]), load(positions_, idx[2])};
-    const Vec3d n[3] = {load(normals_, idx[0]), load(normals_, idx[1]), load(normals_, idx[2])};
+    const std::vector<float>& positions = attributes_.positions();
+    const std::vector<float>& normals = attributes_.normals();
+    const std::vector<float>& uvs = attributes_.uvs();
+    const Vec3d p[3] = {load(positions, idx[0]), load(positions, idx[1]), load(positions, idx[2])};
+    const Vec3d n[3] = {load(normals, idx[0]), load(normals, idx[1]), load(normals, idx[2])};
     SurfacePoint out;
     for (int k = 0; k < 2; ++k)
-        out.uv[k] = w[0] * uvs_[2 * std::size_t(idx[0]) + k] + w[1] * uvs_[2 * std::size_t(idx[1]) + k] +
-                    w[2] * uvs_[2 * std::size_t(idx[2]) + k];
+        out.uv[k] = w[0] * uvs[2 * std::size_t(idx[0]) + k] + w[1] * uvs[2 * std::size_t(idx[1]) + k] +
+                    w[2] * uvs[2 * std::size_t(idx[2]) + k];
     if (!pn) {
         out.position = add(add(mul(p[0], w[0]), mul(p[1], w[1])), mul(p[2], w[2]));
         out.normal = normalized(add(add(mul(n[0], w[0]), mul(n[1], w[1])), mul(n[2], w[2])));
@@ -105,13 +100,14 @@ SurfacePoint Surface::evaluate(std::uint32_t t, const Vec3d& w, bool pn) const {
     return out;
 }
 
-SurfacePoint Surface::evaluate(std::uint32_t t, const Vec3d& bary, bool pn, const DisplacementMap& map,
-                               double strength_voxels, double midlevel) const {
+SurfacePoint SurfaceTwin::evaluate(std::uint32_t t, const Vec3d& bary, bool pn,
+                                   const tessellation::DisplacementMap& map, double strength_voxels,
+                                   double midlevel) const {
     SurfacePoint out = evaluate(t, bary, pn);
     if (map.empty()) return out;
-    const double offset = (double(map.sample(out.uv[0], out.uv[1])) - midlevel) * strength_voxels;
+    const double offset = (double(sampleHeight(map, out.uv[0], out.uv[1])) - midlevel) * strength_voxels;
     out.position = add(out.position, mul(out.normal, offset));
     return out;
 }
 
-}  // namespace hyvox::tessellation
+}  // namespace hyvox::test

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// The GL backend's run, below runGlBackend: also the entry point for the voxel list
+// The hybrid backend's run, below runHybridBackend: also the entry point for the voxel list
 // (section 3.5) and for benchmarks that want the pass timings.
 #include <array>
 #include <cstdint>
@@ -11,7 +11,7 @@
 
 namespace hyvox::hybrid {
 
-struct GlRun {
+struct HybridRun {
     PassTimes times;
     double cutoff = 0;    // hybrid: used cutoff; triangle: inf; fragment: 0
     int search_runs = 0;  // timed runs of the auto-cutoff search (0: given or cached)
@@ -21,6 +21,7 @@ struct GlRun {
 // Runs job.options.method (triangle | fragment | hybrid) on the GL worker. Writes the bit
 // grid into `out` (dims = job.grid.dims) or, when voxel_list is given, fills that instead
 // (each set voxel once, unordered; `out` is then untouched).
-GlRun runGl(const BackendJob& job, BitGrid* out, std::vector<std::array<std::int32_t, 3>>* voxel_list = nullptr);
+HybridRun runHybrid(const BackendJob& job, BitGrid* out,
+                    std::vector<std::array<std::int32_t, 3>>* voxel_list = nullptr);
 
 }  // namespace hyvox::hybrid

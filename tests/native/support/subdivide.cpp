@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "tessellation/cpu_subdivide.h"
+#include "support/subdivide.h"
 
 #include <unordered_map>
 
 #include "hyvox/errors.h"
-#include "tessellation/surface.h"
+#include "support/surface_twin.h"
+#include "tessellation/displacement_map.h"
 
-namespace hyvox::tessellation {
+namespace hyvox::test {
 
 Mesh midpointSubdivide(const MeshView& view, int levels) {
     Mesh mesh;
@@ -44,8 +45,8 @@ Mesh midpointSubdivide(const MeshView& view, int levels) {
 Mesh subdivideAndDisplace(const ValidatedMesh& mesh, const GridSpec& grid, const TessellationOptions& options,
                           int pieces) {
     if (pieces < 1) throw InvalidInput("subdivideAndDisplace: pieces must be at least 1");
-    const Surface surface(mesh, grid);
-    const DisplacementMap map = DisplacementMap::fromOptions(options);
+    const SurfaceTwin surface(mesh, grid);
+    const tessellation::DisplacementMap map = tessellation::DisplacementMap::fromOptions(options);
     const double strength = options.displacement_strength / grid.voxel_size;
     Mesh out;
     // Lattice point (i, j) of a triangle: barycentric (1 - (i+j)/n, i/n, j/n).
@@ -54,7 +55,7 @@ Mesh subdivideAndDisplace(const ValidatedMesh& mesh, const GridSpec& grid, const
         const SurfacePoint p =
             surface.evaluate(t, {1.0 - u - v, u, v}, options.pn_triangles, map, strength, options.displacement_midlevel);
         for (int axis = 0; axis < 3; ++axis)
-            out.positions.push_back(float(grid.origin[axis] + p.position[axis] * grid.voxel_size));
+            out.positions.push_back(float(grid.origin[axis] + p.position[axis] * grid.voxel_size));  // back to world
         return std::uint32_t(out.positions.size() / 3 - 1);
     };
     for (std::uint32_t t : mesh.usable) {
@@ -72,4 +73,4 @@ Mesh subdivideAndDisplace(const ValidatedMesh& mesh, const GridSpec& grid, const
     return out;
 }
 
-}  // namespace hyvox::tessellation
+}  // namespace hyvox::test

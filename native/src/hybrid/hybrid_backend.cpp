@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// runGlBackend: methods `triangle`, `fragment` and `hybrid` (JCGT 2013 sections 3.2-3.4).
+// runHybridBackend: methods `triangle`, `fragment` and `hybrid` (JCGT 2013 sections 3.2-3.4;
+// triangle and fragment are the hybrid's two limits).
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <string>
 
 #include "core/backends.h"
 #include "core/stopwatch.h"
+#include "gl/gl_tuning.h"
 #include "gl/gl_worker.h"
-#include "gl/shader_library.h"
+#include "gl/gpu_mesh.h"
 #include "hybrid/cutoff_search.h"
-#include "hybrid/gl_backend_internal.h"
 #include "hybrid/gl_voxelizer.h"
-#include "hybrid/gpu_mesh.h"
+#include "hybrid/hybrid_run.h"
 #include "hyvox/errors.h"
 
 namespace hyvox {
@@ -20,35 +20,35 @@ namespace hybrid {
 namespace {
 
 // The largest projected area on a dominant plane, in voxel units² (the search's upper end).
-double largestProjectedArea(const GpuMesh& mesh) {
+double largestProjectedArea(const gl::GpuMesh& mesh) {
     double largest = 0;
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-        largest = std::max(largest, projectedArea(triangleCorners(mesh, t)));
+        largest = std::max(largest, gl::projectedArea(gl::triangleCorners(mesh, t)));
     return largest;
 }
 
-std::string cacheKey(const GpuMesh& mesh, const GridSpec& grid, Mode mode, const gl::GlWorker& worker) {
-    return std::to_string(mesh.fingerprint) + "/" + std::to_string(grid.dims[0]) + "x" + std::to_string(grid.dims[1]) +
-           "x" + std::to_string(grid.dims[2]) + "/" + toString(mode) + "/" + worker.renderer();
+std::string cacheKey(const gl::GpuMesh& mesh, const GridSpec& grid, Mode mode, const gl::GlWorker& worker) {
+    return std::to_string(mesh.fingerprint) + "/" + grid.dimsText() + "/" + toString(mode) + "/" + worker.renderer();
 }
 
 }  // namespace
 
-GlRun runGl(const BackendJob& job, BitGrid* out, std::vector<std::array<std::int32_t, 3>>* voxel_list) {
+HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<std::int32_t, 3>>* voxel_list) {
     const Method method = job.options.method;
     if (method != Method::Triangle && method != Method::Fragment && method != Method::Hybrid)
-        throw BackendError(std::string("the GL backend does not run method '") + toString(method) + "'");
-    GlRun run;
+        throw BackendError(std::string("the hybrid backend does not run method '") + toString(method) + "'");
+    HybridRun run;
     Stopwatch watch;
-    const GpuMesh mesh = makeGpuMesh(job.mesh, job.grid);
+    const gl::GpuMesh mesh = gl::makeGpuMesh(job.mesh, job.grid);
     run.prepare_ms = watch.restart();
-    gl::GlWorker& worker = gl::GlWorker::get(job.options.gl.device);
-    const std::string shader_dir = gl::resolveShaderDir(job.options.gl.shader_dir);
+    const GlOptions& gl_options = job.options.gl;
+    gl::GlWorker& worker = gl::GlWorker::get(gl_options.device);
 
     worker.run([&] {
         Stopwatch gl_watch;
-        const GlTuning tuning = GlTuning::forDevice(worker.device().software);
-        GlVoxelizer voxelizer(mesh, job.grid, job.options.mode, method, shader_dir, worker.programs(), tuning);
+        const gl::GlTuning tuning = gl::GlTuning::forDevice(worker.device().software, gl_options);
+        GlVoxelizer voxelizer(mesh, job.grid, job.options.mode, method, gl_options.shader_dir, worker.programs(),
+                              tuning, gl_options.tile_bytes);
         glFinish();
         run.upload_ms = gl_watch.restart();
         throwIfInterrupted(job.interrupter);
@@ -81,8 +81,8 @@ GlRun runGl(const BackendJob& job, BitGrid* out, std::vector<std::array<std::int
 
 }  // namespace hybrid
 
-void runGlBackend(const BackendJob& job, VoxelizeResult& result) {
-    const hybrid::GlRun run = hybrid::runGl(job, &result.occupancy, nullptr);
+void runHybridBackend(const BackendJob& job, VoxelizeResult& result) {
+    const hybrid::HybridRun run = hybrid::runHybrid(job, &result.occupancy, nullptr);
     Stats& stats = result.stats;
     stats.addTiming("gl_prepare", run.prepare_ms);
     stats.addTiming("gl_upload", run.upload_ms);
@@ -90,17 +90,15 @@ void runGlBackend(const BackendJob& job, VoxelizeResult& result) {
         stats.addTiming("gl_cutoff_search", run.search_ms);
     stats.addTiming("gl_voxelize", run.voxelize_ms);
     stats.addTiming("gl_readback", run.times.readback_ms);
-    stats.metrics["upload_ms"] = run.upload_ms;
-    stats.metrics["readback_ms"] = run.times.readback_ms;
-    stats.metrics["pass1_gpu_ms"] = run.times.pass1_gpu_ms;
-    stats.metrics["pass2_gpu_ms"] = run.times.pass2_gpu_ms;
-    stats.metrics["gpu_ms"] = run.times.pass1_gpu_ms + run.times.pass2_gpu_ms;
-    stats.metrics["tiles"] = run.times.tiles;
-    if (job.options.method == Method::Hybrid) {
-        stats.metrics["cutoff"] = run.cutoff;
-        stats.metrics["large_triangles"] = double(run.times.large_triangles);
-        stats.metrics["cutoff_search_runs"] = run.search_runs;
-    }
+    HybridStats& figures = stats.hybrid.emplace();
+    figures.pass1_gpu_ms = run.times.pass1_gpu_ms;
+    figures.pass2_gpu_ms = run.times.pass2_gpu_ms;
+    figures.upload_ms = run.upload_ms;
+    figures.readback_ms = run.times.readback_ms;
+    figures.tiles = std::uint64_t(run.times.tiles);
+    figures.cutoff = run.cutoff;
+    figures.large_triangles = run.times.large_triangles;
+    figures.cutoff_search_runs = std::uint64_t(run.search_runs);
 }
 
 }  // namespace hyvox

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "hybrid/gpu_mesh.h"
+#include "gl/gpu_mesh.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
-#include "cpu/triangle_setup.h"
+#include "core/clamp_coord.h"
 
-namespace hyvox::hybrid {
+namespace hyvox::gl {
 namespace {
 
 std::uint64_t mix(std::uint64_t h, std::uint64_t word) {
@@ -34,12 +34,13 @@ GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid) {
     GpuMesh out;
     const MeshView& view = mesh.view;
     out.vertices.resize(view.vertex_count);
-    const double inv = 1.0 / grid.voxel_size;
     for (std::size_t v = 0; v < view.vertex_count; ++v) {
+        const float* p = view.positions + 3 * v;
+        const std::array<double, 3> voxel = grid.toVoxel(std::array<float, 3>{p[0], p[1], p[2]});
         for (int a = 0; a < 3; ++a) {
             // Far-away vertices are clamped as the cpu backend clamps them (int conversion
             // stays defined); the clipped part inside the grid is then equally approximate on both.
-            const double x = cpu::clampCoord((double(view.positions[3 * v + a]) - grid.origin[a]) * inv);
+            const double x = clampCoord(voxel[a]);
             const double cell = std::floor(x);
             out.vertices[v].cell[a] = std::int32_t(cell);
             out.vertices[v].fraction[a] = float(x - cell);
@@ -73,4 +74,4 @@ double projectedArea(const TriangleCorners& p) {
     return 0.5 * std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
 }
 
-}  // namespace hyvox::hybrid
+}  // namespace hyvox::gl

@@ -1,41 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "hyvox/accuracy.h"
-
+// Section 4.1's six-direction ray-marching watertightness test (hyvox/accuracy.h).
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "hyvox/errors.h"
+#include "accuracy/same_dims.h"
+#include "hyvox/accuracy.h"
 
 namespace hyvox {
-namespace {
 
-void requireSameDims(const BitGrid& a, const BitGrid& b) {
-    if (a.dims() != b.dims()) throw InvalidInput("accuracy: the result and the reference have different dims");
-}
-
-}  // namespace
-
-AccuracyReport compareToReference(const BitGrid& result, const BitGrid& reference) {
-    requireSameDims(result, reference);
-    AccuracyReport report;
-    const std::uint64_t* r = result.data();
-    const std::uint64_t* g = reference.data();
-    for (std::size_t w = 0; w < result.wordCount(); ++w) {
-        report.reference_voxels += std::uint64_t(__builtin_popcountll(g[w]));
-        report.missed_voxels += std::uint64_t(__builtin_popcountll(g[w] & ~r[w]));
-        report.false_voxels += std::uint64_t(__builtin_popcountll(r[w] & ~g[w]));
-    }
-    report.bias = report.reference_voxels ? double(report.missed_voxels) / double(report.reference_voxels) : 0.0;
-    return report;
-}
-
-std::vector<std::array<std::int32_t, 3>> falseVoxels(const BitGrid& result, const BitGrid& reference) {
-    requireSameDims(result, reference);
-    BitGrid extra(result.dims());
-    for (std::size_t w = 0; w < result.wordCount(); ++w) extra.data()[w] = result.data()[w] & ~reference.data()[w];
-    return extra.coords();
-}
+using accuracy::requireSameDims;
 
 namespace {
 
@@ -50,11 +24,8 @@ void castColumns(const ValidatedMesh& mesh, const GridSpec& grid, int axis, std:
     first.assign(std::size_t(n1) * n2, nan);
     last.assign(std::size_t(n1) * n2, nan);
     for (std::uint32_t t : mesh.usable) {
-        std::array<std::array<double, 3>, 3> p{};
-        for (int c = 0; c < 3; ++c) {
-            const auto v = mesh.vertex(t, c);
-            for (int a = 0; a < 3; ++a) p[c][a] = (double(v[a]) - grid.origin[a]) / grid.voxel_size;
-        }
+        const std::array<std::array<double, 3>, 3> p{grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)),
+                                                     grid.toVoxel(mesh.vertex(t, 2))};
         // Signed doubled area in the (a1, a2) projection; edge-on triangles meet no centre line.
         const double area = (p[1][a1] - p[0][a1]) * (p[2][a2] - p[0][a2]) - (p[2][a1] - p[0][a1]) * (p[1][a2] - p[0][a2]);
         if (area == 0.0) continue;
@@ -119,33 +90,6 @@ WatertightReport rayMarchWatertightness(const BitGrid& result, const BitGrid& co
                 }
     }
     return report;
-}
-
-double GammaBiasFit::gammaFor(double bias) const { return -B * std::log(A * bias); }
-double GammaBiasFit::biasFor(double gamma) const { return std::exp(-gamma / B) / A; }
-
-GammaBiasFit fitGammaBias(const std::vector<double>& gammas, const std::vector<double>& biases) {
-    if (gammas.size() != biases.size()) throw InvalidInput("fitGammaBias: as many biases as gammas are needed");
-    // γ = c0 + c1 · ln p with c1 = -B and c0 = -B · ln A.
-    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (std::size_t i = 0; i < gammas.size(); ++i) {
-        if (!(biases[i] > 0)) continue;  // ln 0: a perfect sample says nothing about the slope
-        const double x = std::log(biases[i]), y = gammas[i];
-        n += 1;
-        sx += x;
-        sy += y;
-        sxx += x * x;
-        sxy += x * y;
-    }
-    const double denominator = n * sxx - sx * sx;
-    if (n < 2 || !(std::abs(denominator) > 1e-300))
-        throw InvalidInput("fitGammaBias: needs at least two samples with different biases > 0");
-    const double c1 = (n * sxy - sx * sy) / denominator;
-    const double c0 = (sy - c1 * sx) / n;
-    GammaBiasFit fit;
-    fit.B = -c1;
-    fit.A = std::exp(c0 / c1);
-    return fit;
 }
 
 }  // namespace hyvox

@@ -1,30 +1,30 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// The dispatcher: checks the options against the schema, validates the mesh, lays out the
+// grid, and hands the job to the method's backend (core/backends.h).
 #include "hyvox/voxelize.h"
 
 #include <string>
 
 #include "core/backends.h"
 #include "core/stopwatch.h"
+#include "hyvox/option_schema.h"
 
 namespace hyvox {
 namespace {
 
 void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options) {
     // Refuse before allocating: the bit grid is padded to whole 8³ bricks.
-    std::uint64_t bricks = 1;
-    for (int a = 0; a < 3; ++a) bricks *= std::uint64_t((grid.dims[a] + 7) / 8);
-    const std::uint64_t bytes = bricks * 64;
-    if (bytes > options.memory_budget)
-        throw ResourceError("a " + std::to_string(grid.dims[0]) + "x" + std::to_string(grid.dims[1]) + "x" +
-                            std::to_string(grid.dims[2]) + " grid needs " + std::to_string(bytes >> 20) +
+    const std::uint64_t bytes = std::uint64_t(grid.bricks().total()) * BitGrid::kWordsPerBrick * sizeof(std::uint64_t);
+    if (bytes > options.memoryBudgetBytes())
+        throw ResourceError("a " + grid.dimsText() + " grid needs " + std::to_string(bytes >> 20) +
                             " MiB of bits, more than the memory budget of " +
-                            std::to_string(options.memory_budget >> 20) + " MiB; use a larger voxel size");
+                            std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size");
 }
 
 }  // namespace
 
 VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, Interrupter* interrupter) {
-    if (options.threads < 0) throw InvalidInput("threads must be 0 (all cores) or positive");
+    checkOptions(options);
     if (interrupter) interrupter->start("hyvox voxelize");
     struct EndOnExit {
         Interrupter* i;
@@ -34,6 +34,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     } end_on_exit{interrupter};
 
     VoxelizeResult result;
+    result.stats.options = options;
     Stopwatch watch;
     const ValidatedMesh validated = validate(mesh);
     result.grid = makeGrid(validated.bounds, options.grid);
@@ -56,7 +57,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
         case Method::Reference: runReferenceBackend(job, result); break;
         case Method::Triangle:
         case Method::Fragment:
-        case Method::Hybrid: runGlBackend(job, result); break;
+        case Method::Hybrid: runHybridBackend(job, result); break;
         case Method::Tessellation: runTessellationBackend(job, result); break;
     }
     throwIfInterrupted(interrupter, 100);

@@ -1,0 +1,355 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hyvox/option_schema.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+#include "hyvox/errors.h"
+
+namespace hyvox {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Accessors: one line per field, captureless so they fit the spec's function pointers.
+#define HYVOX_FIELD(type_get, expr)                                                      \
+    [](const VoxelizeOptions& o) -> OptionValue { return type_get(o.expr); },            \
+        [](VoxelizeOptions& o, const OptionValue& v) { o.expr = fieldValue(v, o.expr); }
+
+OptionValue asInteger(std::int64_t v) { return v; }
+OptionValue asNumber(double v) { return v; }
+OptionValue asFlag(bool v) { return v; }
+OptionValue asText(const std::string& v) { return v; }
+OptionValue asOptionalNumber(const std::optional<double>& v) {
+    return v ? OptionValue(*v) : OptionValue(std::monostate{});
+}
+OptionValue asOptionalVector(const std::optional<std::array<double, 3>>& v) {
+    return v ? OptionValue(*v) : OptionValue(std::monostate{});
+}
+OptionValue asOptionalBox(const std::optional<Bounds>& v) { return v ? OptionValue(*v) : OptionValue(std::monostate{}); }
+OptionValue asMode(Mode v) { return std::string(toString(v)); }
+OptionValue asMethod(Method v) { return std::string(toString(v)); }
+
+// The stored value converted to the field's type (checked before: the variant holds the
+// spec's type, or monostate for an unset nullable field).
+int fieldValue(const OptionValue& v, int) { return int(std::get<std::int64_t>(v)); }
+std::uint64_t fieldValue(const OptionValue& v, std::uint64_t) { return std::uint64_t(std::get<std::int64_t>(v)); }
+double fieldValue(const OptionValue& v, double) { return std::get<double>(v); }
+bool fieldValue(const OptionValue& v, bool) { return std::get<bool>(v); }
+std::string fieldValue(const OptionValue& v, const std::string&) { return std::get<std::string>(v); }
+Mode fieldValue(const OptionValue& v, Mode) { return parseMode(std::get<std::string>(v)); }
+Method fieldValue(const OptionValue& v, Method) { return parseMethod(std::get<std::string>(v)); }
+template <typename T>
+std::optional<T> fieldValue(const OptionValue& v, const std::optional<T>&) {
+    if (std::holds_alternative<std::monostate>(v)) return std::nullopt;
+    return std::get<T>(v);
+}
+
+std::vector<OptionSpec> buildSchema() {
+    using T = OptionType;
+    std::vector<OptionSpec> s;
+    auto add = [&](OptionSpec spec) { s.push_back(std::move(spec)); };
+    // --- grid ---
+    add({"resolution", T::Integer, "grid", "Resolution", "voxels",
+         "voxels along the longest side of the bounds (voxel_size overrides it)", false, 1, kMaxResolution, false, {},
+         {}, nullptr, HYVOX_FIELD(asInteger, grid.resolution)});
+    add({"voxel_size", T::Number, "grid", "Voxel Size", "world units",
+         "edge length of one voxel; unset: the longest side / resolution", true, 0, kInf, true, {}, {}, nullptr,
+         HYVOX_FIELD(asOptionalNumber, grid.voxel_size)});
+    add({"origin", T::Vector3, "grid", "Origin", "world units",
+         "world position of voxel (0,0,0)'s min corner; unset: the bounds min", true, 0, 0, false, {}, {}, nullptr,
+         HYVOX_FIELD(asOptionalVector, grid.origin)});
+    add({"bounds", T::Box, "grid", "Bounds", "world units",
+         "the box to voxelize (min and max corner); unset: the mesh bounds; geometry outside is clipped", true, 0, 0,
+         false, {}, {}, nullptr, HYVOX_FIELD(asOptionalBox, grid.bounds)});
+    add({"padding", T::Integer, "grid", "Padding", "voxels", "empty voxels added on every side", false, 0, 1024, false,
+         {}, {}, nullptr, HYVOX_FIELD(asInteger, grid.padding)});
+    // --- the run ---
+    add({"mode", T::Choice, "run", "Mode", "",
+         "conservative: every voxel the surface touches (26-separating); thin: 6-separating", false, 0, 0, false,
+         modeNames(), {}, nullptr, HYVOX_FIELD(asMode, mode)});
+    add({"method", T::Choice, "run", "Method", "",
+         "cpu and reference run anywhere; triangle, fragment, hybrid and tessellation need GL 4.5", false, 0, 0, false,
+         methodNames(), {}, nullptr,
+         HYVOX_FIELD(asMethod, method)});
+    add({"threads", T::Integer, "run", "Threads", "threads", "CPU threads; 0 = all cores", false, 0, 4096, false, {}, {},
+         nullptr, HYVOX_FIELD(asInteger, threads)});
+    add({"memory_budget_mib", T::Integer, "run", "Memory Budget", "MiB",
+         "memory the voxels may take; larger grids are refused before allocating", false, 1, double(1 << 30), false,
+         {}, {}, nullptr, HYVOX_FIELD(asInteger, memory_budget_mib)});
+    // --- GL methods ---
+    add({"gl_device", T::Text, "gl", "GL Device", "",
+         "EGL device: '' = a hardware GPU if any, else software; 'software'; or a device index", false, 0, 0, false, {},
+         {}, "HYVOX_GL_DEVICE", HYVOX_FIELD(asText, gl.device)});
+    add({"shader_dir", T::Text, "gl", "Shader Folder", "",
+         "read the GLSL from this copy of shaders/ instead of the embedded one", false, 0, 0, false, {}, {},
+         "HYVOX_SHADER_DIR", HYVOX_FIELD(asText, gl.shader_dir)});
+    add({"gl_tile_bytes", T::Integer, "gl", "GL Tile Size", "bytes",
+         "largest bit-grid tile on the GPU; 0 = one storage block (the device's limit)", false, 0, double(1ull << 40),
+         false, {}, {}, "HYVOX_GL_TILE_BYTES", HYVOX_FIELD(asInteger, gl.tile_bytes)});
+    add({"gl_wall_timing", T::Flag, "gl", "Wall-Clock GPU Timing", "",
+         "time GL passes by the wall clock instead of GPU timer queries (always on for software GL)", false, 0, 0,
+         false, {}, {}, "HYVOX_GL_WALL_TIMING", HYVOX_FIELD(asFlag, gl.wall_timing)});
+    add({"tess_instanced", T::Flag, "gl", "Instanced Patches", "",
+         "tessellation: draw one instance per patch (always on for software GL)", false, 0, 0, false, {}, {},
+         "HYVOX_TESS_INSTANCED", HYVOX_FIELD(asFlag, gl.tess_instanced)});
+    // --- hybrid ---
+    add({"hybrid_cutoff", T::Number, "hybrid", "Hybrid Cutoff", "voxels²",
+         "hybrid: projected triangle area above which a triangle is rasterized; negative = automatic", false, -1, kInf,
+         false, {}, {}, nullptr, HYVOX_FIELD(asNumber, hybrid.cutoff)});
+    // --- tessellation ---
+    add({"tess_gamma", T::Number, "tessellation", "Tessellation γ", "",
+         "tessellation: safety factor γ of Eq. 1 (higher misses fewer voxels, costs more points)", false, 0, 1024, true,
+         {}, {"--gamma"}, nullptr, HYVOX_FIELD(asNumber, tessellation.gamma)});
+    add({"pn_triangles", T::Flag, "tessellation", "PN-Triangles", "", "tessellation: PN-triangle smoothing", false, 0,
+         0, false, {}, {}, nullptr, HYVOX_FIELD(asFlag, tessellation.pn_triangles)});
+    add({"displacement_image", T::Text, "tessellation", "Displacement Image", "",
+         "tessellation: an 8/16-bit PNG height image sampled at the mesh's UVs (Blender Displace)", false, 0, 0,
+         false, {}, {"--displacement"}, nullptr, HYVOX_FIELD(asText, tessellation.displacement_image)});
+    add({"displacement_strength", T::Number, "tessellation", "Displacement Strength", "world units",
+         "tessellation: displacement along the normal per unit of height", false, -kInf, kInf, false, {},
+         {"--strength"}, nullptr, HYVOX_FIELD(asNumber, tessellation.displacement_strength)});
+    add({"displacement_midlevel", T::Number, "tessellation", "Displacement Midlevel", "",
+         "tessellation: the height that stays in place", false, -kInf, kInf, false, {}, {"--midlevel"}, nullptr,
+         HYVOX_FIELD(asNumber, tessellation.displacement_midlevel)});
+    add({"tess_counts", T::Flag, "tessellation", "Point Counts", "",
+         "tessellation: also keep the points per voxel (the 'count' grid)", false, 0, 0, false, {}, {}, nullptr,
+         HYVOX_FIELD(asFlag, tessellation.counts)});
+    return s;
+}
+
+#undef HYVOX_FIELD
+
+const char* typeName(OptionType type) {
+    switch (type) {
+        case OptionType::Integer: return "a whole number";
+        case OptionType::Number: return "a finite number";
+        case OptionType::Flag: return "true or false";
+        case OptionType::Text: return "text";
+        case OptionType::Choice: return "one of the choices";
+        case OptionType::Vector3: return "three finite numbers x,y,z";
+        case OptionType::Box: return "two corners x0,y0,z0,x1,y1,z1 with min <= max";
+    }
+    return "?";
+}
+
+std::string number(double value) {
+    if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+    char buf[32];
+    for (int precision = 6; precision <= 17; ++precision) {
+        std::snprintf(buf, sizeof buf, "%.*g", precision, value);
+        if (std::strtod(buf, nullptr) == value) break;
+    }
+    return buf;
+}
+
+// "between 1 and 16384", "greater than 0 and at most 1024", "at least -1", "" (no limit).
+std::string rangeText(const OptionSpec& spec) {
+    const bool low = std::isfinite(spec.min), high = std::isfinite(spec.max);
+    if (spec.min_exclusive)
+        return "greater than " + number(spec.min) + (high ? " and at most " + number(spec.max) : "");
+    if (low && high) return "between " + number(spec.min) + " and " + number(spec.max);
+    if (low) return "at least " + number(spec.min);
+    if (high) return "at most " + number(spec.max);
+    return "";
+}
+
+[[noreturn]] void refuse(const OptionSpec& spec, const std::string& got) {
+    throw InvalidInput(std::string(spec.name) + " must be " + describeOption(spec) + ", got " + got);
+}
+
+bool allFinite(const std::array<double, 3>& v) {
+    return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+std::vector<double> splitNumbers(const std::string& text) {
+    std::vector<double> out;
+    std::size_t begin = 0;
+    while (begin <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', begin), text.size());
+        const std::string part = text.substr(begin, comma - begin);
+        char* end = nullptr;
+        errno = 0;
+        const double value = std::strtod(part.c_str(), &end);
+        if (part.empty() || *end != '\0' || errno == ERANGE) return {};
+        out.push_back(value);
+        begin = comma + 1;
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string describeOption(const OptionSpec& spec) {
+    std::string what = typeName(spec.type);
+    const std::string range = rangeText(spec);
+    if ((spec.type == OptionType::Integer || spec.type == OptionType::Number) && !range.empty()) what += " " + range;
+    if (spec.type == OptionType::Choice) {
+        what = "one of";
+        for (std::size_t c = 0; c < spec.choices.size(); ++c) what += (c ? ", " : " ") + std::string(spec.choices[c]);
+    }
+    return what;
+}
+
+void applyEnvironment(VoxelizeOptions& options, const char* (*lookup)(const char* variable)) {
+    for (const OptionSpec& spec : optionSchema()) {
+        if (!spec.env) continue;
+        const char* text = lookup(spec.env);
+        if (!text) continue;
+        try {
+            setOption(options, spec.name, parseOptionText(spec, text));
+        } catch (const InvalidInput& e) {
+            throw InvalidInput(std::string(spec.env) + ": " + e.what());
+        }
+    }
+}
+
+std::string OptionSpec::cliFlag() const {
+    std::string flag = std::string("--") + name;
+    for (char& c : flag)
+        if (c == '_') c = '-';
+    return flag;
+}
+
+const std::vector<OptionSpec>& optionSchema() {
+    static const std::vector<OptionSpec> schema = buildSchema();
+    return schema;
+}
+
+const OptionSpec& findOption(const std::string& name) {
+    std::string names;
+    for (const OptionSpec& spec : optionSchema()) {
+        if (name == spec.name) return spec;
+        names += names.empty() ? spec.name : std::string(", ") + spec.name;
+    }
+    throw InvalidInput("unknown option '" + name + "' (the options are: " + names + ")");
+}
+
+std::string formatOptionValue(const OptionValue& value) {
+    struct Format {
+        std::string operator()(std::monostate) const { return ""; }
+        std::string operator()(std::int64_t v) const { return std::to_string(v); }
+        std::string operator()(double v) const { return number(v); }
+        std::string operator()(bool v) const { return v ? "true" : "false"; }
+        std::string operator()(const std::string& v) const { return "'" + v + "'"; }
+        std::string operator()(const std::array<double, 3>& v) const {
+            return number(v[0]) + "," + number(v[1]) + "," + number(v[2]);
+        }
+        std::string operator()(const Bounds& b) const { return (*this)(b.min) + "," + (*this)(b.max); }
+    };
+    return std::visit(Format{}, value);
+}
+
+void checkOption(const OptionSpec& spec, const OptionValue& value) {
+    if (std::holds_alternative<std::monostate>(value)) return;  // unset: nullable or default
+    const std::string got = formatOptionValue(value);
+    switch (spec.type) {
+        case OptionType::Integer: {
+            if (!std::holds_alternative<std::int64_t>(value)) refuse(spec, got);
+            const auto v = std::get<std::int64_t>(value);
+            if (double(v) < spec.min || double(v) > spec.max) refuse(spec, got);
+            return;
+        }
+        case OptionType::Number: {
+            double v;
+            if (const auto* i = std::get_if<std::int64_t>(&value))
+                v = double(*i);
+            else if (const auto* d = std::get_if<double>(&value))
+                v = *d;
+            else
+                refuse(spec, got);
+            const bool above = spec.min_exclusive ? v > spec.min : v >= spec.min;
+            if (!std::isfinite(v) || !above || v > spec.max) refuse(spec, got);
+            return;
+        }
+        case OptionType::Flag:
+            if (!std::holds_alternative<bool>(value)) refuse(spec, got);
+            return;
+        case OptionType::Text:
+            if (!std::holds_alternative<std::string>(value)) refuse(spec, got);
+            return;
+        case OptionType::Choice: {
+            const auto* text = std::get_if<std::string>(&value);
+            std::string choices;
+            for (const char* choice : spec.choices) {
+                if (text && *text == choice) return;
+                choices += choices.empty() ? choice : std::string(", ") + choice;
+            }
+            throw InvalidInput("unknown " + std::string(spec.name) + " " + got + " (choose one of: " + choices + ")");
+        }
+        case OptionType::Vector3: {
+            const auto* v = std::get_if<std::array<double, 3>>(&value);
+            if (!v || !allFinite(*v)) refuse(spec, got);
+            return;
+        }
+        case OptionType::Box: {
+            const auto* b = std::get_if<Bounds>(&value);
+            if (!b || !allFinite(b->min) || !allFinite(b->max)) refuse(spec, got);
+            for (int a = 0; a < 3; ++a)
+                if (b->max[a] < b->min[a]) refuse(spec, got);
+            return;
+        }
+    }
+}
+
+void setOption(VoxelizeOptions& options, const std::string& name, const OptionValue& value) {
+    const OptionSpec& spec = findOption(name);
+    checkOption(spec, value);
+    if (std::holds_alternative<std::monostate>(value) && !spec.nullable) {
+        spec.put(options, spec.get(VoxelizeOptions{}));  // unset = the default
+        return;
+    }
+    // Whole numbers are fine where reals are expected.
+    if (spec.type == OptionType::Number)
+        if (const auto* i = std::get_if<std::int64_t>(&value)) {
+            spec.put(options, double(*i));
+            return;
+        }
+    spec.put(options, value);
+}
+
+OptionValue parseOptionText(const OptionSpec& spec, const std::string& text) {
+    const std::string got = "'" + text + "'";
+    switch (spec.type) {
+        case OptionType::Integer: {
+            errno = 0;
+            char* end = nullptr;
+            const long long v = std::strtoll(text.c_str(), &end, 10);
+            if (text.empty() || *end != '\0' || errno == ERANGE) refuse(spec, got);
+            return std::int64_t(v);
+        }
+        case OptionType::Number: {
+            errno = 0;
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            if (text.empty() || *end != '\0' || errno == ERANGE) refuse(spec, got);
+            return v;
+        }
+        case OptionType::Flag:
+            if (text == "1" || text == "true" || text == "yes" || text == "on") return true;
+            if (text == "" || text == "0" || text == "false" || text == "no" || text == "off") return false;
+            refuse(spec, got);
+        case OptionType::Text:
+        case OptionType::Choice: return text;
+        case OptionType::Vector3: {
+            const std::vector<double> v = splitNumbers(text);
+            if (v.size() != 3) refuse(spec, got);
+            return std::array<double, 3>{v[0], v[1], v[2]};
+        }
+        case OptionType::Box: {
+            const std::vector<double> v = splitNumbers(text);
+            if (v.size() != 6) refuse(spec, got);
+            return Bounds{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+        }
+    }
+    refuse(spec, got);
+}
+
+void checkOptions(const VoxelizeOptions& options) {
+    for (const OptionSpec& spec : optionSchema()) checkOption(spec, spec.get(options));
+}
+
+}  // namespace hyvox

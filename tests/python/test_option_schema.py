@@ -1,0 +1,204 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The options schema is the one source of every front door: each option's bad values are
+refused with the same message by the CLI and the Python module, every option set on the
+command line or in Python reaches the run (stats["options"]), the environment variables the
+schema names are read by both doors, and the generated stubs and docstring list every option.
+Parametrised over hyvox.OPTIONS itself, so an option added later is tested without new code."""
+import ast
+import json
+import math
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import hyvox
+
+TETRA_V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32)
+TETRA_T = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], np.uint32)
+
+
+def bad_values(spec):
+    """(python value, command-line text) pairs the schema must refuse, from its own limits."""
+    if spec.type in ("int", "float"):
+        below = spec.min if spec.min_exclusive else spec.min - 1
+        cases = [below] if math.isfinite(spec.min) else []
+        if math.isfinite(spec.max):
+            cases.append(spec.max + 1)
+        if spec.type == "int":
+            cases = [int(v) for v in cases]
+            return [(v, str(v)) for v in cases] + [("many", "many")]
+        return [(float(v), repr(float(v))) for v in cases] + [(float("nan"), "nan")]
+    return {
+        "choice": [("bogus", "bogus")],
+        "bool": [("maybe", "maybe")],
+        "vector3": [("1,2", "1,2")],
+        "box": [("1,2,3", "1,2,3")],
+        "str": [],  # any text is a valid value
+    }[spec.type]
+
+
+CASES = [(spec.name, py, text) for spec in hyvox.OPTIONS for py, text in bad_values(spec)]
+
+
+def test_every_option_kind_has_bad_values():
+    refused = {name for name, _, _ in CASES}
+    for spec in hyvox.OPTIONS:
+        assert spec.name in refused or spec.type == "str", spec.name
+
+
+def schema_message(name, value):
+    with pytest.raises((ValueError, TypeError)) as error:
+        hyvox.check_option(name, value)
+    return str(error.value)
+
+
+@pytest.mark.parametrize("name,value,text", CASES, ids=[f"{n}={t}" for n, _, t in CASES])
+def test_bad_value_same_message_in_python_and_cli(name, value, text, cli, tmp_path):
+    message = schema_message(name, value)
+    assert message.startswith(f"{name} must be ") or message.startswith(f"unknown {name} '"), message
+    assert message.rsplit(", got ", 1)[-1] or "choose one of" in message
+
+    with pytest.raises((ValueError, TypeError)) as python_error:
+        hyvox.voxelize(TETRA_V, TETRA_T, **{name: value})
+    assert str(python_error.value) == message
+
+    spec = hyvox.option(name)
+    done = subprocess.run([str(cli), "voxelize", "mesh.ply", "-o", str(tmp_path / "out.vdb"),
+                           f"{spec.cli_flag}={text}"], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2
+    assert f"hyvox: error: {spec.cli_flag}: {message}\n" in done.stderr
+    assert not (tmp_path / "out.vdb").exists()
+
+
+def good_value(spec):
+    """A valid value other than the default, for runs of the cpu method on a tetrahedron."""
+    special = {
+        "method": "reference", "voxel_size": 0.125, "origin": (-0.5, -0.25, 0.0),
+        "bounds": ((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)), "gl_device": "software",
+        "shader_dir": "/nonexistent/shaders", "displacement_image": "height.png",
+    }
+    if spec.name in special:
+        return special[spec.name]
+    if spec.type == "choice":
+        return next(c for c in spec.choices if c != spec.default)
+    if spec.type == "bool":
+        return not spec.default
+    if spec.type == "int":
+        return spec.default + 1 if spec.default + 1 <= spec.max else spec.default - 1
+    if spec.type == "float":
+        return spec.default + 0.5 if spec.default + 0.5 <= spec.max else spec.default / 2
+    raise AssertionError(f"no good value for {spec.name} ({spec.type})")
+
+
+def as_json(value):
+    return json.loads(json.dumps(value))
+
+
+def cli_text(value):
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, tuple):
+        return ",".join(cli_text(v) for v in np.ravel(value))
+    return str(value)
+
+
+@pytest.mark.parametrize("spec", hyvox.OPTIONS, ids=lambda s: s.name)
+def test_every_option_reaches_the_run_from_both_doors(spec, cli, tmp_path):
+    value = good_value(spec)
+    assert value != spec.default
+    # cpu ignores the GL and tessellation options, so every one can be set on a cpu run.
+    others = {} if spec.name == "method" else {"method": "cpu"}
+    grid = hyvox.voxelize(TETRA_V, TETRA_T, **others, **{spec.name: value})
+    assert grid.stats["options"][spec.name] == as_json(value)
+
+    mesh = tmp_path / "tetra.obj"
+    mesh.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    stats = tmp_path / "stats.json"
+    args = [str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "out.vdb"), "--stats-json", str(stats), "-q",
+            f"{spec.cli_flag}={cli_text(value)}"] + [f"--{k}={v}" for k, v in others.items()]
+    done = subprocess.run(args, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(stats.read_text())["options"][spec.name] == as_json(value)
+
+
+ENV_SPECS = [spec for spec in hyvox.OPTIONS if spec.env]
+
+
+def test_environment_variables_are_schema_options():
+    assert {spec.env for spec in ENV_SPECS} == {
+        "HYVOX_GL_DEVICE", "HYVOX_SHADER_DIR", "HYVOX_GL_TILE_BYTES", "HYVOX_GL_WALL_TIMING", "HYVOX_TESS_INSTANCED"}
+
+
+@pytest.mark.parametrize("spec", ENV_SPECS, ids=lambda s: s.env)
+def test_environment_reaches_the_run_from_both_doors(spec, cli, tmp_path, monkeypatch):
+    value = good_value(spec)
+    monkeypatch.setenv(spec.env, cli_text(value))
+    grid = hyvox.voxelize(TETRA_V, TETRA_T, method="cpu")
+    assert grid.stats["options"][spec.name] == as_json(value)
+    # An explicit keyword wins over the environment.
+    assert hyvox.voxelize(TETRA_V, TETRA_T, **{spec.name: spec.default}).stats["options"][spec.name] == spec.default
+
+    mesh = tmp_path / "tetra.obj"
+    mesh.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    stats = tmp_path / "stats.json"
+    done = subprocess.run([str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "o.vdb"), "-q",
+                           "--stats-json", str(stats)], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(stats.read_text())["options"][spec.name] == as_json(value)
+
+
+def test_bad_environment_value_names_the_variable(cli, monkeypatch):
+    monkeypatch.setenv("HYVOX_GL_TILE_BYTES", "lots")
+    with pytest.raises(ValueError, match="HYVOX_GL_TILE_BYTES: gl_tile_bytes must be a whole number"):
+        hyvox.voxelize(TETRA_V, TETRA_T)
+    done = subprocess.run([str(cli), "voxelize", "m.ply", "-o", "o.vdb"], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2 and "HYVOX_GL_TILE_BYTES: gl_tile_bytes must be a whole number" in done.stderr
+
+
+def test_unknown_option_is_a_type_error_naming_the_options():
+    with pytest.raises(TypeError, match=r"unknown option 'resolutoin' \(the options are: resolution, "):
+        hyvox.voxelize(TETRA_V, TETRA_T, resolutoin=8)
+
+
+def test_defaults_are_the_native_ones():
+    native = hyvox.Options().to_dict()
+    for spec in hyvox.OPTIONS:
+        assert native[spec.name] == spec.default, spec.name
+    grid = hyvox.voxelize(TETRA_V, TETRA_T)
+    for spec in hyvox.OPTIONS:
+        if spec.default is not None:
+            assert grid.stats["options"][spec.name] == as_json(spec.default), spec.name
+
+
+STUB_TYPES = {"int": "int", "float": "float", "bool": "bool", "str": "str", "vector3": "Sequence[float]",
+              "box": "Tuple[Sequence[float], Sequence[float]]"}
+
+
+def test_generated_stubs_list_every_option():
+    stub = pathlib.Path(hyvox.__file__).with_name("__init__.pyi")
+    tree = ast.parse(stub.read_text())
+    voxelize = next(node for node in tree.body if isinstance(node, ast.FunctionDef) and node.name == "voxelize")
+    keywords = {arg.arg: ast.unparse(arg.annotation) for arg in voxelize.args.kwonlyargs}
+    for spec in hyvox.OPTIONS:
+        inner = ("Literal[" + ", ".join(repr(c) for c in spec.choices) + "]" if spec.type == "choice"
+                 else STUB_TYPES[spec.type])
+        assert keywords.pop(spec.name) == f"Optional[{inner}]", spec.name
+    assert set(keywords) == {"uvs", "normals", "displacement_pixels", "progress", "cancel"}
+
+
+def test_docstring_and_cli_help_list_every_option(cli):
+    helptext = subprocess.run([str(cli), "--help"], capture_output=True, text=True, timeout=60).stdout
+    for spec in hyvox.OPTIONS:
+        assert f"    {spec.name} ({spec.type}" in hyvox.voxelize.__doc__
+        assert f"  {spec.cli_flag}" in helptext and spec.help in helptext
+
+
+def test_stats_have_the_backends_typed_section():
+    stats = hyvox.voxelize(TETRA_V, TETRA_T, method="cpu").stats
+    assert isinstance(stats["cpu"]["split_triangles"], int)
+    assert not {"reference", "hybrid", "tessellation"} & set(stats)
+    reference = hyvox.voxelize(TETRA_V, TETRA_T, resolution=4, method="reference").stats
+    # The brute force tests every voxel of each triangle's bounding box: at least one each.
+    assert reference["reference"]["voxel_tests"] >= len(TETRA_T) and "cpu" not in reference
