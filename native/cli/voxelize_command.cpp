@@ -47,9 +47,10 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     result.stats.timings_ms.insert(result.stats.timings_ms.begin(), {"read_mesh", read_ms});
 
     if (stop.load()) throw Cancelled();
-    start = std::chrono::steady_clock::now();
-    writeVdb(result, args.output_path);
-    result.stats.addTiming("write_vdb", msSince(start));
+    const VdbWriteReport written = writeVdb(result, args.output_path, 0, &interrupter);
+    result.stats.addTiming("build_vdb", written.build_ms);
+    result.stats.addTiming("write_vdb", written.write_ms);
+    result.stats.vdb_bytes = written.grid_bytes;
 
     if (!args.stats_json_path.empty()) writeTextFileAtomic(args.stats_json_path, statsToJson(result));
     if (!args.quiet) printSummary(args, mesh, result);

@@ -47,7 +47,7 @@ TEST(ThinSeparation, UnitCube) {
     const VoxelizeResult result = voxelize(cube.view(), options);
     // Faces on voxel planes with padding 1 mark the whole boundary layer, so nothing is
     // reached from it: expectSixSeparating's reached > 0 does not apply here.
-    const Separation s = floodFromBoundary(result.occupancy, insideByParity(cube.view(), result.grid));
+    const Separation s = floodFromBoundary(result.occupancy.toBitGrid(), insideByParity(cube.view(), result.grid));
     EXPECT_EQ(s.inside_reached, 0u);
     EXPECT_GT(s.inside_empty, 0u);
 }

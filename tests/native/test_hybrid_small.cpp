@@ -244,7 +244,8 @@ TEST(GlSmall, VoxelListHoldsEachSetVoxelOnce) {
         const ValidatedMesh validated = validate(mesh.view());
         const GridSpec grid = makeGrid(validated.bounds, o.grid);
         o.gl.tile_bytes = 4 * 10 * 10 * 64;  // several tiles too
-        const BackendJob job{validated, grid, o, nullptr};
+        const Tile whole{{0, 0, 0}, grid.dims};
+        const BackendJob job{validated, grid, whole, o, nullptr};
         std::vector<std::array<std::int32_t, 3>> list;
         hybrid::runHybrid(job, nullptr, &list);
         std::sort(list.begin(), list.end());
@@ -306,7 +307,7 @@ TEST(GlSmall, ShaderFolderFromTheOptionsIsUsed) {
     }
     // And the unbroken copy on disk gives the embedded result.
     o.gl.shader_dir = HYVOX_SOURCE_SHADERS;
-    const BitGrid from_disk = voxelize(soup.view(), o).occupancy;
+    const SparseGrid from_disk = voxelize(soup.view(), o).occupancy;
     o.gl.shader_dir = "";
     EXPECT_EQ(from_disk, voxelize(soup.view(), o).occupancy);
 }

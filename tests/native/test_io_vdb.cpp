@@ -28,7 +28,7 @@ hyvox::VoxelizeResult sampleResult(std::uint32_t seed = 7, double fill = 0.05) {
     r.grid.origin = {-1.25, 0.5, 3.0};
     r.grid.voxel_size = 0.1;
     r.grid.dims = {37, 20, 9};
-    r.occupancy = hyvox::BitGrid(r.grid.dims);
+    r.occupancy = hyvox::SparseGrid(r.grid.dims);
     std::mt19937 rng(seed);
     std::bernoulli_distribution on(fill);
     for (int i = 0; i < 37; ++i)
@@ -69,7 +69,7 @@ openvdb::FloatGrid::Ptr readGrid(const std::string& path, const std::string& nam
 
 // The density values set voxel by voxel through an accessor: slow and plain, the reference
 // the library's leaf-by-leaf copy is checked against.
-openvdb::FloatGrid::Ptr densityVoxelByVoxel(const hyvox::BitGrid& occupancy) {
+openvdb::FloatGrid::Ptr densityVoxelByVoxel(const hyvox::SparseGrid& occupancy) {
     auto grid = openvdb::FloatGrid::create(0.0f);
     auto accessor = grid->getAccessor();
     for (const auto& ijk : occupancy.coords()) accessor.setValueOn(openvdb::Coord(ijk[0], ijk[1], ijk[2]), 1.0f);
@@ -180,7 +180,7 @@ TEST(IoVdb, EmptyResultWritesAnEmptyGrid) {
     TempDir dir;
     const auto r = sampleResult(3, 0.0);
     hyvox::VoxelizeResult empty = r;
-    empty.occupancy = hyvox::BitGrid(r.grid.dims);
+    empty.occupancy = hyvox::SparseGrid(r.grid.dims);
     const std::string path = (dir.path / "empty.vdb").string();
     hyvox::writeVdb(empty, path);
     EXPECT_EQ(readGrid(path, "density")->activeVoxelCount(), 0u);

@@ -204,9 +204,9 @@ TEST(Accuracy, WatertightnessCatchesAHoleThatABackWallWouldHide) {
     const WatertightReport whole = rayMarchWatertightness(exact.occupancy, exact.occupancy, mesh, exact.grid);
     EXPECT_EQ(whole.rays, 6u * 64u);
     EXPECT_EQ(whole.passed, whole.rays);
-    BitGrid holed = exact.occupancy;
+    BitGrid holed = exact.occupancy.toBitGrid();
     holed.data()[holed.wordIndex(3, 3, 1)] &= ~BitGrid::bitMask(3, 1);  // a hole in the z = 1.5 face
-    const WatertightReport r = rayMarchWatertightness(holed, exact.occupancy, mesh, exact.grid);
+    const WatertightReport r = rayMarchWatertightness(holed, exact.occupancy.toBitGrid(), mesh, exact.grid);
     // Only the +z ray through column (3,3) slips through (to the far face at k = 6); the rays
     // along x and y meet the hole's voxel inside the run of their first face, not first.
     EXPECT_EQ(r.rays - r.passed, 1u);

@@ -121,7 +121,7 @@ TEST_P(TessellationMeshes, BiasFallsWithGammaAndNothingFalseOrLeaking) {
         if (mesh_case.closed) {
             // Independent of the ray test: the empty voxels 6-connected to the outside must
             // not reach a voxel whose centre is inside the mesh (parity of a ray, in double).
-            const test::Separation flood = test::floodFromBoundary(r.occupancy, inside);
+            const test::Separation flood = test::floodFromBoundary(r.occupancy.toBitGrid(), inside);
             std::printf("  flood: %llu empty inside, %llu of them reached from outside\n",
                         (unsigned long long)flood.inside_empty, (unsigned long long)flood.inside_reached);
             EXPECT_GT(flood.inside_empty, 0u);
@@ -503,7 +503,7 @@ TEST(TessellationApi, ShaderFolderFromTheOptionsIsUsed) {
         EXPECT_NE(std::string(e.what()).find("tessellation/inject.glsl"), std::string::npos) << e.what();
     }
     o.gl.shader_dir = HYVOX_SOURCE_SHADERS;
-    const BitGrid from_disk = voxelize(square.view(), o).occupancy;
+    const SparseGrid from_disk = voxelize(square.view(), o).occupancy;
     EXPECT_EQ(from_disk.count(), 32u * 32u);  // the square lies in one layer of voxels
     o.gl.shader_dir = "";
     EXPECT_EQ(from_disk, voxelize(square.view(), o).occupancy);

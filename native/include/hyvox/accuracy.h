@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hyvox/bit_grid.h"
+#include "hyvox/sparse_grid.h"
 #include "hyvox/grid.h"
 #include "hyvox/mesh.h"
 
@@ -23,6 +24,10 @@ struct AccuracyReport {
 AccuracyReport compareToReference(const BitGrid& result, const BitGrid& reference);
 // The result's voxels the reference lacks (to check them one by one, e.g. as touches).
 std::vector<std::array<std::int32_t, 3>> falseVoxels(const BitGrid& result, const BitGrid& reference);
+// The same for voxelize() results, which are sparse: they are made dense first (accuracy is
+// measured at the sizes of tests and benchmarks).
+AccuracyReport compareToReference(const SparseGrid& result, const SparseGrid& reference);
+std::vector<std::array<std::int32_t, 3>> falseVoxels(const SparseGrid& result, const SparseGrid& reference);
 
 // Section 4.1's test: rays along +x, -x, +y, -y, +z, -z through the centre of every pixel of
 // the grid's faces, i.e. one ray per voxel column and direction. Each ray is cast against
@@ -42,6 +47,8 @@ struct WatertightReport {
 // `conservative` is the exact conservative voxelization of `mesh` on `grid`.
 WatertightReport rayMarchWatertightness(const BitGrid& result, const BitGrid& conservative, const ValidatedMesh& mesh,
                                         const GridSpec& grid);
+WatertightReport rayMarchWatertightness(const SparseGrid& result, const SparseGrid& conservative,
+                                        const ValidatedMesh& mesh, const GridSpec& grid);
 
 // Eq. 3: γ = -B · ln(A · p) for the bias p. Least squares of γ against ln p over the samples
 // (needs at least two distinct biases > 0; InvalidInput otherwise).

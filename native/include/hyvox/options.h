@@ -85,7 +85,10 @@ struct VoxelizeOptions {
     Mode mode = Mode::Conservative;
     Method method = Method::Cpu;
     int threads = 0;                        // CPU threads; 0 = all cores
-    std::uint64_t memory_budget_mib = 4096;  // what the run may allocate for voxels; larger grids are refused
+    std::uint64_t memory_budget_mib = 4096;  // what the run may hold for voxels: tile buffers + leaves
+    // Side of the boxes the grid is voxelized in, one after the other (rounded up to a
+    // multiple of 8); 0 = from the memory budget (the whole grid when it fits).
+    int tile_size = 0;
     GlOptions gl;
     HybridOptions hybrid;
     TessellationOptions tessellation;

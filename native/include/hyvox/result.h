@@ -6,9 +6,9 @@
 #include <utility>
 #include <vector>
 
-#include "hyvox/bit_grid.h"
 #include "hyvox/grid.h"
 #include "hyvox/options.h"
+#include "hyvox/sparse_grid.h"
 
 namespace hyvox {
 
@@ -94,8 +94,12 @@ struct Stats {
     std::uint64_t triangles_used = 0;
     std::uint64_t triangles_degenerate = 0;  // skipped
     std::uint64_t voxel_count = 0;
-    // Stage name -> milliseconds, in the order the stages ran (validate, grid, voxelize, ...).
+    // Stage name -> milliseconds, in the order the stages first ran (validate, voxelize, ...),
+    // summed over the tiles of a tiled run.
     std::vector<std::pair<std::string, double>> timings_ms;
+    std::uint64_t tiles = 0;   // boxes of the grid voxelized one after the other
+    std::uint64_t leaves = 0;  // non-empty 8³ leaves of the result
+    std::uint64_t vdb_bytes = 0;  // the OpenVDB grids' memory, when a front door wrote them
     // The options the run used (after the front door read its environment variables).
     VoxelizeOptions options;
     // The section of the backend that ran; the others stay empty.
@@ -104,7 +108,14 @@ struct Stats {
     std::optional<HybridStats> hybrid;  // triangle, fragment and hybrid
     std::optional<TessellationStats> tessellation;
 
-    void addTiming(std::string stage, double ms) { timings_ms.emplace_back(std::move(stage), ms); }
+    void addTiming(const std::string& stage, double ms) {
+        for (auto& [name, total] : timings_ms)
+            if (name == stage) {
+                total += ms;
+                return;
+            }
+        timings_ms.emplace_back(stage, ms);
+    }
     double totalMs() const {
         double total = 0;
         for (const auto& stage : timings_ms) total += stage.second;
@@ -134,7 +145,7 @@ struct VoxelCount {
 
 struct VoxelizeResult {
     GridSpec grid;
-    BitGrid occupancy;               // one bit per voxel, OpenVDB leaf layout
+    SparseGrid occupancy;            // the set voxels as OpenVDB-layout leaves
     std::vector<VoxelCount> counts;  // empty unless the method is multi-valued
     Stats stats;
 };

@@ -12,8 +12,10 @@
 //    result.counts is non-empty), same transform.
 //  Grid metadata: hyvox_version, hyvox_method, hyvox_mode, hyvox_voxel_size, hyvox_origin,
 //  hyvox_dims.
+#include <cstdint>
 #include <string>
 
+#include "hyvox/interrupter.h"
 #include "hyvox/result.h"
 
 namespace hyvox {
@@ -21,7 +23,15 @@ namespace hyvox {
 // Writes atomically: a temporary file in the same folder, renamed over `path` only after
 // everything was written. On any failure the temporary file is removed, an existing file
 // at `path` is left as it was, and InvalidInput (bad path) or ResourceError (I/O failure)
-// is thrown. The grids are built on up to `threads` cores (0 = all), like VoxelizeOptions.
-void writeVdb(const VoxelizeResult& result, const std::string& path, int threads = 0);
+// is thrown. The grids are built leaf by leaf on up to `threads` cores (0 = all), like
+// VoxelizeOptions. `interrupter` (may be null) sees the progress (building the grids 0-90,
+// writing 90-100) and can cancel until the file is being written (hyvox::Cancelled, nothing
+// written).
+struct VdbWriteReport {
+    std::uint64_t grid_bytes = 0;  // the OpenVDB grids' own memory (Grid::memUsage)
+    double build_ms = 0, write_ms = 0;
+};
+VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, int threads = 0,
+                        Interrupter* interrupter = nullptr);
 
 }  // namespace hyvox

@@ -8,6 +8,9 @@
 #include <memory>
 
 #include "bindings.h"
+#include "cancel_token.h"
+#include "python_interrupter.h"
+#include "hyvox/errors.h"
 #include "hyvox/result.h"
 #include "hyvox/stats_json.h"
 #include "hyvox/vdb.h"
@@ -66,6 +69,14 @@ py::tuple counts(const Grid& g) {
 
 py::array_t<bool> toDense(const Grid& g) {
     const auto& d = g->grid.dims;
+    // One byte per voxel of the whole box: refused, not attempted, when the run's memory
+    // budget would not hold it (the result itself is sparse and may be far larger).
+    const std::uint64_t bytes = g->grid.voxelCount();
+    if (bytes > g->stats.options.memoryBudgetBytes())
+        throw ResourceError("to_dense() of a " + g->grid.dimsText() + " grid needs " + std::to_string(bytes >> 20) +
+                            " MiB, more than the memory budget of " +
+                            std::to_string(g->stats.options.memory_budget_mib) +
+                            " MiB; use coords() or write_vdb(), which stay sparse");
     py::array_t<bool> dense({py::ssize_t(d[0]), py::ssize_t(d[1]), py::ssize_t(d[2])});
     bool* out = dense.mutable_data();
     {
@@ -92,17 +103,38 @@ The voxels of one voxelization. Voxel (i, j, k) covers the closed box
         .def("counts", &counts,
              "Multi-valued results (tessellation): (ijk int32 (K, 3), counts uint32 (K,)); empty arrays "
              "for single-valued methods.")
-        .def("to_dense", &toDense, "The occupancy as a dense bool array of shape dims, indexed [i, j, k].")
+        .def("to_dense", &toDense,
+             "The occupancy as a dense bool array of shape dims, indexed [i, j, k]; ResourceError when that "
+             "box does not fit the run's memory budget.")
         .def(
             "write_vdb",
-            [](const Grid& g, const std::filesystem::path& path, int threads) {
-                py::gil_scoped_release release;
-                writeVdb(*g, path.string(), threads);
+            [](const Grid& g, const std::filesystem::path& path, int threads, std::shared_ptr<CancelToken> cancel,
+               py::object progress) {
+                if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+                    throw py::type_error("progress must be callable or None");
+                PythonInterrupter interrupter(std::move(cancel), std::move(progress));
+                VdbWriteReport report;
+                try {
+                    py::gil_scoped_release release;
+                    report = writeVdb(*g, path.string(), threads, &interrupter);
+                } catch (const Cancelled&) {
+                    interrupter.rethrowCallbackError();
+                    throw;
+                }
+                interrupter.rethrowCallbackError();
+                py::dict out;
+                out["grid_bytes"] = report.grid_bytes;
+                out["build_ms"] = report.build_ms;
+                out["write_ms"] = report.write_ms;
+                return out;
             },
-            py::arg("path"), py::arg("threads") = 0,
+            py::arg("path"), py::arg("threads") = 0, py::kw_only(), py::arg("cancel") = py::none(),
+            py::arg("progress") = py::none(),
             "Write an OpenVDB file with a float grid 'density' (1 on occupied voxels; index space = "
             "voxel centres), plus 'count' for multi-valued results. Atomic: on failure nothing is "
-            "written and an existing file is kept. threads: cores used to build the grids, 0 = all.")
+            "written and an existing file is kept. threads: cores used to build the grids, 0 = all. "
+            "cancel (a CancelToken) stops it until the file is being written (hyvox.Cancelled); "
+            "progress(percent) is called as in voxelize. Returns {grid_bytes, build_ms, write_ms}.")
         .def_property_readonly("origin", [](const Grid& g) { return py::make_tuple(g->grid.origin[0], g->grid.origin[1], g->grid.origin[2]); },
                                "World position of voxel (0, 0, 0)'s min corner.")
         .def_property_readonly("voxel_size", [](const Grid& g) { return g->grid.voxel_size; }, "Voxel edge length, world units.")

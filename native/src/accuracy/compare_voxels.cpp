@@ -28,4 +28,12 @@ std::vector<std::array<std::int32_t, 3>> falseVoxels(const BitGrid& result, cons
     return extra.coords();
 }
 
+AccuracyReport compareToReference(const SparseGrid& result, const SparseGrid& reference) {
+    return compareToReference(result.toBitGrid(), reference.toBitGrid());
+}
+
+std::vector<std::array<std::int32_t, 3>> falseVoxels(const SparseGrid& result, const SparseGrid& reference) {
+    return falseVoxels(result.toBitGrid(), reference.toBitGrid());
+}
+
 }  // namespace hyvox

@@ -92,4 +92,9 @@ WatertightReport rayMarchWatertightness(const BitGrid& result, const BitGrid& co
     return report;
 }
 
+WatertightReport rayMarchWatertightness(const SparseGrid& result, const SparseGrid& conservative,
+                                        const ValidatedMesh& mesh, const GridSpec& grid) {
+    return rayMarchWatertightness(result.toBitGrid(), conservative.toBitGrid(), mesh, grid);
+}
+
 }  // namespace hyvox

@@ -1,11 +1,20 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The contract between the dispatcher (src/voxelize/) and each backend. The dispatcher has
-// checked the options, validated the mesh, laid out the grid and allocated result.occupancy
-// (dims = grid.dims); a backend sets bits in it, may fill result.counts, and adds its own
-// timings and its typed section of the stats (Stats::cpu, ::reference, ::hybrid,
-// ::tessellation). Geometry outside the grid is clipped by the backend, never wrapped.
-// Backends neither include nor call one another.
+// checked the options, validated the mesh and laid out the grid; it then runs the backend once
+// per tile, a brick-aligned box of the grid, with the triangles that may reach that box.
+// A backend sets the bits of the tile's voxels in `out.bits` (voxel (0,0,0) of the bits is
+// voxel tile.offset of the grid), may add counts (in grid coordinates), and adds its timings
+// and its typed section of the stats (Stats::cpu, ::reference, ::hybrid, ::tessellation),
+// summed over tiles. Voxel coordinates are computed in the whole grid's voxel space and only
+// then shifted by the (integer) offset, so a tiled run sets exactly the voxels of an untiled
+// one. Geometry outside the tile is clipped by the backend, never wrapped. Backends neither
+// include nor call one another.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "hyvox/bit_grid.h"
 #include "hyvox/interrupter.h"
 #include "hyvox/mesh.h"
 #include "hyvox/options.h"
@@ -13,16 +22,29 @@
 
 namespace hyvox {
 
-struct BackendJob {
-    const ValidatedMesh& mesh;
-    const GridSpec& grid;
-    const VoxelizeOptions& options;
-    Interrupter* interrupter;  // may be null
+// A brick-aligned box of the grid: voxels offset .. offset + dims - 1.
+struct Tile {
+    std::array<std::int32_t, 3> offset{0, 0, 0};  // multiples of 8
+    std::array<std::int32_t, 3> dims{1, 1, 1};
+    std::int32_t last(int axis) const { return offset[axis] + dims[axis] - 1; }
 };
 
-void runCpuBackend(const BackendJob& job, VoxelizeResult& result);           // src/cpu/
-void runReferenceBackend(const BackendJob& job, VoxelizeResult& result);     // src/reference/
-void runHybridBackend(const BackendJob& job, VoxelizeResult& result);        // src/hybrid/: triangle|fragment|hybrid
-void runTessellationBackend(const BackendJob& job, VoxelizeResult& result);  // src/tessellation/
+struct BackendJob {
+    const ValidatedMesh& mesh;  // usable: the triangles that may reach the tile
+    const GridSpec& grid;       // the whole grid
+    const Tile& tile;
+    const VoxelizeOptions& options;
+    Interrupter* interrupter;  // may be null; percent is the tile's own 0..100
+};
+
+struct TileOutput {
+    BitGrid bits;                    // dims = tile.dims
+    std::vector<VoxelCount> counts;  // multi-valued methods, grid coordinates
+};
+
+void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats);           // src/cpu/
+void runReferenceBackend(const BackendJob& job, TileOutput& out, Stats& stats);     // src/reference/
+void runHybridBackend(const BackendJob& job, TileOutput& out, Stats& stats);        // src/hybrid/: triangle|fragment|hybrid
+void runTessellationBackend(const BackendJob& job, TileOutput& out, Stats& stats);  // src/tessellation/
 
 }  // namespace hyvox

@@ -78,8 +78,11 @@ std::vector<OptionSpec> buildSchema() {
     add({"threads", T::Integer, "run", "Threads", "threads", "CPU threads; 0 = all cores", false, 0, 4096, false, {}, {},
          nullptr, HYVOX_FIELD(asInteger, threads)});
     add({"memory_budget_mib", T::Integer, "run", "Memory Budget", "MiB",
-         "memory the voxels may take; larger grids are refused before allocating", false, 1, double(1 << 30), false,
+         "memory the voxels may take (tile buffers and the leaves of the result)", false, 1, double(1 << 30), false,
          {}, {}, nullptr, HYVOX_FIELD(asInteger, memory_budget_mib)});
+    add({"tile_size", T::Integer, "run", "Tile Size", "voxels",
+         "side of the boxes voxelized one after the other (rounded up to a multiple of 8); 0 = from the "
+         "memory budget", false, 0, kMaxResolution, false, {}, {}, nullptr, HYVOX_FIELD(asInteger, tile_size)});
     // --- GL methods ---
     add({"gl_device", T::Text, "gl", "GL Device", "",
          "EGL device: '' = a hardware GPU if any, else software; 'software'; or a device index", false, 0, 0, false, {},

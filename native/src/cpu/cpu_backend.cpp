@@ -4,6 +4,7 @@
 // covering many columns of its dominant plane is split by rows into tasks of its own, so
 // one big wall cannot leave a core idle. Small triangles take shortcuts that decide the
 // same voxels (triangle_setup.h, rasterize_small.h).
+#include <algorithm>
 #include <atomic>
 
 #include <tbb/blocked_range.h>
@@ -35,12 +36,14 @@ void rasterizeRowsAnyAxis(const cpu::TriangleSetup& t, int row_begin, int row_en
 
 }  // namespace
 
-void runCpuBackend(const BackendJob& job, VoxelizeResult& result) {
+void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     Stopwatch watch;
     const ValidatedMesh& mesh = job.mesh;
     const auto& usable = mesh.usable;
     const GridSpec& spec = job.grid;
-    BitGrid& grid = result.occupancy;
+    BitGrid& grid = out.bits;
+    const std::array<std::int32_t, 3>& offset = job.tile.offset;
+    const std::array<std::int32_t, 3> last{job.tile.last(0), job.tile.last(1), job.tile.last(2)};
     const Mode mode = job.options.mode;
     std::atomic<std::size_t> done{0};
     std::atomic<std::uint64_t> split_triangles{0};
@@ -51,14 +54,15 @@ void runCpuBackend(const BackendJob& job, VoxelizeResult& result) {
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, usable.size(), kTrianglesPerChunk),
             [&](const tbb::blocked_range<std::size_t>& chunk) {
-                throwIfInterrupted(job.interrupter, int(100 * done.load(std::memory_order_relaxed) / usable.size()));
-                cpu::WordMarker marker(grid);
+                throwIfInterrupted(job.interrupter,
+                                   int(100 * done.load(std::memory_order_relaxed) / std::max<std::size_t>(usable.size(), 1)));
+                cpu::WordMarker marker(grid, offset);
                 for (std::size_t n = chunk.begin(); n != chunk.end(); ++n) {
                     const std::array<std::array<double, 3>, 3> corners{spec.toVoxel(mesh.vertex(usable[n], 0)),
                                                                        spec.toVoxel(mesh.vertex(usable[n], 1)),
                                                                        spec.toVoxel(mesh.vertex(usable[n], 2))};
                     cpu::TriangleSetup t;
-                    const cpu::SetupKind kind = cpu::setupTriangle(corners, mode, spec.dims, t);
+                    const cpu::SetupKind kind = cpu::setupTriangle(corners, mode, offset, last, t);
                     if (kind == cpu::SetupKind::Outside) continue;
                     if (kind == cpu::SetupKind::AllCandidates) {
                         for (int i = t.lo[0]; i <= t.hi[0]; ++i)
@@ -80,15 +84,16 @@ void runCpuBackend(const BackendJob& job, VoxelizeResult& result) {
                     tbb::parallel_for(tbb::blocked_range<int>(t.lo[1], t.hi[1] + 1, kRowsPerTask),
                                       [&](const tbb::blocked_range<int>& r) {
                                           throwIfInterrupted(job.interrupter);
-                                          cpu::WordMarker row_marker(grid);
+                                          cpu::WordMarker row_marker(grid, offset);
                                           rasterizeRowsAnyAxis(t, r.begin(), r.end(), row_marker);
                                       });
                 }
                 done.fetch_add(chunk.size(), std::memory_order_relaxed);
             });
     });
-    result.stats.addTiming("voxelize", watch.elapsedMs());
-    result.stats.cpu = CpuStats{split_triangles.load()};
+    stats.addTiming("voxelize", watch.elapsedMs());
+    if (!stats.cpu) stats.cpu.emplace();
+    stats.cpu->split_triangles += split_triangles.load();
 }
 
 }  // namespace hyvox

@@ -3,6 +3,9 @@
 // Setting bits of the shared BitGrid from many threads without locks. Neighbouring small
 // triangles mark the same voxels many times over, so a plain load first skips most of the
 // locked read-modify-writes; bits of one column that share a 64-bit word are OR-ed at once.
+// Voxels are given in grid coordinates; the bits are the tile's, which starts at `offset`
+// (multiples of 8, so a voxel's place inside its brick is the same in both).
+#include <array>
 #include <cstdint>
 
 #include "hyvox/bit_grid.h"
@@ -11,13 +14,13 @@ namespace hyvox::cpu {
 
 class WordMarker {
 public:
-    explicit WordMarker(BitGrid& grid) : grid_(grid) {}
+    WordMarker(BitGrid& grid, const std::array<std::int32_t, 3>& offset) : grid_(grid), offset_(offset) {}
     ~WordMarker() { flush(); }
     WordMarker(const WordMarker&) = delete;
     WordMarker& operator=(const WordMarker&) = delete;
 
     void mark(int i, int j, int k) {
-        std::uint64_t* word = grid_.data() + grid_.wordIndex(i, j, k);
+        std::uint64_t* word = grid_.data() + grid_.wordIndex(i - offset_[0], j - offset_[1], k - offset_[2]);
         if (word != word_) {
             flush();
             word_ = word;
@@ -33,6 +36,7 @@ public:
 
 private:
     BitGrid& grid_;
+    std::array<std::int32_t, 3> offset_;
     std::uint64_t* word_ = nullptr;
     std::uint64_t mask_ = 0;
 };

@@ -36,8 +36,8 @@ inline void setupProjection(const std::array<std::array<double, 3>, 3>& p, doubl
 }
 
 template <bool Thin>
-SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const std::array<std::int32_t, 3>& dims,
-                TriangleSetup& out) {
+SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const std::array<std::int32_t, 3>& clip_lo,
+                const std::array<std::int32_t, 3>& clip_hi, TriangleSetup& out) {
     // Clipped candidate range per unswizzled axis: voxel i's closed box meets [lo, hi] iff
     // lo - 1 <= i <= hi.
     int lo[3], hi[3];
@@ -46,8 +46,8 @@ SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const std::array<
         const double mn = std::min(std::min(c[0][a], c[1][a]), c[2][a]);
         const double mx = std::max(std::max(c[0][a], c[1][a]), c[2][a]);
         const int first = ceilToInt(clampCoord(mn)) - 1, last = floorToInt(clampCoord(mx));
-        lo[a] = std::max(0, first);
-        hi[a] = std::min(dims[a] - 1, last);
+        lo[a] = std::max(clip_lo[a], first);
+        hi[a] = std::min(clip_hi[a], last);
         if (lo[a] > hi[a]) return SetupKind::Outside;
         one[a] = first == last;
     }
@@ -111,8 +111,10 @@ SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const std::array<
 }  // namespace
 
 SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode,
-                        const std::array<std::int32_t, 3>& dims, TriangleSetup& out) {
-    return mode == Mode::Thin ? setup<true>(corners, dims, out) : setup<false>(corners, dims, out);
+                        const std::array<std::int32_t, 3>& clip_lo, const std::array<std::int32_t, 3>& clip_hi,
+                        TriangleSetup& out) {
+    return mode == Mode::Thin ? setup<true>(corners, clip_lo, clip_hi, out)
+                              : setup<false>(corners, clip_lo, clip_hi, out);
 }
 
 }  // namespace hyvox::cpu

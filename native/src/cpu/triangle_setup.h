@@ -46,9 +46,11 @@ enum class SetupKind {
     Full,           // run the factored test over out's swizzled range
 };
 
-// Builds the setup from voxel-space corners (dims in unswizzled x, y, z order).
+// Builds the setup from voxel-space corners, the candidates clipped to the voxels
+// clip_lo..clip_hi (inclusive, unswizzled x, y, z: the tile being filled).
 SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode,
-                        const std::array<std::int32_t, 3>& dims, TriangleSetup& out);
+                        const std::array<std::int32_t, 3>& clip_lo, const std::array<std::int32_t, 3>& clip_hi,
+                        TriangleSetup& out);
 
 // floor / ceil of values already clamped to a safe int range by clampCoord (the baseline
 // x86-64 target has no inline rounding instruction, and libm calls dominate a small

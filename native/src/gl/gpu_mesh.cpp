@@ -30,7 +30,7 @@ std::uint64_t fingerprintOf(const void* data, std::size_t bytes, std::uint64_t h
 
 }  // namespace
 
-GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid) {
+GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid, const std::array<std::int32_t, 3>& offset) {
     GpuMesh out;
     const MeshView& view = mesh.view;
     out.vertices.resize(view.vertex_count);
@@ -42,7 +42,7 @@ GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid) {
             // stays defined); the clipped part inside the grid is then equally approximate on both.
             const double x = clampCoord(voxel[a]);
             const double cell = std::floor(x);
-            out.vertices[v].cell[a] = std::int32_t(cell);
+            out.vertices[v].cell[a] = std::int32_t(cell) - offset[a];
             out.vertices[v].fraction[a] = float(x - cell);
         }
     }

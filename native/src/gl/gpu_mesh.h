@@ -27,7 +27,11 @@ struct GpuMesh {
     std::size_t triangleCount() const { return triangles.size() / 3; }
 };
 
-GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid);
+// Cells are relative to voxel `offset` of the grid (the tile being filled): the voxel-space
+// position is computed in the whole grid, then the integer offset is taken off the cell,
+// exactly, so a tile's shaders see the same fractions as an untiled run.
+GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid,
+                    const std::array<std::int32_t, 3>& offset = {0, 0, 0});
 
 // Triangle t's corners in voxel space (cell + fraction, in double).
 using TriangleCorners = std::array<std::array<double, 3>, 3>;

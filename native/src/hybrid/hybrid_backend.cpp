@@ -39,7 +39,10 @@ HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<
         throw BackendError(std::string("the hybrid backend does not run method '") + toString(method) + "'");
     HybridRun run;
     Stopwatch watch;
-    const gl::GpuMesh mesh = gl::makeGpuMesh(job.mesh, job.grid);
+    const gl::GpuMesh mesh = gl::makeGpuMesh(job.mesh, job.grid, job.tile.offset);
+    // The GL passes see the tile as their grid (cells are relative to its first voxel).
+    GridSpec tile_grid = job.grid;
+    tile_grid.dims = job.tile.dims;
     run.prepare_ms = watch.restart();
     const GlOptions& gl_options = job.options.gl;
     gl::GlWorker& worker = gl::GlWorker::get(gl_options.device);
@@ -47,7 +50,7 @@ HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<
     worker.run([&] {
         Stopwatch gl_watch;
         const gl::GlTuning tuning = gl::GlTuning::forDevice(worker.device().software, gl_options);
-        GlVoxelizer voxelizer(mesh, job.grid, job.options.mode, method, gl_options.shader_dir, worker.programs(),
+        GlVoxelizer voxelizer(mesh, tile_grid, job.options.mode, method, gl_options.shader_dir, worker.programs(),
                               tuning, gl_options.tile_bytes);
         glFinish();
         run.upload_ms = gl_watch.restart();
@@ -55,7 +58,7 @@ HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<
 
         double cutoff = job.options.hybrid.cutoff;
         if (method == Method::Hybrid && cutoff < 0) {
-            const CutoffSearch search = cachedCutoff(cacheKey(mesh, job.grid, job.options.mode, worker), [&] {
+            const CutoffSearch search = cachedCutoff(cacheKey(mesh, tile_grid, job.options.mode, worker), [&] {
                 return searchCutoff(
                     [&](double c) {
                         throwIfInterrupted(job.interrupter);
@@ -81,24 +84,25 @@ HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<
 
 }  // namespace hybrid
 
-void runHybridBackend(const BackendJob& job, VoxelizeResult& result) {
-    const hybrid::HybridRun run = hybrid::runHybrid(job, &result.occupancy, nullptr);
-    Stats& stats = result.stats;
+void runHybridBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
+    const hybrid::HybridRun run = hybrid::runHybrid(job, &out.bits, nullptr);
     stats.addTiming("gl_prepare", run.prepare_ms);
     stats.addTiming("gl_upload", run.upload_ms);
     if (run.search_runs)
         stats.addTiming("gl_cutoff_search", run.search_ms);
     stats.addTiming("gl_voxelize", run.voxelize_ms);
     stats.addTiming("gl_readback", run.times.readback_ms);
-    HybridStats& figures = stats.hybrid.emplace();
-    figures.pass1_gpu_ms = run.times.pass1_gpu_ms;
-    figures.pass2_gpu_ms = run.times.pass2_gpu_ms;
-    figures.upload_ms = run.upload_ms;
-    figures.readback_ms = run.times.readback_ms;
-    figures.tiles = std::uint64_t(run.times.tiles);
+    // Summed over the dispatcher's tiles; the cutoff is the one of the last tile (the
+    // dispatcher keeps the first tile's automatic cutoff for the rest).
+    HybridStats& figures = stats.hybrid ? *stats.hybrid : stats.hybrid.emplace();
+    figures.pass1_gpu_ms += run.times.pass1_gpu_ms;
+    figures.pass2_gpu_ms += run.times.pass2_gpu_ms;
+    figures.upload_ms += run.upload_ms;
+    figures.readback_ms += run.times.readback_ms;
+    figures.tiles += std::uint64_t(run.times.tiles);
     figures.cutoff = run.cutoff;
-    figures.large_triangles = run.times.large_triangles;
-    figures.cutoff_search_runs = std::uint64_t(run.search_runs);
+    figures.large_triangles += run.times.large_triangles;
+    figures.cutoff_search_runs += std::uint64_t(run.search_runs);
 }
 
 }  // namespace hyvox

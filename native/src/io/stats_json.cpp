@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ostream>
-#include <set>
 #include <sstream>
 #include <variant>
 
@@ -84,16 +83,15 @@ std::string statsToJson(const VoxelizeResult& result) {
     out << "  \"voxel_size\": " << number(g.voxel_size) << ",\n";
     out << "  \"dims\": [" << g.dims[0] << ", " << g.dims[1] << ", " << g.dims[2] << "],\n";
     out << "  \"voxel_count\": " << number(s.voxel_count) << ",\n";
+    out << "  \"leaves\": " << number(s.leaves) << ",\n";
+    out << "  \"tiles\": " << number(s.tiles) << ",\n";
+    if (s.vdb_bytes) out << "  \"vdb_bytes\": " << number(s.vdb_bytes) << ",\n";
     out << "  \"triangles\": {\"input\": " << number(s.triangles_input) << ", \"used\": " << number(s.triangles_used)
         << ", \"degenerate\": " << number(s.triangles_degenerate) << "},\n";
-    // Stage names are keys; a stage that ran twice gets "#2", "#3" so no key repeats.
+    // Stage names are keys: Stats::addTiming sums a stage that ran again (once per tile).
     out << "  \"timings_ms\": {";
-    std::set<std::string> used;
-    for (std::size_t t = 0; t < s.timings_ms.size(); ++t) {
-        std::string key = s.timings_ms[t].first;
-        for (int n = 2; !used.insert(key).second; ++n) key = s.timings_ms[t].first + "#" + std::to_string(n);
-        out << (t ? ", " : "") << quote(key) << ": " << number(s.timings_ms[t].second);
-    }
+    for (std::size_t t = 0; t < s.timings_ms.size(); ++t)
+        out << (t ? ", " : "") << quote(s.timings_ms[t].first) << ": " << number(s.timings_ms[t].second);
     out << "},\n";
     out << "  \"total_ms\": " << number(s.totalMs()) << ",\n";
     // The options the run used, by their schema names (unset ones are left out).

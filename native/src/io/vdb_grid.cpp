@@ -4,11 +4,12 @@
 
 #include <openvdb/io/Archive.h>
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <memory>
 #include <mutex>
 #include <ostream>
@@ -75,37 +76,40 @@ openvdb::FloatGrid::Ptr makeFogGrid(const char* name, const GridSpec& grid) {
 
 }  // namespace
 
-openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const BitGrid& occupancy) {
+openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& occupancy, Interrupter* interrupter) {
     auto result = makeFogGrid("density", grid);
-
     const BrickLayout& bricks = occupancy.bricks();
-    const std::size_t brick_count = bricks.total();
-    const std::uint64_t* words = occupancy.data();
+    const std::vector<SparseGrid::Leaf>& source = occupancy.leaves();
     // Leaves are built in parallel (most of the work: 512 floats each) and handed to the
     // tree serially (addLeaf is not thread-safe, and cheap).
-    using LeafList = std::vector<std::unique_ptr<FloatLeaf>>;
-    tbb::enumerable_thread_specific<LeafList> per_thread;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, brick_count, 256), [&](const auto& range) {
-        LeafList& leaves = per_thread.local();
-        for (std::size_t b = range.begin(); b != range.end(); ++b) {
-            const std::uint64_t* brick = words + b * BitGrid::kWordsPerBrick;
-            std::uint64_t any = 0;
-            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) any |= brick[w];
-            if (!any) continue;
-            const std::array<std::int32_t, 3> at = bricks.at(b);
-            const int side = BrickLayout::kSide;
-            const openvdb::Coord origin(at[0] * side, at[1] * side, at[2] * side);
-            auto leaf = std::make_unique<FloatLeaf>(origin, 0.0f, false);
-            auto& mask = leaf->getValueMask();
-            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) mask.template getWord<std::uint64_t>(w) = brick[w];
-            float* values = leaf->buffer().data();
-            for (int n = 0; n < 512; ++n) values[n] = float((brick[n >> 6] >> (n & 63)) & 1u);
-            leaves.push_back(std::move(leaf));
+    std::vector<FloatLeaf*> leaves(source.size(), nullptr);
+    struct FreeUnused {  // leaves not yet in the tree when something throws
+        std::vector<FloatLeaf*>& leaves;
+        ~FreeUnused() {
+            for (FloatLeaf* leaf : leaves) delete leaf;
         }
+    } free_unused{leaves};
+    std::atomic<std::size_t> built{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size(), 256), [&](const auto& range) {
+        throwIfInterrupted(interrupter, int(90 * built.load(std::memory_order_relaxed) / source.size()));
+        for (std::size_t n = range.begin(); n != range.end(); ++n) {
+            const SparseGrid::Leaf& from = source[n];
+            const std::array<std::int32_t, 3> at = bricks.at(from.brick);
+            const int side = BrickLayout::kSide;
+            auto leaf = std::make_unique<FloatLeaf>(openvdb::Coord(at[0] * side, at[1] * side, at[2] * side), 0.0f, false);
+            auto& mask = leaf->getValueMask();
+            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) mask.template getWord<std::uint64_t>(w) = from.words[w];
+            float* values = leaf->buffer().data();
+            for (int v = 0; v < 512; ++v) values[v] = float((from.words[v >> 6] >> (v & 63)) & 1u);
+            leaves[n] = leaf.release();
+        }
+        built.fetch_add(range.size(), std::memory_order_relaxed);
     });
     auto& tree = result->tree();
-    for (LeafList& leaves : per_thread)
-        for (auto& leaf : leaves) tree.addLeaf(leaf.release());
+    for (FloatLeaf*& leaf : leaves) {
+        tree.addLeaf(leaf);
+        leaf = nullptr;
+    }
     return result;
 }
 
@@ -116,9 +120,9 @@ openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<Vo
     return result;
 }
 
-openvdb::GridPtrVec makeGrids(const VoxelizeResult& result) {
+openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interrupter) {
     openvdb::GridPtrVec grids;
-    grids.push_back(makeDensityGrid(result.grid, result.occupancy));
+    grids.push_back(makeDensityGrid(result.grid, result.occupancy, interrupter));
     if (!result.counts.empty()) grids.push_back(makeCountGrid(result.grid, result.counts));
     for (auto& g : grids) addMetadata(*g, result);
     return grids;
@@ -140,13 +144,29 @@ void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path
 
 namespace hyvox {
 
-void writeVdb(const VoxelizeResult& result, const std::string& path, int threads) {
+VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, int threads, Interrupter* interrupter) {
     if (threads < 0) throw InvalidInput("writeVdb: threads must be >= 0 (0 = all cores)");
+    if (interrupter) interrupter->start("hyvox write");
+    struct EndOnExit {
+        Interrupter* i;
+        ~EndOnExit() {
+            if (i) i->end();
+        }
+    } end_on_exit{interrupter};
+    VdbWriteReport report;
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        openvdb::GridPtrVec grids = io::makeGrids(result);
+        auto start = std::chrono::steady_clock::now();
+        openvdb::GridPtrVec grids = io::makeGrids(result, interrupter);
+        for (const auto& grid : grids) report.grid_bytes += grid->memUsage();
+        throwIfInterrupted(interrupter, 90);
+        auto now = std::chrono::steady_clock::now();
+        report.build_ms = std::chrono::duration<double, std::milli>(now - start).count();
         io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), path);
+        report.write_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - now).count();
     });
+    if (interrupter) interrupter->wasInterrupted(100);  // progress only: the file is in place
+    return report;
 }
 
 }  // namespace hyvox

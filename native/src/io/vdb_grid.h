@@ -7,8 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "hyvox/bit_grid.h"
+#include "hyvox/sparse_grid.h"
 #include "hyvox/grid.h"
+#include "hyvox/interrupter.h"
 #include "hyvox/result.h"
 
 namespace hyvox::io {
@@ -21,14 +22,16 @@ void initializeOpenVdb();
 openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid);
 
 // "density": 1 on occupied voxels (active), background 0, fog volume. Built a whole 8³ leaf
-// at a time: the BitGrid's brick words are the leaf's value mask, copied as they are.
-openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const BitGrid& occupancy);
+// at a time, in parallel: each sparse leaf's words are the leaf's value mask, copied as they are.
+// `interrupter` (may be null) sees percent 0-90 of the leaves built and may cancel.
+openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& occupancy,
+                                        Interrupter* interrupter = nullptr);
 // "count": the values of a multi-valued result.
 openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<VoxelCount>& counts);
 
 // The grids writeVdb() stores: density, plus count when result.counts is non-empty, each
 // with the hyvox_* metadata.
-openvdb::GridPtrVec makeGrids(const VoxelizeResult& result);
+openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interrupter = nullptr);
 
 // Writes grids atomically (hyvox::io::AtomicFile); throws InvalidInput / ResourceError.
 void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path);

@@ -43,7 +43,11 @@ std::vector<VoxelCount> compactCounts(const std::vector<std::uint32_t>& brick_bl
 
 }  // namespace
 
-void runTessellationBackend(const BackendJob& job, VoxelizeResult& result) {
+void runTessellationBackend(const BackendJob& job, TileOutput& result, Stats& stats) {
+    // Points may leave their triangle's box (PN-triangles, displacement) and are counted
+    // once per run: this method fills the whole grid as one tile (the dispatcher's rule).
+    if (job.tile.offset != std::array<std::int32_t, 3>{0, 0, 0} || job.tile.dims != job.grid.dims)
+        throw BackendError("the tessellation method fills the whole grid as one tile");
     const TessellationOptions& options = job.options.tessellation;
     Stopwatch watch;
     const tessellation::DisplacementMap map = tessellation::DisplacementMap::fromOptions(options);
@@ -65,7 +69,7 @@ void runTessellationBackend(const BackendJob& job, VoxelizeResult& result) {
     const tessellation::PatchPlan plan =
         tessellation::planPatches(job.mesh, job.grid, options.gamma, max_level, options.counts,
                                   displacement_reach + 1.0, options.pn_triangles ? 0.5 : 0.0);
-    result.stats.addTiming("plan", watch.restart());
+    stats.addTiming("plan", watch.restart());
     throwIfInterrupted(job.interrupter, 10);
 
     const tessellation::GpuTessellationInput input{
@@ -87,14 +91,14 @@ void runTessellationBackend(const BackendJob& job, VoxelizeResult& result) {
         job.options.gl,
         job.interrupter,
     };
-    const tessellation::GpuTessellationOutput out = tessellation::runGpuTessellation(input, result.occupancy);
-    result.stats.addTiming("tessellate", watch.restart());
+    const tessellation::GpuTessellationOutput out = tessellation::runGpuTessellation(input, result.bits);
+    stats.addTiming("tessellate", watch.restart());
 
     if (options.counts) {
-        result.counts = compactCounts(out.brick_blocks, out.count_pool, result.occupancy);
-        result.stats.addTiming("counts", watch.restart());
+        result.counts = compactCounts(out.brick_blocks, out.count_pool, result.bits);
+        stats.addTiming("counts", watch.restart());
     }
-    TessellationStats& figures = result.stats.tessellation.emplace();
+    TessellationStats& figures = stats.tessellation.emplace();
     figures.gamma = options.gamma;
     figures.points = out.points;
     figures.points_clipped = out.clipped;

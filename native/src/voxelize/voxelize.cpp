@@ -1,24 +1,60 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The dispatcher: checks the options against the schema, validates the mesh, lays out the
-// grid, and hands the job to the method's backend (core/backends.h).
+// grid, and runs the method's backend (core/backends.h) tile by tile into the sparse result.
 #include "hyvox/voxelize.h"
 
+#include <algorithm>
 #include <string>
 
 #include "core/backends.h"
 #include "core/stopwatch.h"
 #include "hyvox/option_schema.h"
+#include "tile_plan.h"
 
 namespace hyvox {
 namespace {
 
-void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options) {
-    // Refuse before allocating: the bit grid is padded to whole 8³ bricks.
-    const std::uint64_t bytes = std::uint64_t(grid.bricks().total()) * BitGrid::kWordsPerBrick * sizeof(std::uint64_t);
-    if (bytes > options.memoryBudgetBytes())
-        throw ResourceError("a " + grid.dimsText() + " grid needs " + std::to_string(bytes >> 20) +
-                            " MiB of bits, more than the memory budget of " +
-                            std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size");
+std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
+
+// Refuse before allocating: one tile's bits plus the leaves the surface is expected to need.
+void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options, const tiling::TilePlan& plan,
+                       std::uint64_t estimated_leaves) {
+    const std::uint64_t need = plan.tileBytes() + estimated_leaves * SparseGrid::kLeafBytes;
+    if (need > options.memoryBudgetBytes())
+        throw ResourceError("a " + grid.dimsText() + " grid needs about " + mib(need) + " (" +
+                            (plan.whole() ? std::string("its bits") : "a " + mib(plan.tileBytes()) + " tile") +
+                            " and about " + std::to_string(estimated_leaves) +
+                            " leaves of surface), more than the memory budget of " +
+                            std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size" +
+                            (options.method == Method::Tessellation ? " (the tessellation method is not tiled)" : ""));
+}
+
+// Progress over the whole run: the backends report each tile's own 0..100.
+class TileProgress final : public Interrupter {
+public:
+    TileProgress(Interrupter* outer, std::size_t tiles) : outer_(outer), tiles_(std::max<std::size_t>(tiles, 1)) {}
+    void setTile(std::size_t done) { done_ = done; }
+    bool wasInterrupted(int percent) override {
+        if (!outer_) return false;
+        if (percent < 0) return outer_->wasInterrupted(-1);
+        return outer_->wasInterrupted(int((done_ * 100 + std::size_t(percent)) / tiles_));
+    }
+
+private:
+    Interrupter* outer_;
+    std::size_t tiles_;
+    std::size_t done_ = 0;
+};
+
+void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
+    switch (job.options.method) {
+        case Method::Cpu: runCpuBackend(job, out, stats); break;
+        case Method::Reference: runReferenceBackend(job, out, stats); break;
+        case Method::Triangle:
+        case Method::Fragment:
+        case Method::Hybrid: runHybridBackend(job, out, stats); break;
+        case Method::Tessellation: runTessellationBackend(job, out, stats); break;
+    }
 }
 
 }  // namespace
@@ -34,36 +70,62 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     } end_on_exit{interrupter};
 
     VoxelizeResult result;
-    result.stats.options = options;
+    Stats& stats = result.stats;
+    stats.options = options;
     Stopwatch watch;
     const ValidatedMesh validated = validate(mesh);
     result.grid = makeGrid(validated.bounds, options.grid);
-    checkMemoryBudget(result.grid, options);
-    result.stats.addTiming("validate", watch.restart());
+    const GridSpec& grid = result.grid;
+    const tiling::TilePlan plan = tiling::planTiles(grid, options);
+    checkMemoryBudget(grid, options, plan, tiling::estimateLeaves(validated, grid));
+    stats.addTiming("validate", watch.restart());
     throwIfInterrupted(interrupter, 0);
 
-    result.occupancy = BitGrid(result.grid.dims);
-    result.stats.addTiming("allocate", watch.restart());
+    stats.method = toString(options.method);
+    stats.mode = toString(options.mode);
+    stats.triangles_input = mesh.triangle_count;
+    stats.triangles_used = validated.usable.size();
+    stats.triangles_degenerate = validated.degenerate_count;
+    result.occupancy = SparseGrid(grid.dims);
 
-    result.stats.method = toString(options.method);
-    result.stats.mode = toString(options.mode);
-    result.stats.triangles_input = mesh.triangle_count;
-    result.stats.triangles_used = validated.usable.size();
-    result.stats.triangles_degenerate = validated.degenerate_count;
+    std::vector<std::vector<std::uint32_t>> bins;
+    if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan);
+    stats.addTiming("tiles", watch.restart());
 
-    const BackendJob job{validated, result.grid, options, interrupter};
-    switch (options.method) {
-        case Method::Cpu: runCpuBackend(job, result); break;
-        case Method::Reference: runReferenceBackend(job, result); break;
-        case Method::Triangle:
-        case Method::Fragment:
-        case Method::Hybrid: runHybridBackend(job, result); break;
-        case Method::Tessellation: runTessellationBackend(job, result); break;
+    VoxelizeOptions tile_options = options;
+    TileProgress progress(interrupter, plan.total());
+    for (std::size_t t = 0; t < plan.total(); ++t) {
+        if (!plan.whole() && bins[t].empty()) continue;
+        const Tile tile = plan.tile(t, grid);
+        ValidatedMesh part;
+        if (!plan.whole()) part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds};
+        const ValidatedMesh& tile_mesh = plan.whole() ? validated : part;
+        progress.setTile(t);
+        TileOutput out{BitGrid(tile.dims), {}};
+        stats.addTiming("allocate", watch.restart());
+        runBackend(BackendJob{tile_mesh, grid, tile, tile_options, &progress}, out, stats);
+        watch.restart();
+        result.occupancy.addTile(out.bits, tile.offset);
+        result.counts.insert(result.counts.end(), out.counts.begin(), out.counts.end());
+        ++stats.tiles;
+        // The hybrid's automatic cutoff is searched on the first tile and kept for the rest
+        // (a timed search per tile would cost more than the tiles).
+        if (tile_options.method == Method::Hybrid && tile_options.hybrid.cutoff < 0 && stats.hybrid)
+            tile_options.hybrid.cutoff = stats.hybrid->cutoff;
+        const std::uint64_t held = plan.tileBytes() + result.occupancy.byteSize();
+        if (held > options.memoryBudgetBytes())
+            throw ResourceError("the surface needs more than the memory budget of " +
+                                std::to_string(options.memory_budget_mib) + " MiB (" +
+                                std::to_string(result.occupancy.leafCount()) + " leaves after " +
+                                std::to_string(stats.tiles) + " tiles); use a larger voxel size");
+        stats.addTiming("compact", watch.restart());
+        throwIfInterrupted(interrupter, int(100 * (t + 1) / plan.total()));
     }
     throwIfInterrupted(interrupter, 100);
-    watch.restart();
-    result.stats.voxel_count = result.occupancy.count();
-    result.stats.addTiming("count", watch.restart());
+    result.occupancy.finish();
+    stats.voxel_count = result.occupancy.count();
+    stats.leaves = result.occupancy.leafCount();
+    stats.addTiming("count", watch.restart());
     return result;
 }
 

@@ -58,9 +58,9 @@ Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult&
     cmp.oracle_voxels = oracle.occupancy.count();
 
     // The disagreements, as a bit grid (for lookups) and a list.
-    BitGrid diff(result.grid.dims);
-    for (std::size_t w = 0; w < diff.wordCount(); ++w)
-        diff.data()[w] = result.occupancy.data()[w] ^ oracle.occupancy.data()[w];
+    BitGrid diff = result.occupancy.toBitGrid();
+    const BitGrid oracle_bits = oracle.occupancy.toBitGrid();
+    for (std::size_t w = 0; w < diff.wordCount(); ++w) diff.data()[w] ^= oracle_bits.data()[w];
     std::vector<Voxel> voxels;
     for (const auto& c : diff.coords()) {
         voxels.push_back({c[0], c[1], c[2]});
@@ -132,7 +132,7 @@ std::uint64_t countHoles(const MeshView& mesh, const VoxelizeResult& result, std
                          std::vector<std::array<double, 3>>* first_holes, double slack) {
     const ValidatedMesh validated = validate(mesh);
     const GridSpec& grid = result.grid;
-    const BitGrid& bits = result.occupancy;
+    const BitGrid bits = result.occupancy.toBitGrid();
     std::atomic<std::uint64_t> holes{0}, total{0};
     std::mutex mutex;
 
@@ -280,7 +280,7 @@ Separation floodFromBoundary(const BitGrid& bits, const std::vector<char>& insid
 
 Separation expectSixSeparating(const MeshView& mesh, const VoxelizeResult& result, std::uint64_t min_inside_empty) {
     const std::vector<char> inside = insideByParity(mesh, result.grid);
-    const Separation s = floodFromBoundary(result.occupancy, inside);
+    const Separation s = floodFromBoundary(result.occupancy.toBitGrid(), inside);
     EXPECT_GT(s.reached, 0u);
     EXPECT_GT(s.inside_empty, min_inside_empty) << "the mesh should enclose empty voxels";
     EXPECT_EQ(s.inside_reached, 0u) << "a 6-connected path of empty voxels leaks into the inside";

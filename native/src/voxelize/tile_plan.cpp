@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tile_plan.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/clamp_coord.h"
+
+namespace hyvox::tiling {
+namespace {
+
+constexpr std::uint64_t kMaxAutoTileBytes = 256ull << 20;
+
+std::int32_t roundUpToBrick(std::int64_t voxels) {
+    const std::int64_t side = BrickLayout::kSide;
+    return std::int32_t(std::max<std::int64_t>(side, (voxels + side - 1) / side * side));
+}
+
+std::uint64_t denseBytes(const std::array<std::int32_t, 3>& dims) {
+    return std::uint64_t(BrickLayout::over(dims).total()) * BitGrid::kWordsPerBrick * sizeof(std::uint64_t);
+}
+
+}  // namespace
+
+Tile TilePlan::tile(std::size_t index, const GridSpec& grid) const {
+    const std::size_t tz = index % std::size_t(counts[2]);
+    const std::size_t ty = (index / std::size_t(counts[2])) % std::size_t(counts[1]);
+    const std::size_t tx = index / (std::size_t(counts[2]) * std::size_t(counts[1]));
+    const std::size_t at[3] = {tx, ty, tz};
+    Tile tile;
+    for (int a = 0; a < 3; ++a) {
+        tile.offset[a] = std::int32_t(at[a]) * side[a];
+        tile.dims[a] = std::min(side[a], grid.dims[a] - tile.offset[a]);
+    }
+    return tile;
+}
+
+std::uint64_t TilePlan::tileBytes() const { return denseBytes(side); }
+
+TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options) {
+    TilePlan plan;
+    std::int32_t side = 0;
+    if (options.method != Method::Tessellation) {
+        if (options.tile_size > 0) {
+            side = roundUpToBrick(options.tile_size);
+        } else {
+            const std::uint64_t limit = std::min(kMaxAutoTileBytes, options.memoryBudgetBytes() / 4);
+            if (denseBytes(grid.dims) > limit) {
+                // The largest cube of whole bricks whose bits fit the limit (side³ / 8 bytes).
+                const double voxels = std::cbrt(double(limit) * 8.0);
+                side = std::max<std::int32_t>(BrickLayout::kSide, std::int32_t(voxels) / BrickLayout::kSide * BrickLayout::kSide);
+            }
+        }
+    }
+    for (int a = 0; a < 3; ++a) {
+        plan.side[a] = side > 0 && side < grid.dims[a] ? side : grid.dims[a];
+        plan.counts[a] = (grid.dims[a] + plan.side[a] - 1) / plan.side[a];
+    }
+    return plan;
+}
+
+std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, const GridSpec& grid,
+                                                      const TilePlan& plan) {
+    std::vector<std::vector<std::uint32_t>> bins(plan.total());
+    for (std::uint32_t t : mesh.usable) {
+        std::array<int, 3> first{}, last{};
+        bool outside = false;
+        for (int a = 0; a < 3; ++a) {
+            double lo = 0, hi = 0;
+            for (int c = 0; c < 3; ++c) {
+                const double x = clampCoord(grid.toVoxel(mesh.vertex(t, c))[a]);
+                lo = c == 0 ? x : std::min(lo, x);
+                hi = c == 0 ? x : std::max(hi, x);
+            }
+            const double v0 = std::max(0.0, std::ceil(lo) - 1), v1 = std::min(double(grid.dims[a] - 1), std::floor(hi));
+            if (v0 > v1) {
+                outside = true;
+                break;
+            }
+            first[a] = int(v0) / plan.side[a];
+            last[a] = int(v1) / plan.side[a];
+        }
+        if (outside) continue;
+        for (int x = first[0]; x <= last[0]; ++x)
+            for (int y = first[1]; y <= last[1]; ++y)
+                for (int z = first[2]; z <= last[2]; ++z)
+                    bins[(std::size_t(x) * std::size_t(plan.counts[1]) + std::size_t(y)) * std::size_t(plan.counts[2]) +
+                         std::size_t(z)]
+                        .push_back(t);
+    }
+    return bins;
+}
+
+std::uint64_t estimateLeaves(const ValidatedMesh& mesh, const GridSpec& grid) {
+    double area = 0;
+    for (std::uint32_t t : mesh.usable) {
+        const auto p0 = grid.toVoxel(mesh.vertex(t, 0)), p1 = grid.toVoxel(mesh.vertex(t, 1)),
+                   p2 = grid.toVoxel(mesh.vertex(t, 2));
+        const double e0[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+        const double e1[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+        const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
+        area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    }
+    const double leaves = std::max(2.0 * area / 64.0, double(mesh.usable.size() > 0));
+    return std::uint64_t(std::min(leaves, double(grid.bricks().total())));
+}
+
+}  // namespace hyvox::tiling

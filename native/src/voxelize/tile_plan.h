@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// How the dispatcher cuts the grid into tiles: brick-aligned cubes sized by the tile_size
+// option or the memory budget, and which triangles may reach each.
+#include <cstdint>
+#include <vector>
+
+#include "core/backends.h"
+#include "hyvox/grid.h"
+#include "hyvox/mesh.h"
+#include "hyvox/options.h"
+
+namespace hyvox::tiling {
+
+struct TilePlan {
+    std::array<std::int32_t, 3> side{0, 0, 0};    // voxels per tile along each axis (multiples of 8)
+    std::array<std::int32_t, 3> counts{1, 1, 1};  // tiles per axis
+    bool whole() const { return counts[0] * counts[1] * counts[2] == 1; }
+    std::size_t total() const { return std::size_t(counts[0]) * std::size_t(counts[1]) * std::size_t(counts[2]); }
+    Tile tile(std::size_t index, const GridSpec& grid) const;
+    std::uint64_t tileBytes() const;  // the dense bits of one tile
+};
+
+// tile_size > 0: cubes of that side (rounded up to a multiple of 8). 0: the whole grid when
+// its bits fit a quarter of the memory budget (at most 256 MiB), else the largest cubes that
+// do. The tessellation method always takes the whole grid (its points may leave their
+// triangle's box).
+TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options);
+
+// For each tile, the usable triangles whose closed voxel range reaches it (the candidates of
+// the conservative test: voxel i meets [lo, hi] iff lo - 1 <= i <= hi), ascending.
+std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, const GridSpec& grid,
+                                                      const TilePlan& plan);
+
+// The surface's leaves, estimated before any work from the triangles' areas: a surface of
+// area A (voxel units²) crosses about 2·A/64 leaves of 8×8 faces, and every triangle at
+// least one. Bounded by the grid's bricks.
+std::uint64_t estimateLeaves(const ValidatedMesh& mesh, const GridSpec& grid);
+
+}  // namespace hyvox::tiling
