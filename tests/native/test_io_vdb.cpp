@@ -236,3 +236,26 @@ TEST(IoVdb, FailedWriteKeepsTheExistingFile) {
     EXPECT_EQ(slurp(path), "previous contents");
     EXPECT_EQ(dir.names(), std::vector<std::string>{"keep.vdb"});  // the temporary is gone
 }
+
+TEST(IoVdb, AGridOverTheMemoryBudgetIsRefusedBeforeItIsBuilt) {
+    TempDir dir;
+    hyvox::VoxelizeResult r = sampleResult(5, 1.0);  // 37x20x9 all set: 5x3x2 = 30 leaves, ~66 KB as floats
+    r.stats.options.memory_budget_mib = 1;
+    const std::uint64_t need = hyvox::io::densityGridBytes(r.occupancy);
+    EXPECT_GT(need, 30u * 512u * sizeof(float));  // at least the leaves' values
+    EXPECT_LT(need, 1u << 20);
+    const std::string path = (dir.path / "fits.vdb").string();
+    hyvox::writeVdb(r, path);  // fits in 1 MiB
+    EXPECT_TRUE(fs::exists(path));
+    // A result 64 times larger (1920 leaves, ~4 MiB of floats) does not.
+    hyvox::VoxelizeResult big;
+    big.grid.dims = {8 * 16, 8 * 12, 8 * 10};
+    big.occupancy = hyvox::SparseGrid(big.grid.dims);
+    for (int bx = 0; bx < 16; ++bx)
+        for (int by = 0; by < 12; ++by)
+            for (int bz = 0; bz < 10; ++bz) big.occupancy.set(bx * 8, by * 8, bz * 8);
+    big.stats.options.memory_budget_mib = 1;
+    const std::string refused = (dir.path / "refused.vdb").string();
+    EXPECT_THROW(hyvox::writeVdb(big, refused), hyvox::ResourceError);
+    EXPECT_FALSE(fs::exists(refused));
+}

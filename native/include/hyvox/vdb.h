@@ -23,7 +23,9 @@ namespace hyvox {
 // Writes atomically: a temporary file in the same folder, renamed over `path` only after
 // everything was written. On any failure the temporary file is removed, an existing file
 // at `path` is left as it was, and InvalidInput (bad path) or ResourceError (I/O failure)
-// is thrown. The grids are built leaf by leaf on up to `threads` cores (0 = all), like
+// is thrown. A grid that would not fit the run's memory budget (the result's options), with
+// the result it is made from, is refused before it is built (ResourceError). The grids are
+// built leaf by leaf on up to `threads` cores (0 = all), like
 // VoxelizeOptions. `interrupter` (may be null) sees the progress (building the grids 0-90,
 // writing 90-100) and can cancel until the file is being written (hyvox::Cancelled, nothing
 // written).

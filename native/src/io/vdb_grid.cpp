@@ -120,6 +120,22 @@ openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<Vo
     return result;
 }
 
+std::uint64_t densityGridBytes(const SparseGrid& occupancy) {
+    const FloatLeaf sample(openvdb::Coord(0, 0, 0), 0.0f, false);
+    // Leaves dominate; the internal nodes above them add a few percent at most.
+    return std::uint64_t(double(occupancy.leafCount()) * double(sample.memUsage()) * 1.05);
+}
+
+void checkGridBudget(const VoxelizeResult& result) {
+    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize();
+    const VoxelizeOptions& options = result.stats.options;
+    if (need > options.memoryBudgetBytes())
+        throw ResourceError("the OpenVDB grid of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
+                            std::to_string((need + (1u << 20) - 1) >> 20) + " MiB, more than the memory budget of " +
+                            std::to_string(options.memory_budget_mib) +
+                            " MiB; raise the budget (memory_budget_mib) or use a larger voxel size");
+}
+
 openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interrupter) {
     openvdb::GridPtrVec grids;
     grids.push_back(makeDensityGrid(result.grid, result.occupancy, interrupter));
@@ -146,6 +162,7 @@ namespace hyvox {
 
 VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, int threads, Interrupter* interrupter) {
     if (threads < 0) throw InvalidInput("writeVdb: threads must be >= 0 (0 = all cores)");
+    io::checkGridBudget(result);
     if (interrupter) interrupter->start("hyvox write");
     struct EndOnExit {
         Interrupter* i;

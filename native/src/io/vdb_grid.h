@@ -29,6 +29,12 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& 
 // "count": the values of a multi-valued result.
 openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<VoxelCount>& counts);
 
+// The memory the density grid of `occupancy` takes (float leaves of 512 values).
+std::uint64_t densityGridBytes(const SparseGrid& occupancy);
+// ResourceError before anything is built when that grid and the result it is made from
+// would not fit the run's memory budget (result.stats.options).
+void checkGridBudget(const VoxelizeResult& result);
+
 // The grids writeVdb() stores: density, plus count when result.counts is non-empty, each
 // with the hyvox_* metadata.
 openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interrupter = nullptr);
