@@ -63,7 +63,17 @@ def print_row(r):
           f"{r['ns_per_voxel']:>7.1f}", flush=True)
 
 
-def plot(rows, path):
+def read_m2v_table(path):
+    """(mesh, res) -> peak RSS MiB of OpenVDB's side, from bench_mesh_to_volume's printed table."""
+    rss = {}
+    for line in pathlib.Path(path).read_text().splitlines():
+        words = line.split()
+        if len(words) >= 12 and words[1].isdigit() and words[-1] == "MiB":
+            rss[(words[0].split(".")[0], int(words[1]))] = float(words[-2])
+    return rss
+
+
+def plot(rows, path, m2v=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -71,11 +81,18 @@ def plot(rows, path):
     for key in sorted({(r["mesh"], r["kind"]) for r in rows}):
         points = [(r["res"], r["rss_mib"]) for r in rows if (r["mesh"], r["kind"]) == key and "rss_mib" in r]
         if points:
-            ax.plot(*zip(*points), marker="o", label=f"{key[0]} hyvox {key[1]} (peak RSS)")
+            ax.plot(*zip(*points), marker="o", label=f"{key[0]} hyvox {key[1]} {rows[0]['method']} (peak RSS)")
     for mesh in sorted({r["mesh"] for r in rows}):
         points = [(r["res"], r["vdb_mib"]) for r in rows if r["mesh"] == mesh and r["kind"] == "sparse" and "vdb_mib" in r]
         if points:
             ax.plot(*zip(*points), linestyle=":", marker="x", label=f"{mesh} OpenVDB float grid (memUsage)")
+    for mesh in sorted({r["mesh"] for r in rows}):
+        dense = sorted({r["res"] for r in rows if r["mesh"] == mesh})
+        ax.plot(dense, [r**3 / 8 / MIB for r in dense], linestyle="--", color="grey", linewidth=0.8)
+        points = sorted((res, mib) for (name, res), mib in (m2v or {}).items() if name == mesh)
+        if points:
+            ax.plot(*zip(*points), marker="s", label=f"{mesh} OpenVDB meshToUnsignedDistanceField (peak RSS)")
+    ax.plot([], [], linestyle="--", color="grey", label="dense bit grid of the box (the old path's budget)")
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
     ax.set_xlabel("voxels along the longest side")
@@ -89,7 +106,7 @@ def plot(rows, path):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("meshes", nargs="+")
+    parser.add_argument("meshes", nargs="*")
     parser.add_argument("--build", default="build")
     parser.add_argument("--res", default="1024,2048,4096,8192")
     parser.add_argument("--methods", default="cpu")
@@ -97,8 +114,14 @@ def main():
     parser.add_argument("--budget-mib", type=int, default=16384)
     parser.add_argument("--json")
     parser.add_argument("--plot")
+    parser.add_argument("--m2v-log", help="bench_mesh_to_volume's printed table, for OpenVDB's peak RSS in the plot")
+    parser.add_argument("--from-json", help="plot the rows of an earlier --json instead of running")
     args = parser.parse_args()
     cli = str(pathlib.Path(args.build) / "hyvox")
+    m2v = read_m2v_table(args.m2v_log) if args.m2v_log else None
+    if args.from_json:
+        plot(json.loads(pathlib.Path(args.from_json).read_text()), args.plot, m2v)
+        return
     rows = []
     print(f"{'mesh':>10} {'res':>5} {'method':>7} {'kind':>6} {'read':>8} {'voxelize':>9} {'vdb':>8} {'write':>8} "
           f"{'voxels':>12} {'leaves':>9} {'tiles':>6} {'RSS MiB':>8} {'VDB MiB':>8} {'RSS/VDB':>6} {'ns/vox':>7}")
@@ -119,7 +142,7 @@ def main():
     if args.json:
         pathlib.Path(args.json).write_text(json.dumps(rows, indent=1))
     if args.plot:
-        plot(rows, args.plot)
+        plot(rows, args.plot, m2v)
 
 
 if __name__ == "__main__":
