@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The sparse, tiled result: every method cut into small tiles (the tile_size option) sets
+// The sparse, tiled result: every method (tessellation: flat) cut into small tiles (the tile_size option) sets
 // exactly the voxels it sets untiled, on the shared meshes and on faces lying exactly on
 // tile borders; huge grids of small surfaces run within a small memory budget and are exact
 // against the plane's own inequality; runs whose surface cannot fit are refused up front.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -54,6 +56,26 @@ TEST_P(TiledMeshTest, EveryMethodSetsTheSameVoxelsInSmallTiles) {
             if (method == Method::Reference && mode == Mode::Thin) continue;  // cpu thin is the thin oracle
             expectTilingChangesNothing(mesh.view(), method, mode, 48, 16);
         }
+    // The flat tessellation too: the same points land in the same voxels, so bits and counts agree.
+    VoxelizeOptions tess = optionsFor(Method::Tessellation, Mode::Conservative, 48, 0);
+    const VoxelizeResult tess_whole = voxelize(mesh.view(), tess);
+    tess.tile_size = 16;
+    const VoxelizeResult tess_tiled = voxelize(mesh.view(), tess);
+    EXPECT_GT(tess_tiled.stats.tiles, 1u);
+    EXPECT_TRUE(tess_tiled.occupancy == tess_whole.occupancy);
+    auto key = [](const VoxelCount& c) { return std::make_tuple(c.i, c.j, c.k, c.count); };
+    auto sortedCounts = [&](std::vector<VoxelCount> counts) {
+        std::sort(counts.begin(), counts.end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });
+        std::vector<std::tuple<int, int, int, std::uint32_t>> out;
+        for (const auto& c : counts) out.push_back(key(c));
+        return out;
+    };
+    EXPECT_EQ(sortedCounts(tess_tiled.counts), sortedCounts(tess_whole.counts));
+    for (const VoxelizeResult* r : {&tess_whole, &tess_tiled}) {
+        std::uint64_t landed = 0;
+        for (const auto& c : r->counts) landed += c.count;
+        EXPECT_EQ(landed, r->stats.tessellation->points - r->stats.tessellation->points_clipped);
+    }
     // And the tiled cpu run is the oracle's set (up to touches), so tile borders drop nothing.
     const VoxelizeResult tiled = voxelize(mesh.view(), optionsFor(Method::Cpu, Mode::Conservative, 48, 24));
     const VoxelizeResult oracle = voxelize(mesh.view(), optionsFor(Method::Reference, Mode::Conservative, 48, 0));

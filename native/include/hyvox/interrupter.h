@@ -19,4 +19,20 @@ public:
 // Throws hyvox::Cancelled when the interrupter (may be null) asks to stop.
 void throwIfInterrupted(Interrupter* interrupter, int percent = -1);
 
+// start() on construction and end() on destruction, also when the run throws.
+class InterrupterRun {
+public:
+    InterrupterRun(Interrupter* interrupter, const char* name) : interrupter_(interrupter) {
+        if (interrupter_) interrupter_->start(name);
+    }
+    ~InterrupterRun() {
+        if (interrupter_) interrupter_->end();
+    }
+    InterrupterRun(const InterrupterRun&) = delete;
+    InterrupterRun& operator=(const InterrupterRun&) = delete;
+
+private:
+    Interrupter* interrupter_;
+};
+
 }  // namespace hyvox

@@ -57,8 +57,10 @@ struct HybridStats {
 
 struct TessellationStats {
     double gamma = 0;
-    std::uint64_t points = 0;          // micro-triangles, one point each
-    std::uint64_t points_clipped = 0;  // of which outside the grid (displacement)
+    // Summed over tiles (a triangle reaching k tiles is drawn in each): points - points_clipped
+    // is the number of points that landed in the grid.
+    std::uint64_t points = 0;          // micro-triangles drawn, one point each
+    std::uint64_t points_clipped = 0;  // of which outside the tile they were drawn for
     std::uint64_t triangles_whole = 0;  // small enough for one point (compute pass)
     std::uint64_t patches_direct = 0;   // tessellated as they are
     std::uint64_t patches_split = 0;    // pieces of pre-split triangles

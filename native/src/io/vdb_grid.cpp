@@ -163,13 +163,7 @@ namespace hyvox {
 VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, int threads, Interrupter* interrupter) {
     if (threads < 0) throw InvalidInput("writeVdb: threads must be >= 0 (0 = all cores)");
     io::checkGridBudget(result);
-    if (interrupter) interrupter->start("hyvox write");
-    struct EndOnExit {
-        Interrupter* i;
-        ~EndOnExit() {
-            if (i) i->end();
-        }
-    } end_on_exit{interrupter};
+    const InterrupterRun run(interrupter, "hyvox write");
     VdbWriteReport report;
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {

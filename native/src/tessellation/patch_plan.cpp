@@ -14,9 +14,10 @@
 
 namespace hyvox::tessellation {
 
-PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double gamma, int max_level, bool estimate_bricks,
+PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, const std::array<std::int32_t, 3>& tile_offset,
+                      const std::array<std::int32_t, 3>& tile_dims, double gamma, int max_level, bool estimate_bricks,
                       double reach, double pn_reach) {
-    const BrickLayout bricks = grid.bricks();
+    const BrickLayout bricks = BrickLayout::over(tile_dims);
     std::vector<std::uint8_t> reached(estimate_bricks ? bricks.total() : 0, 0);
     std::atomic<std::uint64_t> large_estimate{0};
     std::vector<std::uint32_t> pieces(mesh.usable.size());  // 0 = whole, 1 = one patch, n = n² patches
@@ -37,8 +38,8 @@ PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double ga
             std::array<int, 3> lo{}, hi{};
             std::uint64_t box = 1;
             for (int a = 0; a < 3; ++a) {
-                const double mn = std::min({d[0][a], d[1][a], d[2][a]}) - grow;
-                const double mx = std::max({d[0][a], d[1][a], d[2][a]}) + grow;
+                const double mn = std::min({d[0][a], d[1][a], d[2][a]}) - grow - tile_offset[a];
+                const double mx = std::max({d[0][a], d[1][a], d[2][a]}) + grow - tile_offset[a];
                 const double last = double(bricks.counts[a] - 1);
                 lo[a] = int(std::clamp(std::floor(mn / BrickLayout::kSide), 0.0, last));
                 hi[a] = int(std::clamp(std::floor(mx / BrickLayout::kSide), 0.0, last));

@@ -4,6 +4,7 @@
 // GL_MAX_TESS_GEN_LEVEL is one patch; the others are split into n² sub-triangles first (the
 // vertex shader derives each sub-triangle from its patch number, so no geometry is written).
 // Triangles the tessellator would not subdivide at all skip the draw.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -26,10 +27,13 @@ struct PatchPlan {
     std::uint64_t brick_estimate = 0;
 };
 
-// `gamma` and `max_level` as in Eq. 1 and GL_MAX_TESS_GEN_LEVEL. With `estimate_bricks`:
-// `reach` = how far (voxels) points may leave the flat triangle (displacement), `pn_reach`
-// the same as a share of each triangle's largest extent (PN bulge).
-PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, double gamma, int max_level, bool estimate_bricks,
+// `gamma` and `max_level` as in Eq. 1 and GL_MAX_TESS_GEN_LEVEL; the factors come from the
+// whole grid's voxel space. With `estimate_bricks`, the bricks are those of the tile being
+// filled (voxels tile_offset .. + tile_dims): `reach` = how far (voxels) points may leave
+// the flat triangle (displacement), `pn_reach` the same as a share of each triangle's
+// largest extent (PN bulge).
+PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, const std::array<std::int32_t, 3>& tile_offset,
+                      const std::array<std::int32_t, 3>& tile_dims, double gamma, int max_level, bool estimate_bricks,
                       double reach, double pn_reach);
 
 }  // namespace hyvox::tessellation

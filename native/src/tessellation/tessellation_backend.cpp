@@ -25,10 +25,10 @@ void checkDisplacementInput(const ValidatedMesh& mesh, bool displaced) {
         throw InvalidInput("displacement needs per-vertex UVs (the image is sampled at the interpolated UV)");
 }
 
-// Block b of the pool holds brick `brick`'s 512 counts in OpenVDB leaf order.
-std::vector<VoxelCount> compactCounts(const std::vector<std::uint32_t>& brick_blocks,
-                                      const std::vector<std::uint32_t>& pool, const BitGrid& grid) {
-    std::vector<VoxelCount> counts;
+// Block b of the pool holds brick `brick`'s 512 counts in OpenVDB leaf order; voxels are
+// given in grid coordinates (the tile's plus its offset).
+void compactCounts(const std::vector<std::uint32_t>& brick_blocks, const std::vector<std::uint32_t>& pool,
+                   const BitGrid& grid, const std::array<std::int32_t, 3>& offset, std::vector<VoxelCount>& counts) {
     const BrickLayout& bricks = grid.bricks();
     for (std::size_t brick = 0; brick < bricks.total(); ++brick) {
         const std::uint32_t block = brick_blocks[brick];
@@ -36,28 +36,30 @@ std::vector<VoxelCount> compactCounts(const std::vector<std::uint32_t>& brick_bl
         const std::array<std::int32_t, 3> b = bricks.at(brick);
         const std::uint32_t* c = pool.data() + std::size_t(block - 1) * 512;
         for (int n = 0; n < 512; ++n)
-            if (c[n]) counts.push_back({b[0] * 8 + (n >> 6), b[1] * 8 + ((n >> 3) & 7), b[2] * 8 + (n & 7), c[n]});
+            if (c[n])
+                counts.push_back({offset[0] + b[0] * 8 + (n >> 6), offset[1] + b[1] * 8 + ((n >> 3) & 7),
+                                  offset[2] + b[2] * 8 + (n & 7), c[n]});
     }
-    return counts;
 }
 
 }  // namespace
 
 void runTessellationBackend(const BackendJob& job, TileOutput& result, Stats& stats) {
-    // Points may leave their triangle's box (PN-triangles, displacement) and are counted
-    // once per run: this method fills the whole grid as one tile (the dispatcher's rule).
-    if (job.tile.offset != std::array<std::int32_t, 3>{0, 0, 0} || job.tile.dims != job.grid.dims)
-        throw BackendError("the tessellation method fills the whole grid as one tile");
     const TessellationOptions& options = job.options.tessellation;
     Stopwatch watch;
     const tessellation::DisplacementMap map = tessellation::DisplacementMap::fromOptions(options);
     checkDisplacementInput(job.mesh, !map.empty());
     // Normals and UVs only matter to PN-triangles and displacement; flat runs skip them.
     const bool curved = options.pn_triangles || !map.empty();
+    // Flat points lie on their triangle, inside the box the dispatcher bins it by; curved ones
+    // may leave it, so curved runs fill the whole grid as one tile (the dispatcher's rule).
+    const bool whole_grid = job.tile.offset == std::array<std::int32_t, 3>{0, 0, 0} && job.tile.dims == job.grid.dims;
+    if (curved && !whole_grid)
+        throw BackendError("PN-triangles and displacement fill the whole grid as one tile");
     std::optional<tessellation::SurfaceAttributes> surface;
     if (curved) surface.emplace(job.mesh, job.grid);
     const std::vector<float> none;
-    const gl::GpuMesh gpu_mesh = gl::makeGpuMesh(job.mesh, job.grid);
+    const gl::GpuMesh gpu_mesh = gl::makeGpuMesh(job.mesh, job.grid, job.tile.offset);
     const int max_level = tessellation::maxTessellationLevel(job.options.gl.device);
     // How far points may leave the flat triangles: the displacement's largest offset, and
     // for PN-triangles a share of each triangle's size (a cubic patch bulges well under half).
@@ -67,7 +69,8 @@ void runTessellationBackend(const BackendJob& job, TileOutput& result, Stats& st
                                std::abs(map.minValue() - options.displacement_midlevel)) *
                           std::abs(options.displacement_strength) / job.grid.voxel_size;
     const tessellation::PatchPlan plan =
-        tessellation::planPatches(job.mesh, job.grid, options.gamma, max_level, options.counts,
+        tessellation::planPatches(job.mesh, job.grid, job.tile.offset, job.tile.dims, options.gamma, max_level,
+                                  options.counts,
                                   displacement_reach + 1.0, options.pn_triangles ? 0.5 : 0.0);
     stats.addTiming("plan", watch.restart());
     throwIfInterrupted(job.interrupter, 10);
@@ -78,7 +81,7 @@ void runTessellationBackend(const BackendJob& job, TileOutput& result, Stats& st
         curved ? surface->uvs() : none,
         plan,
         max_level,
-        job.grid.dims,
+        job.tile.dims,
         options.gamma,
         options.pn_triangles,
         map.empty() ? none : map.bottomUpRows(),
@@ -95,23 +98,25 @@ void runTessellationBackend(const BackendJob& job, TileOutput& result, Stats& st
     stats.addTiming("tessellate", watch.restart());
 
     if (options.counts) {
-        result.counts = compactCounts(out.brick_blocks, out.count_pool, result.bits);
+        compactCounts(out.brick_blocks, out.count_pool, result.bits, job.tile.offset, result.counts);
         stats.addTiming("counts", watch.restart());
     }
-    TessellationStats& figures = stats.tessellation.emplace();
+    // Summed over tiles: a triangle reaching k tiles is drawn k times, and its points outside
+    // a tile count as clipped there, so points - points_clipped are the points that landed.
+    TessellationStats& figures = stats.tessellation ? *stats.tessellation : stats.tessellation.emplace();
     figures.gamma = options.gamma;
-    figures.points = out.points;
-    figures.points_clipped = out.clipped;
-    figures.triangles_whole = plan.whole.size();
-    figures.patches_direct = plan.direct.size();
-    figures.patches_split = plan.split_patches;
-    figures.split_triangles = plan.splits.size() / 4;
-    figures.largest_split = plan.largest_split;
+    figures.points += out.points;
+    figures.points_clipped += out.clipped;
+    figures.triangles_whole += plan.whole.size();
+    figures.patches_direct += plan.direct.size();
+    figures.patches_split += plan.split_patches;
+    figures.split_triangles += plan.splits.size() / 4;
+    figures.largest_split = std::max<std::uint64_t>(figures.largest_split, plan.largest_split);
     figures.max_tess_level = std::uint64_t(max_level);
-    figures.pass0_gpu_ms = out.whole_gpu_ms;
-    figures.pass1_gpu_ms = out.direct_gpu_ms;
-    figures.pass2_gpu_ms = out.split_gpu_ms;
-    figures.gpu_runs = std::uint64_t(out.runs);
+    figures.pass0_gpu_ms += out.whole_gpu_ms;
+    figures.pass1_gpu_ms += out.direct_gpu_ms;
+    figures.pass2_gpu_ms += out.split_gpu_ms;
+    figures.gpu_runs += std::uint64_t(out.runs);
 }
 
 }  // namespace hyvox

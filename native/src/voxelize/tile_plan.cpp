@@ -40,7 +40,12 @@ std::uint64_t TilePlan::tileBytes() const { return denseBytes(side); }
 TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options) {
     TilePlan plan;
     std::int32_t side = 0;
-    if (options.method != Method::Tessellation) {
+    // Curved tessellation (PN-triangles, displacement) moves points off their triangle's box,
+    // which the triangles are binned by: it fills the whole grid as one tile.
+    const TessellationOptions& tess = options.tessellation;
+    const bool curved = options.method == Method::Tessellation &&
+                        (tess.pn_triangles || !tess.displacement_image.empty() || !tess.displacement_pixels.empty());
+    if (!curved) {
         if (options.tile_size > 0) {
             side = roundUpToBrick(options.tile_size);
         } else {

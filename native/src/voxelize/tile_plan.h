@@ -23,8 +23,8 @@ struct TilePlan {
 
 // tile_size > 0: cubes of that side (rounded up to a multiple of 8). 0: the whole grid when
 // its bits fit a quarter of the memory budget (at most 256 MiB), else the largest cubes that
-// do. The tessellation method always takes the whole grid (its points may leave their
-// triangle's box).
+// do. Tessellation with PN-triangles or displacement always takes the whole grid (its points
+// may leave their triangle's box).
 TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options);
 
 // For each tile, the usable triangles whose closed voxel range reaches it (the candidates of

@@ -26,7 +26,7 @@ void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options, con
                             " and about " + std::to_string(estimated_leaves) +
                             " leaves of surface), more than the memory budget of " +
                             std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size" +
-                            (options.method == Method::Tessellation ? " (the tessellation method is not tiled)" : ""));
+                            (plan.whole() && options.method == Method::Tessellation ? " (curved tessellation is not tiled)" : ""));
 }
 
 // Progress over the whole run: the backends report each tile's own 0..100.
@@ -61,13 +61,7 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
 
 VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, Interrupter* interrupter) {
     checkOptions(options);
-    if (interrupter) interrupter->start("hyvox voxelize");
-    struct EndOnExit {
-        Interrupter* i;
-        ~EndOnExit() {
-            if (i) i->end();
-        }
-    } end_on_exit{interrupter};
+    const InterrupterRun run(interrupter, "hyvox voxelize");
 
     VoxelizeResult result;
     Stats& stats = result.stats;
