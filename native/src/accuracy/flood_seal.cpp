@@ -16,23 +16,25 @@ namespace {
 // grid's faces (so to the space outside the grid); index (i·dy + j)·dz + k.
 std::vector<char> reachedFromOutside(const BitGrid& bits) {
     const auto& d = bits.dims();
-    const std::size_t count = std::size_t(d[0]) * d[1] * d[2];
-    std::vector<char> reached(count, 0);
-    std::vector<std::array<int, 3>> stack;
+    const std::size_t sj = std::size_t(d[2]), si = std::size_t(d[1]) * d[2];
+    std::vector<char> reached(si * std::size_t(d[0]), 0);
+    // The voxels still to expand, as linear indices (8 bytes each: a 512³ grid's inside can
+    // be 20M voxels deep in the stack). Depth-first: the same set as breadth-first.
+    std::vector<std::size_t> stack;
     auto visit = [&](int i, int j, int k) {
-        const std::size_t id = (std::size_t(i) * d[1] + j) * d[2] + k;
+        const std::size_t id = std::size_t(i) * si + std::size_t(j) * sj + std::size_t(k);
         if (reached[id] || bits.test(i, j, k)) return;
         reached[id] = 1;
-        stack.push_back({i, j, k});
+        stack.push_back(id);
     };
     for (int i = 0; i < d[0]; ++i)
         for (int j = 0; j < d[1]; ++j)
             for (int k = 0; k < d[2]; ++k)
                 if (i == 0 || j == 0 || k == 0 || i == d[0] - 1 || j == d[1] - 1 || k == d[2] - 1) visit(i, j, k);
-    // Depth-first order: the set reached is the same as breadth-first, with a smaller stack.
     while (!stack.empty()) {
-        const auto [i, j, k] = stack.back();
+        const std::size_t id = stack.back();
         stack.pop_back();
+        const int i = int(id / si), j = int(id % si / sj), k = int(id % sj);
         if (i > 0) visit(i - 1, j, k);
         if (i + 1 < d[0]) visit(i + 1, j, k);
         if (j > 0) visit(i, j - 1, k);
