@@ -93,7 +93,8 @@ int main(int argc, char** argv) {
         else meshes.push_back(arg);
     }
     if (meshes.empty()) {
-        std::fprintf(stderr, "usage: %s [--res 128,256] [--gammas 1,2] [--repeat 3] [--csv FILE] MESH[:x4|:x16]...\n", argv[0]);
+        std::fprintf(stderr, "usage: %s [--res 128,256] [--gammas 1,2] [--repeat 3] [--csv FILE] MESH[:x4|:x16]...\n",
+                     argv[0]);
         return 2;
     }
     std::FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
@@ -155,7 +156,8 @@ int main(int argc, char** argv) {
                     if (cpu.error.empty()) acc = compareToReference(tess.result.occupancy, cpu.result.occupancy);
                     const hyvox::AccuracyReport acc_thin = compareToReference(tess.result.occupancy, thin.occupancy);
                     const hyvox::SealReport seal = floodFromOutside(tess.result.occupancy, thin.occupancy);
-                    std::printf("| %s | %zu | %d | %.1f | %s | %g | %.1f (%.1f) | %.0f | %.2f%% | %.2f%% | %llu | %s |\n",
+                    std::printf("| %s | %zu | %d | %.1f | %s | %g | %.1f (%.1f) | %.0f | %.2f%% | %.2f%% | %llu | %s "
+                                "|\n",
                                 name.c_str(), mesh.triangleCount(), res, cpu.best_ms, hybrid_ms, gamma, tess.best_ms,
                                 gpu_ms, double(m.points), 100.0 * acc.bias, 100.0 * acc_thin.bias,
                                 (unsigned long long)acc.false_voxels, sealedText(seal).c_str());

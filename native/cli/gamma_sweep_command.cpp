@@ -39,9 +39,9 @@ std::string sweepJson(const GridSpec& grid, std::uint64_t reference_voxels, std:
         const SweepRow& r = rows[i];
         json << (i ? ", " : "") << "{\"gamma\": " << r.gamma << ", \"bias\": " << r.accuracy.bias
              << ", \"missed_voxels\": " << r.accuracy.missed_voxels << ", \"bias_thin\": " << r.accuracy_thin.bias
-             << ", \"missed_thin_voxels\": " << r.accuracy_thin.missed_voxels << ", \"enclosed_voxels\": " << r.seal.enclosed
-             << ", \"leaked_voxels\": " << r.seal.leaked << ", \"sealed\": " << (r.seal.sealed() ? "true" : "false")
-             << ", \"points\": " << r.points
+             << ", \"missed_thin_voxels\": " << r.accuracy_thin.missed_voxels
+             << ", \"enclosed_voxels\": " << r.seal.enclosed << ", \"leaked_voxels\": " << r.seal.leaked
+             << ", \"sealed\": " << (r.seal.sealed() ? "true" : "false") << ", \"points\": " << r.points
              << ", \"voxels\": " << r.voxels << ", \"ms\": " << r.ms << "}";
     }
     json << "], \"fit\": ";

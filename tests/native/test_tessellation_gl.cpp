@@ -170,9 +170,10 @@ TEST_P(TessellationMeshes, BiasFallsWithGammaAndNothingIsFalse) {
         const VoxelizeResult r = voxelize(mesh.view(), optionsFor(Method::Tessellation, resolution, gamma));
         const AccuracyReport acc = compareToReference(r.occupancy, conservative.occupancy);
         const double bias_thin = compareToReference(r.occupancy, thin.occupancy).bias;
-        std::printf("%s @%d γ=%g: %llu points, %llu voxels, bias %.4f, vs thin %.5f, false %llu, %.0f ms\n", file.c_str(),
-                    resolution, gamma, (unsigned long long)tess(r).points, (unsigned long long)r.stats.voxel_count,
-                    acc.bias, bias_thin, (unsigned long long)acc.false_voxels, tess(r).pass1_gpu_ms);
+        std::printf("%s @%d γ=%g: %llu points, %llu voxels, bias %.4f, vs thin %.5f, false %llu, %.0f ms\n",
+                    file.c_str(), resolution, gamma, (unsigned long long)tess(r).points,
+                    (unsigned long long)r.stats.voxel_count, acc.bias, bias_thin, (unsigned long long)acc.false_voxels,
+                    tess(r).pass1_gpu_ms);
         EXPECT_EQ(falseBeyondTouch(mesh.view(), r, conservative, kTouchEps), 0u)
             << acc.false_voxels << " false voxels, not all touches";
         EXPECT_LE(acc.bias, gamma == default_gamma ? 0.12 : 0.05) << "γ=" << gamma;
