@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Times the tessellation method against the exact methods (cpu, and hybrid when this build
 // and machine have it) per mesh and resolution, with its bias against the cpu result (the
-// conservative voxels missed) and against the thin, 6-separating cpu result. Dense
-// stand-ins for the paper's Asian Dragon: the 871k dragon midpoint-subdivided 4× and 16×.
-//   bench_tessellation [--res 128,256,512,1024] [--gamma 1] [--repeat 3] [--csv FILE] MESH...
+// conservative voxels missed) and against the thin, 6-separating cpu result, and whether it
+// is sealed: no 6-connected flood from outside reaches what the thin cpu voxels enclose
+// (hyvox::floodFromOutside). One row per γ, so `--gammas 1,2` puts the old default beside
+// the new one. Dense stand-ins for the paper's Asian Dragon: the 871k dragon
+// midpoint-subdivided 4× and 16×.
+//   bench_tessellation [--res 128,256,512,1024] [--gammas 1,2] [--repeat 3] [--csv FILE] MESH...
 // A mesh argument "NAME.ply.gz:xN" subdivides it (N = 4 or 16) on the CPU first.
 // Times are the voxelize stage (wall ms, best of --repeat runs after one warm-up); the
 // tessellation's GPU passes (timer queries, or wall time on llvmpipe) are listed apart.
@@ -32,12 +35,20 @@ double methodStagesMs(const hyvox::VoxelizeResult& r) {
     return ms;
 }
 
-std::vector<int> parseList(const std::string& text) {
-    std::vector<int> out;
+template <typename T>
+std::vector<T> parseList(const std::string& text) {
+    std::vector<T> out;
     std::stringstream in(text);
     std::string item;
-    while (std::getline(in, item, ',')) out.push_back(std::atoi(item.c_str()));
+    while (std::getline(in, item, ',')) out.push_back(T(std::atof(item.c_str())));
     return out;
+}
+
+// "yes", "no (N)" with N voxels leaked, or "-" when the thin voxels enclose nothing (an
+// open mesh), where the flood test says nothing.
+std::string sealedText(const hyvox::SealReport& seal) {
+    if (seal.enclosed == 0) return "-";
+    return seal.sealed() ? "yes" : "no (" + std::to_string(seal.leaked) + ")";
 }
 
 struct Timed {
@@ -68,27 +79,31 @@ Timed timeMethod(const hyvox::Mesh& mesh, hyvox::VoxelizeOptions options, int re
 
 int main(int argc, char** argv) {
     std::vector<int> resolutions{128, 256, 512, 1024};
-    double gamma = 1.0;
+    std::vector<double> gammas{hyvox::TessellationOptions().gamma};
     int repeat = 3;
     std::string csv_path;
     std::vector<std::string> meshes;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         auto next = [&] { return hyvox::bench::optionValue(argc, argv, i); };
-        if (arg == "--res") resolutions = parseList(next());
-        else if (arg == "--gamma") gamma = std::atof(next().c_str());
+        if (arg == "--res") resolutions = parseList<int>(next());
+        else if (arg == "--gammas") gammas = parseList<double>(next());
         else if (arg == "--repeat") repeat = std::max(1, std::atoi(next().c_str()));
         else if (arg == "--csv") csv_path = next();
         else meshes.push_back(arg);
     }
     if (meshes.empty()) {
-        std::fprintf(stderr, "usage: %s [--res 128,256] [--gamma 1] [--repeat 3] [--csv FILE] MESH[:x4|:x16]...\n", argv[0]);
+        std::fprintf(stderr, "usage: %s [--res 128,256] [--gammas 1,2] [--repeat 3] [--csv FILE] MESH[:x4|:x16]...\n",
+                     argv[0]);
         return 2;
     }
     std::FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
-    if (csv) std::fprintf(csv, "mesh,triangles,resolution,method,ms,gpu_pass_ms,points,voxels,bias,bias_thin,false_voxels\n");
-    std::printf("| mesh | triangles | res | cpu ms | hybrid ms | tessellation ms (GPU passes) | points | bias | bias vs thin | false |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    if (csv)
+        std::fprintf(csv, "mesh,triangles,resolution,method,gamma,ms,gpu_pass_ms,points,voxels,bias,bias_thin,"
+                          "false_voxels,enclosed,leaked\n");
+    std::printf("| mesh | triangles | res | cpu ms | hybrid ms | γ | tessellation ms (GPU passes) | points | bias | "
+                "bias vs thin | false | sealed |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
     try {
         for (const std::string& spec : meshes) {
             const auto colon = spec.rfind(":x");
@@ -110,43 +125,51 @@ int main(int argc, char** argv) {
                 const Timed cpu = timeMethod(mesh, options, repeat);
                 options.method = hyvox::Method::Hybrid;
                 const Timed hybrid = timeMethod(mesh, options, repeat);
-                options.method = hyvox::Method::Tessellation;
-                options.tessellation.gamma = gamma;
-                options.tessellation.counts = false;  // binary voxelization, as the paper times it
-                const Timed tess = timeMethod(mesh, options, repeat);
-                if (!tess.error.empty()) {
-                    std::printf("| %s | %zu | %d | tessellation failed: %s |\n", name.c_str(), mesh.triangleCount(), res,
-                                tess.error.c_str());
-                    continue;
-                }
-                const hyvox::TessellationStats& m = tess.result.stats.tessellation.value();
-                const double gpu_ms = m.pass0_gpu_ms + m.pass1_gpu_ms + m.pass2_gpu_ms;
-                hyvox::AccuracyReport acc, acc_thin;
-                if (cpu.error.empty()) {
-                    acc = compareToReference(tess.result.occupancy, cpu.result.occupancy);
-                    hyvox::VoxelizeOptions thin = options;
-                    thin.method = hyvox::Method::Cpu;
-                    thin.mode = hyvox::Mode::Thin;
-                    acc_thin = compareToReference(tess.result.occupancy, hyvox::voxelize(mesh.view(), thin).occupancy);
-                }
+                // The exact references, once per mesh and resolution.
+                hyvox::VoxelizeOptions thin_options = options;
+                thin_options.method = hyvox::Method::Cpu;
+                thin_options.mode = hyvox::Mode::Thin;
+                const hyvox::VoxelizeResult thin = hyvox::voxelize(mesh.view(), thin_options);
                 char hybrid_ms[64];
                 if (hybrid.error.empty()) std::snprintf(hybrid_ms, sizeof hybrid_ms, "%.1f", hybrid.best_ms);
                 else std::snprintf(hybrid_ms, sizeof hybrid_ms, "n/a");
-                std::printf("| %s | %zu | %d | %.1f | %s | %.1f (%.1f) | %.0f | %.2f%% | %.2f%% | %llu |\n", name.c_str(),
-                            mesh.triangleCount(), res, cpu.best_ms, hybrid_ms, tess.best_ms, gpu_ms, double(m.points),
-                            100.0 * acc.bias, 100.0 * acc_thin.bias, (unsigned long long)acc.false_voxels);
-                std::fflush(stdout);
                 if (csv) {
-                    std::fprintf(csv, "%s,%zu,%d,cpu,%.3f,,,%llu,,,\n", name.c_str(), mesh.triangleCount(), res,
+                    std::fprintf(csv, "%s,%zu,%d,cpu,,%.3f,,,%llu,,,,,\n", name.c_str(), mesh.triangleCount(), res,
                                  cpu.best_ms, (unsigned long long)cpu.result.stats.voxel_count);
                     if (hybrid.error.empty())
-                        std::fprintf(csv, "%s,%zu,%d,hybrid,%.3f,,,%llu,,,\n", name.c_str(), mesh.triangleCount(), res,
-                                     hybrid.best_ms, (unsigned long long)hybrid.result.stats.voxel_count);
-                    std::fprintf(csv, "%s,%zu,%d,tessellation,%.3f,%.3f,%.0f,%llu,%.6f,%.6f,%llu\n", name.c_str(),
-                                 mesh.triangleCount(), res, tess.best_ms, gpu_ms, double(m.points),
-                                 (unsigned long long)tess.result.stats.voxel_count, acc.bias, acc_thin.bias,
-                                 (unsigned long long)acc.false_voxels);
-                    std::fflush(csv);
+                        std::fprintf(csv, "%s,%zu,%d,hybrid,,%.3f,,,%llu,,,,,\n", name.c_str(), mesh.triangleCount(),
+                                     res, hybrid.best_ms, (unsigned long long)hybrid.result.stats.voxel_count);
+                }
+                for (double gamma : gammas) {
+                    options.method = hyvox::Method::Tessellation;
+                    options.tessellation.gamma = gamma;
+                    options.tessellation.counts = false;  // binary voxelization, as the paper times it
+                    const Timed tess = timeMethod(mesh, options, repeat);
+                    if (!tess.error.empty()) {
+                        std::printf("| %s | %zu | %d | γ %g: tessellation failed: %s |\n", name.c_str(),
+                                    mesh.triangleCount(), res, gamma, tess.error.c_str());
+                        continue;
+                    }
+                    const hyvox::TessellationStats& m = tess.result.stats.tessellation.value();
+                    const double gpu_ms = m.pass0_gpu_ms + m.pass1_gpu_ms + m.pass2_gpu_ms;
+                    hyvox::AccuracyReport acc;
+                    if (cpu.error.empty()) acc = compareToReference(tess.result.occupancy, cpu.result.occupancy);
+                    const hyvox::AccuracyReport acc_thin = compareToReference(tess.result.occupancy, thin.occupancy);
+                    const hyvox::SealReport seal = floodFromOutside(tess.result.occupancy, thin.occupancy);
+                    std::printf("| %s | %zu | %d | %.1f | %s | %g | %.1f (%.1f) | %.0f | %.2f%% | %.2f%% | %llu | %s "
+                                "|\n",
+                                name.c_str(), mesh.triangleCount(), res, cpu.best_ms, hybrid_ms, gamma, tess.best_ms,
+                                gpu_ms, double(m.points), 100.0 * acc.bias, 100.0 * acc_thin.bias,
+                                (unsigned long long)acc.false_voxels, sealedText(seal).c_str());
+                    std::fflush(stdout);
+                    if (csv) {
+                        std::fprintf(csv, "%s,%zu,%d,tessellation,%g,%.3f,%.3f,%.0f,%llu,%.6f,%.6f,%llu,%llu,%llu\n",
+                                     name.c_str(), mesh.triangleCount(), res, gamma, tess.best_ms, gpu_ms,
+                                     double(m.points), (unsigned long long)tess.result.stats.voxel_count, acc.bias,
+                                     acc_thin.bias, (unsigned long long)acc.false_voxels,
+                                     (unsigned long long)seal.enclosed, (unsigned long long)seal.leaked);
+                        std::fflush(csv);
+                    }
                 }
             }
         }

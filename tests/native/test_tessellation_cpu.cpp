@@ -2,7 +2,7 @@
 // The tessellation method's CPU pieces, no GL needed: Eq. 1 factors and the pre-split, the
 // vertex normals, the displacement image (PNG), the tests' CPU twins of the surface (PN,
 // sampling) and subdivision, and the accuracy measures (bias, false voxels, ray-marching
-// watertightness, the Eq. 3 fit).
+// and flood watertightness, the Eq. 3 fit).
 #include <gtest/gtest.h>
 #include <png.h>
 
@@ -210,6 +210,36 @@ TEST(Accuracy, WatertightnessCatchesAHoleThatABackWallWouldHide) {
     // Only the +z ray through column (3,3) slips through (to the far face at k = 6); the rays
     // along x and y meet the hole's voxel inside the run of their first face, not first.
     EXPECT_EQ(r.rays - r.passed, 1u);
+}
+
+TEST(Accuracy, FloodFindsTheEnclosedVoxelsAndAPinholeIntoThem) {
+    // A hollow 4³ shell of voxels (3..6 on every axis) in a 10³ grid encloses 2³ voxels; a
+    // copy with one shell voxel removed lets the flood from outside in, a copy with a corner
+    // voxel removed does not (a corner gap is no 6-connected path), and a lone voxel
+    // encloses nothing.
+    BitGrid shell({10, 10, 10});
+    for (int i = 3; i <= 6; ++i)
+        for (int j = 3; j <= 6; ++j)
+            for (int k = 3; k <= 6; ++k)
+                if (i == 3 || i == 6 || j == 3 || j == 6 || k == 3 || k == 6) shell.set(i, j, k);
+    const SealReport same = floodFromOutside(shell, shell);
+    EXPECT_EQ(same.enclosed, 8u);
+    EXPECT_EQ(same.leaked, 0u);
+    EXPECT_TRUE(same.sealed());
+
+    BitGrid pinhole = shell;
+    pinhole.data()[pinhole.wordIndex(4, 5, 3)] &= ~BitGrid::bitMask(5, 3);
+    const SealReport leak = floodFromOutside(pinhole, shell);
+    EXPECT_EQ(leak.enclosed, 8u);
+    EXPECT_EQ(leak.leaked, 8u);
+    EXPECT_FALSE(leak.sealed());
+
+    BitGrid corner = shell;
+    corner.data()[corner.wordIndex(3, 3, 3)] &= ~BitGrid::bitMask(3, 3);
+    EXPECT_TRUE(floodFromOutside(corner, shell).sealed());
+
+    EXPECT_EQ(floodFromOutside(shell, gridWith({{0, 0, 0}}, {10, 10, 10})).enclosed, 0u);
+    EXPECT_THROW(floodFromOutside(shell, BitGrid({10, 10, 9})), InvalidInput);
 }
 
 TEST(Accuracy, GammaFitRecoversEquationThree) {

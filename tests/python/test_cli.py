@@ -108,8 +108,8 @@ def test_bad_stats_path_fails_before_writing(cli, mesh_dir, tmp_path):
 
 
 def test_gamma_sweep_matches_the_module_and_a_least_squares_fit(cli, mesh_dir, tmp_path):
-    # Each row's bias is recounted here from the module's own voxels (exact conservative
-    # cpu set minus the tessellation set at that gamma), and the fit of Eq. 3 is redone with
+    # Each row's biases are recounted here from the module's own voxels (exact conservative
+    # and thin cpu sets minus the tessellation set at that gamma), and the fit of Eq. 3 is redone with
     # numpy: gamma = c0 + c1 ln(bias), B = -c1, A = exp(c0 / c1).
     mesh = mesh_dir / "happy_buddha_100k.ply"
     stats_path = tmp_path / "sweep.json"
@@ -123,12 +123,22 @@ def test_gamma_sweep_matches_the_module_and_a_least_squares_fit(cli, mesh_dir, t
     exact = hyvox.voxelize(vertices, triangles, resolution=96)
     assert sweep["reference_voxels"] == exact.voxel_count and sweep["dims"] == list(exact.dims)
     reference = {tuple(c) for c in exact.coords()}
+    thin = {tuple(c) for c in hyvox.voxelize(vertices, triangles, resolution=96, mode="thin").coords()}
+    assert sweep["thin_reference_voxels"] == len(thin)
     biases = []
     for row in sweep["rows"]:
         points = hyvox.voxelize(vertices, triangles, resolution=96, method="tessellation", tess_gamma=row["gamma"])
-        missed = len(reference - {tuple(c) for c in points.coords()})
+        got = {tuple(c) for c in points.coords()}
+        missed = len(reference - got)
         assert row["missed_voxels"] == missed and row["voxels"] == points.voxel_count
         assert row["bias"] == pytest.approx(missed / len(reference), rel=1e-12)
+        assert row["missed_thin_voxels"] == len(thin - got)
+        assert row["bias_thin"] == pytest.approx(len(thin - got) / len(thin), rel=1e-12)
+        # The Buddha is closed: its thin voxels enclose its inside, which the points seal
+        # from gamma 2 on (the flood test itself is tested in test_tessellation_cpu).
+        assert row["enclosed_voxels"] > 1000 and row["sealed"] == (row["leaked_voxels"] == 0)
+        if row["gamma"] >= 2:
+            assert row["sealed"] is True
         biases.append(row["bias"])
     assert biases[0] > biases[1] > biases[2] > 0
 

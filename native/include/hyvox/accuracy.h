@@ -2,7 +2,8 @@
 #pragma once
 // Accuracy of an approximate voxelization against an exact (conservative) one, measured as
 // the point-tessellated voxelization paper does: bias, false voxels, the six-direction
-// ray-marching watertightness test (section 4.1) and the γ ↔ bias fit of Eq. 3.
+// ray-marching watertightness test (section 4.1), a flood test of the same, and the γ ↔ bias
+// fit of Eq. 3.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -49,6 +50,19 @@ WatertightReport rayMarchWatertightness(const BitGrid& result, const BitGrid& co
                                         const GridSpec& grid);
 WatertightReport rayMarchWatertightness(const SparseGrid& result, const SparseGrid& conservative,
                                         const ValidatedMesh& mesh, const GridSpec& grid);
+
+// The flood test, independent of the rays: a 6-connected flood from outside the grid over
+// the result's empty voxels must not reach a voxel that the exact voxels enclose (empty there,
+// and cut off from outside by them). Pass the exact *thin* (6-separating) voxels as `exact`:
+// the thicker conservative set also walls off small pockets of outside space between nearby
+// sheets of a surface (3 voxels on the Buddha at 256), which a thinner result rightly floods.
+struct SealReport {
+    std::uint64_t enclosed = 0;  // voxels the exact voxels enclose
+    std::uint64_t leaked = 0;    // ... that the flood over the result's empty voxels reaches
+    bool sealed() const { return leaked == 0; }
+};
+SealReport floodFromOutside(const BitGrid& result, const BitGrid& exact);
+SealReport floodFromOutside(const SparseGrid& result, const SparseGrid& exact);  // made dense first
 
 // Eq. 3: γ = -B · ln(A · p) for the bias p. Least squares of γ against ln p over the samples
 // (needs at least two distinct biases > 0; InvalidInput otherwise).

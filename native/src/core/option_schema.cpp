@@ -105,8 +105,9 @@ std::vector<OptionSpec> buildSchema() {
          false, {}, {}, nullptr, HYVOX_FIELD(asNumber, hybrid.cutoff)});
     // --- tessellation ---
     add({"tess_gamma", T::Number, "tessellation", "Tessellation γ", "",
-         "tessellation: safety factor γ of Eq. 1 (higher misses fewer voxels, costs more points)", false, 0, 1024, true,
-         {}, {"--gamma"}, nullptr, HYVOX_FIELD(asNumber, tessellation.gamma)});
+         "tessellation: safety factor γ of Eq. 1 (higher misses fewer voxels, costs more points; below 2 a "
+         "closed mesh may leak)",
+         false, 0, 1024, true, {}, {"--gamma"}, nullptr, HYVOX_FIELD(asNumber, tessellation.gamma)});
     add({"pn_triangles", T::Flag, "tessellation", "PN-Triangles", "", "tessellation: PN-triangle smoothing", false, 0,
          0, false, {}, {}, nullptr, HYVOX_FIELD(asFlag, tessellation.pn_triangles)});
     add({"displacement_image", T::Text, "tessellation", "Displacement Image", "",
