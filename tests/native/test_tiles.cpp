@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The sparse, tiled result: every method (tessellation: flat) cut into small tiles (the tile_size option) sets
+// The sparse, tiled result: every method cut into small tiles (the tile_size option) sets
 // exactly the voxels it sets untiled, on the shared meshes and on faces lying exactly on
 // tile borders; huge grids of small surfaces run within a small memory budget and are exact
 // against the plane's own inequality; runs whose surface cannot fit are refused up front.
@@ -56,8 +56,10 @@ TEST_P(TiledMeshTest, EveryMethodSetsTheSameVoxelsInSmallTiles) {
             if (method == Method::Reference && mode == Mode::Thin) continue;  // cpu thin is the thin oracle
             expectTilingChangesNothing(mesh.view(), method, mode, 48, 16);
         }
-    // The flat tessellation too: the same points land in the same voxels, so bits and counts agree.
+    // The tessellation too (PN-triangles: points off the flat triangles, binned by their reach):
+    // the same points land in the same voxels, so bits and counts agree.
     VoxelizeOptions tess = optionsFor(Method::Tessellation, Mode::Conservative, 48, 0);
+    tess.tessellation.pn_triangles = true;
     const VoxelizeResult tess_whole = voxelize(mesh.view(), tess);
     tess.tile_size = 16;
     const VoxelizeResult tess_tiled = voxelize(mesh.view(), tess);
@@ -194,6 +196,40 @@ TEST(SparseGrid, TilesInAnyOrderGiveTheDenseGridsLeaves) {
     std::sort(coords.begin(), coords.end());
     std::sort(expected.begin(), expected.end());
     EXPECT_EQ(coords, expected);
+}
+
+}  // namespace
+}  // namespace hyvox
+
+namespace hyvox {
+namespace {
+
+// Displacement moves points up to strength x the largest height away from their triangle: a
+// ramp lifts a flat square by up to 12 voxels across tile borders along z.
+TEST(Tiles, DisplacedPointsLandInTheirTile) {
+    const std::vector<float> positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    const std::vector<std::uint32_t> triangles = {0, 1, 2, 0, 2, 3};
+    const std::vector<float> uvs = {0, 0, 1, 0, 1, 1, 0, 1};
+    MeshView mesh = test::viewOf(positions, triangles);
+    mesh.uvs = uvs.data();
+    VoxelizeOptions o = optionsFor(Method::Tessellation, Mode::Conservative, 32, 0);
+    o.grid.bounds = Bounds{{0, 0, -0.5}, {1, 1, 0.5}};
+    o.tessellation.displacement_pixels.width = 8;
+    o.tessellation.displacement_pixels.height = 8;
+    for (int row = 0; row < 8; ++row)
+        for (int col = 0; col < 8; ++col) o.tessellation.displacement_pixels.values.push_back(float(col) / 7.0f);
+    o.tessellation.displacement_strength = 0.4;  // 12.8 voxels at u = 1
+    o.tessellation.displacement_midlevel = 0.0;
+    const VoxelizeResult whole = voxelize(mesh, o);
+    o.tile_size = 8;
+    const VoxelizeResult tiled = voxelize(mesh, o);
+    EXPECT_GT(tiled.stats.tiles, 4u);
+    EXPECT_TRUE(tiled.occupancy == whole.occupancy);
+    EXPECT_EQ(tiled.stats.voxel_count, whole.stats.voxel_count);
+    // The ramp reaches well into the upper tiles (z = 16 is the grid's middle plane).
+    int top = 0;
+    for (const auto& c : whole.occupancy.coords()) top = std::max(top, c[2]);
+    EXPECT_GE(top, 16 + 10);
 }
 
 }  // namespace

@@ -31,6 +31,9 @@ struct Tile {
 
 struct BackendJob {
     const ValidatedMesh& mesh;  // usable: the triangles that may reach the tile
+    // The whole mesh (usable: every usable triangle), for per-vertex attributes that average
+    // over a vertex's triangles (the tessellation's normals): the same in every tile.
+    const ValidatedMesh& whole_mesh;
     const GridSpec& grid;       // the whole grid
     const Tile& tile;
     const VoxelizeOptions& options;

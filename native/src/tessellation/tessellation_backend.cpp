@@ -51,13 +51,10 @@ void runTessellationBackend(const BackendJob& job, TileOutput& result, Stats& st
     checkDisplacementInput(job.mesh, !map.empty());
     // Normals and UVs only matter to PN-triangles and displacement; flat runs skip them.
     const bool curved = options.pn_triangles || !map.empty();
-    // Flat points lie on their triangle, inside the box the dispatcher bins it by; curved ones
-    // may leave it, so curved runs fill the whole grid as one tile (the dispatcher's rule).
-    const bool whole_grid = job.tile.offset == std::array<std::int32_t, 3>{0, 0, 0} && job.tile.dims == job.grid.dims;
-    if (curved && !whole_grid)
-        throw BackendError("PN-triangles and displacement fill the whole grid as one tile");
+    // The dispatcher bins each triangle by its box grown by how far its points may move
+    // (tiling::pointReach), so every point is drawn in the tile it lands in.
     std::optional<tessellation::SurfaceAttributes> surface;
-    if (curved) surface.emplace(job.mesh, job.grid);
+    if (curved) surface.emplace(job.whole_mesh, job.grid);
     const std::vector<float> none;
     const gl::GpuMesh gpu_mesh = gl::makeGpuMesh(job.mesh, job.grid, job.tile.offset);
     const int max_level = tessellation::maxTessellationLevel(job.options.gl.device);

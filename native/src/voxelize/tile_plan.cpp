@@ -40,12 +40,7 @@ std::uint64_t TilePlan::tileBytes() const { return denseBytes(side); }
 TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options) {
     TilePlan plan;
     std::int32_t side = 0;
-    // Curved tessellation (PN-triangles, displacement) moves points off their triangle's box,
-    // which the triangles are binned by: it fills the whole grid as one tile.
-    const TessellationOptions& tess = options.tessellation;
-    const bool curved = options.method == Method::Tessellation &&
-                        (tess.pn_triangles || !tess.displacement_image.empty() || !tess.displacement_pixels.empty());
-    if (!curved) {
+    {
         if (options.tile_size > 0) {
             side = roundUpToBrick(options.tile_size);
         } else {
@@ -64,19 +59,42 @@ TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options) {
     return plan;
 }
 
+PointReach pointReach(const GridSpec& grid, const VoxelizeOptions& options) {
+    PointReach reach;
+    if (options.method != Method::Tessellation) return reach;
+    const TessellationOptions& tess = options.tessellation;
+    // PN-triangle patches bulge well under half their size (the patch planner's bound).
+    if (tess.pn_triangles) reach.relative = 0.5;
+    double height = 0;  // the largest |height - midlevel| the map can hold
+    if (!tess.displacement_image.empty()) {
+        height = std::max(std::fabs(tess.displacement_midlevel), std::fabs(1.0 - tess.displacement_midlevel));  // PNG: 0..1
+    } else if (!tess.displacement_pixels.empty()) {
+        const auto [low, high] = std::minmax_element(tess.displacement_pixels.values.begin(), tess.displacement_pixels.values.end());
+        height = std::max(std::fabs(*low - tess.displacement_midlevel), std::fabs(*high - tess.displacement_midlevel));
+    }
+    if (height > 0) reach.fixed = height * std::fabs(tess.displacement_strength) / grid.voxel_size + 1.0;
+    return reach;
+}
+
 std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, const GridSpec& grid,
-                                                      const TilePlan& plan) {
+                                                      const TilePlan& plan, const PointReach& reach) {
     std::vector<std::vector<std::uint32_t>> bins(plan.total());
     for (std::uint32_t t : mesh.usable) {
         std::array<int, 3> first{}, last{};
-        bool outside = false;
+        std::array<double, 3> lows{}, highs{};
+        double extent = 0;
         for (int a = 0; a < 3; ++a) {
-            double lo = 0, hi = 0;
             for (int c = 0; c < 3; ++c) {
                 const double x = clampCoord(grid.toVoxel(mesh.vertex(t, c))[a]);
-                lo = c == 0 ? x : std::min(lo, x);
-                hi = c == 0 ? x : std::max(hi, x);
+                lows[a] = c == 0 ? x : std::min(lows[a], x);
+                highs[a] = c == 0 ? x : std::max(highs[a], x);
             }
+            extent = std::max(extent, highs[a] - lows[a]);
+        }
+        const double grow = std::min(reach.fixed + reach.relative * extent, 1.0e9);
+        bool outside = false;
+        for (int a = 0; a < 3; ++a) {
+            const double lo = lows[a] - grow, hi = highs[a] + grow;
             const double v0 = std::max(0.0, std::ceil(lo) - 1), v1 = std::min(double(grid.dims[a] - 1), std::floor(hi));
             if (v0 > v1) {
                 outside = true;

@@ -23,14 +23,23 @@ struct TilePlan {
 
 // tile_size > 0: cubes of that side (rounded up to a multiple of 8). 0: the whole grid when
 // its bits fit a quarter of the memory budget (at most 256 MiB), else the largest cubes that
-// do. Tessellation with PN-triangles or displacement always takes the whole grid (its points
-// may leave their triangle's box).
+// do.
 TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options);
 
-// For each tile, the usable triangles whose closed voxel range reaches it (the candidates of
-// the conservative test: voxel i meets [lo, hi] iff lo - 1 <= i <= hi), ascending.
+// How far (voxels) a triangle's points may lie outside its bounding box: 0 for every method
+// but the tessellation's PN-triangles (a share of the triangle's largest extent) and
+// displacement (the largest height offset times the strength), bounded from above.
+struct PointReach {
+    double fixed = 0;     // voxels
+    double relative = 0;  // times the triangle's largest extent, in voxels
+};
+PointReach pointReach(const GridSpec& grid, const VoxelizeOptions& options);
+
+// For each tile, the usable triangles whose closed voxel range, grown by their reach, meets
+// it (the candidates of the conservative test: voxel i meets [lo, hi] iff lo - 1 <= i <= hi),
+// ascending.
 std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, const GridSpec& grid,
-                                                      const TilePlan& plan);
+                                                      const TilePlan& plan, const PointReach& reach);
 
 // The surface's leaves, estimated before any work from the triangles' areas: a surface of
 // area A (voxel units²) crosses about 2·A/64 leaves of 8×8 faces, and every triangle at

@@ -26,7 +26,7 @@ void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options, con
                             " and about " + std::to_string(estimated_leaves) +
                             " leaves of surface), more than the memory budget of " +
                             std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size" +
-                            (plan.whole() && options.method == Method::Tessellation ? " (curved tessellation is not tiled)" : ""));
+                            "");
 }
 
 // Progress over the whole run: the backends report each tile's own 0..100.
@@ -83,7 +83,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     result.occupancy = SparseGrid(grid.dims);
 
     std::vector<std::vector<std::uint32_t>> bins;
-    if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan);
+    if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, tiling::pointReach(grid, options));
     stats.addTiming("tiles", watch.restart());
 
     VoxelizeOptions tile_options = options;
@@ -97,7 +97,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
         progress.setTile(t);
         TileOutput out{BitGrid(tile.dims), {}};
         stats.addTiming("allocate", watch.restart());
-        runBackend(BackendJob{tile_mesh, grid, tile, tile_options, &progress}, out, stats);
+        runBackend(BackendJob{tile_mesh, validated, grid, tile, tile_options, &progress}, out, stats);
         watch.restart();
         result.occupancy.addTile(out.bits, tile.offset);
         result.counts.insert(result.counts.end(), out.counts.begin(), out.counts.end());
