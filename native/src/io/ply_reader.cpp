@@ -102,9 +102,11 @@ struct RecordError {
 Header readHeader(const char* data, std::size_t size, const std::string& name) {
     Header header;
     std::size_t pos = 0, line_number = 0;
+    bool line_cut = false;  // the last line read ended with the file, not with a newline
     auto nextLine = [&](std::string_view& line) {
         if (pos >= size) return false;
         const void* newline = std::memchr(data + pos, '\n', size - pos);
+        line_cut = !newline;
         const std::size_t end = newline ? std::size_t(static_cast<const char*>(newline) - data) : size;
         line = std::string_view(data + pos, end - pos);
         if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
@@ -118,7 +120,9 @@ Header readHeader(const char* data, std::size_t size, const std::string& name) {
     if (!nextLine(line) || line != "ply") failMeshFile(name, "not a PLY file (the first line is not 'ply')");
     bool have_format = false;
     for (;;) {
-        if (!nextLine(line)) failMeshFile(name, "the PLY header has no 'end_header' line (the file ends inside the header)");
+        // A header line the file cuts short is reported as that, not as whatever it now reads as.
+        if (!nextLine(line) || (line_cut && line != "end_header"))
+            failMeshFile(name, "the PLY header has no 'end_header' line (the file ends inside the header)");
         TextScanner words(line.data(), line.data() + line.size());
         std::string_view keyword;
         if (!words.wordOnLine(keyword)) continue;  // blank lines are harmless
