@@ -75,7 +75,7 @@ AtomicFile::AtomicFile(std::string destination) : destination_(std::move(destina
         if (!S_ISREG(st.st_mode))
             throw InvalidInput("the output path '" + destination_ +
                                "' is not a regular file (a device, FIFO or socket); refusing to replace it");
-        keep_mode_ = st.st_mode & 07777;  // the replacement gets the replaced file's permissions
+        keep_mode_ = st.st_mode & 0777;  // the replaced file's permissions (never set-id bits)
     }
 
     // Hidden, unique per process and call; O_EXCL so two writers never share a temporary.
