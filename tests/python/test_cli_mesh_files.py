@@ -66,6 +66,18 @@ def test_damaged_mesh_is_a_clear_error(cli, mesh_dir, tmp_path, name, make, mess
         hyvox.read_mesh(mesh)
 
 
+def test_failed_reads_hold_no_memory(tmp_path):
+    """The issue's 200-byte PLY declaring 100M faces held 1.5 GB per failed read_mesh."""
+    import resource
+    mesh = tmp_path / "many.ply"
+    mesh.write_text(HEADER.replace("face 4", "face 100000000") + VERTICES + FACES)
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    for _ in range(200):
+        with pytest.raises(ValueError, match="100000000"):
+            hyvox.read_mesh(mesh)
+    assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before < 64 * 1024  # KiB
+
+
 def test_damaged_mesh_in_gamma_sweep(cli, tmp_path):
     mesh = tmp_path / "zero.ply"
     mesh.write_text(HEADER + VERTICES + "3 0 2 1\n0\n3 0 3 2\n3 1 2 3\n")

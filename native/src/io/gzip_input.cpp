@@ -51,6 +51,10 @@ std::vector<char> inflateAll(const std::vector<char>& input, const std::string& 
         if (output.size() + produced > max_output)
             failMeshFile(path, "decompresses to more than " + std::to_string(max_output >> 20) +
                                    " MiB, the limit for a file of this size (a damaged file or a gzip bomb)");
+        // Grown by doubling, but never past the limit: a refused bomb never held more.
+        if (output.size() + produced > output.capacity())
+            output.reserve(std::size_t(std::min<std::uint64_t>(max_output, std::max(2 * output.capacity(),
+                                                                                    output.size() + produced))));
         output.insert(output.end(), chunk.data(), chunk.data() + produced);
         if (status == Z_STREAM_END) {
             if (left == 0) break;
