@@ -25,3 +25,6 @@ cmake --build build-asan -j "$jobs"
 # Mesa's drivers are not instrumented and keep process-lifetime allocations: leak checks off.
 ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$jobs"
+
+echo "== libFuzzer (clang, ASan + UBSan): the strict PLY and OBJ readers, 60 s each, failing on any finding"
+bash scripts/fuzz_readers.sh

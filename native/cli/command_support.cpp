@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include "cli_args.h"
 #include "hyvox/errors.h"
 
 namespace hyvox::cli {
@@ -15,13 +16,50 @@ std::unique_ptr<tbb::global_control> limitThreads(int threads) {
 void checkOutputFolder(const std::string& path, const char* what) {
     namespace fs = std::filesystem;
     std::error_code error;
-    if (fs::is_directory(fs::path(path), error))
-        throw InvalidInput(std::string("cannot write ") + what + " '" + path + "': it is a folder");
+    const fs::file_status link = fs::symlink_status(fs::path(path), error);
+    if (fs::exists(link)) {
+        const fs::file_status status = fs::status(fs::path(path), error);
+        if (fs::is_symlink(link) && !fs::exists(status))
+            throw InvalidInput(std::string("cannot write ") + what + " '" + path + "': it is a symlink to nothing");
+        if (fs::is_directory(status))
+            throw InvalidInput(std::string("cannot write ") + what + " '" + path + "': it is a folder");
+        if (!fs::is_regular_file(status))
+            throw InvalidInput(std::string("cannot write ") + what + " '" + path +
+                               "': it is not a regular file (a device, FIFO or socket); refusing to replace it");
+    }
     fs::path folder = fs::path(path).parent_path();
     if (folder.empty()) folder = ".";
     if (!fs::is_directory(folder, error))
         throw InvalidInput(std::string("cannot write ") + what + " '" + path + "': folder '" + folder.string() +
                            "' does not exist");
+}
+
+namespace {
+
+// The same file: one inode (hard links, symlinks, other spellings of an existing file), or
+// for a file not there yet, the same path once "..", "." and symlinked folders are resolved.
+bool sameFile(const std::string& a, const std::string& b) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    if (fs::equivalent(fs::path(a), fs::path(b), error) && !error) return true;
+    const fs::path ca = fs::weakly_canonical(fs::path(a), error);
+    if (error) return false;
+    const fs::path cb = fs::weakly_canonical(fs::path(b), error);
+    return !error && ca == cb;
+}
+
+}  // namespace
+
+void checkOutputPaths(const std::string& mesh, const std::string& output, const std::string& stats_json) {
+    if (!output.empty() && sameFile(output, mesh))
+        throw UsageError("-o '" + output + "' is the input mesh '" + mesh + "'; refusing to overwrite it");
+    if (!stats_json.empty() && sameFile(stats_json, mesh))
+        throw UsageError("--stats-json '" + stats_json + "' is the input mesh '" + mesh + "'; refusing to overwrite it");
+    if (!output.empty() && !stats_json.empty() && sameFile(output, stats_json))
+        throw UsageError("--stats-json '" + stats_json + "' and -o '" + output +
+                         "' are the same file; the stats would replace the .vdb");
+    if (!output.empty()) checkOutputFolder(output, "the output");
+    if (!stats_json.empty()) checkOutputFolder(stats_json, "the stats");
 }
 
 double msSince(std::chrono::steady_clock::time_point start) {

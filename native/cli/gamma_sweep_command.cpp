@@ -57,7 +57,7 @@ std::string sweepJson(const GridSpec& grid, std::uint64_t reference_voxels, std:
 
 void runGammaSweep(const Arguments& args, const std::atomic<bool>& stop) {
     const auto thread_limit = limitThreads(args.options.threads);
-    if (!args.stats_json_path.empty()) checkOutputFolder(args.stats_json_path, "the stats");
+    checkOutputPaths(args.mesh_path, "", args.stats_json_path);
     const Mesh mesh = readMesh(args.mesh_path);
     StopFlagInterrupter interrupter(stop);
 

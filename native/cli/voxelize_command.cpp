@@ -35,8 +35,7 @@ void printSummary(const Arguments& args, const Mesh& mesh, const VoxelizeResult&
 
 void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     const auto thread_limit = limitThreads(args.options.threads);
-    checkOutputFolder(args.output_path, "the output");
-    if (!args.stats_json_path.empty()) checkOutputFolder(args.stats_json_path, "the stats");
+    checkOutputPaths(args.mesh_path, args.output_path, args.stats_json_path);
     auto start = std::chrono::steady_clock::now();
     const Mesh mesh = readMesh(args.mesh_path);
     const double read_ms = msSince(start);

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// Reading triangle meshes from files (PLY binary/ascii, .ply.gz, OBJ, and whatever else
-// assimp reads) into an owning mesh. Triangles are kept exactly as the file lists them:
-// degenerate and duplicate triangles stay (validate() skips and counts them), so triangle
-// counts match the file.
+// Reading triangle meshes from files into an owning mesh. PLY (binary/ascii, also .ply.gz)
+// and OBJ are read by hyvox's own strict readers (src/io/ply_reader.h, obj_reader.h): every
+// declared count is checked against the bytes present before allocating, and a damaged file
+// is an InvalidInput naming the file and the place. Other formats go through assimp (which
+// never sees PLY or OBJ). Triangles are kept exactly as the file lists them: degenerate and
+// duplicate triangles stay (validate() skips and counts them), so triangle counts match the
+// file.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -31,11 +34,13 @@ struct Mesh {
     }
 };
 
-// Reads a mesh file. A name ending in ".gz" is decompressed first and parsed by the
-// extension before ".gz" (e.g. "x.ply.gz" as PLY). Points and lines in the file are
-// ignored; polygons are fan-triangulated. Several meshes in one file are merged, with
-// their node transforms applied. Throws InvalidInput for a missing, unreadable or
-// unparsable file, or one without triangles.
+// Reads a mesh file. A name ending in ".gz" is decompressed first (bounded: see
+// io/gzip_input.h; a stream cut short is an error) and parsed by the extension before ".gz"
+// (e.g. "x.ply.gz" as PLY); a file whose first line is "ply" is read as PLY whatever its
+// name. Points and lines in the file are ignored (a PLY face or OBJ "f" with fewer than 3
+// corners is an error); polygons are fan-triangulated. Several meshes in one file are
+// merged, with their node transforms applied. Throws InvalidInput for a missing, unreadable,
+// non-regular, damaged or unparsable file, or one without triangles.
 Mesh readMesh(const std::string& path);
 
 }  // namespace hyvox

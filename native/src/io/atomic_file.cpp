@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -54,20 +55,47 @@ AtomicFile::AtomicFile(std::string destination) : destination_(std::move(destina
     const std::string base = baseOf(destination_);
     if (base.empty() || base == "." || base == "..")
         throw InvalidInput("the output path '" + destination_ + "' names a folder, not a file");
+    target_ = destination_;
     struct stat st {};
-    if (::stat(destination_.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
-        throw InvalidInput("the output path '" + destination_ + "' is a folder");
+    if (::lstat(destination_.c_str(), &st) == 0) {
+        // A symlink is followed: the file it names is replaced and the link stays (renaming
+        // over the link itself would turn it into a regular file). A link to nothing is refused.
+        if (S_ISLNK(st.st_mode)) {
+            char* resolved = ::realpath(destination_.c_str(), nullptr);
+            if (!resolved || ::stat(resolved, &st) != 0) {
+                std::free(resolved);
+                throw InvalidInput("the output path '" + destination_ + "' is a symlink to nothing; refusing to write");
+            }
+            target_ = resolved;
+            std::free(resolved);
+        }
+        if (S_ISDIR(st.st_mode)) throw InvalidInput("the output path '" + destination_ + "' is a folder");
+        // A device, FIFO or socket would be replaced by a regular file (as root, -o /dev/null
+        // would remove /dev/null): refused.
+        if (!S_ISREG(st.st_mode))
+            throw InvalidInput("the output path '" + destination_ +
+                               "' is not a regular file (a device, FIFO or socket); refusing to replace it");
+        keep_mode_ = st.st_mode & 0777;  // the replaced file's permissions (never set-id bits)
+    }
 
     // Hidden, unique per process and call; O_EXCL so two writers never share a temporary.
     static std::atomic<unsigned> counter{0};
-    const std::string folder = folderOf(destination_);
+    const std::string folder = folderOf(target_);
+    const std::string target_base = baseOf(target_);
     for (int attempt = 0; attempt < 100; ++attempt) {
-        std::string candidate = folder + "/." + base + ".tmp-" + std::to_string(::getpid()) + "-" +
+        std::string candidate = folder + "/." + target_base + ".tmp-" + std::to_string(::getpid()) + "-" +
                                 std::to_string(counter.fetch_add(1));
-        // 0666 and the umask give the permissions a plain fopen would give the final file.
+        // 0666 and the umask give the permissions a plain fopen would give a new file.
         const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd >= 0) {
+            const bool mode_kept = keep_mode_ < 0 || ::fchmod(fd, mode_t(keep_mode_)) == 0;
+            const int error = errno;
             ::close(fd);
+            if (!mode_kept) {
+                std::remove(candidate.c_str());
+                throw ResourceError("cannot write '" + destination_ + "': cannot keep its permissions: " +
+                                    std::strerror(error));
+            }
             temp_ = std::move(candidate);
             return;
         }
@@ -93,7 +121,7 @@ void AtomicFile::commit() {
     const std::string sync_error = synced ? "" : errnoText();
     ::close(fd);
     if (!synced) throw ResourceError("cannot write '" + destination_ + "': fsync failed: " + sync_error);
-    if (std::rename(temp_.c_str(), destination_.c_str()) != 0)
+    if (std::rename(temp_.c_str(), target_.c_str()) != 0)
         throw ResourceError("cannot write '" + destination_ + "': renaming the temporary failed: " + errnoText());
     committed_ = true;
 }

@@ -3,7 +3,9 @@
 // A temporary file beside a destination path, renamed over it on commit() and removed
 // otherwise: readers of the destination never see a half-written file, and a failed write
 // leaves an existing file untouched. The temporary is in the same folder so the rename
-// stays on one file system (atomic on POSIX).
+// stays on one file system (atomic on POSIX). An existing destination must be a regular
+// file (or a symlink to one: the file it names is replaced, the link kept); the new file
+// gets the old one's permission bits.
 #include <functional>
 #include <ostream>
 #include <string>
@@ -13,7 +15,8 @@ namespace hyvox::io {
 class AtomicFile {
 public:
     // Creates an empty, unique temporary file; throws InvalidInput when the destination's
-    // folder is missing or not writable, or the destination is a folder, and ResourceError
+    // folder is missing or not writable, or the destination is a folder, a device, FIFO or
+    // socket, or a symlink to nothing, and ResourceError
     // when the system is out of a resource (disk space, quota, file descriptors, I/O error).
     explicit AtomicFile(std::string destination);
     ~AtomicFile();
@@ -30,8 +33,10 @@ private:
     // Flushes the temporary to disk and renames it over the destination; throws ResourceError.
     void commit();
 
-    std::string destination_;
+    std::string destination_;  // as the caller gave it (for messages)
+    std::string target_;       // the file replaced: destination_ with a symlink resolved
     std::string temp_;
+    long keep_mode_ = -1;      // the replaced file's permission bits, or -1 for a new file
     bool committed_ = false;
 };
 

@@ -1,0 +1,26 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Bounded gzip decompression for .gz mesh files: a gzip bomb is refused when its output
+// passes a limit (not when memory runs out), and a stream cut short is an error, not a
+// silently shorter mesh.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace hyvox::io {
+
+// The largest output readMesh accepts from `compressed_bytes` of gzip: at most the default
+// voxelization memory budget (4 GiB), and at most 100 times the input but never below
+// 256 MiB. Real meshes compress 2-5x (the shared ones: 2.2-3.6x); bombs reach 1000x.
+std::uint64_t gzipOutputLimit(std::uint64_t compressed_bytes);
+
+// Decompresses the whole file (several concatenated gzip members too). Throws InvalidInput
+// naming the file when it is not gzip, is corrupt, ends before its last member does, or
+// would decompress to more than max_output bytes.
+std::vector<char> readGzipFile(const std::string& path, std::uint64_t max_output);
+
+// The same with max_output = gzipOutputLimit(the file's size).
+std::vector<char> readGzipFile(const std::string& path);
+
+}  // namespace hyvox::io

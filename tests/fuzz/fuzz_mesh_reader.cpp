@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// libFuzzer target for one strict mesh reader, chosen at build time (HYVOX_FUZZ_PLY or
+// HYVOX_FUZZ_OBJ): any bytes must give a mesh whose indices are in range, or InvalidInput.
+// Anything else (another exception, a crash, a sanitizer report, a hang, memory beyond
+// -rss_limit_mb) is a finding.
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+
+#include "hyvox/errors.h"
+#include "io/obj_reader.h"
+#include "io/ply_reader.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const char* bytes = reinterpret_cast<const char*>(data);
+    try {
+#if defined(HYVOX_FUZZ_PLY)
+        const hyvox::Mesh mesh = hyvox::io::readPly(bytes, size, "fuzz.ply");
+#else
+        const hyvox::Mesh mesh = hyvox::io::readObj(bytes, size, "fuzz.obj");
+#endif
+        if (mesh.triangles.empty() || mesh.positions.size() % 3 != 0) std::abort();
+        if (mesh.hasColors() && mesh.colors.size() != 4 * mesh.vertexCount()) std::abort();
+        if (mesh.hasUvs() && mesh.uvs.size() != 2 * mesh.vertexCount()) std::abort();
+        for (std::uint32_t i : mesh.triangles)
+            if (i >= mesh.vertexCount()) std::abort();
+    } catch (const hyvox::InvalidInput&) {
+        // the expected answer to bad bytes
+    }
+    return 0;
+}
