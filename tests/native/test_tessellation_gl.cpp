@@ -529,6 +529,20 @@ TEST(TessellationApi, BadOptionsAreClearErrors) {
     EXPECT_THROW(voxelize(no_uvs, o), InvalidInput);
 }
 
+TEST(TessellationApi, WorkThatWouldExplodeIsRefusedUpFront) {
+    // The flat square at 16384 with gamma 1024: micro-triangles of 1/1024 voxel, about 10^14
+    // points. Refused before any GPU work (it ran for hours), naming the estimate.
+    const FlatSquare square;
+    VoxelizeOptions o = optionsFor(Method::Tessellation, 16384, 1024.0);
+    o.memory_budget_mib = 1 << 20;
+    try {
+        voxelize(square.view(), o);
+        FAIL() << "expected ResourceError";
+    } catch (const ResourceError& e) {
+        EXPECT_NE(std::string(e.what()).find("lower tess_gamma"), std::string::npos) << e.what();
+    }
+}
+
 TEST(TessellationApi, ShaderFolderFromTheOptionsIsUsed) {
     // GlOptions::shader_dir reaches this method too: a copy of shaders/ whose point injection
     // does not compile gives a BackendError naming that file, and the unbroken copy on disk

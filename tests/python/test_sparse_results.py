@@ -71,3 +71,4 @@ def test_write_reports_progress_and_can_be_cancelled(strip, tmp_path):
     with pytest.raises(hyvox.Cancelled):
         strip.write_vdb(tmp_path / "b.vdb", cancel=token)
     assert not (tmp_path / "b.vdb").exists() and sorted(p.name for p in tmp_path.iterdir()) == ["a.vdb"]
+

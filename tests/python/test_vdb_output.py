@@ -94,3 +94,10 @@ def test_multi_valued_counts_grid(bunny, tmp_path):
     dense = np.zeros(grid.dims, np.float32)
     count.copyToArray(dense, ijk=(0, 0, 0))
     assert np.array_equal(dense[tuple(ijk.T)], counts.astype(np.float32))
+
+
+def test_write_to_a_name_of_254_characters(tetrahedron, tmp_path):
+    grid = hyvox.voxelize(*tetrahedron, resolution=8)
+    path = tmp_path / ("n" * 250 + ".vdb")  # the longest names need a shorter temporary
+    grid.write_vdb(path)
+    assert path.exists() and sorted(p.name for p in tmp_path.iterdir()) == [path.name]

@@ -78,10 +78,11 @@ AtomicFile::AtomicFile(std::string destination) : destination_(std::move(destina
         keep_mode_ = st.st_mode & 0777;  // the replaced file's permissions (never set-id bits)
     }
 
-    // Hidden, unique per process and call; O_EXCL so two writers never share a temporary.
+    // Hidden, unique per process and call; O_EXCL so two writers never share a temporary. The
+    // target's name is shortened in it, so a valid name of up to 255 bytes still has one.
     static std::atomic<unsigned> counter{0};
     const std::string folder = folderOf(target_);
-    const std::string target_base = baseOf(target_);
+    const std::string target_base = baseOf(target_).substr(0, 200);
     for (int attempt = 0; attempt < 100; ++attempt) {
         std::string candidate = folder + "/." + target_base + ".tmp-" + std::to_string(::getpid()) + "-" +
                                 std::to_string(counter.fetch_add(1));

@@ -20,6 +20,7 @@ PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, const std
     const BrickLayout bricks = BrickLayout::over(tile_dims);
     std::vector<std::uint8_t> reached(estimate_bricks ? bricks.total() : 0, 0);
     std::atomic<std::uint64_t> large_estimate{0};
+    std::atomic<std::uint64_t> points_estimate{0};
     std::vector<std::uint32_t> pieces(mesh.usable.size());  // 0 = whole, 1 = one patch, n = n² patches
 
     // Per triangle, in parallel: its split count and the bricks its points can reach.
@@ -33,6 +34,9 @@ PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, const std
             }
             const PatchFactors factors = patchFactors(p[0], p[1], p[2], gamma);
             pieces[u] = factors.largest() <= 1.0 ? 0u : std::uint32_t(presplitPieces(factors, max_level));
+            // A patch at level L makes about L² micro-triangles (pre-split or not).
+            const double level = std::max(1.0, factors.largest());
+            points_estimate.fetch_add(std::uint64_t(std::min(level * level, 1.0e15)), std::memory_order_relaxed);
             if (!estimate_bricks) continue;
             const double grow = reach + pn_reach * factors.largest() / gamma;
             std::array<int, 3> lo{}, hi{};
@@ -64,6 +68,13 @@ PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, const std
     });
 
     PatchPlan plan;
+    plan.points_estimate = points_estimate.load();
+    // The points are counted in 32-bit GPU counters, and a run of billions of points takes
+    // hours on a software device: refused before any work, with the reason.
+    if (plan.points_estimate > kMaxPoints)
+        throw ResourceError("the tessellation would make about " + std::to_string(plan.points_estimate) +
+                            " points, more than the " + std::to_string(kMaxPoints) +
+                            " its counters hold; lower tess_gamma or the resolution");
     plan.brick_estimate = large_estimate + std::uint64_t(std::count(reached.begin(), reached.end(), 1));
     const std::size_t whole = std::size_t(std::count(pieces.begin(), pieces.end(), 0u));
     plan.whole.reserve(whole);

@@ -25,9 +25,13 @@ struct PatchPlan {
     // the union of the small triangles' bounding boxes in bricks, grown by `reach`, plus an
     // area-based share for triangles spanning many bricks.
     std::uint64_t brick_estimate = 0;
+    std::uint64_t points_estimate = 0;  // Σ over triangles of (largest factor)², at least 1 each
 };
 
-// `gamma` and `max_level` as in Eq. 1 and GL_MAX_TESS_GEN_LEVEL; the factors come from the
+// The most points one run may make (its GPU counters are 32-bit); planPatches refuses more.
+constexpr std::uint64_t kMaxPoints = 0xffffffffull;
+
+// ResourceError when the points would exceed kMaxPoints. `gamma` and `max_level` as in Eq. 1 and GL_MAX_TESS_GEN_LEVEL; the factors come from the
 // whole grid's voxel space. With `estimate_bricks`, the bricks are those of the tile being
 // filled (voxels tile_offset .. + tile_dims): `reach` = how far (voxels) points may leave
 // the flat triangle (displacement), `pn_reach` the same as a share of each triangle's
