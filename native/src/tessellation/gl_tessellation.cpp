@@ -121,20 +121,44 @@ Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const
     });
 
     gl::PassTimer direct_timer(tuning.wall_timing), split_timer(tuning.wall_timing);
+    // A patch makes at most max_level² points, so a draw of `per_draw` patches makes at most
+    // about 8M (a fraction of a second on a software device). Draws are queued one ahead of
+    // the GPU: before the next, the one before last must have finished, and the interrupter
+    // is polled while waiting, so a cancel stops the run within about one draw.
+    const std::uint64_t level2 = std::uint64_t(std::max(in.max_level, 1)) * std::uint64_t(std::max(in.max_level, 1));
+    const std::uint64_t per_draw = std::clamp<std::uint64_t>((8ull << 20) / level2, 1, kPatchesPerDraw);
+    auto interrupted = [&] { return in.interrupter && in.interrupter->wasInterrupted(); };
+    // True when the fence signalled, false when the interrupter asked to stop first.
+    auto waitFor = [&](GLsync fence) {
+        for (;;) {
+            const GLenum state = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 2'000'000);  // 2 ms
+            if (state == GL_ALREADY_SIGNALED || state == GL_CONDITION_SATISFIED) return true;
+            if (state == GL_WAIT_FAILED) throw BackendError("waiting for a tessellation draw failed");
+            if (interrupted()) return false;
+        }
+    };
     auto drawPatches = [&](GLuint mode, std::uint64_t patches, gl::PassTimer& timer) {
         setDrawUniform(HYVOX_TESS_LOC_SPLIT_MODE,
                        [&](GLuint id) { glProgramUniform1ui(id, HYVOX_TESS_LOC_SPLIT_MODE, mode); });
         timer.begin();
-        bool cancelled = false;
-        for (std::uint64_t base = 0; base < patches && !cancelled; base += kPatchesPerDraw) {
-            const std::uint64_t count = std::min(kPatchesPerDraw, patches - base);
+        bool cancelled = interrupted();
+        GLsync previous = nullptr;
+        for (std::uint64_t base = 0; base < patches && !cancelled; base += per_draw) {
+            const std::uint64_t count = std::min(per_draw, patches - base);
             setDrawUniform(HYVOX_TESS_LOC_PATCH_BASE,
                            [&](GLuint id) { glProgramUniform1ui(id, HYVOX_TESS_LOC_PATCH_BASE, GLuint(base)); });
             // One instance per patch where plain patch draws are assembled wrongly (GlTuning).
             if (tuning.tess_instanced) glDrawArraysInstanced(GL_PATCHES, 0, 3, GLsizei(count));
             else glDrawArrays(GL_PATCHES, 0, GLsizei(3 * count));
-            cancelled = in.interrupter && in.interrupter->wasInterrupted();
+            GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+            if (previous) {
+                cancelled = !waitFor(previous);
+                glDeleteSync(previous);
+            }
+            previous = fence;
+            cancelled = cancelled || interrupted();
         }
+        if (previous) glDeleteSync(previous);
         timer.end();
         if (cancelled) throw Cancelled();
     };

@@ -37,14 +37,15 @@ Tile TilePlan::tile(std::size_t index, const GridSpec& grid) const {
 
 std::uint64_t TilePlan::tileBytes() const { return denseBytes(side); }
 
-TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options) {
+TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options, std::uint64_t device_limit) {
     TilePlan plan;
     std::int32_t side = 0;
     {
         if (options.tile_size > 0) {
             side = roundUpToBrick(options.tile_size);
         } else {
-            const std::uint64_t limit = std::min(kMaxAutoTileBytes, options.memoryBudgetBytes() / 4);
+            std::uint64_t limit = std::min(kMaxAutoTileBytes, options.memoryBudgetBytes() / 4);
+            if (device_limit > 0) limit = std::min(limit, device_limit);
             if (denseBytes(grid.dims) > limit) {
                 // The largest cube of whole bricks whose bits fit the limit (side³ / 8 bytes).
                 const double voxels = std::cbrt(double(limit) * 8.0);

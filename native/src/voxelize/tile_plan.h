@@ -22,9 +22,10 @@ struct TilePlan {
 };
 
 // tile_size > 0: cubes of that side (rounded up to a multiple of 8). 0: the whole grid when
-// its bits fit a quarter of the memory budget (at most 256 MiB), else the largest cubes that
-// do.
-TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options);
+// its bits fit a quarter of the memory budget (at most 256 MiB) and `device_limit` (bytes;
+// 0 = none: the device's largest storage buffer, for methods that hold a tile in one), else
+// the largest cubes that do.
+TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options, std::uint64_t device_limit = 0);
 
 // How far (voxels) a triangle's points may lie outside its bounding box: 0 for every method
 // but the tessellation's PN-triangles (a share of the triangle's largest extent) and

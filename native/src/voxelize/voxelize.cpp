@@ -8,6 +8,7 @@
 
 #include "core/backends.h"
 #include "core/stopwatch.h"
+#include "gl/device_limits.h"
 #include "hyvox/option_schema.h"
 #include "tile_plan.h"
 
@@ -70,7 +71,11 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     const ValidatedMesh validated = validate(mesh);
     result.grid = makeGrid(validated.bounds, options.grid);
     const GridSpec& grid = result.grid;
-    const tiling::TilePlan plan = tiling::planTiles(grid, options);
+    // The tessellation holds a tile's bits in one storage buffer (the hybrid methods cut theirs
+    // into slabs themselves): its tiles also follow the device's limit.
+    const std::uint64_t device_limit =
+        options.method == Method::Tessellation ? gl::maxStorageBlockBytes(options.gl.device) : 0;
+    const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
     checkMemoryBudget(grid, options, plan, tiling::estimateLeaves(validated, grid));
     stats.addTiming("validate", watch.restart());
     throwIfInterrupted(interrupter, 0);
