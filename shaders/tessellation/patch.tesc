@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Eq. 1: each outer level is γ times the edge's largest extent along x, y or z in voxels, the
-// inner level their mean, so every tessellated edge segment spans at most 1/γ voxel per axis.
+// Eq. 1: each outer level is γ times the edge's length in voxels, the inner level their mean,
+// so every tessellated edge segment is at most 1/γ voxel long (tess_factors.h, the CPU twin).
 // Invocation 0 also loads the triangle and its PN coefficients once for the whole patch.
 #include "tessellation/surface.glsl"
 
@@ -21,8 +21,7 @@ patch out vec3 tcNe[3];
 #endif
 
 float edgeLevel(vec3 a, vec3 b) {
-    const vec3 extent = abs(a - b);
-    return gamma * max(extent.x, max(extent.y, extent.z));
+    return gamma * length(a - b);
 }
 
 void main() {

@@ -28,24 +28,26 @@ using test::SurfacePoint;
 using test::SurfaceTwin;
 using test::Vec3d;
 
-TEST(TessellationFactors, EquationOneUsesTheLargestAxisExtent) {
-    // Edge (0,0,0)-(3,-5,1): extents 3, 5, 1 voxels -> 5 at γ = 1, 10 at γ = 2.
-    EXPECT_DOUBLE_EQ(edgeFactor({0, 0, 0}, {3, -5, 1}, 1.0), 5.0);
-    EXPECT_DOUBLE_EQ(edgeFactor({0, 0, 0}, {3, -5, 1}, 2.0), 10.0);
+TEST(TessellationFactors, EquationOneUsesTheEdgeLength) {
+    // Edge (0,0,0)-(3,-5,1): length sqrt(9 + 25 + 1) voxels, times γ.
+    EXPECT_DOUBLE_EQ(edgeFactor({0, 0, 0}, {3, -5, 1}, 1.0), std::sqrt(35.0));
+    EXPECT_DOUBLE_EQ(edgeFactor({0, 0, 0}, {3, -5, 1}, 2.0), 2.0 * std::sqrt(35.0));
     const PatchFactors f = patchFactors({0, 0, 0}, {4, 0, 0}, {0, 2, 0}, 1.0);
-    EXPECT_DOUBLE_EQ(f.outer[0], 4.0);  // corners 1-2: extents 4, 2
-    EXPECT_DOUBLE_EQ(f.outer[1], 2.0);  // corners 2-0
-    EXPECT_DOUBLE_EQ(f.outer[2], 4.0);  // corners 0-1
-    EXPECT_DOUBLE_EQ(f.inner, 10.0 / 3.0);
+    EXPECT_DOUBLE_EQ(f.outer[0], std::sqrt(20.0));  // corners 1-2
+    EXPECT_DOUBLE_EQ(f.outer[1], 2.0);              // corners 2-0
+    EXPECT_DOUBLE_EQ(f.outer[2], 4.0);              // corners 0-1
+    EXPECT_DOUBLE_EQ(f.inner, (std::sqrt(20.0) + 6.0) / 3.0);
 }
 
 TEST(TessellationFactors, PreSplitKeepsEveryFactorUnderTheLimit) {
-    EXPECT_EQ(presplitPieces(patchFactors({0, 0, 0}, {64, 0, 0}, {0, 64, 0}, 1.0), 64), 1);
-    EXPECT_EQ(presplitPieces(patchFactors({0, 0, 0}, {65, 0, 0}, {0, 64, 0}, 1.0), 64), 2);
-    // A tetrahedron face at 1024³ with γ = 4: 4096 / 64 = 64 pieces per edge.
+    // Longest edges 64 and 65 voxels (the others about 45).
+    EXPECT_EQ(presplitPieces(patchFactors({0, 0, 0}, {64, 0, 0}, {32, 32, 0}, 1.0), 64), 1);
+    EXPECT_EQ(presplitPieces(patchFactors({0, 0, 0}, {65, 0, 0}, {32, 32, 0}, 1.0), 64), 2);
+    // A tetrahedron face at 1024³ with γ = 4: its hypotenuse 1024·√2 gives 4·1448.2 / 64 = 90.5,
+    // so 91 pieces per edge.
     const PatchFactors big = patchFactors({0, 0, 0}, {1024, 0, 0}, {0, 1024, 0}, 4.0);
     const int n = presplitPieces(big, 64);
-    EXPECT_EQ(n, 64);
+    EXPECT_EQ(n, 91);
     EXPECT_LE(big.largest() / n, 64.0);
 }
 

@@ -7,9 +7,9 @@
 namespace hyvox::tessellation {
 
 double edgeFactor(const Vec3f& a, const Vec3f& b, double gamma) {
-    double extent = 0;
-    for (int axis = 0; axis < 3; ++axis) extent = std::max(extent, std::abs(double(a[axis]) - double(b[axis])));
-    return gamma * extent;
+    double squared = 0;
+    for (int axis = 0; axis < 3; ++axis) squared += (double(a[axis]) - double(b[axis])) * (double(a[axis]) - double(b[axis]));
+    return gamma * std::sqrt(squared);
 }
 
 double PatchFactors::largest() const { return std::max({outer[0], outer[1], outer[2], inner}); }

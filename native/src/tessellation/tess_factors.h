@@ -9,8 +9,8 @@ namespace hyvox::tessellation {
 
 using Vec3f = std::array<float, 3>;
 
-// E_ij = γ · max over x,y,z of |P_i - P_j|: enough segments that every segment of the edge
-// spans at most 1/γ voxel along every axis.
+// E_ij = γ · |P_i - P_j| (the edge's Euclidean length in voxels): enough segments that every
+// segment of the edge is at most 1/γ voxel long (README: "Eq. 1, γ and watertightness").
 double edgeFactor(const Vec3f& a, const Vec3f& b, double gamma);
 
 // GL's order for triangle patches: outer[0] is the edge opposite corner 0 (corners 1-2),
