@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <utility>
 
 #include "hyvox/errors.h"
 #include "hyvox/option_schema.h"
@@ -141,6 +142,7 @@ Arguments parseArguments(const std::vector<std::string>& args) {
         throw UsageError(e.what());
     }
     const bool sweep = out.command == Command::GammaSweep;
+    std::vector<std::pair<std::string, const OptionSpec*>> given;  // flag as typed, its option
 
     for (std::size_t a = 1; a < args.size(); ++a) {
         std::string option = args[a];
@@ -180,6 +182,7 @@ Arguments parseArguments(const std::vector<std::string>& args) {
             if (sweep)
                 if (const char* why = sweepFixes(spec->name))
                     throw UsageError(option + " is not a gamma-sweep option: " + why);
+            given.emplace_back(option, spec);
             try {
                 OptionValue parsed;
                 if (spec->type == OptionType::Flag && !inline_value)
@@ -200,6 +203,12 @@ Arguments parseArguments(const std::vector<std::string>& args) {
             throw UsageError("more than one mesh given ('" + out.mesh_path + "' and '" + option + "')");
         }
     }
+    // Options another method would use are not an error (a script may pass one set of flags
+    // to every method), but they must not be ignored silently.
+    for (const auto& [flag, spec] : given)
+        if (!optionAppliesTo(*spec, out.options.method))
+            out.warnings.push_back(flag + " does not apply to the " + toString(out.options.method) +
+                                   " method: ignored");
     if (out.mesh_path.empty()) throw UsageError("no mesh file given");
     if (!sweep && out.output_path.empty()) throw UsageError("no output file given (-o OUT.vdb)");
     return out;

@@ -26,6 +26,8 @@ struct Arguments {
     bool quiet = false;
     VoxelizeOptions options;
     std::vector<double> gammas;  // gamma-sweep: the safety factors to try, ascending
+    // Options given on the command line that the chosen method ignores (printed as warnings).
+    std::vector<std::string> warnings;
 };
 
 // args without argv[0]; the options start from the environment variables the schema names.

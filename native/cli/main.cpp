@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
     std::signal(SIGTERM, onSignal);
     try {
         const cli::Arguments args = cli::parseArguments(std::vector<std::string>(argv + 1, argv + argc));
+        for (const std::string& warning : args.warnings) std::fprintf(stderr, "hyvox: warning: %s\n", warning.c_str());
         switch (args.command) {
             case cli::Command::Help: std::fputs(cli::usageText().c_str(), stdout); return 0;
             case cli::Command::Version: std::printf("hyvox %s\n", version()); return 0;

@@ -202,3 +202,23 @@ def test_stats_have_the_backends_typed_section():
     reference = hyvox.voxelize(TETRA_V, TETRA_T, resolution=4, method="reference").stats
     # The brute force tests every voxel of each triangle's bounding box: at least one each.
     assert reference["reference"]["voxel_tests"] >= len(TETRA_T) and "cpu" not in reference
+
+
+METHOD_GROUPS = {"gl": {"triangle", "fragment", "hybrid", "tessellation"}, "hybrid": {"hybrid"},
+                 "tessellation": {"tessellation"}}
+
+
+@pytest.mark.parametrize("spec", [s for s in hyvox.OPTIONS if s.group in METHOD_GROUPS], ids=lambda s: s.name)
+def test_cli_warns_about_options_the_method_ignores(spec, cli, tmp_path):
+    mesh = tmp_path / "tetra.obj"
+    mesh.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    flag = f"{spec.cli_flag}={cli_text(good_value(spec))}"
+    done = subprocess.run([str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "o.vdb"), "-q", "--method=cpu", flag],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert f"hyvox: warning: {spec.cli_flag} does not apply to the cpu method: ignored" in done.stderr
+    # The method the option belongs to takes it without a word (on llvmpipe where there is no GPU).
+    method = sorted(METHOD_GROUPS[spec.group])[-1]
+    done = subprocess.run([str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "o.vdb"), "-q", f"--method={method}",
+                           flag], capture_output=True, text=True, timeout=120)
+    assert "warning" not in done.stderr

@@ -83,6 +83,10 @@ std::string describeOption(const OptionSpec& spec);
 // names the variable.
 void applyEnvironment(VoxelizeOptions& options, const char* (*lookup)(const char* variable));
 
+// Whether the option changes what `method` does: "gl" options the GL methods, "hybrid" the
+// hybrid's, "tessellation" the tessellation's; grid and run options every method.
+bool optionAppliesTo(const OptionSpec& spec, Method method);
+
 // checkOption on every field of a filled options struct: voxelize() calls it, so options set
 // from C++ get the same messages as those from the front doors.
 void checkOptions(const VoxelizeOptions& options);

@@ -96,7 +96,7 @@ std::vector<OptionSpec> buildSchema() {
     add({"gl_wall_timing", T::Flag, "gl", "Wall-Clock GPU Timing", "",
          "time GL passes by the wall clock instead of GPU timer queries (always on for software GL)", false, 0, 0,
          false, {}, {}, "HYVOX_GL_WALL_TIMING", HYVOX_FIELD(asFlag, gl.wall_timing)});
-    add({"tess_instanced", T::Flag, "gl", "Instanced Patches", "",
+    add({"tess_instanced", T::Flag, "tessellation", "Instanced Patches", "",
          "tessellation: draw one instance per patch (always on for software GL)", false, 0, 0, false, {}, {},
          "HYVOX_TESS_INSTANCED", HYVOX_FIELD(asFlag, gl.tess_instanced)});
     // --- hybrid ---
@@ -350,6 +350,14 @@ OptionValue parseOptionText(const OptionSpec& spec, const std::string& text) {
         }
     }
     refuse(spec, got);
+}
+
+bool optionAppliesTo(const OptionSpec& spec, Method method) {
+    const std::string group = spec.group;
+    if (group == "gl") return method != Method::Cpu && method != Method::Reference;
+    if (group == "hybrid") return method == Method::Hybrid;
+    if (group == "tessellation") return method == Method::Tessellation;
+    return true;
 }
 
 void checkOptions(const VoxelizeOptions& options) {
