@@ -23,20 +23,12 @@ const char* sweepFixes(const std::string& name) {
 // "1,1.5,2": at least two positive, strictly ascending numbers (the fit needs two points,
 // and a sorted table reads as the curve it is).
 std::vector<double> parseGammaList(const std::string& option, const std::string& text) {
-    std::vector<double> gammas;
-    std::size_t begin = 0;
-    while (begin <= text.size()) {
-        const std::size_t comma = std::min(text.find(',', begin), text.size());
-        const std::string part = text.substr(begin, comma - begin);
-        char* end = nullptr;
-        const double gamma = std::strtod(part.c_str(), &end);
-        if (part.empty() || *end != '\0' || !std::isfinite(gamma))
-            throw UsageError(option + " needs finite numbers, got '" + part + "'");
-        if (!(gamma > 0)) throw UsageError(option + " needs gammas > 0, got " + text);
-        if (!gammas.empty() && !(gamma > gammas.back()))
-            throw UsageError(option + " needs ascending gammas, got " + text);
-        gammas.push_back(gamma);
-        begin = comma + 1;
+    const std::vector<double> gammas = parseNumberList(text);
+    if (gammas.empty()) throw UsageError(option + " needs finite numbers, got '" + text + "'");
+    for (std::size_t n = 0; n < gammas.size(); ++n) {
+        if (!std::isfinite(gammas[n])) throw UsageError(option + " needs finite numbers, got '" + text + "'");
+        if (!(gammas[n] > 0)) throw UsageError(option + " needs gammas > 0, got " + text);
+        if (n > 0 && !(gammas[n] > gammas[n - 1])) throw UsageError(option + " needs ascending gammas, got " + text);
     }
     if (gammas.size() < 2) throw UsageError(option + " needs at least two gammas to fit Eq. 3, got " + text);
     return gammas;

@@ -28,6 +28,12 @@ using test::SurfacePoint;
 using test::SurfaceTwin;
 using test::Vec3d;
 
+// `grid` with voxel (i,j,k) cleared.
+BitGrid without(BitGrid grid, int i, int j, int k) {
+    grid.data()[grid.wordIndex(i, j, k)] &= ~BitGrid::bitMask(j, k);
+    return grid;
+}
+
 TEST(TessellationFactors, EquationOneUsesTheEdgeLength) {
     // Edge (0,0,0)-(3,-5,1): length sqrt(9 + 25 + 1) voxels, times γ.
     EXPECT_DOUBLE_EQ(edgeFactor({0, 0, 0}, {3, -5, 1}, 1.0), std::sqrt(35.0));
@@ -206,8 +212,7 @@ TEST(Accuracy, WatertightnessCatchesAHoleThatABackWallWouldHide) {
     const WatertightReport whole = rayMarchWatertightness(exact.occupancy, exact.occupancy, mesh, exact.grid);
     EXPECT_EQ(whole.rays, 6u * 64u);
     EXPECT_EQ(whole.passed, whole.rays);
-    BitGrid holed = exact.occupancy.toBitGrid();
-    holed.data()[holed.wordIndex(3, 3, 1)] &= ~BitGrid::bitMask(3, 1);  // a hole in the z = 1.5 face
+    const BitGrid holed = without(exact.occupancy.toBitGrid(), 3, 3, 1);  // a hole in the z = 1.5 face
     const WatertightReport r = rayMarchWatertightness(holed, exact.occupancy.toBitGrid(), mesh, exact.grid);
     // Only the +z ray through column (3,3) slips through (to the far face at k = 6); the rays
     // along x and y meet the hole's voxel inside the run of their first face, not first.
@@ -229,15 +234,13 @@ TEST(Accuracy, FloodFindsTheEnclosedVoxelsAndAPinholeIntoThem) {
     EXPECT_EQ(same.leaked, 0u);
     EXPECT_TRUE(same.sealed());
 
-    BitGrid pinhole = shell;
-    pinhole.data()[pinhole.wordIndex(4, 5, 3)] &= ~BitGrid::bitMask(5, 3);
+    const BitGrid pinhole = without(shell, 4, 5, 3);
     const SealReport leak = floodFromOutside(pinhole, shell);
     EXPECT_EQ(leak.enclosed, 8u);
     EXPECT_EQ(leak.leaked, 8u);
     EXPECT_FALSE(leak.sealed());
 
-    BitGrid corner = shell;
-    corner.data()[corner.wordIndex(3, 3, 3)] &= ~BitGrid::bitMask(3, 3);
+    const BitGrid corner = without(shell, 3, 3, 3);
     EXPECT_TRUE(floodFromOutside(corner, shell).sealed());
 
     EXPECT_EQ(floodFromOutside(shell, gridWith({{0, 0, 0}}, {10, 10, 10})).enclosed, 0u);

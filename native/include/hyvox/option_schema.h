@@ -72,6 +72,10 @@ void setOption(VoxelizeOptions& options, const std::string& name, const OptionVa
 // InvalidInput with the same "<name> must be ..." message for text that does not parse.
 OptionValue parseOptionText(const OptionSpec& spec, const std::string& text);
 
+// "1,2.5,-3": the numbers of a comma-separated list (each a whole strtod parse, no range
+// error); empty when any part is not a number. Vector and box options are written this way.
+std::vector<double> parseNumberList(const std::string& text);
+
 // The value as text (for --help defaults, reports and error messages); "" for unset.
 std::string formatOptionValue(const OptionValue& value);
 

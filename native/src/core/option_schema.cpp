@@ -169,22 +169,6 @@ bool allFinite(const std::array<double, 3>& v) {
     return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
-std::vector<double> splitNumbers(const std::string& text) {
-    std::vector<double> out;
-    std::size_t begin = 0;
-    while (begin <= text.size()) {
-        const std::size_t comma = std::min(text.find(',', begin), text.size());
-        const std::string part = text.substr(begin, comma - begin);
-        char* end = nullptr;
-        errno = 0;
-        const double value = std::strtod(part.c_str(), &end);
-        if (part.empty() || *end != '\0' || errno == ERANGE) return {};
-        out.push_back(value);
-        begin = comma + 1;
-    }
-    return out;
-}
-
 }  // namespace
 
 std::string describeOption(const OptionSpec& spec) {
@@ -209,6 +193,22 @@ void applyEnvironment(VoxelizeOptions& options, const char* (*lookup)(const char
             throw InvalidInput(std::string(spec.env) + ": " + e.what());
         }
     }
+}
+
+std::vector<double> parseNumberList(const std::string& text) {
+    std::vector<double> out;
+    std::size_t begin = 0;
+    while (begin <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', begin), text.size());
+        const std::string part = text.substr(begin, comma - begin);
+        char* end = nullptr;
+        errno = 0;
+        const double value = std::strtod(part.c_str(), &end);
+        if (part.empty() || *end != '\0' || errno == ERANGE) return {};
+        out.push_back(value);
+        begin = comma + 1;
+    }
+    return out;
 }
 
 std::string OptionSpec::cliFlag() const {
@@ -339,12 +339,12 @@ OptionValue parseOptionText(const OptionSpec& spec, const std::string& text) {
         case OptionType::Text:
         case OptionType::Choice: return text;
         case OptionType::Vector3: {
-            const std::vector<double> v = splitNumbers(text);
+            const std::vector<double> v = parseNumberList(text);
             if (v.size() != 3) refuse(spec, got);
             return std::array<double, 3>{v[0], v[1], v[2]};
         }
         case OptionType::Box: {
-            const std::vector<double> v = splitNumbers(text);
+            const std::vector<double> v = parseNumberList(text);
             if (v.size() != 6) refuse(spec, got);
             return Bounds{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
         }

@@ -23,7 +23,7 @@ struct BitTile {
 
 class BitTiling {
 public:
-    static constexpr std::size_t kBrickBytes = 64;  // 512 bits
+    static constexpr std::size_t kBrickBytes = BitGrid::kWordsPerBrick * sizeof(std::uint64_t);
 
     // Lays out the tiles for `grid`; tile_bytes = GlOptions::tile_bytes (0 = no limit of
     // its own). Throws ResourceError when one slab of bricks alone exceeds the limit.

@@ -50,9 +50,10 @@ GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid, const std::
     for (std::uint32_t t : mesh.usable)
         for (int c = 0; c < 3; ++c)
             out.triangles.push_back(view.triangles[3 * std::size_t(t) + c]);
-    std::uint64_t h = mix(view.vertex_count, out.triangles.size());
+    // Of the whole mesh (not the tile's triangles): every tile of one run shares it.
+    std::uint64_t h = mix(view.vertex_count, view.triangle_count);
     h = fingerprintOf(view.positions, view.vertex_count * 3 * sizeof(float), h);
-    out.fingerprint = fingerprintOf(out.triangles.data(), out.triangles.size() * sizeof(std::uint32_t), h);
+    out.fingerprint = fingerprintOf(view.triangles, view.triangle_count * 3 * sizeof(std::uint32_t), h);
     return out;
 }
 

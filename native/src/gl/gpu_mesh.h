@@ -23,7 +23,7 @@ static_assert(sizeof(GpuVertex) == 24, "must match the GLSL struct");
 struct GpuMesh {
     std::vector<GpuVertex> vertices;
     std::vector<std::uint32_t> triangles;  // 3 per usable triangle
-    std::uint64_t fingerprint = 0;         // of positions and indices (cutoff cache key)
+    std::uint64_t fingerprint = 0;         // of the whole mesh's positions and indices (cutoff cache key)
     std::size_t triangleCount() const { return triangles.size() / 3; }
 };
 

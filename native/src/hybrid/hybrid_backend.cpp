@@ -58,7 +58,7 @@ HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<
 
         double cutoff = job.options.hybrid.cutoff;
         if (method == Method::Hybrid && cutoff < 0) {
-            const CutoffSearch search = cachedCutoff(cacheKey(mesh, tile_grid, job.options.mode, worker), [&] {
+            const CutoffSearch search = cachedCutoff(cacheKey(mesh, job.grid, job.options.mode, worker), [&] {
                 return searchCutoff(
                     [&](double c) {
                         throwIfInterrupted(job.interrupter);
@@ -92,8 +92,8 @@ void runHybridBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
         stats.addTiming("gl_cutoff_search", run.search_ms);
     stats.addTiming("gl_voxelize", run.voxelize_ms);
     stats.addTiming("gl_readback", run.times.readback_ms);
-    // Summed over the dispatcher's tiles; the cutoff is the one of the last tile (the
-    // dispatcher keeps the first tile's automatic cutoff for the rest).
+    // Summed over the dispatcher's tiles. The automatic cutoff is cached per whole mesh and
+    // grid, so the first tile searches it and the others reuse it.
     HybridStats& figures = stats.hybrid ? *stats.hybrid : stats.hybrid.emplace();
     figures.pass1_gpu_ms += run.times.pass1_gpu_ms;
     figures.pass2_gpu_ms += run.times.pass2_gpu_ms;

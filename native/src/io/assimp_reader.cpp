@@ -140,13 +140,10 @@ Mesh toMesh(const aiScene* scene, Assimp::Importer& importer, const std::string&
 
 }  // namespace
 
-Mesh readWithAssimp(const std::string& path) {
+Mesh readWithAssimp(const std::string& path, const std::string& extension) {
     Assimp::Importer importer;
     removeOwnFormats(importer);
     const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
-    const auto dot = path.find_last_of('.');
-    std::string extension = dot == std::string::npos ? "" : path.substr(dot + 1);
-    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
     return toMesh(scene, importer, path, extension);
 }
 

@@ -11,7 +11,7 @@
 namespace hyvox::io {
 
 // Reads `path` by its extension (assimp may also recognise the content).
-Mesh readWithAssimp(const std::string& path);
+Mesh readWithAssimp(const std::string& path, const std::string& extension);
 
 // Reads decompressed bytes as the format `extension` names ("stl", ...).
 Mesh readWithAssimp(const char* data, std::size_t size, const std::string& extension, const std::string& path);

@@ -62,7 +62,7 @@ Mesh readMesh(const std::string& path) {
         if (extension == "obj") return io::readObj(data.data(), data.size(), path);
         return io::readPly(data.data(), data.size(), path);
     }
-    return io::readWithAssimp(path);
+    return io::readWithAssimp(path, extension);
 }
 
 }  // namespace hyvox

@@ -82,13 +82,7 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& 
     const std::vector<SparseGrid::Leaf>& source = occupancy.leaves();
     // Leaves are built in parallel (most of the work: 512 floats each) and handed to the
     // tree serially (addLeaf is not thread-safe, and cheap).
-    std::vector<FloatLeaf*> leaves(source.size(), nullptr);
-    struct FreeUnused {  // leaves not yet in the tree when something throws
-        std::vector<FloatLeaf*>& leaves;
-        ~FreeUnused() {
-            for (FloatLeaf* leaf : leaves) delete leaf;
-        }
-    } free_unused{leaves};
+    std::vector<std::unique_ptr<FloatLeaf>> leaves(source.size());
     std::atomic<std::size_t> built{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size(), 256), [&](const auto& range) {
         throwIfInterrupted(interrupter, int(90 * built.load(std::memory_order_relaxed) / source.size()));
@@ -101,15 +95,12 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& 
             for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) mask.template getWord<std::uint64_t>(w) = from.words[w];
             float* values = leaf->buffer().data();
             for (int v = 0; v < 512; ++v) values[v] = float((from.words[v >> 6] >> (v & 63)) & 1u);
-            leaves[n] = leaf.release();
+            leaves[n] = std::move(leaf);
         }
         built.fetch_add(range.size(), std::memory_order_relaxed);
     });
     auto& tree = result->tree();
-    for (FloatLeaf*& leaf : leaves) {
-        tree.addLeaf(leaf);
-        leaf = nullptr;
-    }
+    for (auto& leaf : leaves) tree.addLeaf(leaf.release());
     return result;
 }
 

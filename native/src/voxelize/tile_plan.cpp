@@ -82,14 +82,13 @@ std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, 
     std::vector<std::vector<std::uint32_t>> bins(plan.total());
     for (std::uint32_t t : mesh.usable) {
         std::array<int, 3> first{}, last{};
+        const std::array<std::array<double, 3>, 3> corners{grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)),
+                                                           grid.toVoxel(mesh.vertex(t, 2))};
         std::array<double, 3> lows{}, highs{};
         double extent = 0;
         for (int a = 0; a < 3; ++a) {
-            for (int c = 0; c < 3; ++c) {
-                const double x = clampCoord(grid.toVoxel(mesh.vertex(t, c))[a]);
-                lows[a] = c == 0 ? x : std::min(lows[a], x);
-                highs[a] = c == 0 ? x : std::max(highs[a], x);
-            }
+            lows[a] = clampCoord(std::min({corners[0][a], corners[1][a], corners[2][a]}));
+            highs[a] = clampCoord(std::max({corners[0][a], corners[1][a], corners[2][a]}));
             extent = std::max(extent, highs[a] - lows[a]);
         }
         const double grow = std::min(reach.fixed + reach.relative * extent, 1.0e9);

@@ -26,8 +26,7 @@ void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options, con
                             (plan.whole() ? std::string("its bits") : "a " + mib(plan.tileBytes()) + " tile") +
                             " and about " + std::to_string(estimated_leaves) +
                             " leaves of surface), more than the memory budget of " +
-                            std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size" +
-                            "");
+                            std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size");
 }
 
 // Progress over the whole run: the backends report each tile's own 0..100.
@@ -91,7 +90,6 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, tiling::pointReach(grid, options));
     stats.addTiming("tiles", watch.restart());
 
-    VoxelizeOptions tile_options = options;
     TileProgress progress(interrupter, plan.total());
     for (std::size_t t = 0; t < plan.total(); ++t) {
         if (!plan.whole() && bins[t].empty()) continue;
@@ -102,15 +100,11 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
         progress.setTile(t);
         TileOutput out{BitGrid(tile.dims), {}};
         stats.addTiming("allocate", watch.restart());
-        runBackend(BackendJob{tile_mesh, validated, grid, tile, tile_options, &progress}, out, stats);
+        runBackend(BackendJob{tile_mesh, validated, grid, tile, options, &progress}, out, stats);
         watch.restart();
         result.occupancy.addTile(out.bits, tile.offset);
         result.counts.insert(result.counts.end(), out.counts.begin(), out.counts.end());
         ++stats.tiles;
-        // The hybrid's automatic cutoff is searched on the first tile and kept for the rest
-        // (a timed search per tile would cost more than the tiles).
-        if (tile_options.method == Method::Hybrid && tile_options.hybrid.cutoff < 0 && stats.hybrid)
-            tile_options.hybrid.cutoff = stats.hybrid->cutoff;
         const std::uint64_t held = plan.tileBytes() + result.occupancy.byteSize();
         if (held > options.memoryBudgetBytes())
             throw ResourceError("the surface needs more than the memory budget of " +
