@@ -363,6 +363,16 @@ TEST(IoMeshStrict, ObjFaceWithHalfAMillionCornersIsLinear) {
     EXPECT_LT(seconds, 30.0);
 }
 
+TEST(IoMeshStrict, APlyUnderAnotherNameIsReadAsPlyCompressedOrNot) {
+    TempDir dir;
+    const auto polygons = sampleMesh(20, 30, false, false, 7);
+    const std::string text = writePly(polygons, PlyFormat::Little);
+    expectSameMesh(hyvox::readMesh(dir.write("named.obj", text).string()), expectedMesh(polygons));
+    expectSameMesh(hyvox::readMesh(dir.write("named.stl", text).string()), expectedMesh(polygons));
+    writeGzip(dir.path / "named.obj.gz", text);
+    expectSameMesh(hyvox::readMesh((dir.path / "named.obj.gz").string()), expectedMesh(polygons));
+}
+
 TEST(IoMeshStrict, GzipCutShortIsAnError) {
     TempDir dir;
     const auto polygons = sampleMesh(3000, 5000, false, false, 3);

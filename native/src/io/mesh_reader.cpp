@@ -47,22 +47,20 @@ Mesh readMesh(const std::string& path) {
     const bool gzipped = endsWith(lower_path, ".gz");
     const std::string extension = extensionOf(gzipped ? lower_path.substr(0, lower_path.size() - 3) : lower_path);
 
-    if (gzipped) {
-        if (extension.empty())
-            throw InvalidInput("cannot tell the format of '" + path + "': name it like mesh.ply.gz or mesh.obj.gz");
-        const std::vector<char> data = io::readGzipFile(path);
-        if (extension == "ply" || io::looksLikePly(data.data(), data.size()))
-            return io::readPly(data.data(), data.size(), path);
-        if (extension == "obj") return io::readObj(data.data(), data.size(), path);
-        return io::readWithAssimp(data.data(), data.size(), extension, path);
-    }
-    const std::vector<char> prefix = io::readFilePrefix(path, 4);
-    if (extension == "ply" || extension == "obj" || io::looksLikePly(prefix.data(), prefix.size())) {
-        const std::vector<char> data = io::readFileBytes(path, kMaxMeshFileBytes);
-        if (extension == "obj") return io::readObj(data.data(), data.size(), path);
+    if (gzipped && extension.empty())
+        throw InvalidInput("cannot tell the format of '" + path + "': name it like mesh.ply.gz or mesh.obj.gz");
+    // The prefix is read only when the name does not already send the file to our readers.
+    const bool ours = gzipped || extension == "ply" || extension == "obj" || [&] {
+        const std::vector<char> prefix = io::readFilePrefix(path, 4);
+        return io::looksLikePly(prefix.data(), prefix.size());
+    }();
+    if (!ours) return io::readWithAssimp(path, extension);
+    const std::vector<char> data = gzipped ? io::readGzipFile(path) : io::readFileBytes(path, kMaxMeshFileBytes);
+    // A PLY is told by its first line whatever its name, compressed or not.
+    if (extension == "ply" || io::looksLikePly(data.data(), data.size()))
         return io::readPly(data.data(), data.size(), path);
-    }
-    return io::readWithAssimp(path, extension);
+    if (extension == "obj") return io::readObj(data.data(), data.size(), path);
+    return io::readWithAssimp(data.data(), data.size(), extension, path);  // another format, gzipped
 }
 
 }  // namespace hyvox
