@@ -29,8 +29,10 @@
 #include <exception>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "bench_args.h"
@@ -58,18 +60,24 @@ std::vector<std::string> splitList(const std::string& text) {
 }
 
 struct Step {
-    hyvox::Mode mode;
-    int resolution;
+    hyvox::Mode mode = hyvox::Mode::Conservative;
+    int resolution = 0;
+    bool threads = false;  // "threads@RES": the cpu method's thread scaling
 };
 
-// "thin@256" -> {Thin, 256}; a bad step ends the program (a usage error).
+// "thin@256" -> {Thin, 256}; "threads@512"; a bad step ends the program (a usage error).
 Step parseStep(const std::string& text) {
     const auto at = text.find('@');
-    if (at == std::string::npos) {
-        std::fprintf(stderr, "bad --order step '%s' (want MODE@RES, e.g. thin@256)\n", text.c_str());
+    const int res = at == std::string::npos ? 0 : std::atoi(text.c_str() + at + 1);
+    if (res <= 0) {
+        std::fprintf(stderr, "bad --order step '%s' (want MODE@RES or threads@RES, e.g. thin@256)\n", text.c_str());
         std::exit(2);
     }
-    return {hyvox::parseMode(text.substr(0, at)), std::atoi(text.c_str() + at + 1)};
+    Step step;
+    step.resolution = res;
+    if (text.substr(0, at) == "threads") step.threads = true;
+    else step.mode = hyvox::parseMode(text.substr(0, at));
+    return step;
 }
 
 // Scenes are read (and subdivided) when first needed and then kept: a run cut short by the
@@ -116,11 +124,13 @@ std::string sceneName(const std::string& spec) {
     return colon == std::string::npos ? file : file + " " + spec.substr(colon + 1);
 }
 
-// One method's timed runs: medians of the GPU passes and of the whole call.
+// One method's timed runs: medians of the GPU passes, of the method's own stages and of the
+// whole call.
 struct Row {
     int runs = 0;
-    double first_ms = 0;  // the warm-up call (shader compilation, cutoff search)
-    double wall_ms = 0, gpu_ms = 0, pass0_ms = 0, pass1_ms = 0, pass2_ms = 0;
+    int threads = 0;      // CPU threads asked for (0 = all cores)
+    double first_ms = 0;  // the warm-up call (shader compilation, the hybrid's cutoff search)
+    double wall_ms = 0, stage_ms = 0, gpu_ms = 0, pass0_ms = 0, pass1_ms = 0, pass2_ms = 0;
     hyvox::VoxelizeResult last;  // the last run's result (voxels and stats)
     std::string error;
 };
@@ -138,28 +148,41 @@ double gpuPasses(const hyvox::Stats& s, double& p0, double& p1, double& p2) {
     return p0 + p1 + p2;
 }
 
+// The method's own stages: everything but validation, grid allocation, compaction and
+// counting, which every method shares (as bench_tessellation counts them).
+double methodStagesMs(const hyvox::Stats& s) {
+    double ms = 0;
+    for (const auto& [stage, t] : s.timings_ms)
+        if (stage != "validate" && stage != "allocate" && stage != "compact" && stage != "count" && stage != "tiles")
+            ms += t;
+    return ms;
+}
+
+// A warm-up call, then timed calls: as many as fit in row_budget_ms by the first timed
+// call's length, at least 1 and at most `repeat`.
 Row timeMethod(const hyvox::Mesh& mesh, const hyvox::VoxelizeOptions& options, int repeat, double row_budget_ms) {
     Row row;
+    row.threads = options.threads;
     try {
         hyvox::Stopwatch first;
         row.last = hyvox::voxelize(mesh.view(), options);
         row.first_ms = first.elapsedMs();
-        // The warm-up's own cost (cutoff search, compilation) is not a run's; the next run
-        // shows what one costs, so budget on the warm-up only as an upper bound.
-        const int runs = std::clamp(int(row_budget_ms / std::max(row.first_ms, 1e-3)), 1, repeat);
-        std::vector<double> wall, gpu, p0, p1, p2;
-        for (int r = 0; r < runs; ++r) {
+        std::vector<double> wall, stage, gpu, p0, p1, p2;
+        for (int r = 0; r < repeat; ++r) {
             hyvox::Stopwatch watch;
             row.last = hyvox::voxelize(mesh.view(), options);
             wall.push_back(watch.elapsedMs());
+            stage.push_back(methodStagesMs(row.last.stats));
             double a, b, c;
             gpu.push_back(gpuPasses(row.last.stats, a, b, c));
             p0.push_back(a);
             p1.push_back(b);
             p2.push_back(c);
+            if (r == 0) repeat = std::clamp(int(row_budget_ms / std::max(wall[0], 1e-3)), 1, repeat);
         }
-        row.runs = runs;
+        row.runs = int(wall.size());
         row.wall_ms = median(wall);
+        row.stage_ms = median(stage);
         row.gpu_ms = median(gpu);
         row.pass0_ms = median(p0);
         row.pass1_ms = median(p1);
@@ -188,65 +211,21 @@ std::string field(std::string text) {
     return text;
 }
 
-const char* kHeader =
-    "step,scene,triangles,mode,res,method,runs,gpu_ms,pass0_ms,pass1_ms,pass2_ms,wall_ms,first_ms,cutoff,"
-    "large_triangles,cutoff_search_runs,tiles,voxels,ref_voxels,check,missed,false_voxels,touches,unexplained,bias,"
-    "bias_thin,points,elapsed_s,stages\n";
-
+// What a row was checked against and found.
 struct Checked {
-    std::string check = "-";
+    std::string check = "-";  // equal | touches | DIFF | bias | - (not checked)
     std::uint64_t ref_voxels = 0, missed = 0, false_voxels = 0, touches = 0, unexplained = 0;
-    double bias = -1, bias_thin = -1;
+    double bias = -1, bias_thin = -1;  // -1: not measured
 };
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    std::string mesh_dir = ".", csv_path, info_path;
-    std::vector<std::string> order = {"thin@256", "thin@512", "thin@128", "conservative@256", "thin@1024"};
-    std::vector<std::string> scenes = {"bunny_stanford_69k.ply", "dragon_stanford_res2_203k.ply.gz",
-                                       "sponza_crytek_262k_vcolor.ply.gz", "triangle",
-                                       "dragon_stanford_871k.ply.gz", "dragon_stanford_871k.ply.gz:x4",
-                                       "dragon_stanford_871k.ply.gz:x16"};
-    int repeat = 5;
-    double row_budget_s = 3, budget_s = 300;
-    hyvox::VoxelizeOptions base;
-    base.hybrid.cutoff = -1.0;  // auto
-    hyvox::bench::readEnvironment(base);  // HYVOX_GL_DEVICE, HYVOX_GL_WALL_TIMING, ...
-    for (int a = 1; a < argc; ++a) {
-        const std::string arg = argv[a];
-        auto next = [&] { return hyvox::bench::optionValue(argc, argv, a); };
-        if (arg == "--mesh-dir") mesh_dir = next();
-        else if (arg == "--csv") csv_path = next();
-        else if (arg == "--info") info_path = next();
-        else if (arg == "--order") order = splitList(next());
-        else if (arg == "--scenes") scenes = splitList(next());
-        else if (arg == "--repeat") repeat = std::max(1, std::atoi(next().c_str()));
-        else if (arg == "--row-budget-s") row_budget_s = std::atof(next().c_str());
-        else if (arg == "--budget-s") budget_s = std::atof(next().c_str());
-        else if (arg == "--device") base.gl.device = next();
-        else {
-            std::fprintf(stderr,
-                         "usage: bench_device --mesh-dir DIR --csv FILE [--info FILE] [--order MODE@RES,...] "
-                         "[--scenes S,...] [--repeat N] [--row-budget-s S] [--budget-s S] [--device D]\n");
-            return 2;
-        }
-    }
-    if (csv_path.empty()) {
-        std::fprintf(stderr, "bench_device: --csv FILE is required\n");
-        return 2;
-    }
-    std::vector<Step> steps;
-    for (const std::string& s : order) steps.push_back(parseStep(s));
-
-    hyvox::Stopwatch clock;
-    // The device: every EGL device, then the one the GL worker chose (auto = hardware first).
+// GL_RENDERER and friends of the GL worker's context, after the EGL devices it chose from.
+std::string deviceInfo(const std::string& selection) {
     std::string info;
     for (const hyvox::GlDevice& d : hyvox::listGlDevices())
         info += "egl_device=" + std::to_string(d.index) + " " + d.name + (d.software ? " (software)" : " (hardware)") +
                 "\n";
     try {
-        hyvox::gl::GlWorker& worker = hyvox::gl::GlWorker::get(base.gl.device);
+        hyvox::gl::GlWorker& worker = hyvox::gl::GlWorker::get(selection);
         info += worker.run([&] {
             const auto text = [](GLenum name) {
                 const auto* s = reinterpret_cast<const char*>(glGetString(name));
@@ -265,13 +244,192 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         info += "gl_error=" + field(e.what()) + "\n";
     }
+    return info;
+}
+
+const char* kHeader =
+    "step,scene,triangles,mode,res,method,threads,runs,gpu_ms,pass0_ms,pass1_ms,pass2_ms,stage_ms,wall_ms,first_ms,"
+    "cutoff,large_triangles,cutoff_search_runs,tiles,voxels,ref_voxels,check,missed,false_voxels,touches,unexplained,"
+    "bias,bias_thin,points,elapsed_s,stages\n";
+
+// One step ("thin@256", or "threads@512": cpu alone at 1, 2, 4, ... threads) on one scene.
+class Bench {
+public:
+    Bench(std::FILE* csv, const hyvox::VoxelizeOptions& base, int repeat, double row_budget_s)
+        : csv_(csv), base_(base), repeat_(repeat), row_budget_ms_(row_budget_s * 1000) {}
+
+    int failures() const { return failures_; }
+    double elapsedS() const { return clock_.elapsedMs() / 1000.0; }
+
+    // cpu (the oracle), then hybrid, triangle and fragment checked against it, then (once per
+    // scene and resolution) tessellation with its bias.
+    void exactStep(std::size_t step, const std::string& spec, const hyvox::Mesh& mesh, hyvox::Mode mode, int res) {
+        hyvox::VoxelizeOptions o = options(res);
+        o.mode = mode;
+        o.method = hyvox::Method::Cpu;
+        const Row cpu = timeMethod(mesh, o, repeat_, row_budget_ms_);
+        emit(step, spec, mesh, mode, res, "cpu", cpu, Checked{});
+        if (!cpu.error.empty()) return;
+        for (hyvox::Method method : {hyvox::Method::Hybrid, hyvox::Method::Triangle, hyvox::Method::Fragment}) {
+            o.method = method;
+            const Row row = timeMethod(mesh, o, repeat_, row_budget_ms_);
+            Checked c;
+            c.ref_voxels = cpu.last.stats.voxel_count;
+            if (row.error.empty()) {
+                if (row.last.occupancy == cpu.last.occupancy) {
+                    c.check = "equal";
+                } else {
+                    // The tests' rule: every disagreement a touch within 1e-5 voxel (either
+                    // answer is right), and touches rare.
+                    const hyvox::test::Comparison cmp = hyvox::test::compareResults(mesh.view(), mode, row.last, cpu.last);
+                    c.missed = cmp.oracle_only;
+                    c.false_voxels = cmp.result_only;
+                    c.touches = cmp.touches;
+                    c.unexplained = cmp.unexplained.size();
+                    const bool rare = cmp.touches <= std::max<std::uint64_t>(10, cmp.oracle_voxels / 10000);
+                    c.check = cmp.unexplained.empty() && rare ? "touches" : "DIFF";
+                }
+            }
+            emit(step, spec, mesh, mode, res, hyvox::toString(method), row, c);
+        }
+        if (!tessellated_.insert(spec + "@" + std::to_string(res)).second) return;
+        o.method = hyvox::Method::Tessellation;
+        const Row row = timeMethod(mesh, o, repeat_, row_budget_ms_);
+        Checked c;
+        if (row.error.empty()) {
+            // Both exact sets: the step's own (cpu) and the other mode's, made here.
+            hyvox::VoxelizeOptions other = o;
+            other.method = hyvox::Method::Cpu;
+            other.mode = mode == hyvox::Mode::Thin ? hyvox::Mode::Conservative : hyvox::Mode::Thin;
+            const hyvox::VoxelizeResult second = hyvox::voxelize(mesh.view(), other);
+            const hyvox::VoxelizeResult& conservative = mode == hyvox::Mode::Conservative ? cpu.last : second;
+            const hyvox::VoxelizeResult& thin = mode == hyvox::Mode::Thin ? cpu.last : second;
+            const hyvox::AccuracyReport acc = compareToReference(row.last.occupancy, conservative.occupancy);
+            c.check = "bias";
+            c.ref_voxels = acc.reference_voxels;
+            c.missed = acc.missed_voxels;
+            c.false_voxels = acc.false_voxels;
+            c.bias = acc.bias;
+            c.bias_thin = compareToReference(row.last.occupancy, thin.occupancy).bias;
+        }
+        // Tessellation has no mode: its row sits in the step's (bias is against conservative).
+        emit(step, spec, mesh, mode, res, "tessellation", row, c);
+    }
+
+    // The cpu method (conservative) at 1, 2, 4, ... threads up to the machine's, then all
+    // (threads 0), each checked against the all-threads voxels.
+    void threadsStep(std::size_t step, const std::string& spec, const hyvox::Mesh& mesh, int res) {
+        hyvox::VoxelizeOptions o = options(res);
+        o.method = hyvox::Method::Cpu;
+        o.threads = 0;
+        const Row all = timeMethod(mesh, o, repeat_, row_budget_ms_);
+        emit(step, spec, mesh, o.mode, res, "cpu", all, Checked{});
+        if (!all.error.empty()) return;
+        const int cores = int(std::thread::hardware_concurrency());
+        for (int threads = 1; threads <= cores; threads *= 2) {
+            o.threads = threads;
+            const Row row = timeMethod(mesh, o, repeat_, row_budget_ms_);
+            Checked c;
+            c.ref_voxels = all.last.stats.voxel_count;
+            if (row.error.empty()) c.check = row.last.occupancy == all.last.occupancy ? "equal" : "DIFF";
+            emit(step, spec, mesh, o.mode, res, "cpu", row, c);
+        }
+    }
+
+private:
+    hyvox::VoxelizeOptions options(int res) const {
+        hyvox::VoxelizeOptions o = base_;
+        o.grid.resolution = res;
+        o.tessellation.counts = false;  // binary voxelization, as the papers time it
+        return o;
+    }
+
+    void emit(std::size_t step, const std::string& spec, const hyvox::Mesh& mesh, hyvox::Mode mode, int res,
+              const char* method, const Row& row, const Checked& c) {
+        const hyvox::Stats& s = row.last.stats;
+        const hyvox::HybridStats h = s.hybrid.value_or(hyvox::HybridStats{});
+        const std::string check = row.error.empty() ? c.check : "ERROR " + field(row.error);
+        const std::string name = sceneName(spec);
+        std::fprintf(csv_,
+                     "%zu,%s,%zu,%s,%d,%s,%d,%d,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.3f,%llu,%llu,%llu,%llu,%llu,%s,"
+                     "%llu,%llu,%llu,%llu,%.6f,%.6f,%llu,%.1f,%s\n",
+                     step, name.c_str(), mesh.triangleCount(), hyvox::toString(mode), res, method, row.threads,
+                     row.runs, row.gpu_ms, row.pass0_ms, row.pass1_ms, row.pass2_ms, row.stage_ms, row.wall_ms,
+                     row.first_ms, s.hybrid ? h.cutoff : 0.0, (unsigned long long)h.large_triangles,
+                     (unsigned long long)h.cutoff_search_runs, (unsigned long long)s.tiles,
+                     (unsigned long long)s.voxel_count, (unsigned long long)c.ref_voxels, check.c_str(),
+                     (unsigned long long)c.missed, (unsigned long long)c.false_voxels, (unsigned long long)c.touches,
+                     (unsigned long long)c.unexplained, c.bias, c.bias_thin,
+                     (unsigned long long)(s.tessellation ? s.tessellation->points : 0), elapsedS(),
+                     stageText(s).c_str());
+        std::fflush(csv_);
+        std::printf("%-26s %9zu %-12s %4d %-12s t%-2d runs %d gpu %9.3f (p0 %.3f p1 %.3f p2 %.3f) stage %9.2f wall "
+                    "%9.2f first %9.2f voxels %llu %s\n",
+                    name.c_str(), mesh.triangleCount(), hyvox::toString(mode), res, method, row.threads, row.runs,
+                    row.gpu_ms, row.pass0_ms, row.pass1_ms, row.pass2_ms, row.stage_ms, row.wall_ms, row.first_ms,
+                    (unsigned long long)s.voxel_count, check.c_str());
+        std::fflush(stdout);
+        if (!row.error.empty() || c.check == "DIFF" || (c.check == "bias" && c.false_voxels)) ++failures_;
+    }
+
+    std::FILE* csv_;
+    hyvox::VoxelizeOptions base_;
+    int repeat_;
+    double row_budget_ms_;
+    hyvox::Stopwatch clock_;
+    std::set<std::string> tessellated_;  // "scene@res" done
+    int failures_ = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string mesh_dir = ".", csv_path, info_path;
+    std::vector<std::string> order = {"thin@256", "thin@512", "thin@128", "conservative@256", "thin@1024"};
+    std::vector<std::string> scenes = {"bunny_stanford_69k.ply", "dragon_stanford_res2_203k.ply.gz",
+                                       "sponza_crytek_262k_vcolor.ply.gz", "triangle",
+                                       "dragon_stanford_871k.ply.gz", "dragon_stanford_871k.ply.gz:x4",
+                                       "dragon_stanford_871k.ply.gz:x16"};
+    int repeat = 5;
+    double row_budget_s = 3, budget_s = 300;
+    hyvox::VoxelizeOptions base;
+    base.hybrid.cutoff = -1.0;            // auto
+    hyvox::bench::readEnvironment(base);  // HYVOX_GL_DEVICE, HYVOX_GL_WALL_TIMING, ...
+    for (int a = 1; a < argc; ++a) {
+        const std::string arg = argv[a];
+        auto next = [&] { return hyvox::bench::optionValue(argc, argv, a); };
+        if (arg == "--mesh-dir") mesh_dir = next();
+        else if (arg == "--csv") csv_path = next();
+        else if (arg == "--info") info_path = next();
+        else if (arg == "--order") order = splitList(next());
+        else if (arg == "--scenes") scenes = splitList(next());
+        else if (arg == "--repeat") repeat = std::max(1, std::atoi(next().c_str()));
+        else if (arg == "--row-budget-s") row_budget_s = std::atof(next().c_str());
+        else if (arg == "--budget-s") budget_s = std::atof(next().c_str());
+        else if (arg == "--device") base.gl.device = next();
+        else {
+            std::fprintf(stderr,
+                         "usage: bench_device --mesh-dir DIR --csv FILE [--info FILE] [--order STEP,...] "
+                         "[--scenes S,...] [--repeat N] [--row-budget-s S] [--budget-s S] [--device D]\n"
+                         "  STEP: MODE@RES (thin@256) or threads@RES (cpu alone at 1, 2, 4, ... threads)\n");
+            return 2;
+        }
+    }
+    if (csv_path.empty()) {
+        std::fprintf(stderr, "bench_device: --csv FILE is required\n");
+        return 2;
+    }
+    std::vector<Step> steps;
+    for (const std::string& s : order) steps.push_back(parseStep(s));
+
+    const std::string info = deviceInfo(base.gl.device);
     std::printf("%s", info.c_str());
+    std::fflush(stdout);
     if (!info_path.empty())
         if (std::FILE* f = std::fopen(info_path.c_str(), "w")) {
             std::fputs(info.c_str(), f);
             std::fclose(f);
         }
-
     std::FILE* csv = std::fopen(csv_path.c_str(), "w");
     if (!csv) {
         std::fprintf(stderr, "bench_device: cannot write %s\n", csv_path.c_str());
@@ -280,132 +438,30 @@ int main(int argc, char** argv) {
     std::fputs(kHeader, csv);
     std::fflush(csv);
 
+    Bench bench(csv, base, repeat, row_budget_s);
     Scenes meshes(mesh_dir);
-    // The cpu voxels per (scene, mode, res), kept while one step runs (tessellation needs both
-    // modes; the other mode is made when missing).
-    std::map<std::string, hyvox::VoxelizeResult> oracle;
-    std::map<std::string, bool> tessellated;  // scene@res done
     int failures = 0;
     for (std::size_t si = 0; si < steps.size(); ++si) {
         const Step& step = steps[si];
         for (const std::string& spec : scenes) {
-            const double elapsed = clock.elapsedMs() / 1000.0;
-            if (elapsed > budget_s) {
-                std::printf("# budget of %.0f s reached at %.0f s: skipped %s %s@%d and later\n", budget_s, elapsed,
-                            spec.c_str(), hyvox::toString(step.mode), step.resolution);
+            if (bench.elapsedS() > budget_s) {
+                std::printf("# budget of %.0f s reached at %.0f s: skipped %s (step %s) and everything after it\n",
+                            budget_s, bench.elapsedS(), spec.c_str(), order[si].c_str());
                 std::fclose(csv);
-                return failures ? 1 : 0;
+                return bench.failures() + failures ? 1 : 0;
             }
-            const hyvox::Mesh* mesh = nullptr;
+            if (step.threads && spec == "triangle") continue;  // nothing to spread over threads
             try {
-                mesh = &meshes.get(spec);
+                const hyvox::Mesh& mesh = meshes.get(spec);
+                if (step.threads) bench.threadsStep(si, spec, mesh, step.resolution);
+                else bench.exactStep(si, spec, mesh, step.mode, step.resolution);
             } catch (const std::exception& e) {
-                std::printf("# scene %s: %s\n", spec.c_str(), e.what());
-                ++failures;
-                continue;
-            }
-            const std::string name = sceneName(spec);
-            hyvox::VoxelizeOptions options = base;
-            options.grid.resolution = step.resolution;
-            options.tessellation.counts = false;  // binary voxelization, as the papers time it
-            auto cpuVoxels = [&](hyvox::Mode mode) -> const hyvox::VoxelizeResult& {
-                const std::string key = spec + "/" + hyvox::toString(mode) + "/" + std::to_string(step.resolution);
-                auto found = oracle.find(key);
-                if (found != oracle.end()) return found->second;
-                hyvox::VoxelizeOptions o = options;
-                o.method = hyvox::Method::Cpu;
-                o.mode = mode;
-                return oracle.emplace(key, hyvox::voxelize(mesh->view(), o)).first->second;
-            };
-            auto emit = [&](const char* method, hyvox::Mode mode, const Row& row, const Checked& c) {
-                const hyvox::Stats& s = row.last.stats;
-                const hyvox::HybridStats h = s.hybrid.value_or(hyvox::HybridStats{});
-                std::fprintf(csv,
-                             "%zu,%s,%zu,%s,%d,%s,%d,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%llu,%llu,%llu,%llu,%llu,%s,"
-                             "%llu,%llu,%llu,%llu,%.6f,%.6f,%llu,%.1f,%s\n",
-                             si, name.c_str(), mesh->triangleCount(), hyvox::toString(mode), step.resolution, method,
-                             row.runs, row.gpu_ms, row.pass0_ms, row.pass1_ms, row.pass2_ms, row.wall_ms, row.first_ms,
-                             s.hybrid ? h.cutoff : 0.0, (unsigned long long)h.large_triangles,
-                             (unsigned long long)h.cutoff_search_runs, (unsigned long long)s.tiles,
-                             (unsigned long long)s.voxel_count, (unsigned long long)c.ref_voxels,
-                             row.error.empty() ? c.check.c_str() : ("ERROR " + field(row.error)).c_str(),
-                             (unsigned long long)c.missed, (unsigned long long)c.false_voxels,
-                             (unsigned long long)c.touches, (unsigned long long)c.unexplained, c.bias, c.bias_thin,
-                             (unsigned long long)(s.tessellation ? s.tessellation->points : 0),
-                             clock.elapsedMs() / 1000.0, stageText(s).c_str());
-                std::fflush(csv);
-                std::printf("%-26s %9zu %-12s %4d %-12s runs %d gpu %9.3f ms (p0 %.3f p1 %.3f p2 %.3f) wall %9.2f "
-                            "first %9.2f voxels %llu %s\n",
-                            name.c_str(), mesh->triangleCount(), hyvox::toString(mode), step.resolution, method,
-                            row.runs, row.gpu_ms, row.pass0_ms, row.pass1_ms, row.pass2_ms, row.wall_ms, row.first_ms,
-                            (unsigned long long)s.voxel_count, row.error.empty() ? c.check.c_str() : row.error.c_str());
-                std::fflush(stdout);
-                if (!row.error.empty() || c.check == "DIFF" || (c.check == "bias" && c.false_voxels)) ++failures;
-            };
-            try {
-                // The oracle first, timed like the others (its row is the CPU column).
-                hyvox::VoxelizeOptions o = options;
-                o.mode = step.mode;
-                o.method = hyvox::Method::Cpu;
-                const Row cpu = timeMethod(*mesh, o, repeat, row_budget_s * 1000);
-                const std::string key = spec + "/" + hyvox::toString(step.mode) + "/" + std::to_string(step.resolution);
-                if (cpu.error.empty()) oracle.emplace(key, cpu.last);
-                emit("cpu", step.mode, cpu, Checked{});
-                const hyvox::VoxelizeResult& exact = cpuVoxels(step.mode);
-                for (hyvox::Method method : {hyvox::Method::Hybrid, hyvox::Method::Triangle, hyvox::Method::Fragment}) {
-                    o.method = method;
-                    const Row row = timeMethod(*mesh, o, repeat, row_budget_s * 1000);
-                    Checked c;
-                    c.ref_voxels = exact.stats.voxel_count;
-                    if (row.error.empty()) {
-                        if (row.last.occupancy == exact.occupancy) {
-                            c.check = "equal";
-                        } else {
-                            // The tests' rule: every disagreement a touch within 1e-5 voxel
-                            // (either answer right), and touches rare.
-                            const hyvox::test::Comparison cmp =
-                                hyvox::test::compareResults(mesh->view(), step.mode, row.last, exact);
-                            c.missed = cmp.oracle_only;
-                            c.false_voxels = cmp.result_only;
-                            c.touches = cmp.touches;
-                            c.unexplained = cmp.unexplained.size();
-                            const bool rare = cmp.touches <= std::max<std::uint64_t>(10, cmp.oracle_voxels / 10000);
-                            c.check = cmp.unexplained.empty() && rare ? "touches" : "DIFF";
-                        }
-                    }
-                    emit(hyvox::toString(method), step.mode, row, c);
-                }
-                const std::string tess_key = spec + "@" + std::to_string(step.resolution);
-                if (!tessellated[tess_key]) {
-                    tessellated[tess_key] = true;
-                    o.method = hyvox::Method::Tessellation;
-                    const Row row = timeMethod(*mesh, o, repeat, row_budget_s * 1000);
-                    Checked c;
-                    if (row.error.empty()) {
-                        const hyvox::VoxelizeResult& conservative = cpuVoxels(hyvox::Mode::Conservative);
-                        const hyvox::VoxelizeResult& thin = cpuVoxels(hyvox::Mode::Thin);
-                        const hyvox::AccuracyReport acc = compareToReference(row.last.occupancy, conservative.occupancy);
-                        c.check = "bias";
-                        c.ref_voxels = acc.reference_voxels;
-                        c.missed = acc.missed_voxels;
-                        c.false_voxels = acc.false_voxels;
-                        c.bias = acc.bias;
-                        c.bias_thin = compareToReference(row.last.occupancy, thin.occupancy).bias;
-                    }
-                    // Tessellation has no mode; its row sits in the step's.
-                    emit("tessellation", step.mode, row, c);
-                }
-            } catch (const std::exception& e) {
-                std::printf("# %s %s@%d: %s\n", spec.c_str(), hyvox::toString(step.mode), step.resolution, e.what());
+                std::printf("# %s (step %s): %s\n", spec.c_str(), order[si].c_str(), e.what());
                 ++failures;
             }
-            // The oracles of this scene and step are not needed again (each step is one
-            // resolution and mode; tessellation ran in the first step of its resolution).
-            for (auto it = oracle.begin(); it != oracle.end();)
-                it = it->first.rfind(spec + "/", 0) == 0 ? oracle.erase(it) : std::next(it);
         }
     }
     std::fclose(csv);
-    std::printf("# done in %.1f s, %d failure(s)\n", clock.elapsedMs() / 1000.0, failures);
-    return failures ? 1 : 0;
+    std::printf("# done in %.1f s, %d failure(s)\n", bench.elapsedS(), bench.failures() + failures);
+    return bench.failures() + failures ? 1 : 0;
 }
