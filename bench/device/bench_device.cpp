@@ -11,7 +11,7 @@
 //
 //   bench_device --mesh-dir DIR --csv FILE [--info FILE] [--order thin@256,thin@512,...]
 //                [--scenes bunny_stanford_69k.ply,...,dragon_stanford_871k.ply.gz:x16,triangle]
-//                [--repeat 5] [--row-budget-s 3] [--budget-s 300] [--device D]
+//                [--repeat 5] [--row-budget-s 3] [--budget-s 300] [--device D] [--require-hardware]
 //
 // A scene "FILE:x4" / "FILE:x16" is FILE midpoint-subdivided once / twice (dense stand-ins
 // for the paper's 7.2M-triangle Asian Dragon); "triangle" is the paper's scene-spanning
@@ -218,14 +218,17 @@ struct Checked {
     double bias = -1, bias_thin = -1;  // -1: not measured
 };
 
-// GL_RENDERER and friends of the GL worker's context, after the EGL devices it chose from.
-std::string deviceInfo(const std::string& selection) {
+// GL_RENDERER and friends of the GL worker's context, after the EGL devices it chose from;
+// `hardware` says whether that context is on a hardware device.
+std::string deviceInfo(const std::string& selection, bool& hardware) {
+    hardware = false;
     std::string info;
     for (const hyvox::GlDevice& d : hyvox::listGlDevices())
         info += "egl_device=" + std::to_string(d.index) + " " + d.name + (d.software ? " (software)" : " (hardware)") +
                 "\n";
     try {
         hyvox::gl::GlWorker& worker = hyvox::gl::GlWorker::get(selection);
+        hardware = !worker.device().software;
         info += worker.run([&] {
             const auto text = [](GLenum name) {
                 const auto* s = reinterpret_cast<const char*>(glGetString(name));
@@ -281,7 +284,8 @@ public:
                 } else {
                     // The tests' rule: every disagreement a touch within 1e-5 voxel (either
                     // answer is right), and touches rare.
-                    const hyvox::test::Comparison cmp = hyvox::test::compareResults(mesh.view(), mode, row.last, cpu.last);
+                    const hyvox::test::Comparison cmp =
+                        hyvox::test::compareResults(mesh.view(), mode, row.last, cpu.last);
                     c.missed = cmp.oracle_only;
                     c.false_voxels = cmp.result_only;
                     c.touches = cmp.touches;
@@ -392,6 +396,7 @@ int main(int argc, char** argv) {
                                        "dragon_stanford_871k.ply.gz:x16"};
     int repeat = 5;
     double row_budget_s = 3, budget_s = 300;
+    bool require_hardware = false;
     hyvox::VoxelizeOptions base;
     base.hybrid.cutoff = -1.0;            // auto
     hyvox::bench::readEnvironment(base);  // HYVOX_GL_DEVICE, HYVOX_GL_WALL_TIMING, ...
@@ -407,10 +412,12 @@ int main(int argc, char** argv) {
         else if (arg == "--row-budget-s") row_budget_s = std::atof(next().c_str());
         else if (arg == "--budget-s") budget_s = std::atof(next().c_str());
         else if (arg == "--device") base.gl.device = next();
+        else if (arg == "--require-hardware") require_hardware = true;
         else {
             std::fprintf(stderr,
                          "usage: bench_device --mesh-dir DIR --csv FILE [--info FILE] [--order STEP,...] "
-                         "[--scenes S,...] [--repeat N] [--row-budget-s S] [--budget-s S] [--device D]\n"
+                         "[--scenes S,...] [--repeat N] [--row-budget-s S] [--budget-s S] [--device D] "
+                         "[--require-hardware]\n"
                          "  STEP: MODE@RES (thin@256) or threads@RES (cpu alone at 1, 2, 4, ... threads)\n");
             return 2;
         }
@@ -422,7 +429,8 @@ int main(int argc, char** argv) {
     std::vector<Step> steps;
     for (const std::string& s : order) steps.push_back(parseStep(s));
 
-    const std::string info = deviceInfo(base.gl.device);
+    bool hardware = false;
+    const std::string info = deviceInfo(base.gl.device, hardware);
     std::printf("%s", info.c_str());
     std::fflush(stdout);
     if (!info_path.empty())
@@ -430,6 +438,10 @@ int main(int argc, char** argv) {
             std::fputs(info.c_str(), f);
             std::fclose(f);
         }
+    if (require_hardware && !hardware) {  // on a lent GPU: stop before minutes of CPU-only work
+        std::printf("# --require-hardware: no GL context on a hardware device (above); nothing run\n");
+        return 3;
+    }
     std::FILE* csv = std::fopen(csv_path.c_str(), "w");
     if (!csv) {
         std::fprintf(stderr, "bench_device: cannot write %s\n", csv_path.c_str());
