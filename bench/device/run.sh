@@ -92,7 +92,9 @@ if [ $rc = 3 ]; then  # no hardware GL context: what the next try needs to know
     env | grep -E '^(__EGL|__GLX|LD_LIBRARY|NVIDIA)' || true
 fi
 echo "# bench_device exit $rc after $(($(date +%s) - start)) s (124/137: stopped by the timeout; 1: a check failed)"
-if command -v python3 >/dev/null && [ -e "$HERE/table.py" ]; then
+if [ ! -s "$OUT/table1.csv" ]; then
+    echo "# no table1.csv"
+elif command -v python3 >/dev/null && [ -e "$HERE/table.py" ]; then
     python3 "$HERE/table.py" "$OUT/table1.csv" --info "$OUT/gl_info.txt" --res 256 || true
     python3 "$HERE/table.py" "$OUT/table1.csv" --verify || true
 else
