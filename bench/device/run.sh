@@ -13,6 +13,14 @@ ROOT=$(cd "$HERE/.." && pwd)
 : "${OUT:?OUT must name the folder for the results}"
 mkdir -p "$OUT"
 exec > >(tee "$OUT/log.txt") 2>&1
+TEE_PID=$!
+# Ends the script only after tee has written the last lines (the device collects $OUT and the
+# output as soon as the command returns).
+finish() {
+    exec 1>&- 2>&-
+    wait "$TEE_PID" 2>/dev/null
+    exit "$1"
+}
 echo "# run.sh start $(date -u +%FT%TZ) in $HERE"
 
 # The GL loaders (glvnd: libEGL, libOpenGL, libGLdispatch) when the machine lacks them, as
@@ -101,4 +109,4 @@ else
     echo "# rows: $(($(wc -l <"$OUT/table1.csv") - 1)); failed checks:"
     grep -E ',(DIFF|ERROR[^,]*),' "$OUT/table1.csv" | cut -d, -f2,4,5,6,22-26
 fi
-exit $rc
+finish "$rc"
