@@ -11,7 +11,7 @@ import bpy
 from ..core import summary
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
-from . import export, importer, properties
+from . import export, importer, properties, render_depsgraph
 from .gather import gather
 
 # The last run's summary lines (shown in the panel) and record (for scripts).
@@ -41,8 +41,15 @@ class _Run:
     def export_frame(self, frame):
         if frame is not None and frame != self.scene.frame_current:
             self.scene.frame_set(frame)
-        depsgraph = bpy.context.evaluated_depsgraph_get()
-        return export.export_groups(self.groups, depsgraph, warn=self.warn)
+        viewport = bpy.context.evaluated_depsgraph_get()
+        if self.used["evaluation"] == "VIEWPORT":
+            return export.export_groups(self.groups, viewport, warn=self.warn)
+        try:
+            return render_depsgraph.with_render_depsgraph(bpy.context, lambda depsgraph: export.export_groups(
+                self.groups, depsgraph, warn=self.warn, fallback_depsgraph=viewport))
+        except render_depsgraph.RenderEvaluationUnavailable as exc:
+            self.warn(f"Modifiers evaluated at viewport settings: no render evaluation ({exc})")
+            return export.export_groups(self.groups, viewport, warn=self.warn)
 
     def restore_frame(self):
         if self.scene.frame_current != self.original_frame:

@@ -108,6 +108,11 @@ def scene_and_operator_properties(operator=False):
         "output_dir": StringProperty(name="Output Folder", description="Where the .vdb files go; empty: a "
                                      "hyvox_cache folder next to the .blend, or the temp folder if unsaved",
                                      default="", subtype="DIR_PATH", **skip),
+        "evaluation": EnumProperty(name="Modifiers", description="Which settings modifiers and Geometry "
+                                   "Nodes are evaluated at (Subdivision levels, Simplify, Is Viewport)",
+                                   items=[("RENDER", "Render", "As the render shows the scene (the final result)"),
+                                          ("VIEWPORT", "Viewport", "As the viewport shows it (faster to evaluate)")],
+                                   default="RENDER", **skip),
         "use_frame_range": BoolProperty(name="Frame Range", description="Voxelize every frame of a range "
                                         "into a .vdb sequence", default=False, **skip),
         "frame_start": IntProperty(name="Start", description="First frame of the sequence", default=1,
