@@ -89,6 +89,7 @@ def main(argv):
     if args.separate:
         kwargs["separate"] = True
     kwargs["evaluation"] = "VIEWPORT" if args.viewport else "RENDER"
+    kwargs["unique_file_names"] = False  # chunks of one sequence must share their file names
     if args.frames:
         frames = parse_frame_range(args.frames)
         if frames != list(range(frames[0], frames[-1] + 1)):

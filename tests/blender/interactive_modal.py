@@ -5,11 +5,14 @@
         --python tests/blender/interactive_modal.py -- BUILD_DIR
 
 1. invoke() runs the voxelization on a worker thread and returns RUNNING_MODAL; the
-   main loop keeps running (timers fire) until the volume appears; undo removes it.
+   main loop keeps running (timers fire) until the volume appears; a re-run writes new
+   files, and undoing it brings back the first volume with its own file intact; undoing
+   the first run removes it.
 2. A run held on its worker thread until the token is cancelled (so it lasts exactly as long
    as the test wants, on any machine) keeps the UI responsive, and a simulated Esc cancels
    it through the native token: no volume, no files, the operator ends.
 Exits 0 on success, 1 on failure (CTest runs it when xvfb-run is installed)."""
+import hashlib
 import os
 import sys
 import tempfile
@@ -29,6 +32,11 @@ state = {"step": "start", "t0": 0.0, "ticks": [], "max_gap": 0.0, "progress": []
 def fail(message):
     print("MODAL TEST FAILED:", message, flush=True)
     os._exit(1)
+
+
+def digest(path):
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
 
 
 def view3d_override():
@@ -105,12 +113,36 @@ def step():
             if shown != ("OBJECT_OT_hyvox_voxelize", 64, 1, "cpu"):
                 fail(f"the redo panel shows {shown}, not what the run used")
             bpy.context.scene.hyvox.property_unset("padding")
-            print("modal run finished; undo", flush=True)
-            with bpy.context.temp_override(**view3d_override()):
-                bpy.ops.ed.undo()
-            state["step"] = "check_undo"
+            path = bpy.path.abspath(bpy.data.objects["Cube_voxels"].data.filepath)
+            state.update(first_file=path, first_digest=digest(path))
+            print("modal run finished; a re-run", flush=True)
+            result = invoke(method="cpu", resolution=32)
+            if result != {"RUNNING_MODAL"}:
+                fail(f"the re-run's invoke returned {result}")
+            state.update(step="wait_rerun", t0=now)
         elif now - state["t0"] > 30:
             fail("the modal run did not finish in 30 s")
+    elif s == "wait_rerun":
+        if running() is None:
+            rerun_file = bpy.path.abspath(bpy.data.objects["Cube_voxels"].data.filepath)
+            if rerun_file == state["first_file"]:
+                fail("the re-run rewrote the first run's file")
+            print("re-run finished; undo it", flush=True)
+            with bpy.context.temp_override(**view3d_override()):
+                bpy.ops.ed.undo()
+            state["step"] = "check_rerun_undo"
+        elif now - state["t0"] > 30:
+            fail("the re-run did not finish in 30 s")
+    elif s == "check_rerun_undo":
+        # Undo brings back the first run's volume, and its file still holds the first voxels.
+        obj = bpy.data.objects.get("Cube_voxels")
+        path = bpy.path.abspath(obj.data.filepath) if obj is not None else None
+        if path != state["first_file"] or digest(path) != state["first_digest"]:
+            fail(f"after undoing the re-run the volume reads {path}, not the first run's intact file")
+        print("undo of the re-run restored the first volume and file; undo the first run", flush=True)
+        with bpy.context.temp_override(**view3d_override()):
+            bpy.ops.ed.undo()
+        state["step"] = "check_undo"
     elif s == "check_undo":
         if "Cube_voxels" in bpy.data.objects:
             fail("undo did not remove the volume")

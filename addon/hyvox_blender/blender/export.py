@@ -103,7 +103,8 @@ def make_groups(sources, separate: bool, active: Optional[bpy.types.Object]) -> 
     if separate or len(names) == 1:
         return [Group(name, [name]) for name in names]
     active_name = active.name if active is not None else None
-    return [Group(naming.group_name(names, active_name), names)]
+    lead = active_name if active_name in names else sorted(names)[0]
+    return [Group(naming.group_name(names, active_name), names, lead)]
 
 
 def export_groups(groups: List[Group], depsgraph, warn=None, fallback_depsgraph=None) -> List[GroupMesh]:

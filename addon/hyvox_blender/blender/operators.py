@@ -8,7 +8,7 @@ import traceback
 
 import bpy
 
-from ..core import summary
+from ..core import naming, summary
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
 from . import export, importer, properties, render_depsgraph
@@ -29,7 +29,10 @@ class _Run:
         self.op = op
         sources = export.pick_sources(context.selected_objects, warn=self.warn)
         self.groups = export.make_groups(sources, settings.separate, context.view_layer.objects.active)
-        self.pipeline = Pipeline(settings, folder, self.export_frame)  # validates the settings
+        # New file names per run, so that undo never brings back a volume whose file a later
+        # run overwrote (farm chunks ask for fixed names to assemble one sequence).
+        run_tag = naming.new_run_tag() if op.unique_file_names else None
+        self.pipeline = Pipeline(settings, folder, self.export_frame, run_tag=run_tag)  # validates the settings
         # The redo panel shows, and a redo repeats, exactly what this run used.
         for name, value in used.items():
             setattr(op, name, value)
@@ -60,7 +63,8 @@ class _Run:
         pipeline = self.pipeline
         pipeline.commit()
         start = time.perf_counter()
-        objects = importer.import_results(context, pipeline.results, self.override)
+        objects = importer.import_results(context, pipeline.results, self.override,
+                                          parent_to_source=self.used["parent_to_source"])
         pipeline.timings.import_ms += (time.perf_counter() - start) * 1000.0
         lines = summary.long_report(pipeline.results, pipeline.timings)
         last_summary[:] = lines
@@ -82,7 +86,11 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
     # Keyword arguments override the scene's settings for one call (unset ones don't); the
     # same definitions as the Scene's, from the options schema (limits as soft limits: see
     # properties.schema_property).
-    __annotations__ = properties.scene_and_operator_properties(operator=True)
+    __annotations__ = dict(
+        properties.scene_and_operator_properties(operator=True),
+        unique_file_names=bpy.props.BoolProperty(
+            name="New File Names", default=True, options={"HIDDEN", "SKIP_SAVE"},
+            description="Write this run's files under new names (off: rewrite the same names each run)"))
 
     _active = None  # the running modal operator's _Run: one run at a time
 

@@ -108,6 +108,9 @@ def scene_and_operator_properties(operator=False):
         "output_dir": StringProperty(name="Output Folder", description="Where the .vdb files go; empty: a "
                                      "hyvox_cache folder next to the .blend, or the temp folder if unsaved",
                                      default="", subtype="DIR_PATH", **skip),
+        "parent_to_source": BoolProperty(name="Parent to Source", description="Parent the volume to the "
+                                         "object it was made from, so moving that object moves it (not for frame "
+                                         "ranges: their voxels already follow the animation)", default=True, **skip),
         "evaluation": EnumProperty(name="Modifiers", description="Which settings modifiers and Geometry "
                                    "Nodes are evaluated at (Subdivision levels, Simplify, Is Viewport)",
                                    items=[("RENDER", "Render", "As the render shows the scene (the final result)"),

@@ -32,6 +32,8 @@ class VIEW3D_PT_hyvox_voxelize(bpy.types.Panel):
             col.prop(settings, "hybrid_cutoff")
         col.prop(settings, "padding")
         col.prop(settings, "separate")
+        col.prop(settings, "parent_to_source")
+        col.prop(settings, "evaluation")
         col.prop(settings, "output_dir")
 
         col = layout.column(heading="Animation")
@@ -42,6 +44,7 @@ class VIEW3D_PT_hyvox_voxelize(bpy.types.Panel):
         sub.prop(settings, "frame_end")
 
         layout.operator(operators.OBJECT_OT_hyvox_voxelize.bl_idname, icon="VOLUME_DATA")
+        layout.operator("wm.hyvox_clean_voxel_files", icon="TRASH")
         if operators.last_summary:
             box = layout.box()
             for line in operators.last_summary:

@@ -21,6 +21,10 @@ class Group:
     """What becomes one Volume object: one source object, or the whole selection."""
     name: str
     sources: List[str]
+    lead: str = ""  # the source the volume is parented to (default: the first)
+
+    def __post_init__(self):
+        self.lead = self.lead or self.sources[0]
 
     @property
     def key(self) -> str:
@@ -77,9 +81,12 @@ ExportFrame = Callable[[Optional[int]], List[GroupMesh]]
 
 class Pipeline:
     def __init__(self, settings: VoxelizeSettings, output_dir: str, export_frame: ExportFrame,
-                 module=None):
+                 module=None, run_tag: Optional[str] = None):
+        """run_tag (naming.new_run_tag): this run's files get new names, never an earlier
+        run's; None: fixed names, rewritten by each run (farm chunks that assemble)."""
         self.settings = settings.validate()
         self.output_dir = output_dir
+        self.run_tag = run_tag
         self.export_frame = export_frame
         self.module = module if module is not None else backend.load_module()
         self.method = backend.resolve_method(self.module, settings)
@@ -192,7 +199,7 @@ class Pipeline:
 
     def _final_path(self, group: Group, frame: Optional[int]) -> str:
         stem = naming.result_stem(group.name, group.key, len(group.sources))
-        return os.path.join(self.output_dir, naming.volume_file_name(stem, frame))
+        return os.path.join(self.output_dir, naming.volume_file_name(stem, frame, self.run_tag))
 
     def _work_guarded(self, meshes: List[GroupMesh]) -> None:
         try:
