@@ -17,6 +17,7 @@ from mathutils import Vector
 
 from ..core import alignment, naming
 from ..core.pipeline import GroupResult
+from . import blocks_object
 
 KEY = "hyvox_key"  # custom property: which sources a volume object came from
 
@@ -76,8 +77,8 @@ def _sources(obj: bpy.types.Object) -> set:
 
 
 def _replaced(sources: set) -> List[bpy.types.Object]:
-    """The volumes a run of these sources replaces: those made from any of them."""
-    return [o for o in bpy.data.objects if o.type == "VOLUME" and KEY in o and _sources(o) & sources]
+    """The results (volumes, blocks) a run of these sources replaces: those made from any of them."""
+    return [o for o in bpy.data.objects if KEY in o and _sources(o) & sources]
 
 
 class _Kept:
@@ -86,19 +87,25 @@ class _Kept:
     def __init__(self, old: bpy.types.Object):
         self.key = old[KEY]
         self.sources = _sources(old)
+        self.kind = old.type
         self.material = old.data.materials[0] if old.data is not None and old.data.materials else None
         self.collections = list(old.users_collection)
-        self.voxel_size = float(old.get("hyvox_voxel_size", 0.0))
+        # The offset the add-on set (not the artist); volumes of earlier versions did not
+        # record it: theirs was the half-voxel fix of their voxel size.
+        if "hyvox_offset" in old:
+            self.offset = Vector(old["hyvox_offset"])
+        else:
+            size = float(old.get("hyvox_voxel_size", 0.0))
+            self.offset = Vector(alignment.object_offset(size, bpy.app.version) if old.type == "VOLUME" else (0, 0, 0))
         self.location = Vector(old.location)
         self.rotation_mode = old.rotation_mode
         self.rotation = (tuple(old.rotation_euler), tuple(old.rotation_quaternion), tuple(old.rotation_axis_angle))
         self.scale = tuple(old.scale)
 
-    def apply_transform(self, obj: bpy.types.Object, offset, alignment_override: str) -> None:
-        """The artist's edits: the location less the half-voxel offset of the old voxel
-        size, plus the new one; rotation and scale as they were."""
-        old_offset = Vector(alignment.object_offset(self.voxel_size, bpy.app.version, alignment_override))
-        obj.location = self.location - old_offset + Vector(offset)
+    def apply_transform(self, obj: bpy.types.Object, offset) -> None:
+        """The artist's edits: the location less the offset the add-on had set (the
+        half-voxel fix of the old voxel size), plus the new one; rotation and scale as they were."""
+        obj.location = self.location - self.offset + Vector(offset)
         obj.rotation_mode = self.rotation_mode
         obj.rotation_euler, obj.rotation_quaternion, obj.rotation_axis_angle = self.rotation
         obj.scale = self.scale
@@ -108,7 +115,7 @@ def _remove(obj: bpy.types.Object) -> None:
     data = obj.data
     bpy.data.objects.remove(obj, do_unlink=True)
     if data is not None and data.users == 0:
-        bpy.data.volumes.remove(data)
+        (bpy.data.meshes if isinstance(data, bpy.types.Mesh) else bpy.data.volumes).remove(data)
 
 
 def _parent_to(obj: bpy.types.Object, source: Optional[bpy.types.Object]) -> None:
@@ -136,17 +143,21 @@ def import_results(context, results: Dict[str, GroupResult], alignment_override:
         overlapping = [k for k in kept if k.sources & set(group.sources)]
         donor = exact or (overlapping[0] if overlapping else None)
 
-        name = naming.object_name(group.name)
-        volume = bpy.data.volumes.new(name)
-        _configure_volume(volume, result)
-        material = donor.material if donor is not None and donor.material is not None else None
-        volume.materials.append(material or _make_material(name, result.voxel_size))
-
-        obj = bpy.data.objects.new(name, volume)
-        offset = alignment.object_offset(result.voxel_size, bpy.app.version, alignment_override)
+        if result.blocks is not None:
+            material = donor.material if donor is not None and donor.kind == "MESH" else None
+            obj, offset = blocks_object.make_blocks_object(group.name, result, material)
+        else:
+            name = naming.object_name(group.name)
+            volume = bpy.data.volumes.new(name)
+            _configure_volume(volume, result)
+            material = donor.material if donor is not None and donor.kind == "VOLUME" else None
+            volume.materials.append(material or _make_material(name, result.voxel_size))
+            obj = bpy.data.objects.new(name, volume)
+            offset = alignment.object_offset(result.voxel_size, bpy.app.version, alignment_override)
         obj.location = offset
+        obj["hyvox_offset"] = tuple(offset)
         if exact is not None:
-            exact.apply_transform(obj, offset, alignment_override)
+            exact.apply_transform(obj, offset)
         obj[KEY] = group.key
         obj["hyvox_voxel_size"] = result.voxel_size
         obj["hyvox_method"] = result.method

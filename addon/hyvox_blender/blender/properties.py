@@ -108,6 +108,14 @@ def scene_and_operator_properties(operator=False):
         "output_dir": StringProperty(name="Output Folder", description="Where the .vdb files go; empty: a "
                                      "hyvox_cache folder next to the .blend, or the temp folder if unsaved",
                                      default="", subtype="DIR_PATH", **skip),
+        "output": EnumProperty(name="Output", description="What the voxels become in the scene",
+                               items=[("VOLUME", "Volume", "An OpenVDB volume object (renders as fog or smoke)"),
+                                      ("BLOCKS", "Blocks", "A mesh of one cube per voxel with only the outer faces "
+                                                 "(one frame)")],
+                               default="VOLUME", **skip),
+        "export_vox": BoolProperty(name="MagicaVoxel File", description="Also write the voxels as a MagicaVoxel "
+                                   ".vox file next to the .vdb (split into models of at most 256 per side; at "
+                                   "most 255 colours)", default=False, **skip),
         "parent_to_source": BoolProperty(name="Parent to Source", description="Parent the volume to the "
                                          "object it was made from, so moving that object moves it (not for frame "
                                          "ranges: their voxels already follow the animation)", default=True, **skip),

@@ -31,6 +31,8 @@ class VIEW3D_PT_hyvox_voxelize(bpy.types.Panel):
         if settings.method in {"hybrid", "auto"}:
             col.prop(settings, "hybrid_cutoff")
         col.prop(settings, "padding")
+        col.prop(settings, "output")
+        col.prop(settings, "export_vox")
         col.prop(settings, "separate")
         col.prop(settings, "parent_to_source")
         col.prop(settings, "evaluation")

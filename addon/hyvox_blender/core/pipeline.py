@@ -11,7 +11,8 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import backend, naming
+from . import backend, naming, vox
+from .blocks import BlocksMesh, blocks_mesh
 from .errors import CancelledError, HyvoxError
 from .settings import VoxelizeSettings
 
@@ -50,6 +51,8 @@ class GroupResult:
     triangles: int = 0
     method: str = ""
     stats: dict = field(default_factory=dict)  # of the last frame
+    blocks: Optional[BlocksMesh] = None  # settings.blocks: the blocks of the (one) frame
+    vox_files: List[str] = field(default_factory=list)  # settings.export_vox: one per frame
 
 
 @dataclass
@@ -240,8 +243,10 @@ class Pipeline:
                 grid.write_vdb(staging, threads=int(self.settings.options.get("threads", 0)))
             except (OSError, RuntimeError, ValueError) as exc:
                 raise HyvoxError(f"cannot write {final}: {exc}") from exc
-            self.timings.write_ms += (time.perf_counter() - start) * 1000.0
             self._staged.append((staging, final))
+            if self.settings.blocks or self.settings.export_vox:
+                self._blocks_and_vox(grid, result, final)
+            self.timings.write_ms += (time.perf_counter() - start) * 1000.0
 
             result.files.append(final)
             if frame is not None:
@@ -254,3 +259,20 @@ class Pipeline:
             result.triangles = int(len(mesh.triangles))
         self._group_index = len(meshes)
 
+
+    def _blocks_and_vox(self, grid, result: GroupResult, final_vdb: str) -> None:
+        """The other outputs of the same voxels: the blocks mesh (imported on the main
+        thread) and the .vox file (staged like the .vdb)."""
+        ijk = grid.coords()
+        colors = backend.voxel_colors(grid)
+        if self.settings.blocks:
+            result.blocks = blocks_mesh(ijk, float(grid.voxel_size), tuple(grid.origin), colors)
+        if self.settings.export_vox:
+            final = os.path.splitext(final_vdb)[0] + ".vox"
+            staging = naming.staging_path(final)
+            try:
+                vox.write_vox(staging, ijk, colors)
+            except (OSError, ValueError) as exc:
+                raise HyvoxError(f"cannot write {final}: {exc}") from exc
+            self._staged.append((staging, final))
+            result.vox_files.append(final)
