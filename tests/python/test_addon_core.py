@@ -133,3 +133,32 @@ def test_merge_meshes_offsets_indices():
     assert vertices.shape == (7, 3) and vertices.dtype == np.float32
     assert triangles.dtype == np.uint32
     np.testing.assert_array_equal(triangles, [[0, 1, 2], [3, 4, 5], [4, 5, 6]])
+
+
+def test_panel_hides_options_that_do_not_apply():
+    from hyvox_blender.core import panel_rules
+    assert panel_rules.option_applies("tessellation", "tessellation")
+    assert not panel_rules.option_applies("tessellation", "hybrid")
+    assert panel_rules.option_applies("hybrid", "hybrid") and not panel_rules.option_applies("hybrid", "cpu")
+    assert all(panel_rules.option_applies("gl", m) for m in panel_rules.GL_METHODS)
+    assert not panel_rules.option_applies("gl", "cpu")
+    assert panel_rules.option_applies("grid", "cpu") and panel_rules.option_applies("run", "reference")
+    software = panel_rules.gl_device_summary([{"index": 0, "name": "software", "software": True}])
+    gpu = panel_rules.gl_device_summary([{"index": 0, "name": "software", "software": True},
+                                         {"index": 1, "name": "H200", "software": False}])
+    assert software == {"name": "software", "software": True} and gpu == {"name": "H200", "software": False}
+    assert panel_rules.gl_device_summary([]) is None
+    assert "software" in panel_rules.method_note("hybrid", "hybrid", software)
+    assert panel_rules.method_note("hybrid", "hybrid", gpu) == "GPU: H200"
+    assert panel_rules.method_note("auto", "cpu", software) == "Auto: CPU here"
+    assert panel_rules.method_note("cpu", "cpu", software) is None
+
+
+def test_panel_summary_lines_are_short():
+    from hyvox_blender.core import panel_rules
+    record = {"volumes": [{"name": "Bunny", "voxel_counts": [13977], "dims": [64, 64, 50],
+                           "voxel_size": 0.0024328, "triangles": 69451, "method": "cpu", "frames": None}],
+              "timings_ms": {"total": 67.0}}
+    lines = panel_rules.summary_lines(record)
+    assert lines[0] == "Bunny" and "  13,977 voxels" in lines and lines[-1] == "Took 0.07 s"
+    assert max(len(line) for line in lines) <= 24

@@ -81,10 +81,26 @@ def voxelizable(obj: bpy.types.Object) -> bool:
     return obj.type in GEOMETRY_TYPES | GENERATED_TYPES or instancing
 
 
+RESULT_KEY = "hyvox_key"  # importer.KEY: a result names its sources
+
+
+def sources_of_results(objects) -> List[bpy.types.Object]:
+    """The objects with every selected hyvox result replaced by the objects it was made
+    from, so that Voxelize with the result selected (as a run leaves it) runs again."""
+    out = []
+    for obj in objects:
+        if RESULT_KEY in obj:
+            named = [bpy.data.objects.get(n) for n in str(obj[RESULT_KEY]).split("\n")]
+            out.extend(o for o in named if o is not None)
+        else:
+            out.append(obj)
+    return list(dict.fromkeys(out))  # first occurrence kept, order kept
+
+
 def pick_sources(objects, warn=None) -> List[bpy.types.Object]:
-    """The objects to voxelize; non-geometry objects are skipped with a warning, and an
-    empty result is an error."""
-    objects = list(objects)
+    """The objects to voxelize (a selected result stands for its sources); non-geometry
+    objects are skipped with a warning, and an empty result is an error."""
+    objects = sources_of_results(objects)
     if not objects:
         raise SelectionError("Select at least one mesh object to voxelize")
     sources = [o for o in objects if voxelizable(o)]

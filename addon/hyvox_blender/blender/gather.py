@@ -28,6 +28,10 @@ def used_values(context, op=None) -> dict:
             used["size_mode"] = "RESOLUTION"
     if not _op_set(op, "use_frame_range") and (_op_set(op, "frame_start") or _op_set(op, "frame_end")):
         used["use_frame_range"] = True
+    # A frame range nobody set is the scene's.
+    for name, scene_value in (("frame_start", context.scene.frame_start), ("frame_end", context.scene.frame_end)):
+        if not _op_set(op, name) and not scene_settings.is_property_set(name):
+            used[name] = scene_value
     return used
 
 

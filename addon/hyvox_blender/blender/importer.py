@@ -19,7 +19,7 @@ from ..core import alignment, naming
 from ..core.pipeline import GroupResult
 from . import blocks_object
 
-KEY = "hyvox_key"  # custom property: which sources a volume object came from
+from .export import RESULT_KEY as KEY  # custom property: which sources a result came from
 
 
 def _file_path(path: str) -> str:

@@ -58,6 +58,24 @@ class _Run:
         if self.scene.frame_current != self.original_frame:
             self.scene.frame_set(self.original_frame)
 
+    def show_results(self, context, objects):
+        """The new results selected, active and visible; the sources hidden if asked."""
+        layer = context.view_layer
+        for obj in layer.objects:
+            obj.select_set(False)
+        for obj in objects:
+            if obj.name in layer.objects:
+                obj.hide_set(False)
+                obj.select_set(True)
+        if objects and objects[0].name in layer.objects:
+            layer.objects.active = objects[0]
+        if self.used["hide_source"]:
+            for group in self.groups:
+                for name in group.sources:
+                    source = layer.objects.get(name)
+                    if source is not None:
+                        source.hide_set(True)
+
     def finish(self, context):
         """Commit the files and import them as volumes (main thread)."""
         pipeline = self.pipeline
@@ -66,6 +84,7 @@ class _Run:
         objects = importer.import_results(context, pipeline.results, self.override,
                                           parent_to_source=self.used["parent_to_source"])
         pipeline.timings.import_ms += (time.perf_counter() - start) * 1000.0
+        self.show_results(context, objects)
         lines = summary.long_report(pipeline.results, pipeline.timings)
         last_summary[:] = lines
         last_run_record.clear()

@@ -24,9 +24,11 @@ def describe_timings(timings: Timings) -> str:
 
 def short_report(results: Dict[str, GroupResult], timings: Timings) -> str:
     """One line for the status bar / Info editor."""
-    voxels = sum(sum(r.voxel_counts) for r in results.values())
-    names = ", ".join(r.group.name for r in results.values())
-    return f"Voxelized {names}: {voxels:,} voxels in {timings.total_ms:.0f} ms"
+    made = []
+    for r in results.values():
+        kind = "blocks" if r.blocks is not None else ("volume sequence" if r.frames else "volume")
+        made.append(f"{r.group.name} {kind} of {sum(r.voxel_counts):,} voxels")
+    return f"Made {', '.join(made)} in {timings.total_ms / 1000.0:.2f} s"
 
 
 def long_report(results: Dict[str, GroupResult], timings: Timings) -> List[str]:
