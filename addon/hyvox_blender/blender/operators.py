@@ -173,9 +173,10 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
         run = self._run
         pipeline = run.pipeline
         if event.type == "ESC" and event.value == "PRESS":
-            pipeline.cancel()
-            pipeline.wait()  # the native interrupter stops within milliseconds
-            pipeline.discard()
+            # Not waiting for the worker: whatever stage it is in (the start before any
+            # progress, voxelizing, writing the .vdb), the operator ends now; the worker
+            # stops at its next check and deletes what it staged.
+            pipeline.abandon()
             run.restore_frame()
             self._end(context)
             self.report({"WARNING"}, "Voxelization cancelled")

@@ -101,9 +101,14 @@ class Pipeline:
         self._groups_in_frame = 1
         self._group_index = 0
         self._token = None
+        self._stage = 0  # 0 voxelize, 1 write (for progress)
         self._cancelled = False
         self._thread: Optional[threading.Thread] = None
         self._error: Optional[BaseException] = None
+        # abandon(): the caller has stopped waiting; the worker deletes what it staged.
+        self._lock = threading.Lock()
+        self._abandoned = False
+        self._worker_running = False
 
     # -- driving the run --------------------------------------------------------------
     def run(self) -> Dict[str, GroupResult]:
@@ -126,6 +131,7 @@ class Pipeline:
         self._error = None
         self._thread = threading.Thread(target=self._work_guarded, args=(meshes,),
                                         name="hyvox-voxelize", daemon=True)
+        self._worker_running = True
         self._thread.start()
         return True
 
@@ -147,6 +153,16 @@ class Pipeline:
         if token is not None:
             token.cancel()
 
+    def abandon(self) -> None:
+        """Cancel without waiting (Esc): whatever stage the worker is in, the caller goes
+        on at once; the files it staged are deleted when it ends (now, if none runs)."""
+        self.cancel()
+        with self._lock:
+            self._abandoned = True
+            running = self._worker_running
+        if not running:
+            self.discard()
+
     def wait(self) -> None:
         if self._thread is not None:
             self._thread.join()
@@ -157,7 +173,10 @@ class Pipeline:
         frames = max(len(self.frames), 1)
         groups = max(self._groups_in_frame, 1)
         done_frames = max(self._frame_index - 1, 0) if self.worker_busy() else self._frame_index
-        within = (self._group_index + backend.token_progress(self._token)) / groups
+        # Each group: voxelizing is the first 80% of its share, writing the last 20%.
+        stage_share = (0.8 * backend.token_progress(self._token) if self._stage == 0
+                       else 0.8 + 0.2 * backend.token_progress(self._token))
+        within = (self._group_index + stage_share) / groups
         if not self.worker_busy():
             within = 0.0
         return min((done_frames + within) / frames, 1.0)
@@ -209,6 +228,11 @@ class Pipeline:
             self._work(meshes)
         except BaseException as exc:  # handed to the main thread by finish_frame()
             self._error = exc
+        finally:
+            with self._lock:
+                self._worker_running = False
+                if self._abandoned:
+                    self.discard()
 
     def _work(self, meshes: List[GroupMesh]) -> None:
         frame = self.frames[self._frame_index - 1]
@@ -239,12 +263,24 @@ class Pipeline:
             final = self._final_path(mesh.group, frame)
             staging = naming.staging_path(final)
             start = time.perf_counter()
+            # A token of its own: the write (grid build, then the bytes) stops on Esc too,
+            # and its progress restarts from 0 for the progress bar's second half.
+            self._token = backend.make_token(self.module)
+            self._stage = 1
+            if self._cancelled:
+                raise CancelledError("voxelization cancelled")
             try:
-                grid.write_vdb(staging, threads=int(self.settings.options.get("threads", 0)))
+                grid.write_vdb(staging, threads=int(self.settings.options.get("threads", 0)), cancel=self._token)
+            except self.module.Cancelled as exc:
+                raise CancelledError("voxelization cancelled") from exc
             except (OSError, RuntimeError, ValueError) as exc:
                 raise HyvoxError(f"cannot write {final}: {exc}") from exc
+            finally:
+                self._stage = 0
             self._staged.append((staging, final))
             if self.settings.blocks or self.settings.export_vox:
+                if self._cancelled:
+                    raise CancelledError("voxelization cancelled")
                 self._blocks_and_vox(grid, result, final)
             self.timings.write_ms += (time.perf_counter() - start) * 1000.0
 
