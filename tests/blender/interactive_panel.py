@@ -14,6 +14,7 @@ also saves screenshots of the window before and after a run (sub-panels open).
 Exits 0 on success, 1 on failure."""
 import os
 import sys
+import tempfile
 import traceback
 
 import blf
@@ -222,6 +223,5 @@ def main():
     bpy.app.timers.register(lambda: fail("timed out") or None, first_interval=120.0)
 
 
-import tempfile  # noqa: E402
 OUT = tempfile.mkdtemp(prefix="hyvox-panel-")
 main()
