@@ -18,6 +18,7 @@
 #include "hyvox/vdb.h"
 #include "hyvox/version.h"
 #include "io/atomic_file.h"
+#include "io/interruptible_stream.h"
 
 namespace hyvox::io {
 namespace {
@@ -135,12 +136,17 @@ openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interru
     return grids;
 }
 
-void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path) {
+void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path, Interrupter* interrupter,
+                      std::uint64_t expected_bytes) {
     initializeOpenVdb();
     // The temporary is removed unless the whole write and commit succeed.
     AtomicFile(path).writeWith([&](std::ostream& os) {
         try {
-            CheckedArchive().writeTo(os, grids);
+            InterruptibleStreamBuf checked(os.rdbuf(), interrupter, expected_bytes, 91, 100);
+            std::ostream out(&checked);
+            out.exceptions(std::ios::badbit);  // a Cancelled from the buffer reaches us
+            CheckedArchive().writeTo(out, grids);
+            out.flush();
         } catch (const openvdb::Exception& e) {
             throw ResourceError("writing '" + path + "' failed: " + e.what());
         }
@@ -164,7 +170,11 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, i
         throwIfInterrupted(interrupter, 90);
         auto now = std::chrono::steady_clock::now();
         report.build_ms = std::chrono::duration<double, std::milli>(now - start).count();
-        io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), path);
+        // The file is compressed: about 200 bytes per leaf and grid for the density (a mask
+        // and constant values); only the progress shown depends on this estimate.
+        const std::uint64_t expected_file_bytes = result.occupancy.leafCount() * 200 * grids.size();
+        io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), path, interrupter,
+                             expected_file_bytes);
         report.write_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - now).count();
     });
     if (interrupter) interrupter->wasInterrupted(100);  // progress only: the file is in place

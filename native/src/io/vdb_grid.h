@@ -4,6 +4,7 @@
 // tests, the benchmark). The public API (hyvox/vdb.h) keeps OpenVDB types out.
 #include <openvdb/openvdb.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -39,7 +40,10 @@ void checkGridBudget(const VoxelizeResult& result);
 // with the hyvox_* metadata.
 openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interrupter = nullptr);
 
-// Writes grids atomically (hyvox::io::AtomicFile); throws InvalidInput / ResourceError.
-void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path);
+// Writes grids atomically (hyvox::io::AtomicFile); throws InvalidInput / ResourceError, and
+// Cancelled when `interrupter` (may be null) asks to stop while the bytes go out (it sees
+// progress 91-99 by the bytes written of expected_bytes); nothing is left behind then.
+void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path, Interrupter* interrupter = nullptr,
+                      std::uint64_t expected_bytes = 0);
 
 }  // namespace hyvox::io
