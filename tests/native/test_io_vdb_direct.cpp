@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
 
+#include <algorithm>
 #include <random>
 #include <string>
 
@@ -80,7 +81,6 @@ void expectSameGrids(const openvdb::FloatGrid& direct, const openvdb::FloatGrid&
 void checkAgainstOpenVdb(const hyvox::VoxelizeResult& r, int threads) {
     TempDir dir;
     const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string();
-    ASSERT_TRUE(r.counts.empty());  // the direct path
     hyvox::writeVdb(r, direct_path, threads);
     const openvdb::GridPtrVec grids = hyvox::io::makeGrids(r);
     hyvox::io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), reference_path);
@@ -91,7 +91,18 @@ void checkAgainstOpenVdb(const hyvox::VoxelizeResult& r, int threads) {
     EXPECT_EQ(compression, "active values");
     expectSameGrids(*direct, *reference);
     // The memory figure the direct writer states is OpenVDB's own for the built grid.
-    EXPECT_EQ(hyvox::io::densityTreeMemUsage(r.occupancy), grids[0]->memUsage());
+    EXPECT_EQ(hyvox::io::fogTreeMemUsage(hyvox::io::densityLeaves(r.occupancy)), grids[0]->memUsage());
+    if (r.counts.empty()) return;
+    openvdb::io::File file(direct_path);
+    file.open();
+    const auto direct_count = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("count"));
+    file.close();
+    openvdb::io::File reference_file(reference_path);
+    reference_file.open();
+    const auto reference_count = openvdb::gridPtrCast<openvdb::FloatGrid>(reference_file.readGrid("count"));
+    reference_file.close();
+    ASSERT_TRUE(direct_count && reference_count);
+    expectSameGrids(*direct_count, *reference_count);
 }
 
 }  // namespace
@@ -107,6 +118,15 @@ TEST(IoVdbDirect, GridsOverManyInternalNodesEqualOpenVdbsFile) {
     // 9000 > 2 × 4096 along x: three upper nodes; lower nodes scattered in each.
     checkAgainstOpenVdb(makeResult({9000, 300, 4200}, 0.2, 9), 0);
     checkAgainstOpenVdb(makeResult({9000, 300, 4200}, 0.2, 9), 1);
+}
+
+TEST(IoVdbDirect, CountGridEqualsOpenVdbsFile) {
+    auto r = makeResult({9000, 300, 4200}, 0.1, 4);
+    std::mt19937 rng(3);
+    std::uniform_int_distribution<std::uint32_t> count(1, 1000);
+    for (const auto& ijk : r.occupancy.coords()) r.counts.push_back({ijk[0], ijk[1], ijk[2], count(rng)});
+    std::shuffle(r.counts.begin(), r.counts.end(), rng);  // any order
+    checkAgainstOpenVdb(r, 0);
 }
 
 TEST(IoVdbDirect, EmptyGridEqualsOpenVdbsFile) { checkAgainstOpenVdb(makeResult({5, 6, 7}, 0.0, 1), 0); }

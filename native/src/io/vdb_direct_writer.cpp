@@ -49,9 +49,11 @@ constexpr std::uint64_t kLeafBytes = 96 + 512 * sizeof(float);
 constexpr std::uint64_t kLowerBytes = 4096 * 8 + 2 * 512 + 12;
 constexpr std::uint64_t kUpperBytes = 32768 * 8 + 2 * 4096 + 12;
 
-// Appends to a growing byte string (the small parts: header, metadata, topology).
+// Appends to a growing byte string (the small parts: header, metadata, topology) that
+// will start at file position `base`: size() is the file position of the next byte.
 class Bytes {
 public:
+    explicit Bytes(std::size_t base = 0) : base_(base) {}
     template <typename T>
     void pod(const T& value) {
         out_.append(reinterpret_cast<const char*>(&value), sizeof value);
@@ -62,14 +64,15 @@ public:
         pod(std::uint32_t(text.size()));
         out_ += text;
     }
-    std::size_t size() const { return out_.size(); }
-    std::string& str() { return out_; }
+    std::size_t size() const { return base_ + out_.size(); }
+    const std::string& str() const { return out_; }
     template <typename T>
     void patch(std::size_t at, const T& value) {
-        std::memcpy(&out_[at], &value, sizeof value);
+        std::memcpy(&out_[at - base_], &value, sizeof value);
     }
 
 private:
+    std::size_t base_;
     std::string out_;
 };
 
@@ -105,8 +108,7 @@ std::string randomUuid() {
 struct Placed {
     std::uint64_t upper;  // x, y, z of the upper node, 21 bits each (grid coordinates are >= 0)
     std::uint32_t inner;  // lower node's offset in the upper (15 bits) and leaf's in the lower (12)
-    std::array<std::int32_t, 3> origin;  // the leaf's first voxel
-    const SparseGrid::Leaf* leaf;
+    const FogLeaf* leaf;
 };
 
 int tableOffset(const std::array<std::int32_t, 3>& at, int node_total, int child_total, int log2) {
@@ -115,18 +117,16 @@ int tableOffset(const std::array<std::int32_t, 3>& at, int node_total, int child
            ((at[2] & mask) >> child_total);
 }
 
-std::vector<Placed> placeLeaves(const SparseGrid& occupancy) {
-    const BrickLayout& bricks = occupancy.bricks();
+std::vector<Placed> placeLeaves(const std::vector<FogLeaf>& leaves) {
     std::vector<Placed> placed;
-    placed.reserve(occupancy.leaves().size());
-    for (const SparseGrid::Leaf& leaf : occupancy.leaves()) {
-        const std::array<std::int32_t, 3> b = bricks.at(leaf.brick);
+    placed.reserve(leaves.size());
+    for (const FogLeaf& leaf : leaves) {
+        const std::array<std::int32_t, 3>& o = leaf.origin;
         Placed p;
-        p.origin = {b[0] * BrickLayout::kSide, b[1] * BrickLayout::kSide, b[2] * BrickLayout::kSide};
-        p.upper = (std::uint64_t(p.origin[0] >> kUpperTotal) << 42) | (std::uint64_t(p.origin[1] >> kUpperTotal) << 21) |
-                  std::uint64_t(p.origin[2] >> kUpperTotal);
-        p.inner = std::uint32_t(tableOffset(p.origin, kUpperTotal, kLowerTotal, kUpperLog2)) << 12 |
-                  std::uint32_t(tableOffset(p.origin, kLowerTotal, kLeafLog2, kLowerLog2));
+        p.upper = (std::uint64_t(o[0] >> kUpperTotal) << 42) | (std::uint64_t(o[1] >> kUpperTotal) << 21) |
+                  std::uint64_t(o[2] >> kUpperTotal);
+        p.inner = std::uint32_t(tableOffset(o, kUpperTotal, kLowerTotal, kUpperLog2)) << 12 |
+                  std::uint32_t(tableOffset(o, kLowerTotal, kLeafLog2, kLowerLog2));
         p.leaf = &leaf;
         placed.push_back(p);
     }
@@ -147,28 +147,25 @@ std::uint64_t memUsage(const std::vector<Placed>& placed) {
     return kEmptyTreeBytes + placed.size() * kLeafBytes + lowers * kLowerBytes + uppers * kUpperBytes;
 }
 
-std::uint64_t activeCount(const SparseGrid::Leaf& leaf) {
+std::uint64_t activeCount(const FogLeaf& leaf) {
     std::uint64_t n = 0;
-    for (std::uint64_t w : leaf.words) n += std::uint64_t(__builtin_popcountll(w));
+    for (int w = 0; w < 8; ++w) n += std::uint64_t(__builtin_popcountll(leaf.mask[w]));
     return n;
 }
 
-std::map<std::string, MetaValue> gridMetadata(const VoxelizeResult& result, std::uint64_t mem_usage) {
-    const SparseGrid& occupancy = result.occupancy;
+std::map<std::string, MetaValue> gridMetadata(const VoxelizeResult& result, const FogGrid& fog, std::uint64_t mem_usage) {
     // Grid::evalActiveVoxelBoundingBox(); an empty grid's is CoordBBox(): min INT_MAX, max INT_MIN.
     std::array<std::int32_t, 3> lo{INT_MAX, INT_MAX, INT_MAX}, hi{INT_MIN, INT_MIN, INT_MIN};
-    const BrickLayout& bricks = occupancy.bricks();
-    for (const SparseGrid::Leaf& leaf : occupancy.leaves()) {
-        const std::array<std::int32_t, 3> b = bricks.at(leaf.brick);
+    std::uint64_t voxels = 0;
+    for (const FogLeaf& leaf : fog.leaves) {
+        voxels += activeCount(leaf);
         for (int x = 0; x < 8; ++x) {
-            const std::uint64_t w = leaf.words[x];
+            const std::uint64_t w = leaf.mask[x];
             if (!w) continue;
-            const int i = b[0] * 8 + x;
-            lo[0] = std::min(lo[0], i);
-            hi[0] = std::max(hi[0], i);
-            for (int bit = 0; bit < 64; ++bit) {
-                if (!((w >> bit) & 1u)) continue;
-                const int j = b[1] * 8 + (bit >> 3), k = b[2] * 8 + (bit & 7);
+            lo[0] = std::min(lo[0], leaf.origin[0] + x), hi[0] = std::max(hi[0], leaf.origin[0] + x);
+            for (std::uint64_t bits = w; bits; bits &= bits - 1) {
+                const int bit = __builtin_ctzll(bits);
+                const int j = leaf.origin[1] + (bit >> 3), k = leaf.origin[2] + (bit & 7);
                 lo[1] = std::min(lo[1], j), hi[1] = std::max(hi[1], j);
                 lo[2] = std::min(lo[2], k), hi[2] = std::max(hi[2], k);
             }
@@ -182,8 +179,8 @@ std::map<std::string, MetaValue> gridMetadata(const VoxelizeResult& result, std:
     meta["file_bbox_max"] = metaOf("vec3i", hi);
     meta["file_compression"] = metaString("active values");
     meta["file_mem_bytes"] = metaInt64(std::int64_t(mem_usage));
-    meta["file_voxel_count"] = metaInt64(std::int64_t(occupancy.count()));
-    meta["name"] = metaString("density");
+    meta["file_voxel_count"] = metaInt64(std::int64_t(voxels));
+    meta["name"] = metaString(fog.name);
     // The hyvox_* entries, as addMetadata() in vdb_grid.cpp writes them.
     meta["hyvox_version"] = metaString(version());
     meta["hyvox_method"] = metaString(result.stats.method);
@@ -224,7 +221,7 @@ void writeTopology(Bytes& out, const std::vector<Placed>& placed) {
                                      [&](const Placed& p) { return p.upper != placed[n].upper; }) -
                         placed.begin());
         const int upper_mask = ~((1 << kUpperTotal) - 1);
-        for (int a = 0; a < 3; ++a) out.pod(std::int32_t(placed[n].origin[a] & upper_mask));
+        for (int a = 0; a < 3; ++a) out.pod(std::int32_t(placed[n].leaf->origin[a] & upper_mask));
         std::vector<std::uint64_t> children(kUpperWords, 0);
         for (std::size_t m = n; m < upper_end; ++m) {
             const std::uint32_t lower = placed[m].inner >> 12;
@@ -244,19 +241,94 @@ void writeTopology(Bytes& out, const std::vector<Placed>& placed) {
             out.raw(leaves.data(), kLowerWords * 8);
             out.raw(no_values_lower.data(), kLowerWords * 8);
             out.pod(kNoMaskOrInactiveVals);
-            for (; n < lower_end; ++n) out.raw(placed[n].leaf->words, kLeafMaskBytes);
+            for (; n < lower_end; ++n) out.raw(placed[n].leaf->mask, kLeafMaskBytes);
         }
     }
 }
 
+
+// One grid as Archive::writeGrid lays it out, appended to `head` (descriptor, compression,
+// metadata, transform, topology) with its leaf buffers placed after it; returns the
+// placement so the caller can fill the buffers once the whole file's size is known.
+struct GridLayout {
+    std::vector<Placed> placed;
+    std::vector<std::size_t> starts;  // leaf n's buffer at starts[n] .. starts[n + 1]
+};
+
+GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const FogGrid& fog) {
+    GridLayout layout;
+    layout.placed = placeLeaves(fog.leaves);
+    // GridDescriptor::writeHeader and writeStreamPos (patched below).
+    head.string(fog.name);
+    head.string("Tree_float_5_4_3");
+    head.string("");  // not an instance
+    const std::size_t stream_pos_at = head.size();
+    for (int i = 0; i < 3; ++i) head.pod(std::int64_t(0));
+    const std::int64_t grid_pos = std::int64_t(head.size());
+    head.pod(kCompressActiveMask);
+    const std::map<std::string, MetaValue> meta = gridMetadata(result, fog, memUsage(layout.placed));
+    head.pod(std::uint32_t(meta.size()));
+    for (const auto& [name, value] : meta) {
+        head.string(name);
+        head.string(value.type);
+        head.string(value.bytes);  // Metadata::write: 32-bit size, then the value's bytes
+    }
+    writeTransform(head, result.grid);
+    writeTopology(head, layout.placed);
+    const std::int64_t block_pos = std::int64_t(head.size());
+    // LeafNode::writeBuffers per leaf, in the same order: mask, metadata byte, active values.
+    layout.starts.resize(layout.placed.size() + 1);
+    layout.starts[0] = std::size_t(block_pos);
+    for (std::size_t n = 0; n < layout.placed.size(); ++n)
+        layout.starts[n + 1] =
+            layout.starts[n] + kLeafMaskBytes + 1 + sizeof(float) * activeCount(*layout.placed[n].leaf);
+    head.patch(stream_pos_at, grid_pos);
+    head.patch(stream_pos_at + 8, block_pos);
+    head.patch(stream_pos_at + 16, std::int64_t(layout.starts.back()));
+    return layout;
+}
+
+void fillBuffers(char* file, const GridLayout& layout) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layout.placed.size(), 512), [&](const auto& range) {
+        const float one = 1.0f;
+        for (std::size_t n = range.begin(); n != range.end(); ++n) {
+            const FogLeaf& leaf = *layout.placed[n].leaf;
+            char* at = file + layout.starts[n];
+            std::memcpy(at, leaf.mask, kLeafMaskBytes);
+            at[kLeafMaskBytes] = char(kNoMaskOrInactiveVals);
+            at += kLeafMaskBytes + 1;
+            if (!leaf.values) {
+                for (char* end = file + layout.starts[n + 1]; at != end; at += sizeof one) std::memcpy(at, &one, sizeof one);
+                continue;
+            }
+            for (int w = 0; w < 8; ++w)
+                for (std::uint64_t bits = leaf.mask[w]; bits; bits &= bits - 1, at += sizeof(float))
+                    std::memcpy(at, &leaf.values[w * 64 + __builtin_ctzll(bits)], sizeof(float));
+        }
+    });
+}
+
 }  // namespace
 
-std::uint64_t densityTreeMemUsage(const SparseGrid& occupancy) { return memUsage(placeLeaves(occupancy)); }
+std::vector<FogLeaf> densityLeaves(const SparseGrid& occupancy) {
+    const BrickLayout& bricks = occupancy.bricks();
+    std::vector<FogLeaf> leaves;
+    leaves.reserve(occupancy.leaves().size());
+    for (const SparseGrid::Leaf& leaf : occupancy.leaves()) {
+        const std::array<std::int32_t, 3> b = bricks.at(leaf.brick);
+        leaves.push_back({{b[0] * BrickLayout::kSide, b[1] * BrickLayout::kSide, b[2] * BrickLayout::kSide}, leaf.words, nullptr});
+    }
+    return leaves;
+}
 
-VdbBytes serializeDensityVdb(const VoxelizeResult& result, int threads) {
-    const std::vector<Placed> placed = placeLeaves(result.occupancy);
-    const std::uint64_t mem_usage = memUsage(placed);
+std::uint64_t fogTreeMemUsage(const std::vector<FogLeaf>& leaves) { return memUsage(placeLeaves(leaves)); }
 
+std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves) {
+    // The leaves dominate; the internal nodes above them add a few percent at most.
+    return std::uint64_t(double(leaves) * double(kLeafBytes) * 1.05);
+}
+
+VdbBytes serializeFogGrids(const VoxelizeResult& result, const std::vector<FogGrid>& grids, int threads) {
     Bytes head;
     // Archive::writeHeader.
     head.pod(kMagic);
@@ -266,53 +338,27 @@ VdbBytes serializeDensityVdb(const VoxelizeResult& result, int threads) {
     head.pod(char(1));  // has grid offsets (a seekable file)
     head.raw(randomUuid().data(), 36);
     head.pod(std::uint32_t(0));  // file-level metadata: none
-    head.pod(std::int32_t(1));   // grid count
-    // GridDescriptor::writeHeader and writeStreamPos (patched below).
-    head.string("density");
-    head.string("Tree_float_5_4_3");
-    head.string("");  // not an instance
-    const std::size_t stream_pos_at = head.size();
-    for (int i = 0; i < 3; ++i) head.pod(std::int64_t(0));
-    const std::int64_t grid_pos = std::int64_t(head.size());
-    head.pod(kCompressActiveMask);
-    const std::map<std::string, MetaValue> meta = gridMetadata(result, mem_usage);
-    head.pod(std::uint32_t(meta.size()));
-    for (const auto& [name, value] : meta) {
-        head.string(name);
-        head.string(value.type);
-        head.string(value.bytes);  // Metadata::write: 32-bit size, then the value's bytes
+    head.pod(std::int32_t(grids.size()));
+    // Each grid's header parts follow the previous grid's buffers: lay them out one after
+    // the other in `head`, shifted by the buffers before them.
+    std::vector<GridLayout> layouts;
+    std::vector<Bytes> heads;
+    std::size_t offset = head.size();
+    for (const FogGrid& fog : grids) {
+        heads.emplace_back(offset);
+        layouts.push_back(layOutGrid(heads.back(), result, fog));
+        offset = layouts.back().starts.back();
     }
-    writeTransform(head, result.grid);
-    writeTopology(head, placed);
-    const std::int64_t block_pos = std::int64_t(head.size());
-
-    // LeafNode::writeBuffers per leaf, in the same order: mask, metadata byte, active values.
-    std::vector<std::size_t> starts(placed.size() + 1);
-    starts[0] = std::size_t(block_pos);
-    for (std::size_t n = 0; n < placed.size(); ++n)
-        starts[n + 1] = starts[n] + kLeafMaskBytes + 1 + sizeof(float) * activeCount(*placed[n].leaf);
-    head.patch(stream_pos_at, grid_pos);
-    head.patch(stream_pos_at + 8, block_pos);
-    head.patch(stream_pos_at + 16, std::int64_t(starts.back()));
-
     VdbBytes file;
-    file.size = starts.back();
+    file.size = offset;
     file.data.reset(new char[file.size]);
-    std::memcpy(file.data.get(), head.str().data(), head.size());
+    std::memcpy(file.data.get(), head.str().data(), head.str().size());
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-    arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, placed.size(), 512), [&](const auto& range) {
-            const float one = 1.0f;
-            for (std::size_t n = range.begin(); n != range.end(); ++n) {
-                char* at = file.data.get() + starts[n];
-                std::memcpy(at, placed[n].leaf->words, kLeafMaskBytes);
-                at[kLeafMaskBytes] = char(kNoMaskOrInactiveVals);
-                at += kLeafMaskBytes + 1;
-                for (char* end = file.data.get() + starts[n + 1]; at != end; at += sizeof one)
-                    std::memcpy(at, &one, sizeof one);
-            }
-        });
-    });
+    for (std::size_t g = 0; g < grids.size(); ++g) {
+        const std::size_t at = g == 0 ? head.size() : layouts[g - 1].starts.back();
+        std::memcpy(file.data.get() + at, heads[g].str().data(), heads[g].str().size());
+        arena.execute([&] { fillBuffers(file.data.get(), layouts[g]); });
+    }
     return file;
 }
 
