@@ -5,7 +5,7 @@ cuda_voxelizer's OpenMP CPU path (`-cpu -o binvox`), and hyvox's Python call
 
     /usr/bin/python3 bench/bench_vs_cuda_voxelizer.py --peer PATH/TO/cuda_voxelizer \\
         [--build build] [--runs 3] [--res 128,256,512,1024] [--meshes a.ply,b.ply.gz] \\
-        [--threads 0] [--csv out.csv] [--no-python]
+        [--threads 0] [--csv out.csv] [--no-python] [--baseline OTHER_BUILD]
 
 The peer is not part of hyvox: build it yourself (its CPU path needs no CUDA) and pass the
 binary. Both programs read the same plain binary PLY: .ply.gz meshes are unpacked into a
@@ -21,6 +21,9 @@ Columns (ms, medians):
   py read / py vox / py vdb / py sum: the Python call in this process, with the mesh read
       by hyvox.read_mesh, the voxelize call and write_vdb each timed; py/cli = py sum /
       the CLI's stages sum.
+  base stages / base proc / x base: with --baseline, another hyvox build (e.g. a copy of
+      the build before a change) run in the same alternation: its stages sum and whole
+      process, and base proc / hyvox proc (above 1: this build is faster).
   load: the 1-minute load average when the row finished (the machine may be shared).
 """
 import argparse
@@ -58,6 +61,7 @@ def parse_args():
     parser.add_argument("--threads", type=int, default=0, help="hyvox --threads and the peer's OMP_NUM_THREADS (0 = all)")
     parser.add_argument("--csv", help="also write the rows here")
     parser.add_argument("--no-python", action="store_true", help="skip the Python-call columns")
+    parser.add_argument("--baseline", help="another hyvox build folder to time beside this one (before/after)")
     return parser.parse_args()
 
 
@@ -132,7 +136,10 @@ def main():
         sys.path.insert(0, os.path.join(os.path.abspath(args.build), "python"))
         import hyvox as hyvox_module  # noqa: E402 (the build's module)
     columns = ["mesh", "res", "voxels", "hyvox read", "hyvox vox", "hyvox vdb", "hyvox stages", "hyvox proc",
-               "peer vox", "peer proc", "x proc", "x vox", "py read", "py vox", "py vdb", "py sum", "py/cli", "load"]
+               "peer vox", "peer proc", "x proc", "x vox", "py read", "py vox", "py vdb", "py sum", "py/cli"]
+    if args.baseline:
+        columns += ["base stages", "base proc", "x base"]
+    columns.append("load")
     rows = []
     print("| " + " | ".join(columns) + " |")
     print("|" + "---|" * len(columns))
@@ -142,8 +149,10 @@ def main():
             if hyvox_module is not None:  # the first call pays for loading OpenVDB and the thread pool
                 run_python(hyvox_module, mesh, 64, args.threads, work)
             for res in [int(r) for r in args.res.split(",")]:
-                ours, peers, pys = [], [], []
+                ours, peers, pys, bases = [], [], [], []
                 for _ in range(args.runs):
+                    if args.baseline:
+                        bases.append(run_hyvox(os.path.join(args.baseline, "hyvox"), mesh, res, args.threads, work, env))
                     ours.append(run_hyvox(hyvox, mesh, res, args.threads, work, env))
                     peers.append(run_peer(args.peer, mesh, res, env))
                     if hyvox_module is not None:
@@ -158,10 +167,14 @@ def main():
                 for key in ("read", "vox", "vdb", "sum"):
                     row["py " + key] = median_of(pys, key) if pys else float("nan")
                 row["py/cli"] = row["py sum"] / row["hyvox stages"]
+                if bases:
+                    row["base stages"] = median_of(bases, "stages")
+                    row["base proc"] = median_of(bases, "proc")
+                    row["x base"] = row["base proc"] / row["hyvox proc"]
                 row["load"] = os.getloadavg()[0]
                 rows.append(row)
                 cells = [str(row[c]) if isinstance(row[c], (str, int)) else
-                         (f"{row[c]:.2f}" if c in ("x proc", "x vox", "py/cli", "load") else f"{row[c]:.1f}")
+                         (f"{row[c]:.2f}" if c in ("x proc", "x vox", "py/cli", "x base", "load") else f"{row[c]:.1f}")
                          for c in columns]
                 print("| " + " | ".join(cells) + " |", flush=True)
     if args.csv:
