@@ -159,17 +159,23 @@ std::map<std::string, MetaValue> gridMetadata(const VoxelizeResult& result, cons
     std::uint64_t voxels = 0;
     for (const FogLeaf& leaf : fog.leaves) {
         voxels += activeCount(leaf);
+        // Word x holds the voxels of x; bit y * 8 + z. Folding the words gives the y and z
+        // ranges: byte y of the OR is non-zero where row y has a voxel, the OR of its bytes
+        // has bit z set where column z has one.
+        std::uint64_t any = 0;
         for (int x = 0; x < 8; ++x) {
-            const std::uint64_t w = leaf.mask[x];
-            if (!w) continue;
+            if (!leaf.mask[x]) continue;
+            any |= leaf.mask[x];
             lo[0] = std::min(lo[0], leaf.origin[0] + x), hi[0] = std::max(hi[0], leaf.origin[0] + x);
-            for (std::uint64_t bits = w; bits; bits &= bits - 1) {
-                const int bit = __builtin_ctzll(bits);
-                const int j = leaf.origin[1] + (bit >> 3), k = leaf.origin[2] + (bit & 7);
-                lo[1] = std::min(lo[1], j), hi[1] = std::max(hi[1], j);
-                lo[2] = std::min(lo[2], k), hi[2] = std::max(hi[2], k);
-            }
         }
+        if (!any) continue;
+        const int y0 = __builtin_ctzll(any) >> 3, y1 = (63 - __builtin_clzll(any)) >> 3;
+        std::uint64_t columns = any;
+        columns |= columns >> 32, columns |= columns >> 16, columns |= columns >> 8;
+        const unsigned z_bits = unsigned(columns & 0xff);
+        const int z0 = __builtin_ctz(z_bits), z1 = 31 - __builtin_clz(z_bits);
+        lo[1] = std::min(lo[1], leaf.origin[1] + y0), hi[1] = std::max(hi[1], leaf.origin[1] + y1);
+        lo[2] = std::min(lo[2], leaf.origin[2] + z0), hi[2] = std::max(hi[2], leaf.origin[2] + z1);
     }
     const GridSpec& grid = result.grid;
     std::map<std::string, MetaValue> meta;
@@ -251,6 +257,7 @@ void writeTopology(Bytes& out, const std::vector<Placed>& placed) {
 // metadata, transform, topology) with its leaf buffers placed after it; returns the
 // placement so the caller can fill the buffers once the whole file's size is known.
 struct GridLayout {
+    std::uint64_t mem_usage = 0;
     std::vector<Placed> placed;
     std::vector<std::size_t> starts;  // leaf n's buffer at starts[n] .. starts[n + 1]
 };
@@ -266,7 +273,8 @@ GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const FogGrid& 
     for (int i = 0; i < 3; ++i) head.pod(std::int64_t(0));
     const std::int64_t grid_pos = std::int64_t(head.size());
     head.pod(kCompressActiveMask);
-    const std::map<std::string, MetaValue> meta = gridMetadata(result, fog, memUsage(layout.placed));
+    layout.mem_usage = memUsage(layout.placed);
+    const std::map<std::string, MetaValue> meta = gridMetadata(result, fog, layout.mem_usage);
     head.pod(std::uint32_t(meta.size()));
     for (const auto& [name, value] : meta) {
         head.string(name);
@@ -350,6 +358,7 @@ VdbBytes serializeFogGrids(const VoxelizeResult& result, const std::vector<FogGr
         offset = layouts.back().starts.back();
     }
     VdbBytes file;
+    for (const GridLayout& layout : layouts) file.mem_usage += layout.mem_usage;
     file.size = offset;
     file.data.reset(new char[file.size]);
     std::memcpy(file.data.get(), head.str().data(), head.str().size());

@@ -44,6 +44,7 @@ struct FogGrid {
 struct VdbBytes {
     std::unique_ptr<char[]> data;
     std::size_t size = 0;
+    std::uint64_t mem_usage = 0;  // the grids' Grid::memUsage() summed (see fogTreeMemUsage)
 };
 
 // The leaves of the "density" grid: the occupancy's own masks, 1.0 where set.

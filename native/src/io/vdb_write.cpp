@@ -85,7 +85,7 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, i
     }
     throwIfInterrupted(interrupter, 10);
     const io::VdbBytes file = io::serializeFogGrids(result, grids, threads);
-    for (const io::FogGrid& grid : grids) report.grid_bytes += io::fogTreeMemUsage(grid.leaves);
+    report.grid_bytes = file.mem_usage;
     throwIfInterrupted(interrupter, 90);
     auto now = std::chrono::steady_clock::now();
     report.build_ms = std::chrono::duration<double, std::milli>(now - start).count();
