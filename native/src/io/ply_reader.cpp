@@ -214,6 +214,46 @@ public:
 
     std::string where() const { return ""; }
 
+    // Fast paths for the records almost every binary PLY holds, in the host's byte order.
+    // Each reads records while they are exactly of that form and valid, and stops before the
+    // first that is not: the general per-value path then reads that one (and reports any
+    // error in it), so both paths accept and refuse the same files.
+
+    // Vertices of `stride` bytes whose x, y, z are float32 at the given byte offsets.
+    std::uint64_t floatTriples(std::uint64_t count, std::size_t stride, const std::size_t at[3], std::vector<float>& out) {
+        if (swap_) return 0;
+        const std::uint64_t n = std::min<std::uint64_t>(count, remaining() / stride);
+        const std::size_t first = out.size();
+        out.resize(first + 3 * n);
+        float* to = out.data() + first;
+        for (std::uint64_t i = 0; i < n; ++i, pos_ += stride, to += 3)
+            for (int a = 0; a < 3; ++a) std::memcpy(to + a, pos_ + at[a], sizeof(float));
+        return n;
+    }
+
+    // Faces of one list: a uint8 count of 3, then three 32-bit indices below vertex_count
+    // (signed ones are negative when they are at least 2^31 as unsigned, so one unsigned
+    // compare refuses both while vertex_count < 2^31).
+    std::uint64_t triangles(std::uint64_t count, std::uint32_t vertex_count, std::vector<std::uint32_t>& out) {
+        constexpr std::size_t kRecord = 1 + 3 * sizeof(std::uint32_t);
+        if (swap_ || vertex_count >= (1u << 31)) return 0;
+        const std::uint64_t n = std::min<std::uint64_t>(count, remaining() / kRecord);
+        const std::size_t first = out.size();
+        out.resize(first + 3 * n);
+        std::uint32_t* to = out.data() + first;
+        std::uint64_t f = 0;
+        for (; f < n; ++f, pos_ += kRecord, to += 3) {
+            std::uint32_t i[3];
+            std::memcpy(i, pos_ + 1, sizeof i);
+            if (static_cast<unsigned char>(pos_[0]) != 3 || i[0] >= vertex_count || i[1] >= vertex_count ||
+                i[2] >= vertex_count)
+                break;
+            std::memcpy(to, i, sizeof i);
+        }
+        out.resize(first + 3 * f);
+        return f;
+    }
+
 private:
     template <typename T>
     static double load(const unsigned char* bytes) {
@@ -391,7 +431,18 @@ private:
         if (uvs) mesh_.uvs.reserve(2 * e.count);
         std::vector<double> values(e.properties.size(), 0.0);
         auto channel = [&](int p) { return float(values[p] / integerMax(e.properties[p].type)); };
-        for (std::uint64_t i = 0; i < e.count; ++i) {
+        std::uint64_t i = 0;
+        if constexpr (std::is_same_v<Source, BinarySource>) {
+            // Positions alone, every property a float32 scalar: copied straight from the bytes.
+            bool plain = !colors && !uvs;
+            for (const Property& property : e.properties) plain &= !property.list && property.type == Type::Float32;
+            if (plain) {
+                const std::size_t at[3] = {sizeof(float) * std::size_t(x), sizeof(float) * std::size_t(y),
+                                           sizeof(float) * std::size_t(z)};
+                i = source.floatTriples(e.count, sizeof(float) * e.properties.size(), at, mesh_.positions);
+            }
+        }
+        for (; i < e.count; ++i) {
             try {
                 for (std::size_t p = 0; p < e.properties.size(); ++p) {
                     const Property& property = e.properties[p];
@@ -418,7 +469,13 @@ private:
         const std::uint64_t min_face_bytes =
             std::is_same_v<Source, AsciiSource> ? 8 : sizeOf(list.count_type) + 3 * sizeOf(list.type);
         mesh_.triangles.reserve(3 * std::min<std::uint64_t>(e.count, source.remaining() / min_face_bytes));
-        for (std::uint64_t f = 0; f < e.count; ++f) {
+        std::uint64_t f = 0;
+        if constexpr (std::is_same_v<Source, BinarySource>) {
+            if (e.properties.size() == 1 && list.count_type == Type::Uint8 &&
+                (list.type == Type::Int32 || list.type == Type::Uint32))
+                f = source.triangles(e.count, std::uint32_t(std::min<std::uint64_t>(vertex_count_, 1u << 31)), mesh_.triangles);
+        }
+        for (; f < e.count; ++f) {
             try {
                 for (std::size_t p = 0; p < e.properties.size(); ++p) {
                     const Property& property = e.properties[p];
