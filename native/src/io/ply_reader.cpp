@@ -219,15 +219,24 @@ public:
     // first that is not: the general per-value path then reads that one (and reports any
     // error in it), so both paths accept and refuse the same files.
 
-    // Vertices of `stride` bytes whose x, y, z are float32 at the given byte offsets.
-    std::uint64_t floatTriples(std::uint64_t count, std::size_t stride, const std::size_t at[3], std::vector<float>& out) {
+    // Vertices of `stride` bytes whose x, y, z are float32 at byte offsets xyz[0..2] and, when
+    // `rgba` is non-null, whose colour channels are uint8 at rgba[0..3] (rgba[3] < 0: no alpha,
+    // 1). Channels are converted as the per-value path converts them: byte / 255 in double.
+    std::uint64_t vertexRecords(std::uint64_t count, std::size_t stride, const std::size_t xyz[3], const int* rgba,
+                                std::vector<float>& positions, std::vector<float>& colors) {
         if (swap_) return 0;
         const std::uint64_t n = std::min<std::uint64_t>(count, remaining() / stride);
-        const std::size_t first = out.size();
-        out.resize(first + 3 * n);
-        float* to = out.data() + first;
-        for (std::uint64_t i = 0; i < n; ++i, pos_ += stride, to += 3)
-            for (int a = 0; a < 3; ++a) std::memcpy(to + a, pos_ + at[a], sizeof(float));
+        const std::size_t first = positions.size(), first_color = colors.size();
+        positions.resize(first + 3 * n);
+        if (rgba) colors.resize(first_color + 4 * n);
+        float* to = positions.data() + first;
+        float* color = rgba ? colors.data() + first_color : nullptr;
+        for (std::uint64_t i = 0; i < n; ++i, pos_ += stride, to += 3) {
+            for (int a = 0; a < 3; ++a) std::memcpy(to + a, pos_ + xyz[a], sizeof(float));
+            if (!rgba) continue;
+            for (int c = 0; c < 4; ++c, ++color)
+                *color = rgba[c] < 0 ? 1.0f : float(double(static_cast<unsigned char>(pos_[rgba[c]])) / 255.0);
+        }
         return n;
     }
 
@@ -433,13 +442,26 @@ private:
         auto channel = [&](int p) { return float(values[p] / integerMax(e.properties[p].type)); };
         std::uint64_t i = 0;
         if constexpr (std::is_same_v<Source, BinarySource>) {
-            // Positions alone, every property a float32 scalar: copied straight from the bytes.
-            bool plain = !colors && !uvs;
-            for (const Property& property : e.properties) plain &= !property.list && property.type == Type::Float32;
+            // Records of float32 and uint8 scalars (positions, and 8-bit colours if any):
+            // copied straight from the bytes.
+            bool plain = !uvs && (!colors || (e.properties[std::size_t(r)].type == Type::Uint8 &&
+                                              e.properties[std::size_t(g)].type == Type::Uint8 &&
+                                              e.properties[std::size_t(b)].type == Type::Uint8 &&
+                                              (a < 0 || e.properties[std::size_t(a)].type == Type::Uint8)));
+            for (int axis : {x, y, z}) plain &= e.properties[std::size_t(axis)].type == Type::Float32;
+            std::vector<std::size_t> offset(e.properties.size());
+            std::size_t stride = 0;
+            for (std::size_t p = 0; p < e.properties.size(); ++p) {
+                const Property& property = e.properties[p];
+                plain &= !property.list && (property.type == Type::Float32 || property.type == Type::Uint8);
+                offset[p] = stride;
+                stride += sizeOf(property.type);
+            }
             if (plain) {
-                const std::size_t at[3] = {sizeof(float) * std::size_t(x), sizeof(float) * std::size_t(y),
-                                           sizeof(float) * std::size_t(z)};
-                i = source.floatTriples(e.count, sizeof(float) * e.properties.size(), at, mesh_.positions);
+                const std::size_t xyz[3] = {offset[std::size_t(x)], offset[std::size_t(y)], offset[std::size_t(z)]};
+                const int rgba[4] = {colors ? int(offset[std::size_t(r)]) : -1, colors ? int(offset[std::size_t(g)]) : -1,
+                                     colors ? int(offset[std::size_t(b)]) : -1, a >= 0 ? int(offset[std::size_t(a)]) : -1};
+                i = source.vertexRecords(e.count, stride, xyz, colors ? rgba : nullptr, mesh_.positions, mesh_.colors);
             }
         }
         for (; i < e.count; ++i) {
