@@ -12,6 +12,7 @@
 #include "hyvox/grid.h"
 #include "hyvox/interrupter.h"
 #include "hyvox/result.h"
+#include "io/vdb_direct_writer.h"  // densityGridBytes, checkGridBudget
 
 namespace hyvox::io {
 
@@ -30,14 +31,8 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& 
 // "count": the values of a multi-valued result.
 openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<VoxelCount>& counts);
 
-// The memory the density grid of `occupancy` takes (float leaves of 512 values).
-std::uint64_t densityGridBytes(const SparseGrid& occupancy);
-// ResourceError before anything is built when that grid and the result it is made from
-// would not fit the run's memory budget (result.stats.options).
-void checkGridBudget(const VoxelizeResult& result);
-
-// The grids writeVdb() stores: density, plus count when result.counts is non-empty, each
-// with the hyvox_* metadata.
+// The grids writeVdb() stores (it serializes them itself, vdb_direct_writer.h): density,
+// plus count when result.counts is non-empty, each with the hyvox_* metadata.
 openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interrupter = nullptr);
 
 // Writes grids atomically (hyvox::io::AtomicFile); throws InvalidInput / ResourceError, and
