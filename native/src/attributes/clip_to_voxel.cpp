@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "attributes/clip_to_voxel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hyvox::attributes {
+namespace {
+
+// A triangle clipped by 6 half-spaces has at most 9 corners; room to spare for the
+// duplicate points that exact touches leave.
+constexpr int kMaxCorners = 16;
+
+struct Polygon {
+    std::array<Point, kMaxCorners> p;
+    int n = 0;
+};
+
+// Keeps the part with sign * (x[axis] - bound) >= 0. A crossing point is placed exactly on
+// the plane; a corner on the plane is kept as it is (no crossing is added for it).
+void clipPlane(const Polygon& in, Polygon& out, int axis, double bound, double sign) {
+    out.n = 0;
+    for (int e = 0; e < in.n; ++e) {
+        const Point& cur = in.p[std::size_t(e)];
+        const Point& nxt = in.p[std::size_t(e + 1 < in.n ? e + 1 : 0)];
+        const double dc = sign * (cur[std::size_t(axis)] - bound);
+        const double dn = sign * (nxt[std::size_t(axis)] - bound);
+        if (dc >= 0 && out.n < kMaxCorners) out.p[std::size_t(out.n++)] = cur;
+        if (((dc > 0 && dn < 0) || (dc < 0 && dn > 0)) && out.n < kMaxCorners) {
+            const double t = dc / (dc - dn);
+            Point point;
+            for (std::size_t a = 0; a < 3; ++a) point[a] = cur[a] + (nxt[a] - cur[a]) * t;
+            point[std::size_t(axis)] = bound;
+            out.p[std::size_t(out.n++)] = point;
+        }
+    }
+}
+
+Point sub(const Point& a, const Point& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Point& a, const Point& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+}  // namespace
+
+bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel, ClippedPiece& out) {
+    Polygon a, b;
+    a.n = 3;
+    std::copy(corners.begin(), corners.end(), a.p.begin());
+    for (int axis = 0; axis < 3; ++axis) {
+        clipPlane(a, b, axis, double(voxel[std::size_t(axis)]), 1.0);
+        if (b.n == 0) return false;
+        clipPlane(b, a, axis, double(voxel[std::size_t(axis)]) + 1.0, -1.0);
+        if (a.n == 0) return false;
+    }
+    // Area and centroid by a fan from the first corner (the piece is convex).
+    double area = 0;
+    Point moment{0, 0, 0};
+    const Point& p0 = a.p[0];
+    for (int k = 1; k + 1 < a.n; ++k) {
+        const Point u = sub(a.p[std::size_t(k)], p0), v = sub(a.p[std::size_t(k + 1)], p0);
+        const Point c{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        const double tri = 0.5 * std::sqrt(dot(c, c));
+        area += tri;
+        for (std::size_t d = 0; d < 3; ++d) moment[d] += tri * (p0[d] + a.p[std::size_t(k)][d] + a.p[std::size_t(k + 1)][d]) / 3.0;
+    }
+    out.area = area;
+    if (area >= kTouchArea) {
+        for (std::size_t d = 0; d < 3; ++d) out.centroid[d] = moment[d] / area;
+        return true;
+    }
+    // A touch: the midpoint of the two points farthest apart (a point: itself).
+    int best_i = 0, best_j = 0;
+    double best = -1;
+    for (int i = 0; i < a.n; ++i)
+        for (int j = 0; j < a.n; ++j) {
+            const Point d = sub(a.p[std::size_t(i)], a.p[std::size_t(j)]);
+            const double dist = dot(d, d);
+            if (dist > best) {
+                best = dist;
+                best_i = i;
+                best_j = j;
+            }
+        }
+    for (std::size_t d = 0; d < 3; ++d) out.centroid[d] = 0.5 * (a.p[std::size_t(best_i)][d] + a.p[std::size_t(best_j)][d]);
+    return true;
+}
+
+std::array<double, 3> barycentrics(const std::array<Point, 3>& corners, const Point& point) {
+    const Point v0 = sub(corners[1], corners[0]), v1 = sub(corners[2], corners[0]), v2 = sub(point, corners[0]);
+    const double d00 = dot(v0, v0), d01 = dot(v0, v1), d11 = dot(v1, v1), d20 = dot(v2, v0), d21 = dot(v2, v1);
+    const double denom = d00 * d11 - d01 * d01;
+    if (!(denom > 0)) return {1.0 / 3, 1.0 / 3, 1.0 / 3};  // a sliver flat to rounding: its centre
+    const double v = (d11 * d20 - d01 * d21) / denom;
+    const double w = (d00 * d21 - d01 * d20) / denom;
+    std::array<double, 3> bary{std::clamp(1.0 - v - w, 0.0, 1.0), std::clamp(v, 0.0, 1.0), std::clamp(w, 0.0, 1.0)};
+    const double sum = bary[0] + bary[1] + bary[2];
+    for (double& b : bary) b /= sum;
+    return bary;
+}
+
+}  // namespace hyvox::attributes
