@@ -88,7 +88,8 @@ std::string usageText() {
         "       hyvox --help | --version\n"
         "\n"
         "voxelize: voxelizes the surface of a triangle mesh (PLY, PLY.GZ, OBJ, ...) into an\n"
-        "OpenVDB file with a float grid 'density' (1 on occupied voxels).\n"
+        "OpenVDB file with a float grid 'density' (1 on occupied voxels); with --attributes, also\n"
+        "'color' (Vec3f, linear), 'alpha' (float, when the colours have it) and 'normal' (Vec3f).\n"
         "gamma-sweep: voxelizes the mesh with the tessellation method at each gamma, prints the\n"
         "share of the exact conservative voxels it misses (bias), of the exact thin voxels\n"
         "(bias_thin), the voxels inside the thin set a flood from outside reaches (leaked; 0 =\n"
@@ -99,6 +100,8 @@ std::string usageText() {
         "  -o, --output FILE\n      the .vdb file to write (written atomically)\n"
         "  --stats-json FILE\n      write the grid, counts, timings, options and the method's figures as JSON\n"
         "      (gamma-sweep: its table and fit)\n"
+        "  --texture IMG\n      a PNG sampled at the mesh's UVs for --attributes color (else the file's vertex\n"
+        "      colours are used)\n"
         "  --gammas G1,G2,...\n      gamma-sweep: the gammas to try, at least two (default 1,1.5,2,3,4,6)\n"
         "  -q, --quiet\n      print nothing on success\n"
         "  -h, --help\n      show this help\n"
@@ -164,6 +167,9 @@ Arguments parseArguments(const std::vector<std::string>& args) {
             out.output_path = value();
         } else if (option == "--stats-json") {
             out.stats_json_path = value();
+        } else if (option == "--texture") {
+            if (sweep) throw UsageError(option + " is not a gamma-sweep option: the sweep computes no attributes");
+            out.texture_path = value();
         } else if (option == "--gammas") {
             if (!sweep) throw UsageError("--gammas belongs to gamma-sweep; voxelize takes one --tess-gamma");
             out.gammas = parseGammaList(option, value());

@@ -23,6 +23,7 @@ struct Arguments {
     std::string mesh_path;
     std::string output_path;
     std::string stats_json_path;  // empty: none
+    std::string texture_path;     // empty: none; a PNG sampled at the mesh's UVs for --attributes color
     bool quiet = false;
     VoxelizeOptions options;
     std::vector<double> gammas;  // gamma-sweep: the safety factors to try, ascending

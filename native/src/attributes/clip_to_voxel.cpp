@@ -41,14 +41,15 @@ double dot(const Point& a, const Point& b) { return a[0] * b[0] + a[1] * b[1] + 
 
 }  // namespace
 
-bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel, ClippedPiece& out) {
+bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel, ClippedPiece& out,
+                         double margin) {
     Polygon a, b;
     a.n = 3;
     std::copy(corners.begin(), corners.end(), a.p.begin());
     for (int axis = 0; axis < 3; ++axis) {
-        clipPlane(a, b, axis, double(voxel[std::size_t(axis)]), 1.0);
+        clipPlane(a, b, axis, double(voxel[std::size_t(axis)]) - margin, 1.0);
         if (b.n == 0) return false;
-        clipPlane(b, a, axis, double(voxel[std::size_t(axis)]) + 1.0, -1.0);
+        clipPlane(b, a, axis, double(voxel[std::size_t(axis)]) + 1.0 + margin, -1.0);
         if (a.n == 0) return false;
     }
     // Area and centroid by a fan from the first corner (the piece is convex).

@@ -20,8 +20,13 @@ struct ClippedPiece {
     Point centroid{};   // the area centroid; a touch: the midpoint of its two farthest points
 };
 
-// False when the triangle misses the box.
-bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel, ClippedPiece& out);
+// A voxel's box grown by this on every side finds the touches that clipping to the exact box
+// loses to rounding (a triangle through a box corner: crossing points are rounded).
+constexpr double kTouchMargin = 1e-9;
+
+// False when the triangle misses the box (grown by `margin` voxels on every side).
+bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel, ClippedPiece& out,
+                         double margin = 0.0);
 
 // Barycentrics of `point` (in the triangle's plane) clamped to [0, 1] and renormalised.
 std::array<double, 3> barycentrics(const std::array<Point, 3>& corners, const Point& point);

@@ -78,7 +78,7 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
     const int channels = values.channels();
     const std::size_t first = out.size();
     out.resize(first + occupied.size());
-    std::atomic<std::uint64_t> pieces{0}, unreached{0};
+    std::atomic<std::uint64_t> pieces{0}, unreached{0}, rounded{0};
     const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
     tbb::task_arena arena(threads);
     arena.execute([&] {
@@ -96,7 +96,9 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
                 const std::array<int, 3> leaf_hi{std::min(leaf_lo[0] + 7, tile_hi[0]), std::min(leaf_lo[1] + 7, tile_hi[1]),
                                                  std::min(leaf_lo[2] + 7, tile_hi[2])};
                 std::fill(sums.begin(), sums.end(), 0.0);
-                auto visit = [&](std::uint32_t n) {
+                // Adds the triangle's pieces in the voxels of `mask` (8 words, the leaf's layout),
+                // clipped to their boxes grown by `margin`.
+                auto visit = [&](std::uint32_t n, const std::uint64_t* mask, double margin) {
                     const std::uint32_t triangle = usable[n];
                     const Corners corners = voxelCorners(job, triangle);
                     const VoxelRange r = candidates(corners, leaf_lo, leaf_hi);
@@ -104,21 +106,37 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
                         for (int j = r.lo[1]; j <= r.hi[1]; ++j)
                             for (int k = r.lo[2]; k <= r.hi[2]; ++k) {
                                 const int bit = ((j & 7) << 3) | (k & 7);
-                                if (!((words[i & 7] >> bit) & 1u)) continue;
+                                if (!((mask[i & 7] >> bit) & 1u)) continue;
+                                double* voxel = &sums[std::size_t(((i & 7) << 6) | bit) * std::size_t(channels + 1)];
                                 ClippedPiece piece;
-                                if (!clipTriangleToVoxel(corners, {i, j, k}, piece)) continue;
+                                if (!clipTriangleToVoxel(corners, {i, j, k}, piece, margin)) continue;
                                 ++local_pieces;
                                 values.evaluate(triangle, barycentrics(corners, piece.centroid), corners, value);
                                 const double weight = piece.area + kAreaEpsilon;
-                                double* voxel = &sums[std::size_t(((i & 7) << 6) | bit) * std::size_t(channels + 1)];
                                 for (int c = 0; c < channels; ++c) voxel[c] += weight * value[c];
                                 voxel[channels] += weight;
                             }
                 };
-                if (brute_force)
-                    for (std::uint32_t n = 0; n < usable.size(); ++n) visit(n);
-                else
-                    for (std::uint32_t n : binned[s]) visit(n);
+                auto visitAll = [&](const std::uint64_t* mask, double margin) {
+                    if (brute_force)
+                        for (std::uint32_t n = 0; n < usable.size(); ++n) visit(n, mask, margin);
+                    else
+                        for (std::uint32_t n : binned[s]) visit(n, mask, margin);
+                };
+                visitAll(words, 0.0);
+                // Set voxels no exact piece reached: the method's test found a touch that the
+                // clip lost to rounding; the touches within kTouchMargin stand in for it.
+                std::uint64_t lost[BitGrid::kWordsPerBrick] = {};
+                bool any_lost = false;
+                for (int v = 0; v < 512; ++v)
+                    if (((words[v >> 6] >> (v & 63)) & 1u) && !(sums[std::size_t(v) * std::size_t(channels + 1) + std::size_t(channels)] > 0)) {
+                        lost[v >> 6] |= std::uint64_t(1) << (v & 63);
+                        any_lost = true;
+                    }
+                if (any_lost) {
+                    rounded.fetch_add(1, std::memory_order_relaxed);
+                    visitAll(lost, kTouchMargin);
+                }
 
                 AttributeLeaf& leaf = out[first + s];
                 leaf.brick = grid_bricks.index((tile_lo[0] >> 3) + at[0], (tile_lo[1] >> 3) + at[1], (tile_lo[2] >> 3) + at[2]);
@@ -146,7 +164,7 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
             pieces.fetch_add(local_pieces, std::memory_order_relaxed);
         });
     });
-    return {pieces.load(), unreached.load()};
+    return {pieces.load(), unreached.load(), rounded.load()};
 }
 
 void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid) {

@@ -20,7 +20,8 @@ struct AttributeLeaf {
 
 struct TileAttributeCounts {
     std::uint64_t pieces = 0;          // (triangle, voxel) pairs clipped to a non-empty piece
-    std::uint64_t voxels_unreached = 0;  // set voxels no clipped piece reached (value 0)
+    std::uint64_t voxels_unreached = 0;  // set voxels no clipped piece reached, even with the margin (value 0)
+    std::uint64_t leaves_rounded = 0;    // leaves where the kTouchMargin fallback ran
 };
 
 // brute_force (the reference method): every leaf scans all the tile's triangles instead of

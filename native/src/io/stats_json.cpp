@@ -88,6 +88,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     if (s.vdb_bytes) out << "  \"vdb_bytes\": " << number(s.vdb_bytes) << ",\n";
     if (s.attribute_pieces) {
         out << "  \"attribute_pieces\": " << number(s.attribute_pieces) << ",\n";
+        out << "  \"attribute_leaves_rounded\": " << number(s.attribute_leaves_rounded) << ",\n";
         out << "  \"attribute_voxels_unreached\": " << number(s.attribute_voxels_unreached) << ",\n";
     }
     out << "  \"triangles\": {\"input\": " << number(s.triangles_input) << ", \"used\": " << number(s.triangles_used)

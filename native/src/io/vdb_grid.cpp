@@ -18,6 +18,7 @@
 #include "hyvox/vdb.h"
 #include "hyvox/version.h"
 #include "io/atomic_file.h"
+#include "io/vdb_attribute_grids.h"
 
 namespace hyvox::io {
 namespace {
@@ -118,7 +119,7 @@ std::uint64_t densityGridBytes(const SparseGrid& occupancy) {
 }
 
 void checkGridBudget(const VoxelizeResult& result) {
-    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize();
+    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize() + attributeGridBytes(result);
     const VoxelizeOptions& options = result.stats.options;
     if (need > options.memoryBudgetBytes())
         throw ResourceError("the OpenVDB grid of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
@@ -131,6 +132,7 @@ openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interru
     openvdb::GridPtrVec grids;
     grids.push_back(makeDensityGrid(result.grid, result.occupancy, interrupter));
     if (!result.counts.empty()) grids.push_back(makeCountGrid(result.grid, result.counts));
+    for (auto& grid : makeAttributeGrids(result)) grids.push_back(grid);
     for (auto& g : grids) addMetadata(*g, result);
     return grids;
 }

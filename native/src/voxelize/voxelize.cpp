@@ -122,6 +122,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
                                                                    options.method == Method::Reference, attribute_leaves);
             stats.attribute_pieces += counted.pieces;
             stats.attribute_voxels_unreached += counted.voxels_unreached;
+            stats.attribute_leaves_rounded += counted.leaves_rounded;
             stats.addTiming("attributes", watch.restart());
         }
         result.occupancy.addTile(out.bits, tile.offset);
