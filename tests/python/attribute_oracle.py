@@ -18,6 +18,7 @@ import numpy as np
 AREA_EPSILON = 1e-6  # the weight of a touch
 TOUCH_AREA = 1e-14   # clipped areas below this count as a touch (voxel units²)
 MAX_VERTICES = 9     # a triangle clipped by 6 half-spaces has at most 3 + 6 corners
+TOUCH_MARGIN = 1e-9  # box growth that finds touches the exact clip loses to rounding
 
 
 def srgb_to_linear(c):
@@ -125,8 +126,9 @@ def _barycentrics(corners: np.ndarray, points: np.ndarray) -> np.ndarray:
     return bary / bary.sum(axis=1, keepdims=True)
 
 
-def clipped_pairs(corners: np.ndarray, dims):
-    """Every (triangle, voxel) pair whose clip is non-empty, for voxel-space triangles (M, 3, 3).
+def clipped_pairs(corners: np.ndarray, dims, margin=0.0, only=None):
+    """Every (triangle, voxel) pair whose clip is non-empty, for voxel-space triangles (M, 3, 3),
+    the boxes grown by margin; only: a set of voxel keys (i * ny + j) * nz + k to look at.
 
     Returns (triangle index, voxel ijk (P, 3), weight, centroid)."""
     lo = np.ceil(corners.min(axis=1)).astype(np.int64) - 1
@@ -144,12 +146,15 @@ def clipped_pairs(corners: np.ndarray, dims):
         tri_ids.append(np.full(len(grid), t))
     tri_ids = np.concatenate(tri_ids)
     voxels = np.concatenate(voxels)
+    if only is not None:
+        wanted = np.isin((voxels[:, 0] * dims[1] + voxels[:, 1]) * dims[2] + voxels[:, 2], np.fromiter(only, np.int64))
+        tri_ids, voxels = tri_ids[wanted], voxels[wanted]
     polys = np.zeros((len(tri_ids), MAX_VERTICES, 3))
     polys[:, :3] = corners[tri_ids]
     counts = np.full(len(tri_ids), 3)
     for axis in range(3):
-        polys, counts = _clip(polys, counts, axis, voxels[:, axis].astype(np.float64), True)
-        polys, counts = _clip(polys, counts, axis, voxels[:, axis] + 1.0, False)
+        polys, counts = _clip(polys, counts, axis, voxels[:, axis] - margin, True)
+        polys, counts = _clip(polys, counts, axis, voxels[:, axis] + 1.0 + margin, False)
     hit = counts > 0
     tri_ids, voxels, polys, counts = tri_ids[hit], voxels[hit], polys[hit], counts[hit]
     area, centroid = _polygon_area_centroid(polys, counts)
@@ -169,11 +174,14 @@ def voxel_attributes(
     material_ids=None,
     palette=None,
     normals=None,
+    voxels=None,
 ):
-    """{ijk tuple: values} -> returns (ijk (K, 3) sorted, dict name -> (K, n) arrays).
+    """Returns (ijk (K, 3) sorted, dict name -> (K, n) arrays).
 
     colors: per-vertex linear (N, 3|4); uvs (N, 2) + texture (H, W, C) linear texels;
-    material_ids (M,) + palette (P, 3|4); normals (N, 3) per vertex, else face normals."""
+    material_ids (M,) + palette (P, 3|4); normals (N, 3) per vertex, else face normals.
+    voxels: the voxels an exact method set (K, 3), if known: those no clip reaches (a touch
+    lost to rounding) take the pieces of boxes grown by TOUCH_MARGIN, as the methods do."""
     vertices = np.asarray(vertices, dtype=np.float32).astype(np.float64)
     triangles = np.asarray(triangles, dtype=np.int64)
     corners_world = vertices[triangles]
@@ -182,7 +190,17 @@ def voxel_attributes(
     usable = (np.linalg.norm(cross, axis=1) > 0) & (triangles[:, 0] != triangles[:, 1]) & (
         triangles[:, 1] != triangles[:, 2]) & (triangles[:, 0] != triangles[:, 2])
     keep = np.nonzero(usable)[0]
-    tri_local, voxels, weight, centroid = clipped_pairs(corners[keep], dims)
+    tri_local, found, weight, centroid = clipped_pairs(corners[keep], dims)
+    if voxels is not None:
+        voxels = np.asarray(voxels, dtype=np.int64)
+        set_keys = set(((voxels[:, 0] * dims[1] + voxels[:, 1]) * dims[2] + voxels[:, 2]).tolist())
+        found_keys = set(((found[:, 0] * dims[1] + found[:, 1]) * dims[2] + found[:, 2]).tolist())
+        lost = set_keys - found_keys
+        if lost:
+            more = clipped_pairs(corners[keep], dims, TOUCH_MARGIN, lost)
+            tri_local, found, weight, centroid = (np.concatenate([a, b]) for a, b in
+                                                  zip((tri_local, found, weight, centroid), more))
+    voxels = found
     tri = keep[tri_local]
     bary = _barycentrics(corners[tri], centroid)
 

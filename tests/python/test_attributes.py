@@ -107,6 +107,29 @@ def test_two_triangles_meeting_inside_one_voxel(method):
 
 
 @pytest.mark.parametrize("method", EXACT)
+def test_triangles_through_voxel_corners(method):
+    # Planes through lattice points (z = (x + 2y) / 6 at 4 voxels per unit): the methods' exact
+    # tests mark boxes the triangle meets in one corner, which a clip can lose to rounding;
+    # the margin fallback finds them, in the methods and the oracle alike.
+    v = np.array([[0, 0, 0], [3, 0, 0.5], [0, 3, 1], [3, 3, 3]], dtype=np.float32)
+    t = np.array([[0, 1, 2], [1, 3, 2]])
+    palette = np.array([[1.0, 0.5, 0.0, 0.25], [0.0, 0.5, 1.0, 1.0]])
+    grid = hyvox.voxelize(v, t, resolution=12, method=method, attributes="color,normal", material_ids=[0, 1],
+                          palette=palette)
+    assert grid.stats["attribute_leaves_rounded"] > 0 and grid.stats["attribute_voxels_unreached"] == 0
+    # The oracle takes per-vertex colours: the triangles get corners of their own.
+    v2 = v[[0, 1, 2, 1, 3, 2]]
+    t2 = np.array([[0, 1, 2], [3, 4, 5]])
+    colors = palette[[0, 0, 0, 1, 1, 1]]
+    ijk, oracle = voxel_attributes(v2, t2, grid.origin, grid.voxel_size, grid.dims, colors=colors,
+                                   voxels=grid.coords())
+    compare(grid, ijk, {"color": oracle["color"], "alpha": oracle["alpha"][:, None], "normal": oracle["normal"]},
+            atol=1e-5, names=("color", "normal"))
+    keys = np.argsort(by_voxel(grid.coords(), grid.dims))
+    np.testing.assert_allclose(grid.attributes()["alpha"][keys], oracle["alpha"], atol=1e-5)
+
+
+@pytest.mark.parametrize("method", EXACT)
 def test_triangle_on_a_voxel_face(method):
     v = np.array([[0.2, 0.2, 1.0], [0.8, 0.2, 1.0], [0.2, 0.8, 1.0], [1.9, 1.9, 1.9]])
     t = np.array([[0, 1, 2]])
@@ -169,3 +192,29 @@ def test_a_texture_too_large_is_refused(tmp_path, tetrahedron):
     v, t = tetrahedron
     with pytest.raises(ValueError, match="more than the limit"):
         hyvox.voxelize(v, t, resolution=8, attributes="color", uvs=np.zeros((4, 2)), texture=path)
+
+
+@pytest.mark.parametrize(
+    "mode, pixel, expected",
+    [
+        ("RGB", (200, 100, 50), [200 / 255, 100 / 255, 50 / 255, None]),
+        ("RGBA", (200, 100, 50, 64), [200 / 255, 100 / 255, 50 / 255, 64 / 255]),
+        ("L", 128, [128 / 255] * 3 + [None]),
+        ("I;16", 40000, [40000 / 65535] * 3 + [None]),  # 16-bit: its own precision, sRGB like 8-bit
+    ],
+)
+def test_png_texture_kinds_decode_srgb(tmp_path, tetrahedron, mode, pixel, expected):
+    # A flat texture: every voxel takes its one colour, sRGB-decoded (alpha as stored).
+    from PIL import Image
+
+    path = tmp_path / "flat.png"
+    Image.new(mode, (5, 3), pixel).save(path)
+    v, t = tetrahedron
+    uvs = np.array([[0, 0], [1, 0], [0.3, 0.9], [2.5, -1.5]])  # wrapping UVs too
+    got = hyvox.voxelize(v, t, resolution=6, attributes="color", uvs=uvs, texture=path).attributes()
+    np.testing.assert_allclose(got["color"], np.broadcast_to(srgb_to_linear(expected[:3]), got["color"].shape),
+                               atol=1e-6)
+    if expected[3] is None:
+        assert "alpha" not in got
+    else:
+        np.testing.assert_allclose(got["alpha"], expected[3], atol=1e-6)

@@ -3,6 +3,7 @@
 // and low bit depths to RGB(A) for us.
 #include <png.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -25,11 +26,26 @@ Texture readPngTexture(const std::string& path) {
                            std::to_string(image.height) + " texels, more than the limit of 8192x8192");
     }
     const bool alpha = (image.format & PNG_FORMAT_FLAG_ALPHA) != 0;
-    // 8-bit sRGB output: an 8-bit file's bytes as stored; a 16-bit file is reduced to 8 bits
-    // by libpng (colour decoded through its gamma; precision past 8 bits is not kept).
     const int channels = alpha ? 4 : 3;
+    const std::size_t samples = std::size_t(image.width) * image.height * std::size_t(channels);
+    if (image.format & PNG_FORMAT_FLAG_LINEAR) {
+        // A 16-bit file: libpng's 16-bit output gives its samples as stored (it takes 16-bit
+        // data for linear), with colour premultiplied by alpha, undone here. They are
+        // decoded from sRGB like 8-bit ones (Blender's default for colour images).
+        image.format = (alpha ? PNG_FORMAT_RGBA : PNG_FORMAT_RGB) | PNG_FORMAT_FLAG_LINEAR;
+        std::vector<std::uint16_t> pixels(samples);
+        if (!png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr))
+            throw InvalidInput("texture '" + path + "' could not be decoded: " + image.message);
+        if (alpha)
+            for (std::size_t p = 0; p < samples; p += 4)
+                for (std::size_t c = 0; c < 3; ++c)
+                    pixels[p + c] = pixels[p + 3] ? std::uint16_t(std::min<std::uint32_t>(
+                                                        65535u, (std::uint32_t(pixels[p + c]) * 65535u + pixels[p + 3] / 2) / pixels[p + 3]))
+                                                  : 0;
+        return textureFromWords(pixels.data(), int(image.width), int(image.height), channels);
+    }
     image.format = alpha ? PNG_FORMAT_RGBA : PNG_FORMAT_RGB;
-    std::vector<std::uint8_t> pixels(std::size_t(image.width) * image.height * std::size_t(channels));
+    std::vector<std::uint8_t> pixels(samples);
     if (!png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr))
         throw InvalidInput("texture '" + path + "' could not be decoded: " + image.message);
     return textureFromBytes(pixels.data(), int(image.width), int(image.height), channels);
