@@ -48,6 +48,21 @@ def test_vertex_colours_and_normals_match_the_oracle(spot_vcolor, method, resolu
     assert grid.attributes()["color"].std(axis=0).min() > 0.05
 
 
+def test_thin_mode_values_are_the_same_definition_on_fewer_voxels(spot_vcolor):
+    # Thin voxels are a subset of the conservative ones; each keeps the value over the whole
+    # surface in its box.
+    v, t, attrs = spot_vcolor
+    encoded = (attrs["colors"][:, :3] * 255).round().astype(np.uint8)
+    grid = hyvox.voxelize(v, t, resolution=48, mode="thin", colors=encoded, attributes="color,normal")
+    ijk, oracle = voxel_attributes(v, t, grid.origin, grid.voxel_size, grid.dims, colors=srgb_to_linear(encoded / 255))
+    oracle_keys, keys = by_voxel(ijk, grid.dims), by_voxel(grid.coords(), grid.dims)
+    assert len(keys) < 0.8 * len(oracle_keys)
+    rows = np.searchsorted(oracle_keys, keys)
+    assert np.array_equal(oracle_keys[rows], keys)
+    for name in ("color", "normal"):
+        np.testing.assert_allclose(grid.attributes()[name], oracle[name][rows], atol=1e-5)
+
+
 def test_file_colours_are_taken_as_srgb(spot_vcolor):
     # Mesh colours read from a file (bytes / 255) go through the same sRGB decoding.
     v, t, attrs = spot_vcolor
