@@ -7,14 +7,7 @@
 namespace hyvox::attributes {
 namespace {
 
-// A triangle clipped by 6 half-spaces has at most 9 corners; room to spare for the
-// duplicate points that exact touches leave.
-constexpr int kMaxCorners = 16;
-
-struct Polygon {
-    std::array<Point, kMaxCorners> p;
-    int n = 0;
-};
+constexpr int kMaxCorners = Polygon::kMaxCorners;
 
 // Keeps the part with sign * (x[axis] - bound) >= 0. A crossing point is placed exactly on
 // the plane; a corner on the plane is kept as it is (no crossing is added for it).
@@ -41,17 +34,31 @@ double dot(const Point& a, const Point& b) { return a[0] * b[0] + a[1] * b[1] + 
 
 }  // namespace
 
+void clipSlab(const Polygon& in, Polygon& out, int axis, double lo, double hi) {
+    Polygon between;
+    clipPlane(in, between, axis, lo, 1.0);
+    if (between.n == 0) {
+        out.n = 0;
+        return;
+    }
+    clipPlane(between, out, axis, hi, -1.0);
+}
+
 bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel, ClippedPiece& out,
                          double margin) {
     Polygon a, b;
     a.n = 3;
     std::copy(corners.begin(), corners.end(), a.p.begin());
     for (int axis = 0; axis < 3; ++axis) {
-        clipPlane(a, b, axis, double(voxel[std::size_t(axis)]) - margin, 1.0);
+        clipSlab(a, b, axis, double(voxel[std::size_t(axis)]) - margin, double(voxel[std::size_t(axis)]) + 1.0 + margin);
         if (b.n == 0) return false;
-        clipPlane(b, a, axis, double(voxel[std::size_t(axis)]) + 1.0 + margin, -1.0);
-        if (a.n == 0) return false;
+        a = b;
     }
+    measurePiece(a, out);
+    return true;
+}
+
+void measurePiece(const Polygon& a, ClippedPiece& out) {
     // Area and centroid by a fan from the first corner (the piece is convex).
     double area = 0;
     Point moment{0, 0, 0};
@@ -66,7 +73,7 @@ bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<i
     out.area = area;
     if (area >= kTouchArea) {
         for (std::size_t d = 0; d < 3; ++d) out.centroid[d] = moment[d] / area;
-        return true;
+        return;
     }
     // A touch: the midpoint of the two points farthest apart (a point: itself).
     int best_i = 0, best_j = 0;
@@ -82,7 +89,6 @@ bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<i
             }
         }
     for (std::size_t d = 0; d < 3; ++d) out.centroid[d] = 0.5 * (a.p[std::size_t(best_i)][d] + a.p[std::size_t(best_j)][d]);
-    return true;
 }
 
 std::array<double, 3> barycentrics(const std::array<Point, 3>& corners, const Point& point) {

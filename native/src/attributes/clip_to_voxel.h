@@ -24,6 +24,22 @@ struct ClippedPiece {
 // loses to rounding (a triangle through a box corner: crossing points are rounded).
 constexpr double kTouchMargin = 1e-9;
 
+// A convex polygon being clipped (a triangle clipped by 6 half-spaces has at most 9 corners;
+// room to spare for the duplicate points exact touches leave).
+struct Polygon {
+    static constexpr int kMaxCorners = 16;
+    std::array<Point, kMaxCorners> p;
+    int n = 0;
+};
+
+// The part of `in` between the planes x[axis] = lo and x[axis] = hi (inclusive), clipped
+// at lo first: clipping a triangle slab by slab (x, then y, then z) gives exactly the
+// polygons clipTriangleToVoxel gives box by box.
+void clipSlab(const Polygon& in, Polygon& out, int axis, double lo, double hi);
+
+// Area and centroid of a clipped polygon (n > 0).
+void measurePiece(const Polygon& polygon, ClippedPiece& out);
+
 // False when the triangle misses the box (grown by `margin` voxels on every side).
 bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel, ClippedPiece& out,
                          double margin = 0.0);

@@ -96,26 +96,55 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
                 const std::array<int, 3> leaf_hi{std::min(leaf_lo[0] + 7, tile_hi[0]), std::min(leaf_lo[1] + 7, tile_hi[1]),
                                                  std::min(leaf_lo[2] + 7, tile_hi[2])};
                 std::fill(sums.begin(), sums.end(), 0.0);
+                auto add = [&](std::uint32_t triangle, const Corners& corners, int i, int j, int k,
+                               const ClippedPiece& piece) {
+                    ++local_pieces;
+                    values.evaluate(triangle, barycentrics(corners, piece.centroid), corners, value);
+                    const double weight = piece.area + kAreaEpsilon;
+                    double* voxel = &sums[std::size_t(((i & 7) << 6) | ((j & 7) << 3) | (k & 7)) * std::size_t(channels + 1)];
+                    for (int c = 0; c < channels; ++c) voxel[c] += weight * value[c];
+                    voxel[channels] += weight;
+                };
                 // Adds the triangle's pieces in the voxels of `mask` (8 words, the leaf's layout),
-                // clipped to their boxes grown by `margin`.
+                // clipped to their boxes grown by `margin`. The reference clips box by box; cpu
+                // clips slab by slab (x, then y, then z), sharing the first clips among a row's
+                // voxels: the same planes in the same order, so the same pieces.
                 auto visit = [&](std::uint32_t n, const std::uint64_t* mask, double margin) {
                     const std::uint32_t triangle = usable[n];
                     const Corners corners = voxelCorners(job, triangle);
                     const VoxelRange r = candidates(corners, leaf_lo, leaf_hi);
-                    for (int i = r.lo[0]; i <= r.hi[0]; ++i)
-                        for (int j = r.lo[1]; j <= r.hi[1]; ++j)
+                    ClippedPiece piece;
+                    if (brute_force) {
+                        for (int i = r.lo[0]; i <= r.hi[0]; ++i)
+                            for (int j = r.lo[1]; j <= r.hi[1]; ++j)
+                                for (int k = r.lo[2]; k <= r.hi[2]; ++k)
+                                    if (((mask[i & 7] >> (((j & 7) << 3) | (k & 7))) & 1u) &&
+                                        clipTriangleToVoxel(corners, {i, j, k}, piece, margin))
+                                        add(triangle, corners, i, j, k, piece);
+                        return;
+                    }
+                    Polygon whole, x_slab, xy_column, box;
+                    whole.n = 3;
+                    std::copy(corners.begin(), corners.end(), whole.p.begin());
+                    for (int i = r.lo[0]; i <= r.hi[0]; ++i) {
+                        const std::uint64_t word = mask[i & 7];
+                        if (!word) continue;
+                        clipSlab(whole, x_slab, 0, i - margin, i + 1 + margin);
+                        if (x_slab.n == 0) continue;
+                        for (int j = r.lo[1]; j <= r.hi[1]; ++j) {
+                            const std::uint64_t row = (word >> ((j & 7) << 3)) & 0xffu;
+                            if (!row) continue;
+                            clipSlab(x_slab, xy_column, 1, j - margin, j + 1 + margin);
+                            if (xy_column.n == 0) continue;
                             for (int k = r.lo[2]; k <= r.hi[2]; ++k) {
-                                const int bit = ((j & 7) << 3) | (k & 7);
-                                if (!((mask[i & 7] >> bit) & 1u)) continue;
-                                double* voxel = &sums[std::size_t(((i & 7) << 6) | bit) * std::size_t(channels + 1)];
-                                ClippedPiece piece;
-                                if (!clipTriangleToVoxel(corners, {i, j, k}, piece, margin)) continue;
-                                ++local_pieces;
-                                values.evaluate(triangle, barycentrics(corners, piece.centroid), corners, value);
-                                const double weight = piece.area + kAreaEpsilon;
-                                for (int c = 0; c < channels; ++c) voxel[c] += weight * value[c];
-                                voxel[channels] += weight;
+                                if (!((row >> (k & 7)) & 1u)) continue;
+                                clipSlab(xy_column, box, 2, k - margin, k + 1 + margin);
+                                if (box.n == 0) continue;
+                                measurePiece(box, piece);
+                                add(triangle, corners, i, j, k, piece);
                             }
+                        }
+                    }
                 };
                 auto visitAll = [&](const std::uint64_t* mask, double margin) {
                     if (brute_force)
