@@ -91,13 +91,23 @@ void measurePiece(const Polygon& a, ClippedPiece& out) {
     for (std::size_t d = 0; d < 3; ++d) out.centroid[d] = 0.5 * (a.p[std::size_t(best_i)][d] + a.p[std::size_t(best_j)][d]);
 }
 
-std::array<double, 3> barycentrics(const std::array<Point, 3>& corners, const Point& point) {
-    const Point v0 = sub(corners[1], corners[0]), v1 = sub(corners[2], corners[0]), v2 = sub(point, corners[0]);
-    const double d00 = dot(v0, v0), d01 = dot(v0, v1), d11 = dot(v1, v1), d20 = dot(v2, v0), d21 = dot(v2, v1);
-    const double denom = d00 * d11 - d01 * d01;
-    if (!(denom > 0)) return {1.0 / 3, 1.0 / 3, 1.0 / 3};  // a sliver flat to rounding: its centre
-    const double v = (d11 * d20 - d01 * d21) / denom;
-    const double w = (d00 * d21 - d01 * d20) / denom;
+TriangleFrame::TriangleFrame(const std::array<Point, 3>& corners)
+    : origin_(corners[0]), v0_(sub(corners[1], corners[0])), v1_(sub(corners[2], corners[0])) {
+    d00_ = dot(v0_, v0_);
+    d01_ = dot(v0_, v1_);
+    d11_ = dot(v1_, v1_);
+    denom_ = d00_ * d11_ - d01_ * d01_;
+    const Point n{v0_[1] * v1_[2] - v0_[2] * v1_[1], v0_[2] * v1_[0] - v0_[0] * v1_[2], v0_[0] * v1_[1] - v0_[1] * v1_[0]};
+    const double length = std::sqrt(dot(n, n));
+    for (std::size_t a = 0; a < 3; ++a) unit_normal_[a] = length > 0 ? n[a] / length : 0.0;
+}
+
+std::array<double, 3> TriangleFrame::barycentrics(const Point& point) const {
+    if (!(denom_ > 0)) return {1.0 / 3, 1.0 / 3, 1.0 / 3};  // a sliver flat to rounding: its centre
+    const Point v2 = sub(point, origin_);
+    const double d20 = dot(v2, v0_), d21 = dot(v2, v1_);
+    const double v = (d11_ * d20 - d01_ * d21) / denom_;
+    const double w = (d00_ * d21 - d01_ * d20) / denom_;
     std::array<double, 3> bary{std::clamp(1.0 - v - w, 0.0, 1.0), std::clamp(v, 0.0, 1.0), std::clamp(w, 0.0, 1.0)};
     const double sum = bary[0] + bary[1] + bary[2];
     for (double& b : bary) b /= sum;

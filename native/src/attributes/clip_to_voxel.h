@@ -44,7 +44,18 @@ void measurePiece(const Polygon& polygon, ClippedPiece& out);
 bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel, ClippedPiece& out,
                          double margin = 0.0);
 
-// Barycentrics of `point` (in the triangle's plane) clamped to [0, 1] and renormalised.
-std::array<double, 3> barycentrics(const std::array<Point, 3>& corners, const Point& point);
+// A triangle's set-up for all its pieces: barycentrics and its unit normal.
+class TriangleFrame {
+public:
+    explicit TriangleFrame(const std::array<Point, 3>& corners);
+    // Barycentrics of `point` (in the triangle's plane) clamped to [0, 1] and renormalised.
+    std::array<double, 3> barycentrics(const Point& point) const;
+    const Point& unitNormal() const { return unit_normal_; }
+
+private:
+    Point origin_, v0_, v1_;
+    double d00_, d01_, d11_, denom_;
+    Point unit_normal_;
+};
 
 }  // namespace hyvox::attributes

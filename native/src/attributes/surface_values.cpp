@@ -76,7 +76,7 @@ const float* SurfaceValues::colorRow(std::uint32_t triangle, int corner) const {
 }
 
 void SurfaceValues::evaluate(std::uint32_t triangle, const std::array<double, 3>& bary,
-                             const std::array<std::array<double, 3>, 3>& corners, double* out) const {
+                             const std::array<double, 3>& unit_normal, double* out) const {
     const std::uint32_t* index = mesh_.triangles + 3 * std::size_t(triangle);
     if (layout_.color) {
         double rgba[4] = {0, 0, 0, 1};
@@ -115,11 +115,7 @@ void SurfaceValues::evaluate(std::uint32_t triangle, const std::array<double, 3>
                 for (int c = 0; c < 3; ++c) out[a] += bary[std::size_t(c)] * double(mesh_.normals[3 * std::size_t(index[c]) + a]);
             }
         } else {
-            const std::array<double, 3> e0{corners[1][0] - corners[0][0], corners[1][1] - corners[0][1], corners[1][2] - corners[0][2]};
-            const std::array<double, 3> e1{corners[2][0] - corners[0][0], corners[2][1] - corners[0][1], corners[2][2] - corners[0][2]};
-            const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
-            const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            for (int a = 0; a < 3; ++a) out[a] = length > 0 ? n[a] / length : 0.0;
+            for (std::size_t a = 0; a < 3; ++a) out[a] = unit_normal[a];
         }
     }
 }

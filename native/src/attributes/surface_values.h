@@ -25,10 +25,10 @@ public:
     const AttributeGrid& layout() const { return layout_; }
     int channels() const { return layout_.channels(); }
 
-    // The attributes of `triangle` at barycentrics `bary`; `corners` are its voxel-space corners
-    // (for the geometric normal). Writes channels() values.
-    void evaluate(std::uint32_t triangle, const std::array<double, 3>& bary,
-                  const std::array<std::array<double, 3>, 3>& corners, double* out) const;
+    // The attributes of `triangle` at barycentrics `bary`; `unit_normal` is its geometric
+    // normal (used without per-vertex or per-face normals). Writes channels() values.
+    void evaluate(std::uint32_t triangle, const std::array<double, 3>& bary, const std::array<double, 3>& unit_normal,
+                  double* out) const;
 
 private:
     enum class ColorSource { None, Texture, Colors, Palette };

@@ -139,10 +139,10 @@ public:
 private:
     double weight(int v) const { return sums_[std::size_t(v) * stride_ + stride_ - 1]; }
 
-    void add(std::uint32_t triangle, const Corners& corners, int i, int j, int k, const ClippedPiece& piece) {
+    void add(std::uint32_t triangle, const TriangleFrame& frame, int i, int j, int k, const ClippedPiece& piece) {
         ++pieces_;
         double value[kMaxChannels];
-        values_.evaluate(triangle, barycentrics(corners, piece.centroid), corners, value);
+        values_.evaluate(triangle, frame.barycentrics(piece.centroid), frame.unitNormal(), value);
         const double w = piece.area + kAreaEpsilon;
         double* voxel = &sums_[std::size_t(((i & 7) << 6) | ((j & 7) << 3) | (k & 7)) * stride_];
         for (std::size_t c = 0; c + 1 < stride_; ++c) voxel[c] += w * value[c];
@@ -157,6 +157,8 @@ private:
         const std::uint32_t triangle = job_.mesh.usable[n];
         const Corners corners = voxelCorners(job_, triangle);
         const VoxelRange r = candidates(corners, lo_, hi_);
+        if (r.empty()) return;
+        const TriangleFrame frame(corners);
         ClippedPiece piece;
         if (brute_force_) {
             for (int i = r.lo[0]; i <= r.hi[0]; ++i)
@@ -164,7 +166,7 @@ private:
                     for (int k = r.lo[2]; k <= r.hi[2]; ++k)
                         if (bitSet(mask, ((i & 7) << 6) | ((j & 7) << 3) | (k & 7)) &&
                             clipTriangleToVoxel(corners, {i, j, k}, piece, margin))
-                            add(triangle, corners, i, j, k, piece);
+                            add(triangle, frame, i, j, k, piece);
             return;
         }
         Polygon whole, x_slab, xy_column, box;
@@ -185,7 +187,7 @@ private:
                     clipSlab(xy_column, box, 2, k - margin, k + 1 + margin);
                     if (box.n == 0) continue;
                     measurePiece(box, piece);
-                    add(triangle, corners, i, j, k, piece);
+                    add(triangle, frame, i, j, k, piece);
                 }
             }
         }
