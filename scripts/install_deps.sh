@@ -9,7 +9,7 @@ packages=(
   libopenvdb-dev libboost-dev libimath-dev libtbb-dev zlib1g-dev   # OpenVDB headers need Boost
   libassimp-dev libpng-dev                                          # mesh and image reading
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri              # headless GL (Mesa llvmpipe)
-  pybind11-dev python3-dev python3-numpy python3-pytest python3-openvdb
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-openvdb python3-pil  # PIL: the attribute oracle reads textures
   libgtest-dev clang                                                 # clang: libFuzzer for the mesh-reader fuzzing
   blender xvfb xauth                                                # add-on tests (modal path in a window)
 )

@@ -10,6 +10,7 @@
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/stats_json.h"
+#include "hyvox/texture.h"
 #include "hyvox/vdb.h"
 #include "hyvox/version.h"
 
@@ -42,8 +43,14 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     const double read_ms = msSince(start);
     if (stop.load()) throw Cancelled();
 
+    MeshView view = mesh.view();
+    Texture texture;
+    if (!args.texture_path.empty()) {
+        texture = readPngTexture(args.texture_path);
+        view.texture = &texture;
+    }
     ProgressLine interrupter = progressFor(args, stop);
-    VoxelizeResult result = voxelize(mesh.view(), args.options, &interrupter);
+    VoxelizeResult result = voxelize(view, args.options, &interrupter);
     result.stats.timings_ms.insert(result.stats.timings_ms.begin(), {"read_mesh", read_ms});
 
     if (stop.load()) throw Cancelled();

@@ -77,7 +77,7 @@ def good_value(spec):
     special = {
         "method": "reference", "voxel_size": 0.125, "origin": (-0.5, -0.25, 0.0),
         "bounds": ((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)), "gl_device": "software",
-        "shader_dir": "/nonexistent/shaders", "displacement_image": "height.png",
+        "shader_dir": "/nonexistent/shaders", "displacement_image": "height.png", "attributes": "normal",
     }
     if spec.name in special:
         return special[spec.name]
@@ -194,7 +194,8 @@ def test_generated_stubs_list_every_option():
         inner = ("Literal[" + ", ".join(repr(c) for c in spec.choices) + "]" if spec.type == "choice"
                  else STUB_TYPES[spec.type])
         assert keywords.pop(spec.name) == f"Optional[{inner}]", spec.name
-    assert set(keywords) == {"uvs", "normals", "displacement_pixels", "progress", "cancel"}
+    assert set(keywords) == {"uvs", "normals", "displacement_pixels", "colors", "texture", "material_ids", "palette",
+                             "face_normals", "progress", "cancel"}
 
 
 def test_docstring_and_cli_help_list_every_option(cli):

@@ -10,6 +10,8 @@
 //    so index (i,j,k) is the centre of voxel (i,j,k) (DESIGN.md, "Coordinates").
 //  - "count": a FloatGrid with the per-voxel values of a multi-valued result (only when
 //    result.counts is non-empty), same transform.
+//  - "color" (Vec3f, linear RGB), "alpha" (float, when the colour source has it), "normal"
+//    (Vec3f): the attribute voxels (result.attributes), active exactly on the density's voxels.
 //  Grid metadata: hyvox_version, hyvox_method, hyvox_mode, hyvox_voxel_size, hyvox_origin,
 //  hyvox_dims.
 #include <cstdint>

@@ -100,6 +100,15 @@ def _as_triangles(triangles) -> np.ndarray:
     return np.ascontiguousarray(array, dtype=np.uint32)
 
 
+def _as_material_ids(values) -> np.ndarray:
+    array = np.asarray(values)
+    if array.dtype == np.bool_ or not np.issubdtype(array.dtype, np.integer) or array.ndim != 1:
+        raise ValueError(f"material_ids must be a 1-D integer array, got {array.dtype} {array.shape}")
+    if array.size and (int(array.min()) < 0 or int(array.max()) > _UINT32_MAX):
+        raise ValueError("material_ids must lie in 0 .. 2**32 - 1")
+    return np.ascontiguousarray(array, dtype=np.uint32)
+
+
 def _as_vertex_rows(values, name: str, width: int) -> Optional[np.ndarray]:
     return None if values is None else _as_float_rows(values, name, width)
 
@@ -111,6 +120,11 @@ def voxelize(
     uvs=None,
     normals=None,
     displacement_pixels=None,
+    colors=None,
+    texture=None,
+    material_ids=None,
+    palette=None,
+    face_normals=None,
     progress: Optional[Callable[[int], object]] = None,
     cancel: Optional[CancelToken] = None,
     **options,
@@ -124,6 +138,15 @@ def voxelize(
         lookup, PN-triangles; absent normals are area-weighted vertex normals).
     displacement_pixels: a (height, width) float height image (row 0 = top), used by the
         tessellation method instead of displacement_image.
+    Attribute voxels (option attributes, e.g. attributes=("color", "normal"); the grid's
+    attributes() returns them aligned with coords()). Colour comes from the first source given:
+    texture: a PNG path, or (height, width, 3|4) pixels (uint8/uint16: sRGB-encoded, float:
+        linear; row 0 = top), sampled bilinearly with repeat wrap at uvs (v = 0: bottom row);
+    colors: (N, 3|4) per vertex or (3M, 3|4) per triangle corner; uint8 = sRGB-encoded bytes
+        (as in files and Blender byte colours), float = linear;
+    material_ids: (M,) integers into palette: (P, 3|4) linear floats.
+    normals (N, 3) per vertex are interpolated; face_normals: (M, 3) per triangle; neither:
+        the geometric normal.
     progress: called on this thread with the percent done (int), while the voxelization
         waits; raising in it stops the voxelization and the exception propagates.
     cancel: a hyvox.CancelToken; token.cancel() from any thread raises hyvox.Cancelled here.
@@ -138,6 +161,8 @@ def voxelize(
     native_options = Options()
     native_options.apply_environment()
     for name, value in options.items():
+        if name == "attributes" and isinstance(value, (list, tuple)):
+            value = ",".join(value)  # the schema's text form: a comma list
         native_options.set(name, value)
     if cancel is not None and not isinstance(cancel, CancelToken):
         raise TypeError("cancel must be a hyvox.CancelToken or None")
@@ -147,6 +172,21 @@ def voxelize(
         if pixels.ndim != 2 or not np.issubdtype(pixels.dtype, np.number):
             raise ValueError(f"displacement_pixels must be a numeric (height, width) array, got {pixels.shape}")
         pixels = np.ascontiguousarray(pixels, dtype=np.float32)
+    colors_srgb = False
+    if colors is not None:
+        colors = np.asarray(colors)
+        colors_srgb = colors.dtype == np.uint8
+        colors = colors.astype(np.float32) / 255.0 if colors_srgb else _as_float_rows(colors, "colors", colors.shape[-1] if colors.ndim == 2 else 3)
+    texture_path = None
+    if isinstance(texture, (str, os.PathLike)):
+        texture_path, texture = os.fspath(texture), None
+    elif texture is not None:
+        texture = np.asarray(texture)
+        if texture.dtype.kind == "f":
+            texture = texture.astype(np.float32)
+        texture = np.ascontiguousarray(texture)
+    if material_ids is not None:
+        material_ids = _as_material_ids(material_ids)
     return _core.voxelize(
         _as_vertices(vertices),
         _as_triangles(triangles),
@@ -154,6 +194,13 @@ def voxelize(
         uvs=_as_vertex_rows(uvs, "uvs", 2),
         normals=_as_vertex_rows(normals, "normals", 3),
         displacement_pixels=pixels,
+        colors=colors,
+        colors_srgb=colors_srgb,
+        texture=texture,
+        texture_path=texture_path,
+        material_ids=material_ids,
+        palette=None if palette is None else _as_float_rows(palette, "palette", np.asarray(palette).shape[-1]),
+        face_normals=_as_vertex_rows(face_normals, "face_normals", 3),
         cancel=cancel,
         progress=progress,
     )

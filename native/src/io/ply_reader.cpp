@@ -437,6 +437,7 @@ private:
         const bool colors = r >= 0 && g >= 0 && b >= 0, uvs = u >= 0 && v >= 0;
         mesh_.positions.reserve(3 * e.count);
         if (colors) mesh_.colors.reserve(4 * e.count);
+        mesh_.colors_alpha = colors && a >= 0;
         if (uvs) mesh_.uvs.reserve(2 * e.count);
         std::vector<double> values(e.properties.size(), 0.0);
         auto channel = [&](int p) { return float(values[p] / integerMax(e.properties[p].type)); };

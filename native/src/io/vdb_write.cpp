@@ -15,13 +15,21 @@
 #include "io/atomic_file.h"
 #include "io/interruptible_stream.h"
 #include "io/vdb_direct_writer.h"
+#include "io/vdb_openvdb_write.h"
 
 namespace hyvox::io {
 
 std::uint64_t densityGridBytes(const SparseGrid& occupancy) { return fogGridMemUsageForLeaves(occupancy.leafCount()); }
 
+static std::uint64_t attributeGridBytes(const VoxelizeResult& result) {
+    const AttributeGrid& a = result.attributes;
+    const std::uint64_t per_voxel = (a.color ? 12 : 0) + (a.alpha ? 4 : 0) + (a.normal ? 12 : 0);
+    // Leaves dominate (512 values and a mask each); the nodes above add a few percent.
+    return std::uint64_t(double(result.occupancy.leafCount()) * 512.0 * double(per_voxel) * 1.05);
+}
+
 void checkGridBudget(const VoxelizeResult& result) {
-    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize();
+    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize() + attributeGridBytes(result);
     const VoxelizeOptions& options = result.stats.options;
     if (need > options.memoryBudgetBytes())
         throw ResourceError("the OpenVDB grid of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
@@ -78,6 +86,13 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, i
     const InterrupterRun run(interrupter, "hyvox write");
     VdbWriteReport report;
     auto start = std::chrono::steady_clock::now();
+    if (!result.attributes.empty()) {
+        // The direct serializer writes float grids only; colour and normal grids (Vec3f) go
+        // through OpenVDB until it writes them too.
+        report = io::writeWithOpenVdb(result, path, threads, interrupter);
+        if (interrupter) interrupter->wasInterrupted(100);
+        return report;
+    }
     std::vector<io::FogGrid> grids{{"density", io::densityLeaves(result.occupancy)}};
     io::CountLeaves counts;
     if (!result.counts.empty()) {

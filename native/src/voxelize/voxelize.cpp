@@ -4,8 +4,10 @@
 #include "hyvox/voxelize.h"
 
 #include <algorithm>
+#include <optional>
 #include <string>
 
+#include "attributes/tile_attributes.h"
 #include "core/backends.h"
 #include "core/stopwatch.h"
 #include "gl/device_limits.h"
@@ -62,6 +64,16 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     }
 }
 
+// The attribute evaluator when options.attributes asks for any (the exact methods only).
+std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, const VoxelizeOptions& options) {
+    const AttributeSet wanted = parseAttributeSet(options.attributes);
+    if (!wanted.any()) return std::nullopt;
+    if (options.method != Method::Cpu && options.method != Method::Reference)
+        throw InvalidInput(std::string("attributes are computed by the cpu and reference methods; method ") +
+                           toString(options.method) + " does not compute them yet");
+    return std::optional<attributes::SurfaceValues>(std::in_place, mesh, wanted);
+}
+
 }  // namespace
 
 VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, Interrupter* interrupter) {
@@ -73,6 +85,8 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     stats.options = options;
     Stopwatch watch;
     const ValidatedMesh validated = validate(mesh);
+    const std::optional<attributes::SurfaceValues> surface = surfaceValues(mesh, options);
+    std::vector<attributes::AttributeLeaf> attribute_leaves;
     result.grid = makeGrid(validated.bounds, options.grid);
     const GridSpec& grid = result.grid;
     // The tessellation holds a tile's bits in one storage buffer (the hybrid methods cut theirs
@@ -105,8 +119,17 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
         progress.setTile(t);
         TileOutput out{BitGrid(tile.dims), {}};
         stats.addTiming("allocate", watch.restart());
-        runBackend(BackendJob{tile_mesh, validated, grid, tile, options, &progress}, out, stats);
+        const BackendJob job{tile_mesh, validated, grid, tile, options, &progress};
+        runBackend(job, out, stats);
         watch.restart();
+        if (surface) {
+            const auto counted = attributes::computeTileAttributes(job, out.bits, *surface,
+                                                                   options.method == Method::Reference, attribute_leaves);
+            stats.attribute_pieces += counted.pieces;
+            stats.attribute_voxels_unreached += counted.voxels_unreached;
+            stats.attribute_leaves_rounded += counted.leaves_rounded;
+            stats.addTiming("attributes", watch.restart());
+        }
         result.occupancy.addTile(out.bits, tile.offset);
         result.counts.insert(result.counts.end(), out.counts.begin(), out.counts.end());
         ++stats.tiles;
@@ -121,6 +144,10 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     }
     throwIfInterrupted(interrupter, 100);
     result.occupancy.finish();
+    if (surface) {
+        result.attributes = surface->layout();
+        attributes::assembleAttributes(attribute_leaves, result.attributes);
+    }
     stats.voxel_count = result.occupancy.count();
     stats.leaves = result.occupancy.leafCount();
     stats.addTiming("count", watch.restart());
