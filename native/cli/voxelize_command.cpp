@@ -41,6 +41,8 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     const double read_ms = msSince(start);
     if (stop.load()) throw Cancelled();
 
+    // The output is always a .vdb: a voxel size it cannot hold is refused before the work.
+    checkVdbVoxelSize(makeGrid(validate(mesh.view()).bounds, args.options.grid).voxel_size);
     StopFlagInterrupter interrupter(stop);
     VoxelizeResult result = voxelize(mesh.view(), args.options, &interrupter);
     result.stats.timings_ms.insert(result.stats.timings_ms.begin(), {"read_mesh", read_ms});

@@ -10,6 +10,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <memory>
 #include <mutex>
 #include <ostream>
@@ -56,6 +57,7 @@ void initializeOpenVdb() {
 }
 
 openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid) {
+    checkVdbVoxelSize(grid.voxel_size);
     auto transform = openvdb::math::Transform::createLinearTransform(grid.voxel_size);
     const double h = 0.5 * grid.voxel_size;
     transform->postTranslate(openvdb::Vec3d(grid.origin[0] + h, grid.origin[1] + h, grid.origin[2] + h));
@@ -150,6 +152,17 @@ void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path
 }  // namespace hyvox::io
 
 namespace hyvox {
+
+void checkVdbVoxelSize(double voxel_size) {
+    // ScaleMap's own test (openvdb/math/Maps.h): |det| < 3 × Tolerance<double> (1e-15).
+    if (voxel_size * voxel_size * voxel_size >= 3e-15) return;
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "voxel size %.6g is below the smallest a .vdb file can hold (about 1.45e-05 world units: "
+                  "OpenVDB needs voxel_size^3 >= 3e-15); scale the mesh up (e.g. millimetres, not metres)",
+                  voxel_size);
+    throw InvalidInput(text);
+}
 
 VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, int threads, Interrupter* interrupter) {
     if (threads < 0) throw InvalidInput("writeVdb: threads must be >= 0 (0 = all cores)");
