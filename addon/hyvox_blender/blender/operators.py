@@ -8,7 +8,7 @@ import traceback
 
 import bpy
 
-from ..core import summary
+from ..core import backend, summary
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
 from . import export, importer, properties
@@ -30,6 +30,8 @@ class _Run:
         sources = export.pick_sources(context.selected_objects, warn=self.warn)
         self.groups = export.make_groups(sources, settings.separate, context.view_layer.objects.active)
         self.pipeline = Pipeline(settings, folder, self.export_frame)  # validates the settings
+        if self.pipeline.ignored_options:
+            op.report({"INFO"}, backend.ignored_message(self.pipeline.ignored_options, self.pipeline.method))
         # The redo panel shows, and a redo repeats, exactly what this run used.
         for name, value in used.items():
             setattr(op, name, value)
