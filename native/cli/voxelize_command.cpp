@@ -36,14 +36,13 @@ void printSummary(const Arguments& args, const Mesh& mesh, const VoxelizeResult&
 void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     const auto thread_limit = limitThreads(args.options.threads);
     checkOutputPaths(args.mesh_path, args.output_path, args.stats_json_path);
+    StopFlagInterrupter interrupter(stop);  // Ctrl-C stops the reading too
     auto start = std::chrono::steady_clock::now();
-    const Mesh mesh = readMesh(args.mesh_path);
+    const Mesh mesh = readMesh(args.mesh_path, &interrupter);
     const double read_ms = msSince(start);
-    if (stop.load()) throw Cancelled();
 
     // The output is always a .vdb: a voxel size it cannot hold is refused before the work.
     checkVdbVoxelSize(makeGrid(validate(mesh.view()).bounds, args.options.grid).voxel_size);
-    StopFlagInterrupter interrupter(stop);
     VoxelizeResult result = voxelize(mesh.view(), args.options, &interrupter);
     result.stats.timings_ms.insert(result.stats.timings_ms.begin(), {"read_mesh", read_ms});
 

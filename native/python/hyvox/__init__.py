@@ -196,15 +196,19 @@ def _options_doc() -> str:
 voxelize.__doc__ = (voxelize.__doc__ or "") + _options_doc()
 
 
-def read_mesh(path: Union[str, os.PathLike], attributes: bool = False):
+def read_mesh(path: Union[str, os.PathLike], attributes: bool = False, cancel: Optional[CancelToken] = None):
     """Read a mesh file (PLY binary/ascii, .ply.gz, OBJ, and what assimp reads).
 
     Returns (vertices float32 (N, 3), triangles uint32 (M, 3)), triangles exactly as in the
     file (degenerate ones included). With attributes=True, returns
     (vertices, triangles, attrs) where attrs may hold "colors" (float32 (N, 4) RGBA 0..1)
-    and "uvs" (float32 (N, 2)). Raises ValueError for a missing or unreadable file.
+    and "uvs" (float32 (N, 2)). Raises ValueError for a missing or unreadable file, and
+    hyvox.Cancelled when `cancel` (a hyvox.CancelToken) is cancelled from another thread while
+    the file is read (the GIL is released meanwhile).
     """
-    vertices, triangles, colors, uvs = _core.read_mesh(os.fspath(path))
+    if cancel is not None and not isinstance(cancel, CancelToken):
+        raise TypeError("cancel must be a hyvox.CancelToken or None")
+    vertices, triangles, colors, uvs = _core.read_mesh(os.fspath(path), cancel=cancel)
     if not attributes:
         return vertices, triangles
     attrs = {}

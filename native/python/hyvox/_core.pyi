@@ -110,6 +110,7 @@ def voxelize(
 ) -> VoxelGrid: ...
 def read_mesh(
     path: Union[str, os.PathLike[str]],
+    cancel: Optional[CancelToken] = None,
 ) -> Tuple[
     npt.NDArray[np.float32],
     npt.NDArray[np.uint32],

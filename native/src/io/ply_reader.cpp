@@ -300,7 +300,8 @@ int findProperty(const Element& element, std::initializer_list<const char*> name
 
 class BodyReader {
 public:
-    BodyReader(const Header& header, const std::string& name, Mesh& mesh) : header_(header), name_(name), mesh_(mesh) {}
+    BodyReader(const Header& header, const std::string& name, Mesh& mesh, Interrupter* interrupter)
+        : header_(header), name_(name), mesh_(mesh), interrupter_(interrupter) {}
 
     template <class Source>
     void read(Source& source) {
@@ -392,6 +393,7 @@ private:
         std::vector<double> values(e.properties.size(), 0.0);
         auto channel = [&](int p) { return float(values[p] / integerMax(e.properties[p].type)); };
         for (std::uint64_t i = 0; i < e.count; ++i) {
+            poll(i);
             try {
                 for (std::size_t p = 0; p < e.properties.size(); ++p) {
                     const Property& property = e.properties[p];
@@ -419,6 +421,7 @@ private:
             std::is_same_v<Source, AsciiSource> ? 8 : sizeOf(list.count_type) + 3 * sizeOf(list.type);
         mesh_.triangles.reserve(3 * std::min<std::uint64_t>(e.count, source.remaining() / min_face_bytes));
         for (std::uint64_t f = 0; f < e.count; ++f) {
+            poll(f);
             try {
                 for (std::size_t p = 0; p < e.properties.size(); ++p) {
                     const Property& property = e.properties[p];
@@ -463,6 +466,7 @@ private:
     void skipElement(const Element& e, Source& source) {
         if (e.properties.empty()) return;  // nothing to read, however large the count
         for (std::uint64_t i = 0; i < e.count; ++i) {
+            poll(i);
             try {
                 for (const Property& property : e.properties) {
                     if (property.list)
@@ -476,9 +480,15 @@ private:
         }
     }
 
+    // Cancellation between chunks of 64k records (hyvox::Cancelled; the caller's mesh is freed).
+    void poll(std::uint64_t record) const {
+        if ((record & 0xFFFF) == 0) throwIfInterrupted(interrupter_);
+    }
+
     const Header& header_;
     const std::string& name_;
     Mesh& mesh_;
+    Interrupter* interrupter_;
     std::uint64_t vertex_count_ = 0;
 };
 
@@ -488,10 +498,10 @@ bool looksLikePly(const char* data, std::size_t size) {
     return size >= 4 && std::memcmp(data, "ply", 3) == 0 && (data[3] == '\n' || data[3] == '\r');
 }
 
-Mesh readPly(const char* data, std::size_t size, const std::string& name) {
+Mesh readPly(const char* data, std::size_t size, const std::string& name, Interrupter* interrupter) {
     const Header header = readHeader(data, size, name);
     Mesh mesh;
-    BodyReader reader(header, name, mesh);
+    BodyReader reader(header, name, mesh, interrupter);
     const char* body = data + header.body_offset;
     const char* end = data + size;
     if (header.format == Format::Ascii) {
