@@ -3,7 +3,7 @@
 method, calling voxelize with a cancel token, turning its errors into HyvoxError."""
 import importlib
 import threading
-from typing import TYPE_CHECKING, Optional
+from typing import TYPE_CHECKING, List, Optional
 
 import numpy as np
 
@@ -74,6 +74,19 @@ def resolve_method(module, settings: "VoxelizeSettings") -> str:
     return "hybrid" if gl_available(module, settings.options.get("gl_device", "")) else "cpu"
 
 
+def ignored_settings(module, settings: "VoxelizeSettings", method: str) -> List[str]:
+    """The options set away from the schema's default that `method` does not use, by the
+    module's one rule (hyvox.ignored_options). The add-on passes every setting it has, so an
+    option still at its default is no news and is not listed."""
+    options = settings.voxelize_options()
+    return [name for name in module.ignored_options(method, options) if options[name] != module.option(name).default]
+
+
+def ignored_message(names: List[str], method: str) -> str:
+    """The add-on's report for ignored_settings (the CLI's warning, in one line)."""
+    return f"{', '.join(names)} {'does' if len(names) == 1 else 'do'} not apply to the {method} method: ignored"
+
+
 def make_token(module):
     """A fresh cancel/progress token."""
     return module.CancelToken()
@@ -92,6 +105,10 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "Vox
     settings, so every frame of a sequence shares the first frame's voxel size."""
     kwargs = settings.voxelize_options()
     kwargs["method"] = method
+    # Settings another method would use are dropped here (reported once per run by the
+    # operator, see ignored_settings), so hyvox.voxelize has nothing to warn about.
+    for name in module.ignored_options(method, list(kwargs)):
+        del kwargs[name]
     if voxel_size:
         kwargs.pop("resolution", None)
         kwargs["voxel_size"] = float(voxel_size)
