@@ -14,7 +14,7 @@ if [ $# -lt 2 ]; then
   echo "usage: $0 PYTHON OUT_DIR [-DVAR=VALUE ...]" >&2
   exit 2
 fi
-python=$1
+python=$(realpath -s "$1")  # absolute, symlinks kept: the venv is found through its python link
 out=$(realpath -m "$2")
 shift 2
 source_dir=$(cd "$(dirname "$0")/.." && pwd)
