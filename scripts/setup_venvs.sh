@@ -13,6 +13,15 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 dir=${1:-build/venv}
 mkdir -p "$dir"
+make_venv() {  # make_venv LIST VENV
+  rm -rf "$2"
+  /usr/bin/python3 -m venv "$2"
+  "$2/bin/pip" install --disable-pip-version-check -q -r "$1"
+  cp "$1" "$2/requirements.txt"
+}
+
+# The venvs are made side by side (mostly download time); any failure fails the script.
+pids=()
 for list in scripts/requirements/*.txt; do
   name=$(basename "$list" .txt)
   venv="$dir/$name"
@@ -21,8 +30,9 @@ for list in scripts/requirements/*.txt; do
     continue
   fi
   echo "setup_venvs: making $venv"
-  rm -rf "$venv"
-  /usr/bin/python3 -m venv "$venv"
-  "$venv/bin/pip" install --disable-pip-version-check -q -r "$list"
-  cp "$list" "$venv/requirements.txt"
+  make_venv "$list" "$venv" &
+  pids+=($!)
 done
+status=0
+for pid in "${pids[@]}"; do wait "$pid" || status=1; done
+exit $status

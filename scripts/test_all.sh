@@ -17,8 +17,10 @@ export PATH="/usr/bin:/bin:$PATH"
 
 jobs=$(nproc)
 echo "== Release build (-Werror)"
-# ccache: the wheel's own CMake build (build/wheel/cmake) compiles the same sources with
-# the same flags, so it takes the Release build's objects from the cache.
+# ccache with the source root as base: the wheel's own CMake build (build-wheel/) compiles
+# the same sources with the same flags and, relative to its folder, the same paths, so it
+# takes the Release build's objects from the cache instead of compiling them again.
+export CCACHE_BASEDIR="$PWD"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DHYVOX_WERROR=ON -DHYVOX_WHEEL=ON \
   -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
 cmake --build build -j "$jobs"
