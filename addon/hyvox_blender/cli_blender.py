@@ -4,11 +4,12 @@
     blender -b scene.blend --python B/addon/hyvox_blender/cli_blender.py -- \\
         --frames 1-10 --output DIR --resolution 256 [--voxel-size S] [--method cpu] \\
         [--mode conservative|thin] [--tess-gamma G] [--hybrid-cutoff C] [--padding P] \\
-        [--objects A,B] [--separate] [--save OUT.blend] [--stats-json FILE]
+        [--objects A,B] [--separate] [--viewport] [--save OUT.blend] [--stats-json FILE]
 
 Voxelizes the named objects (default: the selection, or every visible mesh when nothing
 is selected) with the add-on's operator, so the result is the same as in the UI. A frame
-chunk (--frames 11-20) writes its own files name_0011.vdb...; chunks assemble. Put
+chunk (--frames 11-20) writes its own files name_0011.vdb...; chunks assemble. Modifiers and Geometry Nodes are evaluated at render settings, as the
+render shows the scene (--viewport: at viewport settings); instances are included. Put
 Blender options such as -a (render the animation) before the `--`. Exits 1 on failure."""
 import argparse
 import json
@@ -34,6 +35,8 @@ def parse_args(argv):
     parser.add_argument("--frames", help="frame range, e.g. 1-10 (one .vdb per frame)")
     parser.add_argument("--objects", help="comma-separated object names")
     parser.add_argument("--separate", action="store_true", help="one volume per object")
+    parser.add_argument("--viewport", action="store_true",
+                        help="evaluate modifiers at viewport settings (default: render settings)")
     parser.add_argument("--save", help="save the .blend with the volumes to this path")
     parser.add_argument("--stats-json", help="write origin, voxel size, counts and timings here")
     args = parser.parse_args(argv)
@@ -85,6 +88,8 @@ def main(argv):
         kwargs["output_dir"] = os.path.abspath(args.output)
     if args.separate:
         kwargs["separate"] = True
+    kwargs["evaluation"] = "VIEWPORT" if args.viewport else "RENDER"
+    kwargs["unique_file_names"] = False  # chunks of one sequence must share their file names
     if args.frames:
         frames = parse_frame_range(args.frames)
         if frames != list(range(frames[0], frames[-1] + 1)):

@@ -79,38 +79,83 @@ std::string optionHelp(const OptionSpec& spec) {
     return line + "\n";
 }
 
-}  // namespace
+std::string commonOptionsHelp() {
+    return "  --progress\n      show progress on stderr also when it is not a terminal (a log, a pipe)\n"
+           "  -q, --quiet\n      print nothing on success, no progress\n"
+           "  -h, --help\n      show this help\n";
+}
 
-std::string usageText() {
+// The schema's options, less those the command sets itself (fixed(name) not null).
+std::string voxelizeOptionsHelp(const char* (*fixed)(const std::string&)) {
     std::string text =
-        "usage: hyvox voxelize MESH -o OUT.vdb [options]\n"
-        "       hyvox gamma-sweep MESH [--gammas 1,1.5,2,3,4,6] [options]\n"
-        "       hyvox --help | --version\n"
-        "\n"
-        "voxelize: voxelizes the surface of a triangle mesh (PLY, PLY.GZ, OBJ, ...) into an\n"
-        "OpenVDB file with a float grid 'density' (1 on occupied voxels).\n"
-        "gamma-sweep: voxelizes the mesh with the tessellation method at each gamma, prints the\n"
-        "share of the exact conservative voxels it misses (bias), of the exact thin voxels\n"
-        "(bias_thin), the voxels inside the thin set a flood from outside reaches (leaked; 0 =\n"
-        "watertight) and fits Eq. 3, gamma = -B ln(A bias), to tell the gamma a bias needs.\n"
-        "Takes the voxelize options below except --mode, --method and --tess-gamma.\n"
-        "\n"
-        "command options:\n"
-        "  -o, --output FILE\n      the .vdb file to write (written atomically)\n"
-        "  --stats-json FILE\n      write the grid, counts, timings, options and the method's figures as JSON\n"
-        "      (gamma-sweep: its table and fit)\n"
-        "  --gammas G1,G2,...\n      gamma-sweep: the gammas to try, at least two (default 1,1.5,2,3,4,6)\n"
-        "  -q, --quiet\n      print nothing on success\n"
-        "  -h, --help\n      show this help\n"
-        "  --version\n      show the version\n"
-        "\n"
-        "voxelize options (the same names as hyvox.voxelize's keywords; a flag's value may also\n"
+        "\nvoxelize options (the same names as hyvox.voxelize's keywords; a flag's value may also\n"
         "be given as --name=true|false; environment variables apply unless the flag is given):\n";
-    for (const OptionSpec& spec : optionSchema()) text += optionHelp(spec);
+    for (const OptionSpec& spec : optionSchema())
+        if (!fixed || !fixed(spec.name)) text += optionHelp(spec);
     return text;
 }
 
+}  // namespace
+
+std::string usageText(Command topic) {
+    if (topic == Command::Voxelize) {
+        std::string text =
+            "usage: hyvox voxelize MESH -o OUT.vdb [options]\n"
+            "\n"
+            "Voxelizes the surface of a triangle mesh (PLY, PLY.GZ, OBJ, ...) into an OpenVDB file\n"
+            "with a float grid 'density' (1 on occupied voxels).\n"
+            "\n"
+            "command options:\n"
+            "  -o, --output FILE\n      the .vdb file to write (written atomically)\n"
+            "  --stats-json FILE\n      write the grid, counts, timings, options and the method's figures as JSON\n";
+        return text + commonOptionsHelp() + voxelizeOptionsHelp(nullptr);
+    }
+    if (topic == Command::GammaSweep) {
+        std::string text =
+            "usage: hyvox gamma-sweep MESH [--gammas 1,1.5,2,3,4,6] [options]\n"
+            "\n"
+            "Voxelizes the mesh with the tessellation method at each gamma, prints the share of the\n"
+            "exact conservative voxels it misses (bias), of the exact thin voxels (bias_thin), the\n"
+            "voxels inside the thin set a flood from outside reaches (leaked; 0 = watertight) and\n"
+            "fits Eq. 3, gamma = -B ln(A bias), to tell the gamma a bias needs.\n"
+            "\n"
+            "command options:\n"
+            "  --gammas G1,G2,...\n      the gammas to try, at least two, ascending (default 1,1.5,2,3,4,6)\n"
+            "  --stats-json FILE\n      write the table and the fit as JSON\n";
+        return text + commonOptionsHelp() + voxelizeOptionsHelp(sweepFixes);
+    }
+    return "usage: hyvox voxelize MESH -o OUT.vdb [options]\n"
+           "       hyvox gamma-sweep MESH [--gammas 1,1.5,2,3,4,6] [options]\n"
+           "       hyvox --help | --version\n"
+           "\n"
+           "commands:\n"
+           "  voxelize      voxelize the surface of a triangle mesh into an OpenVDB file\n"
+           "  gamma-sweep   measure how many voxels the tessellation method misses at each gamma\n"
+           "\n"
+           "'hyvox COMMAND --help' shows the options of a command.\n";
+}
+
+namespace {
+
+Arguments parseCommand(const std::vector<std::string>& args);
+
+}  // namespace
+
 Arguments parseArguments(const std::vector<std::string>& args) {
+    if (args.empty()) throw UsageError("no command given");
+    try {
+        return parseCommand(args);
+    } catch (const UsageError& e) {
+        // A mistake after a known command points at that command's own help.
+        if (args[0] == "voxelize" || args[0] == "gamma-sweep")
+            throw UsageError(e.what(), "hyvox " + args[0] + " --help lists its options");
+        throw;
+    }
+}
+
+namespace {
+
+Arguments parseCommand(const std::vector<std::string>& args) {
     Arguments out;
     if (args.empty()) throw UsageError("no command given");
     if (args[0] == "-h" || args[0] == "--help" || args[0] == "help") return out;
@@ -156,6 +201,7 @@ Arguments parseArguments(const std::vector<std::string>& args) {
         };
         bool negated = false;
         if (option == "-h" || option == "--help") {
+            out.help_topic = out.command;
             out.command = Command::Help;
             return out;
         } else if (option == "-o" || option == "--output") {
@@ -170,6 +216,9 @@ Arguments parseArguments(const std::vector<std::string>& args) {
         } else if (option == "-q" || option == "--quiet") {
             noValue();
             out.quiet = true;
+        } else if (option == "--progress") {
+            noValue();
+            out.progress = true;
         } else if (const OptionSpec* spec = specForFlag(option, negated)) {
             if (sweep)
                 if (const char* why = sweepFixes(spec->name))
@@ -201,9 +250,12 @@ Arguments parseArguments(const std::vector<std::string>& args) {
         if (!optionAppliesTo(*spec, out.options.method))
             out.warnings.push_back(flag + " does not apply to the " + toString(out.options.method) +
                                    " method: ignored");
+    if (out.quiet && out.progress) throw UsageError("--progress and --quiet contradict each other; give one");
     if (out.mesh_path.empty()) throw UsageError("no mesh file given");
     if (!sweep && out.output_path.empty()) throw UsageError("no output file given (-o OUT.vdb)");
     return out;
 }
+
+}  // namespace
 
 }  // namespace hyvox::cli

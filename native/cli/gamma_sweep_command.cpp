@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "command_support.h"
+#include "progress_line.h"
 #include "hyvox/accuracy.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
@@ -59,7 +60,7 @@ void runGammaSweep(const Arguments& args, const std::atomic<bool>& stop) {
     const auto thread_limit = limitThreads(args.options.threads);
     checkOutputPaths(args.mesh_path, "", args.stats_json_path);
     const Mesh mesh = readMesh(args.mesh_path);
-    StopFlagInterrupter interrupter(stop);
+    ProgressLine interrupter = progressFor(args, stop);
 
     VoxelizeOptions exact_options = args.options;
     exact_options.method = Method::Cpu;

@@ -38,14 +38,14 @@ int main(int argc, char** argv) {
         const cli::Arguments args = cli::parseArguments(std::vector<std::string>(argv + 1, argv + argc));
         for (const std::string& warning : args.warnings) std::fprintf(stderr, "hyvox: warning: %s\n", warning.c_str());
         switch (args.command) {
-            case cli::Command::Help: std::fputs(cli::usageText().c_str(), stdout); return 0;
+            case cli::Command::Help: std::fputs(cli::usageText(args.help_topic).c_str(), stdout); return 0;
             case cli::Command::Version: std::printf("hyvox %s\n", version()); return 0;
             case cli::Command::Voxelize: cli::runVoxelize(args, g_stop); return 0;
             case cli::Command::GammaSweep: cli::runGammaSweep(args, g_stop); return 0;
         }
         return 0;
     } catch (const cli::UsageError& e) {
-        std::fprintf(stderr, "hyvox: error: %s\n(hyvox --help lists the commands and options)\n", e.what());
+        std::fprintf(stderr, "hyvox: error: %s\n(%s)\n", e.what(), e.hint.c_str());
         return 2;
     } catch (const Cancelled&) {
         return fail("interrupted; nothing was written", 130);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "command_support.h"
+#include "progress_line.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/stats_json.h"
@@ -41,7 +42,7 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     const double read_ms = msSince(start);
     if (stop.load()) throw Cancelled();
 
-    StopFlagInterrupter interrupter(stop);
+    ProgressLine interrupter = progressFor(args, stop);
     VoxelizeResult result = voxelize(mesh.view(), args.options, &interrupter);
     result.stats.timings_ms.insert(result.stats.timings_ms.begin(), {"read_mesh", read_ms});
 

@@ -26,7 +26,7 @@ class ErrorTest(AddonTestCase):
         empty = bpy.data.objects.new("Empty", None)
         bpy.context.scene.collection.objects.link(empty)
         helpers.select_only(empty)
-        self.assert_reported("not a mesh")
+        self.assert_reported("has no geometry")
 
     def test_empty_mesh(self):
         obj = helpers.mesh_object("Nothing", [], [])

@@ -21,7 +21,9 @@ class SequenceTest(AddonTestCase):
         self.assertEqual(self.voxelize(voxel_size=0.1, frame_start=1, frame_end=4), {"FINISHED"})
         self.assertEqual(bpy.context.scene.frame_current, 2)  # frame restored
         # Exactly the four frames' files: no staging (.partial) file is left behind.
-        self.assertEqual(sorted(os.listdir(self.out)), [f"Cube_voxels_{f:04d}.vdb" for f in range(1, 5)])
+        names = sorted(os.listdir(self.out))
+        tag = names[0][len("Cube_voxels_"):-len("_0001.vdb")]  # this run's own tag
+        self.assertEqual(names, [f"Cube_voxels_{tag}_{f:04d}.vdb" for f in range(1, 5)])
 
         (obj,) = self.volumes()
         volume = obj.data
@@ -32,7 +34,7 @@ class SequenceTest(AddonTestCase):
             bpy.context.scene.frame_set(frame)
             evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get()).data
             self.assertEqual(evaluated.grids.frame, frame)
-            self.assertTrue(evaluated.grids.frame_filepath.endswith(f"Cube_voxels_{frame:04d}.vdb"),
+            self.assertTrue(evaluated.grids.frame_filepath.endswith(f"Cube_voxels_{tag}_{frame:04d}.vdb"),
                             evaluated.grids.frame_filepath)
             centres = helpers.vdb_world_centres(bpy.path.abspath(evaluated.grids.frame_filepath))
             xs.append(centres[:, 0].mean())

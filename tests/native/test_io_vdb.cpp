@@ -9,6 +9,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <random>
 #include <sstream>
 
@@ -258,4 +259,64 @@ TEST(IoVdb, AGridOverTheMemoryBudgetIsRefusedBeforeItIsBuilt) {
     const std::string refused = (dir.path / "refused.vdb").string();
     EXPECT_THROW(hyvox::writeVdb(big, refused), hyvox::ResourceError);
     EXPECT_FALSE(fs::exists(refused));
+}
+
+namespace {
+
+// A result whose file is several MiB: random bits in 192^3 (the write checks every 256 KiB).
+hyvox::VoxelizeResult largeResult() {
+    hyvox::VoxelizeResult r;
+    r.grid.origin = {0.0, 0.0, 0.0};
+    r.grid.voxel_size = 1.0;
+    r.grid.dims = {192, 192, 192};
+    r.occupancy = hyvox::SparseGrid(r.grid.dims);
+    std::mt19937 rng(3);
+    std::bernoulli_distribution on(0.1);
+    for (int i = 0; i < 192; ++i)
+        for (int j = 0; j < 192; ++j)
+            for (int k = 0; k < 192; ++k)
+                if (on(rng)) r.occupancy.set(i, j, k);
+    r.stats.method = "cpu";
+    r.stats.mode = "conservative";
+    r.stats.voxel_count = r.occupancy.count();
+    return r;
+}
+
+// Records the progress it sees; asks to stop once it passes stop_after (never: 101).
+class ProgressRecorder final : public hyvox::Interrupter {
+public:
+    explicit ProgressRecorder(int stop_after) : stop_after_(stop_after) {}
+    bool wasInterrupted(int percent) override {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        seen.push_back(percent);
+        return percent > stop_after_;
+    }
+    std::vector<int> seen;
+
+private:
+    int stop_after_;
+    std::mutex mutex_;
+};
+
+}  // namespace
+
+TEST(IoVdb, TheFileWriteReportsProgressAndCanBeCancelled) {
+    const hyvox::VoxelizeResult result = largeResult();
+    TempDir dir;
+    const fs::path path = dir.path / "big.vdb";
+    ProgressRecorder follow(101);
+    hyvox::writeVdb(result, path.string(), 0, &follow);
+    EXPECT_EQ(readGrid(path.string(), "density")->activeVoxelCount(), result.occupancy.count());
+    // Past the grid build (90) the bytes going out are followed, and the end is 100.
+    EXPECT_TRUE(std::any_of(follow.seen.begin(), follow.seen.end(), [](int p) { return p > 90 && p < 100; }));
+    EXPECT_EQ(follow.seen.back(), 100);
+
+    // Asked to stop while the bytes go out: Cancelled, and the earlier file stays as it was.
+    const std::string before = slurp(path);
+    ProgressRecorder stop(90);
+    EXPECT_THROW(hyvox::writeVdb(result, path.string(), 0, &stop), hyvox::Cancelled);
+    EXPECT_GT(stop.seen.back(), 90);
+    EXPECT_LT(stop.seen.back(), 100);
+    EXPECT_TRUE(slurp(path) == before);  // (not EXPECT_EQ: a mismatch would print megabytes)
+    EXPECT_EQ(dir.names(), std::vector<std::string>{"big.vdb"});  // no temporary left
 }

@@ -1,7 +1,10 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The add-on's bpy-free layer: settings, naming, alignment math, mesh merging."""
 import os
+import re
+import subprocess
 import sys
+import tempfile
 
 import numpy as np
 import pytest
@@ -81,7 +84,36 @@ def test_groups_and_keys():
 def test_default_output_dir(tmp_path):
     blend = str(tmp_path / "shot.blend")
     assert naming.default_output_dir(blend) == str(tmp_path / "hyvox_cache" / "shot")
-    assert naming.default_output_dir("").endswith(os.path.join("hyvox_cache", "unsaved"))
+    unsaved = naming.default_output_dir("")
+    assert os.path.isdir(unsaved) and naming.default_output_dir("") == unsaved  # one per session
+    assert os.path.dirname(unsaved) == tempfile.gettempdir() and os.listdir(unsaved) == []
+
+
+def test_unsaved_folder_is_unique_per_session():
+    """Another session (another interpreter) gets another folder."""
+    script = "from hyvox_blender.core import naming; print(naming.default_output_dir(''))"
+    root = os.path.join(os.path.dirname(__file__), "..", "..", "addon")
+    others = {subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True,
+                             env=dict(os.environ, PYTHONPATH=root + os.pathsep + os.environ.get("PYTHONPATH", "")))
+              .stdout.strip() for _ in range(2)}
+    assert len(others) == 2 and naming.default_output_dir("") not in others
+    for folder in others:
+        assert os.path.isdir(folder)
+        os.rmdir(folder)
+
+
+def test_run_tags_make_new_file_names_that_stay_sequences():
+    tags = {naming.new_run_tag() for _ in range(200)}
+    assert len(tags) == 200
+    tag = tags.pop()
+    single, frame = naming.volume_file_name("Cube", None, tag), naming.volume_file_name("Cube", 7, tag)
+    assert single == f"Cube_voxels_{tag}.vdb" and frame == f"Cube_voxels_{tag}_0007.vdb"
+    # Blender reads a sequence's frame from the last run of digits: it must be the frame.
+    assert re.search(r"(\d+)\.vdb$", frame).group(1) == "0007" and not re.search(r"\d\.vdb$", single)
+    for name in (single, frame, "Cube_voxels.vdb", "A_and_1_more_0badf00d_voxels_0001.vdb"):
+        assert naming.is_voxel_file(name), name
+    for name in ("notes.txt", "Cube.vdb", ".Cube_voxels.vdb.123.partial", "Cube_voxels.vdb.bak"):
+        assert not naming.is_voxel_file(name), name
 
 
 def test_half_voxel_shift_by_version():
@@ -101,3 +133,32 @@ def test_merge_meshes_offsets_indices():
     assert vertices.shape == (7, 3) and vertices.dtype == np.float32
     assert triangles.dtype == np.uint32
     np.testing.assert_array_equal(triangles, [[0, 1, 2], [3, 4, 5], [4, 5, 6]])
+
+
+def test_panel_hides_options_that_do_not_apply():
+    from hyvox_blender.core import panel_rules
+    assert panel_rules.option_applies("tessellation", "tessellation")
+    assert not panel_rules.option_applies("tessellation", "hybrid")
+    assert panel_rules.option_applies("hybrid", "hybrid") and not panel_rules.option_applies("hybrid", "cpu")
+    assert all(panel_rules.option_applies("gl", m) for m in panel_rules.GL_METHODS)
+    assert not panel_rules.option_applies("gl", "cpu")
+    assert panel_rules.option_applies("grid", "cpu") and panel_rules.option_applies("run", "reference")
+    software = panel_rules.gl_device_summary([{"index": 0, "name": "software", "software": True}])
+    gpu = panel_rules.gl_device_summary([{"index": 0, "name": "software", "software": True},
+                                         {"index": 1, "name": "H200", "software": False}])
+    assert software == {"name": "software", "software": True} and gpu == {"name": "H200", "software": False}
+    assert panel_rules.gl_device_summary([]) is None
+    assert "software" in panel_rules.method_note("hybrid", "hybrid", software)
+    assert panel_rules.method_note("hybrid", "hybrid", gpu) == "GPU: H200"
+    assert panel_rules.method_note("auto", "cpu", software) == "Auto: CPU here"
+    assert panel_rules.method_note("cpu", "cpu", software) is None
+
+
+def test_panel_summary_lines_are_short():
+    from hyvox_blender.core import panel_rules
+    record = {"volumes": [{"name": "Bunny", "voxel_counts": [13977], "dims": [64, 64, 50],
+                           "voxel_size": 0.0024328, "triangles": 69451, "method": "cpu", "frames": None}],
+              "timings_ms": {"total": 67.0}}
+    lines = panel_rules.summary_lines(record)
+    assert lines[0] == "Bunny" and "  13,977 voxels" in lines and lines[-1] == "Took 0.07 s"
+    assert max(len(line) for line in lines) <= 24

@@ -129,13 +129,48 @@ def test_cancel_from_main_thread(tmp_path):
     assert pipeline.start_next_frame()
     while pipeline.progress == 0.0:
         time.sleep(0.001)
-    assert pipeline.progress == pytest.approx(0.5)
+    assert pipeline.progress == pytest.approx(0.8 * 0.5)  # voxelizing is 80% of a group's share
     pipeline.cancel()
     pipeline.wait()
     with pytest.raises(CancelledError):
         pipeline.finish_frame()
     pipeline.discard()
     assert os.listdir(tmp_path) == []
+
+
+class HeldWriteModule(SlowModule):
+    """A voxelization that returns at once and a .vdb write that ignores the cancel token
+    and waits until the test releases it."""
+    def __init__(self):
+        self.entered, self.release = threading.Event(), threading.Event()
+
+    def voxelize(self, vertices, triangles, cancel=None, **kw):
+        module = self
+
+        class Grid:
+            voxel_size, origin, dims, stats, voxel_count = 1.0, (0, 0, 0), (1, 1, 1), {}, 1
+
+            def write_vdb(self, path, threads=0, cancel=None):
+                with open(path, "w") as f:
+                    f.write("staged")
+                module.entered.set()
+                assert module.release.wait(10)
+
+        return Grid()
+
+
+def test_abandon_does_not_wait_and_the_worker_deletes_what_it_staged(tmp_path):
+    module = HeldWriteModule()
+    pipeline = Pipeline(VoxelizeSettings(method="cpu"), str(tmp_path),
+                        exporter([Group("Cube", ["Cube"])]), module=module)
+    assert pipeline.start_next_frame()
+    assert module.entered.wait(10)
+    assert len(os.listdir(tmp_path)) == 1  # the staged file, mid-write
+    pipeline.abandon()                     # returns although the write is still held
+    assert not module.release.is_set() and pipeline.worker_busy()
+    module.release.set()
+    pipeline.wait()
+    assert os.listdir(tmp_path) == []      # the worker deleted it on its way out
 
 
 def test_failure_discards_earlier_frames(hyvox, tmp_path):

@@ -198,7 +198,7 @@ def test_generated_stubs_list_every_option():
 
 
 def test_docstring_and_cli_help_list_every_option(cli):
-    helptext = subprocess.run([str(cli), "--help"], capture_output=True, text=True, timeout=60).stdout
+    helptext = subprocess.run([str(cli), "voxelize", "--help"], capture_output=True, text=True, timeout=60).stdout
     for spec in hyvox.OPTIONS:
         assert f"    {spec.name} ({spec.type}" in hyvox.voxelize.__doc__
         assert f"  {spec.cli_flag}" in helptext and spec.help in helptext

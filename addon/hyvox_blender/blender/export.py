@@ -1,9 +1,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Evaluated meshes (modifiers, shape keys, constraints applied) in world space as numpy
-arrays. foreach_get with buffers of the exact RNA types (float32 co, uint32 indices)
+"""Evaluated meshes (modifiers, shape keys, constraints applied, instances included) in
+world space as numpy arrays. foreach_get with buffers of the exact RNA types (float32 co, uint32 indices)
 takes Blender's raw-copy path; other dtypes fall back to per-element RNA access, 5x
 slower. 4M triangles export in about 0.3 s here."""
-from typing import List, Optional, Tuple
+from typing import Dict, List, Optional, Tuple
 
 import bpy
 import numpy as np
@@ -13,12 +13,14 @@ from ..core.pipeline import Group, GroupMesh, merge_meshes
 
 # Object types whose evaluated geometry is (or converts to) a mesh.
 GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "FONT", "META"}
+# Types whose Geometry Nodes may make a mesh or instances (faces or not: the export tells).
+GENERATED_TYPES = {"CURVES", "POINTCLOUD"}
 
 
-def object_triangles(obj: bpy.types.Object, depsgraph) -> Tuple[np.ndarray, np.ndarray]:
-    """(vertices (N,3) float32 world space, triangles (M,3) uint32) of obj as evaluated."""
-    evaluated = obj.evaluated_get(depsgraph)
-    owned = obj.type != "MESH"
+def _mesh_arrays(evaluated: bpy.types.Object, matrix: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """(vertices (N,3) float32 transformed by matrix, triangles (M,3) uint32) of an evaluated
+    object (or instance)."""
+    owned = evaluated.type != "MESH"
     # A mesh object's evaluated data already is the evaluated mesh: no copy needed.
     mesh = evaluated.to_mesh() if owned else evaluated.data
     try:
@@ -34,7 +36,6 @@ def object_triangles(obj: bpy.types.Object, depsgraph) -> Tuple[np.ndarray, np.n
         if owned:
             evaluated.to_mesh_clear()
     vertices = vertices.reshape(-1, 3)
-    matrix = np.array(evaluated.matrix_world, dtype=np.float32)
     if not np.array_equal(matrix, np.eye(4, dtype=np.float32)):
         vertices = vertices @ matrix[:3, :3].T
         vertices += matrix[:3, 3]
@@ -42,23 +43,73 @@ def object_triangles(obj: bpy.types.Object, depsgraph) -> Tuple[np.ndarray, np.n
     return vertices, triangles.reshape(-1, 3)
 
 
+def object_triangles(obj: bpy.types.Object, depsgraph) -> Tuple[np.ndarray, np.ndarray]:
+    """(vertices (N,3) float32 world space, triangles (M,3) uint32) of obj as evaluated,
+    without its instances."""
+    evaluated = obj.evaluated_get(depsgraph)
+    return _mesh_arrays(evaluated, np.array(evaluated.matrix_world, dtype=np.float32))
+
+
+def evaluated_parts(names, depsgraph) -> Dict[str, List[Tuple[np.ndarray, np.ndarray]]]:
+    """For each object name: the world-space (vertices, triangles) of everything the depsgraph
+    evaluates for it: its own geometry and every instance it makes (collection instances,
+    instancing by vertices or faces, Geometry Nodes instances, nested ones), each with its
+    own world matrix. A name the depsgraph does not show (hidden there) is left out."""
+    wanted = set(names)
+    parts: Dict[str, List[Tuple[np.ndarray, np.ndarray]]] = {}
+    for instance in depsgraph.object_instances:
+        # An instance belongs to the object that made it (the top of a nested chain).
+        owner = instance.parent if instance.is_instance else instance.object
+        name = owner.original.name
+        if name not in wanted:
+            continue
+        found = parts.setdefault(name, [])
+        evaluated = instance.object  # valid only during this step of the iteration
+        # Curves, text, surfaces and metaballs come twice: as themselves and as the mesh
+        # they evaluate to (an instance of type MESH). Only meshes count, so each once.
+        if evaluated.type != "MESH":
+            continue
+        vertices, triangles = _mesh_arrays(evaluated, np.array(instance.matrix_world, dtype=np.float32))
+        if len(triangles):
+            found.append((vertices, triangles))
+    return parts
+
+
 def voxelizable(obj: bpy.types.Object) -> bool:
-    return obj.type in GEOMETRY_TYPES
+    """Geometry, or an object that makes instances (an empty instancing a collection)."""
+    instancing = obj.instance_type == "COLLECTION" and obj.instance_collection is not None
+    return obj.type in GEOMETRY_TYPES | GENERATED_TYPES or instancing
+
+
+RESULT_KEY = "hyvox_key"  # importer.KEY: a result names its sources
+
+
+def sources_of_results(objects) -> List[bpy.types.Object]:
+    """The objects with every selected hyvox result replaced by the objects it was made
+    from, so that Voxelize with the result selected (as a run leaves it) runs again."""
+    out = []
+    for obj in objects:
+        if RESULT_KEY in obj:
+            named = [bpy.data.objects.get(n) for n in str(obj[RESULT_KEY]).split("\n")]
+            out.extend(o for o in named if o is not None)
+        else:
+            out.append(obj)
+    return list(dict.fromkeys(out))  # first occurrence kept, order kept
 
 
 def pick_sources(objects, warn=None) -> List[bpy.types.Object]:
-    """The objects to voxelize; non-geometry objects are skipped with a warning, and an
-    empty result is an error."""
-    objects = list(objects)
+    """The objects to voxelize (a selected result stands for its sources); non-geometry
+    objects are skipped with a warning, and an empty result is an error."""
+    objects = sources_of_results(objects)
     if not objects:
         raise SelectionError("Select at least one mesh object to voxelize")
     sources = [o for o in objects if voxelizable(o)]
     skipped = [o.name for o in objects if not voxelizable(o)]
     if not sources:
         raise SelectionError("Nothing to voxelize: " + ", ".join(
-            f"{o.name} ({o.type.lower()}) is not a mesh" for o in objects[:3]))
+            f"{o.name} ({o.type.lower()}) has no geometry" for o in objects[:3]))
     if skipped and warn is not None:
-        warn("Skipped non-mesh objects: " + ", ".join(skipped))
+        warn("Skipped objects without geometry: " + ", ".join(skipped))
     return sources
 
 
@@ -68,27 +119,36 @@ def make_groups(sources, separate: bool, active: Optional[bpy.types.Object]) -> 
     if separate or len(names) == 1:
         return [Group(name, [name]) for name in names]
     active_name = active.name if active is not None else None
-    return [Group(naming.group_name(names, active_name), names)]
+    lead = active_name if active_name in names else sorted(names)[0]
+    return [Group(naming.group_name(names, active_name), names, lead)]
 
 
-def export_groups(groups: List[Group], depsgraph, warn=None) -> List[GroupMesh]:
+def export_groups(groups: List[Group], depsgraph, warn=None, fallback_depsgraph=None) -> List[GroupMesh]:
     """One GroupMesh per group; objects without faces are skipped with a warning, and a
-    group left without triangles is an error (the scene stays unchanged)."""
+    group left without triangles is an error (the scene stays unchanged). An object the
+    depsgraph leaves out (hidden in renders) is taken from fallback_depsgraph (the
+    viewport's) with a warning, or without one when there is no fallback."""
+    names = [name for group in groups for name in group.sources if name in bpy.data.objects]
+    parts = evaluated_parts(names, depsgraph)
+    hidden = [name for name in names if name not in parts]
+    if hidden and fallback_depsgraph is not None and warn is not None:
+        warn("Hidden in renders, voxelized as the viewport shows them: " + ", ".join(hidden))
+    for name in hidden:
+        obj = bpy.data.objects[name]
+        vertices, triangles = object_triangles(obj, fallback_depsgraph or depsgraph)
+        parts[name] = [(vertices, triangles)] if len(triangles) else []
     meshes = []
     empty = []
     for group in groups:
-        parts = []
+        found = []
         for name in group.sources:
-            obj = bpy.data.objects.get(name)
-            if obj is None:
+            if name not in parts:
                 continue
-            vertices, triangles = object_triangles(obj, depsgraph)
-            if len(triangles) == 0:
+            if not parts[name]:
                 empty.append(name)
-                continue
-            parts.append((vertices, triangles))
-        if parts:
-            vertices, triangles = merge_meshes(parts)
+            found.extend(parts[name])
+        if found:
+            vertices, triangles = merge_meshes(found)
             meshes.append(GroupMesh(group, vertices, triangles))
     if not meshes:
         raise SelectionError("Nothing to voxelize: " + ", ".join(empty) + " has no faces")

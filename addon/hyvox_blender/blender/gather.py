@@ -28,6 +28,10 @@ def used_values(context, op=None) -> dict:
             used["size_mode"] = "RESOLUTION"
     if not _op_set(op, "use_frame_range") and (_op_set(op, "frame_start") or _op_set(op, "frame_end")):
         used["use_frame_range"] = True
+    # A frame range nobody set is the scene's.
+    for name, scene_value in (("frame_start", context.scene.frame_start), ("frame_end", context.scene.frame_end)):
+        if not _op_set(op, name) and not scene_settings.is_property_set(name):
+            used[name] = scene_value
     return used
 
 
@@ -42,7 +46,8 @@ def gather(context, op=None):
     if prefs is not None:
         options["gl_device"] = prefs.gl_device_string
         options.update({name: getattr(prefs, name) for name in PREFERENCE_OPTIONS})
-    settings = VoxelizeSettings(method=used["method"], separate=used["separate"], frames=frames, **options)
+    settings = VoxelizeSettings(method=used["method"], separate=used["separate"], frames=frames,
+                                blocks=used["output"] == "BLOCKS", export_vox=used["export_vox"], **options)
     folder = used["output_dir"]
     folder = bpy.path.abspath(folder) if folder else naming.default_output_dir(bpy.data.filepath)
     override = prefs.alignment_fix if prefs is not None else "AUTO"

@@ -1,20 +1,25 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Volume objects for a run's results: a Volume data-block reading the .vdb (or the
 sequence), an object named "<source>_voxels" carrying the half-voxel correction, a
-Principled Volume material reading `density`. Re-running replaces the previous result of
-the same source and keeps the material the artist may have tweaked."""
-from typing import Dict, List
+Principled Volume material reading `density`.
+
+What a re-run replaces: every earlier volume made from any of the objects it voxelizes (so
+changing the grouping, or the selection, never leaves two volumes of one object). From the
+earlier volume of exactly the same sources the new one keeps the material, collections
+and the artist's location, rotation and scale (relative to the source when parented);
+from an overlapping one only the material and collections. By default the new volume is
+parented to its source (the active object of a group), so moving the source moves it; a
+frame sequence is not parented, as its voxels already follow the animation."""
+from typing import Dict, List, Optional
 
 import bpy
+from mathutils import Vector
 
 from ..core import alignment, naming
 from ..core.pipeline import GroupResult
+from . import blocks_object
 
-KEY = "hyvox_key"  # custom property: which sources a volume object came from
-
-
-def find_previous(key: str) -> List[bpy.types.Object]:
-    return [o for o in bpy.data.objects if o.type == "VOLUME" and o.get(KEY) == key]
+from .export import RESULT_KEY as KEY  # custom property: which sources a result came from
 
 
 def _file_path(path: str) -> str:
@@ -67,44 +72,102 @@ def _configure_volume(volume: bpy.types.Volume, result: GroupResult) -> None:
     volume.render.space = "OBJECT"
 
 
-def import_results(context, results: Dict[str, GroupResult], alignment_override: str = "AUTO"
-                   ) -> List[bpy.types.Object]:
-    """Create (or replace) one Volume object per result; returns them."""
+def _sources(obj: bpy.types.Object) -> set:
+    return set(str(obj.get(KEY, "")).split("\n")) - {""}
+
+
+def _replaced(sources: set) -> List[bpy.types.Object]:
+    """The results (volumes, blocks) a run of these sources replaces: those made from any of them."""
+    return [o for o in bpy.data.objects if KEY in o and _sources(o) & sources]
+
+
+class _Kept:
+    """What a new volume takes over from the one it replaces."""
+
+    def __init__(self, old: bpy.types.Object):
+        self.key = old[KEY]
+        self.sources = _sources(old)
+        self.kind = old.type
+        self.material = old.data.materials[0] if old.data is not None and old.data.materials else None
+        self.collections = list(old.users_collection)
+        # The offset the add-on set (not the artist); volumes of earlier versions did not
+        # record it: theirs was the half-voxel fix of their voxel size.
+        if "hyvox_offset" in old:
+            self.offset = Vector(old["hyvox_offset"])
+        else:
+            size = float(old.get("hyvox_voxel_size", 0.0))
+            self.offset = Vector(alignment.object_offset(size, bpy.app.version) if old.type == "VOLUME" else (0, 0, 0))
+        self.location = Vector(old.location)
+        self.rotation_mode = old.rotation_mode
+        self.rotation = (tuple(old.rotation_euler), tuple(old.rotation_quaternion), tuple(old.rotation_axis_angle))
+        self.scale = tuple(old.scale)
+
+    def apply_transform(self, obj: bpy.types.Object, offset) -> None:
+        """The artist's edits: the location less the offset the add-on had set (the
+        half-voxel fix of the old voxel size), plus the new one; rotation and scale as they were."""
+        obj.location = self.location - self.offset + Vector(offset)
+        obj.rotation_mode = self.rotation_mode
+        obj.rotation_euler, obj.rotation_quaternion, obj.rotation_axis_angle = self.rotation
+        obj.scale = self.scale
+
+
+def _remove(obj: bpy.types.Object) -> None:
+    data = obj.data
+    bpy.data.objects.remove(obj, do_unlink=True)
+    if data is not None and data.users == 0:
+        (bpy.data.meshes if isinstance(data, bpy.types.Mesh) else bpy.data.volumes).remove(data)
+
+
+def _parent_to(obj: bpy.types.Object, source: Optional[bpy.types.Object]) -> None:
+    """Parent keeping the world placement: the parent inverse is the source's matrix now."""
+    if source is None:
+        return
+    obj.parent = source
+    obj.matrix_parent_inverse = source.matrix_world.inverted()
+
+
+def import_results(context, results: Dict[str, GroupResult], alignment_override: str = "AUTO",
+                   parent_to_source: bool = True) -> List[bpy.types.Object]:
+    """Create one Volume object per result, replacing earlier ones (see the module's
+    docstring); returns them."""
+    all_sources = {name for result in results.values() for name in result.group.sources}
+    kept = []
+    for old in _replaced(all_sources):
+        kept.append(_Kept(old))
+        _remove(old)
+
     created = []
     for result in results.values():
         group = result.group
-        previous = find_previous(group.key)
-        material = None
-        collections = None
-        for old in previous:
-            if material is None and old.data is not None and old.data.materials:
-                material = old.data.materials[0]
-            if collections is None:
-                collections = list(old.users_collection)
-            old_data = old.data
-            bpy.data.objects.remove(old, do_unlink=True)
-            if old_data is not None and old_data.users == 0:
-                bpy.data.volumes.remove(old_data)
+        exact = next((k for k in kept if k.key == group.key), None)
+        overlapping = [k for k in kept if k.sources & set(group.sources)]
+        donor = exact or (overlapping[0] if overlapping else None)
 
-        name = naming.object_name(group.name)
-        volume = bpy.data.volumes.new(name)
-        _configure_volume(volume, result)
-        if material is None:
-            material = _make_material(name, result.voxel_size)
-        volume.materials.append(material)
-
-        obj = bpy.data.objects.new(name, volume)
-        obj.location = alignment.object_offset(result.voxel_size, bpy.app.version, alignment_override)
+        if result.blocks is not None:
+            material = donor.material if donor is not None and donor.kind == "MESH" else None
+            obj, offset = blocks_object.make_blocks_object(group.name, result, material)
+        else:
+            name = naming.object_name(group.name)
+            volume = bpy.data.volumes.new(name)
+            _configure_volume(volume, result)
+            material = donor.material if donor is not None and donor.kind == "VOLUME" else None
+            volume.materials.append(material or _make_material(name, result.voxel_size))
+            obj = bpy.data.objects.new(name, volume)
+            offset = alignment.object_offset(result.voxel_size, bpy.app.version, alignment_override)
+        obj.location = offset
+        obj["hyvox_offset"] = tuple(offset)
+        if exact is not None:
+            exact.apply_transform(obj, offset)
         obj[KEY] = group.key
         obj["hyvox_voxel_size"] = result.voxel_size
         obj["hyvox_method"] = result.method
-        if not collections:
-            source = bpy.data.objects.get(group.sources[0])
-            collections = list(source.users_collection) if source is not None else []
-        if not collections:
-            collections = [context.scene.collection]
-        for collection in collections:
+        source = bpy.data.objects.get(group.lead)
+        collections = list(donor.collections) if donor is not None else []
+        if not collections and source is not None:
+            collections = list(source.users_collection)
+        for collection in collections or [context.scene.collection]:
             collection.objects.link(obj)
+        if parent_to_source and not result.frames:
+            _parent_to(obj, source)
         created.append(obj)
     return created
-

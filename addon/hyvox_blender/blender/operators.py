@@ -8,10 +8,10 @@ import traceback
 
 import bpy
 
-from ..core import summary
+from ..core import naming, summary
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
-from . import export, importer, properties
+from . import export, importer, properties, render_depsgraph
 from .gather import gather
 
 # The last run's summary lines (shown in the panel) and record (for scripts).
@@ -29,7 +29,10 @@ class _Run:
         self.op = op
         sources = export.pick_sources(context.selected_objects, warn=self.warn)
         self.groups = export.make_groups(sources, settings.separate, context.view_layer.objects.active)
-        self.pipeline = Pipeline(settings, folder, self.export_frame)  # validates the settings
+        # New file names per run, so that undo never brings back a volume whose file a later
+        # run overwrote (farm chunks ask for fixed names to assemble one sequence).
+        run_tag = naming.new_run_tag() if op.unique_file_names else None
+        self.pipeline = Pipeline(settings, folder, self.export_frame, run_tag=run_tag)  # validates the settings
         # The redo panel shows, and a redo repeats, exactly what this run used.
         for name, value in used.items():
             setattr(op, name, value)
@@ -41,20 +44,47 @@ class _Run:
     def export_frame(self, frame):
         if frame is not None and frame != self.scene.frame_current:
             self.scene.frame_set(frame)
-        depsgraph = bpy.context.evaluated_depsgraph_get()
-        return export.export_groups(self.groups, depsgraph, warn=self.warn)
+        viewport = bpy.context.evaluated_depsgraph_get()
+        if self.used["evaluation"] == "VIEWPORT":
+            return export.export_groups(self.groups, viewport, warn=self.warn)
+        try:
+            return render_depsgraph.with_render_depsgraph(bpy.context, lambda depsgraph: export.export_groups(
+                self.groups, depsgraph, warn=self.warn, fallback_depsgraph=viewport))
+        except render_depsgraph.RenderEvaluationUnavailable as exc:
+            self.warn(f"Modifiers evaluated at viewport settings: no render evaluation ({exc})")
+            return export.export_groups(self.groups, viewport, warn=self.warn)
 
     def restore_frame(self):
         if self.scene.frame_current != self.original_frame:
             self.scene.frame_set(self.original_frame)
+
+    def show_results(self, context, objects):
+        """The new results selected, active and visible; the sources hidden if asked."""
+        layer = context.view_layer
+        for obj in layer.objects:
+            obj.select_set(False)
+        for obj in objects:
+            if obj.name in layer.objects:
+                obj.hide_set(False)
+                obj.select_set(True)
+        if objects and objects[0].name in layer.objects:
+            layer.objects.active = objects[0]
+        if self.used["hide_source"]:
+            for group in self.groups:
+                for name in group.sources:
+                    source = layer.objects.get(name)
+                    if source is not None:
+                        source.hide_set(True)
 
     def finish(self, context):
         """Commit the files and import them as volumes (main thread)."""
         pipeline = self.pipeline
         pipeline.commit()
         start = time.perf_counter()
-        objects = importer.import_results(context, pipeline.results, self.override)
+        objects = importer.import_results(context, pipeline.results, self.override,
+                                          parent_to_source=self.used["parent_to_source"])
         pipeline.timings.import_ms += (time.perf_counter() - start) * 1000.0
+        self.show_results(context, objects)
         lines = summary.long_report(pipeline.results, pipeline.timings)
         last_summary[:] = lines
         last_run_record.clear()
@@ -75,7 +105,11 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
     # Keyword arguments override the scene's settings for one call (unset ones don't); the
     # same definitions as the Scene's, from the options schema (limits as soft limits: see
     # properties.schema_property).
-    __annotations__ = properties.scene_and_operator_properties(operator=True)
+    __annotations__ = dict(
+        properties.scene_and_operator_properties(operator=True),
+        unique_file_names=bpy.props.BoolProperty(
+            name="New File Names", default=True, options={"HIDDEN", "SKIP_SAVE"},
+            description="Write this run's files under new names (off: rewrite the same names each run)"))
 
     _active = None  # the running modal operator's _Run: one run at a time
 
@@ -139,9 +173,10 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
         run = self._run
         pipeline = run.pipeline
         if event.type == "ESC" and event.value == "PRESS":
-            pipeline.cancel()
-            pipeline.wait()  # the native interrupter stops within milliseconds
-            pipeline.discard()
+            # Not waiting for the worker: whatever stage it is in (the start before any
+            # progress, voxelizing, writing the .vdb), the operator ends now; the worker
+            # stops at its next check and deletes what it staged.
+            pipeline.abandon()
             run.restore_frame()
             self._end(context)
             self.report({"WARNING"}, "Voxelization cancelled")

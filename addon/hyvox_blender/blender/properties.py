@@ -54,6 +54,45 @@ def _description(spec):
     return f"{text} [{spec.unit}]" if spec.unit else text
 
 
+# Tooltips start in plain words; the schema's help (with the term) follows.
+PLAIN_WORDS = {
+    "resolution": "How many voxels fit along the longest side",
+    "voxel_size": "How big one voxel is",
+    "mode": "Which voxels count as touched by the surface",
+    "tess_gamma": "How hard the tessellation tries not to miss voxels: higher misses fewer, costs more",
+    "hybrid_cutoff": "Triangles larger than this on screen are rasterized, smaller ones get a thread each",
+    "padding": "Empty voxels around the object",
+}
+
+
+def method_items():
+    """Auto first, then the schema's methods; the GL ones say which device they would use
+    here and are marked when that device is software (slower than the CPU method)."""
+    from ..core import panel_rules
+    try:
+        device = panel_rules.gl_device_summary(backend.load_module().gl_devices())
+    except Exception:  # no EGL here at all
+        device = None
+    labels = CHOICE_LABELS["method"]
+    items = []
+    for number, choice in enumerate([backend.AUTO_METHOD] + list(option_spec("method").choices)):
+        name, description = labels.get(choice, (choice.title(), choice))
+        icon = "NONE"
+        if choice in panel_rules.GL_METHODS:
+            name = name.replace(" (GPU)", "")
+            if device is None:
+                description += ". No OpenGL 4.5 device here: it will fail"
+                icon = "ERROR"
+            elif device["software"]:
+                description += ". Here it runs on the software GL device (llvmpipe), slower than CPU"
+                icon = "ERROR"
+            else:
+                description += f". Runs on {device['name']}"
+                icon = "SHADING_SOLID"
+        items.append((choice, name, description, icon, number))
+    return items
+
+
 def schema_property(name, operator=False, default=None, soft=None, extra_items=(), **kw):
     """A bpy property for schema option `name`. The Scene's has the schema's limits as hard
     limits. The operator's (operator=True) has them as soft limits only, so that a script's
@@ -63,7 +102,10 @@ def schema_property(name, operator=False, default=None, soft=None, extra_items=(
     items before the schema's choices."""
     spec = option_spec(name)
     value = spec.default if default is None else default
-    common = dict(name=spec.label, description=_description(spec), **kw)
+    description = _description(spec)
+    if name in PLAIN_WORDS:
+        description = f"{PLAIN_WORDS[name]} ({description[:1].lower() + description[1:]})"
+    common = dict(name=spec.label, description=description, **kw)
     if spec.type in ("int", "float"):
         low, high = hard_limits(spec)
         soft_low, soft_high = soft if soft is not None else (low, high)
@@ -89,6 +131,13 @@ def schema_property(name, operator=False, default=None, soft=None, extra_items=(
     raise TypeError(f"option {name} ({spec.type}) has no Blender property")
 
 
+def _scene_range_on_first_use(settings, context):
+    """Turning the frame range on starts from the scene's range, unless one was set."""
+    if settings.use_frame_range and not (settings.is_property_set("frame_start")
+                                         or settings.is_property_set("frame_end")):
+        settings.frame_start, settings.frame_end = context.scene.frame_start, context.scene.frame_end
+
+
 # The voxelize settings an artist sets per scene; the operator declares the same names.
 def scene_and_operator_properties(operator=False):
     skip = {"options": {"SKIP_SAVE"}} if operator else {}
@@ -97,8 +146,9 @@ def scene_and_operator_properties(operator=False):
                                   items=SIZE_ITEMS, default="RESOLUTION", **skip),
         "resolution": schema_property("resolution", operator, soft=(8, 2048), **skip),
         "voxel_size": schema_property("voxel_size", operator, default=0.05, soft=(1e-4, 10.0), **skip),
-        "method": schema_property("method", operator, default=backend.AUTO_METHOD,
-                                  extra_items=(backend.AUTO_METHOD,), **skip),
+        "method": EnumProperty(name="Method", items=method_items(), default=backend.AUTO_METHOD,
+                               description="Which voxelizer runs (" + _description(option_spec("method"))[:1].lower()
+                               + _description(option_spec("method"))[1:] + ")", **skip),
         "mode": schema_property("mode", operator, **skip),
         "tess_gamma": schema_property("tess_gamma", operator, soft=(0.5, 4.0), **skip),
         "hybrid_cutoff": schema_property("hybrid_cutoff", operator, soft=(-1.0, 4096.0), **skip),
@@ -108,8 +158,28 @@ def scene_and_operator_properties(operator=False):
         "output_dir": StringProperty(name="Output Folder", description="Where the .vdb files go; empty: a "
                                      "hyvox_cache folder next to the .blend, or the temp folder if unsaved",
                                      default="", subtype="DIR_PATH", **skip),
+        "output": EnumProperty(name="Output", description="What the voxels become in the scene",
+                               items=[("VOLUME", "Volume", "An OpenVDB volume object (renders as fog or smoke)"),
+                                      ("BLOCKS", "Blocks", "A mesh of one cube per voxel with only the outer faces "
+                                                 "(one frame)")],
+                               default="VOLUME", **skip),
+        "export_vox": BoolProperty(name="MagicaVoxel File", description="Also write the voxels as a MagicaVoxel "
+                                   ".vox file next to the .vdb (split into models of at most 256 per side; at "
+                                   "most 255 colours)", default=False, **skip),
+        "parent_to_source": BoolProperty(name="Parent to Source", description="Parent the volume to the "
+                                         "object it was made from, so moving that object moves it (not for frame "
+                                         "ranges: their voxels already follow the animation)", default=True, **skip),
+        "evaluation": EnumProperty(name="Modifiers", description="Which settings modifiers and Geometry "
+                                   "Nodes are evaluated at (Subdivision levels, Simplify, Is Viewport)",
+                                   items=[("RENDER", "Render", "As the render shows the scene (the final result)"),
+                                          ("VIEWPORT", "Viewport", "As the viewport shows it (faster to evaluate)")],
+                                   default="RENDER", **skip),
+        "hide_source": BoolProperty(name="Hide Source", description="Hide the objects a run voxelized, so the "
+                                    "result is seen on its own", default=False, **skip),
         "use_frame_range": BoolProperty(name="Frame Range", description="Voxelize every frame of a range "
-                                        "into a .vdb sequence", default=False, **skip),
+                                        "into a .vdb sequence (the scene's range unless you set one)",
+                                        default=False, update=None if operator else _scene_range_on_first_use,
+                                        **skip),
         "frame_start": IntProperty(name="Start", description="First frame of the sequence", default=1,
                                    min=0, subtype="TIME", **skip),
         "frame_end": IntProperty(name="End", description="Last frame of the sequence", default=250,

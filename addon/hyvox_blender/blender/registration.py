@@ -2,9 +2,9 @@
 """Register every class and hook of the bpy layer, in dependency order."""
 import bpy
 
-from . import operators, properties, ui
+from . import clean_files, file_handlers, operators, properties, ui
 
-_CLASSES = properties.CLASSES + operators.CLASSES + ui.CLASSES
+_CLASSES = properties.CLASSES + operators.CLASSES + clean_files.CLASSES + ui.CLASSES
 
 
 def register():
@@ -12,9 +12,11 @@ def register():
         bpy.utils.register_class(cls)
     properties.register()
     operators.register()
+    file_handlers.register()
 
 
 def unregister():
+    file_handlers.unregister()
     operators.unregister()
     properties.unregister()
     for cls in reversed(_CLASSES):

@@ -1,51 +1,138 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The 3D View sidebar panel (tab "Voxelize")."""
+"""The 3D View sidebar panel (tab "Voxelize"), laid out like Blender's own Remesh and Mesh
+to Volume panels: the main choices first, then the sub-panels Output, Animation and
+Advanced (closed by default), short labels (the tooltips say the rest), options that do
+not apply to the chosen method hidden, and the last run's summary in short lines."""
 import bpy
 
-from . import operators
+from ..core import backend, panel_rules
+from . import operators, properties
 
 
-class VIEW3D_PT_hyvox_voxelize(bpy.types.Panel):
-    bl_label = "Voxelize"
+def _resolved_method(settings) -> str:
+    if settings.method != backend.AUTO_METHOD:
+        return settings.method
+    try:
+        module = backend.load_module()
+    except Exception:
+        return "cpu"
+    # The same probe the run uses (cached after its first call).
+    return "hybrid" if backend.gl_available(module, "") else "cpu"
+
+
+_device_cache = []
+
+
+def _gl_device():
+    if not _device_cache:
+        try:
+            _device_cache.append(panel_rules.gl_device_summary(backend.load_module().gl_devices()))
+        except Exception:
+            _device_cache.append(None)
+    return _device_cache[0]
+
+
+def _applies(name, method) -> bool:
+    return panel_rules.option_applies(properties.option_spec(name).group, method)
+
+
+class _HyvoxPanel:
     bl_space_type = "VIEW_3D"
     bl_region_type = "UI"
     bl_category = "Voxelize"
     bl_context = "objectmode"
 
-    def draw(self, context):
+    def layout_split(self):
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
-        settings = context.scene.hyvox
+        return layout
 
+
+class VIEW3D_PT_hyvox_voxelize(_HyvoxPanel, bpy.types.Panel):
+    bl_label = "Voxelize"
+
+    def draw(self, context):
+        layout = self.layout_split()
+        settings = context.scene.hyvox
         col = layout.column()
-        col.prop(settings, "size_mode", expand=True)
+        col.prop(settings, "size_mode")
         if settings.size_mode == "RESOLUTION":
             col.prop(settings, "resolution")
         else:
-            col.prop(settings, "voxel_size")
+            col.prop(settings, "voxel_size", text="Size")
         col.prop(settings, "method")
+        method = _resolved_method(settings)
+        note = panel_rules.method_note(settings.method, method, _gl_device())
+        if note:
+            software = settings.method in panel_rules.GL_METHODS and (_gl_device() or {}).get("software", True)
+            row = col.row()
+            row.alignment = "RIGHT"
+            row.label(text=note, icon="ERROR" if software else "INFO")
         col.prop(settings, "mode")
-        if settings.method == "tessellation":
-            col.prop(settings, "tess_gamma")
-        if settings.method in {"hybrid", "auto"}:
-            col.prop(settings, "hybrid_cutoff")
-        col.prop(settings, "padding")
-        col.prop(settings, "separate")
-        col.prop(settings, "output_dir")
-
-        col = layout.column(heading="Animation")
-        col.prop(settings, "use_frame_range")
-        sub = col.column(align=True)
-        sub.enabled = settings.use_frame_range
-        sub.prop(settings, "frame_start")
-        sub.prop(settings, "frame_end")
+        if _applies("tess_gamma", method):
+            col.prop(settings, "tess_gamma", text="Gamma")
+        col.prop(settings, "output", text="Output")
 
         layout.operator(operators.OBJECT_OT_hyvox_voxelize.bl_idname, icon="VOLUME_DATA")
-        if operators.last_summary:
+        record = operators.last_run_record
+        if record.get("volumes"):
             box = layout.box()
-            for line in operators.last_summary:
-                box.label(text=line)
+            column = box.column(align=True)
+            for line in panel_rules.summary_lines(record):
+                column.label(text=line)
 
 
-CLASSES = (VIEW3D_PT_hyvox_voxelize,)
+class VIEW3D_PT_hyvox_output(_HyvoxPanel, bpy.types.Panel):
+    bl_label = "Output"
+    bl_parent_id = "VIEW3D_PT_hyvox_voxelize"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout_split()
+        settings = context.scene.hyvox
+        col = layout.column(heading="Volumes")
+        col.prop(settings, "separate", text="Per Object")
+        col.prop(settings, "parent_to_source", text="Parent")
+        col.prop(settings, "hide_source", text="Hide Source")
+        col = layout.column(heading="Write")
+        col.prop(settings, "export_vox", text=".vox File")
+        layout.prop(settings, "output_dir", text="Folder")
+        layout.operator("wm.hyvox_clean_voxel_files", text="Clean Unused Files", icon="TRASH")
+
+
+class VIEW3D_PT_hyvox_animation(_HyvoxPanel, bpy.types.Panel):
+    bl_label = "Animation"
+    bl_parent_id = "VIEW3D_PT_hyvox_voxelize"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.hyvox, "use_frame_range", text="")
+
+    def draw(self, context):
+        layout = self.layout_split()
+        settings = context.scene.hyvox
+        col = layout.column(align=True)
+        col.enabled = settings.use_frame_range
+        col.prop(settings, "frame_start", text="Start")
+        col.prop(settings, "frame_end", text="End")
+
+
+class VIEW3D_PT_hyvox_advanced(_HyvoxPanel, bpy.types.Panel):
+    bl_label = "Advanced"
+    bl_parent_id = "VIEW3D_PT_hyvox_voxelize"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout_split()
+        settings = context.scene.hyvox
+        method = _resolved_method(settings)
+        col = layout.column()
+        col.prop(settings, "padding")
+        col.prop(settings, "evaluation", text="Modifiers")
+        if _applies("hybrid_cutoff", method):
+            col.prop(settings, "hybrid_cutoff", text="Cutoff")
+
+
+CLASSES = (VIEW3D_PT_hyvox_voxelize, VIEW3D_PT_hyvox_output, VIEW3D_PT_hyvox_animation,
+           VIEW3D_PT_hyvox_advanced)

@@ -119,3 +119,11 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "Vox
         if isinstance(exc, (ValueError, RuntimeError, TypeError, OSError)):
             raise HyvoxError(f"{method}: {exc}") from exc
         raise
+
+
+def voxel_colors(grid) -> Optional[np.ndarray]:
+    """The grid's per-voxel linear colours (K,3) in the order of grid.coords(), or None.
+    The module has no colour grid yet (issue 12 adds one); once it does, this is the one
+    place that reads it, and Blocks and .vox pick the colours up."""
+    colors = getattr(grid, "colors", None)
+    return np.asarray(colors(), dtype=np.float32) if callable(colors) else None

@@ -3,6 +3,7 @@
 and replaces its previous result instead of piling up copies."""
 import os
 import re
+import secrets
 import tempfile
 import zlib
 from typing import Optional, Sequence
@@ -16,11 +17,30 @@ def _clean(name: str) -> str:
     return re.sub(r"[^A-Za-z0-9._-]+", "_", name).strip("._") or "volume"
 
 
-def volume_file_name(source_name: str, frame: Optional[int] = None) -> str:
-    stem = _clean(source_name) + VOXELS_SUFFIX  # ends in a letter: no stray frame number
+def volume_file_name(source_name: str, frame: Optional[int] = None, run_tag: Optional[str] = None) -> str:
+    """Name_voxels[_TAG][_0001].vdb. The run tag (new_run_tag) makes every run's files new
+    ones, so an undo step that brings back an earlier volume finds its own file intact."""
+    stem = _clean(source_name) + VOXELS_SUFFIX
+    if run_tag:
+        stem += "_" + run_tag  # ends in a letter: no stray frame number
     if frame is None:
         return stem + ".vdb"
     return f"{stem}_{frame:0{FRAME_DIGITS}d}.vdb"
+
+
+def new_run_tag() -> str:
+    """A short tag unique to one run: 'r' + 6 random hex digits + 'x' (ends in a letter:
+    Blender takes a sequence's frame number from the last digits of the name)."""
+    return f"r{secrets.token_hex(3)}x"
+
+
+# Files a run writes (with or without a run tag, single or a frame of a sequence); the
+# only files "Clean unused voxel files" may delete.
+VOXEL_FILE = re.compile(r".+" + VOXELS_SUFFIX + r"(_r[0-9a-f]{6}x)?(_\d+)?\.(vdb|vox)")
+
+
+def is_voxel_file(name: str) -> bool:
+    return VOXEL_FILE.fullmatch(name) is not None
 
 
 def result_stem(group_name: str, key: str, sources: int) -> str:
@@ -58,10 +78,24 @@ def group_key(source_names: Sequence[str]) -> str:
     return "\n".join(sorted(source_names))
 
 
+_unsaved_dir: Optional[str] = None
+
+
+def unsaved_output_dir(create: bool = True) -> Optional[str]:
+    """This session's own folder for the results of a file not saved yet, made once per
+    session with mkdtemp: two Blender sessions never write into each other's folder. On the
+    first save the add-on moves its files next to the .blend. None if not made yet and
+    create is False."""
+    global _unsaved_dir
+    if (_unsaved_dir is None or not os.path.isdir(_unsaved_dir)) and create:
+        _unsaved_dir = tempfile.mkdtemp(prefix=CACHE_FOLDER + "_unsaved_")
+    return _unsaved_dir
+
+
 def default_output_dir(blend_path: str) -> str:
-    """A cache folder next to the .blend (hyvox_cache/<blend name>/), or in the temp folder
-    for unsaved files."""
+    """A cache folder next to the .blend (hyvox_cache/<blend name>/), or this session's own
+    temporary folder for an unsaved file."""
     if blend_path:
         folder, name = os.path.split(os.path.abspath(blend_path))
         return os.path.join(folder, CACHE_FOLDER, os.path.splitext(name)[0])
-    return os.path.join(tempfile.gettempdir(), CACHE_FOLDER, "unsaved")
+    return unsaved_output_dir()

@@ -11,7 +11,8 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import backend, naming
+from . import backend, naming, vox
+from .blocks import BlocksMesh, blocks_mesh
 from .errors import CancelledError, HyvoxError
 from .settings import VoxelizeSettings
 
@@ -21,6 +22,10 @@ class Group:
     """What becomes one Volume object: one source object, or the whole selection."""
     name: str
     sources: List[str]
+    lead: str = ""  # the source the volume is parented to (default: the first)
+
+    def __post_init__(self):
+        self.lead = self.lead or self.sources[0]
 
     @property
     def key(self) -> str:
@@ -46,6 +51,8 @@ class GroupResult:
     triangles: int = 0
     method: str = ""
     stats: dict = field(default_factory=dict)  # of the last frame
+    blocks: Optional[BlocksMesh] = None  # settings.blocks: the blocks of the (one) frame
+    vox_files: List[str] = field(default_factory=list)  # settings.export_vox: one per frame
 
 
 @dataclass
@@ -77,9 +84,12 @@ ExportFrame = Callable[[Optional[int]], List[GroupMesh]]
 
 class Pipeline:
     def __init__(self, settings: VoxelizeSettings, output_dir: str, export_frame: ExportFrame,
-                 module=None):
+                 module=None, run_tag: Optional[str] = None):
+        """run_tag (naming.new_run_tag): this run's files get new names, never an earlier
+        run's; None: fixed names, rewritten by each run (farm chunks that assemble)."""
         self.settings = settings.validate()
         self.output_dir = output_dir
+        self.run_tag = run_tag
         self.export_frame = export_frame
         self.module = module if module is not None else backend.load_module()
         self.method = backend.resolve_method(self.module, settings)
@@ -91,9 +101,14 @@ class Pipeline:
         self._groups_in_frame = 1
         self._group_index = 0
         self._token = None
+        self._stage = 0  # 0 voxelize, 1 write (for progress)
         self._cancelled = False
         self._thread: Optional[threading.Thread] = None
         self._error: Optional[BaseException] = None
+        # abandon(): the caller has stopped waiting; the worker deletes what it staged.
+        self._lock = threading.Lock()
+        self._abandoned = False
+        self._worker_running = False
 
     # -- driving the run --------------------------------------------------------------
     def run(self) -> Dict[str, GroupResult]:
@@ -116,6 +131,7 @@ class Pipeline:
         self._error = None
         self._thread = threading.Thread(target=self._work_guarded, args=(meshes,),
                                         name="hyvox-voxelize", daemon=True)
+        self._worker_running = True
         self._thread.start()
         return True
 
@@ -137,6 +153,16 @@ class Pipeline:
         if token is not None:
             token.cancel()
 
+    def abandon(self) -> None:
+        """Cancel without waiting (Esc): whatever stage the worker is in, the caller goes
+        on at once; the files it staged are deleted when it ends (now, if none runs)."""
+        self.cancel()
+        with self._lock:
+            self._abandoned = True
+            running = self._worker_running
+        if not running:
+            self.discard()
+
     def wait(self) -> None:
         if self._thread is not None:
             self._thread.join()
@@ -147,7 +173,10 @@ class Pipeline:
         frames = max(len(self.frames), 1)
         groups = max(self._groups_in_frame, 1)
         done_frames = max(self._frame_index - 1, 0) if self.worker_busy() else self._frame_index
-        within = (self._group_index + backend.token_progress(self._token)) / groups
+        # Each group: voxelizing is the first 80% of its share, writing the last 20%.
+        stage_share = (0.8 * backend.token_progress(self._token) if self._stage == 0
+                       else 0.8 + 0.2 * backend.token_progress(self._token))
+        within = (self._group_index + stage_share) / groups
         if not self.worker_busy():
             within = 0.0
         return min((done_frames + within) / frames, 1.0)
@@ -192,13 +221,18 @@ class Pipeline:
 
     def _final_path(self, group: Group, frame: Optional[int]) -> str:
         stem = naming.result_stem(group.name, group.key, len(group.sources))
-        return os.path.join(self.output_dir, naming.volume_file_name(stem, frame))
+        return os.path.join(self.output_dir, naming.volume_file_name(stem, frame, self.run_tag))
 
     def _work_guarded(self, meshes: List[GroupMesh]) -> None:
         try:
             self._work(meshes)
         except BaseException as exc:  # handed to the main thread by finish_frame()
             self._error = exc
+        finally:
+            with self._lock:
+                self._worker_running = False
+                if self._abandoned:
+                    self.discard()
 
     def _work(self, meshes: List[GroupMesh]) -> None:
         frame = self.frames[self._frame_index - 1]
@@ -229,12 +263,26 @@ class Pipeline:
             final = self._final_path(mesh.group, frame)
             staging = naming.staging_path(final)
             start = time.perf_counter()
+            # A token of its own: the write (grid build, then the bytes) stops on Esc too,
+            # and its progress restarts from 0 for the progress bar's second half.
+            self._token = backend.make_token(self.module)
+            self._stage = 1
+            if self._cancelled:
+                raise CancelledError("voxelization cancelled")
             try:
-                grid.write_vdb(staging, threads=int(self.settings.options.get("threads", 0)))
+                grid.write_vdb(staging, threads=int(self.settings.options.get("threads", 0)), cancel=self._token)
+            except self.module.Cancelled as exc:
+                raise CancelledError("voxelization cancelled") from exc
             except (OSError, RuntimeError, ValueError) as exc:
                 raise HyvoxError(f"cannot write {final}: {exc}") from exc
-            self.timings.write_ms += (time.perf_counter() - start) * 1000.0
+            finally:
+                self._stage = 0
             self._staged.append((staging, final))
+            if self.settings.blocks or self.settings.export_vox:
+                if self._cancelled:
+                    raise CancelledError("voxelization cancelled")
+                self._blocks_and_vox(grid, result, final)
+            self.timings.write_ms += (time.perf_counter() - start) * 1000.0
 
             result.files.append(final)
             if frame is not None:
@@ -247,3 +295,20 @@ class Pipeline:
             result.triangles = int(len(mesh.triangles))
         self._group_index = len(meshes)
 
+
+    def _blocks_and_vox(self, grid, result: GroupResult, final_vdb: str) -> None:
+        """The other outputs of the same voxels: the blocks mesh (imported on the main
+        thread) and the .vox file (staged like the .vdb)."""
+        ijk = grid.coords()
+        colors = backend.voxel_colors(grid)
+        if self.settings.blocks:
+            result.blocks = blocks_mesh(ijk, float(grid.voxel_size), tuple(grid.origin), colors)
+        if self.settings.export_vox:
+            final = os.path.splitext(final_vdb)[0] + ".vox"
+            staging = naming.staging_path(final)
+            try:
+                vox.write_vox(staging, ijk, colors)
+            except (OSError, ValueError) as exc:
+                raise HyvoxError(f"cannot write {final}: {exc}") from exc
+            self._staged.append((staging, final))
+            result.vox_files.append(final)

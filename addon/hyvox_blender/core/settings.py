@@ -14,10 +14,13 @@ class VoxelizeSettings:
     by their schema names (hyvox.OPTIONS); an option left out takes the native default."""
 
     def __init__(self, method: str = AUTO_METHOD, separate: bool = False,
-                 frames: Optional[List[int]] = None, **options: Any):
+                 frames: Optional[List[int]] = None, blocks: bool = False, export_vox: bool = False,
+                 **options: Any):
         self.method = method
         self.separate = separate          # one volume per object instead of one for the selection
         self.frames = frames              # None: the current frame only, no sequence
+        self.blocks = blocks              # also build the blocks mesh (core/blocks.py)
+        self.export_vox = export_vox      # also write a MagicaVoxel .vox beside each .vdb
         self.options: Dict[str, Any] = options
 
     @property
@@ -43,6 +46,8 @@ class VoxelizeSettings:
         if self.frames is not None:
             if not self.frames:
                 raise SettingsError("the frame range is empty")
+            if self.blocks:
+                raise SettingsError("Blocks output makes one mesh of one frame: turn off the frame range")
             if min(self.frames) < 0:
                 # Blender reads a sequence's frame number from the file name's digits,
                 # which cannot carry a sign.

@@ -11,8 +11,9 @@ def describe_result(result: GroupResult) -> str:
     frames = ""
     if result.frames:
         frames = f", frames {result.frames[0]}-{result.frames[-1]} ({len(result.frames)} files)"
+    blocks = f", blocks of {len(result.blocks.faces):,} faces" if result.blocks is not None else ""
     return (f"{result.group.name}: {voxels:,} voxels, grid {dims}, voxel size "
-            f"{result.voxel_size:.6g}, {result.triangles:,} triangles, {result.method}{frames}")
+            f"{result.voxel_size:.6g}, {result.triangles:,} triangles, {result.method}{frames}{blocks}")
 
 
 def describe_timings(timings: Timings) -> str:
@@ -23,9 +24,11 @@ def describe_timings(timings: Timings) -> str:
 
 def short_report(results: Dict[str, GroupResult], timings: Timings) -> str:
     """One line for the status bar / Info editor."""
-    voxels = sum(sum(r.voxel_counts) for r in results.values())
-    names = ", ".join(r.group.name for r in results.values())
-    return f"Voxelized {names}: {voxels:,} voxels in {timings.total_ms:.0f} ms"
+    made = []
+    for r in results.values():
+        kind = "blocks" if r.blocks is not None else ("volume sequence" if r.frames else "volume")
+        made.append(f"{r.group.name} {kind} of {sum(r.voxel_counts):,} voxels")
+    return f"Made {', '.join(made)} in {timings.total_ms / 1000.0:.2f} s"
 
 
 def long_report(results: Dict[str, GroupResult], timings: Timings) -> List[str]:
@@ -46,7 +49,8 @@ def as_dict(results: Dict[str, GroupResult], timings: Timings) -> dict:
                 "name": r.group.name, "sources": r.group.sources, "files": r.files,
                 "frames": r.frames, "voxel_size": r.voxel_size, "origin": list(r.origin),
                 "dims": list(r.dims), "voxel_counts": r.voxel_counts,
-                "triangles": r.triangles, "method": r.method,
+                "triangles": r.triangles, "method": r.method, "vox_files": r.vox_files,
+                "blocks_faces": len(r.blocks.faces) if r.blocks is not None else None,
                 "stats": {k: v for k, v in r.stats.items() if isinstance(v, (int, float, str, list, dict))},
             }
             for r in results.values()

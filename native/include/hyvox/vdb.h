@@ -24,8 +24,8 @@ namespace hyvox {
 // everything was written. On any failure the temporary file is removed, an existing file
 // at `path` is left as it was, and InvalidInput (bad path) or ResourceError (I/O failure)
 // is thrown. A grid that would not fit the run's memory budget (the result's options), with
-// the result it is made from, is refused before it is built (ResourceError). The grids are
-// built leaf by leaf on up to `threads` cores (0 = all), like
+// the result it is made from, is refused before it is built (ResourceError). The file is
+// serialized leaf by leaf on up to `threads` cores (0 = all; src/io/vdb_direct_writer.h), like
 // VoxelizeOptions. `interrupter` (may be null) sees the progress (building the grids 0-90,
 // writing 90-100) and can cancel until the file is being written (hyvox::Cancelled, nothing
 // written).

@@ -214,6 +214,55 @@ public:
 
     std::string where() const { return ""; }
 
+    // Fast paths for the records almost every binary PLY holds, in the host's byte order.
+    // Each reads records while they are exactly of that form and valid, and stops before the
+    // first that is not: the general per-value path then reads that one (and reports any
+    // error in it), so both paths accept and refuse the same files.
+
+    // Vertices of `stride` bytes whose x, y, z are float32 at byte offsets xyz[0..2] and, when
+    // `rgba` is non-null, whose colour channels are uint8 at rgba[0..3] (rgba[3] < 0: no alpha,
+    // 1). Channels are converted as the per-value path converts them: byte / 255 in double.
+    std::uint64_t vertexRecords(std::uint64_t count, std::size_t stride, const std::size_t xyz[3], const int* rgba,
+                                std::vector<float>& positions, std::vector<float>& colors) {
+        if (swap_) return 0;
+        const std::uint64_t n = std::min<std::uint64_t>(count, remaining() / stride);
+        const std::size_t first = positions.size(), first_color = colors.size();
+        positions.resize(first + 3 * n);
+        if (rgba) colors.resize(first_color + 4 * n);
+        float* to = positions.data() + first;
+        float* color = rgba ? colors.data() + first_color : nullptr;
+        for (std::uint64_t i = 0; i < n; ++i, pos_ += stride, to += 3) {
+            for (int a = 0; a < 3; ++a) std::memcpy(to + a, pos_ + xyz[a], sizeof(float));
+            if (!rgba) continue;
+            for (int c = 0; c < 4; ++c, ++color)
+                *color = rgba[c] < 0 ? 1.0f : float(double(static_cast<unsigned char>(pos_[rgba[c]])) / 255.0);
+        }
+        return n;
+    }
+
+    // Faces of one list: a uint8 count of 3, then three 32-bit indices below vertex_count
+    // (signed ones are negative when they are at least 2^31 as unsigned, so one unsigned
+    // compare refuses both while vertex_count < 2^31).
+    std::uint64_t triangles(std::uint64_t count, std::uint32_t vertex_count, std::vector<std::uint32_t>& out) {
+        constexpr std::size_t kRecord = 1 + 3 * sizeof(std::uint32_t);
+        if (swap_ || vertex_count >= (1u << 31)) return 0;
+        const std::uint64_t n = std::min<std::uint64_t>(count, remaining() / kRecord);
+        const std::size_t first = out.size();
+        out.resize(first + 3 * n);
+        std::uint32_t* to = out.data() + first;
+        std::uint64_t f = 0;
+        for (; f < n; ++f, pos_ += kRecord, to += 3) {
+            std::uint32_t i[3];
+            std::memcpy(i, pos_ + 1, sizeof i);
+            if (static_cast<unsigned char>(pos_[0]) != 3 || i[0] >= vertex_count || i[1] >= vertex_count ||
+                i[2] >= vertex_count)
+                break;
+            std::memcpy(to, i, sizeof i);
+        }
+        out.resize(first + 3 * f);
+        return f;
+    }
+
 private:
     template <typename T>
     static double load(const unsigned char* bytes) {
@@ -391,7 +440,31 @@ private:
         if (uvs) mesh_.uvs.reserve(2 * e.count);
         std::vector<double> values(e.properties.size(), 0.0);
         auto channel = [&](int p) { return float(values[p] / integerMax(e.properties[p].type)); };
-        for (std::uint64_t i = 0; i < e.count; ++i) {
+        std::uint64_t i = 0;
+        if constexpr (std::is_same_v<Source, BinarySource>) {
+            // Records of float32 and uint8 scalars (positions, and 8-bit colours if any):
+            // copied straight from the bytes.
+            bool plain = !uvs && (!colors || (e.properties[std::size_t(r)].type == Type::Uint8 &&
+                                              e.properties[std::size_t(g)].type == Type::Uint8 &&
+                                              e.properties[std::size_t(b)].type == Type::Uint8 &&
+                                              (a < 0 || e.properties[std::size_t(a)].type == Type::Uint8)));
+            for (int axis : {x, y, z}) plain &= e.properties[std::size_t(axis)].type == Type::Float32;
+            std::vector<std::size_t> offset(e.properties.size());
+            std::size_t stride = 0;
+            for (std::size_t p = 0; p < e.properties.size(); ++p) {
+                const Property& property = e.properties[p];
+                plain &= !property.list && (property.type == Type::Float32 || property.type == Type::Uint8);
+                offset[p] = stride;
+                stride += sizeOf(property.type);
+            }
+            if (plain) {
+                const std::size_t xyz[3] = {offset[std::size_t(x)], offset[std::size_t(y)], offset[std::size_t(z)]};
+                const int rgba[4] = {colors ? int(offset[std::size_t(r)]) : -1, colors ? int(offset[std::size_t(g)]) : -1,
+                                     colors ? int(offset[std::size_t(b)]) : -1, a >= 0 ? int(offset[std::size_t(a)]) : -1};
+                i = source.vertexRecords(e.count, stride, xyz, colors ? rgba : nullptr, mesh_.positions, mesh_.colors);
+            }
+        }
+        for (; i < e.count; ++i) {
             try {
                 for (std::size_t p = 0; p < e.properties.size(); ++p) {
                     const Property& property = e.properties[p];
@@ -418,7 +491,13 @@ private:
         const std::uint64_t min_face_bytes =
             std::is_same_v<Source, AsciiSource> ? 8 : sizeOf(list.count_type) + 3 * sizeOf(list.type);
         mesh_.triangles.reserve(3 * std::min<std::uint64_t>(e.count, source.remaining() / min_face_bytes));
-        for (std::uint64_t f = 0; f < e.count; ++f) {
+        std::uint64_t f = 0;
+        if constexpr (std::is_same_v<Source, BinarySource>) {
+            if (e.properties.size() == 1 && list.count_type == Type::Uint8 &&
+                (list.type == Type::Int32 || list.type == Type::Uint32))
+                f = source.triangles(e.count, std::uint32_t(std::min<std::uint64_t>(vertex_count_, 1u << 31)), mesh_.triangles);
+        }
+        for (; f < e.count; ++f) {
             try {
                 for (std::size_t p = 0; p < e.properties.size(); ++p) {
                     const Property& property = e.properties[p];

@@ -18,6 +18,7 @@
 #include "hyvox/vdb.h"
 #include "hyvox/version.h"
 #include "io/atomic_file.h"
+#include "io/interruptible_stream.h"
 
 namespace hyvox::io {
 namespace {
@@ -111,22 +112,6 @@ openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<Vo
     return result;
 }
 
-std::uint64_t densityGridBytes(const SparseGrid& occupancy) {
-    const FloatLeaf sample(openvdb::Coord(0, 0, 0), 0.0f, false);
-    // Leaves dominate; the internal nodes above them add a few percent at most.
-    return std::uint64_t(double(occupancy.leafCount()) * double(sample.memUsage()) * 1.05);
-}
-
-void checkGridBudget(const VoxelizeResult& result) {
-    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize();
-    const VoxelizeOptions& options = result.stats.options;
-    if (need > options.memoryBudgetBytes())
-        throw ResourceError("the OpenVDB grid of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
-                            std::to_string((need + (1u << 20) - 1) >> 20) + " MiB, more than the memory budget of " +
-                            std::to_string(options.memory_budget_mib) +
-                            " MiB; raise the budget (memory_budget_mib) or use a larger voxel size");
-}
-
 openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interrupter) {
     openvdb::GridPtrVec grids;
     grids.push_back(makeDensityGrid(result.grid, result.occupancy, interrupter));
@@ -135,12 +120,17 @@ openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interru
     return grids;
 }
 
-void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path) {
+void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path, Interrupter* interrupter,
+                      std::uint64_t expected_bytes) {
     initializeOpenVdb();
     // The temporary is removed unless the whole write and commit succeed.
     AtomicFile(path).writeWith([&](std::ostream& os) {
         try {
-            CheckedArchive().writeTo(os, grids);
+            InterruptibleStreamBuf checked(os.rdbuf(), interrupter, expected_bytes, 91, 100);
+            std::ostream out(&checked);
+            out.exceptions(std::ios::badbit);  // a Cancelled from the buffer reaches us
+            CheckedArchive().writeTo(out, grids);
+            out.flush();
         } catch (const openvdb::Exception& e) {
             throw ResourceError("writing '" + path + "' failed: " + e.what());
         }
@@ -148,27 +138,3 @@ void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path
 }
 
 }  // namespace hyvox::io
-
-namespace hyvox {
-
-VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, int threads, Interrupter* interrupter) {
-    if (threads < 0) throw InvalidInput("writeVdb: threads must be >= 0 (0 = all cores)");
-    io::checkGridBudget(result);
-    const InterrupterRun run(interrupter, "hyvox write");
-    VdbWriteReport report;
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-    arena.execute([&] {
-        auto start = std::chrono::steady_clock::now();
-        openvdb::GridPtrVec grids = io::makeGrids(result, interrupter);
-        for (const auto& grid : grids) report.grid_bytes += grid->memUsage();
-        throwIfInterrupted(interrupter, 90);
-        auto now = std::chrono::steady_clock::now();
-        report.build_ms = std::chrono::duration<double, std::milli>(now - start).count();
-        io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), path);
-        report.write_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - now).count();
-    });
-    if (interrupter) interrupter->wasInterrupted(100);  // progress only: the file is in place
-    return report;
-}
-
-}  // namespace hyvox

@@ -4,6 +4,7 @@
 // tests, the benchmark). The public API (hyvox/vdb.h) keeps OpenVDB types out.
 #include <openvdb/openvdb.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "hyvox/grid.h"
 #include "hyvox/interrupter.h"
 #include "hyvox/result.h"
+#include "io/vdb_direct_writer.h"  // densityGridBytes, checkGridBudget
 
 namespace hyvox::io {
 
@@ -29,17 +31,14 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& 
 // "count": the values of a multi-valued result.
 openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<VoxelCount>& counts);
 
-// The memory the density grid of `occupancy` takes (float leaves of 512 values).
-std::uint64_t densityGridBytes(const SparseGrid& occupancy);
-// ResourceError before anything is built when that grid and the result it is made from
-// would not fit the run's memory budget (result.stats.options).
-void checkGridBudget(const VoxelizeResult& result);
-
-// The grids writeVdb() stores: density, plus count when result.counts is non-empty, each
-// with the hyvox_* metadata.
+// The grids writeVdb() stores (it serializes them itself, vdb_direct_writer.h): density,
+// plus count when result.counts is non-empty, each with the hyvox_* metadata.
 openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interrupter = nullptr);
 
-// Writes grids atomically (hyvox::io::AtomicFile); throws InvalidInput / ResourceError.
-void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path);
+// Writes grids atomically (hyvox::io::AtomicFile); throws InvalidInput / ResourceError, and
+// Cancelled when `interrupter` (may be null) asks to stop while the bytes go out (it sees
+// progress 91-99 by the bytes written of expected_bytes); nothing is left behind then.
+void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path, Interrupter* interrupter = nullptr,
+                      std::uint64_t expected_bytes = 0);
 
 }  // namespace hyvox::io

@@ -18,8 +18,13 @@ namespace {
 std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
 
 // Refuse before allocating: one tile's bits plus the leaves the surface is expected to need.
+// The estimate (a pass over every triangle) is skipped when even a leaf in every brick of the
+// grid would fit: the common case, where it cost more than voxelizing at low resolutions.
 void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options, const tiling::TilePlan& plan,
-                       std::uint64_t estimated_leaves) {
+                       const ValidatedMesh& mesh) {
+    const double most = double(plan.tileBytes()) + double(grid.bricks().total()) * double(SparseGrid::kLeafBytes);
+    if (most <= double(options.memoryBudgetBytes())) return;  // in doubles: huge grids overflow 64 bits
+    const std::uint64_t estimated_leaves = tiling::estimateLeaves(mesh, grid);
     const std::uint64_t need = plan.tileBytes() + estimated_leaves * SparseGrid::kLeafBytes;
     if (need > options.memoryBudgetBytes())
         throw ResourceError("a " + grid.dimsText() + " grid needs about " + mib(need) + " (" +
@@ -75,7 +80,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     const std::uint64_t device_limit =
         options.method == Method::Tessellation ? gl::maxStorageBlockBytes(options.gl.device) : 0;
     const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
-    checkMemoryBudget(grid, options, plan, tiling::estimateLeaves(validated, grid));
+    checkMemoryBudget(grid, options, plan, validated);
     stats.addTiming("validate", watch.restart());
     throwIfInterrupted(interrupter, 0);
 

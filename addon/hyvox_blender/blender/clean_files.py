@@ -1,0 +1,61 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""WM_OT_hyvox_clean_voxel_files: delete the voxel files no volume of this file uses (runs
+write new files each time, so replaced results leave theirs behind). It looks in the
+folders hyvox writes to (the cache next to the .blend, this session's unsaved folder, the
+scene's output folder, the folders of hyvox volumes) and only at files named as hyvox names
+them. Undo cannot bring a deleted file back."""
+import os
+
+import bpy
+
+from ..core import cleanup, naming
+from . import importer
+
+
+def candidate_folders(context):
+    folders = {naming.default_output_dir(bpy.data.filepath)}
+    unsaved = naming.unsaved_output_dir(create=False)
+    if unsaved:
+        folders.add(unsaved)
+    for scene in bpy.data.scenes:
+        if scene.hyvox.output_dir:
+            folders.add(bpy.path.abspath(scene.hyvox.output_dir))
+    for obj in bpy.data.objects:
+        if obj.type == "VOLUME" and importer.KEY in obj and obj.data is not None and obj.data.filepath:
+            folders.add(os.path.dirname(bpy.path.abspath(obj.data.filepath)))
+    return folders
+
+
+def unused_voxel_files(context):
+    singles, sequences = [], []
+    for volume in bpy.data.volumes:
+        if volume.filepath:
+            (sequences if volume.is_sequence else singles).append(bpy.path.abspath(volume.filepath))
+    return cleanup.unused_files(candidate_folders(context), singles, sequences, naming.is_voxel_file)
+
+
+class WM_OT_hyvox_clean_voxel_files(bpy.types.Operator):
+    """Delete the voxel files (.vdb, .vox) that no volume uses any more: those of replaced or
+    deleted results. Undo cannot bring them back"""
+    bl_idname = "wm.hyvox_clean_voxel_files"
+    bl_label = "Clean Unused Voxel Files"
+
+    def execute(self, context):
+        removed, size, failed = 0, 0, []
+        for path in unused_voxel_files(context):
+            try:
+                file_size = os.path.getsize(path)
+                os.remove(path)
+            except OSError as exc:
+                failed.append(f"{os.path.basename(path)} ({exc.strerror})")
+                continue
+            removed += 1
+            size += file_size
+        if failed:
+            self.report({"WARNING"}, "Could not delete " + ", ".join(failed[:3]))
+        self.report({"INFO"}, f"Deleted {removed} unused voxel file{'s' * (removed != 1)} "
+                              f"({size / 2**20:.1f} MiB)")
+        return {"FINISHED"}
+
+
+CLASSES = (WM_OT_hyvox_clean_voxel_files,)

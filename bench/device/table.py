@@ -1,0 +1,216 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Turns bench_device's CSV into the README's Markdown tables, beside the JCGT 2013 paper's
+Table 1 (GTX 480, thin binary voxelization into a dense 3D texture; ms).
+
+    python3 bench/device/table.py table1.csv [--info gl_info.txt] [--res 128,256,512,1024]
+                                  [--mode thin]
+
+Table 1: per scene and resolution the GPU times (GL timer queries, pass 1 + pass 2; medians)
+of triangle, fragment and hybrid @ its auto cutoff with the pass split, the tessellation
+method's GPU time and bias, the cpu method's own stage, each method's check against cpu, and
+the paper's figures for the matching scene with paper hybrid / our hybrid ("x paper").
+Then the thread scaling of the cpu method (threads@RES steps), if the run got that far.
+Standard library only (runs on the device machine's python3 as well).
+"""
+import argparse
+import csv
+import sys
+
+# Table 1 of the hybrid voxelization paper (JCGT 2013), GTX 480, 6-separating (thin) binary:
+# (triangle-parallel, fragment-parallel, hybrid, cutoff (voxels^2, None = na), pass 1 share).
+PAPER = {
+    "large triangle (1 tri)": {128: (10.62, 0.03, 0.04, None, 36.1), 256: (42.4, 0.06, 0.07, None, 22.1),
+                               512: (169.7, 0.22, 0.19, None, 12.0)},
+    "XYZ RGB Asian Dragon (7,219,045 tris)": {128: (6.37, 165.2, 8.51, 2.0, 99.9), 256: (7.70, 165.0, 8.57, 1.7, 99.7),
+                                              512: (9.80, 164.6, 10.3, 1.4, 99.8)},
+    "Crytek Sponza (262,267 tris)": {128: (13.4, 10.65, 1.11, 2.8, 87.7), 256: (53.2, 11.13, 1.80, 3.9, 71.6),
+                                     512: (208.7, 11.87, 3.68, 3.1, 52.8)},
+    "Stanford Bunny (69,666 tris)": {128: (0.28, 1.58, 0.19, 1.8, 88.1), 256: (0.82, 1.55, 0.34, 4.5, 91.6),
+                                     512: (3.12, 1.82, 1.08, 12.7, 93.0)},
+    "Stanford Dragon (100,000 tris)": {128: (0.25, 2.13, 0.26, 13.3, 97.8), 256: (0.51, 2.09, 0.52, 5.9, 93.4),
+                                       512: (1.61, 2.25, 1.25, 13.7, 88.6)},
+}
+# Our scene -> the paper's row it stands for (None: no Table 1 row).
+MATCH = {
+    "bunny_stanford_69k": "Stanford Bunny (69,666 tris)",
+    "dragon_stanford_res2_203k": "Stanford Dragon (100,000 tris)",
+    "sponza_crytek_262k_vcolor": "Crytek Sponza (262,267 tris)",
+    "triangle": "large triangle (1 tri)",
+    "dragon_stanford_871k": None,
+    "dragon_stanford_871k x4": "XYZ RGB Asian Dragon (7,219,045 tris)",
+    "dragon_stanford_871k x16": "XYZ RGB Asian Dragon (7,219,045 tris)",
+}
+SCENE_ORDER = list(MATCH)
+
+
+def fmt(value, digits=2):
+    if value is None or value == "":
+        return ""
+    value = float(value)
+    if value >= 100:
+        return f"{value:.0f}"
+    if value >= 10:
+        return f"{value:.1f}"
+    return f"{value:.{digits}f}"
+
+
+def check_text(row):
+    check = row["check"]
+    if check == "touches":
+        return f"touches {row['touches']}"
+    if check == "DIFF":
+        return f"**DIFF** -{row['missed']} +{row['false_voxels']} ({row['unexplained']} unexplained)"
+    return check
+
+
+def verify(path, rows):
+    """Every row whole; every exact row equal (or touches) to cpu; tessellation with no false
+    voxel and a bias in (0, 25%); the thread rows equal to the all-cores voxels; each
+    (step, scene) of an exact step with all four methods."""
+    problems = []
+    with open(path, newline="") as f:
+        header = next(csv.reader(f))
+        widths = {len(line) for line in csv.reader(f)}
+    if widths - {len(header)}:
+        problems.append(f"rows of {sorted(widths)} fields, header has {len(header)}")
+    groups = {}
+    for r in rows:
+        where = f"{r['scene']} {r['mode']}@{r['res']} {r['method']} t{r['threads']}"
+        check = r["check"]
+        if check.startswith("ERROR") or check == "DIFF":
+            problems.append(f"{where}: {check}")
+        if r["method"] in ("hybrid", "triangle", "fragment") and check not in ("equal", "touches"):
+            problems.append(f"{where}: check {check}")
+        if r["method"] in ("hybrid", "triangle", "fragment", "tessellation") and float(r["gpu_ms"]) <= 0:
+            problems.append(f"{where}: no GPU time")
+        if r["method"] == "tessellation" and check == "bias":
+            if int(r["false_voxels"]):
+                problems.append(f"{where}: {r['false_voxels']} false voxels")
+            if not 0 < float(r["bias"]) < 0.25:
+                problems.append(f"{where}: bias {r['bias']}")
+        if r["method"] == "cpu" and r["threads"] != "0" and check != "equal":
+            problems.append(f"{where}: thread row {check}")
+        if r["threads"] == "0" and r["method"] != "tessellation":
+            groups.setdefault((r["step"], r["scene"]), set()).add(r["method"])
+    for (step, scene), methods in groups.items():
+        if methods != {"cpu"} and methods != {"cpu", "hybrid", "triangle", "fragment"}:
+            problems.append(f"step {step} {scene}: methods {sorted(methods)}")
+    print(f"# verify: {len(rows)} rows, {len(problems)} problem(s)")
+    for p in problems:
+        print(f"#   {p}")
+    return 1 if problems else 0
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("csv")
+    ap.add_argument("--info", help="gl_info.txt of the same run (GL_RENDERER, ...)")
+    ap.add_argument("--res", default="128,256,512,1024")
+    ap.add_argument("--mode", default="thin", choices=["thin", "conservative"])
+    ap.add_argument("--verify", action="store_true",
+                    help="check the CSV instead (shape, every check passed, biases plausible); exit 1 on a problem")
+    args = ap.parse_args()
+    wanted = {int(r) for r in args.res.split(",")}
+
+    with open(args.csv, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if args.verify:
+        return verify(args.csv, rows)
+    info = {}
+    if args.info:
+        try:
+            with open(args.info) as f:
+                info = dict(line.rstrip("\n").split("=", 1) for line in f if "=" in line)
+        except OSError:
+            pass
+
+    # (scene, res) -> method -> row, for the exact steps of the chosen mode (tessellation
+    # rows sit in the first step of their resolution, whatever its mode).
+    cells = {}
+    triangles = {}
+    for r in rows:
+        if r["threads"] != "0":
+            continue
+        res = int(r["res"])
+        if res not in wanted:
+            continue
+        triangles[r["scene"]] = int(r["triangles"])
+        if r["method"] == "tessellation" or r["mode"] == args.mode:
+            cells.setdefault((r["scene"], res), {}).setdefault(r["method"], r)
+
+    renderer = info.get("GL_RENDERER", "?")
+    print(f"GPU: {renderer}; {info.get('GL_VERSION', '?')}. Mode {args.mode}; ms, medians of the timed runs; "
+          "GPU = GL timer queries (pass 1 + pass 2); cpu = its voxelize stage (wall). "
+          "Paper: JCGT 2013 Table 1, GTX 480, thin binary into a dense 3D texture.\n")
+    print("| scene | tris | res | triangle | fragment | hybrid @cutoff | pass 1/2 | tessellation (bias) | cpu "
+          "| checks | paper scene | paper tri / frag / hybrid @cutoff | x paper hybrid |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|")
+
+    def order(key):
+        scene, res = key
+        return (SCENE_ORDER.index(scene) if scene in SCENE_ORDER else 99, scene, res)
+
+    for scene, res in sorted(cells, key=order):
+        m = cells[(scene, res)]
+
+        def gpu(method):
+            row = m.get(method)
+            if row is None:
+                return ""
+            if row["check"].startswith("ERROR"):
+                return "error"
+            return fmt(row["gpu_ms"])
+
+        hyb = m.get("hybrid")
+        hybrid = ""
+        split = ""
+        if hyb and not hyb["check"].startswith("ERROR"):
+            cutoff = float(hyb["cutoff"])
+            hybrid = f"{fmt(hyb['gpu_ms'])} @{'na' if cutoff > 1e6 else fmt(cutoff, 1)}"
+            total = float(hyb["pass1_ms"]) + float(hyb["pass2_ms"])
+            if total > 0:
+                split = f"{100 * float(hyb['pass1_ms']) / total:.0f}%/{100 * float(hyb['pass2_ms']) / total:.0f}%"
+        tess = m.get("tessellation")
+        tess_text = ""
+        if tess:
+            tess_text = ("error" if tess["check"].startswith("ERROR")
+                         else f"{fmt(tess['gpu_ms'])} ({100 * float(tess['bias']):.1f}%)")
+        cpu = m.get("cpu")
+        checks = "; ".join(f"{meth[0]}: {check_text(m[meth])}" for meth in ("hybrid", "triangle", "fragment")
+                           if meth in m and m[meth]["check"] != "equal")
+        if not checks and any(meth in m for meth in ("hybrid", "triangle", "fragment")):
+            checks = "equal"
+        if tess and tess["check"] == "bias" and int(tess["false_voxels"]):
+            checks += f"; **tessellation: {tess['false_voxels']} false voxels**"
+        paper_scene = MATCH.get(scene)
+        paper = PAPER.get(paper_scene, {}).get(res) if paper_scene else None
+        paper_text = ratio = ""
+        if paper:
+            p_tri, p_frag, p_hyb, p_cut, _ = paper
+            paper_text = f"{p_tri} / {p_frag} / {p_hyb} @{'na' if p_cut is None else p_cut}"
+            if hyb and not hyb["check"].startswith("ERROR") and float(hyb["gpu_ms"]) > 0:
+                r = p_hyb / float(hyb["gpu_ms"])
+                ratio = f"{r:.1f}x" if r >= 1 else f"{r:.3f}x"
+        print(f"| {scene} | {triangles.get(scene, '')} | {res} | {gpu('triangle')} | {gpu('fragment')} | {hybrid} "
+              f"| {split} | {tess_text} | {fmt(cpu['stage_ms']) if cpu else ''} | {checks} "
+              f"| {paper_scene or ''} | {paper_text} | {ratio} |")
+
+    threads = [r for r in rows if r["method"] == "cpu" and r["step"] and r["threads"] != "0"]
+    if threads:
+        print("\ncpu method, conservative, its voxelize stage (ms) by threads (speed-up vs 1 thread):\n")
+        by_scene = {}
+        for r in threads:
+            by_scene.setdefault((r["scene"], int(r["res"])), {})[int(r["threads"])] = float(r["stage_ms"])
+        counts = sorted({t for v in by_scene.values() for t in v})
+        print("| scene | res | " + " | ".join(f"{t} thr" for t in counts) + " |")
+        print("|---|---:|" + "---:|" * len(counts))
+        for (scene, res), v in sorted(by_scene.items(), key=lambda kv: order(kv[0])):
+            one = v.get(1)
+            cells_t = [f"{fmt(v[t])} ({one / v[t]:.1f}x)" if t in v and one and v[t] > 0 else "" for t in counts]
+            print(f"| {scene} | {res} | " + " | ".join(cells_t) + " |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

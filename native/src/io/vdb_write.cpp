@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// hyvox::writeVdb: the result's grids serialized directly (vdb_direct_writer.h) and written
+// atomically. No OpenVDB header here on purpose: a program that writes through this file
+// alone (the CLI) does not load libopenvdb at start-up (see the header of
+// vdb_direct_writer.h); vdb_grid.cpp builds the same grids with OpenVDB for code that wants
+// them as OpenVDB objects, and the tests check that both agree.
+#include <algorithm>
+#include <chrono>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "hyvox/errors.h"
+#include "hyvox/vdb.h"
+#include "io/atomic_file.h"
+#include "io/interruptible_stream.h"
+#include "io/vdb_direct_writer.h"
+
+namespace hyvox::io {
+
+std::uint64_t densityGridBytes(const SparseGrid& occupancy) { return fogGridMemUsageForLeaves(occupancy.leafCount()); }
+
+void checkGridBudget(const VoxelizeResult& result) {
+    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize();
+    const VoxelizeOptions& options = result.stats.options;
+    if (need > options.memoryBudgetBytes())
+        throw ResourceError("the OpenVDB grid of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
+                            std::to_string((need + (1u << 20) - 1) >> 20) + " MiB, more than the memory budget of " +
+                            std::to_string(options.memory_budget_mib) +
+                            " MiB; raise the budget (memory_budget_mib) or use a larger voxel size");
+}
+
+namespace {
+
+// The "count" grid's leaves: the counts grouped by 8³ brick, each with its mask and values.
+struct CountLeaves {
+    struct Leaf {
+        std::array<std::int32_t, 3> origin;
+        std::uint64_t mask[8];
+        float values[512];
+    };
+    std::vector<Leaf> storage;
+    std::vector<FogLeaf> leaves;
+};
+
+CountLeaves countLeaves(const std::vector<VoxelCount>& counts) {
+    std::vector<const VoxelCount*> sorted(counts.size());
+    for (std::size_t n = 0; n < counts.size(); ++n) sorted[n] = &counts[n];
+    auto brickOf = [](const VoxelCount& c) { return std::array<std::int32_t, 3>{c.i >> 3, c.j >> 3, c.k >> 3}; };
+    std::sort(sorted.begin(), sorted.end(), [&](const VoxelCount* a, const VoxelCount* b) { return brickOf(*a) < brickOf(*b); });
+    CountLeaves out;
+    for (std::size_t n = 0; n < sorted.size(); ++n) {
+        const VoxelCount& c = *sorted[n];
+        if (n == 0 || brickOf(c) != brickOf(*sorted[n - 1])) {
+            out.storage.emplace_back();
+            CountLeaves::Leaf& leaf = out.storage.back();
+            leaf.origin = {c.i & ~7, c.j & ~7, c.k & ~7};
+            std::fill(std::begin(leaf.mask), std::end(leaf.mask), 0);
+            std::fill(std::begin(leaf.values), std::end(leaf.values), 0.0f);
+        }
+        CountLeaves::Leaf& leaf = out.storage.back();
+        const int offset = (c.i & 7) << 6 | (c.j & 7) << 3 | (c.k & 7);
+        leaf.mask[offset >> 6] |= std::uint64_t(1) << (offset & 63);
+        leaf.values[offset] = float(c.count);  // a voxel listed twice keeps its last count, as an accessor would
+    }
+    for (const CountLeaves::Leaf& leaf : out.storage) out.leaves.push_back({leaf.origin, leaf.mask, leaf.values});
+    return out;
+}
+
+}  // namespace
+}  // namespace hyvox::io
+
+namespace hyvox {
+
+VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, int threads, Interrupter* interrupter) {
+    if (threads < 0) throw InvalidInput("writeVdb: threads must be >= 0 (0 = all cores)");
+    io::checkGridBudget(result);
+    const InterrupterRun run(interrupter, "hyvox write");
+    VdbWriteReport report;
+    auto start = std::chrono::steady_clock::now();
+    std::vector<io::FogGrid> grids{{"density", io::densityLeaves(result.occupancy)}};
+    io::CountLeaves counts;
+    if (!result.counts.empty()) {
+        counts = io::countLeaves(result.counts);
+        grids.push_back({"count", counts.leaves});
+    }
+    throwIfInterrupted(interrupter, 10);
+    const io::VdbBytes file = io::serializeFogGrids(result, grids, threads);
+    report.grid_bytes = file.mem_usage;
+    throwIfInterrupted(interrupter, 90);
+    auto now = std::chrono::steady_clock::now();
+    report.build_ms = std::chrono::duration<double, std::milli>(now - start).count();
+    // Written through a buffer that asks the interrupter as the bytes go out, so a large file's
+    // write can be followed and cancelled (the temporary is removed, an earlier file stays).
+    io::AtomicFile(path).writeWith([&](std::ostream& os) {
+        io::InterruptibleStreamBuf checked(os.rdbuf(), interrupter, file.size, 91, 100);
+        std::ostream out(&checked);
+        out.exceptions(std::ios::badbit);  // a Cancelled from the buffer reaches us
+        out.write(file.data.get(), std::streamsize(file.size));
+        out.flush();
+    });
+    report.write_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - now).count();
+    if (interrupter) interrupter->wasInterrupted(100);  // progress only: the file is in place
+    return report;
+}
+
+}  // namespace hyvox

@@ -1,0 +1,76 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""What the panel and the operator do for the artist: Auto first and the GL methods marked
+with the device they would use, tooltips in plain words first, the scene's frame range by
+default, the result selected and visible after a run (the source hidden on request), a
+re-run from the selected result, and a status message that says what was made."""
+import os
+
+import bpy
+
+import helpers
+from helpers import AddonTestCase
+
+
+class PanelBehaviourTest(AddonTestCase):
+    def test_methods_auto_first_and_gl_marked_by_device(self):
+        devices = helpers.hyvox_module().gl_devices()
+        hardware = any(not d["software"] for d in devices)
+        items = list(bpy.context.scene.hyvox.bl_rna.properties["method"].enum_items)
+        self.assertEqual(items[0].identifier, "auto")
+        for item in items:
+            if item.identifier in ("hybrid", "triangle", "fragment", "tessellation"):
+                self.assertEqual(item.icon, "SHADING_SOLID" if hardware else "ERROR", item.identifier)
+                self.assertIn("Runs on" if hardware else ("software" if devices else "No OpenGL"), item.description)
+            else:
+                self.assertEqual(item.icon, "NONE", item.identifier)
+
+    def test_tooltips_start_in_plain_words(self):
+        from hyvox_blender.blender import properties
+        rna = bpy.context.scene.hyvox.bl_rna.properties
+        for name, plain in properties.PLAIN_WORDS.items():
+            description = rna[name].description
+            self.assertTrue(description.startswith(plain), description)
+            help_text = properties.option_spec(name).help
+            self.assertIn(help_text[1:], description)  # the schema's words (and term) follow
+            self.assertGreater(description.index(help_text[1:]), len(plain))
+
+    def test_frame_range_defaults_to_the_scenes(self):
+        scene = bpy.context.scene
+        scene.frame_start, scene.frame_end = 3, 5
+        settings = scene.hyvox
+        for name in ("frame_start", "frame_end", "use_frame_range"):
+            settings.property_unset(name)
+        settings.use_frame_range = True  # as the panel's check box does
+        self.assertEqual((settings.frame_start, settings.frame_end), (3, 5))
+        settings.property_unset("frame_start")
+        settings.property_unset("frame_end")
+        cube = helpers.cube()
+        helpers.select_only(cube)
+        self.voxelize(resolution=4, use_frame_range=True)  # a script that sets no frames
+        names = sorted(os.listdir(self.out))
+        self.assertEqual([n[-8:-4] for n in names], ["0003", "0004", "0005"])
+        settings.property_unset("use_frame_range")
+        scene.frame_start, scene.frame_end = 1, 250
+
+    def test_result_selected_and_visible_source_hidden_on_request(self):
+        cube = helpers.cube()
+        helpers.select_only(cube)
+        self.voxelize(resolution=8, hide_source=True)
+        (volume,) = self.volumes()
+        layer = bpy.context.view_layer
+        self.assertIs(layer.objects.active, volume)
+        self.assertTrue(volume.select_get() and volume.visible_get())
+        self.assertFalse(cube.select_get())
+        self.assertFalse(cube.visible_get())
+        # Voxelize again with the result selected (as the run left it): its source runs again.
+        cube.hide_set(False)
+        self.assertEqual(self.voxelize(resolution=16), {"FINISHED"})
+        (again,) = self.volumes()
+        self.assertAlmostEqual(again["hyvox_voxel_size"], 0.125)
+
+    def test_status_says_what_was_made(self):
+        from hyvox_blender.core import summary
+        from hyvox_blender.core.pipeline import Group, GroupResult, Timings
+        result = GroupResult(Group("Cube", ["Cube"]), voxel_counts=[1234])
+        self.assertEqual(summary.short_report({"Cube": result}, Timings(voxelize_ms=1500.0)),
+                         "Made Cube volume of 1,234 voxels in 1.50 s")

@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The directly serialized .vdb (io/vdb_direct_writer.h) against OpenVDB's own writer: both
+// files read back with OpenVDB must hold the same grid (tree shape, every leaf's mask and
+// values, background, transform) and the same metadata, on grids spanning several upper and
+// lower internal nodes, full and empty leaves, and an empty grid.
+#include <gtest/gtest.h>
+#include <openvdb/io/File.h>
+
+#include <algorithm>
+#include <random>
+#include <string>
+
+#include "hyvox/vdb.h"
+#include "io/vdb_direct_writer.h"
+#include "io/vdb_grid.h"
+#include "support/temp_dir.h"
+
+namespace {
+
+using hyvox::test::TempDir;
+
+// Bits scattered with probability `fill` over a small grid, plus voxels far apart in a large
+// one (several 4096³ upper nodes and 128³ lower nodes), origin off the lattice.
+hyvox::VoxelizeResult makeResult(std::array<std::int32_t, 3> dims, double fill, std::uint32_t seed) {
+    hyvox::VoxelizeResult r;
+    r.grid.origin = {-1.25, 0.5, 3.0};
+    r.grid.voxel_size = 0.1;
+    r.grid.dims = dims;
+    r.occupancy = hyvox::SparseGrid(dims);
+    std::mt19937 rng(seed);
+    std::bernoulli_distribution on(fill);
+    for (int i = 0; i < std::min(dims[0], 40); ++i)
+        for (int j = 0; j < std::min(dims[1], 24); ++j)
+            for (int k = 0; k < std::min(dims[2], 17); ++k)
+                if (on(rng)) r.occupancy.set(i, j, k);
+    std::uniform_int_distribution<int> x(0, dims[0] - 1), y(0, dims[1] - 1), z(0, dims[2] - 1);
+    if (fill > 0)
+        for (int n = 0; n < 300; ++n) r.occupancy.set(x(rng), y(rng), z(rng));
+    r.stats.method = "cpu";
+    r.stats.mode = "thin";
+    r.stats.voxel_count = r.occupancy.count();
+    return r;
+}
+
+openvdb::GridBase::Ptr readDensity(const std::string& path, std::string* compression = nullptr) {
+    hyvox::io::initializeOpenVdb();
+    openvdb::io::File file(path);
+    file.open();
+    auto grid = file.readGrid("density");
+    file.close();
+    if (compression) *compression = grid->metaValue<std::string>("file_compression");
+    return grid;
+}
+
+void expectSameGrids(const openvdb::FloatGrid& direct, const openvdb::FloatGrid& reference) {
+    EXPECT_EQ(direct.background(), reference.background());
+    EXPECT_EQ(direct.getGridClass(), reference.getGridClass());
+    EXPECT_EQ(direct.getName(), reference.getName());
+    EXPECT_EQ(direct.transform(), reference.transform());
+    EXPECT_EQ(direct.tree().nodeCount(), reference.tree().nodeCount());
+    EXPECT_EQ(direct.tree().leafCount(), reference.tree().leafCount());
+    EXPECT_EQ(direct.activeVoxelCount(), reference.activeVoxelCount());
+    for (auto leaf = reference.tree().cbeginLeaf(); leaf; ++leaf) {
+        const auto* other = direct.tree().probeConstLeaf(leaf->origin());
+        ASSERT_NE(other, nullptr) << leaf->origin();
+        EXPECT_EQ(other->getValueMask(), leaf->getValueMask()) << leaf->origin();
+        for (openvdb::Index n = 0; n < 512; ++n) ASSERT_EQ(other->getValue(n), leaf->getValue(n)) << leaf->origin();
+    }
+    // Metadata: every entry equal, but the compression named (the direct file's is stated).
+    for (auto it = reference.beginMeta(); it != reference.endMeta(); ++it) {
+        if (it->first == "file_compression" || it->first == "file_delayed_load") continue;
+        const auto mine = direct[it->first];
+        ASSERT_TRUE(mine) << it->first;
+        EXPECT_EQ(mine->typeName(), it->second->typeName()) << it->first;
+        EXPECT_EQ(mine->str(), it->second->str()) << it->first;
+    }
+    for (auto it = direct.beginMeta(); it != direct.endMeta(); ++it)
+        EXPECT_TRUE(reference[it->first]) << "extra metadata " << it->first;
+}
+
+void checkAgainstOpenVdb(const hyvox::VoxelizeResult& r, int threads) {
+    TempDir dir;
+    const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string();
+    hyvox::writeVdb(r, direct_path, threads);
+    const openvdb::GridPtrVec grids = hyvox::io::makeGrids(r);
+    hyvox::io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), reference_path);
+    std::string compression;
+    const auto direct = openvdb::gridPtrCast<openvdb::FloatGrid>(readDensity(direct_path, &compression));
+    const auto reference = openvdb::gridPtrCast<openvdb::FloatGrid>(readDensity(reference_path));
+    ASSERT_TRUE(direct && reference);
+    EXPECT_EQ(compression, "active values");
+    expectSameGrids(*direct, *reference);
+    // The memory figure the direct writer states is OpenVDB's own for the built grid.
+    EXPECT_EQ(hyvox::io::fogTreeMemUsage(hyvox::io::densityLeaves(r.occupancy)), grids[0]->memUsage());
+    if (r.counts.empty()) return;
+    openvdb::io::File file(direct_path);
+    file.open();
+    const auto direct_count = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("count"));
+    file.close();
+    openvdb::io::File reference_file(reference_path);
+    reference_file.open();
+    const auto reference_count = openvdb::gridPtrCast<openvdb::FloatGrid>(reference_file.readGrid("count"));
+    reference_file.close();
+    ASSERT_TRUE(direct_count && reference_count);
+    expectSameGrids(*direct_count, *reference_count);
+}
+
+}  // namespace
+
+TEST(IoVdbDirect, SmallGridsEqualOpenVdbsFile) {
+    for (double fill : {0.0, 0.03, 0.5, 1.0}) {
+        SCOPED_TRACE(fill);
+        checkAgainstOpenVdb(makeResult({37, 20, 9}, fill, 5), 0);
+    }
+}
+
+TEST(IoVdbDirect, GridsOverManyInternalNodesEqualOpenVdbsFile) {
+    // 9000 > 2 × 4096 along x: three upper nodes; lower nodes scattered in each.
+    checkAgainstOpenVdb(makeResult({9000, 300, 4200}, 0.2, 9), 0);
+    checkAgainstOpenVdb(makeResult({9000, 300, 4200}, 0.2, 9), 1);
+}
+
+TEST(IoVdbDirect, CountGridEqualsOpenVdbsFile) {
+    auto r = makeResult({9000, 300, 4200}, 0.1, 4);
+    std::mt19937 rng(3);
+    std::uniform_int_distribution<std::uint32_t> count(1, 1000);
+    for (const auto& ijk : r.occupancy.coords()) r.counts.push_back({ijk[0], ijk[1], ijk[2], count(rng)});
+    std::shuffle(r.counts.begin(), r.counts.end(), rng);  // any order
+    checkAgainstOpenVdb(r, 0);
+}
+
+TEST(IoVdbDirect, EmptyGridEqualsOpenVdbsFile) { checkAgainstOpenVdb(makeResult({5, 6, 7}, 0.0, 1), 0); }
