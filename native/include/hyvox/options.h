@@ -20,8 +20,10 @@ enum class Mode { Conservative, Thin, Solid };
 // How solid mode decides that a voxel centre is inside (src/solid/).
 // parity: an odd number of surface crossings on the ray from the centre along -z (exact for
 // closed meshes). winding: generalized winding number >= 0.5 (holes, flipped or duplicated
-// faces, nested shells). auto: parity when the mesh is closed and consistently oriented, else
-// winding (the finding is reported in Stats::solid).
+// faces, nested shells). auto: the winding number, counted exactly by the signed crossings of
+// the parity rays when the mesh is closed and consistently oriented (as fast as parity, and
+// right where closed shells overlap), else by fast winding numbers; the finding is reported
+// in Stats::solid.
 enum class InsideRule { Auto, Parity, Winding };
 
 enum class Method {

@@ -93,6 +93,9 @@ struct TessellationStats {
 // of the grid was decided per region instead of per voxel.
 struct SolidStats {
     std::string inside_rule;  // "parity" or "winding": the rule that ran
+    // "ray crossings" (parity, or the winding number of a closed mesh as their signed sum) or
+    // "fast winding numbers" (Barill et al. 2018)
+    std::string evaluation;
     std::string reason;       // why (the option, or auto's finding)
     // Edges after welding identical positions: used by one triangle, by more than two, or by
     // two triangles running the same way. All 0 = closed and consistently oriented.
@@ -107,6 +110,7 @@ struct SolidStats {
     template <typename F>
     void visit(F&& f) const {
         f("inside_rule", inside_rule);
+        f("evaluation", evaluation);
         f("reason", reason);
         f("boundary_edges", boundary_edges);
         f("nonmanifold_edges", nonmanifold_edges);

@@ -89,7 +89,8 @@ std::vector<OptionSpec> buildSchema() {
     // --- solid mode ---
     add({"inside", T::Choice, "solid", "Inside Rule", "",
          "solid: parity = odd ray crossings (closed meshes); winding = winding number >= 0.5 (holes, "
-         "flipped faces); auto = parity when closed and consistently oriented, else winding",
+         "flipped faces); auto = the winding number, by ray crossings when the mesh is closed and "
+         "consistently oriented, else by fast winding numbers",
          false, 0, 0, false, insideRuleNames(), {}, nullptr, HYVOX_FIELD(asInsideRule, solid.inside)});
     add({"winding_beta", T::Number, "solid", "Winding Accuracy", "",
          "solid, winding: fast winding number accuracy beta (a cluster is expanded when the point is "

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "solid/ray_parity.h"
+#include "solid/ray_crossings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,7 +37,7 @@ int side(std::int64_t ux, std::int64_t uy, std::int64_t vx, std::int64_t vy, std
 
 }  // namespace
 
-RayParity::RayParity(const ValidatedMesh& mesh, const GridSpec& grid) {
+RayCrossings::RayCrossings(const ValidatedMesh& mesh, const GridSpec& grid) {
     columns_ = {(grid.dims[0] + 7) / 8, (grid.dims[1] + 7) / 8};
     // Snapped per vertex, so all triangles sharing a vertex share its snapped position.
     std::vector<std::array<std::int64_t, 2>> snapped(mesh.view.vertex_count);
@@ -59,7 +59,9 @@ RayParity::RayParity(const ValidatedMesh& mesh, const GridSpec& grid) {
             tri.y[c] = snapped[v][1];
             tri.z[c] = heights[v];
         }
-        if (orient(tri.x[0], tri.y[0], tri.x[1], tri.y[1], tri.x[2], tri.y[2]) == 0) continue;  // seen edge-on
+        const Wide area = orient(tri.x[0], tri.y[0], tri.x[1], tri.y[1], tri.x[2], tri.y[2]);
+        if (area == 0) continue;  // seen edge-on
+        tri.sign = area < 0 ? 1 : -1;
         tri.x_lo = std::min({tri.x[0], tri.x[1], tri.x[2]});
         tri.x_hi = std::max({tri.x[0], tri.x[1], tri.x[2]});
         tri.y_lo = std::min({tri.y[0], tri.y[1], tri.y[2]});
@@ -99,7 +101,7 @@ RayParity::RayParity(const ValidatedMesh& mesh, const GridSpec& grid) {
     }
 }
 
-int RayParity::at(int i, int j, int k) const {
+int RayCrossings::at(int i, int j, int k) const {
     const std::int64_t px = (std::int64_t(2 * i + 1)) << (kFractionBits - 1);
     const std::int64_t py = (std::int64_t(2 * j + 1)) << (kFractionBits - 1);
     const double pz = k + 0.5;
@@ -119,9 +121,9 @@ int RayParity::at(int i, int j, int k) const {
         const double w2 = double(orient(t.x[0], t.y[0], t.x[1], t.y[1], px, py));
         const double total = w0 + w1 + w2;
         const double z = (w0 * t.z[0] + w1 * t.z[1] + w2 * t.z[2]) / total;
-        if (z < pz) ++crossings;
+        if (z < pz) crossings += t.sign;
     }
-    return crossings & 1;
+    return crossings;
 }
 
 }  // namespace hyvox::solid
