@@ -25,7 +25,11 @@ class VIEW3D_PT_hyvox_voxelize(bpy.types.Panel):
         else:
             col.prop(settings, "voxel_size")
         col.prop(settings, "method")
-        col.prop(settings, "mode")
+        col.prop(settings, "fill_interior")
+        if settings.fill_interior:
+            col.prop(settings, "inside")
+        else:
+            col.prop(settings, "mode")
         if settings.method == "tessellation":
             col.prop(settings, "tess_gamma")
         if settings.method in {"hybrid", "auto"}:
