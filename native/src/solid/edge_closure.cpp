@@ -43,8 +43,11 @@ EdgeClosure checkEdges(const ValidatedMesh& mesh, const GridSpec& grid) {
     const std::vector<std::uint32_t> weld = weldVertices(view);
     std::vector<DirectedEdge> edges;
     edges.reserve(3 * mesh.usable.size());
-    for (const std::uint32_t t : mesh.usable) {
-        const std::uint32_t* v = view.triangles + 3 * std::size_t(t);
+    // Every triangle, the degenerate ones included: a zero-area sliver between two edges is part
+    // of the surface's topology (without it they would look open), and adds no solid angle
+    // and no ray crossing.
+    for (std::size_t t = 0; t < view.triangle_count; ++t) {
+        const std::uint32_t* v = view.triangles + 3 * t;
         for (int c = 0; c < 3; ++c) {
             const std::uint32_t from = weld[v[c]], to = weld[v[(c + 1) % 3]];
             if (from == to) continue;  // welded away: no edge

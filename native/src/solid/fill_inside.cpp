@@ -95,8 +95,7 @@ private:
         if (first == last) {
             if (decideRegion(lo, hi)) return;
             if (single) {
-                const std::uint64_t none[8] = {};
-                decideBrick(lo, none);
+                decideFreeBrick(lo);
                 return;
             }
         } else if (single) {
@@ -185,6 +184,71 @@ private:
             }
     }
 
+    // Sets the bits of voxels [lo, hi) (inside one brick) in `words`.
+    static void setBox(const Int3& lo, const Int3& hi, std::uint64_t words[8]) {
+        for (int i = lo[0]; i < hi[0]; ++i)
+            for (int j = lo[1]; j < hi[1]; ++j)
+                for (int k = lo[2]; k < hi[2]; ++k) words[i & 7] |= BitGrid::bitMask(j, k);
+    }
+
+    // A surface-free box of voxels inside one brick: decided by one test at its middle when the
+    // bound allows, else split in halves, down to single voxels (which one test decides).
+    void decideFreeBox(const Int3& lo, const Int3& hi, std::uint64_t words[8], Output& out) {
+        Box box;
+        Int3 centre;
+        double path2 = 0;
+        bool single = true;
+        for (int a = 0; a < 3; ++a) {
+            box.lo[a] = lo[a];
+            box.hi[a] = hi[a];
+            centre[a] = (lo[a] + hi[a] - 1) / 2;
+            const double c = centre[a] + 0.5;
+            const double far = std::max(c - (lo[a] + 0.5), (hi[a] - 0.5) - c);
+            path2 += far * far;
+            single = single && hi[a] - lo[a] == 1;
+        }
+        const double v = field_.value(centre[0], centre[1], centre[2]);
+        ++out.point_evaluations;
+        if (single || field_.holds(v, box, std::sqrt(path2))) {
+            if (!single) ++out.uniform_regions;
+            if (v >= 0.5) setBox(lo, hi, words);
+            return;
+        }
+        Int3 mid;
+        for (int a = 0; a < 3; ++a) mid[a] = hi[a] - lo[a] > 1 ? lo[a] + (hi[a] - lo[a]) / 2 : hi[a];
+        for (int octant = 0; octant < 8; ++octant) {
+            Int3 child_lo, child_hi;
+            bool empty = false;
+            for (int a = 0; a < 3; ++a) {
+                const bool upper = (octant >> (2 - a)) & 1;
+                child_lo[a] = upper ? mid[a] : lo[a];
+                child_hi[a] = upper ? hi[a] : mid[a];
+                empty = empty || child_lo[a] >= child_hi[a];
+            }
+            if (!empty) decideFreeBox(child_lo, child_hi, words, out);
+        }
+    }
+
+    // The in-grid voxels of brick b as a box.
+    void brickVoxels(const Int3& b, Int3& lo, Int3& hi) const {
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = 8 * b[a];
+            hi[a] = std::min(8 * b[a] + 8, grid_.dims[a]);
+        }
+    }
+
+    void decideFreeBrick(const Int3& b) {
+        Output& out = outputs_.local();
+        SparseGrid::Leaf leaf{};
+        leaf.brick = bricks_.index(b[0], b[1], b[2]);
+        Int3 lo, hi;
+        brickVoxels(b, lo, hi);
+        decideFreeBox(lo, hi, leaf.words, out);
+        std::uint64_t any = 0;
+        for (std::uint64_t w : leaf.words) any |= w;
+        if (any) out.leaves.push_back(leaf);
+    }
+
     // One brick voxel by voxel: each 6-connected part of its voxels outside the surface is
     // decided by one test when the bound over the part's longest path allows, else per voxel.
     void decideBrick(const Int3& b, const std::uint64_t surface[8]) {
@@ -230,11 +294,35 @@ private:
                     for (int q = 0; q < tail; ++q) leaf.words[queue[q] >> 6] |= std::uint64_t(1) << (queue[q] & 63);
                 continue;
             }
-            if (v >= 0.5) leaf.words[start >> 6] |= std::uint64_t(1) << (start & 63);
-            for (int q = 1; q < tail; ++q) {
-                const Int3 at = voxel(queue[q]);
-                ++out.point_evaluations;
-                if (field_.value(at[0], at[1], at[2]) >= 0.5) leaf.words[queue[q] >> 6] |= std::uint64_t(1) << (queue[q] & 63);
+            // Undecided: the part's voxels in 4³ octants of the brick that hold no surface voxel
+            // go box by box (straight paths stay in the octant); the rest voxel by voxel.
+            std::uint64_t done[8] = {}, member[8] = {};
+            for (int q = 0; q < tail; ++q) member[queue[q] >> 6] |= std::uint64_t(1) << (queue[q] & 63);
+            for (int octant = 0; octant < 8; ++octant) {
+                Int3 lo, hi;
+                brickVoxels(b, lo, hi);
+                bool free = true;
+                for (int a = 0; a < 3; ++a) {
+                    lo[a] = lo[a] + ((octant >> (2 - a)) & 1) * 4;
+                    hi[a] = std::min(hi[a], lo[a] + 4);
+                    free = free && lo[a] < hi[a];
+                }
+                for (int i = lo[0]; free && i < hi[0]; ++i)
+                    for (int j = lo[1]; j < hi[1]; ++j)
+                        for (int k = lo[2]; k < hi[2]; ++k) free = free && !(surface[i & 7] & BitGrid::bitMask(j, k));
+                // A surface-free octant is 6-connected, so it lies wholly in one part: this one?
+                if (!free || !(member[lo[0] & 7] & BitGrid::bitMask(lo[1], lo[2]))) continue;
+                std::uint64_t words[8] = {};
+                decideFreeBox(lo, hi, words, out);
+                setBox(lo, hi, done);
+                for (int x = 0; x < 8; ++x) leaf.words[x] |= words[x];
+            }
+            for (int q = 0; q < tail; ++q) {
+                const int n = queue[q];
+                if ((done[n >> 6] >> (n & 63)) & 1) continue;
+                const double here = q == 0 ? v : field_.value(voxel(n)[0], voxel(n)[1], voxel(n)[2]);
+                out.point_evaluations += q != 0;
+                if (here >= 0.5) leaf.words[n >> 6] |= std::uint64_t(1) << (n & 63);
             }
         }
         std::uint64_t any = 0;
