@@ -271,3 +271,18 @@ def test_cli_takes_the_solid_options(cli, tmp_path):
     bad = subprocess.run([str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "x.vdb"), "--inside", "sometimes"],
                          capture_output=True, text=True)
     assert bad.returncode != 0 and "parity, winding" in bad.stderr
+
+
+def test_tiled_and_tessellation_runs_fill_the_same_inside(bunny):
+    vertices, triangles = bunny
+    whole = hyvox.voxelize(vertices, triangles, resolution=48, mode="solid")
+    tiled = hyvox.voxelize(vertices, triangles, resolution=48, mode="solid", tile_size=16)
+    assert tiled.stats["tiles"] > 1
+    assert np.array_equal(np.sort(whole.coords(), axis=0), np.sort(tiled.coords(), axis=0))
+    # The tessellation's surface is approximate; its inside is decided against the exact one,
+    # so solid = its own surface + the same inside voxels as cpu's.
+    tess = hyvox.voxelize(vertices, triangles, resolution=48, mode="solid", method="tessellation", gl_device="software")
+    tess_surface = hyvox.voxelize(vertices, triangles, resolution=48, method="tessellation", gl_device="software")
+    cpu_surface = hyvox.voxelize(vertices, triangles, resolution=48).to_dense()
+    expected = tess_surface.to_dense() | (whole.to_dense() & ~cpu_surface)
+    assert np.array_equal(tess.to_dense(), expected)
