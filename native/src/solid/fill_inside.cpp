@@ -350,20 +350,24 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
     stats.boundary_edges = closure.boundary_edges;
     stats.nonmanifold_edges = closure.nonmanifold_edges;
     stats.misoriented_edges = closure.misoriented_edges;
-    // auto on a closed, consistently oriented mesh: its winding number is an integer, the
+    // auto when every edge's uses cancel (a closed, consistently oriented mesh, or one whose
+    // non-manifold edges are used as often each way): the winding number is an integer, the
     // signed sum of any ray's crossings, so the rays give it exactly and as fast as parity
     // (and, unlike parity, fill where shells overlap).
     const bool closed = closure.closedAndOriented();
+    const bool balanced = closure.open_edges.empty();
     const InsideRule asked = options.solid.inside;
     const InsideRule rule = asked == InsideRule::Auto ? InsideRule::Winding : asked;
-    const bool by_rays = rule == InsideRule::Parity || (asked == InsideRule::Auto && closed);
+    const bool by_rays = rule == InsideRule::Parity || (asked == InsideRule::Auto && balanced);
     stats.inside_rule = toString(rule);
     stats.evaluation = by_rays ? "ray crossings" : "fast winding numbers";
+    const std::string signed_count = ": the winding number is the signed count of ray crossings";
     if (asked != InsideRule::Auto)
         stats.reason = std::string("the inside option (") + edgeFinding(closure) + ")";
     else if (closed)
-        stats.reason = "auto: closed and consistently oriented (every edge used twice, once each way): the winding "
-                       "number is the signed count of ray crossings";
+        stats.reason = "auto: closed and consistently oriented (every edge used twice, once each way)" + signed_count;
+    else if (balanced)
+        stats.reason = "auto: every edge used as often each way (" + edgeFinding(closure) + ")" + signed_count;
     else
         stats.reason = "auto: not closed and consistently oriented (" + edgeFinding(closure) + ")";
 

@@ -45,12 +45,15 @@ RayCrossings::RayCrossings(const ValidatedMesh& mesh, const GridSpec& grid) {
     std::vector<bool> done(mesh.view.vertex_count, false);
     const std::int64_t grid_x = std::int64_t(grid.dims[0]) << kFractionBits;
     const std::int64_t grid_y = std::int64_t(grid.dims[1]) << kFractionBits;
-    for (const std::uint32_t t : mesh.usable) {
+    // Every triangle, the zero-area ones included: the closure check counts their edges, and
+    // snapped they may cover a sliver of the plane that closes the count.
+    for (std::size_t t = 0; t < mesh.view.triangle_count; ++t) {
         Triangle tri{};
+        const std::uint32_t* corners = mesh.view.triangles + 3 * t;
         for (int c = 0; c < 3; ++c) {
-            const std::uint32_t v = mesh.view.triangles[3 * std::size_t(t) + std::size_t(c)];
+            const std::uint32_t v = corners[c];
             if (!done[v]) {
-                const std::array<double, 3> p = grid.toVoxel(mesh.vertex(t, c));
+                const std::array<double, 3> p = grid.toVoxel(mesh.vertex(std::uint32_t(t), c));
                 snapped[v] = {snap(p[0]), snap(p[1])};
                 heights[v] = p[2];
                 done[v] = true;
