@@ -81,6 +81,8 @@ def messy_shapes():
         "cube_with_a_flipped_face": (flipped_face, "misoriented"),
         # Two closed cubes that overlap: the overlap has winding number 2 (parity would leave it empty).
         "overlapping_cubes": (join(cube(), cube((0.4, 0.3, 0.2), (1.5, 1.2, 1.3))), "closed"),
+        # Two cubes sharing one edge: used four times, twice each way (non-manifold, balanced).
+        "cubes_sharing_an_edge": (join(cube(), cube((1, 1, 0), (2, 2, 1))), "balanced"),
         # A cube inside a cube whose faces are flipped: a hollow box (winding number 0 inside).
         "nested_cube_flipped": (join(cube((0, 0, 0), (2, 2, 2)),
                                      (cube((0.5, 0.6, 0.7), (1.5, 1.4, 1.3))[0], CUBE_FACES[:, ::-1].copy())),
@@ -213,6 +215,9 @@ def test_messy_shapes_match_brute_force_winding(name):
     assert stats["inside_rule"] == "winding"
     if finding == "closed":
         assert stats["evaluation"] == "ray crossings" and "closed and consistently oriented" in stats["reason"]
+    elif finding == "balanced":
+        assert stats["evaluation"] == "ray crossings" and "as often each way" in stats["reason"]
+        assert stats["nonmanifold_edges"] > 0 and stats["boundary_edges"] == stats["misoriented_edges"] == 0
     else:
         assert stats["evaluation"] == "fast winding numbers" and stats[finding + "_edges"] > 0
         assert finding in stats["reason"]
