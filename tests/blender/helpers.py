@@ -60,7 +60,7 @@ def clear_scene():
             coll.remove(block)
     scene = bpy.context.scene
     scene.frame_set(1)
-    for prop in ("resolution", "voxel_size", "method", "mode", "separate", "output_dir",
+    for prop in ("resolution", "voxel_size", "method", "mode", "fill_interior", "inside", "separate", "output_dir",
                  "use_frame_range", "size_mode"):
         scene.hyvox.property_unset(prop)
 
@@ -147,6 +147,8 @@ class AddonTestCase(unittest.TestCase):
     def voxelize(self, **kw):
         kw.setdefault("output_dir", self.out)
         kw.setdefault("method", "cpu")
+        # The tests written for surfaces ask for one; Fill Interior (on by default) is tested apart.
+        kw.setdefault("fill_interior", False)
         return bpy.ops.object.hyvox_voxelize(**kw)
 
     def volumes(self):

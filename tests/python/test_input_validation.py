@@ -10,7 +10,7 @@ def test_package_surface():
     for name in hyvox.__all__:
         assert hasattr(hyvox, name), name
     assert hyvox.METHODS[:2] == ("cpu", "reference")
-    assert hyvox.MODES == ("conservative", "thin")
+    assert hyvox.MODES == ("conservative", "thin", "solid")
     assert issubclass(hyvox.ResourceError, RuntimeError)
     assert issubclass(hyvox.BackendError, RuntimeError)
     assert issubclass(hyvox.Cancelled, Exception) and not issubclass(hyvox.Cancelled, RuntimeError)

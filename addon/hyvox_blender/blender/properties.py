@@ -30,6 +30,12 @@ CHOICE_LABELS = {
     "mode": {
         "conservative": ("Conservative", "Every voxel the surface touches (26-separating)"),
         "thin": ("Thin", "The thinnest surface that still separates inside from outside (6-separating)"),
+        "solid": ("Solid", "The surface and every voxel whose centre is inside"),
+    },
+    "inside": {
+        "auto": ("Auto", "The winding number: exact by rays for closed meshes, fast winding numbers for open ones"),
+        "parity": ("Parity", "Inside where a ray crosses the surface an odd number of times (closed meshes)"),
+        "winding": ("Winding Number", "Inside where the winding number is at least 0.5 (holes, flipped faces)"),
     },
 }
 SIZE_ITEMS = [
@@ -150,6 +156,11 @@ def scene_and_operator_properties(operator=False):
                                description="Which voxelizer runs (" + _description(option_spec("method"))[:1].lower()
                                + _description(option_spec("method"))[1:] + ")", **skip),
         "mode": schema_property("mode", operator, **skip),
+        # Like Mesh to Volume's Fill Volume: on, the run is solid whatever the mode says.
+        "fill_interior": BoolProperty(name="Fill Interior", description="Fill the inside of the mesh too "
+                                      "(solid mode); holes and flipped faces are bridged by the winding number",
+                                      default=True, **skip),
+        "inside": schema_property("inside", operator, **skip),
         "tess_gamma": schema_property("tess_gamma", operator, soft=(0.5, 4.0), **skip),
         "hybrid_cutoff": schema_property("hybrid_cutoff", operator, soft=(-1.0, 4096.0), **skip),
         "padding": schema_property("padding", operator, soft=(0, 64), **skip),
@@ -188,7 +199,7 @@ def scene_and_operator_properties(operator=False):
 
 
 # The settings that stand for schema options, by the property's (= the option's) name.
-SCENE_OPTIONS = ("resolution", "voxel_size", "mode", "tess_gamma", "hybrid_cutoff", "padding")
+SCENE_OPTIONS = ("resolution", "voxel_size", "mode", "inside", "tess_gamma", "hybrid_cutoff", "padding")
 PREFERENCE_OPTIONS = ("threads", "memory_budget_mib")
 
 

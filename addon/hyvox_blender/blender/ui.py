@@ -69,7 +69,11 @@ class VIEW3D_PT_hyvox_voxelize(_HyvoxPanel, bpy.types.Panel):
             row = col.row()
             row.alignment = "RIGHT"
             row.label(text=note, icon="ERROR" if software else "INFO")
-        col.prop(settings, "mode")
+        col.prop(settings, "fill_interior", text="Fill Interior")
+        if settings.fill_interior:
+            col.prop(settings, "inside", text="Inside")
+        else:
+            col.prop(settings, "mode")
         if _applies("tess_gamma", method):
             col.prop(settings, "tess_gamma", text="Gamma")
         col.prop(settings, "output", text="Output")

@@ -14,7 +14,17 @@ namespace hyvox {
 
 // conservative: every voxel whose closed box meets the triangle (26-separating).
 // thin: Schwarz & Seidel's 6-separating surface (fewer voxels, still no 6-connected leak).
-enum class Mode { Conservative, Thin };
+// solid: the conservative surface plus every voxel whose centre is inside (InsideRule).
+enum class Mode { Conservative, Thin, Solid };
+
+// How solid mode decides that a voxel centre is inside (src/solid/).
+// parity: an odd number of surface crossings on the ray from the centre along -z (exact for
+// closed meshes). winding: generalized winding number >= 0.5 (holes, flipped or duplicated
+// faces, nested shells). auto: the winding number, counted exactly by the signed crossings of
+// the parity rays when the mesh is closed and consistently oriented (as fast as parity, and
+// right where closed shells overlap), else by fast winding numbers; the finding is reported
+// in Stats::solid.
+enum class InsideRule { Auto, Parity, Winding };
 
 enum class Method {
     Cpu,           // factored triangle/voxel test, multi-threaded (fallback without a GPU)
@@ -29,10 +39,13 @@ enum class Method {
 // InvalidInput naming the choices.
 const char* toString(Mode mode);
 const char* toString(Method method);
+const char* toString(InsideRule rule);
 Mode parseMode(const std::string& text);
 Method parseMethod(const std::string& text);
+InsideRule parseInsideRule(const std::string& text);
 std::vector<const char*> modeNames();    // in enum order
 std::vector<const char*> methodNames();
+std::vector<const char*> insideRuleNames();
 
 struct GlOptions {
     std::string device;      // "" = auto (hardware first, then software); "software"; or an index "0", "1"...
@@ -84,6 +97,14 @@ struct TessellationOptions {
     bool counts = true;  // also fill VoxelizeResult::counts (points per voxel)
 };
 
+struct SolidOptions {
+    InsideRule inside = InsideRule::Auto;
+    // Fast winding numbers (Barill et al. 2018): a cluster of triangles is replaced by its
+    // expansion when the query is farther than beta times the cluster's radius. Larger is
+    // more accurate and slower.
+    double winding_beta = 2.0;
+};
+
 struct VoxelizeOptions {
     GridOptions grid;
     Mode mode = Mode::Conservative;
@@ -99,6 +120,7 @@ struct VoxelizeOptions {
     GlOptions gl;
     HybridOptions hybrid;
     TessellationOptions tessellation;
+    SolidOptions solid;
 
     std::uint64_t memoryBudgetBytes() const { return memory_budget_mib << 20; }
 };

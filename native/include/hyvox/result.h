@@ -90,6 +90,40 @@ struct TessellationStats {
     }
 };
 
+// Solid mode (src/solid/): what the closedness check found, the rule it led to, and how much
+// of the grid was decided per region instead of per voxel.
+struct SolidStats {
+    std::string inside_rule;  // "parity" or "winding": the rule that ran
+    // "ray crossings" (parity, or the winding number of a closed mesh as their signed sum) or
+    // "fast winding numbers" (Barill et al. 2018)
+    std::string evaluation;
+    std::string reason;       // why (the option, or auto's finding)
+    // Edges after welding identical positions: used by one triangle, by more than two, or by
+    // two triangles running the same way. All 0 = closed and consistently oriented.
+    std::uint64_t boundary_edges = 0;
+    std::uint64_t nonmanifold_edges = 0;
+    std::uint64_t misoriented_edges = 0;
+    std::uint64_t inside_voxels = 0;       // set for being inside, not already on the surface
+    std::uint64_t tile_bricks = 0;         // 8³ bricks of the result held as whole active tiles
+    std::uint64_t uniform_regions = 0;     // surface-free boxes decided by one evaluation
+    std::uint64_t component_decisions = 0; // connected empty parts of surface bricks decided by one evaluation
+    std::uint64_t point_evaluations = 0;   // inside tests run (winding numbers or ray parities)
+    template <typename F>
+    void visit(F&& f) const {
+        f("inside_rule", inside_rule);
+        f("evaluation", evaluation);
+        f("reason", reason);
+        f("boundary_edges", boundary_edges);
+        f("nonmanifold_edges", nonmanifold_edges);
+        f("misoriented_edges", misoriented_edges);
+        f("inside_voxels", inside_voxels);
+        f("tile_bricks", tile_bricks);
+        f("uniform_regions", uniform_regions);
+        f("component_decisions", component_decisions);
+        f("point_evaluations", point_evaluations);
+    }
+};
+
 struct Stats {
     std::string method;
     std::string mode;
@@ -101,7 +135,7 @@ struct Stats {
     // summed over the tiles of a tiled run.
     std::vector<std::pair<std::string, double>> timings_ms;
     std::uint64_t tiles = 0;   // boxes of the grid voxelized one after the other
-    std::uint64_t leaves = 0;  // non-empty 8³ leaves of the result
+    std::uint64_t leaves = 0;  // non-empty, not wholly set 8³ leaves of the result (tiles apart)
     std::uint64_t vdb_bytes = 0;  // the OpenVDB grids' memory, when a front door wrote them
     // Attribute voxels (options.attributes): clipped (triangle, voxel) pieces averaged; leaves
     // where a set voxel's touch was lost to rounding in the clip and found again with a 1e-9
@@ -116,6 +150,7 @@ struct Stats {
     std::optional<ReferenceStats> reference;
     std::optional<HybridStats> hybrid;  // triangle, fragment and hybrid
     std::optional<TessellationStats> tessellation;
+    std::optional<SolidStats> solid;  // solid mode only, beside the backend's section
 
     void addTiming(const std::string& stage, double ms) {
         for (auto& [name, total] : timings_ms)
@@ -143,6 +178,7 @@ struct Stats {
         if (reference) f("reference", *reference);
         if (hybrid) f("hybrid", *hybrid);
         if (tessellation) f("tessellation", *tessellation);
+        if (solid) f("solid", *solid);
     }
 };
 

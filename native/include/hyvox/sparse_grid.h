@@ -7,6 +7,13 @@
 // Filled tile by tile (addTile, then finish): every method voxelizes one brick-aligned box of
 // the grid at a time into a dense BitGrid, whose non-empty bricks are then copied here as
 // leaves. Tiles do not overlap, so each leaf comes from exactly one tile.
+//
+// Wholly set bricks (a solid's interior) are not leaves but active tiles: runs of brick
+// indices [begin, end), 16 bytes a run, as OpenVDB holds a whole leaf as one tile value
+// (a level-1 tile). finish() turns every full leaf that lies wholly inside the grid into a
+// tile and drops leaves that a tile covers, so two grids with the same voxels compare equal
+// whatever way their voxels were added. Tile voxels are voxels like any other: count(),
+// test(), coords() and toBitGrid() include them (coords() lists each of their 512 voxels).
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -24,6 +31,9 @@ public:
         std::uint64_t words[BitGrid::kWordsPerBrick];       // OpenVDB NodeMask<3> words
     };
     static constexpr std::size_t kLeafBytes = sizeof(Leaf);
+    struct TileRun {
+        std::uint64_t begin, end;  // BrickLayout indices [begin, end), all 512 voxels of each set
+    };
 
     SparseGrid() = default;
     explicit SparseGrid(std::array<std::int32_t, 3> dims);
@@ -33,14 +43,26 @@ public:
     const BrickLayout& bricks() const { return bricks_; }
     const std::vector<Leaf>& leaves() const { return leaves_; }
     std::size_t leafCount() const { return leaves_.size(); }
-    std::size_t byteSize() const { return leaves_.capacity() * kLeafBytes; }
+    const std::vector<TileRun>& tileRuns() const { return tiles_; }  // sorted, disjoint, not adjacent
+    std::uint64_t tileCount() const;  // bricks held as tiles
+    std::size_t byteSize() const { return leaves_.capacity() * kLeafBytes + tiles_.capacity() * sizeof(TileRun); }
 
     // Copies the non-empty bricks of `tile`, whose voxel (0,0,0) is voxel `offset` of this grid
     // (a multiple of 8 on every axis; the tile must lie inside the grid, bricks padded past
     // the grid's edge excepted). Tiles added must not overlap.
     void addTile(const BitGrid& tile, const std::array<std::int32_t, 3>& offset);
+    // Adds the voxels of `more` (same dims, finished) to these (solid mode: the inside to the
+    // surface). Overlaps are fine: the result is the union.
+    void merge(const SparseGrid& more);
+    // Sets every voxel of bricks [begin, end), which must lie wholly inside the grid.
+    void addTileRun(std::uint64_t begin, std::uint64_t end);
+    // Adds one leaf (brick index and words); it may overlap what is there (finish() ORs them).
+    void addLeaf(const Leaf& leaf);
     // Puts the leaves in brick order after the last addTile(); test(), set() and == need it.
+    // Also ORs leaves of the same brick together and makes full leaves tiles (see above).
     void finish();
+    // Whether brick (bx,by,bz) lies wholly inside the grid (only those may be tiles).
+    bool brickWhole(std::uint64_t brick) const;
 
     bool inside(int i, int j, int k) const {
         return i >= 0 && j >= 0 && k >= 0 && i < dims_[0] && j < dims_[1] && k < dims_[2];
@@ -59,11 +81,13 @@ public:
 
 private:
     const Leaf* find(std::uint64_t brick) const;
+    bool inTile(std::uint64_t brick) const;
     void requireFinished() const;
 
     std::array<std::int32_t, 3> dims_{0, 0, 0};
     BrickLayout bricks_;
     std::vector<Leaf> leaves_;  // sorted by brick once finished
+    std::vector<TileRun> tiles_;  // sorted and merged once finished
     bool sorted_ = true;
 };
 

@@ -117,7 +117,8 @@ The voxels of one voxelization. Voxel (i, j, k) covers the closed box
 [origin + (i, j, k) * voxel_size, origin + (i + 1, j + 1, k + 1) * voxel_size].)doc")
         .def("coords", &coords,
              "(i, j, k) of every occupied voxel as an int32 array of shape (K, 3), in 8x8x8 brick "
-             "order (sort it if order matters).")
+             "order (sort it if order matters). The voxels of whole-brick tiles (a solid's interior) "
+             "are listed one by one like the others.")
         .def("world_centres", &worldCentres,
              "World-space centres of the occupied voxels, float64 (K, 3), in the order of coords().")
         .def("counts", &counts,

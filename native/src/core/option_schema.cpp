@@ -32,6 +32,7 @@ OptionValue asOptionalVector(const std::optional<std::array<double, 3>>& v) {
 OptionValue asOptionalBox(const std::optional<Bounds>& v) { return v ? OptionValue(*v) : OptionValue(std::monostate{}); }
 OptionValue asMode(Mode v) { return std::string(toString(v)); }
 OptionValue asMethod(Method v) { return std::string(toString(v)); }
+OptionValue asInsideRule(InsideRule v) { return std::string(toString(v)); }
 
 // The stored value converted to the field's type (checked before: the variant holds the
 // spec's type, or monostate for an unset nullable field).
@@ -42,6 +43,7 @@ bool fieldValue(const OptionValue& v, bool) { return std::get<bool>(v); }
 std::string fieldValue(const OptionValue& v, const std::string&) { return std::get<std::string>(v); }
 Mode fieldValue(const OptionValue& v, Mode) { return parseMode(std::get<std::string>(v)); }
 Method fieldValue(const OptionValue& v, Method) { return parseMethod(std::get<std::string>(v)); }
+InsideRule fieldValue(const OptionValue& v, InsideRule) { return parseInsideRule(std::get<std::string>(v)); }
 template <typename T>
 std::optional<T> fieldValue(const OptionValue& v, const std::optional<T>&) {
     if (std::holds_alternative<std::monostate>(v)) return std::nullopt;
@@ -69,7 +71,8 @@ std::vector<OptionSpec> buildSchema() {
          {}, {}, nullptr, HYVOX_FIELD(asInteger, grid.padding)});
     // --- the run ---
     add({"mode", T::Choice, "run", "Mode", "",
-         "conservative: every voxel the surface touches (26-separating); thin: 6-separating", false, 0, 0, false,
+         "conservative: every voxel the surface touches (26-separating); thin: 6-separating; solid: "
+         "conservative plus every voxel whose centre is inside", false, 0, 0, false,
          modeNames(), {}, nullptr, HYVOX_FIELD(asMode, mode)});
     add({"method", T::Choice, "run", "Method", "",
          "cpu and reference run anywhere; triangle, fragment, hybrid and tessellation need GL 4.5", false, 0, 0, false,
@@ -87,6 +90,16 @@ std::vector<OptionSpec> buildSchema() {
     add({"attributes", T::Text, "run", "Attributes", "",
          "attribute voxels to compute: a comma list of color (linear RGB, alpha when the source has it) and "
          "normal; '' = none", false, 0, 0, false, {}, {}, nullptr, HYVOX_FIELD(asText, attributes)});
+    // --- solid mode ---
+    add({"inside", T::Choice, "solid", "Inside Rule", "",
+         "solid: parity = odd ray crossings (closed meshes); winding = winding number >= 0.5 (holes, "
+         "flipped faces); auto = the winding number, by ray crossings when the mesh is closed and "
+         "consistently oriented, else by fast winding numbers",
+         false, 0, 0, false, insideRuleNames(), {}, nullptr, HYVOX_FIELD(asInsideRule, solid.inside)});
+    add({"winding_beta", T::Number, "solid", "Winding Accuracy", "",
+         "solid, winding: fast winding number accuracy beta (a cluster is expanded when the point is "
+         "farther than beta times its radius); larger = more exact, slower",
+         false, 1, 100, false, {}, {}, nullptr, HYVOX_FIELD(asNumber, solid.winding_beta)});
     // --- GL methods ---
     add({"gl_device", T::Text, "gl", "GL Device", "",
          "EGL device: '' = a hardware GPU if any, else software; 'software'; or a device index", false, 0, 0, false, {},

@@ -10,9 +10,15 @@
 namespace hyvox {
 namespace {
 
-constexpr std::array<std::pair<Mode, const char*>, 2> kModes{{
+constexpr std::array<std::pair<Mode, const char*>, 3> kModes{{
     {Mode::Conservative, "conservative"},
     {Mode::Thin, "thin"},
+    {Mode::Solid, "solid"},
+}};
+constexpr std::array<std::pair<InsideRule, const char*>, 3> kInsideRules{{
+    {InsideRule::Auto, "auto"},
+    {InsideRule::Parity, "parity"},
+    {InsideRule::Winding, "winding"},
 }};
 constexpr std::array<std::pair<Method, const char*>, 6> kMethods{{
     {Method::Cpu, "cpu"},
@@ -55,5 +61,8 @@ const char* toString(Mode mode) { return nameOf(kModes, mode); }
 const char* toString(Method method) { return nameOf(kMethods, method); }
 Mode parseMode(const std::string& text) { return parseName(kModes, text, "mode"); }
 Method parseMethod(const std::string& text) { return parseName(kMethods, text, "method"); }
+std::vector<const char*> insideRuleNames() { return namesOf(kInsideRules); }
+const char* toString(InsideRule rule) { return nameOf(kInsideRules, rule); }
+InsideRule parseInsideRule(const std::string& text) { return parseName(kInsideRules, text, "inside rule"); }
 
 }  // namespace hyvox

@@ -52,6 +52,8 @@ std::string number(double value) {
 }
 
 std::string number(std::uint64_t value) { return std::to_string(value); }
+// Section fields are numbers, and a few are names (the solid section's rule and reason).
+std::string number(const std::string& text) { return quote(text); }
 
 std::string json(const OptionValue& value) {
     struct Json {

@@ -106,6 +106,19 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& 
     });
     auto& tree = result->tree();
     for (auto& leaf : leaves) tree.addLeaf(leaf.release());
+    // Whole bricks (a solid's interior) are active level-1 tiles, one per 8³ leaf, no leaf
+    // allocated; pruning then folds internal nodes that are wholly such tiles into tiles of
+    // their own level, so a solid costs memory along its surface only.
+    if (!occupancy.tileRuns().empty()) {
+        openvdb::FloatGrid::Accessor accessor(tree);
+        for (const SparseGrid::TileRun& run : occupancy.tileRuns())
+            for (std::uint64_t b = run.begin; b < run.end; ++b) {
+                const std::array<std::int32_t, 3> at = bricks.at(b);
+                const int side = BrickLayout::kSide;
+                accessor.addTile(1, openvdb::Coord(at[0] * side, at[1] * side, at[2] * side), 1.0f, true);
+            }
+        tree.prune();
+    }
     return result;
 }
 

@@ -12,6 +12,7 @@
 #include "core/backends.h"
 #include "core/stopwatch.h"
 #include "gl/device_limits.h"
+#include "solid/fill_inside.h"
 #include "hyvox/option_schema.h"
 #include "tile_plan.h"
 
@@ -98,10 +99,91 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
 std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, const VoxelizeOptions& options) {
     const AttributeSet wanted = parseAttributeSet(options.attributes);
     if (!wanted.any()) return std::nullopt;
+    if (options.mode == Mode::Solid)
+        throw InvalidInput("attributes are computed for the surface modes (conservative, thin); solid mode does "
+                           "not compute them yet");
     if (options.method != Method::Cpu && options.method != Method::Reference)
         throw InvalidInput(std::string("attributes are computed by the cpu and reference methods; method ") +
                            toString(options.method) + " does not compute them yet");
     return std::optional<attributes::SurfaceValues>(std::in_place, mesh, wanted);
+}
+
+// The surface pass: the method's backend tile by tile into result.occupancy (not finished).
+// With `values`, also each tile's attribute sums into `attribute_leaves`.
+struct Surface {
+    const ValidatedMesh& validated;
+    const GridSpec& grid;
+    const tiling::TilePlan& plan;
+    const tiling::PointReach& reach;
+    Interrupter* interrupter;
+    Stopwatch& watch;
+    const attributes::SurfaceValues* values = nullptr;
+    std::vector<attributes::AttributeLeaf>* attribute_leaves = nullptr;
+
+    void run(const VoxelizeOptions& options, VoxelizeResult& result, Stats& stats) const {
+        result.occupancy = SparseGrid(grid.dims);
+        std::vector<std::vector<std::uint32_t>> bins;
+        if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, reach);
+        stats.addTiming("tiles", watch.restart());
+
+        TileProgress progress(interrupter, plan.total());
+        for (std::size_t t = 0; t < plan.total(); ++t) {
+            if (!plan.whole() && bins[t].empty()) continue;
+            const Tile tile = plan.tile(t, grid);
+            ValidatedMesh part;
+            if (!plan.whole()) part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds};
+            const ValidatedMesh& tile_mesh = plan.whole() ? validated : part;
+            progress.setTile(t);
+            TileOutput out{BitGrid(tile.dims), {}};
+            stats.addTiming("allocate", watch.restart());
+            const BackendJob job{tile_mesh, validated, grid, tile, options, &progress};
+            runBackend(job, out, stats);
+            watch.restart();
+            if (values) {
+                const auto counted = attributes::computeTileAttributes(job, out.bits, *values,
+                                                                       options.method == Method::Reference, *attribute_leaves);
+                stats.attribute_pieces += counted.pieces;
+                stats.attribute_voxels_unreached += counted.voxels_unreached;
+                stats.attribute_leaves_rounded += counted.leaves_rounded;
+                stats.addTiming("attributes", watch.restart());
+            }
+            result.occupancy.addTile(out.bits, tile.offset);
+            result.counts.insert(result.counts.end(), out.counts.begin(), out.counts.end());
+            ++stats.tiles;
+            const std::uint64_t held = plan.tileBytes() + result.occupancy.byteSize();
+            if (held > options.memoryBudgetBytes())
+                throw ResourceError("the surface needs more than the memory budget of " +
+                                    std::to_string(options.memory_budget_mib) + " MiB (" +
+                                    std::to_string(result.occupancy.leafCount()) + " leaves after " +
+                                    std::to_string(stats.tiles) + " tiles); use a larger voxel size");
+            stats.addTiming("compact", watch.restart());
+            throwIfInterrupted(interrupter, int(100 * (t + 1) / plan.total()));
+        }
+    }
+};
+
+// Solid mode: the inside voxels (src/solid/) added to the surface. The inside pass needs the
+// exact conservative surface as its barrier: the tessellation's approximate one gets the cpu
+// method's beside it.
+void addInside(const ValidatedMesh& validated, const GridSpec& grid, const Surface& surface,
+               const VoxelizeOptions& options, VoxelizeResult& result, Stats& stats, Interrupter* interrupter,
+               Stopwatch& watch) {
+    result.occupancy.finish();
+    SolidStats& solid = stats.solid.emplace();
+    VoxelizeResult exact;
+    if (options.method == Method::Tessellation) {
+        VoxelizeOptions cpu = options;
+        cpu.mode = Mode::Conservative;
+        cpu.method = Method::Cpu;
+        Stats ignored;
+        surface.run(cpu, exact, ignored);
+        exact.occupancy.finish();
+        stats.addTiming("solid_barrier", watch.restart());
+    }
+    const SparseGrid& barrier = options.method == Method::Tessellation ? exact.occupancy : result.occupancy;
+    SparseGrid inside = solid::fillInside(validated, grid, barrier, options, interrupter, solid);
+    stats.addTiming("solid_inside", watch.restart());
+    result.occupancy.merge(inside);
 }
 
 }  // namespace
@@ -135,44 +217,20 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     stats.triangles_input = mesh.triangle_count;
     stats.triangles_used = validated.usable.size();
     stats.triangles_degenerate = validated.degenerate_count;
-    result.occupancy = SparseGrid(grid.dims);
 
-    std::vector<std::vector<std::uint32_t>> bins;
-    if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, reach);
-    stats.addTiming("tiles", watch.restart());
-
-    TileProgress progress(interrupter, plan.total());
-    for (std::size_t t = 0; t < plan.total(); ++t) {
-        if (!plan.whole() && bins[t].empty()) continue;
-        const Tile tile = plan.tile(t, grid);
-        ValidatedMesh part;
-        if (!plan.whole()) part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds};
-        const ValidatedMesh& tile_mesh = plan.whole() ? validated : part;
-        progress.setTile(t);
-        TileOutput out{BitGrid(tile.dims), {}};
-        stats.addTiming("allocate", watch.restart());
-        const BackendJob job{tile_mesh, validated, grid, tile, options, &progress};
-        runBackend(job, out, stats);
-        watch.restart();
-        if (surface) {
-            const auto counted = attributes::computeTileAttributes(job, out.bits, *surface,
-                                                                   options.method == Method::Reference, attribute_leaves);
-            stats.attribute_pieces += counted.pieces;
-            stats.attribute_voxels_unreached += counted.voxels_unreached;
-            stats.attribute_leaves_rounded += counted.leaves_rounded;
-            stats.addTiming("attributes", watch.restart());
-        }
-        result.occupancy.addTile(out.bits, tile.offset);
-        result.counts.insert(result.counts.end(), out.counts.begin(), out.counts.end());
-        ++stats.tiles;
-        const std::uint64_t held = plan.tileBytes() + result.occupancy.byteSize();
-        if (held > options.memoryBudgetBytes())
-            throw ResourceError("the surface needs more than the memory budget of " +
-                                std::to_string(options.memory_budget_mib) + " MiB (" +
-                                std::to_string(result.occupancy.leafCount()) + " leaves after " +
-                                std::to_string(stats.tiles) + " tiles); use a larger voxel size");
-        stats.addTiming("compact", watch.restart());
-        throwIfInterrupted(interrupter, int(100 * (t + 1) / plan.total()));
+    // Solid mode: the backends draw the conservative surface; the inside is added after.
+    const bool solid = options.mode == Mode::Solid;
+    VoxelizeOptions surface_options = options;
+    if (solid) surface_options.mode = Mode::Conservative;
+    Surface surface_pass{validated, grid, plan, reach, interrupter, watch};
+    if (surface) {
+        surface_pass.values = &*surface;
+        surface_pass.attribute_leaves = &attribute_leaves;
+    }
+    surface_pass.run(surface_options, result, stats);
+    if (solid) {
+        surface_pass.values = nullptr;  // the barrier pass (tessellation) computes no attributes
+        addInside(validated, grid, surface_pass, options, result, stats, interrupter, watch);
     }
     throwIfInterrupted(interrupter, 100);
     checkSomethingLanded(stats, reach);
@@ -183,6 +241,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     }
     stats.voxel_count = result.occupancy.count();
     stats.leaves = result.occupancy.leafCount();
+    if (stats.solid) stats.solid->tile_bricks = result.occupancy.tileCount();
     stats.addTiming("count", watch.restart());
     return result;
 }

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "solid/fast_winding.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hyvox::solid {
+namespace {
+
+constexpr double kFourPi = 4.0 * M_PI;
+constexpr std::uint32_t kLeafTriangles = 8;
+
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+
+}  // namespace
+
+double triangleWinding(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& q) {
+    const Vec3 u = sub(a, q), v = sub(b, q), w = sub(c, q);
+    const double lu = norm(u), lv = norm(v), lw = norm(w);
+    const double det = dot(u, cross(v, w));
+    const double denominator = lu * lv * lw + dot(u, v) * lw + dot(v, w) * lu + dot(w, u) * lv;
+    return 2.0 * std::atan2(det, denominator) / kFourPi;
+}
+
+FastWinding::FastWinding(const ValidatedMesh& mesh, const GridSpec& grid, double beta) : beta_(beta) {
+    triangles_.reserve(mesh.usable.size());
+    for (const std::uint32_t t : mesh.usable)
+        triangles_.push_back({grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)),
+                              grid.toVoxel(mesh.vertex(t, 2))});
+    nodes_.reserve(2 * triangles_.size() / kLeafTriangles + 2);
+    build(0, std::uint32_t(triangles_.size()));
+}
+
+std::int32_t FastWinding::build(std::uint32_t first, std::uint32_t count) {
+    const auto id = std::int32_t(nodes_.size());
+    nodes_.emplace_back();
+    Node node;
+    node.first = first;
+    node.count = count;
+    Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    Vec3 weighted{0, 0, 0};
+    double total_area = 0;
+    for (std::uint32_t t = first; t < first + count; ++t) {
+        const auto& [a, b, c] = triangles_[t];
+        for (const Vec3* p : {&a, &b, &c})
+            for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], (*p)[k]), hi[k] = std::max(hi[k], (*p)[k]);
+        const Vec3 n = cross(sub(b, a), sub(c, a));
+        const double area = 0.5 * norm(n);
+        for (int k = 0; k < 3; ++k) {
+            node.area[k] += 0.5 * n[k];
+            weighted[k] += area * (a[k] + b[k] + c[k]) / 3.0;
+        }
+        total_area += area;
+    }
+    for (int k = 0; k < 3; ++k) node.centre[k] = total_area > 0 ? weighted[k] / total_area : 0.5 * (lo[k] + hi[k]);
+    for (std::uint32_t t = first; t < first + count; ++t) {
+        const auto& [a, b, c] = triangles_[t];
+        const Vec3 n = cross(sub(b, a), sub(c, a));
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                node.moment[3 * i + j] += 0.5 * n[i] * ((a[j] + b[j] + c[j]) / 3.0 - node.centre[j]);
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p{corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1], corner & 4 ? hi[2] : lo[2]};
+        node.radius = std::max(node.radius, norm(sub(p, node.centre)));
+    }
+    if (count > kLeafTriangles) {
+        // Split at the median centroid along the box's longest side.
+        int axis = 0;
+        for (int k = 1; k < 3; ++k)
+            if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+        const std::uint32_t half = count / 2;
+        auto centroid = [axis](const std::array<Vec3, 3>& t) { return t[0][axis] + t[1][axis] + t[2][axis]; };
+        std::nth_element(triangles_.begin() + first, triangles_.begin() + first + half, triangles_.begin() + first + count,
+                         [&](const auto& x, const auto& y) { return centroid(x) < centroid(y); });
+        node.left = build(first, half);
+        node.right = build(first + half, count - half);
+    }
+    nodes_[std::size_t(id)] = node;
+    return id;
+}
+
+double FastWinding::at(const Vec3& q) const {
+    if (nodes_.empty()) return 0.0;
+    double sum = 0;  // solid angle over 4π, exact parts
+    double far = 0;  // expansions, times 4π
+    std::int32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = nodes_[std::size_t(stack[--top])];
+        const Vec3 r = sub(node.centre, q);
+        const double r2 = dot(r, r);
+        if (r2 > beta_ * beta_ * node.radius * node.radius) {
+            const double r1 = std::sqrt(r2), r3 = r2 * r1;
+            const auto& m = node.moment;
+            const double trace = m[0] + m[4] + m[8];
+            double rmr = 0;
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) rmr += r[i] * m[3 * i + j] * r[j];
+            far += dot(node.area, r) / r3 + trace / r3 - 3.0 * rmr / (r3 * r2);
+        } else if (node.left < 0) {
+            for (std::uint32_t t = node.first; t < node.first + node.count; ++t)
+                sum += triangleWinding(triangles_[t][0], triangles_[t][1], triangles_[t][2], q);
+        } else {
+            stack[top++] = node.left;
+            stack[top++] = node.right;
+        }
+    }
+    return sum + far / kFourPi;
+}
+
+}  // namespace hyvox::solid

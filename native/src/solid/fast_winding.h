@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The generalized winding number (Jacobson et al. 2013) of a triangle soup at a point, by the
+// hierarchical approximation of Barill et al. 2018 ("Fast winding numbers for soups and
+// clouds"): a bounding volume hierarchy over the triangles; a cluster seen from farther than
+// beta times its radius contributes its dipole expansion to second order (the area vector
+// sum and the first moment of the area vectors about the cluster's area-weighted centre);
+// nearer clusters are opened, down to each triangle's exact solid angle
+// (van Oosterom & Strackee). Everything in voxel space, in double precision.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "hyvox/grid.h"
+#include "hyvox/mesh.h"
+
+namespace hyvox::solid {
+
+using Vec3 = std::array<double, 3>;
+
+// The exact solid angle of triangle (a, b, c) seen from q, over 4π: in (-0.5, 0.5).
+double triangleWinding(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& q);
+
+class FastWinding {
+public:
+    FastWinding(const ValidatedMesh& mesh, const GridSpec& grid, double beta);
+    double at(const Vec3& q) const;
+
+private:
+    struct Node {
+        Vec3 centre{};                     // area-weighted centroid of the cluster
+        double radius = 0;                 // farthest corner of its box from centre
+        Vec3 area{};                       // sum of area vectors (normal times area)
+        std::array<double, 9> moment{};    // sum of area_i * (centroid - centre)_j
+        std::uint32_t first = 0, count = 0;  // triangles [first, first + count) when a leaf
+        std::int32_t left = -1, right = -1;
+    };
+    std::int32_t build(std::uint32_t first, std::uint32_t count);
+
+    double beta_;
+    std::vector<std::array<Vec3, 3>> triangles_;  // voxel space, in tree order
+    std::vector<Node> nodes_;
+};
+
+}  // namespace hyvox::solid

@@ -1,0 +1,410 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "solid/fill_inside.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "solid/edge_closure.h"
+#include "solid/fast_winding.h"
+#include "solid/gradient_bound.h"
+#include "solid/ray_crossings.h"
+
+namespace hyvox::solid {
+namespace {
+
+using Int3 = std::array<std::int32_t, 3>;
+
+// The inside test of the chosen rule: a value compared with 0.5, and how fast it may change.
+struct InsideField {
+    const FastWinding* winding = nullptr;  // one of these two
+    const RayCrossings* rays = nullptr;
+    bool parity = false;  // rays: their parity (else their signed sum, the exact winding number)
+    const GradientBound* bound = nullptr;
+
+    double value(int i, int j, int k) const {
+        if (winding) return winding->at({i + 0.5, j + 0.5, k + 0.5});
+        const int crossings = rays->at(i, j, k);
+        return parity ? double(crossings & 1) : double(crossings);
+    }
+    double slope(const Box& box, double limit) const {
+        if (winding) return bound->windingSlope(box, limit);
+        return bound->parityMayChange(box) ? HUGE_VAL : 0.0;
+    }
+    // Whether a value `v` found at one point holds for every point reachable from it by a path
+    // of length `path` inside `box` that never meets the surface.
+    bool holds(double v, const Box& box, double path) const {
+        const double margin = std::fabs(v - 0.5);
+        if (path <= 0) return margin > 0;
+        return margin > slope(box, margin / path) * path;
+    }
+};
+
+// A brick of the surface: its position and words (all set for a surface tile).
+struct SurfaceBrick {
+    Int3 at;
+    const std::uint64_t* words;
+};
+
+struct Output {
+    std::vector<SparseGrid::Leaf> leaves;
+    std::vector<SparseGrid::TileRun> runs;
+    std::uint64_t uniform_regions = 0, component_decisions = 0, point_evaluations = 0;
+};
+
+class InsideFill {
+public:
+    InsideFill(const GridSpec& grid, const InsideField& field, Interrupter* interrupter)
+        : grid_(grid), bricks_(grid.bricks()), field_(field), interrupter_(interrupter) {}
+
+    void run(std::vector<SurfaceBrick>& surface) {
+        node({0, 0, 0}, bricks_.counts, surface.data(), surface.data() + surface.size());
+    }
+    tbb::enumerable_thread_specific<Output>& outputs() { return outputs_; }
+
+private:
+    // The voxels of bricks [lo, hi) inside the grid, as a closed box of voxel space.
+    Box voxelBox(const Int3& lo, const Int3& hi) const {
+        Box box;
+        for (int a = 0; a < 3; ++a) {
+            box.lo[a] = 8.0 * lo[a];
+            box.hi[a] = std::min(8.0 * hi[a], double(grid_.dims[a]));
+        }
+        return box;
+    }
+
+    // The bits of a brick's voxels that lie inside the grid.
+    void gridMask(const Int3& b, std::uint64_t mask[8]) const {
+        const int nx = std::min(8, grid_.dims[0] - 8 * b[0]);
+        const int ny = std::min(8, grid_.dims[1] - 8 * b[1]);
+        const int nz = std::min(8, grid_.dims[2] - 8 * b[2]);
+        std::uint64_t row = 0;
+        for (int y = 0; y < ny; ++y)
+            for (int z = 0; z < nz; ++z) row |= std::uint64_t(1) << (y * 8 + z);
+        for (int x = 0; x < 8; ++x) mask[x] = x < nx ? row : 0;
+    }
+
+    void node(const Int3& lo, const Int3& hi, SurfaceBrick* first, SurfaceBrick* last) {
+        throwIfInterrupted(interrupter_);
+        const bool single = hi[0] - lo[0] == 1 && hi[1] - lo[1] == 1 && hi[2] - lo[2] == 1;
+        if (first == last) {
+            if (decideRegion(lo, hi)) return;
+            if (single) {
+                decideFreeBrick(lo);
+                return;
+            }
+        } else if (single) {
+            decideBrick(lo, first->words);
+            return;
+        }
+        // Split every side longer than one brick in half; the surface bricks follow.
+        Int3 mid;
+        for (int a = 0; a < 3; ++a) mid[a] = hi[a] - lo[a] > 1 ? lo[a] + (hi[a] - lo[a]) / 2 : hi[a];
+        struct Child {
+            Int3 lo, hi;
+            SurfaceBrick *first, *last;
+        };
+        std::vector<Child> children;
+        std::vector<SurfaceBrick*> cuts{first, last};
+        for (int a = 0; a < 3; ++a) {
+            std::vector<SurfaceBrick*> finer;
+            for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+                finer.push_back(cuts[c]);
+                finer.push_back(std::partition(cuts[c], cuts[c + 1], [&](const SurfaceBrick& b) { return b.at[a] < mid[a]; }));
+            }
+            finer.push_back(last);
+            cuts = std::move(finer);
+        }
+        for (int octant = 0; octant < 8; ++octant) {
+            Child child{};
+            bool empty = false;
+            for (int a = 0; a < 3; ++a) {
+                const bool upper = (octant >> (2 - a)) & 1;
+                child.lo[a] = upper ? mid[a] : lo[a];
+                child.hi[a] = upper ? hi[a] : mid[a];
+                empty = empty || child.lo[a] >= child.hi[a];
+            }
+            child.first = cuts[std::size_t(octant)];
+            child.last = cuts[std::size_t(octant) + 1];
+            if (!empty) children.push_back(child);
+        }
+        const std::uint64_t volume = std::uint64_t(hi[0] - lo[0]) * std::uint64_t(hi[1] - lo[1]) * std::uint64_t(hi[2] - lo[2]);
+        if (last - first > 64 || volume > 512) {
+            tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t c) {
+                node(children[c].lo, children[c].hi, children[c].first, children[c].last);
+            });
+        } else {
+            for (const Child& c : children) node(c.lo, c.hi, c.first, c.last);
+        }
+    }
+
+    // A surface-free box of bricks decided by one test at its middle voxel, if the bound allows.
+    bool decideRegion(const Int3& lo, const Int3& hi) {
+        Output& out = outputs_.local();
+        const Box box = voxelBox(lo, hi);
+        Int3 centre;
+        double path2 = 0;
+        for (int a = 0; a < 3; ++a) {
+            centre[a] = std::int32_t(std::floor(0.5 * (box.lo[a] + box.hi[a])));
+            centre[a] = std::clamp(centre[a], std::int32_t(box.lo[a]), std::int32_t(box.hi[a]) - 1);
+            const double c = centre[a] + 0.5;
+            const double far = std::max(c - (box.lo[a] + 0.5), (box.hi[a] - 0.5) - c);
+            path2 += far * far;
+        }
+        const double v = field_.value(centre[0], centre[1], centre[2]);
+        ++out.point_evaluations;
+        if (!field_.holds(v, box, std::sqrt(path2))) return false;
+        ++out.uniform_regions;
+        if (v >= 0.5) emitInside(lo, hi, out);
+        return true;
+    }
+
+    void emitInside(const Int3& lo, const Int3& hi, Output& out) {
+        // Whole bricks become tiles, runs along z; bricks cut by the grid's edge become leaves.
+        const Int3 whole{grid_.dims[0] / 8, grid_.dims[1] / 8, grid_.dims[2] / 8};
+        for (std::int32_t bx = lo[0]; bx < hi[0]; ++bx)
+            for (std::int32_t by = lo[1]; by < hi[1]; ++by) {
+                std::int32_t z_end = lo[2];
+                if (bx < whole[0] && by < whole[1]) {
+                    z_end = std::max(lo[2], std::min(hi[2], whole[2]));
+                    if (z_end > lo[2])
+                        out.runs.push_back({bricks_.index(bx, by, lo[2]), bricks_.index(bx, by, z_end - 1) + 1});
+                }
+                for (std::int32_t bz = z_end; bz < hi[2]; ++bz) {
+                    SparseGrid::Leaf leaf{};
+                    leaf.brick = bricks_.index(bx, by, bz);
+                    gridMask({bx, by, bz}, leaf.words);
+                    out.leaves.push_back(leaf);
+                }
+            }
+    }
+
+    // Sets the bits of voxels [lo, hi) (inside one brick) in `words`.
+    static void setBox(const Int3& lo, const Int3& hi, std::uint64_t words[8]) {
+        for (int i = lo[0]; i < hi[0]; ++i)
+            for (int j = lo[1]; j < hi[1]; ++j)
+                for (int k = lo[2]; k < hi[2]; ++k) words[i & 7] |= BitGrid::bitMask(j, k);
+    }
+
+    // A surface-free box of voxels inside one brick: decided by one test at its middle when the
+    // bound allows, else split in halves, down to single voxels (which one test decides).
+    void decideFreeBox(const Int3& lo, const Int3& hi, std::uint64_t words[8], Output& out) {
+        Box box;
+        Int3 centre;
+        double path2 = 0;
+        bool single = true;
+        for (int a = 0; a < 3; ++a) {
+            box.lo[a] = lo[a];
+            box.hi[a] = hi[a];
+            centre[a] = (lo[a] + hi[a] - 1) / 2;
+            const double c = centre[a] + 0.5;
+            const double far = std::max(c - (lo[a] + 0.5), (hi[a] - 0.5) - c);
+            path2 += far * far;
+            single = single && hi[a] - lo[a] == 1;
+        }
+        const double v = field_.value(centre[0], centre[1], centre[2]);
+        ++out.point_evaluations;
+        if (single || field_.holds(v, box, std::sqrt(path2))) {
+            if (!single) ++out.uniform_regions;
+            if (v >= 0.5) setBox(lo, hi, words);
+            return;
+        }
+        Int3 mid;
+        for (int a = 0; a < 3; ++a) mid[a] = hi[a] - lo[a] > 1 ? lo[a] + (hi[a] - lo[a]) / 2 : hi[a];
+        for (int octant = 0; octant < 8; ++octant) {
+            Int3 child_lo, child_hi;
+            bool empty = false;
+            for (int a = 0; a < 3; ++a) {
+                const bool upper = (octant >> (2 - a)) & 1;
+                child_lo[a] = upper ? mid[a] : lo[a];
+                child_hi[a] = upper ? hi[a] : mid[a];
+                empty = empty || child_lo[a] >= child_hi[a];
+            }
+            if (!empty) decideFreeBox(child_lo, child_hi, words, out);
+        }
+    }
+
+    // The in-grid voxels of brick b as a box.
+    void brickVoxels(const Int3& b, Int3& lo, Int3& hi) const {
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = 8 * b[a];
+            hi[a] = std::min(8 * b[a] + 8, grid_.dims[a]);
+        }
+    }
+
+    void decideFreeBrick(const Int3& b) {
+        Output& out = outputs_.local();
+        SparseGrid::Leaf leaf{};
+        leaf.brick = bricks_.index(b[0], b[1], b[2]);
+        Int3 lo, hi;
+        brickVoxels(b, lo, hi);
+        decideFreeBox(lo, hi, leaf.words, out);
+        std::uint64_t any = 0;
+        for (std::uint64_t w : leaf.words) any |= w;
+        if (any) out.leaves.push_back(leaf);
+    }
+
+    // One brick voxel by voxel: each 6-connected part of its voxels outside the surface is
+    // decided by one test when the bound over the part's longest path allows, else per voxel.
+    void decideBrick(const Int3& b, const std::uint64_t surface[8]) {
+        Output& out = outputs_.local();
+        std::uint64_t open[8];
+        gridMask(b, open);
+        for (int x = 0; x < 8; ++x) open[x] &= ~surface[x];
+        const Box box = voxelBox(b, {b[0] + 1, b[1] + 1, b[2] + 1});
+        SparseGrid::Leaf leaf{};
+        leaf.brick = bricks_.index(b[0], b[1], b[2]);
+        auto isOpen = [&](int n) { return (open[n >> 6] >> (n & 63)) & 1; };
+        std::uint64_t seen[8] = {};
+        int queue[512], depth[512];
+        for (int start = 0; start < 512; ++start) {
+            if (!isOpen(start) || ((seen[start >> 6] >> (start & 63)) & 1)) continue;
+            // Breadth-first over the part: its voxels and the longest path from `start`.
+            int head = 0, tail = 0, longest = 0;
+            queue[tail++] = start;
+            depth[start] = 0;
+            seen[start >> 6] |= std::uint64_t(1) << (start & 63);
+            while (head < tail) {
+                const int n = queue[head++];
+                const int x = n >> 6, y = (n >> 3) & 7, z = n & 7;
+                longest = std::max(longest, depth[n]);
+                const int steps[6][2] = {{x > 0, -64}, {x < 7, 64}, {y > 0, -8}, {y < 7, 8}, {z > 0, -1}, {z < 7, 1}};
+                for (const auto& [ok, step] : steps) {
+                    const int m = n + step;
+                    if (!ok || !isOpen(m) || ((seen[m >> 6] >> (m & 63)) & 1)) continue;
+                    seen[m >> 6] |= std::uint64_t(1) << (m & 63);
+                    depth[m] = depth[n] + 1;
+                    queue[tail++] = m;
+                }
+            }
+            auto voxel = [&](int n) {
+                return Int3{8 * b[0] + (n >> 6), 8 * b[1] + ((n >> 3) & 7), 8 * b[2] + (n & 7)};
+            };
+            const Int3 first = voxel(start);
+            const double v = field_.value(first[0], first[1], first[2]);
+            ++out.point_evaluations;
+            if (field_.holds(v, box, double(longest))) {
+                if (tail > 1) ++out.component_decisions;
+                if (v >= 0.5)
+                    for (int q = 0; q < tail; ++q) leaf.words[queue[q] >> 6] |= std::uint64_t(1) << (queue[q] & 63);
+                continue;
+            }
+            // Undecided: the part's voxels in 4³ octants of the brick that hold no surface voxel
+            // go box by box (straight paths stay in the octant); the rest voxel by voxel.
+            std::uint64_t done[8] = {}, member[8] = {};
+            for (int q = 0; q < tail; ++q) member[queue[q] >> 6] |= std::uint64_t(1) << (queue[q] & 63);
+            for (int octant = 0; octant < 8; ++octant) {
+                Int3 lo, hi;
+                brickVoxels(b, lo, hi);
+                bool free = true;
+                for (int a = 0; a < 3; ++a) {
+                    lo[a] = lo[a] + ((octant >> (2 - a)) & 1) * 4;
+                    hi[a] = std::min(hi[a], lo[a] + 4);
+                    free = free && lo[a] < hi[a];
+                }
+                for (int i = lo[0]; free && i < hi[0]; ++i)
+                    for (int j = lo[1]; j < hi[1]; ++j)
+                        for (int k = lo[2]; k < hi[2]; ++k) free = free && !(surface[i & 7] & BitGrid::bitMask(j, k));
+                // A surface-free octant is 6-connected, so it lies wholly in one part: this one?
+                if (!free || !(member[lo[0] & 7] & BitGrid::bitMask(lo[1], lo[2]))) continue;
+                std::uint64_t words[8] = {};
+                decideFreeBox(lo, hi, words, out);
+                setBox(lo, hi, done);
+                for (int x = 0; x < 8; ++x) leaf.words[x] |= words[x];
+            }
+            for (int q = 0; q < tail; ++q) {
+                const int n = queue[q];
+                if ((done[n >> 6] >> (n & 63)) & 1) continue;
+                const double here = q == 0 ? v : field_.value(voxel(n)[0], voxel(n)[1], voxel(n)[2]);
+                out.point_evaluations += q != 0;
+                if (here >= 0.5) leaf.words[n >> 6] |= std::uint64_t(1) << (n & 63);
+            }
+        }
+        std::uint64_t any = 0;
+        for (std::uint64_t w : leaf.words) any |= w;
+        if (any) out.leaves.push_back(leaf);
+    }
+
+    const GridSpec& grid_;
+    BrickLayout bricks_;
+    const InsideField& field_;
+    Interrupter* interrupter_;
+    tbb::enumerable_thread_specific<Output> outputs_;
+};
+
+std::string edgeFinding(const EdgeClosure& c) {
+    return std::to_string(c.boundary_edges) + " boundary, " + std::to_string(c.nonmanifold_edges) +
+           " non-manifold and " + std::to_string(c.misoriented_edges) + " misoriented edges";
+}
+
+}  // namespace
+
+SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
+                      const VoxelizeOptions& options, Interrupter* interrupter, SolidStats& stats) {
+    const EdgeClosure closure = checkEdges(mesh, grid);
+    stats.boundary_edges = closure.boundary_edges;
+    stats.nonmanifold_edges = closure.nonmanifold_edges;
+    stats.misoriented_edges = closure.misoriented_edges;
+    // auto when every edge's uses cancel (a closed, consistently oriented mesh, or one whose
+    // non-manifold edges are used as often each way): the winding number is an integer, the
+    // signed sum of any ray's crossings, so the rays give it exactly and as fast as parity
+    // (and, unlike parity, fill where shells overlap).
+    const bool closed = closure.closedAndOriented();
+    const bool balanced = closure.open_edges.empty();
+    const InsideRule asked = options.solid.inside;
+    const InsideRule rule = asked == InsideRule::Auto ? InsideRule::Winding : asked;
+    const bool by_rays = rule == InsideRule::Parity || (asked == InsideRule::Auto && balanced);
+    stats.inside_rule = toString(rule);
+    stats.evaluation = by_rays ? "ray crossings" : "fast winding numbers";
+    const std::string signed_count = ": the winding number is the signed count of ray crossings";
+    if (asked != InsideRule::Auto)
+        stats.reason = std::string("the inside option (") + edgeFinding(closure) + ")";
+    else if (closed)
+        stats.reason = "auto: closed and consistently oriented (every edge used twice, once each way)" + signed_count;
+    else if (balanced)
+        stats.reason = "auto: every edge used as often each way (" + edgeFinding(closure) + ")" + signed_count;
+    else
+        stats.reason = "auto: not closed and consistently oriented (" + edgeFinding(closure) + ")";
+
+    const GradientBound bound(closure.open_edges);
+    std::unique_ptr<FastWinding> winding;
+    std::unique_ptr<RayCrossings> rays;
+    if (by_rays)
+        rays = std::make_unique<RayCrossings>(mesh, grid);
+    else
+        winding = std::make_unique<FastWinding>(mesh, grid, options.solid.winding_beta);
+    const InsideField field{winding.get(), rays.get(), rule == InsideRule::Parity, &bound};
+
+    // The surface's bricks, tiles included (every voxel of a tile is surface).
+    static const std::uint64_t kAllSet[8] = {~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull};
+    std::vector<SurfaceBrick> bricks;
+    bricks.reserve(surface.leafCount() + surface.tileCount());
+    for (const SparseGrid::Leaf& leaf : surface.leaves()) bricks.push_back({surface.bricks().at(leaf.brick), leaf.words});
+    for (const SparseGrid::TileRun& run : surface.tileRuns())
+        for (std::uint64_t b = run.begin; b < run.end; ++b) bricks.push_back({surface.bricks().at(b), kAllSet});
+
+    InsideFill fill(grid, field, interrupter);
+    const int threads = options.threads > 0 ? options.threads : tbb::task_arena::automatic;
+    tbb::task_arena arena(threads);
+    arena.execute([&] { fill.run(bricks); });
+
+    SparseGrid inside(grid.dims);
+    for (Output& out : fill.outputs()) {
+        for (const SparseGrid::Leaf& leaf : out.leaves) inside.addLeaf(leaf);
+        for (const SparseGrid::TileRun& run : out.runs) inside.addTileRun(run.begin, run.end);
+        stats.uniform_regions += out.uniform_regions;
+        stats.component_decisions += out.component_decisions;
+        stats.point_evaluations += out.point_evaluations;
+        out = Output{};
+    }
+    inside.finish();
+    stats.inside_voxels = inside.count();
+    return inside;
+}
+
+}  // namespace hyvox::solid

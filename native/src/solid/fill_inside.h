@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Solid mode's inside pass: the voxels whose centre is inside the mesh and that are not
+// already in the (exact conservative) surface, by the options' inside rule.
+//
+// The voxels are not tested one by one. No triangle meets a voxel outside the conservative
+// surface, so the segment between two such voxels' centres, through voxels outside it, never
+// crosses the surface, and the inside value can change along it only by the amount the open
+// edges allow (solid/gradient_bound.h). Hence:
+//  - a box of whole bricks that holds no surface voxel is decided by one test at its middle
+//    when the value there is farther from the threshold than the bound allows over the box
+//    (always, for a closed mesh); otherwise it is split, down to single bricks;
+//  - in a brick with surface, each 6-connected part of its other voxels is decided by one test
+//    when the bound over the part's longest path allows it;
+//  - everything else is tested voxel by voxel.
+// Decided boxes become tiles (runs of whole bricks), so memory follows the surface.
+#include "hyvox/interrupter.h"
+#include "hyvox/mesh.h"
+#include "hyvox/options.h"
+#include "hyvox/result.h"
+#include "hyvox/sparse_grid.h"
+
+namespace hyvox::solid {
+
+// `surface`: the conservative surface of the whole grid (finished). Returns the inside voxels
+// (finished; disjoint from `surface` apart from tiles, which may cover surface voxels), and
+// fills `stats` (all but tile_bricks).
+SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
+                      const VoxelizeOptions& options, Interrupter* interrupter, SolidStats& stats);
+
+}  // namespace hyvox::solid

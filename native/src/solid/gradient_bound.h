@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// How fast an inside test's value can change inside a box that no triangle meets, from the
+// open edges alone (solid/edge_closure.h).
+//
+// Winding number: the gradient of a triangle's solid angle at a point off the triangle is the
+// Biot-Savart integral around its edges, ∮ dl × r / |r|³. Summed over the mesh, the uses of an
+// edge that run both ways cancel, so |∇w| <= 1/(4π) Σ_open excess · length / distance², where
+// distance is from the box to the edge. A closed, consistently oriented mesh has no open
+// edge: w is constant on every surface-free connected region.
+//
+// Ray parity (rays along -z): a ray's crossing count changes only where the ray passes an
+// open edge, so it is constant over a box unless the box reaches above some open edge's
+// shadow: its xy range meets the edge's and its top lies above the edge's lowest point.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "solid/edge_closure.h"
+
+namespace hyvox::solid {
+
+struct Box {
+    std::array<double, 3> lo, hi;  // voxel space
+};
+
+class GradientBound {
+public:
+    explicit GradientBound(const std::vector<OpenEdge>& edges);
+    bool empty() const { return nodes_.empty(); }
+    // An upper bound of |∇w| over `box`; stops adding (and returns a value above `limit`)
+    // as soon as the bound passes `limit`. Infinite when an open edge meets the box.
+    double windingSlope(const Box& box, double limit) const;
+    // Whether the parity of -z rays may differ between two points of `box`.
+    bool parityMayChange(const Box& box) const;
+
+private:
+    struct Node {
+        Box box;
+        double weight = 0;  // Σ excess · length
+        std::uint32_t first = 0, count = 0;
+        std::int32_t left = -1, right = -1;
+    };
+    struct Edge {
+        Box box;
+        double weight;
+    };
+    std::int32_t build(std::uint32_t first, std::uint32_t count);
+
+    std::vector<Edge> edges_;
+    std::vector<Node> nodes_;
+};
+
+}  // namespace hyvox::solid

@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "solid/ray_crossings.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hyvox/errors.h"
+
+namespace hyvox::solid {
+namespace {
+
+constexpr int kFractionBits = 20;
+constexpr double kScale = double(1 << kFractionBits);
+constexpr double kLimit = 1099511627776.0;  // 2^40 voxels
+
+__extension__ typedef __int128 Wide;  // exact products of two 61-bit differences
+
+std::int64_t snap(double voxel) {
+    if (!(std::fabs(voxel) < kLimit))
+        throw InvalidInput("solid mode: a vertex lies more than 2^40 voxels from the grid; use a larger voxel size");
+    return std::llround(voxel * kScale);
+}
+
+// Twice the signed area of (u, v, p) in xy, exactly.
+Wide orient(std::int64_t ux, std::int64_t uy, std::int64_t vx, std::int64_t vy, std::int64_t px, std::int64_t py) {
+    return Wide(vx - ux) * Wide(py - uy) - Wide(vy - uy) * Wide(px - ux);
+}
+
+// The side of edge u->v that p lies on: +1 left, -1 right; on the line, the side of
+// p + (ε, ε²) (the derivative of orient() along x, then along y). Antisymmetric in u, v.
+int side(std::int64_t ux, std::int64_t uy, std::int64_t vx, std::int64_t vy, std::int64_t px, std::int64_t py) {
+    const Wide value = orient(ux, uy, vx, vy, px, py);
+    if (value != 0) return value > 0 ? 1 : -1;
+    if (vy != uy) return vy < uy ? 1 : -1;  // d/dpx of orient = -(vy - uy)
+    return vx > ux ? 1 : -1;                // d/dpy of orient = vx - ux (u != v here)
+}
+
+}  // namespace
+
+RayCrossings::RayCrossings(const ValidatedMesh& mesh, const GridSpec& grid) {
+    columns_ = {(grid.dims[0] + 7) / 8, (grid.dims[1] + 7) / 8};
+    // Snapped per vertex, so all triangles sharing a vertex share its snapped position.
+    std::vector<std::array<std::int64_t, 2>> snapped(mesh.view.vertex_count);
+    std::vector<double> heights(mesh.view.vertex_count);
+    std::vector<bool> done(mesh.view.vertex_count, false);
+    const std::int64_t grid_x = std::int64_t(grid.dims[0]) << kFractionBits;
+    const std::int64_t grid_y = std::int64_t(grid.dims[1]) << kFractionBits;
+    // Every triangle, the zero-area ones included: the closure check counts their edges, and
+    // snapped they may cover a sliver of the plane that closes the count.
+    for (std::size_t t = 0; t < mesh.view.triangle_count; ++t) {
+        Triangle tri{};
+        const std::uint32_t* corners = mesh.view.triangles + 3 * t;
+        for (int c = 0; c < 3; ++c) {
+            const std::uint32_t v = corners[c];
+            if (!done[v]) {
+                const std::array<double, 3> p = grid.toVoxel(mesh.vertex(std::uint32_t(t), c));
+                snapped[v] = {snap(p[0]), snap(p[1])};
+                heights[v] = p[2];
+                done[v] = true;
+            }
+            tri.x[c] = snapped[v][0];
+            tri.y[c] = snapped[v][1];
+            tri.z[c] = heights[v];
+        }
+        const Wide area = orient(tri.x[0], tri.y[0], tri.x[1], tri.y[1], tri.x[2], tri.y[2]);
+        if (area == 0) continue;  // seen edge-on
+        tri.sign = area < 0 ? 1 : -1;
+        tri.x_lo = std::min({tri.x[0], tri.x[1], tri.x[2]});
+        tri.x_hi = std::max({tri.x[0], tri.x[1], tri.x[2]});
+        tri.y_lo = std::min({tri.y[0], tri.y[1], tri.y[2]});
+        tri.y_hi = std::max({tri.y[0], tri.y[1], tri.y[2]});
+        if (tri.x_hi < 0 || tri.y_hi < 0 || tri.x_lo > grid_x || tri.y_lo > grid_y) continue;  // misses every ray
+        triangles_.push_back(tri);
+    }
+    // Each column of 8×8 rays lists the triangles whose xy box meets its rays' range.
+    auto columnRange = [&](const Triangle& tri, std::array<std::int32_t, 4>& r) {
+        const std::int64_t half = std::int64_t(1) << (kFractionBits - 1);
+        auto first = [&](std::int64_t lo, std::int32_t n) {
+            return std::int32_t(std::clamp<std::int64_t>((lo - half + (std::int64_t(1) << kFractionBits) - 1) >>
+                                                             kFractionBits >> 3, 0, n - 1));
+        };
+        auto last = [&](std::int64_t hi, std::int32_t n) {
+            return std::int32_t(std::clamp<std::int64_t>(((hi - half) >> kFractionBits) >> 3, 0, n - 1));
+        };
+        r = {first(tri.x_lo, columns_[0]), last(tri.x_hi, columns_[0]), first(tri.y_lo, columns_[1]),
+             last(tri.y_hi, columns_[1])};
+    };
+    const std::size_t column_count = std::size_t(columns_[0]) * std::size_t(columns_[1]);
+    column_start_.assign(column_count + 1, 0);
+    std::array<std::int32_t, 4> r{};
+    for (const Triangle& tri : triangles_) {
+        columnRange(tri, r);
+        for (std::int32_t cx = r[0]; cx <= r[1]; ++cx)
+            for (std::int32_t cy = r[2]; cy <= r[3]; ++cy) ++column_start_[std::size_t(cx) * std::size_t(columns_[1]) + std::size_t(cy) + 1];
+    }
+    for (std::size_t c = 0; c < column_count; ++c) column_start_[c + 1] += column_start_[c];
+    column_triangles_.resize(column_start_.back());
+    std::vector<std::uint32_t> fill(column_start_.begin(), column_start_.end() - 1);
+    for (std::uint32_t n = 0; n < triangles_.size(); ++n) {
+        columnRange(triangles_[n], r);
+        for (std::int32_t cx = r[0]; cx <= r[1]; ++cx)
+            for (std::int32_t cy = r[2]; cy <= r[3]; ++cy)
+                column_triangles_[fill[std::size_t(cx) * std::size_t(columns_[1]) + std::size_t(cy)]++] = n;
+    }
+}
+
+int RayCrossings::at(int i, int j, int k) const {
+    const std::int64_t px = (std::int64_t(2 * i + 1)) << (kFractionBits - 1);
+    const std::int64_t py = (std::int64_t(2 * j + 1)) << (kFractionBits - 1);
+    const double pz = k + 0.5;
+    const std::size_t column = std::size_t(i >> 3) * std::size_t(columns_[1]) + std::size_t(j >> 3);
+    int crossings = 0;
+    for (std::uint32_t n = column_start_[column]; n < column_start_[column + 1]; ++n) {
+        const Triangle& t = triangles_[column_triangles_[n]];
+        if (px < t.x_lo || px > t.x_hi || py < t.y_lo || py > t.y_hi) continue;
+        const int s0 = side(t.x[1], t.y[1], t.x[2], t.y[2], px, py);
+        const int s1 = side(t.x[2], t.y[2], t.x[0], t.y[0], px, py);
+        const int s2 = side(t.x[0], t.y[0], t.x[1], t.y[1], px, py);
+        if (s0 != s1 || s1 != s2) continue;
+        // The crossing's height from the barycentric weights (in double: the centre is at least
+        // half a voxel from the surface, far beyond this rounding).
+        const double w0 = double(orient(t.x[1], t.y[1], t.x[2], t.y[2], px, py));
+        const double w1 = double(orient(t.x[2], t.y[2], t.x[0], t.y[0], px, py));
+        const double w2 = double(orient(t.x[0], t.y[0], t.x[1], t.y[1], px, py));
+        const double total = w0 + w1 + w2;
+        const double z = (w0 * t.z[0] + w1 * t.z[1] + w2 * t.z[2]) / total;
+        if (z < pz) crossings += t.sign;
+    }
+    return crossings;
+}
+
+}  // namespace hyvox::solid

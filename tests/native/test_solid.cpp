@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Solid mode's pieces against oracles of their own: the sparse grid's tiles against a dense
+// bit grid, the ray crossings on rays that pass exactly through shared edges and vertices
+// against an octahedron's inequality, and fast winding numbers against the exact sum of
+// solid angles.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "hyvox/sparse_grid.h"
+#include "hyvox/voxelize.h"
+#include "solid/fast_winding.h"
+#include "support/mesh_arrays.h"
+#include "support/test_mesh_loader.h"
+
+namespace hyvox {
+namespace {
+
+// A dense grid with whole bricks set (some cut by the grid's edge) and scattered voxels.
+BitGrid patchwork(std::array<std::int32_t, 3> dims, unsigned seed) {
+    BitGrid dense(dims);
+    std::mt19937 rng(seed);
+    const BrickLayout& b = dense.bricks();
+    for (int bx = 0; bx < b.counts[0]; ++bx)
+        for (int by = 0; by < b.counts[1]; ++by)
+            for (int bz = 0; bz < b.counts[2]; ++bz) {
+                const unsigned kind = rng() % 3;  // empty, whole, scattered
+                for (int i = 8 * bx; i < std::min(8 * bx + 8, dims[0]); ++i)
+                    for (int j = 8 * by; j < std::min(8 * by + 8, dims[1]); ++j)
+                        for (int k = 8 * bz; k < std::min(8 * bz + 8, dims[2]); ++k)
+                            if (kind == 1 || (kind == 2 && rng() % 5 == 0)) dense.set(i, j, k);
+            }
+    return dense;
+}
+
+std::uint64_t wholeSetBricks(const BitGrid& dense) {
+    std::uint64_t whole = 0;
+    const BrickLayout& b = dense.bricks();
+    for (std::size_t n = 0; n < b.total(); ++n) {
+        const auto at = b.at(n);
+        bool inside = true, all = true;
+        for (int a = 0; a < 3; ++a) inside = inside && 8 * at[a] + 8 <= dense.dims()[a];
+        for (int w = 0; w < 8; ++w) all = all && dense.data()[n * 8 + std::size_t(w)] == ~0ull;
+        whole += inside && all;
+    }
+    return whole;
+}
+
+TEST(SolidSparseGrid, WholeBricksBecomeTilesAndEverythingElseSeesTheirVoxels) {
+    const BitGrid dense = patchwork({37, 24, 19}, 7);
+    const SparseGrid sparse = SparseGrid::fromBitGrid(dense);
+    EXPECT_GT(sparse.tileCount(), 0u);
+    EXPECT_EQ(sparse.tileCount(), wholeSetBricks(dense));
+    EXPECT_EQ(sparse.leafCount() + sparse.tileCount(), [&] {
+        std::size_t bricks = 0;
+        for (std::size_t n = 0; n < dense.brickCount(); ++n)
+            bricks += std::any_of(dense.data() + n * 8, dense.data() + n * 8 + 8, [](std::uint64_t w) { return w != 0; });
+        return bricks;
+    }());
+    EXPECT_EQ(sparse.count(), dense.count());
+    EXPECT_TRUE(sparse.toBitGrid() == dense);
+    auto listed = sparse.coords(), expected = dense.coords();
+    std::sort(listed.begin(), listed.end());
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(listed, expected);
+    for (int i = 0; i < 37; ++i)
+        for (int j = 0; j < 24; ++j)
+            for (int k = 0; k < 19; ++k) ASSERT_EQ(sparse.test(i, j, k), dense.test(i, j, k)) << i << "," << j << "," << k;
+}
+
+TEST(SolidSparseGrid, MergeIsTheUnionWhateverTheVoxelsCameAs) {
+    const BitGrid a = patchwork({40, 17, 33}, 1), b = patchwork({40, 17, 33}, 2);
+    BitGrid both(a.dims());
+    for (std::size_t w = 0; w < both.wordCount(); ++w) both.data()[w] = a.data()[w] | b.data()[w];
+    SparseGrid merged = SparseGrid::fromBitGrid(a);
+    merged.merge(SparseGrid::fromBitGrid(b));
+    merged.finish();
+    EXPECT_TRUE(merged == SparseGrid::fromBitGrid(both));
+    EXPECT_EQ(merged.count(), both.count());
+    // A run of tiles equals the same bricks set voxel by voxel: bricks 1 and 2 of a 2x2x2
+    // layout are (0,0,1) and (0,1,0).
+    SparseGrid run({16, 16, 16}), voxels({16, 16, 16});
+    run.addTileRun(1, 3);
+    run.finish();
+    for (int i = 0; i < 8; ++i)
+        for (int j = 0; j < 8; ++j)
+            for (int k = 0; k < 8; ++k) {
+                voxels.set(i, j, k + 8);
+                voxels.set(i, j + 8, k);
+            }
+    voxels.finish();
+    EXPECT_TRUE(run == voxels);
+    EXPECT_EQ(voxels.tileCount(), 2u);
+    EXPECT_EQ(run.count(), 1024u);
+    EXPECT_TRUE(run.test(0, 8, 0) && run.test(7, 7, 15) && !run.test(0, 0, 0) && !run.test(7, 15, 15));
+    EXPECT_THROW(SparseGrid({12, 16, 16}).addTileRun(4, 5), std::invalid_argument);  // cut by the edge
+}
+
+// An octahedron |x-c| + |y-c| + |z-c| <= r whose six corners sit on voxel centres: the rays
+// through the centre column hit its top and bottom corners, and those through x = c or y = c
+// run along its edges, exactly.
+struct Octahedron {
+    double c = 8.5, r = 6.0;
+    std::vector<float> positions;
+    std::vector<std::uint32_t> triangles;
+    Octahedron() {
+        const double p[6][3] = {{c + r, c, c}, {c - r, c, c}, {c, c + r, c}, {c, c - r, c}, {c, c, c + r}, {c, c, c - r}};
+        for (const auto& v : p)
+            for (double x : v) positions.push_back(float(x));
+        // Outward: for each octant (sx, sy, sz) the face (x, y, z corners) ordered counter-clockwise.
+        for (int sx = 0; sx < 2; ++sx)
+            for (int sy = 0; sy < 2; ++sy)
+                for (int sz = 0; sz < 2; ++sz) {
+                    std::uint32_t a = std::uint32_t(sx), b = std::uint32_t(2 + sy), d = std::uint32_t(4 + sz);
+                    const bool flip = (sx + sy + sz) % 2 == 1;
+                    triangles.insert(triangles.end(), {a, flip ? d : b, flip ? b : d});
+                }
+    }
+    bool inside(int i, int j, int k) const {
+        return std::fabs(i + 0.5 - c) + std::fabs(j + 0.5 - c) + std::fabs(k + 0.5 - c) < r;
+    }
+};
+
+TEST(SolidRays, SharedEdgesAndVerticesOnRaysCountOnce) {
+    const Octahedron oct;
+    for (const InsideRule rule : {InsideRule::Parity, InsideRule::Auto, InsideRule::Winding}) {
+        SCOPED_TRACE(toString(rule));
+        VoxelizeOptions solid;
+        solid.mode = Mode::Solid;
+        solid.solid.inside = rule;
+        solid.grid.voxel_size = 1.0;
+        solid.grid.origin = std::array<double, 3>{0, 0, 0};
+        solid.grid.bounds = Bounds{{0, 0, 0}, {17, 17, 17}};
+        VoxelizeOptions surface = solid;
+        surface.mode = Mode::Conservative;
+        const auto view = test::viewOf(oct.positions, oct.triangles);
+        const VoxelizeResult filled = voxelize(view, solid);
+        const VoxelizeResult shell = voxelize(view, surface);
+        ASSERT_EQ(filled.stats.solid->boundary_edges + filled.stats.solid->misoriented_edges, 0u);
+        int checked_on_corner_rays = 0;
+        for (int i = 0; i < 17; ++i)
+            for (int j = 0; j < 17; ++j)
+                for (int k = 0; k < 17; ++k) {
+                    if (shell.occupancy.test(i, j, k)) {
+                        ASSERT_TRUE(filled.occupancy.test(i, j, k));
+                        continue;
+                    }
+                    ASSERT_EQ(filled.occupancy.test(i, j, k), oct.inside(i, j, k)) << i << "," << j << "," << k;
+                    checked_on_corner_rays += (i == 8 || j == 8);
+                }
+        EXPECT_GT(checked_on_corner_rays, 50);  // voxels whose ray runs through an edge or corner
+    }
+}
+
+TEST(SolidWinding, FastWindingNumbersMatchTheExactSum) {
+    const test::TestMesh mesh = test::loadTestMesh(test::meshPath("bunny_stanford_69k.ply"));
+    const ValidatedMesh validated = validate(test::viewOf(mesh.positions, mesh.triangles));
+    GridOptions options;
+    options.resolution = 32;
+    const GridSpec grid = makeGrid(validated.bounds, options);
+    // beta = 1e9 opens every cluster: the exact sum. Finite beta: an error within the margin
+    // the decisions are tested with (|w - 0.5| >= 0.05), falling as beta grows (second order:
+    // about beta^-2).
+    const solid::FastWinding sharp(validated, grid, 1e9);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-4.0, 36.0);
+    std::vector<solid::Vec3> points;
+    std::vector<double> exact;
+    for (int n = 0; n < 40; ++n) {
+        points.push_back({u(rng), u(rng), u(rng)});
+        double sum = 0;
+        for (const std::uint32_t t : validated.usable)
+            sum += solid::triangleWinding(grid.toVoxel(validated.vertex(t, 0)), grid.toVoxel(validated.vertex(t, 1)),
+                                          grid.toVoxel(validated.vertex(t, 2)), points.back());
+        exact.push_back(sum);
+        EXPECT_NEAR(sharp.at(points.back()), sum, 1e-9);
+    }
+    auto worstError = [&](double beta) {
+        const solid::FastWinding fast(validated, grid, beta);
+        double worst = 0;
+        for (std::size_t n = 0; n < points.size(); ++n) worst = std::max(worst, std::fabs(fast.at(points[n]) - exact[n]));
+        return worst;
+    };
+    const double at2 = worstError(2.0), at8 = worstError(8.0);
+    EXPECT_LT(at2, 0.05);
+    EXPECT_LT(at8, at2 / 10);
+}
+
+}  // namespace
+}  // namespace hyvox
