@@ -4,6 +4,7 @@
 #include "hyvox/voxelize.h"
 
 #include <algorithm>
+#include <iterator>
 #include <optional>
 #include <string>
 
@@ -64,12 +65,13 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     }
 }
 
-// The attribute evaluator when options.attributes asks for any (the exact methods only).
+// The attribute evaluator when options.attributes asks for any (the exact methods and the
+// tessellation, which averages its points' values).
 std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, const VoxelizeOptions& options) {
     const AttributeSet wanted = parseAttributeSet(options.attributes);
     if (!wanted.any()) return std::nullopt;
-    if (options.method != Method::Cpu && options.method != Method::Reference)
-        throw InvalidInput(std::string("attributes are computed by the cpu and reference methods; method ") +
+    if (options.method != Method::Cpu && options.method != Method::Reference && options.method != Method::Tessellation)
+        throw InvalidInput(std::string("attributes are computed by the cpu, reference and tessellation methods; method ") +
                            toString(options.method) + " does not compute them yet");
     return std::optional<attributes::SurfaceValues>(std::in_place, mesh, wanted);
 }
@@ -117,12 +119,17 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
         if (!plan.whole()) part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds};
         const ValidatedMesh& tile_mesh = plan.whole() ? validated : part;
         progress.setTile(t);
-        TileOutput out{BitGrid(tile.dims), {}};
+        TileOutput out{BitGrid(tile.dims), {}, {}, 0};
         stats.addTiming("allocate", watch.restart());
-        const BackendJob job{tile_mesh, validated, grid, tile, options, &progress};
+        // The tessellation averages its own points' values; the exact methods' come after.
+        const bool own_attributes = surface && options.method == Method::Tessellation;
+        const BackendJob job{tile_mesh, validated, grid, tile, options, &progress, own_attributes ? &*surface : nullptr};
         runBackend(job, out, stats);
         watch.restart();
-        if (surface) {
+        if (own_attributes) {
+            std::move(out.attributes.begin(), out.attributes.end(), std::back_inserter(attribute_leaves));
+            stats.attribute_voxels_unreached += out.attribute_voxels_unreached;
+        } else if (surface) {
             const auto counted = attributes::computeTileAttributes(job, out.bits, *surface,
                                                                    options.method == Method::Reference, attribute_leaves);
             stats.attribute_pieces += counted.pieces;
