@@ -151,3 +151,14 @@ def test_values_are_the_same_on_every_run_and_tiling(spot_vcolor):
         assert np.array_equal(whole.coords(), other.coords())
         for name in ("color", "normal"):
             assert np.array_equal(whole.attributes()[name], other.attributes()[name])
+
+
+def test_sums_beyond_the_budget_are_a_clear_error_that_smaller_tiles_avoid(spot_vcolor):
+    v, t, colors = spot_vcolor
+    options = dict(resolution=64, method="tessellation", colors=colors, attributes="color,normal")
+    with pytest.raises(hyvox.ResourceError, match="attribute sums need .* lower tile_size"):
+        hyvox.voxelize(v, t, memory_budget_mib=1, **options)
+    small, roomy = (hyvox.voxelize(v, t, memory_budget_mib=mib, tile_size=16, **options) for mib in (1, 4096))
+    assert small.stats["tiles"] > 1
+    for name in ("color", "normal"):
+        assert np.array_equal(small.attributes()[name], roomy.attributes()[name])

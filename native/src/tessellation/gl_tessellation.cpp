@@ -287,7 +287,8 @@ GpuTessellationOutput runGpuTessellation(const GpuTessellationInput& in, BitGrid
                                     " need " + std::to_string((blocks * block_bytes) >> 20) +
                                     " MiB, more than this GL device and the memory budget allow (" +
                                     std::to_string((cap_blocks * block_bytes) >> 20) + " MiB); " +
-                                    (in.values ? "" : "turn counts off or ") + "lower the resolution");
+                                    (in.values ? "lower tile_size (a tile's sums take blocks only for its own bricks) or the resolution"
+                                               : "turn counts off or lower the resolution"));
             return Pools{gl::Buffer(in.counts ? blocks * 512 * sizeof(std::uint32_t) : 0, nullptr),
                          gl::Buffer(blocks * value_words * sizeof(std::uint32_t), nullptr)};
         };
