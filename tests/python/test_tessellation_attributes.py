@@ -153,12 +153,15 @@ def test_values_are_the_same_on_every_run_and_tiling(spot_vcolor):
             assert np.array_equal(whole.attributes()[name], other.attributes()[name])
 
 
-def test_sums_beyond_the_budget_are_a_clear_error_that_smaller_tiles_avoid(spot_vcolor):
+def test_tiles_keep_the_sums_within_the_budget(spot_vcolor):
+    # Automatic tiles are small enough for every brick's sums; a tile_size asked for that is
+    # too large for them is a clear error.
     v, t, colors = spot_vcolor
     options = dict(resolution=64, method="tessellation", colors=colors, attributes="color,normal")
     with pytest.raises(hyvox.ResourceError, match="attribute sums need .* lower tile_size"):
-        hyvox.voxelize(v, t, memory_budget_mib=1, **options)
-    small, roomy = (hyvox.voxelize(v, t, memory_budget_mib=mib, tile_size=16, **options) for mib in (1, 4096))
-    assert small.stats["tiles"] > 1
+        hyvox.voxelize(v, t, memory_budget_mib=1, tile_size=64, **options)
+    small, roomy = (hyvox.voxelize(v, t, memory_budget_mib=mib, **options) for mib in (1, 4096))
+    assert small.stats["tiles"] > 1 and roomy.stats["tiles"] == 1
+    assert np.array_equal(small.coords(), roomy.coords())
     for name in ("color", "normal"):
         assert np.array_equal(small.attributes()[name], roomy.attributes()[name])

@@ -4,6 +4,7 @@
 // adds its triangle's attributes at its barycentrics to per-voxel sums beside its count
 // (shaders/tessellation/point_values.glsl); a voxel's value is the mean of its points.
 // Here: the per-corner values the shaders interpolate, and the means from the read-back sums.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -43,6 +44,17 @@ PointValues makePointValues(const ValidatedMesh& mesh, const GridSpec& grid, con
 
 // Words of the value pool per count block: two per channel per voxel.
 inline std::uint64_t valueWordsPerBlock(int channels) { return 512ull * 2ull * std::uint64_t(channels); }
+
+// The largest tile, in bytes of its bits (64 per 8³ brick), whose every brick could take a
+// count block and its sums within one storage block (`storage_block` bytes) and `budget`
+// bytes: the dispatcher's tile limit with attributes, so the sums never run out of room
+// however much of the tile the surface reaches.
+inline std::uint64_t tileBitBytesForSums(std::uint64_t storage_block, std::uint64_t budget, int channels) {
+    const std::uint64_t value_bytes = valueWordsPerBlock(channels) * 4, count_bytes = 512 * 4;
+    const std::uint64_t bricks = std::min({storage_block / value_bytes, storage_block / count_bytes,
+                                           budget / (value_bytes + count_bytes)});
+    return std::max<std::uint64_t>(bricks, 1) * 64;
+}
 
 // The means of every set voxel of the tile, one leaf per non-empty brick (bit order), from
 // the blocks' counts and sums: colours are sum / count, normals the direction of the sum

@@ -13,6 +13,7 @@
 #include "core/stopwatch.h"
 #include "gl/device_limits.h"
 #include "hyvox/option_schema.h"
+#include "tessellation/point_values.h"
 #include "tile_plan.h"
 
 namespace hyvox {
@@ -93,8 +94,10 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     const GridSpec& grid = result.grid;
     // The tessellation holds a tile's bits in one storage buffer (the hybrid methods cut theirs
     // into slabs themselves): its tiles also follow the device's limit.
-    const std::uint64_t device_limit =
-        options.method == Method::Tessellation ? gl::maxStorageBlockBytes(options.gl.device) : 0;
+    std::uint64_t device_limit = options.method == Method::Tessellation ? gl::maxStorageBlockBytes(options.gl.device) : 0;
+    // Its attribute sums take a block per brick the points reach: tiles small enough for all.
+    if (surface && options.method == Method::Tessellation)
+        device_limit = tessellation::tileBitBytesForSums(device_limit, options.memoryBudgetBytes() / 2, surface->channels());
     const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
     checkMemoryBudget(grid, options, plan, validated);
     stats.addTiming("validate", watch.restart());
