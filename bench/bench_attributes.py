@@ -8,8 +8,9 @@ Sponza (vertex colours) and Spot (UVs + 1024² texture). Each line: median wall 
 voxelize() call (the .vdb is not written) for each variant, runs interleaved so a busy
 machine slows all alike, and the ratios to binary. Target (issue 12): cpu colour + normal at
 512 under 2x binary. `--methods cpu,tessellation` adds the tessellation (gamma 2), whose
-colour is the mean of its points' values; a row whose sums exceed the GL device's storage
-block (llvmpipe: 128 MiB; Sponza colour at 256) says so and the bench goes on.
+colour is the mean of its points' values (its tiles shrink so that every brick's sums fit one
+storage block: llvmpipe's 128 MiB cuts Sponza at 256 into several); a row that does not fit
+the device says so and the bench goes on.
 """
 import argparse
 import pathlib
