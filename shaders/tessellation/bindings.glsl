@@ -15,6 +15,10 @@
 #define HYVOX_TESS_SSBO_COUNTERS 13     // uint points, clipped points, count blocks taken
 #define HYVOX_TESS_SSBO_BRICK_TABLE 14  // uint per 8³ brick: 0 or 1 + its block in the pool
 #define HYVOX_TESS_SSBO_COUNT_POOL 15   // uint counts, 512 per block (OpenVDB leaf order)
+// Attribute voxels (ATTRIBUTES): tessellation/point_values.glsl
+#define HYVOX_TESS_SSBO_CORNER_VALUES 16  // float channels per corner, 3 corners per triangle
+#define HYVOX_TESS_SSBO_TEXELS 17         // linear texels, rows top first (TEXTURE_COLOR)
+#define HYVOX_TESS_SSBO_VALUE_POOL 18     // per block: 512 voxels × channels × (low, high) sums
 
 // Uniform locations (HYVOX_LOC_GRID_DIMS = 0 is shared)
 #define HYVOX_TESS_LOC_SPLIT_MODE 10     // uint: 0 = direct patches, 1 = pre-split patches
@@ -26,6 +30,7 @@
 #define HYVOX_TESS_LOC_DISPLACE 16       // vec2 (strength in voxels, midlevel)
 #define HYVOX_TESS_LOC_POOL_BLOCKS 17    // uint blocks the count pool holds
 #define HYVOX_TESS_LOC_PREFILLED 18      // uint: 1 = the brick table is filled in, take no blocks
+#define HYVOX_TESS_LOC_TEXTURE_SIZE 19   // ivec3 texture width, height, channels (TEXTURE_COLOR)
 
 // Counter slots in HYVOX_TESS_SSBO_COUNTERS
 #define HYVOX_TESS_COUNTER_POINTS 0

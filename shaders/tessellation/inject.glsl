@@ -17,9 +17,13 @@ layout(std430, binding = HYVOX_TESS_SSBO_COUNT_POOL) coherent restrict buffer Co
 layout(location = HYVOX_TESS_LOC_POOL_BLOCKS) uniform uint poolBlocks;
 layout(location = HYVOX_TESS_LOC_PREFILLED) uniform uint prefilled;
 #endif
+#ifdef ATTRIBUTES
+#include "tessellation/point_values.glsl"
+#endif
 
-// A point at `local` voxel units from the integer cell `origin`.
-void injectPoint(ivec3 origin, vec3 local) {
+// A point at `local` voxel units from the integer cell `origin`, at barycentrics `bary` of
+// usable triangle `tri` (used by ATTRIBUTES only).
+void injectPoint(ivec3 origin, vec3 local, uint tri, vec3 bary) {
     atomicAdd(counters[HYVOX_TESS_COUNTER_POINTS], 1u);
     const ivec3 voxel = origin + ivec3(floor(local));
     if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, gridDims))) {
@@ -46,6 +50,11 @@ void injectPoint(ivec3 origin, vec3 local) {
             block = atomicOr(brickBlock[brick], 0u);  // another point may have won meanwhile
         }
     }
-    if (block != 0u) atomicAdd(countPool[(block - 1u) * 512u + n], 1u);
+    if (block != 0u) {
+        atomicAdd(countPool[(block - 1u) * 512u + n], 1u);
+#ifdef ATTRIBUTES
+        addPointValues(block, n, tri, bary);
+#endif
+    }
 #endif
 }

@@ -15,6 +15,9 @@ patch out ivec3 tcOrigin;
 patch out vec3 tcP[3];
 patch out vec3 tcN[3];
 patch out vec2 tcUv[3];
+#ifdef ATTRIBUTES
+patch out uint tcTriangle;
+#endif
 #ifdef PN_TRIANGLES
 patch out vec3 tcB[7];
 patch out vec3 tcNe[3];
@@ -29,6 +32,9 @@ void main() {
     if (gl_InvocationID != 0) return;
     const TriangleSurface s = loadSurface(vTriangle[0]);
     tcOrigin = s.origin;
+#ifdef ATTRIBUTES
+    tcTriangle = vTriangle[0];
+#endif
     for (int c = 0; c < 3; ++c) {
         tcP[c] = s.p[c];
         tcN[c] = s.n[c];

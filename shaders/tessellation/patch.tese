@@ -18,6 +18,11 @@ patch in vec3 tcNe[3];
 #endif
 out vec3 tePosition;  // voxel space, relative to teOrigin
 flat out ivec3 teOrigin;
+#ifdef ATTRIBUTES
+patch in uint tcTriangle;
+out vec3 teBary;  // w: where the vertex lies on the mesh triangle, for its attributes
+flat out uint teTriangle;
+#endif
 
 #ifdef DISPLACEMENT
 #include "tessellation/height.glsl"
@@ -42,4 +47,8 @@ void main() {
 #endif
     tePosition = p;
     teOrigin = tcOrigin;
+#ifdef ATTRIBUTES
+    teBary = w;
+    teTriangle = tcTriangle;
+#endif
 }

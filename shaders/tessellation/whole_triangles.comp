@@ -16,10 +16,11 @@ layout(location = HYVOX_TESS_LOC_SPLIT_COUNT) uniform uint wholeCount;
 void main() {
     const uint index = invocationTriangle();
     if (index >= wholeCount) return;
-    const TriangleSurface s = loadSurface(wholeTriangles[index]);
+    const uint tri = wholeTriangles[index];
+    const TriangleSurface s = loadSurface(tri);
     vec3 p[3] = s.p;
 #ifdef DISPLACEMENT
     for (int c = 0; c < 3; ++c) p[c] += normalize(s.n[c]) * displacement(s.uv[c]);
 #endif
-    injectPoint(s.origin, (p[0] + p[1] + p[2]) / 3.0);
+    injectPoint(s.origin, (p[0] + p[1] + p[2]) / 3.0, tri, vec3(1.0 / 3.0));
 }

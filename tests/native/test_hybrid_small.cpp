@@ -245,7 +245,7 @@ TEST(GlSmall, VoxelListHoldsEachSetVoxelOnce) {
         const GridSpec grid = makeGrid(validated.bounds, o.grid);
         o.gl.tile_bytes = 4 * 10 * 10 * 64;  // several tiles too
         const Tile whole{{0, 0, 0}, grid.dims};
-        const BackendJob job{validated, validated, grid, whole, o, nullptr};
+        const BackendJob job{validated, validated, grid, whole, o, nullptr, nullptr};
         std::vector<std::array<std::int32_t, 3>> list;
         hybrid::runHybrid(job, nullptr, &list);
         std::sort(list.begin(), list.end());

@@ -7,16 +7,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/attribute_leaf.h"
 #include "attributes/surface_values.h"
 #include "core/backends.h"
 
 namespace hyvox::attributes {
-
-// The values of one leaf's set voxels (ascending bit order), channels() each.
-struct AttributeLeaf {
-    std::uint64_t brick;  // BrickLayout::index of the whole grid
-    std::vector<float> values;
-};
 
 struct TileAttributeCounts {
     std::uint64_t pieces = 0;          // (triangle, voxel) pairs clipped to a non-empty piece

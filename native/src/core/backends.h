@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/attribute_leaf.h"
 #include "hyvox/bit_grid.h"
 #include "hyvox/interrupter.h"
 #include "hyvox/mesh.h"
@@ -21,6 +22,9 @@
 #include "hyvox/result.h"
 
 namespace hyvox {
+namespace attributes {
+class SurfaceValues;  // attributes/surface_values.h
+}
 
 // A brick-aligned box of the grid: voxels offset .. offset + dims - 1.
 struct Tile {
@@ -38,11 +42,16 @@ struct BackendJob {
     const Tile& tile;
     const VoxelizeOptions& options;
     Interrupter* interrupter;  // may be null; percent is the tile's own 0..100
+    // The attributes asked for, for a method that computes them itself (tessellation);
+    // null = none (the dispatcher computes the exact methods' afterwards).
+    const attributes::SurfaceValues* attributes = nullptr;
 };
 
 struct TileOutput {
     BitGrid bits;                    // dims = tile.dims
     std::vector<VoxelCount> counts;  // multi-valued methods, grid coordinates
+    std::vector<attributes::AttributeLeaf> attributes;  // with job.attributes: every set voxel's values
+    std::uint64_t attribute_voxels_unreached = 0;        // set voxels given no value (0)
 };
 
 void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats);           // src/cpu/

@@ -29,6 +29,7 @@ std::string definesFor(const GpuTessellationInput& in) {
     if (in.pn_triangles) defines += "#define PN_TRIANGLES 1\n";
     if (!in.heights.empty()) defines += "#define DISPLACEMENT 1\n";
     if (in.counts) defines += "#define COUNTS 1\n";
+    if (in.values) defines += in.values->defines();
     return defines;
 }
 
@@ -61,15 +62,21 @@ struct PatchLists {
     const gl::Buffer& whole;
     const gl::Buffer& direct;
 };
+// Per-voxel counts and (with attributes) value sums, both indexed by the brick's block.
+struct Pools {
+    gl::Buffer counts;
+    gl::Buffer values;
+};
 
 Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const PatchLists& lists, const gl::Buffer& bits,
-                 const gl::Buffer& counters, const gl::Buffer& table, const gl::Buffer& pool, std::uint32_t pool_blocks,
+                 const gl::Buffer& counters, const gl::Buffer& table, const Pools& pools, std::uint32_t pool_blocks,
                  bool prefilled, const gl::GlTuning& tuning, GpuTessellationOutput& out) {
     bits.clearToZero();
     counters.clearToZero();
     if (in.counts) {
         if (!prefilled) table.clearToZero();
-        pool.clearToZero();
+        pools.counts.clearToZero();
+        if (in.values) pools.values.clearToZero();
     }
     // The uniforms both programs share (each set where the program uses it).
     programs.setUniform(HYVOX_LOC_GRID_DIMS, [&](GLuint id) {
@@ -92,7 +99,8 @@ Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const
     bits.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_BITS);
     counters.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_COUNTERS);
     table.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_BRICK_TABLE);
-    pool.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_COUNT_POOL);
+    pools.counts.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_COUNT_POOL);
+    if (in.values) pools.values.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_VALUE_POOL);
 
     // Pass 0: one point per triangle the tessellator would leave whole.
     gl::PassTimer whole_timer(tuning.wall_timing);
@@ -211,19 +219,33 @@ GpuTessellationOutput runGpuTessellation(const GpuTessellationInput& in, BitGrid
         const gl::Buffer direct = upload(in.plan.direct);
         const gl::Buffer splits = upload(in.plan.splits);
         const gl::Buffer heights = upload(in.heights);
+        const std::vector<float> no_values;
+        const gl::Buffer corner_values = upload(in.values ? in.values->corners : no_values);
+        const Texture* texture = in.values ? in.values->texture : nullptr;
+        const gl::Buffer texels = upload(texture ? texture->texels : no_values);
+        for (const auto& [buffer, what] : {std::pair{&corner_values, "the triangles' corner attributes"},
+                                           std::pair{&texels, "the texture"}})
+            if (GLint64(buffer->size()) > max_ssbo)
+                throw ResourceError(std::string(what) + " (" + std::to_string(buffer->size() >> 20) +
+                                    " MiB) exceed this GL device's " + std::to_string(max_ssbo >> 20) +
+                                    " MiB storage-buffer limit");
         vertices.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_VERTICES);
         triangles.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_TRIANGLES);
         normals.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_NORMALS);
         uvs.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_UVS);
         splits.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_SPLITS);
         heights.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_HEIGHTS);
+        corner_values.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_CORNER_VALUES);
+        texels.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_TESS_SSBO_TEXELS);
+        if (texture)
+            programs.setUniform(HYVOX_TESS_LOC_TEXTURE_SIZE, [&](GLuint id) {
+                glProgramUniform3i(id, HYVOX_TESS_LOC_TEXTURE_SIZE, texture->width, texture->height, texture->channels);
+            });
 
         const gl::Buffer bit_buffer(bits.byteSize(), nullptr);
         const gl::Buffer counters(4 * sizeof(std::uint32_t), nullptr);
         const std::size_t brick_count = bits.brickCount();
         const gl::Buffer table(in.counts ? brick_count * sizeof(std::uint32_t) : 0, nullptr);
-        const std::uint64_t pool_limit = std::min<std::uint64_t>(std::uint64_t(max_ssbo), in.memory_budget_bytes);
-
         const PatchLists lists{whole, direct};
         gl::VertexArray no_attributes;
         glBindVertexArray(no_attributes.id());
@@ -252,19 +274,29 @@ GpuTessellationOutput runGpuTessellation(const GpuTessellationInput& in, BitGrid
         // block), so the bits of that run, which say exactly which bricks are touched, are
         // numbered on the host and everything is drawn again into that table, which needs no
         // allocation and cannot run out.
-        const std::uint64_t cap_blocks = std::max<std::uint64_t>(pool_limit / (512 * sizeof(std::uint32_t)), 1);
+        // Attribute sums take valueWordsPerBlock() more words per block in a buffer of their own.
+        const std::uint64_t value_words = in.values ? valueWordsPerBlock(in.values->channels()) : 0;
+        const std::uint64_t block_bytes = (512 + value_words) * sizeof(std::uint32_t);
+        std::uint64_t cap_blocks = std::min<std::uint64_t>(in.memory_budget_bytes / block_bytes,
+                                                           std::uint64_t(max_ssbo) / (512 * sizeof(std::uint32_t)));
+        if (value_words) cap_blocks = std::min<std::uint64_t>(cap_blocks, std::uint64_t(max_ssbo) / (value_words * 4));
+        cap_blocks = std::max<std::uint64_t>(cap_blocks, 1);
         auto poolFor = [&](std::uint64_t blocks) {
-            if (blocks * 512 * sizeof(std::uint32_t) > pool_limit)
-                throw ResourceError("the point counts need " + std::to_string((blocks * 2048) >> 20) +
-                                    " MiB, more than this GL device allows (" + std::to_string(pool_limit >> 20) +
-                                    " MiB); turn counts off or lower the resolution");
-            return gl::Buffer(in.counts ? blocks * 512 * sizeof(std::uint32_t) : 0, nullptr);
+            if (blocks > cap_blocks)
+                throw ResourceError(std::string(in.values ? "the point counts and attribute sums" : "the point counts") +
+                                    " need " + std::to_string((blocks * block_bytes) >> 20) +
+                                    " MiB, more than this GL device and the memory budget allow (" +
+                                    std::to_string((cap_blocks * block_bytes) >> 20) + " MiB); " +
+                                    (in.values ? "lower tile_size (a tile's sums take blocks only for its own bricks) or the resolution"
+                                               : "turn counts off or lower the resolution"));
+            return Pools{gl::Buffer(in.counts ? blocks * 512 * sizeof(std::uint32_t) : 0, nullptr),
+                         gl::Buffer(blocks * value_words * sizeof(std::uint32_t), nullptr)};
         };
         const std::uint32_t first_blocks = std::uint32_t(
             std::min<std::uint64_t>({2 * (in.plan.brick_estimate + 64) + 256, brick_count + 256, cap_blocks}));
-        gl::Buffer pool = poolFor(in.counts ? first_blocks : 1);
+        Pools pools = poolFor(in.counts ? first_blocks : 1);
         out.runs = 1;
-        Counters c = drawAll(in, programs, lists, bit_buffer, counters, table, pool, first_blocks, false, tuning, out);
+        Counters c = drawAll(in, programs, lists, bit_buffer, counters, table, pools, first_blocks, false, tuning, out);
         bit_buffer.download(0, bits.byteSize(), bits.data());
         if (in.counts) {
             out.brick_blocks.resize(brick_count);
@@ -274,12 +306,16 @@ GpuTessellationOutput runGpuTessellation(const GpuTessellationInput& in, BitGrid
                 used = 0;
                 for (std::size_t b = 0; b < brick_count; ++b) out.brick_blocks[b] = brickTouched(bits, b) ? ++used : 0;
                 table.upload(0, brick_count * sizeof(std::uint32_t), out.brick_blocks.data());
-                pool = poolFor(used);
+                pools = poolFor(used);
                 out.runs = 2;
-                c = drawAll(in, programs, lists, bit_buffer, counters, table, pool, used, true, tuning, out);
+                c = drawAll(in, programs, lists, bit_buffer, counters, table, pools, used, true, tuning, out);
             }
             out.count_pool.resize(std::size_t(used) * 512);
-            pool.download(0, out.count_pool.size() * sizeof(std::uint32_t), out.count_pool.data());
+            pools.counts.download(0, out.count_pool.size() * sizeof(std::uint32_t), out.count_pool.data());
+            if (value_words) {
+                out.value_pool.resize(std::size_t(used) * value_words);
+                pools.values.download(0, out.value_pool.size() * sizeof(std::uint32_t), out.value_pool.data());
+            }
         }
         out.points = c.points;
         out.clipped = c.clipped;

@@ -14,6 +14,7 @@
 #include "hyvox/interrupter.h"
 #include "hyvox/options.h"
 #include "tessellation/patch_plan.h"
+#include "tessellation/point_values.h"
 
 namespace hyvox::tessellation {
 
@@ -30,8 +31,9 @@ struct GpuTessellationInput {
     const std::vector<float>& heights;  // rows bottom-up
     int height_width, height_height;
     double strength_voxels, midlevel;
-    bool counts;
-    std::uint64_t memory_budget_bytes;   // what the count pool may take
+    bool counts;                         // per-voxel counts (forced on with values)
+    const PointValues* values;           // attribute sums per voxel; null = none
+    std::uint64_t memory_budget_bytes;   // what the count and value pools may take
     const GlOptions& gl;                 // device, shader folder, timing and draw choices
     Interrupter* interrupter;
 };
@@ -41,6 +43,7 @@ struct GpuTessellationOutput {
     std::uint64_t clipped = 0;  // of which outside the grid
     std::vector<std::uint32_t> brick_blocks;  // per brick: 0 or 1 + block (when counting)
     std::vector<std::uint32_t> count_pool;    // 512 counts per block
+    std::vector<std::uint32_t> value_pool;    // valueWordsPerBlock() words per block (with values)
     double whole_gpu_ms = 0, direct_gpu_ms = 0, split_gpu_ms = 0;
     int runs = 0;  // 2 when the count pool had to grow
 };

@@ -14,6 +14,7 @@
 #include "tessellation/displacement_map.h"
 #include "tessellation/gl_tessellation.h"
 #include "tessellation/patch_plan.h"
+#include "tessellation/point_values.h"
 #include "tessellation/surface_attributes.h"
 
 namespace hyvox {
@@ -65,9 +66,13 @@ void runTessellationBackend(const BackendJob& job, TileOutput& result, Stats& st
                     : std::max(std::abs(map.maxValue() - options.displacement_midlevel),
                                std::abs(map.minValue() - options.displacement_midlevel)) *
                           std::abs(options.displacement_strength) / job.grid.voxel_size;
+    // Attribute means divide per-voxel sums by the per-voxel counts, so they need the counts.
+    std::optional<tessellation::PointValues> values;
+    if (job.attributes) values.emplace(tessellation::makePointValues(job.mesh, job.grid, *job.attributes));
+    const bool counts = options.counts || values;
     const tessellation::PatchPlan plan =
         tessellation::planPatches(job.mesh, job.grid, job.tile.offset, job.tile.dims, options.gamma, max_level,
-                                  options.counts,
+                                  counts,
                                   displacement_reach + 1.0, options.pn_triangles ? 0.5 : 0.0);
     stats.addTiming("plan", watch.restart());
     throwIfInterrupted(job.interrupter, 10);
@@ -86,7 +91,8 @@ void runTessellationBackend(const BackendJob& job, TileOutput& result, Stats& st
         map.height(),
         options.displacement_strength / job.grid.voxel_size,
         options.displacement_midlevel,
-        options.counts,
+        counts,
+        values ? &*values : nullptr,
         job.options.memoryBudgetBytes(),
         job.options.gl,
         job.interrupter,
@@ -97,6 +103,12 @@ void runTessellationBackend(const BackendJob& job, TileOutput& result, Stats& st
     if (options.counts) {
         compactCounts(out.brick_blocks, out.count_pool, result.bits, job.tile.offset, result.counts);
         stats.addTiming("counts", watch.restart());
+    }
+    if (values) {
+        result.attribute_voxels_unreached += tessellation::meansFromSums(
+            out.brick_blocks, out.count_pool, out.value_pool, result.bits, job.tile.offset, job.grid, values->layout,
+            result.attributes);
+        stats.addTiming("attributes", watch.restart());
     }
     // Summed over tiles: a triangle reaching k tiles is drawn k times, and its points outside
     // a tile count as clipped there, so points - points_clipped are the points that landed.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <iterator>
 #include <optional>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include "gl/device_limits.h"
 #include "solid/fill_inside.h"
 #include "hyvox/option_schema.h"
+#include "tessellation/point_values.h"
 #include "tile_plan.h"
 
 namespace hyvox {
@@ -95,15 +97,16 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     }
 }
 
-// The attribute evaluator when options.attributes asks for any (the exact methods only).
+// The attribute evaluator when options.attributes asks for any (the exact methods and the
+// tessellation, which averages its points' values).
 std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, const VoxelizeOptions& options) {
     const AttributeSet wanted = parseAttributeSet(options.attributes);
     if (!wanted.any()) return std::nullopt;
     if (options.mode == Mode::Solid)
         throw InvalidInput("attributes are computed for the surface modes (conservative, thin); solid mode does "
                            "not compute them yet");
-    if (options.method != Method::Cpu && options.method != Method::Reference)
-        throw InvalidInput(std::string("attributes are computed by the cpu and reference methods; method ") +
+    if (options.method != Method::Cpu && options.method != Method::Reference && options.method != Method::Tessellation)
+        throw InvalidInput(std::string("attributes are computed by the cpu, reference and tessellation methods; method ") +
                            toString(options.method) + " does not compute them yet");
     return std::optional<attributes::SurfaceValues>(std::in_place, mesh, wanted);
 }
@@ -134,12 +137,17 @@ struct Surface {
             if (!plan.whole()) part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds};
             const ValidatedMesh& tile_mesh = plan.whole() ? validated : part;
             progress.setTile(t);
-            TileOutput out{BitGrid(tile.dims), {}};
+            TileOutput out{BitGrid(tile.dims), {}, {}, 0};
             stats.addTiming("allocate", watch.restart());
-            const BackendJob job{tile_mesh, validated, grid, tile, options, &progress};
+            // The tessellation averages its own points' values; the exact methods' come after.
+            const bool own_attributes = values && options.method == Method::Tessellation;
+            const BackendJob job{tile_mesh, validated, grid, tile, options, &progress, own_attributes ? values : nullptr};
             runBackend(job, out, stats);
             watch.restart();
-            if (values) {
+            if (own_attributes) {
+                std::move(out.attributes.begin(), out.attributes.end(), std::back_inserter(*attribute_leaves));
+                stats.attribute_voxels_unreached += out.attribute_voxels_unreached;
+            } else if (values) {
                 const auto counted = attributes::computeTileAttributes(job, out.bits, *values,
                                                                        options.method == Method::Reference, *attribute_leaves);
                 stats.attribute_pieces += counted.pieces;
@@ -203,8 +211,10 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     const GridSpec& grid = result.grid;
     // The tessellation holds a tile's bits in one storage buffer (the hybrid methods cut theirs
     // into slabs themselves): its tiles also follow the device's limit.
-    const std::uint64_t device_limit =
-        options.method == Method::Tessellation ? gl::maxStorageBlockBytes(options.gl.device) : 0;
+    std::uint64_t device_limit = options.method == Method::Tessellation ? gl::maxStorageBlockBytes(options.gl.device) : 0;
+    // Its attribute sums take a block per brick the points reach: tiles small enough for all.
+    if (surface && options.method == Method::Tessellation)
+        device_limit = tessellation::tileBitBytesForSums(device_limit, options.memoryBudgetBytes() / 2, surface->channels());
     const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
     checkMemoryBudget(grid, options, plan, validated);
     const tiling::PointReach reach = tiling::pointReach(grid, options);
