@@ -87,10 +87,14 @@ def token_progress(token) -> float:
 
 
 def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "VoxelizeSettings",
-             method: str, voxel_size: Optional[float] = None, token=None):
+             method: str, voxel_size: Optional[float] = None, token=None, colour: Optional[dict] = None):
     """hyvox.voxelize with the run's settings; voxel_size (when given) wins over the
-    settings, so every frame of a sequence shares the first frame's voxel size."""
+    settings, so every frame of a sequence shares the first frame's voxel size. colour:
+    the colour source's keyword arguments (colour.combine); given, a `color` grid is made."""
     kwargs = settings.voxelize_options()
+    if colour:
+        kwargs.update(colour)
+        kwargs["attributes"] = "color"
     kwargs["method"] = method
     if voxel_size:
         kwargs.pop("resolution", None)
@@ -110,8 +114,8 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "Vox
 
 
 def voxel_colors(grid) -> Optional[np.ndarray]:
-    """The grid's per-voxel linear colours (K,3) in the order of grid.coords(), or None.
-    The module has no colour grid yet (issue 12 adds one); once it does, this is the one
-    place that reads it, and Blocks and .vox pick the colours up."""
-    colors = getattr(grid, "colors", None)
-    return np.asarray(colors(), dtype=np.float32) if callable(colors) else None
+    """The grid's per-voxel linear colours (K,3) in the order of grid.coords(), or None
+    when it has no `color` grid; Blocks and .vox take their colours from here."""
+    attributes = getattr(grid, "attributes", None)
+    colors = attributes().get("color") if callable(attributes) else None
+    return np.asarray(colors, dtype=np.float32) if colors is not None else None
