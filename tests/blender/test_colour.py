@@ -1,0 +1,197 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Colour voxels from Blender (issue 12): the colour each object's material shows (render
+colour attribute, Base Color image, per-slot Base Color) reaches the .vdb's `color` grid
+(read back with pyopenvdb), the volume's material shows it, Blocks carry it, and a Cycles
+render of the volume has the mesh's colours."""
+import os
+
+import bpy
+import numpy as np
+
+import helpers
+from helpers import AddonTestCase
+
+RED = (0.6, 0.05, 0.02, 1.0)    # linear
+GREEN = (0.03, 0.5, 0.1, 1.0)
+SIZE = 0.125                     # voxel size: 16 voxels across the 2-unit cube
+
+
+def split_cube(name="Split"):
+    """Two 1.5-unit cubes in one mesh, one each side of x = 0 with a gap of 4 voxels, so
+    every voxel and every vertex lies in one half: x < 0 or x > 0."""
+    h = 0.75
+    corners = np.array([(-h, -h, -h), (h, -h, -h), (h, h, -h), (-h, h, -h),
+                        (-h, -h, h), (h, -h, h), (h, h, h), (-h, h, h)])
+    faces = np.array([(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)])
+    vertices = np.concatenate([corners - (1.0, 0, 0), corners + (1.0, 0, 0)])
+    return helpers.mesh_object(name, vertices, np.concatenate([faces, faces + 8]))
+
+
+def face_halves(mesh):
+    """(F,) bool: the face lies in the x < 0 half."""
+    centres = np.empty(len(mesh.polygons) * 3, np.float32)
+    mesh.polygons.foreach_get("center", centres)
+    return centres.reshape(-1, 3)[:, 0] < 0
+
+
+def colour_vdb(path):
+    """(world centres (K,3), linear colours (K,3)) of the .vdb's `color` grid."""
+    import pyopenvdb as vdb
+    grid = vdb.read(path, "color")
+    ijk, values = [], []
+    for item in grid.citerOnValues():
+        assert item.count == 1, "colour tiles are not expected on a surface"
+        ijk.append(item.min)
+        values.append(item.value)
+    ijk = np.array(ijk, np.float64)
+    size = np.array(grid.transform.voxelSize())
+    zero = np.array(grid.transform.indexToWorld((0, 0, 0)))
+    return zero + ijk * size, np.array(values, np.float64)  # the transform maps ijk to voxel centres
+
+
+def principled_material(name, base_color):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    tree = material.node_tree
+    tree.nodes.clear()
+    shader = tree.nodes.new("ShaderNodeBsdfPrincipled")
+    shader.inputs["Base Color"].default_value = base_color
+    tree.links.new(shader.outputs["BSDF"], tree.nodes.new("ShaderNodeOutputMaterial").inputs["Surface"])
+    return material
+
+
+class ColourTest(AddonTestCase):
+    def assert_halves(self, path, left, right, tol=0.01):
+        """Every voxel has the colour of its half."""
+        centres, colours = colour_vdb(path)
+        density, *_ = helpers.read_vdb(path)
+        self.assertEqual(len(centres), len(density), "a colour for every occupied voxel")
+        for side, expected in ((centres[:, 0] < 0, left), (centres[:, 0] > 0, right)):
+            self.assertGreater(side.sum(), 100)
+            np.testing.assert_allclose(colours[side], np.tile(expected[:3], (side.sum(), 1)), atol=tol, rtol=0)
+
+    def volume_file(self):
+        (obj,) = self.volumes()
+        return bpy.path.abspath(obj.data.filepath), obj
+
+    def test_colour_attribute_byte_corner_and_float_point(self):
+        for data_type, domain in (("BYTE_COLOR", "CORNER"), ("FLOAT_COLOR", "POINT")):
+            with self.subTest(data_type=data_type, domain=domain):
+                helpers.clear_scene()
+                obj = split_cube()
+                mesh = obj.data
+                left = face_halves(mesh)
+                # Another attribute first, so the render one must be picked, not the first.
+                decoy = mesh.color_attributes.new("Decoy", "FLOAT_COLOR", "POINT")
+                decoy.data.foreach_set("color", np.ones(len(mesh.vertices) * 4, np.float32))
+                attribute = mesh.color_attributes.new("Col", data_type, domain)
+                mesh.color_attributes.render_color_index = list(mesh.color_attributes).index(attribute)
+                if domain == "CORNER":
+                    per_loop = np.repeat(left, [p.loop_total for p in mesh.polygons])
+                    values = np.where(per_loop[:, None], RED, GREEN)
+                else:
+                    co = np.empty(len(mesh.vertices) * 3, np.float32)
+                    mesh.vertices.foreach_get("co", co)
+                    values = np.where((co.reshape(-1, 3)[:, 0] < 0)[:, None], RED, GREEN)
+                attribute.data.foreach_set("color", np.asarray(values, np.float32).ravel())
+                helpers.select_only(obj)
+                self.assertEqual(self.voxelize(voxel_size=SIZE), {"FINISHED"})
+                path, volume = self.volume_file()
+                # Bytes hold sRGB-encoded colours: a linear value comes back within rounding.
+                self.assert_halves(path, RED, GREEN, tol=0.01 if data_type == "BYTE_COLOR" else 1e-5)
+                nodes = volume.data.materials[0].node_tree.nodes
+                attribute_node = next(n for n in nodes if n.type == "ATTRIBUTE")
+                self.assertEqual(attribute_node.attribute_name, "color")
+                shader = next(n for n in nodes if n.type == "PRINCIPLED_VOLUME")
+                self.assertEqual(shader.inputs["Color"].links[0].from_node.name, attribute_node.name)
+
+    def test_per_slot_base_colours_and_combined_with_an_attribute(self):
+        obj = split_cube()
+        mesh = obj.data
+        mesh.materials.append(principled_material("Red", RED))
+        mesh.materials.append(principled_material("Green", GREEN))
+        mesh.polygons.foreach_set("material_index", np.where(face_halves(mesh), 0, 1).astype(np.int32))
+        helpers.select_only(obj)
+        self.assertEqual(self.voxelize(voxel_size=SIZE), {"FINISHED"})
+        self.assert_halves(self.volume_file()[0], RED, GREEN, tol=1e-5)
+
+        # One volume of two objects with different sources: per-slot + colour attribute.
+        other = helpers.cube("Painted", size=1.0, location=(0, 0, 3))
+        painted = other.data.color_attributes.new("Col", "FLOAT_COLOR", "POINT")
+        painted.data.foreach_set("color", np.tile(np.float32([0.1, 0.2, 0.7, 1.0]), len(other.data.vertices)))
+        helpers.select_only(obj, other)
+        self.assertEqual(self.voxelize(voxel_size=SIZE), {"FINISHED"})
+        path = self.volume_file()[0]
+        centres, colours = colour_vdb(path)
+        top = centres[:, 2] > 2.0
+        self.assertGreater(top.sum(), 50)
+        np.testing.assert_allclose(colours[top], np.tile([0.1, 0.2, 0.7], (top.sum(), 1)), atol=1e-5)
+        low = ~top
+        for side, expected in ((centres[:, 0] < 0, RED), (centres[:, 0] > 0, GREEN)):
+            np.testing.assert_allclose(colours[low & side], np.tile(expected[:3], ((low & side).sum(), 1)), atol=1e-5)
+
+    def test_colour_off_and_no_material_make_no_colour_grid(self):
+        import pyopenvdb as vdb
+        obj = split_cube()
+        helpers.select_only(obj)
+        self.assertEqual(self.voxelize(voxel_size=SIZE), {"FINISHED"})  # no material, no attribute
+        names = [g["name"] for g in vdb.readAllGridMetadata(self.volume_file()[0])]
+        self.assertEqual(names, ["density"])
+        obj.data.materials.append(principled_material("Red", RED))
+        self.assertEqual(self.voxelize(voxel_size=SIZE, color=False), {"FINISHED"})
+        names = [g["name"] for g in vdb.readAllGridMetadata(self.volume_file()[0])]
+        self.assertEqual(names, ["density"])
+
+    def test_texture_matches_hyvox_with_the_same_texture(self):
+        hyvox = helpers.hyvox_module()
+        png = os.path.join(helpers.MESH_DIR, "spot_texture.png")
+        vertices, triangles, attributes = hyvox.read_mesh(os.path.join(helpers.MESH_DIR, "spot_uv.ply"),
+                                                          attributes=True)
+        uvs = attributes["uvs"]
+        obj = helpers.mesh_object("Spot", vertices, triangles)
+        layer = obj.data.uv_layers.new(name="UVMap")
+        layer.data.foreach_set("uv", uvs[triangles.reshape(-1)].astype(np.float32).ravel())
+        obj.data.uv_layers.new(name="Decoy")  # not the render UV map
+        material = principled_material("Spot", (1, 0, 1, 1))
+        tree = material.node_tree
+        texture = tree.nodes.new("ShaderNodeTexImage")
+        texture.image = bpy.data.images.load(png)
+        shader = next(n for n in tree.nodes if n.type == "BSDF_PRINCIPLED")
+        tree.links.new(texture.outputs["Color"], shader.inputs["Base Color"])
+        obj.data.materials.append(material)
+        helpers.select_only(obj)
+        self.assertEqual(self.voxelize(resolution=48), {"FINISHED"})
+        centres, colours = colour_vdb(self.volume_file()[0])
+
+        expected = hyvox.voxelize(vertices, triangles, resolution=48, method="cpu", uvs=uvs, texture=png,
+                                  attributes="color")
+        size = expected.voxel_size
+        self.assertAlmostEqual(size, float(self.volumes()[0]["hyvox_voxel_size"]), places=6)
+        want = {tuple(k): c for k, c in zip(np.asarray(expected.coords()), expected.attributes()["color"])}
+        got_ijk = np.round((centres - np.asarray(expected.origin)) / size - 0.5).astype(np.int64)
+        self.assertEqual(set(map(tuple, got_ijk)), set(want))
+        difference = np.abs(colours - np.array([want[tuple(k)] for k in got_ijk]))
+        print("texture: max colour difference to hyvox.voxelize", difference.max(), "voxels", len(got_ijk))
+        self.assertLess(difference.max(), 1e-5)
+        self.assertGreater(colours.std(axis=0).min(), 0.05)  # a real texture, not one colour
+
+    def test_blocks_faces_take_their_voxel_colour(self):
+        obj = split_cube()
+        obj.data.materials.append(principled_material("Red", RED))
+        obj.data.materials.append(principled_material("Green", GREEN))
+        obj.data.polygons.foreach_set("material_index", np.where(face_halves(obj.data), 0, 1).astype(np.int32))
+        helpers.select_only(obj)
+        self.assertEqual(self.voxelize(voxel_size=SIZE, output="BLOCKS"), {"FINISHED"})
+        blocks = next(o for o in bpy.data.objects if o.type == "MESH" and o.name != obj.name)
+        mesh = blocks.data
+        attribute = mesh.color_attributes[0]
+        colours = np.empty(len(attribute.data) * 4, np.float32)
+        attribute.data.foreach_get("color", colours)
+        colours = colours.reshape(-1, 4)[:, :3]
+        loop_face = np.repeat(np.arange(len(mesh.polygons)), [p.loop_total for p in mesh.polygons])
+        centres = np.empty(len(mesh.polygons) * 3, np.float32)
+        mesh.polygons.foreach_get("center", centres)
+        x = centres.reshape(-1, 3)[loop_face, 0] + blocks.matrix_world.translation.x
+        for side, expected in ((x < 0, RED), (x > 0, GREEN)):
+            self.assertGreater(side.sum(), 100)
+            np.testing.assert_allclose(colours[side], np.tile(expected[:3], (side.sum(), 1)), atol=1e-5)
