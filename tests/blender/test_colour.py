@@ -195,3 +195,97 @@ class ColourTest(AddonTestCase):
         for side, expected in ((x < 0, RED), (x > 0, GREEN)):
             self.assertGreater(side.sum(), 100)
             np.testing.assert_allclose(colours[side], np.tile(expected[:3], (side.sum(), 1)), atol=1e-5)
+
+
+RENDER_PIXELS = 72
+RENDER_WIDTH = 4.5  # world units across the image
+
+
+class ColourRenderTest(AddonTestCase):
+    """Cycles, lit by a white world only, no bounces, so a pixel's colour is the albedo times
+    a light factor that is the same for every channel: for the mesh a diffuse surface
+    (Principled BSDF without specular), for the volume single scattering (Principled
+    Volume: extinction = density in every channel, scattering albedo = the `color` grid).
+    The two differ in brightness, not in hue, so the test compares chromaticity
+    (rgb / (r + g + b)) of each region's mean colour, within 0.03."""
+
+    def render(self, path):
+        scene = bpy.context.scene
+        scene.render.filepath = path
+        bpy.ops.render.render(write_still=True)
+        image = bpy.data.images.load(path)
+        pixels = np.array(image.pixels[:], np.float64).reshape(RENDER_PIXELS, RENDER_PIXELS, 4)
+        bpy.data.images.remove(image)
+        return pixels
+
+    def setup_scene(self):
+        scene = bpy.context.scene
+        camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+        camera.data.type = "ORTHO"
+        camera.data.ortho_scale = RENDER_WIDTH
+        camera.location = (0, -10, 0)
+        camera.rotation_euler = (np.pi / 2, 0, 0)  # looking along +y, z up
+        scene.collection.objects.link(camera)
+        scene.camera = camera
+        world = bpy.data.worlds.new("White")
+        world.use_nodes = True
+        world.node_tree.nodes["Background"].inputs["Color"].default_value = (1, 1, 1, 1)
+        scene.world = world
+        scene.render.engine = "CYCLES"
+        scene.cycles.device = "CPU"
+        scene.cycles.samples = 32
+        scene.cycles.use_denoising = False
+        scene.cycles.max_bounces = 0
+        scene.render.resolution_x = scene.render.resolution_y = RENDER_PIXELS
+        scene.render.resolution_percentage = 100
+        scene.render.film_transparent = True  # the background adds nothing to a region
+        scene.render.image_settings.file_format = "OPEN_EXR"
+        scene.render.image_settings.color_depth = "32"
+        scene.view_settings.view_transform = "Standard"
+        scene.render.threads_mode = "FIXED"
+        scene.render.threads = 2
+
+    def test_rendered_volume_has_the_mesh_colours(self):
+        obj = split_cube()
+        for name, colour in (("Red", RED), ("Green", GREEN)):
+            material = principled_material(name, colour)
+            shader = next(n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
+            shader.inputs["Specular"].default_value = 0.0
+            shader.inputs["Roughness"].default_value = 1.0
+            obj.data.materials.append(material)
+        obj.data.polygons.foreach_set("material_index", np.where(face_halves(obj.data), 0, 1).astype(np.int32))
+        helpers.select_only(obj)
+        self.assertEqual(self.voxelize(voxel_size=SIZE), {"FINISHED"})
+        (volume,) = self.volumes()
+        self.setup_scene()
+        volume.hide_render = True
+        mesh_image = self.render(os.path.join(self.out, "mesh.exr"))
+        volume.hide_render, obj.hide_render = False, True
+        volume_image = self.render(os.path.join(self.out, "volume.exr"))
+        keep = os.environ.get("HYVOX_TEST_KEEP_RENDERS")
+        if keep:  # for a person to look at: mesh | volume, display-encoded
+            side_by_side = np.concatenate([mesh_image, volume_image], axis=1)[::-1]
+            rgb = np.clip(side_by_side[..., :3], 0, 1)
+            encoded = np.where(rgb <= 0.0031308, rgb * 12.92, 1.055 * rgb ** (1 / 2.4) - 0.055)
+            out = bpy.data.images.new("keep", RENDER_PIXELS * 2, RENDER_PIXELS)
+            alpha = side_by_side[..., 3:4]
+            out.pixels.foreach_set(np.concatenate([encoded * alpha + (1 - alpha), np.ones_like(alpha)],
+                                                  axis=-1)[::-1].astype(np.float32).ravel())
+            out.filepath_raw, out.file_format = keep, "PNG"
+            out.save()
+
+        def region(image, x):
+            """Mean RGB of a square of 12 pixels around world (x, 0) (image row 0 = bottom)."""
+            column = int((x + RENDER_WIDTH / 2) / RENDER_WIDTH * RENDER_PIXELS)
+            middle = RENDER_PIXELS // 2
+            return image[middle - 6:middle + 6, column - 6:column + 6, :3].reshape(-1, 3).mean(axis=0)
+
+        for x, expected in ((-1.0, RED), (1.0, GREEN)):
+            mesh_rgb, volume_rgb = region(mesh_image, x), region(volume_image, x)
+            mesh_chroma, volume_chroma = mesh_rgb / mesh_rgb.sum(), volume_rgb / volume_rgb.sum()
+            albedo = np.array(expected[:3]) / sum(expected[:3])
+            print(f"region x={x}: mesh {mesh_rgb.round(4)} volume {volume_rgb.round(4)} "
+                  f"chromaticity mesh {mesh_chroma.round(3)} volume {volume_chroma.round(3)} albedo {albedo.round(3)}")
+            self.assertGreater(volume_rgb.sum(), 0.05, "the volume is seen")
+            np.testing.assert_allclose(mesh_chroma, albedo, atol=0.03)  # the set-up shows albedo
+            np.testing.assert_allclose(volume_chroma, mesh_chroma, atol=0.03)
