@@ -13,6 +13,9 @@ if TYPE_CHECKING:
     from .settings import VoxelizeSettings
 
 AUTO_METHOD = "auto"  # the add-on's own method: hybrid when a GPU runs GL here, else cpu
+# The methods that compute attribute voxels (colour) today; the others refuse them with a
+# ValueError. "auto" runs a group with colour by cpu.
+ATTRIBUTE_METHODS = ("cpu", "reference")
 
 _module = None
 _gl_probe = {}  # gl_device -> bool, probed once per session: creating an EGL context is slow
@@ -74,6 +77,15 @@ def resolve_method(module, settings: "VoxelizeSettings") -> str:
     return "hybrid" if gl_available(module, settings.options.get("gl_device", "")) else "cpu"
 
 
+def method_for_group(settings: "VoxelizeSettings", resolved: str, with_colour: bool) -> str:
+    """The method a group runs with: auto's choice, unless the group asks for colour and
+    that method cannot make it (then cpu); an explicit method is kept (and refuses colour
+    with its own message)."""
+    if with_colour and settings.method == AUTO_METHOD and resolved not in ATTRIBUTE_METHODS:
+        return "cpu"
+    return resolved
+
+
 def make_token(module):
     """A fresh cancel/progress token."""
     return module.CancelToken()
@@ -109,7 +121,8 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "Vox
         if isinstance(exc, MemoryError):
             raise HyvoxError("out of memory: lower the resolution or raise the memory budget") from exc
         if isinstance(exc, (ValueError, RuntimeError, TypeError, OSError)):
-            raise HyvoxError(f"{method}: {exc}") from exc
+            hint = " (turn Colour off, or use the CPU method)" if colour and method not in ATTRIBUTE_METHODS else ""
+            raise HyvoxError(f"{method}: {exc}{hint}") from exc
         raise
 
 

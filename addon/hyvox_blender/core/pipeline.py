@@ -256,9 +256,11 @@ class Pipeline:
             fixed_size = result.voxel_size if result.voxel_size else None
             self._token = backend.make_token(self.module)
             start = time.perf_counter()
+            colour = mesh.colour if self.settings.color else None
+            method = backend.method_for_group(self.settings, self.method, bool(colour))
+            result.method = method
             grid = backend.voxelize(self.module, mesh.vertices, mesh.triangles, self.settings,
-                                    self.method, voxel_size=fixed_size, token=self._token,
-                                    colour=mesh.colour if self.settings.color else None)
+                                    method, voxel_size=fixed_size, token=self._token, colour=colour)
             self.timings.voxelize_ms += (time.perf_counter() - start) * 1000.0
             if self._cancelled:
                 raise CancelledError("voxelization cancelled")
