@@ -49,6 +49,25 @@ def colour_vdb(path):
     return zero + ijk * size, np.array(values, np.float64)  # the transform maps ijk to voxel centres
 
 
+def read_vox(path):
+    """(XYZI records (K,4) uint8 of the one model, RGBA palette (256,4)) of a .vox file."""
+    import struct
+    with open(path, "rb") as f:
+        data = f.read()
+    offset, models, palette = 20, [], None
+    while offset < len(data):
+        tag, content, children = data[offset:offset + 4], *struct.unpack_from("<ii", data, offset + 4)
+        body = data[offset + 12:offset + 12 + content]
+        if tag == b"XYZI":
+            count = struct.unpack_from("<i", body)[0]
+            models.append(np.frombuffer(body[4:4 + 4 * count], np.uint8).reshape(-1, 4))
+        elif tag == b"RGBA":
+            palette = np.frombuffer(body, np.uint8).reshape(256, 4)
+        offset += 12 + content + children
+    assert len(models) == 1 and palette is not None
+    return models[0], palette
+
+
 def principled_material(name, base_color):
     material = bpy.data.materials.new(name)
     material.use_nodes = True
@@ -181,7 +200,7 @@ class ColourTest(AddonTestCase):
         obj.data.materials.append(principled_material("Green", GREEN))
         obj.data.polygons.foreach_set("material_index", np.where(face_halves(obj.data), 0, 1).astype(np.int32))
         helpers.select_only(obj)
-        self.assertEqual(self.voxelize(voxel_size=SIZE, output="BLOCKS"), {"FINISHED"})
+        self.assertEqual(self.voxelize(voxel_size=SIZE, output="BLOCKS", export_vox=True), {"FINISHED"})
         blocks = next(o for o in bpy.data.objects if o.type == "MESH" and o.name != obj.name)
         mesh = blocks.data
         attribute = mesh.color_attributes[0]
@@ -195,6 +214,16 @@ class ColourTest(AddonTestCase):
         for side, expected in ((x < 0, RED), (x > 0, GREEN)):
             self.assertGreater(side.sum(), 100)
             np.testing.assert_allclose(colours[side], np.tile(expected[:3], (side.sum(), 1)), atol=1e-5)
+        # The .vox beside the .vdb: each voxel's palette entry is its half's colour, sRGB-encoded.
+        (vox_path,) = [os.path.join(self.out, f) for f in os.listdir(self.out) if f.endswith(".vox")]
+        records, palette = read_vox(vox_path)
+        x_of_seam = records[:, 0].max() / 2.0  # one model spans both cubes
+        for side, expected in ((records[:, 0] < x_of_seam, RED), (records[:, 0] > x_of_seam, GREEN)):
+            encoded = [255 * (12.92 * c if c <= 0.0031308 else 1.055 * c ** (1 / 2.4) - 0.055) for c in expected[:3]]
+            used = palette[records[side, 3] - 1, :3].astype(np.float64)
+            self.assertGreater(side.sum(), 100)
+            np.testing.assert_allclose(used, np.tile(encoded, (side.sum(), 1)), atol=0.51)
+
 
 
 RENDER_PIXELS = 72
@@ -289,3 +318,4 @@ class ColourRenderTest(AddonTestCase):
             self.assertGreater(volume_rgb.sum(), 0.05, "the volume is seen")
             np.testing.assert_allclose(mesh_chroma, albedo, atol=0.03)  # the set-up shows albedo
             np.testing.assert_allclose(volume_chroma, mesh_chroma, atol=0.03)
+
