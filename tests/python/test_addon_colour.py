@@ -52,10 +52,13 @@ def test_mixed_sources_become_corner_colours_with_a_warning():
     vertices, triangles, kwargs, warning = combine([(v, t, flat), part, (v + 4.0, t, None)])
     assert set(kwargs) == {"colors"} and "corners" in warning
     colors = kwargs["colors"]
-    assert colors.shape == (9, 4) and len(triangles) == 3
-    np.testing.assert_allclose(colors[:3], flat.corner_colors)
-    np.testing.assert_allclose(colors[3:6], sample_bilinear(texture, part[2].uvs), atol=1e-6)
-    np.testing.assert_allclose(colors[6:], np.tile([0.8, 0.8, 0.8, 1.0], (3, 1)))  # no source: Blender's grey
+    assert colors.shape == (9, 3) and len(triangles) == 3  # all opaque: RGB only
+    np.testing.assert_allclose(colors[:3], flat.corner_colors[:, :3])
+    np.testing.assert_allclose(colors[3:6], sample_bilinear(texture, part[2].uvs)[:, :3], atol=1e-6)
+    np.testing.assert_allclose(colors[6:], np.full((3, 3), 0.8))  # no source: Blender's grey
+    # A colour that is not opaque keeps the alpha (hyvox then writes an `alpha` grid).
+    flat.corner_colors[0, 3] = 0.5
+    assert combine([(v, t, flat)])[2]["colors"].shape == (3, 4)
 
 
 def test_sample_bilinear_matches_hyvox_at_a_vertex_voxel():

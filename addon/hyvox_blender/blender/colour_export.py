@@ -55,6 +55,8 @@ def _image_pixels(image: bpy.types.Image) -> np.ndarray:
     pixels = pixels.reshape(height, width, channels)[::-1, :, :min(channels, 4)]
     if channels < 3:  # grey: repeat into RGB
         pixels = np.repeat(pixels[..., :1], 3, axis=-1)
+    elif channels == 4 and np.all(pixels[..., 3] == 1.0):
+        pixels = pixels[..., :3]  # opaque: no `alpha` grid
     if not image.is_float and image.colorspace_settings.name == "sRGB":
         # A byte image's float pixels are its bytes / 255, still sRGB-encoded: back to bytes.
         return np.ascontiguousarray(np.round(pixels * 255.0).astype(np.uint8))

@@ -9,6 +9,8 @@ A part's colour is per triangle corner, in one of two forms:
   row 0 = top) for the triangles in `textured` (a (M,) bool mask), the rest of the part's
   triangles taking `corner_colors`.
 
+An `alpha` grid is made only when some colour is not opaque (alpha < 1).
+
 Combining (one call of hyvox.voxelize per group): when every triangle of the group is
 textured by one and the same image, the group is passed as uvs + texture, so the native
 code samples the image inside each voxel (nothing lost). Otherwise every part becomes
@@ -101,6 +103,8 @@ def combine(parts: Sequence[Tuple[np.ndarray, np.ndarray, Optional[PartColour]]]
     if keys:
         warning = ("Colour: textures sampled at the triangle corners (objects with different colour "
                    "sources or images voxelized together); one object at a time keeps the texture's detail")
+    if np.all(corner_colors[:, 3] == 1.0):
+        corner_colors = np.ascontiguousarray(corner_colors[:, :3])  # opaque: no `alpha` grid
     return vertices, triangles, {"colors": corner_colors}, warning
 
 
