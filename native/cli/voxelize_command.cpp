@@ -38,10 +38,10 @@ void printSummary(const Arguments& args, const Mesh& mesh, const VoxelizeResult&
 void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     const auto thread_limit = limitThreads(args.options.threads);
     checkOutputPaths(args.mesh_path, args.output_path, args.stats_json_path);
+    ProgressLine interrupter = progressFor(args, stop);  // Ctrl-C stops the reading too
     auto start = std::chrono::steady_clock::now();
-    const Mesh mesh = readMesh(args.mesh_path);
+    const Mesh mesh = readMesh(args.mesh_path, &interrupter);
     const double read_ms = msSince(start);
-    if (stop.load()) throw Cancelled();
 
     MeshView view = mesh.view();
     Texture texture;
@@ -49,7 +49,8 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
         texture = readPngTexture(args.texture_path);
         view.texture = &texture;
     }
-    ProgressLine interrupter = progressFor(args, stop);
+    // The output is always a .vdb: a voxel size it cannot hold is refused before the work.
+    checkVdbVoxelSize(makeGrid(validate(view).bounds, args.options.grid).voxel_size);
     VoxelizeResult result = voxelize(view, args.options, &interrupter);
     result.stats.timings_ms.insert(result.stats.timings_ms.begin(), {"read_mesh", read_ms});
 

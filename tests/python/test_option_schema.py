@@ -104,6 +104,7 @@ def cli_text(value):
     return str(value)
 
 
+@pytest.mark.filterwarnings("ignore::hyvox.IgnoredOptionWarning")  # other methods' options on purpose
 @pytest.mark.parametrize("spec", hyvox.OPTIONS, ids=lambda s: s.name)
 def test_every_option_reaches_the_run_from_both_doors(spec, cli, tmp_path):
     value = good_value(spec)
@@ -131,6 +132,7 @@ def test_environment_variables_are_schema_options():
         "HYVOX_GL_DEVICE", "HYVOX_SHADER_DIR", "HYVOX_GL_TILE_BYTES", "HYVOX_GL_WALL_TIMING", "HYVOX_TESS_INSTANCED"}
 
 
+@pytest.mark.filterwarnings("ignore::hyvox.IgnoredOptionWarning")  # other methods' options on purpose
 @pytest.mark.parametrize("spec", ENV_SPECS, ids=lambda s: s.env)
 def test_environment_reaches_the_run_from_both_doors(spec, cli, tmp_path, monkeypatch):
     value = good_value(spec)
@@ -162,6 +164,7 @@ def test_unknown_option_is_a_type_error_naming_the_options():
         hyvox.voxelize(TETRA_V, TETRA_T, resolutoin=8)
 
 
+@pytest.mark.filterwarnings("ignore::hyvox.IgnoredOptionWarning")  # other methods' options on purpose
 def test_unset_options_are_the_schema_defaults(cli, tmp_path):
     # Unset at either door must mean the schema's default: a run that leaves every option
     # unset and one that spells each default out set the same voxels and report the same

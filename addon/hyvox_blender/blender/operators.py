@@ -8,7 +8,7 @@ import traceback
 
 import bpy
 
-from ..core import naming, summary
+from ..core import backend, naming, summary
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
 from . import export, importer, properties, render_depsgraph
@@ -33,6 +33,8 @@ class _Run:
         # run overwrote (farm chunks ask for fixed names to assemble one sequence).
         run_tag = naming.new_run_tag() if op.unique_file_names else None
         self.pipeline = Pipeline(settings, folder, self.export_frame, run_tag=run_tag)  # validates the settings
+        if self.pipeline.ignored_options:
+            op.report({"INFO"}, backend.ignored_message(self.pipeline.ignored_options, self.pipeline.method))
         # The redo panel shows, and a redo repeats, exactly what this run used.
         for name, value in used.items():
             setattr(op, name, value)

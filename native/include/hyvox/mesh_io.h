@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "hyvox/interrupter.h"
 #include "hyvox/mesh.h"
 
 namespace hyvox {
@@ -48,6 +49,9 @@ struct Mesh {
 // corners is an error); polygons are fan-triangulated. Several meshes in one file are
 // merged, with their node transforms applied. Throws InvalidInput for a missing, unreadable,
 // non-regular, damaged or unparsable file, or one without triangles.
-Mesh readMesh(const std::string& path);
+// `interrupter` (may be null) is asked at milestones (every MiB decompressed, every 64k
+// records or lines parsed, assimp's progress steps): when it says stop, hyvox::Cancelled is
+// thrown and nothing is returned (the partly read mesh is freed).
+Mesh readMesh(const std::string& path, Interrupter* interrupter = nullptr);
 
 }  // namespace hyvox

@@ -13,7 +13,8 @@ with s = grid.voxel_size; the .vdb's index space is voxel centres.
 from __future__ import annotations
 
 import os
-from typing import Callable, Optional, Tuple, Union
+import warnings
+from typing import Callable, Iterable, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -45,10 +46,23 @@ def option(name: str) -> OptionSpec:
 METHODS: Tuple[str, ...] = tuple(option("method").choices)
 MODES: Tuple[str, ...] = tuple(option("mode").choices)
 
+class IgnoredOptionWarning(UserWarning):
+    """voxelize() was given an option the chosen method does not use (the CLI prints the
+    same warning). Silence it with warnings.filterwarnings("ignore", category=...)."""
+
+
+def ignored_options(method: str, names: Iterable[str]) -> List[str]:
+    """Of the option `names`, those `method` ignores, in the given order: the schema's one
+    rule (OptionSpec.applies_to), shared by the CLI, voxelize() and the Blender add-on.
+    KeyError for an unknown option name, ValueError for an unknown method."""
+    return [name for name in names if not option(name).applies_to(method)]
+
+
 __all__ = [
     "BackendError",
     "CancelToken",
     "Cancelled",
+    "IgnoredOptionWarning",
     "METHODS",
     "MODES",
     "OPTIONS",
@@ -59,6 +73,7 @@ __all__ = [
     "__version__",
     "check_option",
     "gl_devices",
+    "ignored_options",
     "option",
     "read_mesh",
     "voxelize",
@@ -153,6 +168,9 @@ def voxelize(
     **options: the options of hyvox.OPTIONS by name (listed below). Unset or None options take
         the native default, after the environment variables the schema names.
 
+    An option the chosen method does not use (e.g. tess_gamma with method="cpu") is ignored
+    with a hyvox.IgnoredOptionWarning, as the CLI warns.
+
     The GIL is released while native code runs. Raises ValueError for bad input or an option
     out of its limits, TypeError for an unknown option or a value of the wrong kind,
     hyvox.ResourceError (a RuntimeError) when the grid does not fit the memory budget,
@@ -164,6 +182,10 @@ def voxelize(
         if name == "attributes" and isinstance(value, (list, tuple)):
             value = ",".join(value)  # the schema's text form: a comma list
         native_options.set(name, value)
+    method = native_options.get("method")
+    given = [name for name, value in options.items() if value is not None]
+    for name in ignored_options(method, given):
+        warnings.warn(f"{name} does not apply to the {method} method: ignored", IgnoredOptionWarning, stacklevel=2)
     if cancel is not None and not isinstance(cancel, CancelToken):
         raise TypeError("cancel must be a hyvox.CancelToken or None")
     pixels = None
@@ -221,15 +243,19 @@ def _options_doc() -> str:
 voxelize.__doc__ = (voxelize.__doc__ or "") + _options_doc()
 
 
-def read_mesh(path: Union[str, os.PathLike], attributes: bool = False):
+def read_mesh(path: Union[str, os.PathLike], attributes: bool = False, cancel: Optional[CancelToken] = None):
     """Read a mesh file (PLY binary/ascii, .ply.gz, OBJ, and what assimp reads).
 
     Returns (vertices float32 (N, 3), triangles uint32 (M, 3)), triangles exactly as in the
     file (degenerate ones included). With attributes=True, returns
     (vertices, triangles, attrs) where attrs may hold "colors" (float32 (N, 4) RGBA 0..1)
-    and "uvs" (float32 (N, 2)). Raises ValueError for a missing or unreadable file.
+    and "uvs" (float32 (N, 2)). Raises ValueError for a missing or unreadable file, and
+    hyvox.Cancelled when `cancel` (a hyvox.CancelToken) is cancelled from another thread while
+    the file is read (the GIL is released meanwhile).
     """
-    vertices, triangles, colors, uvs = _core.read_mesh(os.fspath(path))
+    if cancel is not None and not isinstance(cancel, CancelToken):
+        raise TypeError("cancel must be a hyvox.CancelToken or None")
+    vertices, triangles, colors, uvs = _core.read_mesh(os.fspath(path), cancel=cancel)
     if not attributes:
         return vertices, triangles
     attrs = {}

@@ -10,6 +10,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <memory>
 #include <mutex>
 #include <ostream>
@@ -59,6 +60,7 @@ void initializeOpenVdb() {
 }
 
 openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid) {
+    checkVdbVoxelSize(grid.voxel_size);
     auto transform = openvdb::math::Transform::createLinearTransform(grid.voxel_size);
     const double h = 0.5 * grid.voxel_size;
     transform->postTranslate(openvdb::Vec3d(grid.origin[0] + h, grid.origin[1] + h, grid.origin[2] + h));

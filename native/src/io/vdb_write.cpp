@@ -6,6 +6,7 @@
 // them as OpenVDB objects, and the tests check that both agree.
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -80,8 +81,20 @@ CountLeaves countLeaves(const std::vector<VoxelCount>& counts) {
 
 namespace hyvox {
 
+void checkVdbVoxelSize(double voxel_size) {
+    // ScaleMap's own test (openvdb/math/Maps.h): |det| < 3 × Tolerance<double> (1e-15).
+    if (voxel_size * voxel_size * voxel_size >= 3e-15) return;
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "voxel size %.6g is below the smallest a .vdb file can hold (about 1.45e-05 world units: "
+                  "OpenVDB needs voxel_size^3 >= 3e-15); scale the mesh up (e.g. millimetres, not metres)",
+                  voxel_size);
+    throw InvalidInput(text);
+}
+
 VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, int threads, Interrupter* interrupter) {
     if (threads < 0) throw InvalidInput("writeVdb: threads must be >= 0 (0 = all cores)");
+    checkVdbVoxelSize(result.grid.voxel_size);
     io::checkGridBudget(result);
     const InterrupterRun run(interrupter, "hyvox write");
     VdbWriteReport report;
