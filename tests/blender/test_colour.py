@@ -279,7 +279,8 @@ class ColourRenderTest(AddonTestCase):
         for name, colour in (("Red", RED), ("Green", GREEN)):
             material = principled_material(name, colour)
             shader = next(n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
-            shader.inputs["Specular"].default_value = 0.0
+            specular = "Specular" if "Specular" in shader.inputs else "Specular IOR Level"  # 4.0 renamed it
+            shader.inputs[specular].default_value = 0.0
             shader.inputs["Roughness"].default_value = 1.0
             obj.data.materials.append(material)
         obj.data.polygons.foreach_set("material_index", np.where(face_halves(obj.data), 0, 1).astype(np.int32))
