@@ -35,6 +35,8 @@ def parse_args(argv):
     parser.add_argument("--frames", help="frame range, e.g. 1-10 (one .vdb per frame)")
     parser.add_argument("--objects", help="comma-separated object names")
     parser.add_argument("--separate", action="store_true", help="one volume per object")
+    parser.add_argument("--no-color", dest="color", action="store_false",
+                        help="no `color` grid (default: the colour the objects' materials show)")
     parser.add_argument("--viewport", action="store_true",
                         help="evaluate modifiers at viewport settings (default: render settings)")
     parser.add_argument("--save", help="save the .blend with the volumes to this path")
@@ -89,6 +91,7 @@ def main(argv):
     if args.separate:
         kwargs["separate"] = True
     kwargs["evaluation"] = "VIEWPORT" if args.viewport else "RENDER"
+    kwargs["color"] = args.color
     kwargs["unique_file_names"] = False  # chunks of one sequence must share their file names
     if args.frames:
         frames = parse_frame_range(args.frames)

@@ -68,11 +68,11 @@ def hold_until_cancelled():
     from hyvox_blender.core import backend
     real = backend.voxelize
 
-    def held(module, vertices, triangles, settings, method, voxel_size=None, token=None):
+    def held(module, vertices, triangles, settings, method, token=None, **kwargs):
         deadline = time.monotonic() + 60
         while token is not None and not token.cancelled and time.monotonic() < deadline:
             time.sleep(0.01)
-        return real(module, vertices, triangles, settings, method, voxel_size=voxel_size, token=token)
+        return real(module, vertices, triangles, settings, method, token=token, **kwargs)
 
     held.original = real
     backend.voxelize = held

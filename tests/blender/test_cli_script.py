@@ -6,6 +6,7 @@ import os
 import subprocess
 
 import bpy
+import numpy as np
 
 import helpers
 from helpers import AddonTestCase
@@ -49,6 +50,25 @@ class CliScriptTest(AddonTestCase):
         self.assertIn("voxelize", record["timings_ms"])
         with bpy.data.libraries.load(saved) as (data_from, _):
             self.assertIn("Cube_voxels", data_from.objects)
+
+    def test_colour_grid_unless_no_color(self):
+        import pyopenvdb as vdb
+        cube = helpers.cube(size=1.0)
+        material = bpy.data.materials.new("Blue")
+        material.diffuse_color = (0.1, 0.2, 0.9, 1.0)  # no nodes: the viewport colour counts
+        cube.data.materials.append(material)
+        blend = os.path.join(self.out, "coloured.blend")
+        bpy.ops.wm.save_as_mainfile(filepath=blend, copy=True)
+        for extra, grids in (((), ["color", "density"]), (("--no-color",), ["density"])):
+            vdb_dir = os.path.join(self.out, "vdb" + "".join(extra))
+            done = self.run_cli(blend, "--output", vdb_dir, "--resolution", "8", "--objects", "Cube", *extra)
+            self.assertEqual(done.returncode, 0, done.stdout[-2000:] + done.stderr[-2000:])
+            (name,) = os.listdir(vdb_dir)
+            path = os.path.join(vdb_dir, name)
+            self.assertEqual(sorted(g["name"] for g in vdb.readAllGridMetadata(path)), grids)
+            if "color" in grids:
+                values = np.array([item.value for item in vdb.read(path, "color").citerOnValues()])
+                np.testing.assert_allclose(values, np.tile([0.1, 0.2, 0.9], (len(values), 1)), atol=1e-6)
 
     def test_failure_exits_1(self):
         blend = self.save_scene()

@@ -231,3 +231,38 @@ def test_an_output_folder_that_cannot_be_made_is_a_hyvox_error(hyvox, tmp_path):
     with pytest.raises(HyvoxError, match="cannot create the output folder"):
         pipeline.run()
     assert os.listdir(tmp_path) == ["file"]
+
+
+def colour_exporter(group, colour):
+    def export(frame):
+        v, t = cube_mesh()
+        return [GroupMesh(group, v, t, colour)]
+    return export
+
+
+def test_auto_runs_a_colour_group_with_a_method_that_makes_colour(hyvox, tmp_path, monkeypatch):
+    # As on a machine with a GPU: auto resolves to hybrid, which computes no colour (yet).
+    monkeypatch.setattr(backend, "gl_available", lambda module, device="": True)
+    colour = {"colors": np.tile(np.float32([0.25, 0.5, 0.75, 1.0]), (36, 1))}
+    settings = VoxelizeSettings(voxel_size=0.25, color=True)
+    pipeline = Pipeline(settings, str(tmp_path), colour_exporter(Group("C", ["C"]), colour), module=hyvox)
+    assert pipeline.method == "hybrid"
+    (result,) = pipeline.run().values()
+    assert result.method == "cpu" and result.has_color
+    import pyopenvdb as vdb
+    grid = vdb.read(result.files[0], "color")
+    assert grid.activeVoxelCount() == result.voxel_counts[0]
+    np.testing.assert_allclose(next(grid.citerOnValues()).value, (0.25, 0.5, 0.75), atol=1e-6)
+    # Without colour auto keeps its choice.
+    plain = Pipeline(VoxelizeSettings(voxel_size=0.25, color=True, method="auto"), str(tmp_path / "p"),
+                     colour_exporter(Group("C", ["C"]), {}), module=hyvox)
+    assert backend.method_for_group(plain.settings, plain.method, False) == "hybrid"
+
+
+def test_an_explicit_method_without_colour_says_what_to_do(hyvox, tmp_path):
+    colour = {"colors": np.ones((36, 4), np.float32)}
+    settings = VoxelizeSettings(voxel_size=0.25, color=True, method="tessellation")
+    pipeline = Pipeline(settings, str(tmp_path), colour_exporter(Group("C", ["C"]), colour), module=hyvox)
+    with pytest.raises(HyvoxError, match="turn Colour off"):
+        pipeline.run()
+    assert os.listdir(tmp_path) == []

@@ -9,7 +9,9 @@ import bpy
 import numpy as np
 
 from ..core.errors import SelectionError
-from ..core.pipeline import Group, GroupMesh, merge_meshes
+from ..core.colour import combine as combine_colours
+from ..core.pipeline import Group, GroupMesh
+from . import colour_export
 
 # Object types whose evaluated geometry is (or converts to) a mesh.
 GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "FONT", "META"}
@@ -17,21 +19,25 @@ GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "FONT", "META"}
 GENERATED_TYPES = {"CURVES", "POINTCLOUD"}
 
 
-def _mesh_arrays(evaluated: bpy.types.Object, matrix: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
-    """(vertices (N,3) float32 transformed by matrix, triangles (M,3) uint32) of an evaluated
-    object (or instance)."""
+def _mesh_arrays(evaluated: bpy.types.Object, matrix: np.ndarray, images=None):
+    """(vertices (N,3) float32 transformed by matrix, triangles (M,3) uint32, its colour or
+    None) of an evaluated object (or instance); the colour only when images (the run's
+    colour_export.ImageCache) is given."""
+    colour = None
     owned = evaluated.type != "MESH"
     # A mesh object's evaluated data already is the evaluated mesh: no copy needed.
     mesh = evaluated.to_mesh() if owned else evaluated.data
     try:
         if mesh is None:
-            return np.zeros((0, 3), np.float32), np.zeros((0, 3), np.uint32)
+            return np.zeros((0, 3), np.float32), np.zeros((0, 3), np.uint32), None
         if hasattr(mesh, "calc_loop_triangles"):  # computed lazily on newer Blenders
             mesh.calc_loop_triangles()
         vertices = np.empty(len(mesh.vertices) * 3, dtype=np.float32)
         mesh.vertices.foreach_get("co", vertices)
         triangles = np.empty(len(mesh.loop_triangles) * 3, dtype=np.uint32)
         mesh.loop_triangles.foreach_get("vertices", triangles)
+        if images is not None and len(triangles):
+            colour = colour_export.mesh_colour(evaluated, mesh, images)
     finally:
         if owned:
             evaluated.to_mesh_clear()
@@ -40,23 +46,24 @@ def _mesh_arrays(evaluated: bpy.types.Object, matrix: np.ndarray) -> Tuple[np.nd
         vertices = vertices @ matrix[:3, :3].T
         vertices += matrix[:3, 3]
     # uint32 is what the module works in: passed through without a copy.
-    return vertices, triangles.reshape(-1, 3)
+    return vertices, triangles.reshape(-1, 3), colour
 
 
 def object_triangles(obj: bpy.types.Object, depsgraph) -> Tuple[np.ndarray, np.ndarray]:
     """(vertices (N,3) float32 world space, triangles (M,3) uint32) of obj as evaluated,
     without its instances."""
     evaluated = obj.evaluated_get(depsgraph)
-    return _mesh_arrays(evaluated, np.array(evaluated.matrix_world, dtype=np.float32))
+    return _mesh_arrays(evaluated, np.array(evaluated.matrix_world, dtype=np.float32))[:2]
 
 
-def evaluated_parts(names, depsgraph) -> Dict[str, List[Tuple[np.ndarray, np.ndarray]]]:
-    """For each object name: the world-space (vertices, triangles) of everything the depsgraph
+def evaluated_parts(names, depsgraph, images=None) -> Dict[str, List[tuple]]:
+    """For each object name: the world-space (vertices, triangles, colour) of everything the depsgraph
     evaluates for it: its own geometry and every instance it makes (collection instances,
     instancing by vertices or faces, Geometry Nodes instances, nested ones), each with its
-    own world matrix. A name the depsgraph does not show (hidden there) is left out."""
+    own world matrix. A name the depsgraph does not show (hidden there) is left out. colour:
+    see _mesh_arrays."""
     wanted = set(names)
-    parts: Dict[str, List[Tuple[np.ndarray, np.ndarray]]] = {}
+    parts: Dict[str, List[tuple]] = {}
     for instance in depsgraph.object_instances:
         # An instance belongs to the object that made it (the top of a nested chain).
         owner = instance.parent if instance.is_instance else instance.object
@@ -69,9 +76,9 @@ def evaluated_parts(names, depsgraph) -> Dict[str, List[Tuple[np.ndarray, np.nda
         # they evaluate to (an instance of type MESH). Only meshes count, so each once.
         if evaluated.type != "MESH":
             continue
-        vertices, triangles = _mesh_arrays(evaluated, np.array(instance.matrix_world, dtype=np.float32))
-        if len(triangles):
-            found.append((vertices, triangles))
+        part = _mesh_arrays(evaluated, np.array(instance.matrix_world, dtype=np.float32), images)
+        if len(part[1]):
+            found.append(part)
     return parts
 
 
@@ -123,20 +130,25 @@ def make_groups(sources, separate: bool, active: Optional[bpy.types.Object]) -> 
     return [Group(naming.group_name(names, active_name), names, lead)]
 
 
-def export_groups(groups: List[Group], depsgraph, warn=None, fallback_depsgraph=None) -> List[GroupMesh]:
+def export_groups(groups: List[Group], depsgraph, warn=None, fallback_depsgraph=None,
+                  colour: bool = False) -> List[GroupMesh]:
     """One GroupMesh per group; objects without faces are skipped with a warning, and a
     group left without triangles is an error (the scene stays unchanged). An object the
     depsgraph leaves out (hidden in renders) is taken from fallback_depsgraph (the
-    viewport's) with a warning, or without one when there is no fallback."""
+    viewport's) with a warning, or without one when there is no fallback. colour: also
+    export what the objects' materials show (colour_export.py), combined per group by
+    core/colour.combine."""
     names = [name for group in groups for name in group.sources if name in bpy.data.objects]
-    parts = evaluated_parts(names, depsgraph)
+    images = {} if colour else None
+    parts = evaluated_parts(names, depsgraph, images)
     hidden = [name for name in names if name not in parts]
     if hidden and fallback_depsgraph is not None and warn is not None:
         warn("Hidden in renders, voxelized as the viewport shows them: " + ", ".join(hidden))
     for name in hidden:
         obj = bpy.data.objects[name]
-        vertices, triangles = object_triangles(obj, fallback_depsgraph or depsgraph)
-        parts[name] = [(vertices, triangles)] if len(triangles) else []
+        evaluated = obj.evaluated_get(fallback_depsgraph or depsgraph)
+        part = _mesh_arrays(evaluated, np.array(evaluated.matrix_world, dtype=np.float32), images)
+        parts[name] = [part] if len(part[1]) else []
     meshes = []
     empty = []
     for group in groups:
@@ -148,8 +160,10 @@ def export_groups(groups: List[Group], depsgraph, warn=None, fallback_depsgraph=
                 empty.append(name)
             found.extend(parts[name])
         if found:
-            vertices, triangles = merge_meshes(found)
-            meshes.append(GroupMesh(group, vertices, triangles))
+            vertices, triangles, colour_kwargs, colour_warning = combine_colours(found)
+            if colour_warning and warn is not None:
+                warn(colour_warning)
+            meshes.append(GroupMesh(group, vertices, triangles, colour_kwargs))
     if not meshes:
         raise SelectionError("Nothing to voxelize: " + ", ".join(empty) + " has no faces")
     if empty and warn is not None:

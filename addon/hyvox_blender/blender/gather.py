@@ -49,7 +49,8 @@ def gather(context, op=None):
         options["gl_device"] = prefs.gl_device_string
         options.update({name: getattr(prefs, name) for name in PREFERENCE_OPTIONS})
     settings = VoxelizeSettings(method=used["method"], separate=used["separate"], frames=frames,
-                                blocks=used["output"] == "BLOCKS", export_vox=used["export_vox"], **options)
+                                blocks=used["output"] == "BLOCKS", export_vox=used["export_vox"],
+                                color=used["color"], **options)
     folder = used["output_dir"]
     folder = bpy.path.abspath(folder) if folder else naming.default_output_dir(bpy.data.filepath)
     override = prefs.alignment_fix if prefs is not None else "AUTO"

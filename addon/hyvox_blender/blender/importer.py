@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Volume objects for a run's results: a Volume data-block reading the .vdb (or the
 sequence), an object named "<source>_voxels" carrying the half-voxel correction, a
-Principled Volume material reading `density`.
+Principled Volume material reading `density`, and its Color from the `color` grid when the
+run made one.
 
 What a re-run replaces: every earlier volume made from any of the objects it voxelizes (so
 changing the grouping, or the selection, never leaves two volumes of one object). From the
@@ -32,7 +33,7 @@ def _file_path(path: str) -> str:
     return path
 
 
-def _make_material(name: str, voxel_size: float) -> bpy.types.Material:
+def _make_material(name: str, voxel_size: float, has_color: bool) -> bpy.types.Material:
     material = bpy.data.materials.new(name)
     material.use_nodes = True
     nodes = material.node_tree.nodes
@@ -49,6 +50,13 @@ def _make_material(name: str, voxel_size: float) -> bpy.types.Material:
         shader.inputs["Density Attribute"].default_value = "density"
     elif hasattr(shader, "density_attribute"):
         shader.density_attribute = "density"
+    if has_color:
+        # The `color` grid (Vec3f, linear), which Blender loads as a colour attribute.
+        attribute = nodes.new("ShaderNodeAttribute")
+        attribute.location = (-250, 0)
+        attribute.attribute_type = "GEOMETRY"
+        attribute.attribute_name = "color"
+        material.node_tree.links.new(attribute.outputs["Color"], shader.inputs["Color"])
     material.node_tree.links.new(shader.outputs["Volume"], output.inputs["Volume"])
     return material
 
@@ -151,7 +159,7 @@ def import_results(context, results: Dict[str, GroupResult], alignment_override:
             volume = bpy.data.volumes.new(name)
             _configure_volume(volume, result)
             material = donor.material if donor is not None and donor.kind == "VOLUME" else None
-            volume.materials.append(material or _make_material(name, result.voxel_size))
+            volume.materials.append(material or _make_material(name, result.voxel_size, result.has_color))
             obj = bpy.data.objects.new(name, volume)
             offset = alignment.object_offset(result.voxel_size, bpy.app.version, alignment_override)
         obj.location = offset

@@ -47,14 +47,15 @@ class _Run:
         if frame is not None and frame != self.scene.frame_current:
             self.scene.frame_set(frame)
         viewport = bpy.context.evaluated_depsgraph_get()
+        colour = bool(self.used["color"])
         if self.used["evaluation"] == "VIEWPORT":
-            return export.export_groups(self.groups, viewport, warn=self.warn)
+            return export.export_groups(self.groups, viewport, warn=self.warn, colour=colour)
         try:
             return render_depsgraph.with_render_depsgraph(bpy.context, lambda depsgraph: export.export_groups(
-                self.groups, depsgraph, warn=self.warn, fallback_depsgraph=viewport))
+                self.groups, depsgraph, warn=self.warn, fallback_depsgraph=viewport, colour=colour))
         except render_depsgraph.RenderEvaluationUnavailable as exc:
             self.warn(f"Modifiers evaluated at viewport settings: no render evaluation ({exc})")
-            return export.export_groups(self.groups, viewport, warn=self.warn)
+            return export.export_groups(self.groups, viewport, warn=self.warn, colour=colour)
 
     def restore_frame(self):
         if self.scene.frame_current != self.original_frame:

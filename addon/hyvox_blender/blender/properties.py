@@ -174,6 +174,9 @@ def scene_and_operator_properties(operator=False):
                                       ("BLOCKS", "Blocks", "A mesh of one cube per voxel with only the outer faces "
                                                  "(one frame)")],
                                default="VOLUME", **skip),
+        "color": BoolProperty(name="Colour", description="Also store the colour the objects' materials "
+                              "show (the render colour attribute, else the Base Color's image or value) in a "
+                              "`color` grid, which the volume's material and Blocks use", default=True, **skip),
         "export_vox": BoolProperty(name="MagicaVoxel File", description="Also write the voxels as a MagicaVoxel "
                                    ".vox file next to the .vdb (split into models of at most 256 per side; at "
                                    "most 255 colours)", default=False, **skip),

@@ -16,6 +16,9 @@ if TYPE_CHECKING:
     from .settings import VoxelizeSettings
 
 AUTO_METHOD = "auto"  # the add-on's own method: hybrid when a GPU runs GL here, else cpu
+# The methods that compute attribute voxels (colour) today; the others refuse them with a
+# ValueError. "auto" runs a group with colour by cpu.
+ATTRIBUTE_METHODS = ("cpu", "reference")
 
 _module = None
 _gl_probe = {}  # gl_device -> bool, probed once per session: creating an EGL context is slow
@@ -86,6 +89,15 @@ def resolve_method(module, settings: "VoxelizeSettings") -> str:
     return "hybrid" if gl_available(module, settings.options.get("gl_device", "")) else "cpu"
 
 
+def method_for_group(settings: "VoxelizeSettings", resolved: str, with_colour: bool) -> str:
+    """The method a group runs with: auto's choice, unless the group asks for colour and
+    that method cannot make it (then cpu); an explicit method is kept (and refuses colour
+    with its own message)."""
+    if with_colour and settings.method == AUTO_METHOD and resolved not in ATTRIBUTE_METHODS:
+        return "cpu"
+    return resolved
+
+
 def ignored_settings(module, settings: "VoxelizeSettings", method: str) -> List[str]:
     """The options set away from the schema's default that `method` does not use, by the
     module's one rule (hyvox.ignored_options). The add-on passes every setting it has, so an
@@ -112,15 +124,19 @@ def token_progress(token) -> float:
 
 
 def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "VoxelizeSettings",
-             method: str, voxel_size: Optional[float] = None, token=None):
+             method: str, voxel_size: Optional[float] = None, token=None, colour: Optional[dict] = None):
     """hyvox.voxelize with the run's settings; voxel_size (when given) wins over the
-    settings, so every frame of a sequence shares the first frame's voxel size."""
+    settings, so every frame of a sequence shares the first frame's voxel size. colour:
+    the colour source's keyword arguments (colour.combine); given, a `color` grid is made."""
     kwargs = settings.voxelize_options()
     kwargs["method"] = method
     # Settings another method would use are dropped here (reported once per run by the
     # operator, see ignored_settings), so hyvox.voxelize has nothing to warn about.
     for name in module.ignored_options(method, list(kwargs)):
         del kwargs[name]
+    if colour:  # after the filter: a method without colour refuses it rather than drop it
+        kwargs.update(colour)
+        kwargs["attributes"] = "color"
     if voxel_size:
         kwargs.pop("resolution", None)
         kwargs["voxel_size"] = float(voxel_size)
@@ -134,13 +150,14 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "Vox
         if isinstance(exc, MemoryError):
             raise HyvoxError("out of memory: lower the resolution or raise the memory budget") from exc
         if isinstance(exc, (ValueError, RuntimeError, TypeError, OSError)):
-            raise HyvoxError(f"{method}: {exc}") from exc
+            hint = " (turn Colour off, or use the CPU method)" if colour and method not in ATTRIBUTE_METHODS else ""
+            raise HyvoxError(f"{method}: {exc}{hint}") from exc
         raise
 
 
 def voxel_colors(grid) -> Optional[np.ndarray]:
-    """The grid's per-voxel linear colours (K,3) in the order of grid.coords(), or None.
-    The module has no colour grid yet (issue 12 adds one); once it does, this is the one
-    place that reads it, and Blocks and .vox pick the colours up."""
-    colors = getattr(grid, "colors", None)
-    return np.asarray(colors(), dtype=np.float32) if callable(colors) else None
+    """The grid's per-voxel linear colours (K,3) in the order of grid.coords(), or None
+    when it has no `color` grid; Blocks and .vox take their colours from here."""
+    attributes = getattr(grid, "attributes", None)
+    colors = attributes().get("color") if callable(attributes) else None
+    return np.asarray(colors, dtype=np.float32) if colors is not None else None

@@ -37,6 +37,7 @@ class GroupMesh:
     group: Group
     vertices: np.ndarray   # (N,3) float32, world space
     triangles: np.ndarray  # (M,3) uint32 (what the module uses natively)
+    colour: Dict[str, np.ndarray] = field(default_factory=dict)  # colour.combine's keyword arguments
 
 
 @dataclass
@@ -53,6 +54,7 @@ class GroupResult:
     stats: dict = field(default_factory=dict)  # of the last frame
     blocks: Optional[BlocksMesh] = None  # settings.blocks: the blocks of the (one) frame
     vox_files: List[str] = field(default_factory=list)  # settings.export_vox: one per frame
+    has_color: bool = False  # the .vdb has a `color` grid (the volume's material shows it)
 
 
 @dataclass
@@ -256,8 +258,11 @@ class Pipeline:
             fixed_size = result.voxel_size if result.voxel_size else None
             self._token = backend.make_token(self.module)
             start = time.perf_counter()
+            colour = mesh.colour if self.settings.color else None
+            method = backend.method_for_group(self.settings, self.method, bool(colour))
+            result.method = method
             grid = backend.voxelize(self.module, mesh.vertices, mesh.triangles, self.settings,
-                                    self.method, voxel_size=fixed_size, token=self._token)
+                                    method, voxel_size=fixed_size, token=self._token, colour=colour)
             self.timings.voxelize_ms += (time.perf_counter() - start) * 1000.0
             if self._cancelled:
                 raise CancelledError("voxelization cancelled")
@@ -295,6 +300,7 @@ class Pipeline:
             result.stats = dict(grid.stats)
             result.voxel_counts.append(int(grid.voxel_count))
             result.triangles = int(len(mesh.triangles))
+            result.has_color = bool(self.settings.color and mesh.colour)
         self._group_index = len(meshes)
 
 
