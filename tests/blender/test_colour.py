@@ -79,7 +79,13 @@ def principled_material(name, base_color):
     return material
 
 
-class ColourTest(AddonTestCase):
+class _ColourCase(AddonTestCase):
+    def voxelize(self, **kw):
+        kw.setdefault("color", True)  # Colour is off by default (and with Fill Interior)
+        return super().voxelize(**kw)
+
+
+class ColourTest(_ColourCase):
     def assert_halves(self, path, left, right, tol=0.01):
         """Every voxel has the colour of its half."""
         centres, colours = colour_vdb(path)
@@ -230,7 +236,7 @@ RENDER_PIXELS = 72
 RENDER_WIDTH = 4.5  # world units across the image
 
 
-class ColourRenderTest(AddonTestCase):
+class ColourRenderTest(_ColourCase):
     """Cycles, lit by a white world only, no bounces, so a pixel's colour is the albedo times
     a light factor that is the same for every channel: for the mesh a diffuse surface
     (Principled BSDF without specular), for the volume single scattering (Principled

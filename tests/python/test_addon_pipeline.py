@@ -261,8 +261,25 @@ def test_auto_runs_a_colour_group_with_a_method_that_makes_colour(hyvox, tmp_pat
 
 def test_an_explicit_method_without_colour_says_what_to_do(hyvox, tmp_path):
     colour = {"colors": np.ones((36, 4), np.float32)}
-    settings = VoxelizeSettings(voxel_size=0.25, color=True, method="tessellation")
+    settings = VoxelizeSettings(voxel_size=0.25, color=True, method="hybrid")
     pipeline = Pipeline(settings, str(tmp_path), colour_exporter(Group("C", ["C"]), colour), module=hyvox)
     with pytest.raises(HyvoxError, match="turn Colour off"):
         pipeline.run()
     assert os.listdir(tmp_path) == []
+
+
+def test_a_solid_run_stores_no_colour(hyvox, tmp_path):
+    colour = {"colors": np.ones((36, 4), np.float32)}
+    settings = VoxelizeSettings(voxel_size=0.25, color=True, method="cpu", mode="solid")
+    pipeline = Pipeline(settings, str(tmp_path), colour_exporter(Group("C", ["C"]), colour), module=hyvox)
+    assert pipeline.colour_skipped
+    (result,) = pipeline.run().values()
+    assert not result.has_color
+    import pyopenvdb as vdb
+    names = [g.name for g in vdb.readAllGridMetadata(result.files[0])]
+    assert names == ["density"]
+    # Solid: more voxels than the cube's surface shell (the inside is filled).
+    surface = Pipeline(VoxelizeSettings(voxel_size=0.25, method="cpu"), str(tmp_path / "s"),
+                       colour_exporter(Group("C", ["C"]), {}), module=hyvox)
+    (shell,) = surface.run().values()
+    assert result.voxel_counts[0] > shell.voxel_counts[0]

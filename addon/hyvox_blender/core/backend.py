@@ -18,7 +18,7 @@ if TYPE_CHECKING:
 AUTO_METHOD = "auto"  # the add-on's own method: hybrid when a GPU runs GL here, else cpu
 # The methods that compute attribute voxels (colour) today; the others refuse them with a
 # ValueError. "auto" runs a group with colour by cpu.
-ATTRIBUTE_METHODS = ("cpu", "reference")
+ATTRIBUTE_METHODS = ("cpu", "reference", "tessellation")  # as native voxelize.cpp surfaceValues()
 
 _module = None
 _gl_probe = {}  # gl_device -> bool, probed once per session: creating an EGL context is slow

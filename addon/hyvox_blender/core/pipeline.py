@@ -97,6 +97,9 @@ class Pipeline:
         self.method = backend.resolve_method(self.module, settings)
         # Settings changed for another method: the operator reports them (INFO).
         self.ignored_options: List[str] = backend.ignored_settings(self.module, settings, self.method)
+        # Colour is an average over the surface inside each voxel: solid's inside voxels have
+        # none, so a solid run stores no colour (the operator reports it, INFO).
+        self.colour_skipped = bool(settings.color and settings.options.get("mode") == "solid")
         self.frames: List[Optional[int]] = list(settings.frames) if settings.is_sequence else [None]
         self.results: Dict[str, GroupResult] = {}
         self.timings = Timings()
@@ -258,7 +261,7 @@ class Pipeline:
             fixed_size = result.voxel_size if result.voxel_size else None
             self._token = backend.make_token(self.module)
             start = time.perf_counter()
-            colour = mesh.colour if self.settings.color else None
+            colour = mesh.colour if self.settings.color and not self.colour_skipped else None
             method = backend.method_for_group(self.settings, self.method, bool(colour))
             result.method = method
             grid = backend.voxelize(self.module, mesh.vertices, mesh.triangles, self.settings,
@@ -300,7 +303,7 @@ class Pipeline:
             result.stats = dict(grid.stats)
             result.voxel_counts.append(int(grid.voxel_count))
             result.triangles = int(len(mesh.triangles))
-            result.has_color = bool(self.settings.color and mesh.colour)
+            result.has_color = bool(colour)
         self._group_index = len(meshes)
 
 
