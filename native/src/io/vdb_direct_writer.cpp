@@ -7,6 +7,7 @@
 // leaf buffers. Every integer is little-endian, as OpenVDB writes them on x86 and ARM.
 #include "io/vdb_direct_writer.h"
 
+#include <blosc.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -29,7 +30,10 @@ namespace {
 constexpr std::int64_t kMagic = 0x56444220;  // OPENVDB_MAGIC
 constexpr std::uint32_t kFileVersion = 224;  // OPENVDB_FILE_VERSION of OpenVDB 10
 constexpr std::uint32_t kLibraryMajor = 10, kLibraryMinor = 0;
-constexpr std::uint32_t kCompressActiveMask = 0x2;  // io::COMPRESS_ACTIVE_MASK
+// io::COMPRESS_ACTIVE_MASK | io::COMPRESS_BLOSC, OpenVDB 10's default for every grid: each node
+// stores its active values only, as one blosc block.
+constexpr std::uint32_t kCompressActiveMask = 0x2, kCompressBlosc = 0x4;
+constexpr std::uint32_t kCompression = kCompressActiveMask | kCompressBlosc;
 constexpr std::int8_t kNoMaskOrInactiveVals = 0;    // every inactive value is the background
 
 // Node geometry of Tree_float_5_4_3: a leaf spans 8 voxels per axis, a lower internal node
@@ -49,6 +53,24 @@ constexpr std::uint64_t kLeafBytes = 96 + 512 * sizeof(float);
 constexpr std::uint64_t kLowerBytes = 4096 * 8 + 2 * 512 + 12;
 constexpr std::uint64_t kUpperBytes = 32768 * 8 + 2 * 4096 + 12;
 
+// io::writeData with COMPRESS_BLOSC (io::bloscToStream): the compressed size as an int64 and
+// blosc's block, compressed with OpenVDB's settings (level 9, byte shuffle over 4-byte
+// words, LZ4, one block, one thread), so the bytes are the ones OpenVDB writes; a negative
+// size and the raw bytes where blosc cannot compress. Thread-safe (blosc's _ctx API).
+void appendBlosc(std::string& out, const void* data, std::size_t bytes) {
+    const std::size_t at = out.size();
+    out.resize(at + 8 + bytes + BLOSC_MAX_OVERHEAD);
+    const int packed = blosc_compress_ctx(9, BLOSC_SHUFFLE, sizeof(float), bytes, data, &out[at + 8],
+                                          bytes + BLOSC_MAX_OVERHEAD, BLOSC_LZ4_COMPNAME, bytes, 1);
+    std::int64_t size = packed;
+    if (packed <= 0) {
+        size = -std::int64_t(bytes);
+        if (bytes) std::memcpy(&out[at + 8], data, bytes);
+    }
+    std::memcpy(&out[at], &size, 8);
+    out.resize(at + 8 + std::size_t(packed > 0 ? packed : std::int64_t(bytes)));
+}
+
 // Appends to a growing byte string (the small parts: header, metadata, topology) that
 // will start at file position `base`: size() is the file position of the next byte.
 class Bytes {
@@ -64,6 +86,7 @@ public:
         pod(std::uint32_t(text.size()));
         out_ += text;
     }
+    void blosc(const void* data, std::size_t bytes) { appendBlosc(out_, data, bytes); }
     std::size_t size() const { return base_ + out_.size(); }
     const std::string& str() const { return out_; }
     template <typename T>
@@ -183,7 +206,7 @@ std::map<std::string, MetaValue> gridMetadata(const VoxelizeResult& result, cons
     meta["creator"] = metaString(std::string("hyvox ") + version());
     meta["file_bbox_min"] = metaOf("vec3i", lo);
     meta["file_bbox_max"] = metaOf("vec3i", hi);
-    meta["file_compression"] = metaString("active values");
+    meta["file_compression"] = metaString("blosc + active values");  // io::compressionToString
     meta["file_mem_bytes"] = metaInt64(std::int64_t(mem_usage));
     meta["file_voxel_count"] = metaInt64(std::int64_t(voxels));
     meta["name"] = metaString(fog.name);
@@ -211,7 +234,8 @@ void writeTransform(Bytes& out, const GridSpec& grid) {
 
 // Root, upper and lower nodes and the leaves' masks, in OpenVDB's order (RootNode,
 // InternalNode and LeafNode::writeTopology). Internal nodes hold no tiles: their values
-// are all the background, so each writes its two masks and the metadata byte alone.
+// are all the background, so each writes its two masks, the metadata byte and an empty
+// blosc block (no active values).
 void writeTopology(Bytes& out, const std::vector<Placed>& placed) {
     out.pod(std::int32_t(1));  // TreeBase::writeTopology: buffer count
     out.pod(0.0f);             // background
@@ -236,6 +260,7 @@ void writeTopology(Bytes& out, const std::vector<Placed>& placed) {
         out.raw(children.data(), kUpperWords * 8);
         out.raw(no_values_upper.data(), kUpperWords * 8);
         out.pod(kNoMaskOrInactiveVals);
+        out.blosc(nullptr, 0);
         while (n < upper_end) {
             const std::uint32_t lower = placed[n].inner >> 12;
             std::size_t lower_end = n;
@@ -247,24 +272,46 @@ void writeTopology(Bytes& out, const std::vector<Placed>& placed) {
             out.raw(leaves.data(), kLowerWords * 8);
             out.raw(no_values_lower.data(), kLowerWords * 8);
             out.pod(kNoMaskOrInactiveVals);
+            out.blosc(nullptr, 0);
             for (; n < lower_end; ++n) out.raw(placed[n].leaf->mask, kLeafMaskBytes);
         }
     }
 }
 
 
-// One grid as Archive::writeGrid lays it out, appended to `head` (descriptor, compression,
-// metadata, transform, topology) with its leaf buffers placed after it; returns the
-// placement so the caller can fill the buffers once the whole file's size is known.
+// Leaves per block of buffers compressed by one task.
+constexpr std::size_t kLeavesPerBlock = 256;
+
+// LeafNode::writeBuffers for placed[first, last): per leaf its mask, the metadata byte and
+// its active values as a blosc block.
+std::string leafBuffers(const std::vector<Placed>& placed, std::size_t first, std::size_t last) {
+    std::string out;
+    float active[512];
+    for (std::size_t n = first; n != last; ++n) {
+        const FogLeaf& leaf = *placed[n].leaf;
+        out.append(reinterpret_cast<const char*>(leaf.mask), kLeafMaskBytes);
+        out += char(kNoMaskOrInactiveVals);
+        std::size_t count = 0;
+        for (int w = 0; w < 8; ++w)
+            for (std::uint64_t bits = leaf.mask[w]; bits; bits &= bits - 1)
+                active[count++] = leaf.values ? leaf.values[w * 64 + __builtin_ctzll(bits)] : 1.0f;
+        appendBlosc(out, active, count * sizeof(float));
+    }
+    return out;
+}
+
+// One grid as Archive::writeGrid lays it out: `head` gets the descriptor, compression,
+// metadata, transform and topology; `buffers` the leaf buffers that follow them, compressed
+// in parallel in blocks of kLeavesPerBlock leaves.
 struct GridLayout {
     std::uint64_t mem_usage = 0;
-    std::vector<Placed> placed;
-    std::vector<std::size_t> starts;  // leaf n's buffer at starts[n] .. starts[n + 1]
+    std::vector<std::string> buffers;
+    std::size_t end = 0;  // file position after the grid
 };
 
-GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const FogGrid& fog) {
+GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const FogGrid& fog, tbb::task_arena& arena) {
     GridLayout layout;
-    layout.placed = placeLeaves(fog.leaves);
+    const std::vector<Placed> placed = placeLeaves(fog.leaves);
     // GridDescriptor::writeHeader and writeStreamPos (patched below).
     head.string(fog.name);
     head.string("Tree_float_5_4_3");
@@ -272,8 +319,8 @@ GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const FogGrid& 
     const std::size_t stream_pos_at = head.size();
     for (int i = 0; i < 3; ++i) head.pod(std::int64_t(0));
     const std::int64_t grid_pos = std::int64_t(head.size());
-    head.pod(kCompressActiveMask);
-    layout.mem_usage = memUsage(layout.placed);
+    head.pod(kCompression);
+    layout.mem_usage = memUsage(placed);
     const std::map<std::string, MetaValue> meta = gridMetadata(result, fog, layout.mem_usage);
     head.pod(std::uint32_t(meta.size()));
     for (const auto& [name, value] : meta) {
@@ -282,38 +329,20 @@ GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const FogGrid& 
         head.string(value.bytes);  // Metadata::write: 32-bit size, then the value's bytes
     }
     writeTransform(head, result.grid);
-    writeTopology(head, layout.placed);
+    writeTopology(head, placed);
     const std::int64_t block_pos = std::int64_t(head.size());
-    // LeafNode::writeBuffers per leaf, in the same order: mask, metadata byte, active values.
-    layout.starts.resize(layout.placed.size() + 1);
-    layout.starts[0] = std::size_t(block_pos);
-    for (std::size_t n = 0; n < layout.placed.size(); ++n)
-        layout.starts[n + 1] =
-            layout.starts[n] + kLeafMaskBytes + 1 + sizeof(float) * activeCount(*layout.placed[n].leaf);
+    layout.buffers.resize((placed.size() + kLeavesPerBlock - 1) / kLeavesPerBlock);
+    arena.execute([&] {
+        tbb::parallel_for(std::size_t(0), layout.buffers.size(), [&](std::size_t b) {
+            layout.buffers[b] = leafBuffers(placed, b * kLeavesPerBlock, std::min(placed.size(), (b + 1) * kLeavesPerBlock));
+        });
+    });
+    layout.end = std::size_t(block_pos);
+    for (const std::string& buffer : layout.buffers) layout.end += buffer.size();
     head.patch(stream_pos_at, grid_pos);
     head.patch(stream_pos_at + 8, block_pos);
-    head.patch(stream_pos_at + 16, std::int64_t(layout.starts.back()));
+    head.patch(stream_pos_at + 16, std::int64_t(layout.end));
     return layout;
-}
-
-void fillBuffers(char* file, const GridLayout& layout) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layout.placed.size(), 512), [&](const auto& range) {
-        const float one = 1.0f;
-        for (std::size_t n = range.begin(); n != range.end(); ++n) {
-            const FogLeaf& leaf = *layout.placed[n].leaf;
-            char* at = file + layout.starts[n];
-            std::memcpy(at, leaf.mask, kLeafMaskBytes);
-            at[kLeafMaskBytes] = char(kNoMaskOrInactiveVals);
-            at += kLeafMaskBytes + 1;
-            if (!leaf.values) {
-                for (char* end = file + layout.starts[n + 1]; at != end; at += sizeof one) std::memcpy(at, &one, sizeof one);
-                continue;
-            }
-            for (int w = 0; w < 8; ++w)
-                for (std::uint64_t bits = leaf.mask[w]; bits; bits &= bits - 1, at += sizeof(float))
-                    std::memcpy(at, &leaf.values[w * 64 + __builtin_ctzll(bits)], sizeof(float));
-        }
-    });
 }
 
 }  // namespace
@@ -348,25 +377,25 @@ VdbBytes serializeFogGrids(const VoxelizeResult& result, const std::vector<FogGr
     head.pod(std::uint32_t(0));  // file-level metadata: none
     head.pod(std::int32_t(grids.size()));
     // Each grid's header parts follow the previous grid's buffers: lay them out one after
-    // the other in `head`, shifted by the buffers before them.
+    // the other, each `head` shifted by the bytes before it.
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     std::vector<GridLayout> layouts;
     std::vector<Bytes> heads;
     std::size_t offset = head.size();
     for (const FogGrid& fog : grids) {
         heads.emplace_back(offset);
-        layouts.push_back(layOutGrid(heads.back(), result, fog));
-        offset = layouts.back().starts.back();
+        layouts.push_back(layOutGrid(heads.back(), result, fog, arena));
+        offset = layouts.back().end;
     }
     VdbBytes file;
     for (const GridLayout& layout : layouts) file.mem_usage += layout.mem_usage;
     file.size = offset;
     file.data.reset(new char[file.size]);
-    std::memcpy(file.data.get(), head.str().data(), head.str().size());
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    char* at = file.data.get();
+    at = std::copy(head.str().begin(), head.str().end(), at);
     for (std::size_t g = 0; g < grids.size(); ++g) {
-        const std::size_t at = g == 0 ? head.size() : layouts[g - 1].starts.back();
-        std::memcpy(file.data.get() + at, heads[g].str().data(), heads[g].str().size());
-        arena.execute([&] { fillBuffers(file.data.get(), layouts[g]); });
+        at = std::copy(heads[g].str().begin(), heads[g].str().end(), at);
+        for (const std::string& buffer : layouts[g].buffers) at = std::copy(buffer.begin(), buffer.end(), at);
     }
     return file;
 }
