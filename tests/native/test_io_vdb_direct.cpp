@@ -117,7 +117,7 @@ void checkAgainstOpenVdb(const hyvox::VoxelizeResult& r, int threads) {
     EXPECT_EQ(firstGridBuffers(direct_path), firstGridBuffers(reference_path));
     expectSameGrids(*direct, *reference);
     // The memory figure the direct writer states is OpenVDB's own for the built grid.
-    EXPECT_EQ(hyvox::io::fogTreeMemUsage(hyvox::io::densityLeaves(r.occupancy)), grids[0]->memUsage());
+    EXPECT_EQ(hyvox::io::vdbTreeMemUsage(hyvox::io::densityGrid(r.occupancy)), grids[0]->memUsage());
     if (r.counts.empty()) return;
     openvdb::io::File file(direct_path);
     file.open();

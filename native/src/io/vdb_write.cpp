@@ -40,7 +40,7 @@ struct CountLeaves {
         float values[512];
     };
     std::vector<Leaf> storage;
-    std::vector<FogLeaf> leaves;
+    std::vector<VdbLeaf> leaves;
 };
 
 CountLeaves countLeaves(const std::vector<VoxelCount>& counts) {
@@ -78,14 +78,18 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, i
     const InterrupterRun run(interrupter, "hyvox write");
     VdbWriteReport report;
     auto start = std::chrono::steady_clock::now();
-    std::vector<io::FogGrid> grids{{"density", io::densityLeaves(result.occupancy)}};
+    std::vector<io::VdbGrid> grids{io::densityGrid(result.occupancy)};
     io::CountLeaves counts;
     if (!result.counts.empty()) {
         counts = io::countLeaves(result.counts);
-        grids.push_back({"count", counts.leaves});
+        io::VdbGrid count;
+        count.name = "count";
+        count.layout = io::VdbLeafValues::Dense;
+        count.leaves = counts.leaves;
+        grids.push_back(std::move(count));
     }
     throwIfInterrupted(interrupter, 10);
-    const io::VdbBytes file = io::serializeFogGrids(result, grids, threads);
+    const io::VdbBytes file = io::serializeVdbGrids(result, grids, threads);
     report.grid_bytes = file.mem_usage;
     throwIfInterrupted(interrupter, 90);
     auto now = std::chrono::steady_clock::now();
