@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Fuzzes the strict mesh readers (tests/fuzz/: libFuzzer + ASan + UBSan, clang) for a fixed
-# time each and fails on any finding: a crash, a sanitizer report, an exception other than
-# InvalidInput, an out-of-range index, a 10 s input or 2 GiB of memory. A finding's input is
-# left in build-fuzz/findings/<format>/; make it a regression case in
-# tests/native/test_io_mesh_strict.cpp before fixing it.
-#   FUZZ_SECONDS=600 bash scripts/fuzz_readers.sh      (default 60 s per reader)
+# Fuzzes the strict mesh readers, the gzip input and voxelize() (tests/fuzz/: libFuzzer +
+# ASan + UBSan, clang) for a fixed time each and fails on any finding: a crash, a sanitizer
+# report, an exception other than InvalidInput, an out-of-range index, cpu voxels the
+# reference does not explain, a 10 s input or 2 GiB of memory. A finding's input is left in
+# build-fuzz/findings/<target>/; make it a regression case (readers:
+# tests/native/test_io_mesh_strict.cpp) before fixing it.
+#   FUZZ_SECONDS=600 bash scripts/fuzz_readers.sh   (default: 60 s per reader, 30 s for gzip
+#                                                     and voxelize; FUZZ_SECONDS sets all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="/usr/bin:/bin:$PATH"
@@ -47,6 +49,30 @@ PY
   status=${PIPESTATUS[0]}
   if [ "$status" -ne 0 ] || [ -n "$(ls -A "$findings")" ]; then
     echo "fuzz_readers: the $format reader has a finding (exit $status): $findings" >&2
+    exit 1
+  fi
+done
+# The gzip input (with the PLY reader behind it), seeded with the PLY seeds compressed, and
+# voxelize() on random small meshes, cpu against the reference (its own bytes, no seeds).
+for target in gzip_input voxelize; do
+  corpus=build-fuzz/corpus/$target
+  findings=build-fuzz/findings/$target
+  rm -rf "$corpus" "$findings"
+  mkdir -p "$corpus" "$findings"
+  if [ "$target" = gzip_input ]; then
+    python3 - "$corpus" tests/fuzz/seeds/ply/* "$meshes/teapot_utah.ply" <<'PY'
+import gzip, os, sys
+for path in sys.argv[2:]:
+    with open(path, "rb") as f, open(os.path.join(sys.argv[1], os.path.basename(path) + ".gz"), "wb") as out:
+        out.write(gzip.compress(f.read()))
+PY
+  fi
+  echo "== fuzzing $target for ${FUZZ_SECONDS:-30} s"
+  build-fuzz/fuzz_$target -max_total_time="${FUZZ_SECONDS:-30}" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+    -print_final_stats=1 -artifact_prefix="$findings/" "$corpus" 2>&1 | tail -n 12
+  status=${PIPESTATUS[0]}
+  if [ "$status" -ne 0 ] || [ -n "$(ls -A "$findings")" ]; then
+    echo "fuzz_readers: $target has a finding (exit $status): $findings" >&2
     exit 1
   fi
 done

@@ -103,11 +103,14 @@ std::string usageText(Command topic) {
             "usage: hyvox voxelize MESH -o OUT.vdb [options]\n"
             "\n"
             "Voxelizes the surface of a triangle mesh (PLY, PLY.GZ, OBJ, ...) into an OpenVDB file\n"
-            "with a float grid 'density' (1 on occupied voxels).\n"
+            "with a float grid 'density' (1 on occupied voxels); with --attributes, also 'color'\n"
+            "(Vec3f, linear), 'alpha' (float, when the colours have it) and 'normal' (Vec3f).\n"
             "\n"
             "command options:\n"
             "  -o, --output FILE\n      the .vdb file to write (written atomically)\n"
-            "  --stats-json FILE\n      write the grid, counts, timings, options and the method's figures as JSON\n";
+            "  --stats-json FILE\n      write the grid, counts, timings, options and the method's figures as JSON\n"
+            "  --texture IMG\n      a PNG sampled at the mesh's UVs for --attributes color (else the file's vertex\n"
+            "      colours are used)\n";
         return text + commonOptionsHelp() + voxelizeOptionsHelp(nullptr);
     }
     if (topic == Command::GammaSweep) {
@@ -210,6 +213,9 @@ Arguments parseCommand(const std::vector<std::string>& args) {
             out.output_path = value();
         } else if (option == "--stats-json") {
             out.stats_json_path = value();
+        } else if (option == "--texture") {
+            if (sweep) throw UsageError(option + " is not a gamma-sweep option: the sweep computes no attributes");
+            out.texture_path = value();
         } else if (option == "--gammas") {
             if (!sweep) throw UsageError("--gammas belongs to gamma-sweep; voxelize takes one --tess-gamma");
             out.gammas = parseGammaList(option, value());

@@ -31,6 +31,7 @@ struct Arguments {
     bool progress = false;  // --progress: show progress also when stderr is not a terminal
     // Help: the command whose help was asked for (Help itself: the list of commands).
     Command help_topic = Command::Help;
+    std::string texture_path;  // empty: none; a PNG sampled at the mesh's UVs for --attributes color
     VoxelizeOptions options;
     std::vector<double> gammas;  // gamma-sweep: the safety factors to try, ascending
     // Options given on the command line that the chosen method ignores (printed as warnings).

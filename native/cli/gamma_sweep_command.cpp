@@ -59,8 +59,8 @@ std::string sweepJson(const GridSpec& grid, std::uint64_t reference_voxels, std:
 void runGammaSweep(const Arguments& args, const std::atomic<bool>& stop) {
     const auto thread_limit = limitThreads(args.options.threads);
     checkOutputPaths(args.mesh_path, "", args.stats_json_path);
-    const Mesh mesh = readMesh(args.mesh_path);
-    ProgressLine interrupter = progressFor(args, stop);
+    ProgressLine interrupter = progressFor(args, stop);  // Ctrl-C stops the reading too
+    const Mesh mesh = readMesh(args.mesh_path, &interrupter);
 
     VoxelizeOptions exact_options = args.options;
     exact_options.method = Method::Cpu;

@@ -10,6 +10,7 @@
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/stats_json.h"
+#include "hyvox/texture.h"
 #include "hyvox/vdb.h"
 #include "hyvox/version.h"
 
@@ -37,13 +38,20 @@ void printSummary(const Arguments& args, const Mesh& mesh, const VoxelizeResult&
 void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     const auto thread_limit = limitThreads(args.options.threads);
     checkOutputPaths(args.mesh_path, args.output_path, args.stats_json_path);
+    ProgressLine interrupter = progressFor(args, stop);  // Ctrl-C stops the reading too
     auto start = std::chrono::steady_clock::now();
-    const Mesh mesh = readMesh(args.mesh_path);
+    const Mesh mesh = readMesh(args.mesh_path, &interrupter);
     const double read_ms = msSince(start);
-    if (stop.load()) throw Cancelled();
 
-    ProgressLine interrupter = progressFor(args, stop);
-    VoxelizeResult result = voxelize(mesh.view(), args.options, &interrupter);
+    MeshView view = mesh.view();
+    Texture texture;
+    if (!args.texture_path.empty()) {
+        texture = readPngTexture(args.texture_path);
+        view.texture = &texture;
+    }
+    // The output is always a .vdb: a voxel size it cannot hold is refused before the work.
+    checkVdbVoxelSize(makeGrid(validate(view).bounds, args.options.grid).voxel_size);
+    VoxelizeResult result = voxelize(view, args.options, &interrupter);
     result.stats.timings_ms.insert(result.stats.timings_ms.begin(), {"read_mesh", read_ms});
 
     if (stop.load()) throw Cancelled();

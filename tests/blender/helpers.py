@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Shared pieces of the headless add-on tests: enabling the add-on from a build, scene
 set-up, and reading .vdb files back with pyopenvdb."""
+import importlib
 import os
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -13,20 +15,39 @@ MESH_DIR = os.environ.get("HYVOX_MESH_DIR", os.path.join(
     os.path.dirname(__file__), "..", "..", "..", "shared", "data", "meshes"))
 
 
+# The add-on's module name and the folders its files and its hyvox module must come from:
+# the legacy add-on from B/addon (Debian's Blender, run_tests.py), or the extension
+# installed from B/hyvox_blender-*.zip (Blender 4.2+, run_bpy_tests.py sets these).
+ADDON_PACKAGE = "hyvox_blender"
+ADDON_DIR = ""
+MODULE_DIR = ""
+
+
 def enable_addon(build_dir):
+    global ADDON_DIR, MODULE_DIR
     import addon_utils
     addon_path = os.path.join(build_dir, "addon")
     if addon_path not in sys.path:
         sys.path.insert(0, addon_path)
-    module = addon_utils.enable("hyvox_blender", default_set=True, handle_error=None)
+    module = addon_utils.enable(ADDON_PACKAGE, default_set=True, handle_error=None)
     if module is None:
         raise RuntimeError(f"could not enable hyvox_blender from {addon_path}")
+    ADDON_DIR = os.path.join(addon_path, "hyvox_blender")
+    MODULE_DIR = os.path.join(ADDON_DIR, "hyvox")  # the build copies the module inside
     return module
 
 
+def addon(submodule=""):
+    """The enabled add-on's package, or one of its submodules ("core.backend")."""
+    return importlib.import_module(ADDON_PACKAGE + ("." + submodule if submodule else ""))
+
+
+def addon_preferences():
+    return bpy.context.preferences.addons[ADDON_PACKAGE].preferences
+
+
 def hyvox_module():
-    from hyvox_blender.core import backend
-    return backend.load_module()
+    return addon("core.backend").load_module()
 
 
 def clear_scene():
@@ -87,21 +108,19 @@ def select_only(*objects):
 
 def read_vdb(path, grid_name="density"):
     """(ijk (K,3) int64, voxel size, index->world translation, grid) of a .vdb's active
-    voxels. Tiles (count > 1) are expanded."""
-    import pyopenvdb as vdb
-    grid = vdb.read(path, grid_name)
-    coords = []
-    for item in grid.citerOnValues():
-        lo, hi = item.min, item.max
-        if item.count == 1:
-            coords.append(lo)
-        else:
-            r = [np.arange(lo[a], hi[a] + 1) for a in range(3)]
-            coords.extend(np.stack(np.meshgrid(*r, indexing="ij"), -1).reshape(-1, 3).tolist())
-    coords = np.array(coords, dtype=np.int64).reshape(-1, 3)
-    size = np.array(grid.transform.voxelSize(), dtype=np.float64)
-    zero = np.array(grid.transform.indexToWorld((0, 0, 0)), dtype=np.float64)
-    return coords, size, zero, grid
+    voxels (vdb_dump.read). Where this Python has no pyopenvdb (the bpy module's venv),
+    Debian's Python reads the file in a child process and grid is None."""
+    import vdb_dump
+    try:
+        import pyopenvdb  # noqa: F401
+    except ImportError:
+        python = os.environ.get("HYVOX_VDB_PYTHON", "/usr/bin/python3")
+        with tempfile.TemporaryDirectory(prefix="hyvox-vdb-") as tmp:
+            out = os.path.join(tmp, "grid.npz")
+            subprocess.run([python, vdb_dump.__file__, path, grid_name, out], check=True, timeout=120)
+            with np.load(out) as data:
+                return data["coords"], data["size"], data["zero"], None
+    return vdb_dump.read(path, grid_name)
 
 
 def vdb_world_centres(path):

@@ -1,17 +1,31 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The add-on enables from the build and registers what the artist sees."""
+import os
+
 import addon_utils
 import bpy
 
+import helpers
 from helpers import AddonTestCase
+
+
+def inside(path, folder):
+    return os.path.commonpath([os.path.realpath(path), os.path.realpath(folder)]) == os.path.realpath(folder)
 
 
 class EnableTest(AddonTestCase):
     def test_enabled_from_build(self):
-        enabled, loaded = addon_utils.check("hyvox_blender")
+        enabled, loaded = addon_utils.check(helpers.ADDON_PACKAGE)
         self.assertTrue(enabled and loaded)
-        import hyvox_blender
-        self.assertIn("addon", hyvox_blender.__file__)
+        self.assertTrue(inside(helpers.addon().__file__, helpers.ADDON_DIR),
+                        (helpers.addon().__file__, helpers.ADDON_DIR))
+
+    def test_module_is_the_bundled_one(self):
+        # The legacy add-on's own copy, or the extension's wheel (never a module that
+        # happens to be on sys.path).
+        module = helpers.hyvox_module()
+        self.assertTrue(inside(module.__file__, helpers.MODULE_DIR), (module.__file__, helpers.MODULE_DIR))
+        self.assertTrue(inside(module._core.__file__, helpers.MODULE_DIR), module._core.__file__)
 
     def test_registered(self):
         self.assertTrue(hasattr(bpy.types, "OBJECT_OT_hyvox_voxelize"))

@@ -44,7 +44,7 @@ class ErrorTest(AddonTestCase):
         # A GL method whose device is missing is reported. (This used to run the hybrid on
         # whatever GL there was and passed whether or not it failed; llvmpipe is always
         # there, so ask for an EGL device index that no machine here has.)
-        prefs = bpy.context.preferences.addons["hyvox_blender"].preferences
+        prefs = helpers.addon_preferences()
         prefs.gl_device = "INDEX"
         prefs.gl_device_index = 63
         try:
@@ -69,7 +69,7 @@ class ErrorTest(AddonTestCase):
         self.assertEqual(os.path.getmtime(path), stamp)
 
     def test_grid_over_memory_budget(self):
-        prefs = bpy.context.preferences.addons["hyvox_blender"].preferences
+        prefs = helpers.addon_preferences()
         prefs.memory_budget_mib = 16
         try:
             cube = helpers.cube()

@@ -4,12 +4,13 @@ measured by bench/bench_blender_addon.py, not asserted here.)"""
 import bpy
 import numpy as np
 
+import helpers
 from helpers import AddonTestCase
 
 
 class ExportLargeMeshTest(AddonTestCase):
     def test_million_triangles(self):
-        from hyvox_blender.blender.export import object_triangles
+        object_triangles = helpers.addon("blender.export").object_triangles
         bpy.ops.mesh.primitive_monkey_add()
         monkey = bpy.context.active_object
         monkey.modifiers.new("Subdivision", "SUBSURF").levels = 5

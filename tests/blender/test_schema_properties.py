@@ -28,12 +28,11 @@ def close(a, b):
 class SchemaPropertiesTest(AddonTestCase):
     def setUp(self):
         super().setUp()
-        from hyvox_blender.blender import properties
-        self.properties = properties
+        self.properties = helpers.addon("blender.properties")
         self.hyvox = helpers.hyvox_module()
         self.scene_rna = bpy.context.scene.hyvox.bl_rna.properties
         self.op_rna = bpy.ops.object.hyvox_voxelize.get_rna_type().properties
-        self.prefs_rna = bpy.context.preferences.addons["hyvox_blender"].preferences.bl_rna.properties
+        self.prefs_rna = helpers.addon_preferences().bl_rna.properties
 
     def specs(self, names, numeric=True):
         specs = [self.hyvox.option(name) for name in names]
@@ -104,7 +103,7 @@ class SchemaPropertiesTest(AddonTestCase):
     def test_the_run_records_what_it_used(self):
         # What the operator writes back into its properties (the redo panel: checked in a
         # window by interactive_modal.py) is also in the run's record.
-        from hyvox_blender.blender import operators
+        operators = helpers.addon("blender.operators")
         cube = helpers.cube()
         helpers.select_only(cube)
         scene = bpy.context.scene.hyvox

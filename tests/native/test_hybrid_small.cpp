@@ -256,16 +256,23 @@ TEST(GlSmall, VoxelListHoldsEachSetVoxelOnce) {
 }
 
 TEST(GlSmall, GridTooLargeForOneSlabIsRefusedClearly) {
+    // A gl_tile_bytes below one slab is the option's fault: named, with the bytes one slab
+    // needs (it used to read "needs 0 MiB per slab, more than the limit of 0 MiB").
     const test::TestMesh mesh = bunny();
     VoxelizeOptions o = options(Method::Triangle);
     o.grid.resolution = 512;
     o.gl.tile_bytes = 4096;
+    const GridSpec grid = makeGrid(validate(mesh.view()).bounds, o.grid);
+    const std::uint64_t slab_bytes = std::uint64_t((grid.dims[1] + 7) / 8) * std::uint64_t((grid.dims[2] + 7) / 8) * 64;
     try {
         voxelize(mesh.view(), o);
-        FAIL() << "expected ResourceError";
-    } catch (const ResourceError& e) {
-        EXPECT_NE(std::string(e.what()).find("storage-block limit"), std::string::npos) << e.what();
+        FAIL() << "expected InvalidInput";
+    } catch (const InvalidInput& e) {
+        EXPECT_EQ(std::string(e.what()), "gl_tile_bytes 4096 is less than one 8-voxel slab of this " + grid.dimsText() +
+                                             " grid (" + std::to_string(slab_bytes) + " bytes); give at least that");
     }
+    o.gl.tile_bytes = slab_bytes;  // exactly one slab per tile: runs
+    EXPECT_GT(voxelize(mesh.view(), o).occupancy.count(), 0u);
 }
 
 TEST(GlSmall, MissingShaderFolderIsAClearError) {

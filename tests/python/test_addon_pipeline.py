@@ -115,6 +115,9 @@ class SlowModule:
         def cancel(self):
             self.event.set()
 
+    def ignored_options(self, method, names):
+        return []
+
     def voxelize(self, vertices, triangles, cancel=None, **kw):
         cancel.progress = 50
         if cancel.event.wait(10):

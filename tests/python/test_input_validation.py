@@ -156,6 +156,7 @@ def test_vertex_attribute_checks(tetrahedron):
     assert np.array_equal(plain.coords(), with_attrs.coords())
 
 
+@pytest.mark.filterwarnings("ignore::hyvox.IgnoredOptionWarning")  # other methods' options on purpose
 def test_every_option_reaches_the_native_options(tetrahedron):
     # The GL and tessellation options are ignored by cpu, but must be accepted and mapped.
     vertices, triangles = tetrahedron

@@ -77,7 +77,7 @@ def good_value(spec):
     special = {
         "method": "reference", "voxel_size": 0.125, "origin": (-0.5, -0.25, 0.0),
         "bounds": ((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)), "gl_device": "software",
-        "shader_dir": "/nonexistent/shaders", "displacement_image": "height.png",
+        "shader_dir": "/nonexistent/shaders", "displacement_image": "height.png", "attributes": "normal",
     }
     if spec.name in special:
         return special[spec.name]
@@ -104,6 +104,7 @@ def cli_text(value):
     return str(value)
 
 
+@pytest.mark.filterwarnings("ignore::hyvox.IgnoredOptionWarning")  # other methods' options on purpose
 @pytest.mark.parametrize("spec", hyvox.OPTIONS, ids=lambda s: s.name)
 def test_every_option_reaches_the_run_from_both_doors(spec, cli, tmp_path):
     value = good_value(spec)
@@ -131,6 +132,7 @@ def test_environment_variables_are_schema_options():
         "HYVOX_GL_DEVICE", "HYVOX_SHADER_DIR", "HYVOX_GL_TILE_BYTES", "HYVOX_GL_WALL_TIMING", "HYVOX_TESS_INSTANCED"}
 
 
+@pytest.mark.filterwarnings("ignore::hyvox.IgnoredOptionWarning")  # other methods' options on purpose
 @pytest.mark.parametrize("spec", ENV_SPECS, ids=lambda s: s.env)
 def test_environment_reaches_the_run_from_both_doors(spec, cli, tmp_path, monkeypatch):
     value = good_value(spec)
@@ -162,6 +164,7 @@ def test_unknown_option_is_a_type_error_naming_the_options():
         hyvox.voxelize(TETRA_V, TETRA_T, resolutoin=8)
 
 
+@pytest.mark.filterwarnings("ignore::hyvox.IgnoredOptionWarning")  # other methods' options on purpose
 def test_unset_options_are_the_schema_defaults(cli, tmp_path):
     # Unset at either door must mean the schema's default: a run that leaves every option
     # unset and one that spells each default out set the same voxels and report the same
@@ -194,7 +197,8 @@ def test_generated_stubs_list_every_option():
         inner = ("Literal[" + ", ".join(repr(c) for c in spec.choices) + "]" if spec.type == "choice"
                  else STUB_TYPES[spec.type])
         assert keywords.pop(spec.name) == f"Optional[{inner}]", spec.name
-    assert set(keywords) == {"uvs", "normals", "displacement_pixels", "progress", "cancel"}
+    assert set(keywords) == {"uvs", "normals", "displacement_pixels", "colors", "texture", "material_ids", "palette",
+                             "face_normals", "progress", "cancel"}
 
 
 def test_docstring_and_cli_help_list_every_option(cli):

@@ -136,3 +136,23 @@ def test_concurrent_voxelizations_agree(bunny):
         t.join()
     for r in results:
         assert np.array_equal(r, expected)
+
+
+def test_read_mesh_stops_when_its_token_is_cancelled(mesh_dir, tmp_path):
+    # Each reader asks the token at its milestones (tests/native/test_io_mesh_cancel.cpp has
+    # the stops in the middle of a file); here the module's wiring: a cancelled token ends
+    # read_mesh with hyvox.Cancelled for our readers and for assimp's formats, and a fresh
+    # one reads the same arrays as no token.
+    stl = tmp_path / "tri.stl"
+    stl.write_text("solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                   "endloop\nendfacet\nendsolid t\n")
+    for path in (mesh_dir / "bunny_stanford_69k.ply", mesh_dir / "dragon_stanford_res2_203k.ply.gz", stl):
+        token = hyvox.CancelToken()
+        token.cancel()
+        with pytest.raises(hyvox.Cancelled):
+            hyvox.read_mesh(path, cancel=token)
+        plain = hyvox.read_mesh(path)
+        with_token = hyvox.read_mesh(path, cancel=hyvox.CancelToken())
+        assert all(np.array_equal(a, b) for a, b in zip(plain, with_token))
+    with pytest.raises(TypeError, match="CancelToken"):
+        hyvox.read_mesh(stl, cancel=True)

@@ -8,7 +8,7 @@ import traceback
 
 import bpy
 
-from ..core import naming, summary
+from ..core import backend, naming, summary
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
 from . import export, importer, properties, render_depsgraph
@@ -33,6 +33,8 @@ class _Run:
         # run overwrote (farm chunks ask for fixed names to assemble one sequence).
         run_tag = naming.new_run_tag() if op.unique_file_names else None
         self.pipeline = Pipeline(settings, folder, self.export_frame, run_tag=run_tag)  # validates the settings
+        if self.pipeline.ignored_options:
+            op.report({"INFO"}, backend.ignored_message(self.pipeline.ignored_options, self.pipeline.method))
         # The redo panel shows, and a redo repeats, exactly what this run used.
         for name, value in used.items():
             setattr(op, name, value)
@@ -61,20 +63,31 @@ class _Run:
     def show_results(self, context, objects):
         """The new results selected, active and visible; the sources hidden if asked."""
         layer = context.view_layer
-        for obj in layer.objects:
-            obj.select_set(False)
+        # Objects are found through the scene's collections, not layer.objects: after objects
+        # are removed (a re-run replaces its results) Blender 4.5/5.0 can list them there as
+        # None until the layer resyncs, and reading their names crashes.
+        for obj in context.scene.objects:
+            if obj.select_get(view_layer=layer):
+                obj.select_set(False, view_layer=layer)
+        shown = []
         for obj in objects:
-            if obj.name in layer.objects:
-                obj.hide_set(False)
-                obj.select_set(True)
-        if objects and objects[0].name in layer.objects:
-            layer.objects.active = objects[0]
+            try:
+                obj.hide_set(False, view_layer=layer)
+                obj.select_set(True, view_layer=layer)
+                shown.append(obj)
+            except RuntimeError:  # not in this view layer (an excluded collection)
+                pass
+        if shown:
+            layer.objects.active = shown[0]
         if self.used["hide_source"]:
             for group in self.groups:
                 for name in group.sources:
-                    source = layer.objects.get(name)
+                    source = context.scene.objects.get(name)
                     if source is not None:
-                        source.hide_set(True)
+                        try:
+                            source.hide_set(True, view_layer=layer)
+                        except RuntimeError:  # not in this view layer
+                            pass
 
     def finish(self, context):
         """Commit the files and import them as volumes (main thread)."""

@@ -9,12 +9,12 @@ right) and move the Volume object by -s/2 on each axis for the Blender versions 
 need it. The headless render test measures this on the Blender it runs in."""
 from typing import Sequence, Tuple
 
-# First Blender version assumed to render voxel centres where OpenVDB puts them.
-# Measured on 3.4 (tests/blender/test_render_alignment.py: uncorrected edges are off by
-# s/2, corrected ones by < 0.01 s). Cycles' NanoVDB sampler still reads voxels at
-# `x - 0.5f` in the 3.5-4.x sources, so the correction stays on through 4.x; 5.0 rewrote
-# volume sampling and is assumed fixed but not measured. The add-on preference
-# "Half-Voxel Fix" forces the correction on or off where this guess is wrong.
+# First Blender version that renders voxel centres where OpenVDB puts them. Measured by
+# tests/blender/test_render_alignment.py (Cycles, 2x2x2 cube, voxel 0.25; edges at +-1):
+#   3.4.1 (Debian): uncorrected edges off by s/2, corrected ones by < 0.01 s;
+#   4.5.15 LTS (PyPI bpy): uncorrected -0.8725/+1.1221 (off by s/2), corrected +-0.997;
+#   5.0.1 (PyPI bpy): uncorrected -1.019/+1.012 (within 0.08 s), so no correction.
+# The add-on preference "Half-Voxel Fix" forces the correction on or off regardless.
 FIRST_CENTRED_VERSION = (5, 0, 0)
 
 

@@ -2,11 +2,14 @@
 """The one place that talks to the compiled hyvox module: finding it, choosing the
 method, calling voxelize with a cancel token, turning its errors into HyvoxError."""
 import importlib
+import importlib.util
+import os
 import threading
-from typing import TYPE_CHECKING, Optional
+from typing import TYPE_CHECKING, List, Optional
 
 import numpy as np
 
+from . import module_diagnosis
 from .errors import CancelledError, HyvoxError, ModuleMissingError
 
 if TYPE_CHECKING:
@@ -21,18 +24,27 @@ _lock = threading.Lock()
 
 def load_module():
     """The hyvox package the build copies into the add-on (hyvox_blender/hyvox/), else an
-    installed one (pip, PYTHONPATH=B/python)."""
+    installed one (the extension's wheel, pip, PYTHONPATH=B/python). When one is there but
+    does not load, the error says why in plain words (module_diagnosis)."""
     global _module
     if _module is not None:
         return _module
     errors = []
+    addon_dir = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     parent = __package__.rpartition(".")[0]
-    for name in ([parent + ".hyvox"] if parent else []) + ["hyvox"]:
+    candidates = [(parent + ".hyvox", os.path.join(addon_dir, "hyvox"))] if parent else []
+    candidates.append(("hyvox", None))
+    for name, package_dir in candidates:
+        if package_dir is None:
+            spec = importlib.util.find_spec(name)  # locates without running it
+            package_dir = os.path.dirname(spec.origin) if spec and spec.origin else None
+        if package_dir is None or not os.path.isdir(package_dir):
+            errors.append(f"{name}: not installed")
+            continue
         try:
             module = importlib.import_module(name)
         except ImportError as exc:
-            errors.append(f"{name}: {exc}")
-            continue
+            raise ModuleMissingError(module_diagnosis.explain(package_dir, exc)) from exc
         if hasattr(module, "voxelize"):
             _module = module
             return module
@@ -74,6 +86,19 @@ def resolve_method(module, settings: "VoxelizeSettings") -> str:
     return "hybrid" if gl_available(module, settings.options.get("gl_device", "")) else "cpu"
 
 
+def ignored_settings(module, settings: "VoxelizeSettings", method: str) -> List[str]:
+    """The options set away from the schema's default that `method` does not use, by the
+    module's one rule (hyvox.ignored_options). The add-on passes every setting it has, so an
+    option still at its default is no news and is not listed."""
+    options = settings.voxelize_options()
+    return [name for name in module.ignored_options(method, options) if options[name] != module.option(name).default]
+
+
+def ignored_message(names: List[str], method: str) -> str:
+    """The add-on's report for ignored_settings (the CLI's warning, in one line)."""
+    return f"{', '.join(names)} {'does' if len(names) == 1 else 'do'} not apply to the {method} method: ignored"
+
+
 def make_token(module):
     """A fresh cancel/progress token."""
     return module.CancelToken()
@@ -92,6 +117,10 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "Vox
     settings, so every frame of a sequence shares the first frame's voxel size."""
     kwargs = settings.voxelize_options()
     kwargs["method"] = method
+    # Settings another method would use are dropped here (reported once per run by the
+    # operator, see ignored_settings), so hyvox.voxelize has nothing to warn about.
+    for name in module.ignored_options(method, list(kwargs)):
+        del kwargs[name]
     if voxel_size:
         kwargs.pop("resolution", None)
         kwargs["voxel_size"] = float(voxel_size)

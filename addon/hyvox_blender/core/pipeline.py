@@ -93,6 +93,8 @@ class Pipeline:
         self.export_frame = export_frame
         self.module = module if module is not None else backend.load_module()
         self.method = backend.resolve_method(self.module, settings)
+        # Settings changed for another method: the operator reports them (INFO).
+        self.ignored_options: List[str] = backend.ignored_settings(self.module, settings, self.method)
         self.frames: List[Optional[int]] = list(settings.frames) if settings.is_sequence else [None]
         self.results: Dict[str, GroupResult] = {}
         self.timings = Timings()

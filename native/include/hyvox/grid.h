@@ -79,8 +79,9 @@ constexpr int kMaxResolution = 16384;
 // Applies the convention: origin = bounds min (unless given), s = longest extent / resolution
 // (unless given), dims = ceil(extent / s) per axis, at least 1. Throws InvalidInput for an
 // option outside the schema's limits (hyvox/option_schema.h, the same message voxelize()
-// gives), a zero-extent mesh without a voxel size, or more than kMaxResolution voxels along
-// an axis.
+// gives), a zero-extent mesh without a voxel size, more than kMaxResolution voxels along
+// an axis, bounds whose sides overflow a double, or a voxel more than a million times the
+// mesh's longest side (the mesh a speck the GPU methods' single precision loses).
 GridSpec makeGrid(const Bounds& mesh_bounds, const GridOptions& options);
 
 }  // namespace hyvox

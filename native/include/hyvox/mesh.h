@@ -9,6 +9,8 @@
 
 namespace hyvox {
 
+struct Texture;  // hyvox/texture.h
+
 struct MeshView {
     const float* positions = nullptr;    // vertex_count * 3 floats, world units
     std::size_t vertex_count = 0;
@@ -18,6 +20,21 @@ struct MeshView {
     // displacement use them); null = absent. Normals need not be unit length.
     const float* uvs = nullptr;      // vertex_count * 2 (Blender UV: v = 0 is the image's bottom row)
     const float* normals = nullptr;  // vertex_count * 3; absent: area-weighted vertex normals
+
+    // Surface attributes for attribute voxels (DESIGN.md, "Attributes"); null = absent.
+    // Colour comes from the first source present: texture (at uvs), colors, palette.
+    const float* colors = nullptr;    // color_channels per vertex, or per corner (triangle_count * 3 rows)
+    int color_channels = 0;           // 3 (RGB) or 4 (RGBA)
+    int color_stride = 0;             // floats per row; 0 = color_channels
+    bool colors_per_corner = false;
+    bool colors_srgb = false;         // sRGB-encoded values (bytes / 255, as in files): decoded to linear
+    const Texture* texture = nullptr;  // linear texels, sampled at uvs
+    const std::uint32_t* material_ids = nullptr;  // triangle_count indices into palette
+    const float* palette = nullptr;               // palette_count * palette_channels, linear
+    std::size_t palette_count = 0;
+    int palette_channels = 0;  // 3 or 4
+    // Per-face normals (triangle_count * 3); absent: normals if given, else the geometric normal.
+    const float* face_normals = nullptr;
 };
 
 struct Bounds {

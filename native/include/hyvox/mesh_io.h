@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "hyvox/interrupter.h"
 #include "hyvox/mesh.h"
 
 namespace hyvox {
@@ -19,7 +20,8 @@ namespace hyvox {
 struct Mesh {
     std::vector<float> positions;           // vertex_count × 3, world units
     std::vector<std::uint32_t> triangles;   // triangle_count × 3 vertex indices
-    std::vector<float> colors;              // empty, or vertex_count × 4 (RGBA, 0..1)
+    std::vector<float> colors;              // empty, or vertex_count × 4 (RGBA, 0..1, colour sRGB-encoded)
+    bool colors_alpha = false;              // the file gave alpha (else alpha is 1)
     std::vector<float> uvs;                 // empty, or vertex_count × 2
 
     std::size_t vertexCount() const { return positions.size() / 3; }
@@ -30,6 +32,12 @@ struct Mesh {
     MeshView view() const {
         MeshView v{positions.data(), vertexCount(), triangles.data(), triangleCount()};
         v.uvs = hasUvs() ? uvs.data() : nullptr;  // the tessellation method's displacement reads them
+        if (hasColors()) {  // attribute voxels read them (options.attributes)
+            v.colors = colors.data();
+            v.color_stride = 4;
+            v.color_channels = colors_alpha ? 4 : 3;
+            v.colors_srgb = true;
+        }
         return v;
     }
 };
@@ -41,6 +49,9 @@ struct Mesh {
 // corners is an error); polygons are fan-triangulated. Several meshes in one file are
 // merged, with their node transforms applied. Throws InvalidInput for a missing, unreadable,
 // non-regular, damaged or unparsable file, or one without triangles.
-Mesh readMesh(const std::string& path);
+// `interrupter` (may be null) is asked at milestones (every MiB decompressed, every 64k
+// records or lines parsed, assimp's progress steps): when it says stop, hyvox::Cancelled is
+// thrown and nothing is returned (the partly read mesh is freed).
+Mesh readMesh(const std::string& path, Interrupter* interrupter = nullptr);
 
 }  // namespace hyvox

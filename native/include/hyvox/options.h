@@ -93,6 +93,9 @@ struct VoxelizeOptions {
     // Side of the boxes the grid is voxelized in, one after the other (rounded up to a
     // multiple of 8); 0 = from the memory budget (the whole grid when it fits).
     int tile_size = 0;
+    // Attribute voxels to compute beside the occupancy: a comma list of "color" and "normal"
+    // (hyvox/attribute_grid.h); "" = none.
+    std::string attributes;
     GlOptions gl;
     HybridOptions hybrid;
     TessellationOptions tessellation;

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "hyvox/attribute_grid.h"
 #include "hyvox/grid.h"
 #include "hyvox/options.h"
 #include "hyvox/sparse_grid.h"
@@ -102,6 +103,12 @@ struct Stats {
     std::uint64_t tiles = 0;   // boxes of the grid voxelized one after the other
     std::uint64_t leaves = 0;  // non-empty 8³ leaves of the result
     std::uint64_t vdb_bytes = 0;  // the OpenVDB grids' memory, when a front door wrote them
+    // Attribute voxels (options.attributes): clipped (triangle, voxel) pieces averaged; leaves
+    // where a set voxel's touch was lost to rounding in the clip and found again with a 1e-9
+    // voxel margin; set voxels no piece reached even so (their values are 0).
+    std::uint64_t attribute_pieces = 0;
+    std::uint64_t attribute_leaves_rounded = 0;
+    std::uint64_t attribute_voxels_unreached = 0;
     // The options the run used (after the front door read its environment variables).
     VoxelizeOptions options;
     // The section of the backend that ran; the others stay empty.
@@ -149,6 +156,7 @@ struct VoxelizeResult {
     GridSpec grid;
     SparseGrid occupancy;            // the set voxels as OpenVDB-layout leaves
     std::vector<VoxelCount> counts;  // empty unless the method is multi-valued
+    AttributeGrid attributes;        // empty unless options.attributes asked for some
     Stats stats;
 };
 

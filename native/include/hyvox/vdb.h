@@ -10,6 +10,8 @@
 //    so index (i,j,k) is the centre of voxel (i,j,k) (DESIGN.md, "Coordinates").
 //  - "count": a FloatGrid with the per-voxel values of a multi-valued result (only when
 //    result.counts is non-empty), same transform.
+//  - "color" (Vec3f, linear RGB), "alpha" (float, when the colour source has it), "normal"
+//    (Vec3f): the attribute voxels (result.attributes), active exactly on the density's voxels.
 //  Grid metadata: hyvox_version, hyvox_method, hyvox_mode, hyvox_voxel_size, hyvox_origin,
 //  hyvox_dims.
 #include <cstdint>
@@ -33,6 +35,12 @@ struct VdbWriteReport {
     std::uint64_t grid_bytes = 0;  // the OpenVDB grids' own memory (Grid::memUsage)
     double build_ms = 0, write_ms = 0;
 };
+// OpenVDB refuses a transform whose scale determinant (voxel_size³) is below 3e-15, so a
+// .vdb cannot hold voxels smaller than about 1.44e-5 world units. InvalidInput naming the
+// size and the remedy; writeVdb calls it, and front doors that always write a .vdb call it
+// before the voxelization so the work is not done for nothing.
+void checkVdbVoxelSize(double voxel_size);
+
 VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, int threads = 0,
                         Interrupter* interrupter = nullptr);
 

@@ -13,7 +13,8 @@ with s = grid.voxel_size; the .vdb's index space is voxel centres.
 from __future__ import annotations
 
 import os
-from typing import Callable, Optional, Tuple, Union
+import warnings
+from typing import Callable, Iterable, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -45,10 +46,23 @@ def option(name: str) -> OptionSpec:
 METHODS: Tuple[str, ...] = tuple(option("method").choices)
 MODES: Tuple[str, ...] = tuple(option("mode").choices)
 
+class IgnoredOptionWarning(UserWarning):
+    """voxelize() was given an option the chosen method does not use (the CLI prints the
+    same warning). Silence it with warnings.filterwarnings("ignore", category=...)."""
+
+
+def ignored_options(method: str, names: Iterable[str]) -> List[str]:
+    """Of the option `names`, those `method` ignores, in the given order: the schema's one
+    rule (OptionSpec.applies_to), shared by the CLI, voxelize() and the Blender add-on.
+    KeyError for an unknown option name, ValueError for an unknown method."""
+    return [name for name in names if not option(name).applies_to(method)]
+
+
 __all__ = [
     "BackendError",
     "CancelToken",
     "Cancelled",
+    "IgnoredOptionWarning",
     "METHODS",
     "MODES",
     "OPTIONS",
@@ -59,6 +73,7 @@ __all__ = [
     "__version__",
     "check_option",
     "gl_devices",
+    "ignored_options",
     "option",
     "read_mesh",
     "voxelize",
@@ -100,6 +115,15 @@ def _as_triangles(triangles) -> np.ndarray:
     return np.ascontiguousarray(array, dtype=np.uint32)
 
 
+def _as_material_ids(values) -> np.ndarray:
+    array = np.asarray(values)
+    if array.dtype == np.bool_ or not np.issubdtype(array.dtype, np.integer) or array.ndim != 1:
+        raise ValueError(f"material_ids must be a 1-D integer array, got {array.dtype} {array.shape}")
+    if array.size and (int(array.min()) < 0 or int(array.max()) > _UINT32_MAX):
+        raise ValueError("material_ids must lie in 0 .. 2**32 - 1")
+    return np.ascontiguousarray(array, dtype=np.uint32)
+
+
 def _as_vertex_rows(values, name: str, width: int) -> Optional[np.ndarray]:
     return None if values is None else _as_float_rows(values, name, width)
 
@@ -111,6 +135,11 @@ def voxelize(
     uvs=None,
     normals=None,
     displacement_pixels=None,
+    colors=None,
+    texture=None,
+    material_ids=None,
+    palette=None,
+    face_normals=None,
     progress: Optional[Callable[[int], object]] = None,
     cancel: Optional[CancelToken] = None,
     **options,
@@ -124,11 +153,23 @@ def voxelize(
         lookup, PN-triangles; absent normals are area-weighted vertex normals).
     displacement_pixels: a (height, width) float height image (row 0 = top), used by the
         tessellation method instead of displacement_image.
+    Attribute voxels (option attributes, e.g. attributes=("color", "normal"); the grid's
+    attributes() returns them aligned with coords()). Colour comes from the first source given:
+    texture: a PNG path, or (height, width, 3|4) pixels (uint8/uint16: sRGB-encoded, float:
+        linear; row 0 = top), sampled bilinearly with repeat wrap at uvs (v = 0: bottom row);
+    colors: (N, 3|4) per vertex or (3M, 3|4) per triangle corner; uint8 = sRGB-encoded bytes
+        (as in files and Blender byte colours), float = linear;
+    material_ids: (M,) integers into palette: (P, 3|4) linear floats.
+    normals (N, 3) per vertex are interpolated; face_normals: (M, 3) per triangle; neither:
+        the geometric normal.
     progress: called on this thread with the percent done (int), while the voxelization
         waits; raising in it stops the voxelization and the exception propagates.
     cancel: a hyvox.CancelToken; token.cancel() from any thread raises hyvox.Cancelled here.
     **options: the options of hyvox.OPTIONS by name (listed below). Unset or None options take
         the native default, after the environment variables the schema names.
+
+    An option the chosen method does not use (e.g. tess_gamma with method="cpu") is ignored
+    with a hyvox.IgnoredOptionWarning, as the CLI warns.
 
     The GIL is released while native code runs. Raises ValueError for bad input or an option
     out of its limits, TypeError for an unknown option or a value of the wrong kind,
@@ -138,7 +179,13 @@ def voxelize(
     native_options = Options()
     native_options.apply_environment()
     for name, value in options.items():
+        if name == "attributes" and isinstance(value, (list, tuple)):
+            value = ",".join(value)  # the schema's text form: a comma list
         native_options.set(name, value)
+    method = native_options.get("method")
+    given = [name for name, value in options.items() if value is not None]
+    for name in ignored_options(method, given):
+        warnings.warn(f"{name} does not apply to the {method} method: ignored", IgnoredOptionWarning, stacklevel=2)
     if cancel is not None and not isinstance(cancel, CancelToken):
         raise TypeError("cancel must be a hyvox.CancelToken or None")
     pixels = None
@@ -147,6 +194,21 @@ def voxelize(
         if pixels.ndim != 2 or not np.issubdtype(pixels.dtype, np.number):
             raise ValueError(f"displacement_pixels must be a numeric (height, width) array, got {pixels.shape}")
         pixels = np.ascontiguousarray(pixels, dtype=np.float32)
+    colors_srgb = False
+    if colors is not None:
+        colors = np.asarray(colors)
+        colors_srgb = colors.dtype == np.uint8
+        colors = colors.astype(np.float32) / 255.0 if colors_srgb else _as_float_rows(colors, "colors", colors.shape[-1] if colors.ndim == 2 else 3)
+    texture_path = None
+    if isinstance(texture, (str, os.PathLike)):
+        texture_path, texture = os.fspath(texture), None
+    elif texture is not None:
+        texture = np.asarray(texture)
+        if texture.dtype.kind == "f":
+            texture = texture.astype(np.float32)
+        texture = np.ascontiguousarray(texture)
+    if material_ids is not None:
+        material_ids = _as_material_ids(material_ids)
     return _core.voxelize(
         _as_vertices(vertices),
         _as_triangles(triangles),
@@ -154,6 +216,13 @@ def voxelize(
         uvs=_as_vertex_rows(uvs, "uvs", 2),
         normals=_as_vertex_rows(normals, "normals", 3),
         displacement_pixels=pixels,
+        colors=colors,
+        colors_srgb=colors_srgb,
+        texture=texture,
+        texture_path=texture_path,
+        material_ids=material_ids,
+        palette=None if palette is None else _as_float_rows(palette, "palette", np.asarray(palette).shape[-1]),
+        face_normals=_as_vertex_rows(face_normals, "face_normals", 3),
         cancel=cancel,
         progress=progress,
     )
@@ -174,15 +243,19 @@ def _options_doc() -> str:
 voxelize.__doc__ = (voxelize.__doc__ or "") + _options_doc()
 
 
-def read_mesh(path: Union[str, os.PathLike], attributes: bool = False):
+def read_mesh(path: Union[str, os.PathLike], attributes: bool = False, cancel: Optional[CancelToken] = None):
     """Read a mesh file (PLY binary/ascii, .ply.gz, OBJ, and what assimp reads).
 
     Returns (vertices float32 (N, 3), triangles uint32 (M, 3)), triangles exactly as in the
     file (degenerate ones included). With attributes=True, returns
     (vertices, triangles, attrs) where attrs may hold "colors" (float32 (N, 4) RGBA 0..1)
-    and "uvs" (float32 (N, 2)). Raises ValueError for a missing or unreadable file.
+    and "uvs" (float32 (N, 2)). Raises ValueError for a missing or unreadable file, and
+    hyvox.Cancelled when `cancel` (a hyvox.CancelToken) is cancelled from another thread while
+    the file is read (the GIL is released meanwhile).
     """
-    vertices, triangles, colors, uvs = _core.read_mesh(os.fspath(path))
+    if cancel is not None and not isinstance(cancel, CancelToken):
+        raise TypeError("cancel must be a hyvox.CancelToken or None")
+    vertices, triangles, colors, uvs = _core.read_mesh(os.fspath(path), cancel=cancel)
     if not attributes:
         return vertices, triangles
     attrs = {}

@@ -27,6 +27,7 @@ class VoxelGrid:
     def coords(self) -> npt.NDArray[np.int32]: ...
     def world_centres(self) -> npt.NDArray[np.float64]: ...
     def counts(self) -> Tuple[npt.NDArray[np.int32], npt.NDArray[np.uint32]]: ...
+    def attributes(self) -> Dict[str, npt.NDArray[np.float32]]: ...
     def to_dense(self) -> npt.NDArray[np.bool_]: ...
     def write_vdb(
         self,
@@ -75,6 +76,7 @@ class OptionSpec:
     def min_exclusive(self) -> bool: ...
     @property
     def choices(self) -> List[str]: ...
+    def applies_to(self, method: str) -> bool: ...
     @property
     def cli_flag(self) -> str: ...
     @property
@@ -104,11 +106,19 @@ def voxelize(
     uvs: Optional[npt.NDArray[np.float32]] = ...,
     normals: Optional[npt.NDArray[np.float32]] = ...,
     displacement_pixels: Optional[npt.NDArray[np.float32]] = ...,
+    colors: Optional[npt.NDArray[np.float32]] = ...,
+    colors_srgb: bool = ...,
+    texture: Optional[npt.NDArray[Any]] = ...,
+    texture_path: Optional[str] = ...,
+    material_ids: Optional[npt.NDArray[np.uint32]] = ...,
+    palette: Optional[npt.NDArray[np.float32]] = ...,
+    face_normals: Optional[npt.NDArray[np.float32]] = ...,
     cancel: Optional[CancelToken] = ...,
     progress: Optional[Callable[[int], object]] = ...,
 ) -> VoxelGrid: ...
 def read_mesh(
     path: Union[str, os.PathLike[str]],
+    cancel: Optional[CancelToken] = None,
 ) -> Tuple[
     npt.NDArray[np.float32],
     npt.NDArray[np.uint32],

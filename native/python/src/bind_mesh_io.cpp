@@ -6,17 +6,19 @@
 #include "bindings.h"
 #include "hyvox/gl_devices.h"
 #include "hyvox/mesh_io.h"
+#include "python_interrupter.h"
 
 namespace hyvox::python {
 
 void bindMeshIo(py::module_& m) {
     m.def(
         "read_mesh",
-        [](const std::filesystem::path& path) {
+        [](const std::filesystem::path& path, std::shared_ptr<CancelToken> cancel) {
             Mesh mesh;
             {
+                PythonInterrupter interrupter(std::move(cancel), py::none());
                 py::gil_scoped_release release;
-                mesh = readMesh(path.string());
+                mesh = readMesh(path.string(), &interrupter);
             }
             const auto n = py::ssize_t(mesh.vertexCount());
             const auto t = py::ssize_t(mesh.triangleCount());
@@ -26,8 +28,8 @@ void bindMeshIo(py::module_& m) {
             return py::make_tuple(arrayFromVector(std::move(mesh.positions), {n, 3}),
                                   arrayFromVector(std::move(mesh.triangles), {t, 3}), colors, uvs);
         },
-        py::arg("path"),
-        "Read a mesh file: (vertices float32 (N,3), triangles uint32 (M,3), colors float32 (N,4) "
+        py::arg("path"), py::arg("cancel") = py::none(),
+        "Read a mesh file; cancel: a CancelToken whose cancel() stops the reading (hyvox.Cancelled). Returns (vertices float32 (N,3), triangles uint32 (M,3), colors float32 (N,4) "
         "or None, uvs float32 (N,2) or None).");
 
     m.def(

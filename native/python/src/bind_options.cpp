@@ -149,6 +149,11 @@ void bindOptions(py::module_& m) {
         .def_property_readonly("default", [](const OptionSpec& s) { return toPython(s.get(VoxelizeOptions{})); },
                                "The native default (None for nullable options: derived at run time).")
         .def_property_readonly("requirement", &describeOption, "What a valid value is, as error messages say it.")
+        .def(
+            "applies_to", [](const OptionSpec& s, const std::string& method) { return optionAppliesTo(s, parseMethod(method)); },
+            py::arg("method"),
+            "Whether the option changes what `method` does (the rule behind the CLI's and voxelize()'s "
+            "'does not apply' warnings); ValueError for an unknown method.")
         .def("__repr__", [](const OptionSpec& s) { return std::string("<hyvox.OptionSpec ") + s.name + ">"; });
 
     py::tuple specs(optionSchema().size());

@@ -89,6 +89,26 @@ py::array_t<bool> toDense(const Grid& g) {
     return dense;
 }
 
+// The attribute grids as numpy arrays aligned with coords(): {"color": (K,3), "alpha": (K,),
+// "normal": (K,3)}, those the run computed.
+py::dict attributeArrays(const Grid& g) {
+    const AttributeGrid& a = g->attributes;
+    py::dict out;
+    if (a.empty()) return out;
+    const std::size_t count = a.voxelCount(), channels = std::size_t(a.channels());
+    auto take = [&](int offset, int width) {
+        std::vector<float> values(count * std::size_t(width));
+        for (std::size_t v = 0; v < count; ++v)
+            for (int c = 0; c < width; ++c) values[v * std::size_t(width) + std::size_t(c)] = a.values[v * channels + std::size_t(offset + c)];
+        return values;
+    };
+    const auto k = py::ssize_t(count);
+    if (a.color) out["color"] = arrayFromVector(take(a.colorOffset(), 3), {k, 3});
+    if (a.alpha) out["alpha"] = arrayFromVector(take(a.alphaOffset(), 1), {k});
+    if (a.normal) out["normal"] = arrayFromVector(take(a.normalOffset(), 3), {k, 3});
+    return out;
+}
+
 }  // namespace
 
 void bindVoxelGrid(py::module_& m) {
@@ -103,6 +123,10 @@ The voxels of one voxelization. Voxel (i, j, k) covers the closed box
         .def("counts", &counts,
              "Multi-valued results (tessellation): (ijk int32 (K, 3), counts uint32 (K,)); empty arrays "
              "for single-valued methods.")
+        .def("attributes", &attributeArrays,
+             "The attribute voxels the run computed (option attributes), aligned row by row with coords(): "
+             "{'color': float32 (K, 3) linear RGB, 'alpha': float32 (K,), 'normal': float32 (K, 3) unit or zero}; "
+             "an empty dict when none were asked for.")
         .def("to_dense", &toDense,
              "The occupancy as a dense bool array of shape dims, indexed [i, j, k]; ResourceError when that "
              "box does not fit the run's memory budget.")

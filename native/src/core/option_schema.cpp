@@ -83,6 +83,10 @@ std::vector<OptionSpec> buildSchema() {
     add({"tile_size", T::Integer, "run", "Tile Size", "voxels",
          "side of the boxes voxelized one after the other (rounded up to a multiple of 8); 0 = from the "
          "memory budget", false, 0, kMaxResolution, false, {}, {}, nullptr, HYVOX_FIELD(asInteger, tile_size)});
+    // --- attribute voxels ---
+    add({"attributes", T::Text, "run", "Attributes", "",
+         "attribute voxels to compute: a comma list of color (linear RGB, alpha when the source has it) and "
+         "normal; '' = none", false, 0, 0, false, {}, {}, nullptr, HYVOX_FIELD(asText, attributes)});
     // --- GL methods ---
     add({"gl_device", T::Text, "gl", "GL Device", "",
          "EGL device: '' = a hardware GPU if any, else software; 'software'; or a device index", false, 0, 0, false, {},

@@ -25,10 +25,14 @@ std::uint64_t tileByteLimit(std::uint64_t tile_bytes) {
 BitTiling::BitTiling(const GridSpec& grid, std::uint64_t tile_bytes) : grid_(grid), bricks_(grid.bricks()) {
     const std::uint64_t slab_bytes = slabBytes();
     const std::uint64_t limit = tileByteLimit(tile_bytes);
+    // In bytes: a gl_tile_bytes below one slab (a few KiB on small grids) shows as "0 MiB".
+    if (slab_bytes > limit && tile_bytes && tile_bytes == limit)
+        throw InvalidInput("gl_tile_bytes " + std::to_string(tile_bytes) + " is less than one 8-voxel slab of this " +
+                           grid.dimsText() + " grid (" + std::to_string(slab_bytes) + " bytes); give at least that");
     if (slab_bytes > limit)
-        throw ResourceError("a " + grid.dimsText() + " grid needs " + std::to_string(slab_bytes >> 20) +
-                            " MiB per 8-voxel slab, more than this GL device's storage-block limit of " +
-                            std::to_string(limit >> 20) + " MiB; use a larger voxel size");
+        throw ResourceError("a " + grid.dimsText() + " grid needs " + std::to_string(slab_bytes) +
+                            " bytes per 8-voxel slab, more than this GL device's storage-block limit of " +
+                            std::to_string(limit) + " bytes; use a larger voxel size");
     bricks_per_tile_ = int(std::min<std::uint64_t>(std::uint64_t(bricks_.counts[0]), limit / slab_bytes));
     for (int x0 = 0; x0 < bricks_.counts[0]; x0 += bricks_per_tile_)
         tiles_.push_back({x0, std::min(bricks_.counts[0], x0 + bricks_per_tile_)});

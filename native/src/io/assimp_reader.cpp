@@ -7,6 +7,7 @@
 
 #include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
+#include <assimp/ProgressHandler.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -138,20 +139,53 @@ Mesh toMesh(const aiScene* scene, Assimp::Importer& importer, const std::string&
     return mesh;
 }
 
-}  // namespace
+// assimp asks its progress handler at its own steps; returning false makes the read stop
+// and return no scene, which readWithAssimp then reports as hyvox::Cancelled.
+class InterruptingProgress final : public Assimp::ProgressHandler {
+public:
+    explicit InterruptingProgress(Interrupter* interrupter) : interrupter_(interrupter) {}
+    bool Update(float) override {
+        stopped_ = stopped_ || (interrupter_ && interrupter_->wasInterrupted(-1));
+        return !stopped_;
+    }
+    bool stopped() const { return stopped_; }
 
-Mesh readWithAssimp(const std::string& path, const std::string& extension) {
-    Assimp::Importer importer;
-    removeOwnFormats(importer);
-    const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
+private:
+    Interrupter* interrupter_;
+    bool stopped_ = false;
+};
+
+// The importer owns (and deletes) the handler it is given.
+InterruptingProgress& watch(Assimp::Importer& importer, Interrupter* interrupter) {
+    auto* progress = new InterruptingProgress(interrupter);
+    importer.SetProgressHandler(progress);
+    return *progress;
+}
+
+Mesh finish(const aiScene* scene, Assimp::Importer& importer, const InterruptingProgress& progress,
+            const std::string& path, const std::string& extension, Interrupter* interrupter) {
+    if (progress.stopped()) throw Cancelled();
+    throwIfInterrupted(interrupter);
     return toMesh(scene, importer, path, extension);
 }
 
-Mesh readWithAssimp(const char* data, std::size_t size, const std::string& extension, const std::string& path) {
+}  // namespace
+
+Mesh readWithAssimp(const std::string& path, const std::string& extension, Interrupter* interrupter) {
     Assimp::Importer importer;
     removeOwnFormats(importer);
+    const InterruptingProgress& progress = watch(importer, interrupter);
+    const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
+    return finish(scene, importer, progress, path, extension, interrupter);
+}
+
+Mesh readWithAssimp(const char* data, std::size_t size, const std::string& extension, const std::string& path,
+                    Interrupter* interrupter) {
+    Assimp::Importer importer;
+    removeOwnFormats(importer);
+    const InterruptingProgress& progress = watch(importer, interrupter);
     const aiScene* scene = importer.ReadFileFromMemory(data, size, aiProcess_Triangulate, extension.c_str());
-    return toMesh(scene, importer, path, extension);
+    return finish(scene, importer, progress, path, extension, interrupter);
 }
 
 }  // namespace hyvox::io

@@ -11,9 +11,11 @@
 namespace hyvox::io {
 
 // Reads `path` by its extension (assimp may also recognise the content).
-Mesh readWithAssimp(const std::string& path, const std::string& extension);
+// `interrupter` (may be null) is asked at assimp's progress steps (hyvox::Cancelled).
+Mesh readWithAssimp(const std::string& path, const std::string& extension, Interrupter* interrupter = nullptr);
 
 // Reads decompressed bytes as the format `extension` names ("stl", ...).
-Mesh readWithAssimp(const char* data, std::size_t size, const std::string& extension, const std::string& path);
+Mesh readWithAssimp(const char* data, std::size_t size, const std::string& extension, const std::string& path,
+                    Interrupter* interrupter = nullptr);
 
 }  // namespace hyvox::io

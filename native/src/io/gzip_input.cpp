@@ -22,9 +22,8 @@ std::uint64_t gzipOutputLimit(std::uint64_t compressed_bytes) {
     return std::min(budget, std::max<std::uint64_t>(256ull << 20, ratio_cap));
 }
 
-namespace {
-
-std::vector<char> inflateAll(const std::vector<char>& input, const std::string& path, std::uint64_t max_output) {
+std::vector<char> gunzip(const std::vector<char>& input, const std::string& path, std::uint64_t max_output,
+                         Interrupter* interrupter) {
     z_stream stream{};
     if (inflateInit2(&stream, 16 + MAX_WBITS) != Z_OK) failMeshFile(path, "cannot start gzip decompression");
     struct End {
@@ -37,6 +36,7 @@ std::vector<char> inflateAll(const std::vector<char>& input, const std::string& 
     const char* next = input.data();
     std::size_t left = input.size();
     for (;;) {
+        throwIfInterrupted(interrupter);  // one chunk (1 MiB of output) per turn
         // zlib counts in 32-bit units: feed at most 1 GiB at a time.
         const uInt feed = uInt(std::min<std::size_t>(left, 1u << 30));
         stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(next));
@@ -72,6 +72,8 @@ std::vector<char> inflateAll(const std::vector<char>& input, const std::string& 
     return output;
 }
 
+namespace {
+
 // The compressed file itself is bounded by what it may expand to.
 std::vector<char> readCompressed(const std::string& path, std::uint64_t max_output) {
     return readFileBytes(path, std::size_t(std::min<std::uint64_t>(max_output, std::numeric_limits<std::size_t>::max())));
@@ -79,13 +81,14 @@ std::vector<char> readCompressed(const std::string& path, std::uint64_t max_outp
 
 }  // namespace
 
-std::vector<char> readGzipFile(const std::string& path, std::uint64_t max_output) {
-    return inflateAll(readCompressed(path, max_output), path, max_output);
+std::vector<char> readGzipFile(const std::string& path, std::uint64_t max_output, Interrupter* interrupter) {
+    return gunzip(readCompressed(path, max_output), path, max_output, interrupter);
 }
 
-std::vector<char> readGzipFile(const std::string& path) {
+std::vector<char> readGzipFile(const std::string& path, Interrupter* interrupter) {
     const std::vector<char> input = readCompressed(path, VoxelizeOptions{}.memoryBudgetBytes());
-    return inflateAll(input, path, gzipOutputLimit(input.size()));
+    throwIfInterrupted(interrupter);
+    return gunzip(input, path, gzipOutputLimit(input.size()), interrupter);
 }
 
 }  // namespace hyvox::io

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "hyvox/interrupter.h"
+
 namespace hyvox::io {
 
 // The largest output readMesh accepts from `compressed_bytes` of gzip: at most the default
@@ -15,12 +17,18 @@ namespace hyvox::io {
 // 256 MiB. Real meshes compress 2-5x (the shared ones: 2.2-3.6x); bombs reach 1000x.
 std::uint64_t gzipOutputLimit(std::uint64_t compressed_bytes);
 
+// Decompresses gzip bytes already in memory (`path` is quoted in errors), as readGzipFile
+// does with a file's bytes; the gzip fuzzer's entry.
+std::vector<char> gunzip(const std::vector<char>& compressed, const std::string& path, std::uint64_t max_output,
+                         Interrupter* interrupter = nullptr);
+
 // Decompresses the whole file (several concatenated gzip members too). Throws InvalidInput
 // naming the file when it is not gzip, is corrupt, ends before its last member does, or
-// would decompress to more than max_output bytes.
-std::vector<char> readGzipFile(const std::string& path, std::uint64_t max_output);
+// would decompress to more than max_output bytes. `interrupter` (may be null) is asked
+// after every MiB of output (hyvox::Cancelled).
+std::vector<char> readGzipFile(const std::string& path, std::uint64_t max_output, Interrupter* interrupter = nullptr);
 
 // The same with max_output = gzipOutputLimit(the file's size).
-std::vector<char> readGzipFile(const std::string& path);
+std::vector<char> readGzipFile(const std::string& path, Interrupter* interrupter = nullptr);
 
 }  // namespace hyvox::io

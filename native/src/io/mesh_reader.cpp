@@ -41,7 +41,8 @@ constexpr std::size_t kMaxMeshFileBytes = std::size_t(1) << 40;
 
 }  // namespace
 
-Mesh readMesh(const std::string& path) {
+Mesh readMesh(const std::string& path, Interrupter* interrupter) {
+    const InterrupterRun run(interrupter, "hyvox read mesh");
     io::checkMeshFile(path);
     const std::string lower_path = lower(path);
     const bool gzipped = endsWith(lower_path, ".gz");
@@ -54,13 +55,14 @@ Mesh readMesh(const std::string& path) {
         const std::vector<char> prefix = io::readFilePrefix(path, 4);
         return io::looksLikePly(prefix.data(), prefix.size());
     }();
-    if (!ours) return io::readWithAssimp(path, extension);
-    const std::vector<char> data = gzipped ? io::readGzipFile(path) : io::readFileBytes(path, kMaxMeshFileBytes);
+    if (!ours) return io::readWithAssimp(path, extension, interrupter);
+    const std::vector<char> data = gzipped ? io::readGzipFile(path, interrupter) : io::readFileBytes(path, kMaxMeshFileBytes);
+    throwIfInterrupted(interrupter);
     // A PLY is told by its first line whatever its name, compressed or not.
     if (extension == "ply" || io::looksLikePly(data.data(), data.size()))
-        return io::readPly(data.data(), data.size(), path);
-    if (extension == "obj") return io::readObj(data.data(), data.size(), path);
-    return io::readWithAssimp(data.data(), data.size(), extension, path);  // another format, gzipped
+        return io::readPly(data.data(), data.size(), path, interrupter);
+    if (extension == "obj") return io::readObj(data.data(), data.size(), path, interrupter);
+    return io::readWithAssimp(data.data(), data.size(), extension, path, interrupter);  // another format, gzipped
 }
 
 }  // namespace hyvox

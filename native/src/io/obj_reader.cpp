@@ -20,11 +20,13 @@ constexpr std::uint32_t kNoUv = std::numeric_limits<std::uint32_t>::max();
 
 class ObjParser {
 public:
-    ObjParser(const char* data, std::size_t size, const std::string& name)
-        : scanner_(data, data + size), name_(name) {}
+    ObjParser(const char* data, std::size_t size, const std::string& name, Interrupter* interrupter)
+        : scanner_(data, data + size), name_(name), interrupter_(interrupter) {}
 
     Mesh parse() {
+        std::uint64_t line = 0;
         do {
+            if ((line++ & 0xFFFF) == 0) throwIfInterrupted(interrupter_);  // between chunks of 64k lines
             std::string_view keyword;
             if (!scanner_.wordOnLine(keyword)) continue;
             if (keyword == "v")
@@ -141,6 +143,7 @@ private:
 
     TextScanner scanner_;
     const std::string& name_;
+    Interrupter* interrupter_;
     std::vector<float> file_positions_, file_colors_, file_uvs_;
     std::unordered_map<std::uint64_t, std::uint32_t> vertex_of_corner_;
     bool any_uv_ = false, any_color_ = false;
@@ -149,6 +152,8 @@ private:
 
 }  // namespace
 
-Mesh readObj(const char* data, std::size_t size, const std::string& name) { return ObjParser(data, size, name).parse(); }
+Mesh readObj(const char* data, std::size_t size, const std::string& name, Interrupter* interrupter) {
+    return ObjParser(data, size, name, interrupter).parse();
+}
 
 }  // namespace hyvox::io

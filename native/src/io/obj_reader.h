@@ -15,6 +15,6 @@ namespace hyvox::io {
 // Reads the OBJ held in [data, data + size); `name` is quoted in errors. A mesh vertex is
 // one distinct (position, texture coordinate) pair the faces use, numbered in the order the
 // faces first use it; faces are fan-triangulated in linear time.
-Mesh readObj(const char* data, std::size_t size, const std::string& name);
+Mesh readObj(const char* data, std::size_t size, const std::string& name, Interrupter* interrupter = nullptr);
 
 }  // namespace hyvox::io

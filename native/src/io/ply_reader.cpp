@@ -349,7 +349,8 @@ int findProperty(const Element& element, std::initializer_list<const char*> name
 
 class BodyReader {
 public:
-    BodyReader(const Header& header, const std::string& name, Mesh& mesh) : header_(header), name_(name), mesh_(mesh) {}
+    BodyReader(const Header& header, const std::string& name, Mesh& mesh, Interrupter* interrupter)
+        : header_(header), name_(name), mesh_(mesh), interrupter_(interrupter) {}
 
     template <class Source>
     void read(Source& source) {
@@ -437,6 +438,7 @@ private:
         const bool colors = r >= 0 && g >= 0 && b >= 0, uvs = u >= 0 && v >= 0;
         mesh_.positions.reserve(3 * e.count);
         if (colors) mesh_.colors.reserve(4 * e.count);
+        mesh_.colors_alpha = colors && a >= 0;
         if (uvs) mesh_.uvs.reserve(2 * e.count);
         std::vector<double> values(e.properties.size(), 0.0);
         auto channel = [&](int p) { return float(values[p] / integerMax(e.properties[p].type)); };
@@ -461,10 +463,19 @@ private:
                 const std::size_t xyz[3] = {offset[std::size_t(x)], offset[std::size_t(y)], offset[std::size_t(z)]};
                 const int rgba[4] = {colors ? int(offset[std::size_t(r)]) : -1, colors ? int(offset[std::size_t(g)]) : -1,
                                      colors ? int(offset[std::size_t(b)]) : -1, a >= 0 ? int(offset[std::size_t(a)]) : -1};
-                i = source.vertexRecords(e.count, stride, xyz, colors ? rgba : nullptr, mesh_.positions, mesh_.colors);
+                // In chunks, so that a stop is seen at the same records as on the per-value path.
+                while (i < e.count) {
+                    poll(i);
+                    const std::uint64_t chunk = std::min<std::uint64_t>(e.count - i, kPollRecords);
+                    const std::uint64_t read =
+                        source.vertexRecords(chunk, stride, xyz, colors ? rgba : nullptr, mesh_.positions, mesh_.colors);
+                    i += read;
+                    if (read < chunk) break;
+                }
             }
         }
         for (; i < e.count; ++i) {
+            poll(i);
             try {
                 for (std::size_t p = 0; p < e.properties.size(); ++p) {
                     const Property& property = e.properties[p];
@@ -494,10 +505,19 @@ private:
         std::uint64_t f = 0;
         if constexpr (std::is_same_v<Source, BinarySource>) {
             if (e.properties.size() == 1 && list.count_type == Type::Uint8 &&
-                (list.type == Type::Int32 || list.type == Type::Uint32))
-                f = source.triangles(e.count, std::uint32_t(std::min<std::uint64_t>(vertex_count_, 1u << 31)), mesh_.triangles);
+                (list.type == Type::Int32 || list.type == Type::Uint32)) {
+                const auto vertex_limit = std::uint32_t(std::min<std::uint64_t>(vertex_count_, 1u << 31));
+                while (f < e.count) {  // in chunks, as the vertices
+                    poll(f);
+                    const std::uint64_t chunk = std::min<std::uint64_t>(e.count - f, kPollRecords);
+                    const std::uint64_t read = source.triangles(chunk, vertex_limit, mesh_.triangles);
+                    f += read;
+                    if (read < chunk) break;
+                }
+            }
         }
         for (; f < e.count; ++f) {
+            poll(f);
             try {
                 for (std::size_t p = 0; p < e.properties.size(); ++p) {
                     const Property& property = e.properties[p];
@@ -542,6 +562,7 @@ private:
     void skipElement(const Element& e, Source& source) {
         if (e.properties.empty()) return;  // nothing to read, however large the count
         for (std::uint64_t i = 0; i < e.count; ++i) {
+            poll(i);
             try {
                 for (const Property& property : e.properties) {
                     if (property.list)
@@ -555,9 +576,17 @@ private:
         }
     }
 
+    // Cancellation between chunks of 64k records (hyvox::Cancelled; the caller's mesh is freed).
+    // The reader asks the interrupter once every kPollRecords records.
+    static constexpr std::uint64_t kPollRecords = 0x10000;
+    void poll(std::uint64_t record) const {
+        if (record % kPollRecords == 0) throwIfInterrupted(interrupter_);
+    }
+
     const Header& header_;
     const std::string& name_;
     Mesh& mesh_;
+    Interrupter* interrupter_;
     std::uint64_t vertex_count_ = 0;
 };
 
@@ -567,10 +596,10 @@ bool looksLikePly(const char* data, std::size_t size) {
     return size >= 4 && std::memcmp(data, "ply", 3) == 0 && (data[3] == '\n' || data[3] == '\r');
 }
 
-Mesh readPly(const char* data, std::size_t size, const std::string& name) {
+Mesh readPly(const char* data, std::size_t size, const std::string& name, Interrupter* interrupter) {
     const Header header = readHeader(data, size, name);
     Mesh mesh;
-    BodyReader reader(header, name, mesh);
+    BodyReader reader(header, name, mesh, interrupter);
     const char* body = data + header.body_offset;
     const char* end = data + size;
     if (header.format == Format::Ascii) {

@@ -16,7 +16,7 @@ namespace hyvox::io {
 // colours, integer channels scaled to 0..1; u/v, s/t or texture_u/texture_v become UVs),
 // faces from the list "vertex_indices" (or "vertex_index") of the element "face",
 // fan-triangulated. Other elements and properties are skipped.
-Mesh readPly(const char* data, std::size_t size, const std::string& name);
+Mesh readPly(const char* data, std::size_t size, const std::string& name, Interrupter* interrupter = nullptr);
 
 // Whether the bytes start like a PLY file ("ply" and a line end), whatever the file's name.
 bool looksLikePly(const char* data, std::size_t size);

@@ -86,6 +86,11 @@ std::string statsToJson(const VoxelizeResult& result) {
     out << "  \"leaves\": " << number(s.leaves) << ",\n";
     out << "  \"tiles\": " << number(s.tiles) << ",\n";
     if (s.vdb_bytes) out << "  \"vdb_bytes\": " << number(s.vdb_bytes) << ",\n";
+    if (s.attribute_pieces) {
+        out << "  \"attribute_pieces\": " << number(s.attribute_pieces) << ",\n";
+        out << "  \"attribute_leaves_rounded\": " << number(s.attribute_leaves_rounded) << ",\n";
+        out << "  \"attribute_voxels_unreached\": " << number(s.attribute_voxels_unreached) << ",\n";
+    }
     out << "  \"triangles\": {\"input\": " << number(s.triangles_input) << ", \"used\": " << number(s.triangles_used)
         << ", \"degenerate\": " << number(s.triangles_degenerate) << "},\n";
     // Stage names are keys: Stats::addTiming sums a stage that ran again (once per tile).

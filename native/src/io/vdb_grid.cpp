@@ -10,6 +10,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <memory>
 #include <mutex>
 #include <ostream>
@@ -19,6 +20,7 @@
 #include "hyvox/version.h"
 #include "io/atomic_file.h"
 #include "io/interruptible_stream.h"
+#include "io/vdb_attribute_grids.h"
 
 namespace hyvox::io {
 namespace {
@@ -57,6 +59,7 @@ void initializeOpenVdb() {
 }
 
 openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid) {
+    checkVdbVoxelSize(grid.voxel_size);
     auto transform = openvdb::math::Transform::createLinearTransform(grid.voxel_size);
     const double h = 0.5 * grid.voxel_size;
     transform->postTranslate(openvdb::Vec3d(grid.origin[0] + h, grid.origin[1] + h, grid.origin[2] + h));
@@ -116,6 +119,7 @@ openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interru
     openvdb::GridPtrVec grids;
     grids.push_back(makeDensityGrid(result.grid, result.occupancy, interrupter));
     if (!result.counts.empty()) grids.push_back(makeCountGrid(result.grid, result.counts));
+    for (auto& grid : makeAttributeGrids(result)) grids.push_back(grid);
     for (auto& g : grids) addMetadata(*g, result);
     return grids;
 }

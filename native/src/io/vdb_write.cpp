@@ -6,6 +6,7 @@
 // them as OpenVDB objects, and the tests check that both agree.
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -20,8 +21,15 @@ namespace hyvox::io {
 
 std::uint64_t densityGridBytes(const SparseGrid& occupancy) { return fogGridMemUsageForLeaves(occupancy.leafCount()); }
 
+static std::uint64_t attributeGridBytes(const VoxelizeResult& result) {
+    const AttributeGrid& a = result.attributes;
+    const std::uint64_t per_voxel = (a.color ? 12 : 0) + (a.alpha ? 4 : 0) + (a.normal ? 12 : 0);
+    // Leaves dominate (512 values and a mask each); the nodes above add a few percent.
+    return std::uint64_t(double(result.occupancy.leafCount()) * 512.0 * double(per_voxel) * 1.05);
+}
+
 void checkGridBudget(const VoxelizeResult& result) {
-    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize();
+    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize() + attributeGridBytes(result);
     const VoxelizeOptions& options = result.stats.options;
     if (need > options.memoryBudgetBytes())
         throw ResourceError("the OpenVDB grid of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
@@ -72,8 +80,20 @@ CountLeaves countLeaves(const std::vector<VoxelCount>& counts) {
 
 namespace hyvox {
 
+void checkVdbVoxelSize(double voxel_size) {
+    // ScaleMap's own test (openvdb/math/Maps.h): |det| < 3 × Tolerance<double> (1e-15).
+    if (voxel_size * voxel_size * voxel_size >= 3e-15) return;
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "voxel size %.6g is below the smallest a .vdb file can hold (about 1.45e-05 world units: "
+                  "OpenVDB needs voxel_size^3 >= 3e-15); scale the mesh up (e.g. millimetres, not metres)",
+                  voxel_size);
+    throw InvalidInput(text);
+}
+
 VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, int threads, Interrupter* interrupter) {
     if (threads < 0) throw InvalidInput("writeVdb: threads must be >= 0 (0 = all cores)");
+    checkVdbVoxelSize(result.grid.voxel_size);
     io::checkGridBudget(result);
     const InterrupterRun run(interrupter, "hyvox write");
     VdbWriteReport report;
@@ -88,6 +108,7 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, i
         count.leaves = counts.leaves;
         grids.push_back(std::move(count));
     }
+    io::appendAttributeGrids(grids, result.occupancy, result.attributes);  // color, alpha, normal
     throwIfInterrupted(interrupter, 10);
     const io::VdbBytes file = io::serializeVdbGrids(result, grids, threads);
     report.grid_bytes = file.mem_usage;

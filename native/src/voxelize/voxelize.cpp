@@ -4,8 +4,11 @@
 #include "hyvox/voxelize.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <optional>
 #include <string>
 
+#include "attributes/tile_attributes.h"
 #include "core/backends.h"
 #include "core/stopwatch.h"
 #include "gl/device_limits.h"
@@ -32,6 +35,35 @@ void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options, con
                             " and about " + std::to_string(estimated_leaves) +
                             " leaves of surface), more than the memory budget of " +
                             std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size");
+}
+
+// The displacement runs in single precision in voxel units on the GPU: beyond 2^24 voxels a
+// point's position has no sub-voxel digits left (and 1e30 × a height overflows the grid's
+// float math). Refused up front, naming the options that set it.
+constexpr double kMaxDisplacementVoxels = double(1 << 24);
+
+void checkDisplacementReach(const GridSpec& grid, const VoxelizeOptions& options, const tiling::PointReach& reach) {
+    if (reach.fixed <= kMaxDisplacementVoxels) return;
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "displacement_strength %.6g with displacement_midlevel %.6g moves points up to %.6g voxels "
+                  "(%.6g world units); at most %.0f voxels can be computed: lower displacement_strength or bring displacement_midlevel into the image's height range",
+                  options.tessellation.displacement_strength, options.tessellation.displacement_midlevel,
+                  reach.fixed - 1.0, (reach.fixed - 1.0) * grid.voxel_size, kMaxDisplacementVoxels);
+    throw InvalidInput(text);
+}
+
+// A displaced surface none of whose points landed in the grid is not an empty result but a
+// displacement that carried everything away: say so instead of returning 0 voxels.
+void checkSomethingLanded(const Stats& stats, const tiling::PointReach& reach) {
+    if (reach.fixed <= 0 || !stats.tessellation) return;
+    const TessellationStats& t = *stats.tessellation;
+    if (t.points == 0 || t.points_clipped < t.points) return;
+    throw InvalidInput("every one of the " + std::to_string(t.points) +
+                       " displaced points left the grid (displacement moves points up to " +
+                       std::to_string(std::uint64_t(reach.fixed - 1.0)) +
+                       " voxels): lower displacement_strength, or give bounds or padding that hold the displaced "
+                       "surface");
 }
 
 // Progress over the whole run: the backends report each tile's own 0..100.
@@ -62,6 +94,16 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     }
 }
 
+// The attribute evaluator when options.attributes asks for any (the exact methods only).
+std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, const VoxelizeOptions& options) {
+    const AttributeSet wanted = parseAttributeSet(options.attributes);
+    if (!wanted.any()) return std::nullopt;
+    if (options.method != Method::Cpu && options.method != Method::Reference)
+        throw InvalidInput(std::string("attributes are computed by the cpu and reference methods; method ") +
+                           toString(options.method) + " does not compute them yet");
+    return std::optional<attributes::SurfaceValues>(std::in_place, mesh, wanted);
+}
+
 }  // namespace
 
 VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, Interrupter* interrupter) {
@@ -73,6 +115,8 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     stats.options = options;
     Stopwatch watch;
     const ValidatedMesh validated = validate(mesh);
+    const std::optional<attributes::SurfaceValues> surface = surfaceValues(mesh, options);
+    std::vector<attributes::AttributeLeaf> attribute_leaves;
     result.grid = makeGrid(validated.bounds, options.grid);
     const GridSpec& grid = result.grid;
     // The tessellation holds a tile's bits in one storage buffer (the hybrid methods cut theirs
@@ -81,6 +125,8 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
         options.method == Method::Tessellation ? gl::maxStorageBlockBytes(options.gl.device) : 0;
     const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
     checkMemoryBudget(grid, options, plan, validated);
+    const tiling::PointReach reach = tiling::pointReach(grid, options);
+    checkDisplacementReach(grid, options, reach);
     stats.addTiming("validate", watch.restart());
     throwIfInterrupted(interrupter, 0);
 
@@ -92,7 +138,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     result.occupancy = SparseGrid(grid.dims);
 
     std::vector<std::vector<std::uint32_t>> bins;
-    if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, tiling::pointReach(grid, options));
+    if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, reach);
     stats.addTiming("tiles", watch.restart());
 
     TileProgress progress(interrupter, plan.total());
@@ -105,8 +151,17 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
         progress.setTile(t);
         TileOutput out{BitGrid(tile.dims), {}};
         stats.addTiming("allocate", watch.restart());
-        runBackend(BackendJob{tile_mesh, validated, grid, tile, options, &progress}, out, stats);
+        const BackendJob job{tile_mesh, validated, grid, tile, options, &progress};
+        runBackend(job, out, stats);
         watch.restart();
+        if (surface) {
+            const auto counted = attributes::computeTileAttributes(job, out.bits, *surface,
+                                                                   options.method == Method::Reference, attribute_leaves);
+            stats.attribute_pieces += counted.pieces;
+            stats.attribute_voxels_unreached += counted.voxels_unreached;
+            stats.attribute_leaves_rounded += counted.leaves_rounded;
+            stats.addTiming("attributes", watch.restart());
+        }
         result.occupancy.addTile(out.bits, tile.offset);
         result.counts.insert(result.counts.end(), out.counts.begin(), out.counts.end());
         ++stats.tiles;
@@ -120,7 +175,12 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
         throwIfInterrupted(interrupter, int(100 * (t + 1) / plan.total()));
     }
     throwIfInterrupted(interrupter, 100);
+    checkSomethingLanded(stats, reach);
     result.occupancy.finish();
+    if (surface) {
+        result.attributes = surface->layout();
+        attributes::assembleAttributes(attribute_leaves, result.attributes);
+    }
     stats.voxel_count = result.occupancy.count();
     stats.leaves = result.occupancy.leafCount();
     stats.addTiming("count", watch.restart());

@@ -1,0 +1,61 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The price of colour: binary vs colour vs colour + normal voxelization, side by side in one run.
+
+    PYTHONPATH=build/python /usr/bin/python3 bench/bench_attributes.py [--resolutions 256,512]
+        [--repeats 3] [--methods cpu] [--mesh-dir ../shared/data/meshes]
+
+Sponza (vertex colours) and Spot (UVs + 1024² texture). Each line: median wall time of the
+voxelize() call (the .vdb is not written) for each variant, runs interleaved so a busy
+machine slows all alike, and the ratios to binary. Target (issue 12): cpu colour + normal at
+512 under 2x binary.
+"""
+import argparse
+import pathlib
+import statistics
+import time
+
+import numpy as np
+
+import hyvox
+
+
+def scenes(mesh_dir: pathlib.Path):
+    v, t, attrs = hyvox.read_mesh(mesh_dir / "sponza_crytek_262k_vcolor.ply.gz", attributes=True)
+    yield "sponza vertex colours", v, t, {"colors": (attrs["colors"][:, :3] * 255).round().astype(np.uint8)}
+    v, t, attrs = hyvox.read_mesh(mesh_dir / "spot_uv.ply", attributes=True)
+    yield "spot texture", v, t, {"uvs": attrs["uvs"], "texture": mesh_dir / "spot_texture.png"}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--mesh-dir", type=pathlib.Path,
+                        default=pathlib.Path(__file__).resolve().parents[2] / "shared" / "data" / "meshes")
+    parser.add_argument("--resolutions", default="256,512")
+    parser.add_argument("--methods", default="cpu")
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+    variants = {"binary": None, "color": "color", "color+normal": "color,normal"}
+    print(f"hyvox {hyvox.__version__}; median of {args.repeats} (seconds), ratio to binary")
+    print(f"{'scene':24} {'method':10} {'res':>5} " + " ".join(f"{name:>13}" for name in variants) +
+          f" {'color/bin':>10} {'c+n/bin':>8} {'voxels':>10}")
+    for name, v, t, sources in scenes(args.mesh_dir):
+        for method in args.methods.split(","):
+            for resolution in (int(r) for r in args.resolutions.split(",")):
+                times = {variant: [] for variant in variants}
+                voxels = 0
+                for _ in range(args.repeats):
+                    for variant, attributes in variants.items():
+                        extra = dict(sources, attributes=attributes) if attributes else {}
+                        start = time.perf_counter()
+                        grid = hyvox.voxelize(v, t, resolution=resolution, method=method, **extra)
+                        times[variant].append(time.perf_counter() - start)
+                        voxels = grid.voxel_count
+                median = {variant: statistics.median(values) for variant, values in times.items()}
+                print(f"{name:24} {method:10} {resolution:5} " +
+                      " ".join(f"{median[variant]:13.3f}" for variant in variants) +
+                      f" {median['color'] / median['binary']:10.2f} {median['color+normal'] / median['binary']:8.2f}"
+                      f" {voxels:10}", flush=True)
+
+
+if __name__ == "__main__":
+    main()

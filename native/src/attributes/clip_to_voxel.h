@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The part of a triangle inside one voxel's closed box, by Sutherland-Hodgman clipping in
+// double (voxel space: voxel (i,j,k) is [i, i+1] x [j, j+1] x [k, k+1]). Points on a face
+// count as inside, so a triangle lying on a voxel face belongs to both voxels, and a touch
+// (an edge or corner on the box) is kept with no area.
+#include <array>
+
+namespace hyvox::attributes {
+
+using Point = std::array<double, 3>;
+
+// Clipped areas below this count as a touch (voxel units²).
+constexpr double kTouchArea = 1e-14;
+// Weight added to every piece, so touches count (DESIGN.md, "Attributes").
+constexpr double kAreaEpsilon = 1e-6;
+
+struct ClippedPiece {
+    double area = 0;    // voxel units²
+    Point centroid{};   // the area centroid; a touch: the midpoint of its two farthest points
+};
+
+// A voxel's box grown by this on every side finds the touches that clipping to the exact box
+// loses to rounding (a triangle through a box corner: crossing points are rounded).
+constexpr double kTouchMargin = 1e-9;
+
+// A convex polygon being clipped (a triangle clipped by 6 half-spaces has at most 9 corners;
+// room to spare for the duplicate points exact touches leave).
+struct Polygon {
+    static constexpr int kMaxCorners = 16;
+    std::array<Point, kMaxCorners> p;
+    int n = 0;
+};
+
+// The part of `in` between the planes x[axis] = lo and x[axis] = hi (inclusive), clipped
+// at lo first: clipping a triangle slab by slab (x, then y, then z) gives exactly the
+// polygons clipTriangleToVoxel gives box by box.
+void clipSlab(const Polygon& in, Polygon& out, int axis, double lo, double hi);
+
+// Area and centroid of a clipped polygon (n > 0).
+void measurePiece(const Polygon& polygon, ClippedPiece& out);
+
+// False when the triangle misses the box (grown by `margin` voxels on every side).
+bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel, ClippedPiece& out,
+                         double margin = 0.0);
+
+// A triangle's set-up for all its pieces: barycentrics and its unit normal.
+class TriangleFrame {
+public:
+    explicit TriangleFrame(const std::array<Point, 3>& corners);
+    // Barycentrics of `point` (in the triangle's plane) clamped to [0, 1] and renormalised.
+    std::array<double, 3> barycentrics(const Point& point) const;
+    const Point& unitNormal() const { return unit_normal_; }
+
+private:
+    Point origin_, v0_, v1_;
+    double d00_, d01_, d11_, denom_;
+    Point unit_normal_;
+};
+
+}  // namespace hyvox::attributes

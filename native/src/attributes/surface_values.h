@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// A triangle's attributes at a point of it: colour from the first source the mesh has
+// (texture at the interpolated UV, vertex or corner colours, the material palette) and the
+// normal (per-face, interpolated per-vertex, or the geometric normal), laid out as the
+// channels of AttributeGrid.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "hyvox/attribute_grid.h"
+#include "hyvox/mesh.h"
+
+namespace hyvox::attributes {
+
+constexpr int kMaxChannels = 7;  // RGB, alpha, normal
+
+class SurfaceValues {
+public:
+    // Throws InvalidInput when colour is asked for and the mesh has no colour source, or a
+    // source is malformed (channels, material ids past the palette, non-finite values).
+    SurfaceValues(const MeshView& mesh, const AttributeSet& wanted);
+
+    // The grid's layout (values empty).
+    const AttributeGrid& layout() const { return layout_; }
+    int channels() const { return layout_.channels(); }
+
+    // The attributes of `triangle` at barycentrics `bary`; `unit_normal` is its geometric
+    // normal (used without per-vertex or per-face normals). Writes channels() values.
+    void evaluate(std::uint32_t triangle, const std::array<double, 3>& bary, const std::array<double, 3>& unit_normal,
+                  double* out) const;
+
+private:
+    enum class ColorSource { None, Texture, Colors, Palette };
+    const float* colorRow(std::uint32_t triangle, int corner) const;
+
+    const MeshView& mesh_;
+    AttributeGrid layout_;
+    ColorSource source_ = ColorSource::None;
+    int color_channels_ = 0;
+    int color_stride_ = 0;              // floats per row of colors_
+    std::vector<float> linear_colors_;  // sRGB-encoded colours decoded once
+    const float* colors_ = nullptr;     // linear: the mesh's or linear_colors_
+};
+
+}  // namespace hyvox::attributes

@@ -1,0 +1,276 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "attributes/tile_attributes.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "attributes/clip_to_voxel.h"
+
+namespace hyvox::attributes {
+namespace {
+
+using Corners = std::array<Point, 3>;
+using LeafMask = std::array<std::uint64_t, BitGrid::kWordsPerBrick>;
+
+struct VoxelRange {
+    std::array<int, 3> lo, hi;  // inclusive
+    bool empty() const { return lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2]; }
+};
+
+// The voxels whose closed box may meet the triangle: a coordinate exactly on a voxel
+// plane touches the voxels on both sides.
+VoxelRange candidates(const Corners& c, const std::array<int, 3>& clip_lo, const std::array<int, 3>& clip_hi) {
+    VoxelRange r;
+    for (std::size_t a = 0; a < 3; ++a) {
+        const double lo = std::min({c[0][a], c[1][a], c[2][a]}), hi = std::max({c[0][a], c[1][a], c[2][a]});
+        // Clamped before the conversion so far-away geometry cannot overflow an int.
+        const double lo_voxel = std::ceil(std::clamp(lo, -2.0, double(clip_hi[a]) + 2)) - 1;
+        const double hi_voxel = std::floor(std::clamp(hi, -2.0, double(clip_hi[a]) + 2));
+        r.lo[a] = std::max(int(lo_voxel), clip_lo[a]);
+        r.hi[a] = std::min(int(hi_voxel), clip_hi[a]);
+    }
+    return r;
+}
+
+Corners voxelCorners(const BackendJob& job, std::uint32_t triangle) {
+    return {job.grid.toVoxel(job.mesh.vertex(triangle, 0)), job.grid.toVoxel(job.mesh.vertex(triangle, 1)),
+            job.grid.toVoxel(job.mesh.vertex(triangle, 2))};
+}
+
+bool bitSet(const std::uint64_t* words, int v) { return (words[v >> 6] >> (v & 63)) & 1u; }
+
+// The tile's non-empty bricks, and (unless brute force) the triangles (positions in
+// job.mesh.usable, ascending) whose candidate voxels reach each.
+struct TileBins {
+    std::vector<std::size_t> occupied;                  // tile brick indices
+    std::vector<std::vector<std::uint32_t>> triangles;  // per occupied brick
+};
+
+TileBins binTriangles(const BackendJob& job, const BitGrid& bits, bool brute_force) {
+    const BrickLayout& bricks = bits.bricks();
+    const std::array<int, 3> tile_lo{job.tile.offset[0], job.tile.offset[1], job.tile.offset[2]};
+    const std::array<int, 3> tile_hi{job.tile.last(0), job.tile.last(1), job.tile.last(2)};
+    TileBins bins;
+    std::vector<std::int64_t> slot_of_brick(bricks.total(), -1);
+    for (std::size_t b = 0; b < bricks.total(); ++b) {
+        const std::uint64_t* words = bits.data() + b * BitGrid::kWordsPerBrick;
+        if (std::any_of(words, words + BitGrid::kWordsPerBrick, [](std::uint64_t w) { return w != 0; })) {
+            slot_of_brick[b] = std::int64_t(bins.occupied.size());
+            bins.occupied.push_back(b);
+        }
+    }
+    if (brute_force) return bins;
+    bins.triangles.resize(bins.occupied.size());
+    const auto& usable = job.mesh.usable;
+    for (std::uint32_t n = 0; n < usable.size(); ++n) {
+        const VoxelRange r = candidates(voxelCorners(job, usable[n]), tile_lo, tile_hi);
+        if (r.empty()) continue;
+        for (int bx = (r.lo[0] - tile_lo[0]) >> 3; bx <= (r.hi[0] - tile_lo[0]) >> 3; ++bx)
+            for (int by = (r.lo[1] - tile_lo[1]) >> 3; by <= (r.hi[1] - tile_lo[1]) >> 3; ++by)
+                for (int bz = (r.lo[2] - tile_lo[2]) >> 3; bz <= (r.hi[2] - tile_lo[2]) >> 3; ++bz) {
+                    const std::int64_t slot = slot_of_brick[bricks.index(bx, by, bz)];
+                    if (slot >= 0) bins.triangles[std::size_t(slot)].push_back(n);
+                }
+    }
+    return bins;
+}
+
+// One leaf's sums (channels, then the weight, per voxel in the leaf's bit order), filled
+// from triangles one after the other.
+class LeafAccumulator {
+public:
+    LeafAccumulator(const BackendJob& job, const SurfaceValues& values, bool brute_force)
+        : job_(job), values_(values), brute_force_(brute_force), stride_(std::size_t(values.channels() + 1)),
+          sums_(512 * stride_) {}
+
+    void start(const std::uint64_t* words, const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+        words_ = words;
+        lo_ = lo;
+        hi_ = hi;
+        std::fill(sums_.begin(), sums_.end(), 0.0);
+    }
+
+    // Every triangle's exact pieces; then, for set voxels none reached (a touch the method's
+    // test found and the clip lost to rounding), the pieces within kTouchMargin. True when
+    // that fallback ran.
+    template <typename Triangles>
+    bool accumulate(const Triangles& triangles) {
+        for (std::uint32_t n : triangles) addTriangle(n, words_, 0.0);
+        LeafMask lost{};
+        bool any_lost = false;
+        for (int v = 0; v < 512; ++v)
+            if (bitSet(words_, v) && !(weight(v) > 0)) {
+                lost[std::size_t(v >> 6)] |= std::uint64_t(1) << (v & 63);
+                any_lost = true;
+            }
+        if (any_lost)
+            for (std::uint32_t n : triangles) addTriangle(n, lost.data(), kTouchMargin);
+        return any_lost;
+    }
+
+    // The means of the set voxels in bit order, normals renormalised; counts voxels still unreached.
+    void writeMeans(std::vector<float>& out, std::uint64_t& unreached) const {
+        const AttributeGrid& layout = values_.layout();
+        const int channels = values_.channels();
+        for (int v = 0; v < 512; ++v) {
+            if (!bitSet(words_, v)) continue;
+            const double* sum = &sums_[std::size_t(v) * stride_];
+            const double w = weight(v);
+            if (!(w > 0)) ++unreached;
+            float mean[kMaxChannels];
+            for (int c = 0; c < channels; ++c) mean[c] = w > 0 ? float(sum[c] / w) : 0.0f;
+            if (layout.normal) {
+                // The direction of the summed normals (the weight cancels), zero stays zero.
+                const double* n = sum + layout.normalOffset();
+                const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+                for (int a = 0; a < 3; ++a) mean[layout.normalOffset() + a] = length > 0 ? float(n[a] / length) : 0.0f;
+            }
+            out.insert(out.end(), mean, mean + channels);
+        }
+    }
+
+    std::uint64_t pieces() const { return pieces_; }
+
+private:
+    double weight(int v) const { return sums_[std::size_t(v) * stride_ + stride_ - 1]; }
+
+    void add(std::uint32_t triangle, const TriangleFrame& frame, int i, int j, int k, const ClippedPiece& piece) {
+        ++pieces_;
+        double value[kMaxChannels];
+        values_.evaluate(triangle, frame.barycentrics(piece.centroid), frame.unitNormal(), value);
+        const double w = piece.area + kAreaEpsilon;
+        double* voxel = &sums_[std::size_t(((i & 7) << 6) | ((j & 7) << 3) | (k & 7)) * stride_];
+        for (std::size_t c = 0; c + 1 < stride_; ++c) voxel[c] += w * value[c];
+        voxel[stride_ - 1] += w;
+    }
+
+    // The triangle's pieces in the voxels of `mask`, clipped to their boxes grown by `margin`.
+    // The reference clips box by box; cpu clips slab by slab (x, then y, then z), sharing
+    // the first clips among a row's voxels: the same planes in the same order, so the same
+    // pieces.
+    void addTriangle(std::uint32_t n, const std::uint64_t* mask, double margin) {
+        const std::uint32_t triangle = job_.mesh.usable[n];
+        const Corners corners = voxelCorners(job_, triangle);
+        const VoxelRange r = candidates(corners, lo_, hi_);
+        if (r.empty()) return;
+        const TriangleFrame frame(corners);
+        ClippedPiece piece;
+        if (brute_force_) {
+            for (int i = r.lo[0]; i <= r.hi[0]; ++i)
+                for (int j = r.lo[1]; j <= r.hi[1]; ++j)
+                    for (int k = r.lo[2]; k <= r.hi[2]; ++k)
+                        if (bitSet(mask, ((i & 7) << 6) | ((j & 7) << 3) | (k & 7)) &&
+                            clipTriangleToVoxel(corners, {i, j, k}, piece, margin))
+                            add(triangle, frame, i, j, k, piece);
+            return;
+        }
+        Polygon whole, x_slab, xy_column, box;
+        whole.n = 3;
+        std::copy(corners.begin(), corners.end(), whole.p.begin());
+        for (int i = r.lo[0]; i <= r.hi[0]; ++i) {
+            const std::uint64_t word = mask[i & 7];
+            if (!word) continue;
+            clipSlab(whole, x_slab, 0, i - margin, i + 1 + margin);
+            if (x_slab.n == 0) continue;
+            for (int j = r.lo[1]; j <= r.hi[1]; ++j) {
+                const std::uint64_t row = (word >> ((j & 7) << 3)) & 0xffu;
+                if (!row) continue;
+                clipSlab(x_slab, xy_column, 1, j - margin, j + 1 + margin);
+                if (xy_column.n == 0) continue;
+                for (int k = r.lo[2]; k <= r.hi[2]; ++k) {
+                    if (!((row >> (k & 7)) & 1u)) continue;
+                    clipSlab(xy_column, box, 2, k - margin, k + 1 + margin);
+                    if (box.n == 0) continue;
+                    measurePiece(box, piece);
+                    add(triangle, frame, i, j, k, piece);
+                }
+            }
+        }
+    }
+
+    const BackendJob& job_;
+    const SurfaceValues& values_;
+    const bool brute_force_;
+    const std::size_t stride_;
+    std::vector<double> sums_;
+    const std::uint64_t* words_ = nullptr;
+    std::array<int, 3> lo_{}, hi_{};
+    std::uint64_t pieces_ = 0;
+};
+
+// 0, 1, ..., count - 1: the brute force's triangle list.
+struct AllTriangles {
+    struct Iterator {
+        std::uint32_t n;
+        std::uint32_t operator*() const { return n; }
+        Iterator& operator++() {
+            ++n;
+            return *this;
+        }
+        bool operator!=(const Iterator& other) const { return n != other.n; }
+    };
+    std::uint32_t count;
+    Iterator begin() const { return {0}; }
+    Iterator end() const { return {count}; }
+};
+
+}  // namespace
+
+TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& bits, const SurfaceValues& values,
+                                          bool brute_force, std::vector<AttributeLeaf>& out) {
+    const TileBins bins = binTriangles(job, bits, brute_force);
+    const BrickLayout& tile_bricks = bits.bricks();
+    const BrickLayout grid_bricks = job.grid.bricks();
+    const std::array<std::int32_t, 3>& offset = job.tile.offset;
+    const std::size_t first = out.size();
+    out.resize(first + bins.occupied.size());
+    std::atomic<std::uint64_t> pieces{0}, unreached{0}, rounded{0};
+    const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bins.occupied.size(), 4), [&](const auto& range) {
+            throwIfInterrupted(job.interrupter);
+            LeafAccumulator leaf(job, values, brute_force);
+            std::uint64_t local_unreached = 0, local_rounded = 0;
+            for (std::size_t s = range.begin(); s != range.end(); ++s) {
+                const std::size_t b = bins.occupied[s];
+                const std::array<std::int32_t, 3> at = tile_bricks.at(b);
+                std::array<int, 3> lo, hi;
+                for (std::size_t a = 0; a < 3; ++a) {
+                    lo[a] = offset[a] + 8 * at[a];
+                    hi[a] = std::min(lo[a] + 7, job.tile.last(int(a)));
+                }
+                leaf.start(bits.data() + b * BitGrid::kWordsPerBrick, lo, hi);
+                const bool fell_back = brute_force ? leaf.accumulate(AllTriangles{std::uint32_t(job.mesh.usable.size())})
+                                                   : leaf.accumulate(bins.triangles[s]);
+                local_rounded += fell_back;
+                AttributeLeaf& result = out[first + s];
+                result.brick = grid_bricks.index((offset[0] >> 3) + at[0], (offset[1] >> 3) + at[1], (offset[2] >> 3) + at[2]);
+                leaf.writeMeans(result.values, local_unreached);
+            }
+            pieces.fetch_add(leaf.pieces(), std::memory_order_relaxed);
+            unreached.fetch_add(local_unreached, std::memory_order_relaxed);
+            rounded.fetch_add(local_rounded, std::memory_order_relaxed);
+        });
+    });
+    return {pieces.load(), unreached.load(), rounded.load()};
+}
+
+void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid) {
+    std::sort(leaves.begin(), leaves.end(), [](const AttributeLeaf& a, const AttributeLeaf& b) { return a.brick < b.brick; });
+    std::size_t total = 0;
+    for (const AttributeLeaf& leaf : leaves) total += leaf.values.size();
+    grid.values.clear();
+    grid.values.reserve(total);
+    for (AttributeLeaf& leaf : leaves) {
+        grid.values.insert(grid.values.end(), leaf.values.begin(), leaf.values.end());
+        std::vector<float>().swap(leaf.values);
+    }
+}
+
+}  // namespace hyvox::attributes

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// Attribute voxels of one tile: for every voxel a method set, the weighted mean over the
+// triangles whose closed box meets it (DESIGN.md, "Attributes"). Sums and weights are
+// accumulated in double per 8³ leaf, one leaf per task, each leaf's triangles in the
+// mesh's order: the result does not depend on the thread count.
+#include <cstdint>
+#include <vector>
+
+#include "attributes/surface_values.h"
+#include "core/backends.h"
+
+namespace hyvox::attributes {
+
+// The values of one leaf's set voxels (ascending bit order), channels() each.
+struct AttributeLeaf {
+    std::uint64_t brick;  // BrickLayout::index of the whole grid
+    std::vector<float> values;
+};
+
+struct TileAttributeCounts {
+    std::uint64_t pieces = 0;          // (triangle, voxel) pairs clipped to a non-empty piece
+    std::uint64_t voxels_unreached = 0;  // set voxels no clipped piece reached, even with the margin (value 0)
+    std::uint64_t leaves_rounded = 0;    // leaves where the kTouchMargin fallback ran
+};
+
+// brute_force (the reference method): every leaf scans all the tile's triangles instead of
+// the ones binned to it.
+TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& bits, const SurfaceValues& values,
+                                          bool brute_force, std::vector<AttributeLeaf>& out);
+
+// Puts the leaves of all tiles in brick order (the order of SparseGrid::finish) and
+// concatenates their values into grid.values.
+void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid);
+
+}  // namespace hyvox::attributes
