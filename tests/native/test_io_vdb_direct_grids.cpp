@@ -13,6 +13,7 @@
 #include <string>
 
 #include "hyvox/errors.h"
+#include "hyvox/vdb.h"
 #include "io/vdb_direct_writer.h"
 #include "io/vdb_grid.h"
 #include "support/temp_dir.h"
@@ -205,21 +206,6 @@ TEST(IoVdbDirectGrids, TilesOfOtherValuesAndLevelsEqualOpenVdbs) {
     expectSameGrids(*direct_vectors, *read_reference_vectors);
 }
 
-namespace {
-
-// hyvox::AttributeGrid's shape (the attribute voxels' result): flags, channels, offsets.
-struct Attributes {
-    bool color = true, alpha = true, normal = true;
-    std::vector<float> values;
-    int channels() const { return 7; }
-    bool empty() const { return false; }
-    int colorOffset() const { return 0; }
-    int alphaOffset() const { return 3; }
-    int normalOffset() const { return 4; }
-};
-
-}  // namespace
-
 TEST(IoVdbDirectGrids, AttributeGridsEqualOpenVdbs) {
     // Several upper nodes; random values per voxel, in coords() order, 7 channels each.
     hyvox::VoxelizeResult r = makeResult({5000, 300, 140}, 0.2, 11, {40, 30, 20});
@@ -227,13 +213,10 @@ TEST(IoVdbDirectGrids, AttributeGridsEqualOpenVdbs) {
     std::uniform_int_distribution<int> x(0, 4999), y(0, 299), z(0, 139);
     for (int n = 0; n < 500; ++n) r.occupancy.set(x(rng), y(rng), z(rng));
     const auto coords = r.occupancy.coords();
-    Attributes attributes;
+    r.attributes.color = r.attributes.alpha = r.attributes.normal = true;
+    ASSERT_EQ(r.attributes.channels(), 7);
     std::uniform_real_distribution<float> value(-2.0f, 2.0f);
-    for (std::size_t n = 0; n < coords.size() * 7; ++n) attributes.values.push_back(value(rng));
-
-    std::vector<VdbGrid> grids{hyvox::io::densityGrid(r.occupancy)};
-    hyvox::io::appendAttributeGrids(grids, r.occupancy, attributes);
-    ASSERT_EQ(grids.size(), 4u);
+    for (std::size_t n = 0; n < coords.size() * 7; ++n) r.attributes.values.push_back(value(rng));
 
     // OpenVDB, voxel by voxel through an accessor.
     auto density = referenceShell(r);
@@ -246,7 +229,7 @@ TEST(IoVdbDirectGrids, AttributeGridsEqualOpenVdbs) {
         grid->setVectorType(type);
         openvdb::Vec3SGrid::Accessor accessor(grid->tree());
         for (std::size_t v = 0; v < coords.size(); ++v) {
-            const float* c = &attributes.values[v * 7 + std::size_t(offset)];
+            const float* c = &r.attributes.values[v * 7 + std::size_t(offset)];
             accessor.setValue(openvdb::Coord(coords[v][0], coords[v][1], coords[v][2]), openvdb::Vec3s(c[0], c[1], c[2]));
         }
         return grid;
@@ -259,30 +242,38 @@ TEST(IoVdbDirectGrids, AttributeGridsEqualOpenVdbs) {
     alpha->setName("alpha");
     alpha->setTransform(density->transform().copy());
     for (std::size_t v = 0; v < coords.size(); ++v)
-        alpha->tree().setValue(openvdb::Coord(coords[v][0], coords[v][1], coords[v][2]), attributes.values[v * 7 + 3]);
+        alpha->tree().setValue(openvdb::Coord(coords[v][0], coords[v][1], coords[v][2]), r.attributes.values[v * 7 + 3]);
     {
         openvdb::FloatGrid::Accessor accessor(density->tree());
         for (const auto& ijk : coords) accessor.setValue(openvdb::Coord(ijk[0], ijk[1], ijk[2]), 1.0f);
     }
 
+    // writeVdb (the direct writer) against the voxel-by-voxel grids written by OpenVDB, and
+    // against makeGrids (OpenVDB's own attribute grids, the Python module's path).
     TempDir dir;
-    const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string();
-    writeFile(direct_path, hyvox::io::serializeVdbGrids(r, grids, 0));
+    const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string(),
+                      made_path = (dir.path / "made.vdb").string();
+    hyvox::writeVdb(r, direct_path);
     hyvox::io::writeGridsAtomic({density, color, alpha, normal}, reference_path);
-    for (const char* name : {"color", "normal"}) {
-        SCOPED_TRACE(name);
-        const auto direct = readGrid<openvdb::Vec3SGrid>(direct_path, name);
-        const auto reference = readGrid<openvdb::Vec3SGrid>(reference_path, name);
-        ASSERT_TRUE(direct && reference);
-        EXPECT_EQ(reference->activeVoxelCount(), coords.size());
-        expectSameGrids(*direct, *reference);
-    }
-    for (const char* name : {"density", "alpha"}) {
-        SCOPED_TRACE(name);
-        const auto direct = readGrid<openvdb::FloatGrid>(direct_path, name);
-        const auto reference = readGrid<openvdb::FloatGrid>(reference_path, name);
-        ASSERT_TRUE(direct && reference);
-        expectSameGrids(*direct, *reference);
+    const openvdb::GridPtrVec made = hyvox::io::makeGrids(r);
+    hyvox::io::writeGridsAtomic(openvdb::GridCPtrVec(made.begin(), made.end()), made_path);
+    for (const std::string& other : {reference_path, made_path}) {
+        SCOPED_TRACE(other);
+        for (const char* name : {"color", "normal"}) {
+            SCOPED_TRACE(name);
+            const auto direct = readGrid<openvdb::Vec3SGrid>(direct_path, name);
+            const auto reference = readGrid<openvdb::Vec3SGrid>(other, name);
+            ASSERT_TRUE(direct && reference);
+            EXPECT_EQ(reference->activeVoxelCount(), coords.size());
+            expectSameGrids(*direct, *reference);
+        }
+        for (const char* name : {"density", "alpha"}) {
+            SCOPED_TRACE(name);
+            const auto direct = readGrid<openvdb::FloatGrid>(direct_path, name);
+            const auto reference = readGrid<openvdb::FloatGrid>(other, name);
+            ASSERT_TRUE(direct && reference);
+            expectSameGrids(*direct, *reference);
+        }
     }
 }
 

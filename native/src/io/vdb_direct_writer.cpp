@@ -528,6 +528,20 @@ VdbGrid attributeGrid(const SparseGrid& occupancy, const float* values, int chan
     return grid;
 }
 
+void appendAttributeGrids(std::vector<VdbGrid>& grids, const SparseGrid& occupancy, const AttributeGrid& attributes) {
+    if (attributes.empty()) return;
+    const float* values = attributes.values.data();
+    const int channels = attributes.channels();
+    if (attributes.color)
+        grids.push_back(attributeGrid(occupancy, values, channels, attributes.colorOffset(), "color",
+                                      VdbValueType::Vec3f, "invariant"));
+    if (attributes.alpha)
+        grids.push_back(attributeGrid(occupancy, values, channels, attributes.alphaOffset(), "alpha", VdbValueType::Float));
+    if (attributes.normal)
+        grids.push_back(attributeGrid(occupancy, values, channels, attributes.normalOffset(), "normal",
+                                      VdbValueType::Vec3f, "covariant normalize"));
+}
+
 std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves) {
     // The leaves dominate; the internal nodes above them add a few percent at most.
     return std::uint64_t(double(leaves) * double(kFloatTreeBytes.leaf) * 1.05);

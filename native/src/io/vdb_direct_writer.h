@@ -107,25 +107,10 @@ VdbGrid densityGrid(const Occupancy& occupancy);
 VdbGrid attributeGrid(const SparseGrid& occupancy, const float* values, int channels, int offset, std::string name,
                       VdbValueType type, std::string vector_type = "");
 
-// The attribute voxels' grids, as OpenVDB builds them: "color" (Vec3f, vector type
-// invariant: a colour, which Blender reads as a colour attribute), "alpha" (float), "normal"
-// (Vec3f, covariant normalize). `Attributes`: hyvox::AttributeGrid (color, alpha, normal
-// flags, channels(), the offsets and values), a template so this header needs no type
-// that only the attribute voxels bring.
-template <typename Attributes>
-void appendAttributeGrids(std::vector<VdbGrid>& grids, const SparseGrid& occupancy, const Attributes& attributes) {
-    if (attributes.empty()) return;
-    const float* values = attributes.values.data();
-    const int channels = attributes.channels();
-    if (attributes.color)
-        grids.push_back(attributeGrid(occupancy, values, channels, attributes.colorOffset(), "color",
-                                      VdbValueType::Vec3f, "invariant"));
-    if (attributes.alpha)
-        grids.push_back(attributeGrid(occupancy, values, channels, attributes.alphaOffset(), "alpha", VdbValueType::Float));
-    if (attributes.normal)
-        grids.push_back(attributeGrid(occupancy, values, channels, attributes.normalOffset(), "normal",
-                                      VdbValueType::Vec3f, "covariant normalize"));
-}
+// The attribute voxels' grids (result.attributes), as makeGrids builds them with OpenVDB:
+// "color" (Vec3f, vector type invariant: a colour, which Blender reads as a colour through an
+// Attribute node), "alpha" (float), "normal" (Vec3f, covariant normalize); none when empty.
+void appendAttributeGrids(std::vector<VdbGrid>& grids, const SparseGrid& occupancy, const AttributeGrid& attributes);
 
 // An upper estimate of the memory OpenVDB would need for a float grid of `leaves` leaves.
 std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves);
