@@ -7,6 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libopenvdb-dev libboost-dev libimath-dev libtbb-dev zlib1g-dev   # OpenVDB headers need Boost
+  libblosc-dev                                                      # .vdb leaf compression (OpenVDB's own)
   libassimp-dev libpng-dev                                          # mesh and image reading
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri              # headless GL (Mesa llvmpipe)
   pybind11-dev python3-dev python3-numpy python3-pytest python3-openvdb python3-pil  # PIL: the attribute oracle reads textures

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// OpenVDB's file layout for a float 5-4-3 tree, written without OpenVDB (see the header).
+// OpenVDB's file layout for float and Vec3f 5-4-3 trees, written without OpenVDB (see the header).
 // Byte order and field order follow openvdb::io::Archive::write (file version 224): the
 // header, the file metadata, the grid descriptor with its stream offsets, the grid's
 // compression flags, its metadata (sorted by name, as a MetaMap), its transform, the tree
@@ -7,6 +7,7 @@
 // leaf buffers. Every integer is little-endian, as OpenVDB writes them on x86 and ARM.
 #include "io/vdb_direct_writer.h"
 
+#include <blosc.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -21,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "hyvox/errors.h"
 #include "hyvox/version.h"
 
 namespace hyvox::io {
@@ -29,7 +31,10 @@ namespace {
 constexpr std::int64_t kMagic = 0x56444220;  // OPENVDB_MAGIC
 constexpr std::uint32_t kFileVersion = 224;  // OPENVDB_FILE_VERSION of OpenVDB 10
 constexpr std::uint32_t kLibraryMajor = 10, kLibraryMinor = 0;
-constexpr std::uint32_t kCompressActiveMask = 0x2;  // io::COMPRESS_ACTIVE_MASK
+// io::COMPRESS_ACTIVE_MASK | io::COMPRESS_BLOSC, OpenVDB 10's default for every grid: each node
+// stores its active values only, as one blosc block.
+constexpr std::uint32_t kCompressActiveMask = 0x2, kCompressBlosc = 0x4;
+constexpr std::uint32_t kCompression = kCompressActiveMask | kCompressBlosc;
 constexpr std::int8_t kNoMaskOrInactiveVals = 0;    // every inactive value is the background
 
 // Node geometry of Tree_float_5_4_3: a leaf spans 8 voxels per axis, a lower internal node
@@ -41,13 +46,35 @@ constexpr std::size_t kLowerWords = (std::size_t(1) << (3 * kLowerLog2)) / 64;  
 constexpr std::size_t kUpperWords = (std::size_t(1) << (3 * kUpperLog2)) / 64;  // 512
 constexpr std::size_t kLeafMaskBytes = 8 * sizeof(std::uint64_t);
 
-// OpenVDB's memUsage() terms for this tree type (values checked against OpenVDB by a test):
-// the empty tree and root, each leaf (node + 512 floats), each internal node (its table of
-// 8-byte unions, two masks and an origin).
-constexpr std::uint64_t kEmptyTreeBytes = 1304;
-constexpr std::uint64_t kLeafBytes = 96 + 512 * sizeof(float);
-constexpr std::uint64_t kLowerBytes = 4096 * 8 + 2 * 512 + 12;
-constexpr std::uint64_t kUpperBytes = 32768 * 8 + 2 * 4096 + 12;
+constexpr int kLowerSlots = 1 << (3 * kLowerLog2), kUpperSlots = 1 << (3 * kUpperLog2);
+
+// OpenVDB's memUsage() terms for these tree types (checked against OpenVDB by the tests):
+// the empty tree and root, each leaf (node + 512 values), each internal node (its table of
+// unions of a child pointer and a value, two masks and an origin).
+struct TreeBytes {
+    std::uint64_t empty_tree, leaf, lower, upper;
+};
+constexpr TreeBytes kFloatTreeBytes{1304, 96 + 512 * 4, 4096 * 8 + 2 * 512 + 12, 32768 * 8 + 2 * 4096 + 12};
+constexpr TreeBytes kVec3fTreeBytes{1320, 96 + 512 * 12, 4096 * 16 + 2 * 512 + 12, 32768 * 16 + 2 * 4096 + 12};
+const TreeBytes& treeBytes(VdbValueType type) { return type == VdbValueType::Float ? kFloatTreeBytes : kVec3fTreeBytes; }
+
+// io::writeData with COMPRESS_BLOSC (io::bloscToStream): the compressed size as an int64 and
+// blosc's block, compressed with OpenVDB's settings (level 9, byte shuffle over 4-byte
+// words, LZ4, one block, one thread), so the bytes are the ones OpenVDB writes; a negative
+// size and the raw bytes where blosc cannot compress. Thread-safe (blosc's _ctx API).
+void appendBlosc(std::string& out, const void* data, std::size_t bytes) {
+    const std::size_t at = out.size();
+    out.resize(at + 8 + bytes + BLOSC_MAX_OVERHEAD);
+    const int packed = blosc_compress_ctx(9, BLOSC_SHUFFLE, sizeof(float), bytes, data, &out[at + 8],
+                                          bytes + BLOSC_MAX_OVERHEAD, BLOSC_LZ4_COMPNAME, bytes, 1);
+    std::int64_t size = packed;
+    if (packed <= 0) {
+        size = -std::int64_t(bytes);
+        if (bytes) std::memcpy(&out[at + 8], data, bytes);
+    }
+    std::memcpy(&out[at], &size, 8);
+    out.resize(at + 8 + std::size_t(packed > 0 ? packed : std::int64_t(bytes)));
+}
 
 // Appends to a growing byte string (the small parts: header, metadata, topology) that
 // will start at file position `base`: size() is the file position of the next byte.
@@ -64,6 +91,7 @@ public:
         pod(std::uint32_t(text.size()));
         out_ += text;
     }
+    void blosc(const void* data, std::size_t bytes) { appendBlosc(out_, data, bytes); }
     std::size_t size() const { return base_ + out_.size(); }
     const std::string& str() const { return out_; }
     template <typename T>
@@ -103,12 +131,16 @@ std::string randomUuid() {
     return uuid;
 }
 
-// A leaf's place in the tree's write order: upper node (by origin, as the root's std::map of
-// Coords sorts them), then lower node and leaf by their offsets in the parents' tables.
+// A leaf's or tile's place in the tree's write order: upper node (by origin, as the root's
+// std::map of Coords sorts them), then the lower node's offset in the upper node's table and
+// the leaf's in the lower node's. Level-2 tiles take offset 0 in their lower slot, root
+// tiles (level 3) slot 0.
 struct Placed {
     std::uint64_t upper;  // x, y, z of the upper node, 21 bits each (grid coordinates are >= 0)
-    std::uint32_t inner;  // lower node's offset in the upper (15 bits) and leaf's in the lower (12)
-    const FogLeaf* leaf;
+    std::uint32_t lower;  // offset in the upper node's table (15 bits)
+    std::uint32_t leaf;   // offset in the lower node's table (12 bits)
+    int level;            // 0: a leaf, else the tile's level
+    std::size_t index;    // into the grid's leaves (level 0) or the tile values
 };
 
 int tableOffset(const std::array<std::int32_t, 3>& at, int node_total, int child_total, int log2) {
@@ -117,56 +149,161 @@ int tableOffset(const std::array<std::int32_t, 3>& at, int node_total, int child
            ((at[2] & mask) >> child_total);
 }
 
-std::vector<Placed> placeLeaves(const std::vector<FogLeaf>& leaves) {
-    std::vector<Placed> placed;
-    placed.reserve(leaves.size());
-    for (const FogLeaf& leaf : leaves) {
-        const std::array<std::int32_t, 3>& o = leaf.origin;
-        Placed p;
-        p.upper = (std::uint64_t(o[0] >> kUpperTotal) << 42) | (std::uint64_t(o[1] >> kUpperTotal) << 21) |
-                  std::uint64_t(o[2] >> kUpperTotal);
-        p.inner = std::uint32_t(tableOffset(o, kUpperTotal, kLowerTotal, kUpperLog2)) << 12 |
-                  std::uint32_t(tableOffset(o, kLowerTotal, kLeafLog2, kLowerLog2));
-        p.leaf = &leaf;
-        placed.push_back(p);
-    }
-    std::sort(placed.begin(), placed.end(), [](const Placed& a, const Placed& b) {
-        return a.upper != b.upper ? a.upper < b.upper : a.inner < b.inner;
-    });
-    return placed;
+Placed place(const std::array<std::int32_t, 3>& o, int level, std::size_t index) {
+    static const int kSideLog2[] = {kLeafLog2, kLeafLog2, kLowerTotal, kUpperTotal};
+    for (int a = 0; a < 3; ++a)
+        if (o[a] < 0 || (o[a] & ((1 << kSideLog2[level]) - 1)) != 0)
+            throw InvalidInput("vdb writer: a " + std::string(level ? "tile" : "leaf") + " at (" + std::to_string(o[0]) +
+                               ", " + std::to_string(o[1]) + ", " + std::to_string(o[2]) +
+                               ") is below 0 or off its node lattice");
+    Placed p;
+    p.upper = (std::uint64_t(o[0] >> kUpperTotal) << 42) | (std::uint64_t(o[1] >> kUpperTotal) << 21) |
+              std::uint64_t(o[2] >> kUpperTotal);
+    p.lower = level >= 3 ? 0 : std::uint32_t(tableOffset(o, kUpperTotal, kLowerTotal, kUpperLog2));
+    p.leaf = level >= 2 ? 0 : std::uint32_t(tableOffset(o, kLowerTotal, kLeafLog2, kLowerLog2));
+    p.level = level;
+    p.index = index;
+    return p;
 }
 
-// Grid::memUsage() of the tree holding these leaves.
-std::uint64_t memUsage(const std::vector<Placed>& placed) {
-    std::uint64_t uppers = 0, lowers = 0;
-    for (std::size_t n = 0; n < placed.size(); ++n) {
-        const bool new_upper = n == 0 || placed[n].upper != placed[n - 1].upper;
+std::array<std::int32_t, 3> upperOrigin(std::uint64_t upper) {
+    const std::uint64_t bits = (std::uint64_t(1) << 21) - 1;
+    return {std::int32_t((upper >> 42) << kUpperTotal), std::int32_t(((upper >> 21) & bits) << kUpperTotal),
+            std::int32_t((upper & bits) << kUpperTotal)};
+}
+
+bool inSlot(const Placed& a, const Placed& b) { return a.upper == b.upper && a.lower == b.lower && a.leaf == b.leaf; }
+bool writeOrder(const Placed& a, const Placed& b) {
+    if (a.upper != b.upper) return a.upper < b.upper;
+    if (a.lower != b.lower) return a.lower < b.lower;
+    return a.leaf != b.leaf ? a.leaf < b.leaf : a.level > b.level;
+}
+
+// The tree of one grid, in write order: leaves and tiles (tiles merged upwards as prune()
+// merges them), with the tiles' values.
+struct PlacedTree {
+    std::vector<Placed> items;
+    std::vector<std::array<float, 3>> tile_values;  // by Placed::index for tiles
+};
+
+// Whether `count` consecutive items (from `first`) are all tiles of `level` with one value.
+bool mergeable(const PlacedTree& tree, std::size_t first, std::size_t count, int level) {
+    const std::vector<Placed>& items = tree.items;
+    for (std::size_t n = first; n < first + count; ++n)
+        if (items[n].level != level || tree.tile_values[items[n].index] != tree.tile_values[items[first].index]) return false;
+    return true;
+}
+
+// Where the items of one node (a lower node for level 1, an upper one for level 2) are
+// tiles of `level` with one value filling the whole node, they become one tile of the level
+// above, as Tree::prune() makes them.
+void mergeTiles(PlacedTree& tree, int level) {
+    const int slots = level == 1 ? kLowerSlots : kUpperSlots;
+    std::vector<Placed> merged;
+    merged.reserve(tree.items.size());
+    std::size_t n = 0;
+    const std::vector<Placed>& items = tree.items;
+    while (n < items.size()) {
+        std::size_t end = n;
+        while (end < items.size() && items[end].upper == items[n].upper && (level == 2 || items[end].lower == items[n].lower))
+            ++end;
+        if (end - n == std::size_t(slots) && mergeable(tree, n, end - n, level)) {
+            Placed up = items[n];
+            up.level = level + 1;
+            up.leaf = 0;
+            if (level == 2) up.lower = 0;
+            merged.push_back(up);
+        } else {
+            merged.insert(merged.end(), items.begin() + long(n), items.begin() + long(end));
+        }
+        n = end;
+    }
+    tree.items.swap(merged);
+}
+
+PlacedTree placeTree(const VdbGrid& grid) {
+    PlacedTree tree;
+    tree.items.reserve(grid.leaves.size() + grid.tiles.size());
+    for (std::size_t n = 0; n < grid.leaves.size(); ++n) tree.items.push_back(place(grid.leaves[n].origin, 0, n));
+    for (std::size_t n = 0; n < grid.tiles.size(); ++n) {
+        const VdbTile& tile = grid.tiles[n];
+        if (tile.level < 1 || tile.level > 3) throw InvalidInput("vdb writer: a tile's level must be 1, 2 or 3");
+        tree.items.push_back(place(tile.origin, tile.level, n));
+        std::array<float, 3> value = tile.value;
+        if (grid.type == VdbValueType::Float) value[1] = value[2] = 0;  // one channel
+        tree.tile_values.push_back(value);
+    }
+    std::sort(tree.items.begin(), tree.items.end(), writeOrder);
+    // Overlaps: two items in one slot, or a tile over a node that holds other items (such a
+    // tile sorts first among them).
+    for (std::size_t n = 1; n < tree.items.size(); ++n) {
+        const Placed &a = tree.items[n - 1], &b = tree.items[n];
+        const bool overlap = inSlot(a, b) || (a.upper == b.upper && (a.level == 3 || (a.level == 2 && a.lower == b.lower)));
+        if (overlap) throw InvalidInput("vdb writer: leaves or tiles overlap");
+    }
+    mergeTiles(tree, 1);
+    mergeTiles(tree, 2);
+    return tree;
+}
+
+// Grid::memUsage() of the tree: its leaves and the internal nodes that hold leaves or tiles.
+std::uint64_t memUsage(const PlacedTree& tree, VdbValueType type) {
+    const TreeBytes& bytes = treeBytes(type);
+    std::uint64_t leaves = 0, uppers = 0, lowers = 0;
+    const std::vector<Placed>& items = tree.items;
+    for (std::size_t n = 0; n < items.size(); ++n) {
+        const Placed& p = items[n];
+        if (p.level == 3) continue;
+        leaves += p.level == 0;
+        const bool new_upper = n == 0 || items[n - 1].upper != p.upper || items[n - 1].level == 3;
         uppers += new_upper;
-        lowers += new_upper || (placed[n].inner >> 12) != (placed[n - 1].inner >> 12);
+        if (p.level < 2) lowers += new_upper || items[n - 1].lower != p.lower || items[n - 1].level == 2;
     }
-    return kEmptyTreeBytes + placed.size() * kLeafBytes + lowers * kLowerBytes + uppers * kUpperBytes;
+    return bytes.empty_tree + leaves * bytes.leaf + lowers * bytes.lower + uppers * bytes.upper;
 }
 
-std::uint64_t activeCount(const FogLeaf& leaf) {
+std::uint64_t activeCount(const std::uint64_t* mask) {
     std::uint64_t n = 0;
-    for (int w = 0; w < 8; ++w) n += std::uint64_t(__builtin_popcountll(leaf.mask[w]));
+    for (int w = 0; w < 8; ++w) n += std::uint64_t(__builtin_popcountll(mask[w]));
     return n;
 }
 
-std::map<std::string, MetaValue> gridMetadata(const VoxelizeResult& result, const FogGrid& fog, std::uint64_t mem_usage) {
-    // Grid::evalActiveVoxelBoundingBox(); an empty grid's is CoordBBox(): min INT_MAX, max INT_MIN.
+// Grid::evalActiveVoxelBoundingBox() and activeVoxelCount(); an empty grid's box is
+// CoordBBox(): min INT_MAX, max INT_MIN.
+struct ActiveVoxels {
     std::array<std::int32_t, 3> lo{INT_MAX, INT_MAX, INT_MAX}, hi{INT_MIN, INT_MIN, INT_MIN};
-    std::uint64_t voxels = 0;
-    for (const FogLeaf& leaf : fog.leaves) {
-        voxels += activeCount(leaf);
+    std::uint64_t count = 0;
+    void add(const std::array<std::int32_t, 3>& min, const std::array<std::int32_t, 3>& max) {
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], min[a]), hi[a] = std::max(hi[a], max[a]);
+    }
+};
+
+ActiveVoxels activeVoxels(const VdbGrid& grid, const PlacedTree& tree) {
+    ActiveVoxels box;
+    for (const Placed& p : tree.items) {
+        if (p.level == 0) continue;
+        static const int kSideLog2[] = {0, kLeafLog2, kLowerTotal, kUpperTotal};
+        std::array<std::int32_t, 3> o = upperOrigin(p.upper);
+        const std::array<std::int32_t, 3> lower_at{std::int32_t(p.lower >> 10), std::int32_t((p.lower >> 5) & 31),
+                                                   std::int32_t(p.lower & 31)};
+        const std::array<std::int32_t, 3> leaf_at{std::int32_t(p.leaf >> 8), std::int32_t((p.leaf >> 4) & 15),
+                                                  std::int32_t(p.leaf & 15)};
+        for (int a = 0; a < 3; ++a) o[a] += (lower_at[a] << kLowerTotal) + (leaf_at[a] << kLeafLog2);
+        const std::int32_t side = std::int32_t(1) << kSideLog2[p.level];
+        box.add(o, {o[0] + side - 1, o[1] + side - 1, o[2] + side - 1});
+        box.count += std::uint64_t(1) << (3 * kSideLog2[p.level]);
+    }
+    for (const VdbLeaf& leaf : grid.leaves) {
+        box.count += activeCount(leaf.mask);
         // Word x holds the voxels of x; bit y * 8 + z. Folding the words gives the y and z
         // ranges: byte y of the OR is non-zero where row y has a voxel, the OR of its bytes
         // has bit z set where column z has one.
         std::uint64_t any = 0;
+        int x0 = 8, x1 = -1;
         for (int x = 0; x < 8; ++x) {
             if (!leaf.mask[x]) continue;
             any |= leaf.mask[x];
-            lo[0] = std::min(lo[0], leaf.origin[0] + x), hi[0] = std::max(hi[0], leaf.origin[0] + x);
+            x0 = std::min(x0, x), x1 = x;
         }
         if (!any) continue;
         const int y0 = __builtin_ctzll(any) >> 3, y1 = (63 - __builtin_clzll(any)) >> 3;
@@ -174,19 +311,26 @@ std::map<std::string, MetaValue> gridMetadata(const VoxelizeResult& result, cons
         columns |= columns >> 32, columns |= columns >> 16, columns |= columns >> 8;
         const unsigned z_bits = unsigned(columns & 0xff);
         const int z0 = __builtin_ctz(z_bits), z1 = 31 - __builtin_clz(z_bits);
-        lo[1] = std::min(lo[1], leaf.origin[1] + y0), hi[1] = std::max(hi[1], leaf.origin[1] + y1);
-        lo[2] = std::min(lo[2], leaf.origin[2] + z0), hi[2] = std::max(hi[2], leaf.origin[2] + z1);
+        const std::array<std::int32_t, 3>& o = leaf.origin;
+        box.add({o[0] + x0, o[1] + y0, o[2] + z0}, {o[0] + x1, o[1] + y1, o[2] + z1});
     }
+    return box;
+}
+
+std::map<std::string, MetaValue> gridMetadata(const VoxelizeResult& result, const VdbGrid& vdb, const PlacedTree& tree,
+                                              std::uint64_t mem_usage) {
+    const ActiveVoxels active = activeVoxels(vdb, tree);
     const GridSpec& grid = result.grid;
     std::map<std::string, MetaValue> meta;
-    meta["class"] = metaString("fog volume");
+    if (!vdb.grid_class.empty()) meta["class"] = metaString(vdb.grid_class);
+    if (!vdb.vector_type.empty()) meta["vector_type"] = metaString(vdb.vector_type);
     meta["creator"] = metaString(std::string("hyvox ") + version());
-    meta["file_bbox_min"] = metaOf("vec3i", lo);
-    meta["file_bbox_max"] = metaOf("vec3i", hi);
-    meta["file_compression"] = metaString("active values");
+    meta["file_bbox_min"] = metaOf("vec3i", active.lo);
+    meta["file_bbox_max"] = metaOf("vec3i", active.hi);
+    meta["file_compression"] = metaString("blosc + active values");  // io::compressionToString
     meta["file_mem_bytes"] = metaInt64(std::int64_t(mem_usage));
-    meta["file_voxel_count"] = metaInt64(std::int64_t(voxels));
-    meta["name"] = metaString(fog.name);
+    meta["file_voxel_count"] = metaInt64(std::int64_t(active.count));
+    meta["name"] = metaString(vdb.name);
     // The hyvox_* entries, as addMetadata() in vdb_grid.cpp writes them.
     meta["hyvox_version"] = metaString(version());
     meta["hyvox_method"] = metaString(result.stats.method);
@@ -209,72 +353,133 @@ void writeTransform(Bytes& out, const GridSpec& grid) {
         for (int a = 0; a < 3; ++a) out.pod(v);
 }
 
-// Root, upper and lower nodes and the leaves' masks, in OpenVDB's order (RootNode,
-// InternalNode and LeafNode::writeTopology). Internal nodes hold no tiles: their values
-// are all the background, so each writes its two masks and the metadata byte alone.
-void writeTopology(Bytes& out, const std::vector<Placed>& placed) {
-    out.pod(std::int32_t(1));  // TreeBase::writeTopology: buffer count
-    out.pod(0.0f);             // background
-    std::uint32_t uppers = 0;
-    for (std::size_t n = 0; n < placed.size(); ++n) uppers += n == 0 || placed[n].upper != placed[n - 1].upper;
-    out.pod(std::uint32_t(0));  // tiles
+// InternalNode::writeTopology's table: the child and value masks, the metadata byte (every
+// inactive value is the background) and the active tiles' values as one blosc block.
+// `items` [first, last) are the node's children and tiles, one per slot in table order;
+// `slotOf` gives their table offset, `tile_level` the level of the node's own tiles.
+template <typename SlotOf>
+void writeNodeTable(Bytes& out, const PlacedTree& tree, std::size_t first, std::size_t last, std::size_t words,
+                    int tile_level, int channels, SlotOf slotOf) {
+    std::vector<std::uint64_t> children(words, 0), tiles(words, 0);
+    std::vector<float> values;
+    for (std::size_t n = first; n < last; ++n) {
+        const Placed& p = tree.items[n];
+        const std::uint32_t slot = slotOf(p);
+        const bool tile = p.level == tile_level;
+        (tile ? tiles : children)[slot >> 6] |= std::uint64_t(1) << (slot & 63);
+        // In table order: the order writeCompressedValues gathers active values in.
+        if (tile) values.insert(values.end(), tree.tile_values[p.index].begin(), tree.tile_values[p.index].begin() + channels);
+    }
+    out.raw(children.data(), words * 8);
+    out.raw(tiles.data(), words * 8);
+    out.pod(kNoMaskOrInactiveVals);
+    out.blosc(values.data(), values.size() * sizeof(float));
+}
+
+// TreeBase::writeTopology: the root (background, tiles, then each upper node), every
+// internal node's table and the leaves' masks, in OpenVDB's order.
+void writeTopology(Bytes& out, const VdbGrid& grid, const PlacedTree& tree) {
+    const int channels = grid.channels();
+    const std::vector<Placed>& items = tree.items;
+    out.pod(std::int32_t(1));  // buffer count
+    for (int c = 0; c < channels; ++c) out.pod(0.0f);  // background
+    std::uint32_t root_tiles = 0, uppers = 0;
+    for (std::size_t n = 0; n < items.size(); ++n) {
+        if (items[n].level == 3)
+            ++root_tiles;
+        else
+            uppers += n == 0 || items[n].upper != items[n - 1].upper || items[n - 1].level == 3;
+    }
+    out.pod(root_tiles);
     out.pod(uppers);
-    const std::vector<std::uint64_t> no_values_upper(kUpperWords, 0), no_values_lower(kLowerWords, 0);
+    for (const Placed& p : items) {
+        if (p.level != 3) continue;
+        out.pod(upperOrigin(p.upper));
+        out.raw(tree.tile_values[p.index].data(), sizeof(float) * std::size_t(channels));
+        out.pod(true);  // active
+    }
     std::size_t n = 0;
-    while (n < placed.size()) {
-        const std::size_t upper_end =
-            std::size_t(std::find_if(placed.begin() + long(n), placed.end(),
-                                     [&](const Placed& p) { return p.upper != placed[n].upper; }) -
-                        placed.begin());
-        const int upper_mask = ~((1 << kUpperTotal) - 1);
-        for (int a = 0; a < 3; ++a) out.pod(std::int32_t(placed[n].leaf->origin[a] & upper_mask));
-        std::vector<std::uint64_t> children(kUpperWords, 0);
-        for (std::size_t m = n; m < upper_end; ++m) {
-            const std::uint32_t lower = placed[m].inner >> 12;
-            children[lower >> 6] |= std::uint64_t(1) << (lower & 63);
+    while (n < items.size()) {
+        if (items[n].level == 3) {
+            ++n;
+            continue;
         }
-        out.raw(children.data(), kUpperWords * 8);
-        out.raw(no_values_upper.data(), kUpperWords * 8);
-        out.pod(kNoMaskOrInactiveVals);
+        std::size_t upper_end = n;
+        while (upper_end < items.size() && items[upper_end].upper == items[n].upper) ++upper_end;
+        out.pod(upperOrigin(items[n].upper));
+        writeNodeTable(out, tree, n, upper_end, std::size_t(kUpperSlots) / 64, 2, channels,
+                       [](const Placed& p) { return p.lower; });
         while (n < upper_end) {
-            const std::uint32_t lower = placed[n].inner >> 12;
-            std::size_t lower_end = n;
-            std::vector<std::uint64_t> leaves(kLowerWords, 0);
-            for (; lower_end < upper_end && (placed[lower_end].inner >> 12) == lower; ++lower_end) {
-                const std::uint32_t at = placed[lower_end].inner & 0xfff;
-                leaves[at >> 6] |= std::uint64_t(1) << (at & 63);
+            if (items[n].level == 2) {
+                ++n;
+                continue;
             }
-            out.raw(leaves.data(), kLowerWords * 8);
-            out.raw(no_values_lower.data(), kLowerWords * 8);
-            out.pod(kNoMaskOrInactiveVals);
-            for (; n < lower_end; ++n) out.raw(placed[n].leaf->mask, kLeafMaskBytes);
+            std::size_t lower_end = n;
+            while (lower_end < upper_end && items[lower_end].lower == items[n].lower) ++lower_end;
+            writeNodeTable(out, tree, n, lower_end, std::size_t(kLowerSlots) / 64, 1, channels,
+                           [](const Placed& p) { return p.leaf; });
+            for (; n < lower_end; ++n)
+                if (items[n].level == 0) out.raw(grid.leaves[items[n].index].mask, kLeafMaskBytes);
         }
     }
 }
 
+// Leaves per block of buffers compressed by one task.
+constexpr std::size_t kLeavesPerBlock = 256;
 
-// One grid as Archive::writeGrid lays it out, appended to `head` (descriptor, compression,
-// metadata, transform, topology) with its leaf buffers placed after it; returns the
-// placement so the caller can fill the buffers once the whole file's size is known.
+// LeafNode::writeBuffers for `leaves` [first, last) (indices into grid.leaves in write
+// order): per leaf its mask, the metadata byte and its active values as a blosc block.
+std::string leafBuffers(const VdbGrid& grid, const std::vector<std::size_t>& leaves, std::size_t first, std::size_t last) {
+    std::string out;
+    const std::size_t channels = std::size_t(grid.channels());
+    const std::size_t stride = grid.stride ? grid.stride : channels;
+    float active[512 * 3];
+    for (std::size_t n = first; n != last; ++n) {
+        const VdbLeaf& leaf = grid.leaves[leaves[n]];
+        out.append(reinterpret_cast<const char*>(leaf.mask), kLeafMaskBytes);
+        out += char(kNoMaskOrInactiveVals);
+        float* to = active;
+        std::size_t packed = 0;
+        for (int w = 0; w < 8; ++w)
+            for (std::uint64_t bits = leaf.mask[w]; bits; bits &= bits - 1, to += channels) {
+                const float* from = grid.fill.data();
+                if (grid.layout == VdbLeafValues::Dense)
+                    from = leaf.values + std::size_t(w * 64 + __builtin_ctzll(bits)) * stride;
+                else if (grid.layout == VdbLeafValues::Packed)
+                    from = leaf.values + packed++ * stride;
+                std::copy(from, from + channels, to);
+            }
+        appendBlosc(out, active, std::size_t(to - active) * sizeof(float));
+    }
+    return out;
+}
+
+// One grid as Archive::writeGrid lays it out: `head` gets the descriptor, compression,
+// metadata, transform and topology; `buffers` the leaf buffers that follow them, compressed
+// in parallel in blocks of kLeavesPerBlock leaves.
 struct GridLayout {
     std::uint64_t mem_usage = 0;
-    std::vector<Placed> placed;
-    std::vector<std::size_t> starts;  // leaf n's buffer at starts[n] .. starts[n + 1]
+    std::vector<std::string> buffers;
+    std::size_t end = 0;  // file position after the grid
 };
 
-GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const FogGrid& fog) {
+GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const VdbGrid& grid, tbb::task_arena& arena) {
+    if (grid.layout != VdbLeafValues::Fill)
+        for (const VdbLeaf& leaf : grid.leaves)
+            if (!leaf.values && activeCount(leaf.mask))
+                throw InvalidInput("vdb writer: grid '" + grid.name + "' has a leaf without values");
     GridLayout layout;
-    layout.placed = placeLeaves(fog.leaves);
+    const PlacedTree tree = placeTree(grid);
     // GridDescriptor::writeHeader and writeStreamPos (patched below).
-    head.string(fog.name);
-    head.string("Tree_float_5_4_3");
+    head.string(grid.name);
+    head.string(grid.type == VdbValueType::Float ? "Tree_float_5_4_3" : "Tree_vec3s_5_4_3");
     head.string("");  // not an instance
     const std::size_t stream_pos_at = head.size();
     for (int i = 0; i < 3; ++i) head.pod(std::int64_t(0));
     const std::int64_t grid_pos = std::int64_t(head.size());
-    head.pod(kCompressActiveMask);
-    layout.mem_usage = memUsage(layout.placed);
-    const std::map<std::string, MetaValue> meta = gridMetadata(result, fog, layout.mem_usage);
+    head.pod(kCompression);
+    layout.mem_usage = memUsage(tree, grid.type);
+    const std::map<std::string, MetaValue> meta = gridMetadata(result, grid, tree, layout.mem_usage);
     head.pod(std::uint32_t(meta.size()));
     for (const auto& [name, value] : meta) {
         head.string(name);
@@ -282,61 +487,67 @@ GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const FogGrid& 
         head.string(value.bytes);  // Metadata::write: 32-bit size, then the value's bytes
     }
     writeTransform(head, result.grid);
-    writeTopology(head, layout.placed);
+    writeTopology(head, grid, tree);
     const std::int64_t block_pos = std::int64_t(head.size());
-    // LeafNode::writeBuffers per leaf, in the same order: mask, metadata byte, active values.
-    layout.starts.resize(layout.placed.size() + 1);
-    layout.starts[0] = std::size_t(block_pos);
-    for (std::size_t n = 0; n < layout.placed.size(); ++n)
-        layout.starts[n + 1] =
-            layout.starts[n] + kLeafMaskBytes + 1 + sizeof(float) * activeCount(*layout.placed[n].leaf);
+    std::vector<std::size_t> leaves;
+    for (const Placed& p : tree.items)
+        if (p.level == 0) leaves.push_back(p.index);
+    layout.buffers.resize((leaves.size() + kLeavesPerBlock - 1) / kLeavesPerBlock);
+    arena.execute([&] {
+        tbb::parallel_for(std::size_t(0), layout.buffers.size(), [&](std::size_t b) {
+            layout.buffers[b] = leafBuffers(grid, leaves, b * kLeavesPerBlock, std::min(leaves.size(), (b + 1) * kLeavesPerBlock));
+        });
+    });
+    layout.end = std::size_t(block_pos);
+    for (const std::string& buffer : layout.buffers) layout.end += buffer.size();
     head.patch(stream_pos_at, grid_pos);
     head.patch(stream_pos_at + 8, block_pos);
-    head.patch(stream_pos_at + 16, std::int64_t(layout.starts.back()));
+    head.patch(stream_pos_at + 16, std::int64_t(layout.end));
     return layout;
-}
-
-void fillBuffers(char* file, const GridLayout& layout) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layout.placed.size(), 512), [&](const auto& range) {
-        const float one = 1.0f;
-        for (std::size_t n = range.begin(); n != range.end(); ++n) {
-            const FogLeaf& leaf = *layout.placed[n].leaf;
-            char* at = file + layout.starts[n];
-            std::memcpy(at, leaf.mask, kLeafMaskBytes);
-            at[kLeafMaskBytes] = char(kNoMaskOrInactiveVals);
-            at += kLeafMaskBytes + 1;
-            if (!leaf.values) {
-                for (char* end = file + layout.starts[n + 1]; at != end; at += sizeof one) std::memcpy(at, &one, sizeof one);
-                continue;
-            }
-            for (int w = 0; w < 8; ++w)
-                for (std::uint64_t bits = leaf.mask[w]; bits; bits &= bits - 1, at += sizeof(float))
-                    std::memcpy(at, &leaf.values[w * 64 + __builtin_ctzll(bits)], sizeof(float));
-        }
-    });
 }
 
 }  // namespace
 
-std::vector<FogLeaf> densityLeaves(const SparseGrid& occupancy) {
-    const BrickLayout& bricks = occupancy.bricks();
-    std::vector<FogLeaf> leaves;
-    leaves.reserve(occupancy.leaves().size());
-    for (const SparseGrid::Leaf& leaf : occupancy.leaves()) {
-        const std::array<std::int32_t, 3> b = bricks.at(leaf.brick);
-        leaves.push_back({{b[0] * BrickLayout::kSide, b[1] * BrickLayout::kSide, b[2] * BrickLayout::kSide}, leaf.words, nullptr});
+std::uint64_t vdbTreeMemUsage(const VdbGrid& grid) { return memUsage(placeTree(grid), grid.type); }
+
+VdbGrid attributeGrid(const SparseGrid& occupancy, const float* values, int channels, int offset, std::string name,
+                      VdbValueType type, std::string vector_type) {
+    VdbGrid grid = densityGrid(occupancy);
+    grid.tiles.clear();  // attribute voxels lie on the surface: leaves only
+    grid.name = std::move(name);
+    grid.type = type;
+    grid.grid_class.clear();
+    grid.vector_type = std::move(vector_type);
+    grid.layout = VdbLeafValues::Packed;
+    grid.stride = std::size_t(channels);
+    std::size_t voxel = 0;  // set voxels before this leaf, in coords() order
+    for (VdbLeaf& leaf : grid.leaves) {
+        leaf.values = values + voxel * std::size_t(channels) + std::size_t(offset);
+        voxel += activeCount(leaf.mask);
     }
-    return leaves;
+    return grid;
 }
 
-std::uint64_t fogTreeMemUsage(const std::vector<FogLeaf>& leaves) { return memUsage(placeLeaves(leaves)); }
+void appendAttributeGrids(std::vector<VdbGrid>& grids, const SparseGrid& occupancy, const AttributeGrid& attributes) {
+    if (attributes.empty()) return;
+    const float* values = attributes.values.data();
+    const int channels = attributes.channels();
+    if (attributes.color)
+        grids.push_back(attributeGrid(occupancy, values, channels, attributes.colorOffset(), "color",
+                                      VdbValueType::Vec3f, "invariant"));
+    if (attributes.alpha)
+        grids.push_back(attributeGrid(occupancy, values, channels, attributes.alphaOffset(), "alpha", VdbValueType::Float));
+    if (attributes.normal)
+        grids.push_back(attributeGrid(occupancy, values, channels, attributes.normalOffset(), "normal",
+                                      VdbValueType::Vec3f, "covariant normalize"));
+}
 
 std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves) {
     // The leaves dominate; the internal nodes above them add a few percent at most.
-    return std::uint64_t(double(leaves) * double(kLeafBytes) * 1.05);
+    return std::uint64_t(double(leaves) * double(kFloatTreeBytes.leaf) * 1.05);
 }
 
-VdbBytes serializeFogGrids(const VoxelizeResult& result, const std::vector<FogGrid>& grids, int threads) {
+VdbBytes serializeVdbGrids(const VoxelizeResult& result, const std::vector<VdbGrid>& grids, int threads) {
     Bytes head;
     // Archive::writeHeader.
     head.pod(kMagic);
@@ -348,25 +559,25 @@ VdbBytes serializeFogGrids(const VoxelizeResult& result, const std::vector<FogGr
     head.pod(std::uint32_t(0));  // file-level metadata: none
     head.pod(std::int32_t(grids.size()));
     // Each grid's header parts follow the previous grid's buffers: lay them out one after
-    // the other in `head`, shifted by the buffers before them.
+    // the other, each `head` shifted by the bytes before it.
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     std::vector<GridLayout> layouts;
     std::vector<Bytes> heads;
     std::size_t offset = head.size();
-    for (const FogGrid& fog : grids) {
+    for (const VdbGrid& grid : grids) {
         heads.emplace_back(offset);
-        layouts.push_back(layOutGrid(heads.back(), result, fog));
-        offset = layouts.back().starts.back();
+        layouts.push_back(layOutGrid(heads.back(), result, grid, arena));
+        offset = layouts.back().end;
     }
     VdbBytes file;
     for (const GridLayout& layout : layouts) file.mem_usage += layout.mem_usage;
     file.size = offset;
     file.data.reset(new char[file.size]);
-    std::memcpy(file.data.get(), head.str().data(), head.str().size());
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    char* at = file.data.get();
+    at = std::copy(head.str().begin(), head.str().end(), at);
     for (std::size_t g = 0; g < grids.size(); ++g) {
-        const std::size_t at = g == 0 ? head.size() : layouts[g - 1].starts.back();
-        std::memcpy(file.data.get() + at, heads[g].str().data(), heads[g].str().size());
-        arena.execute([&] { fillBuffers(file.data.get(), layouts[g]); });
+        at = std::copy(heads[g].str().begin(), heads[g].str().end(), at);
+        for (const std::string& buffer : layouts[g].buffers) at = std::copy(buffer.begin(), buffer.end(), at);
     }
     return file;
 }

@@ -1,61 +1,116 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// .vdb files of fog-volume float grids serialized straight from 8³ leaf masks, without
-// building an OpenVDB tree (and without OpenVDB): OpenVDB reads them back as exactly the
-// grids makeGrids() (vdb_grid.h) builds — same trees, values, transforms and metadata
-// (test_io_vdb_direct compares them).
+// .vdb files serialized straight from 8³ leaf masks and values, without building an OpenVDB
+// tree (and without OpenVDB): OpenVDB reads them back as exactly the grids OpenVDB itself
+// would write — same trees, tiles, values, transforms and metadata (test_io_vdb_direct
+// compares them).
 //
 // Why: building a tree allocates 2 KiB of floats per leaf, and OpenVDB's writer then walks,
 // copies and compresses them one leaf at a time; here each leaf's bytes are a mask copy and
-// its active values, laid out in parallel in one buffer. Programs that write only through
-// this file (the CLI) also never load libopenvdb, whose start-up costs more than a small
-// voxelization.
+// its active values, compressed in parallel. Programs that write only through this file (the
+// CLI) also never load libopenvdb, whose start-up costs more than a small voxelization.
 //
-// Format: OpenVDB file version 224 (library 10.0), grids of type Tree_float_5_4_3, fog
-// volume, background 0, compression COMPRESS_ACTIVE_MASK alone: every leaf stores its mask
-// and only its active values. No blosc or zip on top: the file is about twice the size of
-// OpenVDB's default (blosc), written in a fraction of the time, and every OpenVDB reader
-// (Blender's included) reads it.
+// Format: OpenVDB file version 224 (library 10.0), trees of type Tree_float_5_4_3 or
+// Tree_vec3s_5_4_3, background 0, compressed as OpenVDB 10 does by default (COMPRESS_BLOSC |
+// COMPRESS_ACTIVE_MASK): every node stores its mask and only its active values, as one
+// blosc block made with OpenVDB's settings (libblosc, which OpenVDB itself links), so the
+// files are the size of OpenVDB's own and every OpenVDB reader (Blender's included) reads
+// them. Not written: OpenVDB's optional "file_delayed_load" metadata (readers do without it).
+//
+// Grid coordinates are >= 0 (hyvox grids start at voxel 0).
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "hyvox/result.h"
 
 namespace hyvox::io {
 
-// One leaf: its first voxel (multiples of 8, >= 0), its 512-bit value mask (OpenVDB's
-// NodeMask<3> words: word x, bit y * 8 + z), and its 512 values in the same order, or null
-// for 1.0 on every active voxel. Inactive voxels hold the background, 0.
-struct FogLeaf {
-    std::array<std::int32_t, 3> origin;
-    const std::uint64_t* mask;
-    const float* values;
+enum class VdbValueType { Float, Vec3f };  // FloatGrid, Vec3SGrid
+
+// Where a grid's leaves find their active voxels' values (VdbLeaf::values).
+enum class VdbLeafValues {
+    Fill,    // none: every active voxel holds VdbGrid::fill (density)
+    Dense,   // all 512 voxels in OpenVDB's order (x * 64 + y * 8 + z), `stride` floats apart
+    Packed,  // the active voxels only, in mask order (word by word, bit by bit), `stride` floats
+             // apart: the layout of per-voxel arrays in SparseGrid::coords() order
 };
 
-struct FogGrid {
+// One leaf: its first voxel (multiples of 8), its 512-bit value mask (OpenVDB's NodeMask<3>
+// words: word x, bit y * 8 + z) and where its values start (see VdbLeafValues; ignored
+// for Fill). Inactive voxels hold the background, 0.
+struct VdbLeaf {
+    std::array<std::int32_t, 3> origin;
+    const std::uint64_t* mask;
+    const float* values = nullptr;
+};
+
+// An active tile: a whole node's region holding one value (OpenVDB's tile at `level`):
+// 1 = an 8³ leaf's region (a tile of a lower internal node), 2 = 128³ (of an upper node),
+// 3 = 4096³ (of the root). `origin` is a multiple of the region's side.
+struct VdbTile {
+    std::array<std::int32_t, 3> origin;
+    int level = 1;
+    std::array<float, 3> value{1.0f, 1.0f, 1.0f};  // value[0] alone for a Float grid
+};
+
+// One grid of the file. Leaves and tiles may come in any order and must not overlap. Tiles
+// are written as Tree::prune() leaves them: active tiles of one value filling a whole node
+// become one tile of the level above (so 4096 level-1 tiles in one 128³ node are written as a
+// level-2 tile); leaves are written as given.
+struct VdbGrid {
     std::string name;
-    std::vector<FogLeaf> leaves;  // any order; they must outlive serializeFogGrids()
+    VdbValueType type = VdbValueType::Float;
+    std::string grid_class = "fog volume";  // the "class" metadata; "" = none (OpenVDB: unknown)
+    std::string vector_type;  // Vec3f: "invariant", "covariant", "covariant normalize", ...; "" = none
+    VdbLeafValues layout = VdbLeafValues::Fill;
+    std::array<float, 3> fill{1.0f, 1.0f, 1.0f};  // Fill's value
+    std::size_t stride = 0;                        // floats between voxels; 0 = channels()
+    std::vector<VdbLeaf> leaves;  // they and their values must outlive serializeVdbGrids()
+    std::vector<VdbTile> tiles;
+
+    int channels() const { return type == VdbValueType::Float ? 1 : 3; }
 };
 
 struct VdbBytes {
     std::unique_ptr<char[]> data;
     std::size_t size = 0;
-    std::uint64_t mem_usage = 0;  // the grids' Grid::memUsage() summed (see fogTreeMemUsage)
+    std::uint64_t mem_usage = 0;  // the grids' Grid::memUsage() summed (see vdbTreeMemUsage)
 };
 
-// The leaves of the "density" grid: the occupancy's own masks, 1.0 where set.
-std::vector<FogLeaf> densityLeaves(const SparseGrid& occupancy);
-
 // The whole file holding `grids` in order, each with the hyvox_* metadata of `result` and its
-// grid transform. The caller writes it atomically. `threads`: 0 = all cores.
-VdbBytes serializeFogGrids(const VoxelizeResult& result, const std::vector<FogGrid>& grids, int threads);
+// grid transform. The caller writes it atomically. `threads`: 0 = all cores. Throws
+// InvalidInput for a leaf or tile off its lattice, below 0, or overlapping another.
+VdbBytes serializeVdbGrids(const VoxelizeResult& result, const std::vector<VdbGrid>& grids, int threads);
 
-// OpenVDB's Grid::memUsage() of the grid these leaves make (its "file_mem_bytes" metadata).
-std::uint64_t fogTreeMemUsage(const std::vector<FogLeaf>& leaves);
+// OpenVDB's Grid::memUsage() of the tree `grid` makes (its "file_mem_bytes" metadata).
+std::uint64_t vdbTreeMemUsage(const VdbGrid& grid);
+
+// ---- Grids of hyvox data ----
+
+// "density": the occupancy's own masks, 1.0 where set; its whole-leaf tiles too, where the
+// grid type has them (tileRuns(): runs of brick indices [begin, end), all 512 voxels set),
+// as level-1 tiles of 1.0. A template so it takes SparseGrid as it is before and after
+// tiles were added to it (and a test's stand-in).
+template <typename Occupancy>
+VdbGrid densityGrid(const Occupancy& occupancy);
+
+// A per-voxel attribute as a grid active exactly on the occupancy's leaf voxels: `values`
+// holds `channels` floats per set voxel in coords() order (leaf by leaf, set bits
+// ascending), this grid's channels (1 or 3 by `type`) start at `offset`. Class none, like
+// OpenVDB's default; `vector_type` for Vec3f (see VdbGrid).
+VdbGrid attributeGrid(const SparseGrid& occupancy, const float* values, int channels, int offset, std::string name,
+                      VdbValueType type, std::string vector_type = "");
+
+// The attribute voxels' grids (result.attributes), as makeGrids builds them with OpenVDB:
+// "color" (Vec3f, vector type invariant: a colour, which Blender reads as a colour through an
+// Attribute node), "alpha" (float), "normal" (Vec3f, covariant normalize); none when empty.
+void appendAttributeGrids(std::vector<VdbGrid>& grids, const SparseGrid& occupancy, const AttributeGrid& attributes);
 
 // An upper estimate of the memory OpenVDB would need for a float grid of `leaves` leaves.
 std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves);
@@ -66,5 +121,32 @@ std::uint64_t densityGridBytes(const SparseGrid& occupancy);
 // ResourceError before anything is built when that grid and the result it is made from
 // would not fit the run's memory budget (result.stats.options).
 void checkGridBudget(const VoxelizeResult& result);
+
+// ---- densityGrid's template ----
+
+namespace detail {
+template <typename Occupancy, typename = void>
+struct HasTileRuns : std::false_type {};
+template <typename Occupancy>
+struct HasTileRuns<Occupancy, std::void_t<decltype(std::declval<const Occupancy&>().tileRuns())>> : std::true_type {};
+}  // namespace detail
+
+template <typename Occupancy>
+VdbGrid densityGrid(const Occupancy& occupancy) {
+    VdbGrid grid;
+    grid.name = "density";
+    const auto& bricks = occupancy.bricks();
+    const int side = 8;  // BrickLayout::kSide
+    auto originOf = [&](std::uint64_t brick) {
+        const std::array<std::int32_t, 3> b = bricks.at(brick);
+        return std::array<std::int32_t, 3>{b[0] * side, b[1] * side, b[2] * side};
+    };
+    grid.leaves.reserve(occupancy.leaves().size());
+    for (const auto& leaf : occupancy.leaves()) grid.leaves.push_back({originOf(leaf.brick), leaf.words});
+    if constexpr (detail::HasTileRuns<Occupancy>::value)
+        for (const auto& run : occupancy.tileRuns())
+            for (std::uint64_t b = run.begin; b < run.end; ++b) grid.tiles.push_back({originOf(b), 1});
+    return grid;
+}
 
 }  // namespace hyvox::io

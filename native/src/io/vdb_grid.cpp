@@ -21,7 +21,6 @@
 #include "io/atomic_file.h"
 #include "io/interruptible_stream.h"
 #include "io/vdb_attribute_grids.h"
-#include "io/vdb_openvdb_write.h"
 
 namespace hyvox::io {
 namespace {
@@ -153,25 +152,6 @@ void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path
             throw ResourceError("writing '" + path + "' failed: " + e.what());
         }
     });
-}
-
-VdbWriteReport writeWithOpenVdb(const VoxelizeResult& result, const std::string& path, int threads,
-                                Interrupter* interrupter) {
-    VdbWriteReport report;
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-    arena.execute([&] {
-        auto start = std::chrono::steady_clock::now();
-        openvdb::GridPtrVec grids = makeGrids(result, interrupter);
-        for (const auto& grid : grids) report.grid_bytes += grid->memUsage();
-        throwIfInterrupted(interrupter, 90);
-        auto now = std::chrono::steady_clock::now();
-        report.build_ms = std::chrono::duration<double, std::milli>(now - start).count();
-        // Only the progress shown depends on this estimate: about 200 bytes per leaf and grid.
-        const std::uint64_t expected_file_bytes = result.occupancy.leafCount() * 200 * grids.size();
-        writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), path, interrupter, expected_file_bytes);
-        report.write_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - now).count();
-    });
-    return report;
 }
 
 }  // namespace hyvox::io

@@ -16,7 +16,6 @@
 #include "io/atomic_file.h"
 #include "io/interruptible_stream.h"
 #include "io/vdb_direct_writer.h"
-#include "io/vdb_openvdb_write.h"
 
 namespace hyvox::io {
 
@@ -49,7 +48,7 @@ struct CountLeaves {
         float values[512];
     };
     std::vector<Leaf> storage;
-    std::vector<FogLeaf> leaves;
+    std::vector<VdbLeaf> leaves;
 };
 
 CountLeaves countLeaves(const std::vector<VoxelCount>& counts) {
@@ -99,21 +98,19 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, i
     const InterrupterRun run(interrupter, "hyvox write");
     VdbWriteReport report;
     auto start = std::chrono::steady_clock::now();
-    if (!result.attributes.empty()) {
-        // The direct serializer writes float grids only; colour and normal grids (Vec3f) go
-        // through OpenVDB until it writes them too.
-        report = io::writeWithOpenVdb(result, path, threads, interrupter);
-        if (interrupter) interrupter->wasInterrupted(100);
-        return report;
-    }
-    std::vector<io::FogGrid> grids{{"density", io::densityLeaves(result.occupancy)}};
+    std::vector<io::VdbGrid> grids{io::densityGrid(result.occupancy)};
     io::CountLeaves counts;
     if (!result.counts.empty()) {
         counts = io::countLeaves(result.counts);
-        grids.push_back({"count", counts.leaves});
+        io::VdbGrid count;
+        count.name = "count";
+        count.layout = io::VdbLeafValues::Dense;
+        count.leaves = counts.leaves;
+        grids.push_back(std::move(count));
     }
+    io::appendAttributeGrids(grids, result.occupancy, result.attributes);  // color, alpha, normal
     throwIfInterrupted(interrupter, 10);
-    const io::VdbBytes file = io::serializeFogGrids(result, grids, threads);
+    const io::VdbBytes file = io::serializeVdbGrids(result, grids, threads);
     report.grid_bytes = file.mem_usage;
     throwIfInterrupted(interrupter, 90);
     auto now = std::chrono::steady_clock::now();
