@@ -3,7 +3,7 @@
 
     blender -b scene.blend --python B/addon/hyvox_blender/cli_blender.py -- \\
         --frames 1-10 --output DIR --resolution 256 [--voxel-size S] [--method cpu] \\
-        [--mode conservative|thin] [--tess-gamma G] [--hybrid-cutoff C] [--padding P] \\
+        [--mode conservative|thin|solid] [--tess-gamma G] [--hybrid-cutoff C] [--padding P] \\
         [--objects A,B] [--separate] [--viewport] [--save OUT.blend] [--stats-json FILE]
 
 Voxelizes the named objects (default: the selection, or every visible mesh when nothing
@@ -90,6 +90,10 @@ def main(argv):
         kwargs["output_dir"] = os.path.abspath(args.output)
     if args.separate:
         kwargs["separate"] = True
+    if args.mode is not None:
+        # The operator fills the interior by its Fill Interior setting (the scene's unless
+        # given): an explicit --mode decides it, so --mode thin is not turned into solid.
+        kwargs["fill_interior"] = args.mode == "solid"
     kwargs["evaluation"] = "VIEWPORT" if args.viewport else "RENDER"
     kwargs["color"] = args.color
     kwargs["unique_file_names"] = False  # chunks of one sequence must share their file names

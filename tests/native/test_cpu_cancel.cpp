@@ -56,6 +56,30 @@ TEST(Cancellation, InterruptedMidwayThrowsCancelled) {
     }
 }
 
+// The checks before any progress (a million triangles validated and binned to tiles) also
+// stop: a stop asked at the validation's first check ends the run there, with no tile done;
+// one asked at the binning's first check likewise (small tiles force the binning).
+TEST(Cancellation, ValidationAndBinningStopWhenAsked) {
+    const TestMesh dragon = loadTestMesh(meshPath("dragon_stanford_871k.ply.gz"));
+    const std::size_t checks = (dragon.view().triangle_count + kInterruptCheckTriangles - 1) / kInterruptCheckTriangles;
+    CountingInterrupter at_validation(0);
+    EXPECT_THROW(validate(dragon.view(), &at_validation), Cancelled);
+    EXPECT_EQ(at_validation.calls.load(), 1);
+    CountingInterrupter never(1 << 30);
+    const ValidatedMesh validated = validate(dragon.view(), &never);
+    EXPECT_EQ(std::size_t(never.calls.load()), checks);
+
+    VoxelizeOptions options;
+    options.method = Method::Cpu;
+    options.grid.resolution = 256;
+    options.tile_size = 64;
+    // Validation's checks pass, the dispatcher's 0% check passes, the binning's first stops.
+    CountingInterrupter at_binning(int(checks) + 1);
+    VoxelizeResult partial;
+    EXPECT_THROW(partial = voxelize(dragon.view(), options, &at_binning), Cancelled);
+    EXPECT_EQ(std::size_t(at_binning.calls.load()), checks + 2);
+}
+
 TEST(Threads, ResultDoesNotDependOnTheThreadCount) {
     const TestMesh sponza = loadTestMesh(meshPath("sponza_crytek_262k_vcolor.ply.gz"));
     for (Mode mode : {Mode::Conservative, Mode::Thin}) {

@@ -7,7 +7,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "hyvox/interrupter.h"
+
 namespace hyvox {
+
+// Loops over every triangle ask their Interrupter this often (validate, binning).
+inline constexpr std::size_t kInterruptCheckTriangles = 65536;
 
 struct Texture;  // hyvox/texture.h
 
@@ -60,6 +65,8 @@ struct ValidatedMesh {
 // Checks the view and throws InvalidInput with a clear message for: null pointers with
 // non-zero counts, an empty mesh, NaN/Inf coordinates, indices out of range, or a mesh whose
 // triangles are all degenerate.
-ValidatedMesh validate(const MeshView& mesh);
+// `interrupter` (may be null) is asked every 65,536 triangles: a million-triangle mesh takes
+// a noticeable time to check, and Esc / Ctrl-C must not wait for it.
+ValidatedMesh validate(const MeshView& mesh, Interrupter* interrupter = nullptr);
 
 }  // namespace hyvox

@@ -24,7 +24,7 @@ bool isZeroArea(const float* a, const float* b, const float* c) {
 
 }  // namespace
 
-ValidatedMesh validate(const MeshView& mesh) {
+ValidatedMesh validate(const MeshView& mesh, Interrupter* interrupter) {
     if (mesh.vertex_count == 0 || mesh.triangle_count == 0)
         throw InvalidInput("the mesh is empty (" + std::to_string(mesh.vertex_count) + " vertices, " +
                            std::to_string(mesh.triangle_count) + " triangles)");
@@ -50,6 +50,7 @@ ValidatedMesh validate(const MeshView& mesh) {
     out.bounds.min = {inf, inf, inf};
     out.bounds.max = {-inf, -inf, -inf};
     for (std::size_t t = 0; t < mesh.triangle_count; ++t) {
+        if (t % kInterruptCheckTriangles == 0) throwIfInterrupted(interrupter);
         const std::uint32_t* idx = mesh.triangles + 3 * t;
         for (int c = 0; c < 3; ++c)
             if (idx[c] >= mesh.vertex_count)

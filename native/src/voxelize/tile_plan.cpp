@@ -78,9 +78,12 @@ PointReach pointReach(const GridSpec& grid, const VoxelizeOptions& options) {
 }
 
 std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, const GridSpec& grid,
-                                                      const TilePlan& plan, const PointReach& reach) {
+                                                      const TilePlan& plan, const PointReach& reach,
+                                                      Interrupter* interrupter) {
     std::vector<std::vector<std::uint32_t>> bins(plan.total());
-    for (std::uint32_t t : mesh.usable) {
+    for (std::size_t n = 0; n < mesh.usable.size(); ++n) {
+        if (n % kInterruptCheckTriangles == 0) throwIfInterrupted(interrupter);
+        const std::uint32_t t = mesh.usable[n];
         std::array<int, 3> first{}, last{};
         const std::array<std::array<double, 3>, 3> corners{grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)),
                                                            grid.toVoxel(mesh.vertex(t, 2))};

@@ -39,8 +39,10 @@ PointReach pointReach(const GridSpec& grid, const VoxelizeOptions& options);
 // For each tile, the usable triangles whose closed voxel range, grown by their reach, meets
 // it (the candidates of the conservative test: voxel i meets [lo, hi] iff lo - 1 <= i <= hi),
 // ascending.
+// `interrupter` (may be null) is asked every kInterruptCheckTriangles triangles.
 std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, const GridSpec& grid,
-                                                      const TilePlan& plan, const PointReach& reach);
+                                                      const TilePlan& plan, const PointReach& reach,
+                                                      Interrupter* interrupter = nullptr);
 
 // The surface's leaves, estimated before any work from the triangles' areas: a surface of
 // area A (voxel units²) crosses about 2·A/64 leaves of 8×8 faces, and every triangle at

@@ -126,7 +126,7 @@ struct Surface {
     void run(const VoxelizeOptions& options, VoxelizeResult& result, Stats& stats) const {
         result.occupancy = SparseGrid(grid.dims);
         std::vector<std::vector<std::uint32_t>> bins;
-        if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, reach);
+        if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, reach, interrupter);
         stats.addTiming("tiles", watch.restart());
 
         TileProgress progress(interrupter, plan.total());
@@ -204,7 +204,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     Stats& stats = result.stats;
     stats.options = options;
     Stopwatch watch;
-    const ValidatedMesh validated = validate(mesh);
+    const ValidatedMesh validated = validate(mesh, interrupter);
     const std::optional<attributes::SurfaceValues> surface = surfaceValues(mesh, options);
     std::vector<attributes::AttributeLeaf> attribute_leaves;
     result.grid = makeGrid(validated.bounds, options.grid);
