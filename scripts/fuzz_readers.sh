@@ -26,9 +26,12 @@ fresh() {
 fuzz() {
   local findings=build-fuzz/findings/$1
   echo "== fuzzing $1 for $2 s"
+  # `|| status=`: under set -e and pipefail a crashing fuzzer would otherwise end the script
+  # here, before it names the findings folder.
+  local status=0
   "build-fuzz/fuzz_$1" -max_total_time="$2" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
-    -print_final_stats=1 -artifact_prefix="$findings/" "build-fuzz/corpus/$1" 2>&1 | tail -n 12
-  local status=${PIPESTATUS[0]}
+    -print_final_stats=1 -artifact_prefix="$findings/" "build-fuzz/corpus/$1" 2>&1 | tail -n 12 ||
+    status=${PIPESTATUS[0]}
   if [ "$status" -ne 0 ] || [ -n "$(ls -A "$findings")" ]; then
     echo "fuzz_readers: $1 has a finding (exit $status): $findings" >&2
     exit 1
