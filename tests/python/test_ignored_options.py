@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import hyvox
-from test_option_schema import METHOD_GROUPS, cli_text, good_value
+from test_option_schema import METHOD_GROUPS, TETRA_T, TETRA_V, cli_text, good_value
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "addon"))
 
@@ -19,8 +19,7 @@ from hyvox_blender.core import backend  # noqa: E402
 from hyvox_blender.core.pipeline import Group, GroupMesh, Pipeline  # noqa: E402
 from hyvox_blender.core.settings import VoxelizeSettings  # noqa: E402
 
-TETRA = (np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32),
-         np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], np.uint32))
+TETRA = (TETRA_V, TETRA_T)
 
 
 def expected_to_apply(spec, method):
