@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,16 @@ inline std::string optionValue(int argc, char** argv, int& a) {
         std::exit(2);
     }
     return argv[++a];
+}
+
+// "a,b,,c" -> {"a", "b", "c"}: a comma-separated command-line list, empty items dropped.
+inline std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    std::string item;
+    while (std::getline(in, item, ','))
+        if (!item.empty()) out.push_back(item);
+    return out;
 }
 
 // The median of repeated timings (mean of the middle two for an even count; 0 for none).

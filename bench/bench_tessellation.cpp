@@ -14,7 +14,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -38,9 +37,7 @@ double methodStagesMs(const hyvox::VoxelizeResult& r) {
 template <typename T>
 std::vector<T> parseList(const std::string& text) {
     std::vector<T> out;
-    std::stringstream in(text);
-    std::string item;
-    while (std::getline(in, item, ',')) out.push_back(T(std::atof(item.c_str())));
+    for (const std::string& item : hyvox::bench::splitList(text)) out.push_back(T(std::atof(item.c_str())));
     return out;
 }
 

@@ -17,13 +17,32 @@ meshes=${HYVOX_MESH_DIR:-../shared/data/meshes}
 cmake -S tests/fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build-fuzz
 
+# fresh TARGET: an empty corpus and findings folder for TARGET (build-fuzz/{corpus,findings}/TARGET).
+fresh() {
+  rm -rf "build-fuzz/corpus/$1" "build-fuzz/findings/$1"
+  mkdir -p "build-fuzz/corpus/$1" "build-fuzz/findings/$1"
+}
+# fuzz TARGET SECONDS: runs build-fuzz/fuzz_TARGET on its corpus; exits 1 on any finding.
+fuzz() {
+  local findings=build-fuzz/findings/$1
+  echo "== fuzzing $1 for $2 s"
+  # `|| status=`: under set -e and pipefail a crashing fuzzer would otherwise end the script
+  # here, before it names the findings folder.
+  local status=0
+  "build-fuzz/fuzz_$1" -max_total_time="$2" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+    -print_final_stats=1 -artifact_prefix="$findings/" "build-fuzz/corpus/$1" 2>&1 | tail -n 12 ||
+    status=${PIPESTATUS[0]}
+  if [ "$status" -ne 0 ] || [ -n "$(ls -A "$findings")" ]; then
+    echo "fuzz_readers: $1 has a finding (exit $status): $findings" >&2
+    exit 1
+  fi
+}
+
 for format in ply obj; do
   # A fresh corpus each run, seeded with the committed seeds and the small shared meshes
   # (the OBJ seed is the teapot, converted here).
-  corpus=build-fuzz/corpus/$format
-  findings=build-fuzz/findings/$format
-  rm -rf "$corpus" "$findings"
-  mkdir -p "$corpus" "$findings"
+  corpus=build-fuzz/corpus/${format}_reader
+  fresh "${format}_reader"
   cp tests/fuzz/seeds/$format/* "$corpus/"
   if [ "$format" = ply ]; then
     cp "$meshes/spider_messy.ply" "$meshes/teapot_utah.ply" "$corpus/"
@@ -43,37 +62,20 @@ with open(sys.argv[2], "w") as out:
     out.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f)
 PY
   fi
-  echo "== fuzzing the $format reader for ${seconds} s"
-  build-fuzz/fuzz_${format}_reader -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
-    -print_final_stats=1 -artifact_prefix="$findings/" "$corpus" 2>&1 | tail -n 12
-  status=${PIPESTATUS[0]}
-  if [ "$status" -ne 0 ] || [ -n "$(ls -A "$findings")" ]; then
-    echo "fuzz_readers: the $format reader has a finding (exit $status): $findings" >&2
-    exit 1
-  fi
+  fuzz "${format}_reader" "$seconds"
 done
 # The gzip input (with the PLY reader behind it), seeded with the PLY seeds compressed, and
 # voxelize() on random small meshes, cpu against the reference (its own bytes, no seeds).
 for target in gzip_input voxelize; do
-  corpus=build-fuzz/corpus/$target
-  findings=build-fuzz/findings/$target
-  rm -rf "$corpus" "$findings"
-  mkdir -p "$corpus" "$findings"
+  fresh "$target"
   if [ "$target" = gzip_input ]; then
-    python3 - "$corpus" tests/fuzz/seeds/ply/* "$meshes/teapot_utah.ply" <<'PY'
+    python3 - "build-fuzz/corpus/$target" tests/fuzz/seeds/ply/* "$meshes/teapot_utah.ply" <<'PY'
 import gzip, os, sys
 for path in sys.argv[2:]:
     with open(path, "rb") as f, open(os.path.join(sys.argv[1], os.path.basename(path) + ".gz"), "wb") as out:
         out.write(gzip.compress(f.read()))
 PY
   fi
-  echo "== fuzzing $target for ${FUZZ_SECONDS:-30} s"
-  build-fuzz/fuzz_$target -max_total_time="${FUZZ_SECONDS:-30}" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
-    -print_final_stats=1 -artifact_prefix="$findings/" "$corpus" 2>&1 | tail -n 12
-  status=${PIPESTATUS[0]}
-  if [ "$status" -ne 0 ] || [ -n "$(ls -A "$findings")" ]; then
-    echo "fuzz_readers: $target has a finding (exit $status): $findings" >&2
-    exit 1
-  fi
+  fuzz "$target" "${FUZZ_SECONDS:-30}"
 done
 echo "fuzz_readers: no findings"

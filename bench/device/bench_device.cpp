@@ -30,7 +30,6 @@
 #include <map>
 #include <memory>
 #include <set>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -49,15 +48,7 @@
 namespace {
 
 using hyvox::bench::median;
-
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream in(text);
-    std::string item;
-    while (std::getline(in, item, ','))
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
+using hyvox::bench::splitList;
 
 struct Step {
     hyvox::Mode mode = hyvox::Mode::Conservative;

@@ -45,3 +45,13 @@ def tetrahedron():
     vertices = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     triangles = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
     return vertices, triangles
+
+
+@pytest.fixture()
+def tetra_obj(tetrahedron, tmp_path) -> pathlib.Path:
+    """The tetrahedron as an OBJ file in tmp_path, for the CLI."""
+    vertices, triangles = tetrahedron
+    path = tmp_path / "tetra.obj"
+    path.write_text("".join(f"v {x:g} {y:g} {z:g}\n" for x, y, z in vertices) +
+                    "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in triangles))
+    return path

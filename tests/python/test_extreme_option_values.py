@@ -111,10 +111,8 @@ def test_the_cli_refuses_a_voxel_size_the_vdb_cannot_hold_before_the_work(cli, t
     assert "voxelize" not in done.stdout and not out.exists()  # refused before voxelizing
 
 
-def test_the_cli_gives_the_same_refusals(cli, tmp_path):
-    mesh = tmp_path / "tetra.obj"
-    mesh.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
-    done = subprocess.run([str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "o.vdb"), "--voxel-size", "1e20"],
+def test_the_cli_gives_the_same_refusals(cli, tmp_path, tetra_obj):
+    done = subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "--voxel-size", "1e20"],
                           capture_output=True, text=True, timeout=120)
     assert done.returncode != 0 and "more than 1e+06 times the mesh's longest side" in done.stderr
     assert not (tmp_path / "o.vdb").exists()

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import hyvox
-from test_option_schema import METHOD_GROUPS, cli_text, good_value
+from test_option_schema import METHOD_GROUPS, TETRA_T, TETRA_V, cli_text, good_value
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "addon"))
 
@@ -19,8 +19,7 @@ from hyvox_blender.core import backend  # noqa: E402
 from hyvox_blender.core.pipeline import Group, GroupMesh, Pipeline  # noqa: E402
 from hyvox_blender.core.settings import VoxelizeSettings  # noqa: E402
 
-TETRA = (np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32),
-         np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], np.uint32))
+TETRA = (TETRA_V, TETRA_T)
 
 
 def expected_to_apply(spec, method):
@@ -47,11 +46,9 @@ def test_voxelize_warns_about_an_option_the_method_ignores_and_really_ignores_it
     assert np.array_equal(grid.coords(), hyvox.voxelize(*TETRA, resolution=8, method="cpu").coords())
 
 
-def test_the_warning_says_what_the_cli_says(cli, tmp_path):
+def test_the_warning_says_what_the_cli_says(cli, tmp_path, tetra_obj):
     spec = hyvox.option("tess_gamma")
-    mesh = tmp_path / "tetra.obj"
-    mesh.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
-    done = subprocess.run([str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "o.vdb"), "-q", "--method=reference",
+    done = subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q", "--method=reference",
                            f"{spec.cli_flag}={cli_text(good_value(spec))}"], capture_output=True, text=True, timeout=120)
     with pytest.warns(hyvox.IgnoredOptionWarning) as caught:
         hyvox.voxelize(*TETRA, resolution=8, method="reference", tess_gamma=good_value(spec))

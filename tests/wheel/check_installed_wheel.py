@@ -10,7 +10,7 @@
 - in a process started with an empty environment (no LD_LIBRARY_PATH, no PYTHONPATH),
   `import hyvox` + a CPU voxelization map only libraries from the installed wheel plus
   the base system ones every manylinux wheel may use (/proc/self/maps), and a GL method
-  takes libEGL from the system;
+  takes libEGL from the system and sets the same voxels as the CPU method;
 - its voxels equal the build tree's module's; the `hyvox` command writes a .vdb that
   pyopenvdb reads back as the same voxels; ldd finds every library of the installed CLI
   binary inside the wheel or in that base set."""
@@ -113,6 +113,7 @@ class InstalledWheelTest(unittest.TestCase):
         self.assertEqual(len(egl), 1, self.child["loaded_by_gl"])
         self.assertFalse(self.in_wheel(egl[0]))
         self.assertGreater(self.child["gl_voxels"], 0)
+        self.assertTrue(self.child["gl_equals_cpu"], "the GL method's voxels differ from the cpu method's")
 
     def test_voxels_equal_the_build_tree_module(self):
         got = np.load(os.path.join(self.tmp.name, "cpu_coords.npy"))
