@@ -3,20 +3,9 @@
 
 #include <cmath>
 
+#include "attributes/clip_to_voxel.h"
+
 namespace hyvox::tessellation {
-namespace {
-
-std::array<double, 3> unitNormal(const std::array<std::array<double, 3>, 3>& p) {
-    const double e1[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
-    const double e2[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
-    std::array<double, 3> n = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (length > 0)
-        for (double& x : n) x /= length;
-    return n;
-}
-
-}  // namespace
 
 std::string PointValues::defines() const {
     std::string text = "#define ATTRIBUTES 1\n#define ATTRIBUTE_CHANNELS " + std::to_string(channels()) +
@@ -39,11 +28,11 @@ PointValues makePointValues(const ValidatedMesh& mesh, const GridSpec& grid, con
         const std::array<std::array<double, 3>, 3> p = {grid.toVoxel(mesh.vertex(triangle, 0)),
                                                         grid.toVoxel(mesh.vertex(triangle, 1)),
                                                         grid.toVoxel(mesh.vertex(triangle, 2))};
-        const std::array<double, 3> normal = unitNormal(p);
+        const attributes::TriangleFrame frame(p);  // for its unit normal
         for (std::size_t c = 0; c < 3; ++c) {
             std::array<double, 3> corner{0, 0, 0};
             corner[c] = 1;
-            values.evaluate(triangle, corner, normal, value);
+            values.evaluate(triangle, corner, frame.unitNormal(), value);
             float* row = &out.corners[(3 * u + c) * channels];
             for (std::size_t n = 0; n < channels; ++n) row[n] = float(value[n]);
             if (out.texture) {
