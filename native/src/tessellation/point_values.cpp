@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tessellation/point_values.h"
 
-#include <cmath>
-
 #include "attributes/clip_to_voxel.h"
 
 namespace hyvox::tessellation {
@@ -68,24 +66,18 @@ std::uint64_t meansFromSums(const std::vector<std::uint32_t>& brick_blocks, cons
         for (int n = 0; n < 512; ++n) {
             if (!((words[n >> 6] >> (n & 63)) & 1u)) continue;
             const std::uint32_t count = held ? count_pool[(block - 1) * 512 + std::size_t(n)] : 0;
-            float mean[attributes::kMaxChannels] = {};
+            double exact[attributes::kMaxChannels] = {};
             if (count == 0) {
                 ++unreached;
             } else {
                 const std::uint32_t* sum = &value_pool[((block - 1) * 512 + std::size_t(n)) * 2 * std::size_t(channels)];
-                double exact[attributes::kMaxChannels];
                 for (int c = 0; c < channels; ++c) {
                     const std::uint64_t bits64 = (std::uint64_t(sum[2 * c + 1]) << 32) | sum[2 * c];
                     exact[c] = double(std::int64_t(bits64)) / kValueScale;
-                    mean[c] = float(exact[c] / count);
-                }
-                if (layout.normal) {
-                    // The direction of the summed normals (the count cancels), zero stays zero.
-                    const double* s = exact + layout.normalOffset();
-                    const double length = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-                    for (int a = 0; a < 3; ++a) mean[layout.normalOffset() + a] = length > 0 ? float(s[a] / length) : 0.0f;
                 }
             }
+            float mean[attributes::kMaxChannels];
+            attributes::meanOfSums(layout, exact, double(count), mean);
             leaf.values.insert(leaf.values.end(), mean, mean + channels);
         }
     }
