@@ -117,7 +117,6 @@ struct Surface {
     const ValidatedMesh& validated;
     const GridSpec& grid;
     const tiling::TilePlan& plan;
-    const tiling::PointReach& reach;
     Interrupter* interrupter;
     Stopwatch& watch;
     const attributes::SurfaceValues* values = nullptr;
@@ -126,7 +125,9 @@ struct Surface {
     void run(const VoxelizeOptions& options, VoxelizeResult& result, Stats& stats) const {
         result.occupancy = SparseGrid(grid.dims);
         std::vector<std::vector<std::uint32_t>> bins;
-        if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, reach, interrupter);
+        // The reach of this pass's method: the solid barrier's cpu pass bins without the
+        // tessellation's displacement and patch bulge.
+        if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, tiling::pointReach(grid, options), interrupter);
         stats.addTiming("tiles", watch.restart());
 
         TileProgress progress(interrupter, plan.total());
@@ -232,7 +233,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     const bool solid = options.mode == Mode::Solid;
     VoxelizeOptions surface_options = options;
     if (solid) surface_options.mode = Mode::Conservative;
-    Surface surface_pass{validated, grid, plan, reach, interrupter, watch};
+    Surface surface_pass{validated, grid, plan, interrupter, watch};
     if (surface) {
         surface_pass.values = &*surface;
         surface_pass.attribute_leaves = &attribute_leaves;
