@@ -130,6 +130,8 @@ struct Surface {
         if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, tiling::pointReach(grid, options), interrupter);
         stats.addTiming("tiles", watch.restart());
 
+        // The tessellation averages its own points' values; the exact methods' come after.
+        const bool own_attributes = values && options.method == Method::Tessellation;
         TileProgress progress(interrupter, plan.total());
         for (std::size_t t = 0; t < plan.total(); ++t) {
             if (!plan.whole() && bins[t].empty()) continue;
@@ -140,8 +142,6 @@ struct Surface {
             progress.setTile(t);
             TileOutput out{BitGrid(tile.dims), {}, {}, 0};
             stats.addTiming("allocate", watch.restart());
-            // The tessellation averages its own points' values; the exact methods' come after.
-            const bool own_attributes = values && options.method == Method::Tessellation;
             const BackendJob job{tile_mesh, validated, grid, tile, options, &progress, own_attributes ? values : nullptr};
             runBackend(job, out, stats);
             watch.restart();
