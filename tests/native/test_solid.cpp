@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Solid mode's pieces against oracles of their own: the sparse grid's tiles against a dense
 // bit grid, the ray crossings on rays that pass exactly through shared edges and vertices
-// against an octahedron's inequality, and fast winding numbers against the exact sum of
-// solid angles.
+// against an octahedron's inequality, the solid angles against the octahedron's inside, and
+// fast winding numbers against the exact sum of solid angles.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -153,6 +153,31 @@ TEST(SolidRays, SharedEdgesAndVerticesOnRaysCountOnce) {
                 }
         EXPECT_GT(checked_on_corner_rays, 50);  // voxels whose ray runs through an edge or corner
     }
+}
+
+// The exact sum that FastWindingNumbersMatchTheExactSum takes as its oracle, against the
+// winding number of a closed, outward-wound mesh: 1 at every point inside, 0 outside.
+TEST(SolidWinding, TriangleSolidAnglesSumToTheOctahedronsInside) {
+    const Octahedron oct;
+    auto corner = [&](std::uint32_t v) {
+        return solid::Vec3{oct.positions[3 * v], oct.positions[3 * v + 1], oct.positions[3 * v + 2]};
+    };
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(oct.c - oct.r - 1, oct.c + oct.r + 1);  // about 1 in 8 inside
+    int inside = 0, outside = 0;
+    for (int n = 0; n < 200; ++n) {
+        const solid::Vec3 q{u(rng), u(rng), u(rng)};
+        const double l1 = std::fabs(q[0] - oct.c) + std::fabs(q[1] - oct.c) + std::fabs(q[2] - oct.c);
+        if (std::fabs(l1 - oct.r) < 1e-3) continue;  // on the surface: undefined
+        double sum = 0;
+        for (std::size_t t = 0; t < oct.triangles.size(); t += 3)
+            sum += solid::triangleWinding(corner(oct.triangles[t]), corner(oct.triangles[t + 1]),
+                                          corner(oct.triangles[t + 2]), q);
+        EXPECT_NEAR(sum, l1 < oct.r ? 1.0 : 0.0, 1e-9) << q[0] << "," << q[1] << "," << q[2];
+        ++(l1 < oct.r ? inside : outside);
+    }
+    EXPECT_GT(inside, 10);
+    EXPECT_GT(outside, 10);
 }
 
 TEST(SolidWinding, FastWindingNumbersMatchTheExactSum) {

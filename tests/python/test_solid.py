@@ -291,3 +291,11 @@ def test_tiled_and_tessellation_runs_fill_the_same_inside(bunny):
     cpu_surface = hyvox.voxelize(vertices, triangles, resolution=48).to_dense()
     expected = tess_surface.to_dense() | (whole.to_dense() & ~cpu_surface)
     assert np.array_equal(tess.to_dense(), expected)
+    # Tiled, with PN triangles (points reach past their triangle's box): the barrier's cpu
+    # pass bins the triangles for itself.
+    tess_tiled = hyvox.voxelize(vertices, triangles, resolution=48, mode="solid", method="tessellation",
+                                gl_device="software", tile_size=16, pn_triangles=True)
+    tess_tiled_surface = hyvox.voxelize(vertices, triangles, resolution=48, method="tessellation",
+                                        gl_device="software", pn_triangles=True)
+    assert tess_tiled.stats["tiles"] > 1
+    assert np.array_equal(tess_tiled.to_dense(), tess_tiled_surface.to_dense() | (whole.to_dense() & ~cpu_surface))

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "attributes/surface_values.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -118,6 +119,19 @@ void SurfaceValues::evaluate(std::uint32_t triangle, const std::array<double, 3>
             for (std::size_t a = 0; a < 3; ++a) out[a] = unit_normal[a];
         }
     }
+}
+
+void meanOfSums(const AttributeGrid& layout, const double* sums, double weight, float* mean) {
+    const int channels = layout.channels();
+    if (!(weight > 0)) {
+        std::fill(mean, mean + channels, 0.0f);
+        return;
+    }
+    for (int c = 0; c < channels; ++c) mean[c] = float(sums[c] / weight);
+    if (!layout.normal) return;
+    const double* n = sums + layout.normalOffset();
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int a = 0; a < 3; ++a) mean[layout.normalOffset() + a] = length > 0 ? float(n[a] / length) : 0.0f;
 }
 
 }  // namespace hyvox::attributes

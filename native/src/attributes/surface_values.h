@@ -43,4 +43,9 @@ private:
     const float* colors_ = nullptr;     // linear: the mesh's or linear_colors_
 };
 
+// A voxel's value from its weighted sums of values (`sums`, layout.channels() of them): each
+// channel's sum over `weight`, the normal as the direction of its sum (the weight cancels;
+// zero stays zero), all zeros when `weight` is not positive. Writes layout.channels() values.
+void meanOfSums(const AttributeGrid& layout, const double* sums, double weight, float* mean);
+
 }  // namespace hyvox::attributes

@@ -115,21 +115,13 @@ public:
 
     // The means of the set voxels in bit order, normals renormalised; counts voxels still unreached.
     void writeMeans(std::vector<float>& out, std::uint64_t& unreached) const {
-        const AttributeGrid& layout = values_.layout();
         const int channels = values_.channels();
         for (int v = 0; v < 512; ++v) {
             if (!bitSet(words_, v)) continue;
-            const double* sum = &sums_[std::size_t(v) * stride_];
             const double w = weight(v);
             if (!(w > 0)) ++unreached;
             float mean[kMaxChannels];
-            for (int c = 0; c < channels; ++c) mean[c] = w > 0 ? float(sum[c] / w) : 0.0f;
-            if (layout.normal) {
-                // The direction of the summed normals (the weight cancels), zero stays zero.
-                const double* n = sum + layout.normalOffset();
-                const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-                for (int a = 0; a < 3; ++a) mean[layout.normalOffset() + a] = length > 0 ? float(n[a] / length) : 0.0f;
-            }
+            meanOfSums(values_.layout(), &sums_[std::size_t(v) * stride_], w, mean);
             out.insert(out.end(), mean, mean + channels);
         }
     }

@@ -99,42 +99,38 @@ void SparseGrid::addLeaf(const Leaf& leaf) {
 
 void SparseGrid::finish() {
     if (!sorted_) std::sort(leaves_.begin(), leaves_.end(), byBrick);
-    // OR leaves of one brick together; full leaves wholly in the grid become one-brick tiles.
-    std::vector<Leaf> kept;
-    kept.reserve(leaves_.size());
-    for (const Leaf& leaf : leaves_) {
-        if (!kept.empty() && kept.back().brick == leaf.brick) {
-            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) kept.back().words[w] |= leaf.words[w];
+    // In place (no second copy of the leaves, which can be most of the memory budget): OR
+    // leaves of one brick together; full leaves wholly in the grid become one-brick tiles.
+    std::size_t kept = 0;
+    for (std::size_t n = 0; n < leaves_.size(); ++n) {
+        if (kept > 0 && leaves_[kept - 1].brick == leaves_[n].brick) {
+            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) leaves_[kept - 1].words[w] |= leaves_[n].words[w];
         } else {
-            kept.push_back(leaf);
+            leaves_[kept++] = leaves_[n];
         }
     }
-    std::vector<Leaf> partial;
-    partial.reserve(kept.size());
-    for (const Leaf& leaf : kept) {
-        if (full(leaf.words) && brickWhole(leaf.brick))
-            tiles_.push_back({leaf.brick, leaf.brick + 1});
-        else
-            partial.push_back(leaf);
-    }
+    leaves_.resize(kept);
+    for (const Leaf& leaf : leaves_)
+        if (full(leaf.words) && brickWhole(leaf.brick)) tiles_.push_back({leaf.brick, leaf.brick + 1});
     // Tile runs sorted and merged where they overlap or touch.
     std::sort(tiles_.begin(), tiles_.end(), [](const TileRun& a, const TileRun& b) { return a.begin < b.begin; });
-    std::vector<TileRun> runs;
-    for (const TileRun& run : tiles_) {
-        if (!runs.empty() && run.begin <= runs.back().end)
-            runs.back().end = std::max(runs.back().end, run.end);
+    std::size_t runs = 0;
+    for (std::size_t n = 0; n < tiles_.size(); ++n) {
+        if (runs > 0 && tiles_[n].begin <= tiles_[runs - 1].end)
+            tiles_[runs - 1].end = std::max(tiles_[runs - 1].end, tiles_[n].end);
         else
-            runs.push_back(run);
+            tiles_[runs++] = tiles_[n];
     }
-    tiles_ = std::move(runs);
-    // Leaves inside a tile add nothing.
-    leaves_.clear();
+    tiles_.resize(runs);
+    // Leaves inside a tile (the full ones just made tiles among them) add nothing.
+    kept = 0;
     std::size_t r = 0;
-    for (const Leaf& leaf : partial) {
-        while (r < tiles_.size() && tiles_[r].end <= leaf.brick) ++r;
-        if (r < tiles_.size() && tiles_[r].begin <= leaf.brick) continue;
-        leaves_.push_back(leaf);
+    for (std::size_t n = 0; n < leaves_.size(); ++n) {
+        while (r < tiles_.size() && tiles_[r].end <= leaves_[n].brick) ++r;
+        if (r < tiles_.size() && tiles_[r].begin <= leaves_[n].brick) continue;
+        leaves_[kept++] = leaves_[n];
     }
+    leaves_.resize(kept);
     leaves_.shrink_to_fit();
     tiles_.shrink_to_fit();
     sorted_ = true;

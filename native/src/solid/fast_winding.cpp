@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solid/median_split.h"
+
 namespace hyvox::solid {
 namespace {
 
@@ -70,14 +72,9 @@ std::int32_t FastWinding::build(std::uint32_t first, std::uint32_t count) {
         node.radius = std::max(node.radius, norm(sub(p, node.centre)));
     }
     if (count > kLeafTriangles) {
-        // Split at the median centroid along the box's longest side.
-        int axis = 0;
-        for (int k = 1; k < 3; ++k)
-            if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
-        const std::uint32_t half = count / 2;
-        auto centroid = [axis](const std::array<Vec3, 3>& t) { return t[0][axis] + t[1][axis] + t[2][axis]; };
-        std::nth_element(triangles_.begin() + first, triangles_.begin() + first + half, triangles_.begin() + first + count,
-                         [&](const auto& x, const auto& y) { return centroid(x) < centroid(y); });
+        const std::uint32_t half = splitAtMedian(triangles_, first, count, lo, hi, [](const std::array<Vec3, 3>& t, int axis) {
+            return t[0][axis] + t[1][axis] + t[2][axis];  // three times the centroid
+        });
         node.left = build(first, half);
         node.right = build(first + half, count - half);
     }

@@ -20,6 +20,25 @@ namespace {
 
 using Int3 = std::array<std::int32_t, 3>;
 
+// Halving a box [lo, hi) of bricks or voxels: middle() cuts every side longer than 1 in two;
+// octant n (bits for x, y, z from high to low) takes the upper half of side a when its bit is
+// set, and is empty (octant() false) when that half is (a side of length 1 has no upper half).
+Int3 middle(const Int3& lo, const Int3& hi) {
+    Int3 mid;
+    for (int a = 0; a < 3; ++a) mid[a] = hi[a] - lo[a] > 1 ? lo[a] + (hi[a] - lo[a]) / 2 : hi[a];
+    return mid;
+}
+bool octant(const Int3& lo, const Int3& hi, const Int3& mid, int n, Int3& child_lo, Int3& child_hi) {
+    bool empty = false;
+    for (int a = 0; a < 3; ++a) {
+        const bool upper = (n >> (2 - a)) & 1;
+        child_lo[a] = upper ? mid[a] : lo[a];
+        child_hi[a] = upper ? hi[a] : mid[a];
+        empty = empty || child_lo[a] >= child_hi[a];
+    }
+    return !empty;
+}
+
 // The inside test of the chosen rule: a value compared with 0.5, and how fast it may change.
 struct InsideField {
     const FastWinding* winding = nullptr;  // one of these two
@@ -103,8 +122,7 @@ private:
             return;
         }
         // Split every side longer than one brick in half; the surface bricks follow.
-        Int3 mid;
-        for (int a = 0; a < 3; ++a) mid[a] = hi[a] - lo[a] > 1 ? lo[a] + (hi[a] - lo[a]) / 2 : hi[a];
+        const Int3 mid = middle(lo, hi);
         struct Child {
             Int3 lo, hi;
             SurfaceBrick *first, *last;
@@ -120,18 +138,12 @@ private:
             finer.push_back(last);
             cuts = std::move(finer);
         }
-        for (int octant = 0; octant < 8; ++octant) {
+        for (int n = 0; n < 8; ++n) {
             Child child{};
-            bool empty = false;
-            for (int a = 0; a < 3; ++a) {
-                const bool upper = (octant >> (2 - a)) & 1;
-                child.lo[a] = upper ? mid[a] : lo[a];
-                child.hi[a] = upper ? hi[a] : mid[a];
-                empty = empty || child.lo[a] >= child.hi[a];
-            }
-            child.first = cuts[std::size_t(octant)];
-            child.last = cuts[std::size_t(octant) + 1];
-            if (!empty) children.push_back(child);
+            if (!octant(lo, hi, mid, n, child.lo, child.hi)) continue;
+            child.first = cuts[std::size_t(n)];
+            child.last = cuts[std::size_t(n) + 1];
+            children.push_back(child);
         }
         const std::uint64_t volume = std::uint64_t(hi[0] - lo[0]) * std::uint64_t(hi[1] - lo[1]) * std::uint64_t(hi[2] - lo[2]);
         if (last - first > 64 || volume > 512) {
@@ -214,18 +226,10 @@ private:
             if (v >= 0.5) setBox(lo, hi, words);
             return;
         }
-        Int3 mid;
-        for (int a = 0; a < 3; ++a) mid[a] = hi[a] - lo[a] > 1 ? lo[a] + (hi[a] - lo[a]) / 2 : hi[a];
-        for (int octant = 0; octant < 8; ++octant) {
+        const Int3 mid = middle(lo, hi);
+        for (int n = 0; n < 8; ++n) {
             Int3 child_lo, child_hi;
-            bool empty = false;
-            for (int a = 0; a < 3; ++a) {
-                const bool upper = (octant >> (2 - a)) & 1;
-                child_lo[a] = upper ? mid[a] : lo[a];
-                child_hi[a] = upper ? hi[a] : mid[a];
-                empty = empty || child_lo[a] >= child_hi[a];
-            }
-            if (!empty) decideFreeBox(child_lo, child_hi, words, out);
+            if (octant(lo, hi, mid, n, child_lo, child_hi)) decideFreeBox(child_lo, child_hi, words, out);
         }
     }
 

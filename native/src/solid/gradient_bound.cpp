@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solid/median_split.h"
+
 namespace hyvox::solid {
 namespace {
 
@@ -59,12 +61,9 @@ std::int32_t GradientBound::build(std::uint32_t first, std::uint32_t count) {
         node.weight += edges_[e].weight;
     }
     if (count > kLeafEdges) {
-        int axis = 0;
-        for (int k = 1; k < 3; ++k)
-            if (node.box.hi[k] - node.box.lo[k] > node.box.hi[axis] - node.box.lo[axis]) axis = k;
-        const std::uint32_t half = count / 2;
-        std::nth_element(edges_.begin() + first, edges_.begin() + first + half, edges_.begin() + first + count,
-                         [axis](const Edge& x, const Edge& y) { return x.box.lo[axis] + x.box.hi[axis] < y.box.lo[axis] + y.box.hi[axis]; });
+        const std::uint32_t half = splitAtMedian(edges_, first, count, node.box.lo, node.box.hi, [](const Edge& e, int axis) {
+            return e.box.lo[axis] + e.box.hi[axis];  // twice the centre
+        });
         node.left = build(first, half);
         node.right = build(first + half, count - half);
     }

@@ -1,22 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tessellation/point_values.h"
 
-#include <cmath>
+#include "attributes/clip_to_voxel.h"
 
 namespace hyvox::tessellation {
-namespace {
-
-std::array<double, 3> unitNormal(const std::array<std::array<double, 3>, 3>& p) {
-    const double e1[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
-    const double e2[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
-    std::array<double, 3> n = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (length > 0)
-        for (double& x : n) x /= length;
-    return n;
-}
-
-}  // namespace
 
 std::string PointValues::defines() const {
     std::string text = "#define ATTRIBUTES 1\n#define ATTRIBUTE_CHANNELS " + std::to_string(channels()) +
@@ -39,11 +26,11 @@ PointValues makePointValues(const ValidatedMesh& mesh, const GridSpec& grid, con
         const std::array<std::array<double, 3>, 3> p = {grid.toVoxel(mesh.vertex(triangle, 0)),
                                                         grid.toVoxel(mesh.vertex(triangle, 1)),
                                                         grid.toVoxel(mesh.vertex(triangle, 2))};
-        const std::array<double, 3> normal = unitNormal(p);
+        const attributes::TriangleFrame frame(p);  // for its unit normal
         for (std::size_t c = 0; c < 3; ++c) {
             std::array<double, 3> corner{0, 0, 0};
             corner[c] = 1;
-            values.evaluate(triangle, corner, normal, value);
+            values.evaluate(triangle, corner, frame.unitNormal(), value);
             float* row = &out.corners[(3 * u + c) * channels];
             for (std::size_t n = 0; n < channels; ++n) row[n] = float(value[n]);
             if (out.texture) {
@@ -79,24 +66,18 @@ std::uint64_t meansFromSums(const std::vector<std::uint32_t>& brick_blocks, cons
         for (int n = 0; n < 512; ++n) {
             if (!((words[n >> 6] >> (n & 63)) & 1u)) continue;
             const std::uint32_t count = held ? count_pool[(block - 1) * 512 + std::size_t(n)] : 0;
-            float mean[attributes::kMaxChannels] = {};
+            double exact[attributes::kMaxChannels] = {};
             if (count == 0) {
                 ++unreached;
             } else {
                 const std::uint32_t* sum = &value_pool[((block - 1) * 512 + std::size_t(n)) * 2 * std::size_t(channels)];
-                double exact[attributes::kMaxChannels];
                 for (int c = 0; c < channels; ++c) {
                     const std::uint64_t bits64 = (std::uint64_t(sum[2 * c + 1]) << 32) | sum[2 * c];
                     exact[c] = double(std::int64_t(bits64)) / kValueScale;
-                    mean[c] = float(exact[c] / count);
-                }
-                if (layout.normal) {
-                    // The direction of the summed normals (the count cancels), zero stays zero.
-                    const double* s = exact + layout.normalOffset();
-                    const double length = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-                    for (int a = 0; a < 3; ++a) mean[layout.normalOffset() + a] = length > 0 ? float(s[a] / length) : 0.0f;
                 }
             }
+            float mean[attributes::kMaxChannels];
+            attributes::meanOfSums(layout, exact, double(count), mean);
             leaf.values.insert(leaf.values.end(), mean, mean + channels);
         }
     }

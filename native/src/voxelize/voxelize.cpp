@@ -117,7 +117,6 @@ struct Surface {
     const ValidatedMesh& validated;
     const GridSpec& grid;
     const tiling::TilePlan& plan;
-    const tiling::PointReach& reach;
     Interrupter* interrupter;
     Stopwatch& watch;
     const attributes::SurfaceValues* values = nullptr;
@@ -126,9 +125,13 @@ struct Surface {
     void run(const VoxelizeOptions& options, VoxelizeResult& result, Stats& stats) const {
         result.occupancy = SparseGrid(grid.dims);
         std::vector<std::vector<std::uint32_t>> bins;
-        if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, reach, interrupter);
+        // The reach of this pass's method: the solid barrier's cpu pass bins without the
+        // tessellation's displacement and patch bulge.
+        if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, tiling::pointReach(grid, options), interrupter);
         stats.addTiming("tiles", watch.restart());
 
+        // The tessellation averages its own points' values; the exact methods' come after.
+        const bool own_attributes = values && options.method == Method::Tessellation;
         TileProgress progress(interrupter, plan.total());
         for (std::size_t t = 0; t < plan.total(); ++t) {
             if (!plan.whole() && bins[t].empty()) continue;
@@ -139,8 +142,6 @@ struct Surface {
             progress.setTile(t);
             TileOutput out{BitGrid(tile.dims), {}, {}, 0};
             stats.addTiming("allocate", watch.restart());
-            // The tessellation averages its own points' values; the exact methods' come after.
-            const bool own_attributes = values && options.method == Method::Tessellation;
             const BackendJob job{tile_mesh, validated, grid, tile, options, &progress, own_attributes ? values : nullptr};
             runBackend(job, out, stats);
             watch.restart();
@@ -232,7 +233,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     const bool solid = options.mode == Mode::Solid;
     VoxelizeOptions surface_options = options;
     if (solid) surface_options.mode = Mode::Conservative;
-    Surface surface_pass{validated, grid, plan, reach, interrupter, watch};
+    Surface surface_pass{validated, grid, plan, interrupter, watch};
     if (surface) {
         surface_pass.values = &*surface;
         surface_pass.attribute_leaves = &attribute_leaves;
