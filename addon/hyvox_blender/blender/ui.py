@@ -33,7 +33,9 @@ def _gl_device():
 
 
 def _applies(name, method) -> bool:
-    return panel_rules.option_applies(properties.option_spec(name).group, method)
+    """Whether option `name` does anything for the resolved `method`: the schema's one rule
+    (the same the CLI and hyvox.voxelize warn by). Options that do not are hidden."""
+    return properties.option_spec(name).applies_to(method)
 
 
 class _HyvoxPanel:
