@@ -51,6 +51,12 @@ class _HyvoxPanel:
         return layout
 
 
+class _HyvoxSubPanel(_HyvoxPanel):
+    """Output, Animation, Advanced: under the main panel, closed until opened."""
+    bl_parent_id = "VIEW3D_PT_hyvox_voxelize"
+    bl_options = {"DEFAULT_CLOSED"}
+
+
 class VIEW3D_PT_hyvox_voxelize(_HyvoxPanel, bpy.types.Panel):
     bl_label = "Voxelize"
 
@@ -89,10 +95,8 @@ class VIEW3D_PT_hyvox_voxelize(_HyvoxPanel, bpy.types.Panel):
                 column.label(text=line)
 
 
-class VIEW3D_PT_hyvox_output(_HyvoxPanel, bpy.types.Panel):
+class VIEW3D_PT_hyvox_output(_HyvoxSubPanel, bpy.types.Panel):
     bl_label = "Output"
-    bl_parent_id = "VIEW3D_PT_hyvox_voxelize"
-    bl_options = {"DEFAULT_CLOSED"}
 
     def draw(self, context):
         layout = self.layout_split()
@@ -110,10 +114,8 @@ class VIEW3D_PT_hyvox_output(_HyvoxPanel, bpy.types.Panel):
         layout.operator("wm.hyvox_clean_voxel_files", text="Clean Unused Files", icon="TRASH")
 
 
-class VIEW3D_PT_hyvox_animation(_HyvoxPanel, bpy.types.Panel):
+class VIEW3D_PT_hyvox_animation(_HyvoxSubPanel, bpy.types.Panel):
     bl_label = "Animation"
-    bl_parent_id = "VIEW3D_PT_hyvox_voxelize"
-    bl_options = {"DEFAULT_CLOSED"}
 
     def draw_header(self, context):
         self.layout.prop(context.scene.hyvox, "use_frame_range", text="")
@@ -127,10 +129,8 @@ class VIEW3D_PT_hyvox_animation(_HyvoxPanel, bpy.types.Panel):
         col.prop(settings, "frame_end", text="End")
 
 
-class VIEW3D_PT_hyvox_advanced(_HyvoxPanel, bpy.types.Panel):
+class VIEW3D_PT_hyvox_advanced(_HyvoxSubPanel, bpy.types.Panel):
     bl_label = "Advanced"
-    bl_parent_id = "VIEW3D_PT_hyvox_voxelize"
-    bl_options = {"DEFAULT_CLOSED"}
 
     def draw(self, context):
         layout = self.layout_split()
