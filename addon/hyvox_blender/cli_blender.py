@@ -4,13 +4,14 @@
     blender -b scene.blend --python B/addon/hyvox_blender/cli_blender.py -- \\
         --frames 1-10 --output DIR --resolution 256 [--voxel-size S] [--method cpu] \\
         [--mode conservative|thin|solid] [--tess-gamma G] [--hybrid-cutoff C] [--padding P] \\
-        [--objects A,B] [--separate] [--viewport] [--save OUT.blend] [--stats-json FILE]
+        [--objects A,B] [--separate] [--no-color] [--viewport] [--save OUT.blend] [--stats-json FILE]
 
 Voxelizes the named objects (default: the selection, or every visible mesh when nothing
 is selected) with the add-on's operator, so the result is the same as in the UI. A frame
-chunk (--frames 11-20) writes its own files name_0011.vdb...; chunks assemble. Modifiers and Geometry Nodes are evaluated at render settings, as the
-render shows the scene (--viewport: at viewport settings); instances are included. Put
-Blender options such as -a (render the animation) before the `--`. Exits 1 on failure."""
+chunk (--frames 11-20) writes its own files name_0011.vdb...; chunks assemble. Modifiers
+and Geometry Nodes are evaluated at render settings, as the render shows the scene
+(--viewport: at viewport settings); instances are included. Put Blender options such as
+-a (render the animation) before the `--`. Exits 1 on failure."""
 import argparse
 import json
 import os

@@ -133,6 +133,31 @@ def sorted_rows(a, decimals=6):
     return a[np.lexsort(a.T[::-1])]
 
 
+def run_suite(names):
+    """Run the unittest cases `names` (test_x or test_x.Case.test_y) and return the exit
+    code. wasSuccessful() is also true when nothing ran or everything was skipped: CTest would
+    report those as passes, so they fail here (skips are not allowed)."""
+    suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromName(name) for name in names)
+    result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
+    if result.testsRun == 0 or result.skipped:
+        print(f"FAILED: {result.testsRun} tests ran, {len(result.skipped)} skipped (skips are not allowed)")
+        return 1
+    return 0 if result.wasSuccessful() else 1
+
+
+def render_pixels(path):
+    """Render the scene's camera to `path` (its format as set in the scene) and read it back:
+    (height, width, 4) float64 RGBA, bottom row first as Blender stores it."""
+    scene = bpy.context.scene
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    image = bpy.data.images.load(path)
+    width, height = image.size
+    pixels = np.array(image.pixels[:], dtype=np.float64).reshape(height, width, 4)
+    bpy.data.images.remove(image)
+    return pixels
+
+
 class AddonTestCase(unittest.TestCase):
     """Each test starts from an empty scene with its own output folder."""
 

@@ -112,6 +112,12 @@ def invoke(**kw):
         return bpy.ops.object.hyvox_voxelize("INVOKE_DEFAULT", output_dir=OUT, **kw)
 
 
+def press_esc():
+    window = bpy.context.window_manager.windows[0]
+    window.event_simulate("ESC", "PRESS")
+    window.event_simulate("ESC", "RELEASE")
+
+
 def tick():
     try:
         return step()
@@ -210,9 +216,7 @@ def step():
             # leaves room for a loaded CI machine without hiding a real freeze.
             if state["max_gap"] > 0.9:
                 fail("the UI stalled while the worker ran")
-            window = bpy.context.window_manager.windows[0]
-            window.event_simulate("ESC", "PRESS")
-            window.event_simulate("ESC", "RELEASE")
+            press_esc()
             state.update(step="cancelled", t0=now)
     elif s == "cancelled":
         if running() is not None:
@@ -236,9 +240,7 @@ def step():
             if now - state["t0"] > 30:
                 fail("the run never reached its write")
             return 0.05
-        window = bpy.context.window_manager.windows[0]
-        window.event_simulate("ESC", "PRESS")
-        window.event_simulate("ESC", "RELEASE")
+        press_esc()
         state.update(step="write_cancelled", t0=now)
     elif s == "write_cancelled":
         if running() is not None:

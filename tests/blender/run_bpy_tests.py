@@ -13,7 +13,6 @@ import os
 import sys
 import tempfile
 import traceback
-import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -47,14 +46,10 @@ def main(argv):
         os.environ["HYVOX_BUILD_DIR"] = build_dir
         sys.path.insert(0, HERE)
         import bpy
+        import helpers  # after bpy's first import (it imports bpy)
         print("Blender", bpy.app.version_string, "Python", sys.version.split()[0])
         install_extension(build_dir, user_dir)
-        suite = unittest.TestSuite(unittest.defaultTestLoader.loadTestsFromName(n) for n in names)
-        result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
-    if result.testsRun == 0 or result.skipped:
-        print(f"FAILED: {result.testsRun} tests ran, {len(result.skipped)} skipped (skips are not allowed)")
-        return 1
-    return 0 if result.wasSuccessful() else 1
+        return helpers.run_suite(names)
 
 
 if __name__ == "__main__":

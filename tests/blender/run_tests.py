@@ -9,7 +9,6 @@ any failure, so CTest and CI see it."""
 import os
 import sys
 import traceback
-import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -25,17 +24,9 @@ def main(argv):
     import helpers
     helpers.enable_addon(build_dir)
 
-    loader = unittest.defaultTestLoader
     if not names:
         names = sorted(f[:-3] for f in os.listdir(HERE) if f.startswith("test_") and f.endswith(".py"))
-    suite = unittest.TestSuite(loader.loadTestsFromName(name) for name in names)
-    result = unittest.TextTestRunner(stream=sys.stdout, verbosity=2).run(suite)
-    # wasSuccessful() is also true when nothing ran or everything was skipped: CTest would
-    # report those as passes, so they fail here.
-    if result.testsRun == 0 or result.skipped:
-        print(f"FAILED: {result.testsRun} tests ran, {len(result.skipped)} skipped (skips are not allowed)")
-        return 1
-    return 0 if result.wasSuccessful() else 1
+    return helpers.run_suite(names)
 
 
 if __name__ == "__main__":

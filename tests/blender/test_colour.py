@@ -245,12 +245,8 @@ class ColourRenderTest(_ColourCase):
     (rgb / (r + g + b)) of each region's mean colour, within 0.03."""
 
     def render(self, path):
-        scene = bpy.context.scene
-        scene.render.filepath = path
-        bpy.ops.render.render(write_still=True)
-        image = bpy.data.images.load(path)
-        pixels = np.array(image.pixels[:], np.float64).reshape(RENDER_PIXELS, RENDER_PIXELS, 4)
-        bpy.data.images.remove(image)
+        pixels = helpers.render_pixels(path)
+        self.assertEqual(pixels.shape, (RENDER_PIXELS, RENDER_PIXELS, 4))
         return pixels
 
     def setup_scene(self):

@@ -56,12 +56,8 @@ class FillInteriorTest(AddonTestCase):
         scene.render.image_settings.file_format = "PNG"
         scene.render.image_settings.color_depth = "8"
         folder = os.environ.get("HYVOX_RENDER_DIR", self.out)
-        path = os.path.join(folder, name + ".png")
-        scene.render.filepath = path
-        bpy.ops.render.render(write_still=True)
-        image = bpy.data.images.load(path)
-        pixels = np.array(image.pixels[:], dtype=np.float64).reshape(PIXELS, PIXELS, 4)[:, :, 0]
-        bpy.data.images.remove(image)
+        pixels = helpers.render_pixels(os.path.join(folder, name + ".png"))[:, :, 0]
+        self.assertEqual(pixels.shape, (PIXELS, PIXELS))
         mid = PIXELS // 2
         return pixels[mid - 3:mid + 3, mid - 3:mid + 3].mean()
 

@@ -99,13 +99,8 @@ def world_x(pixel):
 
 class RenderAlignmentTest(AddonTestCase):
     def render_edges(self):
-        scene = bpy.context.scene
-        path = os.path.join(self.out, "render.exr")
-        scene.render.filepath = path
-        bpy.ops.render.render(write_still=True)
-        image = bpy.data.images.load(path)
-        pixels = np.array(image.pixels[:], dtype=np.float64).reshape(PIXELS, PIXELS, 4)[:, :, 0]
-        bpy.data.images.remove(image)
+        pixels = helpers.render_pixels(os.path.join(self.out, "render.exr"))[:, :, 0]
+        self.assertEqual(pixels.shape, (PIXELS, PIXELS))
         mid = PIXELS // 2
         rows = pixels[mid - 2:mid + 2].mean(axis=0)        # along x
         cols = pixels[:, mid - 2:mid + 2].mean(axis=1)     # along y

@@ -136,13 +136,18 @@ def test_merge_meshes_offsets_indices():
 
 
 def test_panel_hides_options_that_do_not_apply():
+    # The panel hides an option by the schema's rule (ui._applies = OptionSpec.applies_to);
+    # its GL_METHODS (the methods marked with their device) are those the gl options apply to.
+    import hyvox
     from hyvox_blender.core import panel_rules
-    assert panel_rules.option_applies("tessellation", "tessellation")
-    assert not panel_rules.option_applies("tessellation", "hybrid")
-    assert panel_rules.option_applies("hybrid", "hybrid") and not panel_rules.option_applies("hybrid", "cpu")
-    assert all(panel_rules.option_applies("gl", m) for m in panel_rules.GL_METHODS)
-    assert not panel_rules.option_applies("gl", "cpu")
-    assert panel_rules.option_applies("grid", "cpu") and panel_rules.option_applies("run", "reference")
+    applies = lambda name, method: hyvox.option(name).applies_to(method)  # noqa: E731
+    assert applies("tess_gamma", "tessellation")
+    assert not applies("tess_gamma", "hybrid")
+    assert applies("hybrid_cutoff", "hybrid") and not applies("hybrid_cutoff", "cpu")
+    assert all(applies("gl_device", m) for m in panel_rules.GL_METHODS)
+    assert not applies("gl_device", "cpu")
+    assert applies("resolution", "cpu") and applies("threads", "reference")
+    assert set(panel_rules.GL_METHODS) == {m for m in hyvox.METHODS if applies("gl_device", m)}
     software = panel_rules.gl_device_summary([{"index": 0, "name": "software", "software": True}])
     gpu = panel_rules.gl_device_summary([{"index": 0, "name": "software", "software": True},
                                          {"index": 1, "name": "H200", "software": False}])

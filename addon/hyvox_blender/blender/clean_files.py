@@ -13,7 +13,9 @@ from . import importer
 
 
 def candidate_folders(context):
-    folders = {naming.default_output_dir(bpy.data.filepath)}
+    # The .blend's cache folder, and this session's unsaved-file folder if one was made
+    # (default_output_dir would make one for an unsaved file just to look into it).
+    folders = {naming.default_output_dir(bpy.data.filepath)} if bpy.data.filepath else set()
     unsaved = naming.unsaved_output_dir(create=False)
     if unsaved:
         folders.add(unsaved)

@@ -19,6 +19,16 @@ last_summary = []
 last_run_record = {}
 
 
+def _hide_in_layer(obj, hide: bool, layer) -> bool:
+    """obj.hide_set(hide) in `layer`; False when obj is not in that layer (its collection is
+    excluded there), which Blender reports by RuntimeError."""
+    try:
+        obj.hide_set(hide, view_layer=layer)
+    except RuntimeError:
+        return False
+    return True
+
+
 class _Run:
     """One run's state shared by execute() and the modal path."""
 
@@ -72,25 +82,16 @@ class _Run:
         for obj in context.scene.objects:
             if obj.select_get(view_layer=layer):
                 obj.select_set(False, view_layer=layer)
-        shown = []
-        for obj in objects:
-            try:
-                obj.hide_set(False, view_layer=layer)
-                obj.select_set(True, view_layer=layer)
-                shown.append(obj)
-            except RuntimeError:  # not in this view layer (an excluded collection)
-                pass
+        shown = [obj for obj in objects if _hide_in_layer(obj, False, layer)]
+        for obj in shown:
+            obj.select_set(True, view_layer=layer)
         if shown:
             layer.objects.active = shown[0]
         if self.used["hide_source"]:
-            for group in self.groups:
-                for name in group.sources:
-                    source = context.scene.objects.get(name)
-                    if source is not None:
-                        try:
-                            source.hide_set(True, view_layer=layer)
-                        except RuntimeError:  # not in this view layer
-                            pass
+            for name in {name for group in self.groups for name in group.sources}:
+                source = context.scene.objects.get(name)
+                if source is not None:
+                    _hide_in_layer(source, True, layer)
 
     def finish(self, context):
         """Commit the files and import them as volumes (main thread)."""

@@ -33,7 +33,9 @@ def _gl_device():
 
 
 def _applies(name, method) -> bool:
-    return panel_rules.option_applies(properties.option_spec(name).group, method)
+    """Whether option `name` does anything for the resolved `method`: the schema's one rule
+    (the same the CLI and hyvox.voxelize warn by). Options that do not are hidden."""
+    return properties.option_spec(name).applies_to(method)
 
 
 class _HyvoxPanel:
@@ -47,6 +49,12 @@ class _HyvoxPanel:
         layout.use_property_split = True
         layout.use_property_decorate = False
         return layout
+
+
+class _HyvoxSubPanel(_HyvoxPanel):
+    """Output, Animation, Advanced: under the main panel, closed until opened."""
+    bl_parent_id = "VIEW3D_PT_hyvox_voxelize"
+    bl_options = {"DEFAULT_CLOSED"}
 
 
 class VIEW3D_PT_hyvox_voxelize(_HyvoxPanel, bpy.types.Panel):
@@ -87,10 +95,8 @@ class VIEW3D_PT_hyvox_voxelize(_HyvoxPanel, bpy.types.Panel):
                 column.label(text=line)
 
 
-class VIEW3D_PT_hyvox_output(_HyvoxPanel, bpy.types.Panel):
+class VIEW3D_PT_hyvox_output(_HyvoxSubPanel, bpy.types.Panel):
     bl_label = "Output"
-    bl_parent_id = "VIEW3D_PT_hyvox_voxelize"
-    bl_options = {"DEFAULT_CLOSED"}
 
     def draw(self, context):
         layout = self.layout_split()
@@ -108,10 +114,8 @@ class VIEW3D_PT_hyvox_output(_HyvoxPanel, bpy.types.Panel):
         layout.operator("wm.hyvox_clean_voxel_files", text="Clean Unused Files", icon="TRASH")
 
 
-class VIEW3D_PT_hyvox_animation(_HyvoxPanel, bpy.types.Panel):
+class VIEW3D_PT_hyvox_animation(_HyvoxSubPanel, bpy.types.Panel):
     bl_label = "Animation"
-    bl_parent_id = "VIEW3D_PT_hyvox_voxelize"
-    bl_options = {"DEFAULT_CLOSED"}
 
     def draw_header(self, context):
         self.layout.prop(context.scene.hyvox, "use_frame_range", text="")
@@ -125,10 +129,8 @@ class VIEW3D_PT_hyvox_animation(_HyvoxPanel, bpy.types.Panel):
         col.prop(settings, "frame_end", text="End")
 
 
-class VIEW3D_PT_hyvox_advanced(_HyvoxPanel, bpy.types.Panel):
+class VIEW3D_PT_hyvox_advanced(_HyvoxSubPanel, bpy.types.Panel):
     bl_label = "Advanced"
-    bl_parent_id = "VIEW3D_PT_hyvox_voxelize"
-    bl_options = {"DEFAULT_CLOSED"}
 
     def draw(self, context):
         layout = self.layout_split()

@@ -1,20 +1,10 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""What the sidebar panel shows, decided without bpy: which options apply to a method, how
-the GL methods are marked with the device they would run on, and the result summary in
-short lines that fit the sidebar."""
+"""What the sidebar panel shows, decided without bpy: how the GL methods are marked with the
+device they would run on, and the result summary in short lines that fit the sidebar. (Which
+options apply to a method is the schema's rule: OptionSpec.applies_to.)"""
 from typing import Dict, List, Optional, Sequence
 
 GL_METHODS = ("hybrid", "triangle", "fragment", "tessellation")
-
-
-def option_applies(group: str, method: str) -> bool:
-    """Whether an option of the schema's `group` does anything for `method` (the resolved
-    one: Auto already turned into hybrid or cpu). Options that do not are hidden."""
-    if group in ("hybrid", "tessellation"):
-        return method == group
-    if group == "gl":
-        return method in GL_METHODS
-    return True
 
 
 def gl_device_summary(devices: Sequence[Dict]) -> Optional[Dict]:
