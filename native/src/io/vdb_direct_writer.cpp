@@ -415,7 +415,7 @@ void writeTopology(Bytes& out, const VdbGrid& grid, const PlacedTree& tree) {
         std::size_t upper_end = n;
         while (upper_end < items.size() && items[upper_end].upper == items[n].upper) ++upper_end;
         out.pod(upperOrigin(items[n].upper));
-        writeNodeTable(out, tree, n, upper_end, std::size_t(kUpperSlots) / 64, 2, channels,
+        writeNodeTable(out, tree, n, upper_end, kUpperWords, 2, channels,
                        [](const Placed& p) { return p.lower; });
         while (n < upper_end) {
             if (items[n].level == 2) {
@@ -424,7 +424,7 @@ void writeTopology(Bytes& out, const VdbGrid& grid, const PlacedTree& tree) {
             }
             std::size_t lower_end = n;
             while (lower_end < upper_end && items[lower_end].lower == items[n].lower) ++lower_end;
-            writeNodeTable(out, tree, n, lower_end, std::size_t(kLowerSlots) / 64, 1, channels,
+            writeNodeTable(out, tree, n, lower_end, kLowerWords, 1, channels,
                            [](const Placed& p) { return p.leaf; });
             for (; n < lower_end; ++n)
                 if (items[n].level == 0) out.raw(grid.leaves[items[n].index].mask, kLeafMaskBytes);
