@@ -5,33 +5,13 @@
 
 #include "cli_args.h"
 #include "hyvox/errors.h"
+#include "hyvox/stats_json.h"  // checkOutputPath
 
 namespace hyvox::cli {
 
 std::unique_ptr<tbb::global_control> limitThreads(int threads) {
     if (threads <= 0) return nullptr;
     return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-}
-
-void checkOutputFolder(const std::string& path, const char* what) {
-    namespace fs = std::filesystem;
-    std::error_code error;
-    const fs::file_status link = fs::symlink_status(fs::path(path), error);
-    if (fs::exists(link)) {
-        const fs::file_status status = fs::status(fs::path(path), error);
-        if (fs::is_symlink(link) && !fs::exists(status))
-            throw InvalidInput(std::string("cannot write ") + what + " '" + path + "': it is a symlink to nothing");
-        if (fs::is_directory(status))
-            throw InvalidInput(std::string("cannot write ") + what + " '" + path + "': it is a folder");
-        if (!fs::is_regular_file(status))
-            throw InvalidInput(std::string("cannot write ") + what + " '" + path +
-                               "': it is not a regular file (a device, FIFO or socket); refusing to replace it");
-    }
-    fs::path folder = fs::path(path).parent_path();
-    if (folder.empty()) folder = ".";
-    if (!fs::is_directory(folder, error))
-        throw InvalidInput(std::string("cannot write ") + what + " '" + path + "': folder '" + folder.string() +
-                           "' does not exist");
 }
 
 namespace {
@@ -58,8 +38,8 @@ void checkOutputPaths(const std::string& mesh, const std::string& output, const 
     if (!output.empty() && !stats_json.empty() && sameFile(output, stats_json))
         throw UsageError("--stats-json '" + stats_json + "' and -o '" + output +
                          "' are the same file; the stats would replace the .vdb");
-    if (!output.empty()) checkOutputFolder(output, "the output");
-    if (!stats_json.empty()) checkOutputFolder(stats_json, "the stats");
+    if (!output.empty()) checkOutputPath(output);
+    if (!stats_json.empty()) checkOutputPath(stats_json);
 }
 
 double msSince(std::chrono::steady_clock::time_point start) {

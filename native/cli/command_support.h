@@ -26,14 +26,9 @@ private:
 // backend; null when threads is 0 (all cores).
 std::unique_ptr<tbb::global_control> limitThreads(int threads);
 
-// Fails before the (possibly long) voxelization when an output could not be written anyway:
-// a missing folder, a folder, a device, FIFO or socket, a symlink to nothing (a symlink to a
-// regular file is followed: the file is replaced, the link kept). The writers still check
-// everything themselves; this only saves the wait.
-void checkOutputFolder(const std::string& path, const char* what);
-
-// Everything checkOutputFolder checks for -o and --stats-json (either may be empty: not
-// given), and that neither is the input mesh nor both the same file: a UsageError.
+// Fails before the (possibly long) voxelization when -o or --stats-json (either may be
+// empty: not given) could not be written anyway (hyvox::checkOutputPath, InvalidInput), or is
+// the input mesh, or both are the same file (UsageError).
 void checkOutputPaths(const std::string& mesh, const std::string& output, const std::string& stats_json);
 
 double msSince(std::chrono::steady_clock::time_point start);

@@ -17,9 +17,12 @@
 #include "io/vdb_direct_writer.h"
 #include "io/vdb_grid.h"
 #include "support/temp_dir.h"
+#include "support/vdb_grid_checks.h"
 
 namespace {
 
+using hyvox::test::expectSameGrids;
+using hyvox::test::readVdbGrid;
 using hyvox::test::TempDir;
 
 // Bits scattered with probability `fill` over a small grid, plus voxels far apart in a large
@@ -43,42 +46,6 @@ hyvox::VoxelizeResult makeResult(std::array<std::int32_t, 3> dims, double fill, 
     r.stats.mode = "thin";
     r.stats.voxel_count = r.occupancy.count();
     return r;
-}
-
-openvdb::GridBase::Ptr readDensity(const std::string& path, std::string* compression = nullptr) {
-    hyvox::io::initializeOpenVdb();
-    openvdb::io::File file(path);
-    file.open();
-    auto grid = file.readGrid("density");
-    file.close();
-    if (compression) *compression = grid->metaValue<std::string>("file_compression");
-    return grid;
-}
-
-void expectSameGrids(const openvdb::FloatGrid& direct, const openvdb::FloatGrid& reference) {
-    EXPECT_EQ(direct.background(), reference.background());
-    EXPECT_EQ(direct.getGridClass(), reference.getGridClass());
-    EXPECT_EQ(direct.getName(), reference.getName());
-    EXPECT_EQ(direct.transform(), reference.transform());
-    EXPECT_EQ(direct.tree().nodeCount(), reference.tree().nodeCount());
-    EXPECT_EQ(direct.tree().leafCount(), reference.tree().leafCount());
-    EXPECT_EQ(direct.activeVoxelCount(), reference.activeVoxelCount());
-    for (auto leaf = reference.tree().cbeginLeaf(); leaf; ++leaf) {
-        const auto* other = direct.tree().probeConstLeaf(leaf->origin());
-        ASSERT_NE(other, nullptr) << leaf->origin();
-        EXPECT_EQ(other->getValueMask(), leaf->getValueMask()) << leaf->origin();
-        for (openvdb::Index n = 0; n < 512; ++n) ASSERT_EQ(other->getValue(n), leaf->getValue(n)) << leaf->origin();
-    }
-    // Metadata: every entry equal, but the compression named (the direct file's is stated).
-    for (auto it = reference.beginMeta(); it != reference.endMeta(); ++it) {
-        if (it->first == "file_compression" || it->first == "file_delayed_load") continue;
-        const auto mine = direct[it->first];
-        ASSERT_TRUE(mine) << it->first;
-        EXPECT_EQ(mine->typeName(), it->second->typeName()) << it->first;
-        EXPECT_EQ(mine->str(), it->second->str()) << it->first;
-    }
-    for (auto it = direct.beginMeta(); it != direct.endMeta(); ++it)
-        EXPECT_TRUE(reference[it->first]) << "extra metadata " << it->first;
 }
 
 // The bytes of the first grid's leaf buffers: GridDescriptor's block and end positions, read
@@ -106,11 +73,11 @@ void checkAgainstOpenVdb(const hyvox::VoxelizeResult& r, int threads) {
     hyvox::writeVdb(r, direct_path, threads);
     const openvdb::GridPtrVec grids = hyvox::io::makeGrids(r);
     hyvox::io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), reference_path);
-    std::string compression;
-    const auto direct = openvdb::gridPtrCast<openvdb::FloatGrid>(readDensity(direct_path, &compression));
-    const auto reference = openvdb::gridPtrCast<openvdb::FloatGrid>(readDensity(reference_path));
+    hyvox::io::initializeOpenVdb();
+    const auto direct = readVdbGrid<openvdb::FloatGrid>(direct_path, "density");
+    const auto reference = readVdbGrid<openvdb::FloatGrid>(reference_path, "density");
     ASSERT_TRUE(direct && reference);
-    EXPECT_EQ(compression, "blosc + active values");
+    EXPECT_EQ(direct->metaValue<std::string>("file_compression"), "blosc + active values");
     // Compressed as OpenVDB compresses: the first grid's leaf buffers (blosc blocks) are
     // byte for byte OpenVDB's. (The files' sizes differ by OpenVDB's "file_delayed_load"
     // metadata, which the direct writer leaves out: readers do without it.)
@@ -119,14 +86,8 @@ void checkAgainstOpenVdb(const hyvox::VoxelizeResult& r, int threads) {
     // The memory figure the direct writer states is OpenVDB's own for the built grid.
     EXPECT_EQ(hyvox::io::vdbTreeMemUsage(hyvox::io::densityGrid(r.occupancy)), grids[0]->memUsage());
     if (r.counts.empty()) return;
-    openvdb::io::File file(direct_path);
-    file.open();
-    const auto direct_count = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("count"));
-    file.close();
-    openvdb::io::File reference_file(reference_path);
-    reference_file.open();
-    const auto reference_count = openvdb::gridPtrCast<openvdb::FloatGrid>(reference_file.readGrid("count"));
-    reference_file.close();
+    const auto direct_count = readVdbGrid<openvdb::FloatGrid>(direct_path, "count");
+    const auto reference_count = readVdbGrid<openvdb::FloatGrid>(reference_path, "count");
     ASSERT_TRUE(direct_count && reference_count);
     expectSameGrids(*direct_count, *reference_count);
 }

@@ -5,7 +5,6 @@
 // written by both writers and read back with OpenVDB, must hold the same trees (leaves,
 // tiles and their levels, every active value), types and metadata.
 #include <gtest/gtest.h>
-#include <openvdb/io/File.h>
 
 #include <algorithm>
 #include <fstream>
@@ -17,11 +16,13 @@
 #include "io/vdb_direct_writer.h"
 #include "io/vdb_grid.h"
 #include "support/temp_dir.h"
+#include "support/vdb_grid_checks.h"
 
 namespace {
 
 using hyvox::io::VdbGrid;
 using hyvox::io::VdbValueType;
+using hyvox::test::expectSameGrids;
 using hyvox::test::TempDir;
 
 hyvox::VoxelizeResult makeResult(std::array<std::int32_t, 3> dims, double fill, std::uint32_t seed,
@@ -53,52 +54,6 @@ openvdb::FloatGrid::Ptr referenceShell(const hyvox::VoxelizeResult& r) {
     hyvox::VoxelizeResult empty = r;
     empty.occupancy = hyvox::SparseGrid(r.grid.dims);
     return openvdb::gridPtrCast<openvdb::FloatGrid>(hyvox::io::makeGrids(empty)[0]);
-}
-
-template <typename GridT>
-typename GridT::Ptr readGrid(const std::string& path, const std::string& name) {
-    openvdb::io::File file(path);
-    file.open();
-    auto grid = openvdb::gridPtrCast<GridT>(file.readGrid(name));
-    file.close();
-    return grid;
-}
-
-template <typename GridT>
-void expectSameGrids(const GridT& direct, const GridT& reference) {
-    EXPECT_EQ(direct.background(), reference.background());
-    EXPECT_EQ(direct.getGridClass(), reference.getGridClass());
-    EXPECT_EQ(direct.getVectorType(), reference.getVectorType());
-    EXPECT_EQ(direct.getName(), reference.getName());
-    EXPECT_EQ(direct.transform(), reference.transform());
-    EXPECT_EQ(direct.tree().nodeCount(), reference.tree().nodeCount());
-    EXPECT_EQ(direct.tree().leafCount(), reference.tree().leafCount());
-    EXPECT_EQ(direct.tree().activeTileCount(), reference.tree().activeTileCount());
-    EXPECT_EQ(direct.activeVoxelCount(), reference.activeVoxelCount());
-    EXPECT_EQ(direct.memUsage(), reference.memUsage());
-    for (auto leaf = reference.tree().cbeginLeaf(); leaf; ++leaf) {
-        const auto* other = direct.tree().probeConstLeaf(leaf->origin());
-        ASSERT_NE(other, nullptr) << leaf->origin();
-        EXPECT_EQ(other->getValueMask(), leaf->getValueMask()) << leaf->origin();
-        for (openvdb::Index n = 0; n < 512; ++n) ASSERT_EQ(other->getValue(n), leaf->getValue(n)) << leaf->origin();
-    }
-    // Every active tile: same value, active, at the same level.
-    for (auto it = reference.tree().cbeginValueOn(); it; ++it) {
-        if (!it.isTileValue()) continue;
-        const openvdb::Coord at = it.getCoord();
-        EXPECT_EQ(direct.tree().getValue(at), *it) << at;
-        EXPECT_TRUE(direct.tree().isValueOn(at)) << at;
-        EXPECT_EQ(direct.tree().getValueDepth(at), reference.tree().getValueDepth(at)) << at;
-    }
-    for (auto it = reference.beginMeta(); it != reference.endMeta(); ++it) {
-        if (it->first == "file_delayed_load") continue;
-        const auto mine = direct[it->first];
-        ASSERT_TRUE(mine) << it->first;
-        EXPECT_EQ(mine->typeName(), it->second->typeName()) << it->first;
-        EXPECT_EQ(mine->str(), it->second->str()) << it->first;
-    }
-    for (auto it = direct.beginMeta(); it != direct.endMeta(); ++it)
-        EXPECT_TRUE(reference[it->first]) << "extra metadata " << it->first;
 }
 
 // The solid branch's SparseGrid stand-in: its leaves, plus runs of whole bricks as tiles.
@@ -153,8 +108,8 @@ TEST(IoVdbDirectGrids, LeavesAndTilesEqualOpenVdbsPrunedTree) {
     hyvox::io::writeGridsAtomic({reference}, reference_path);
 
     hyvox::io::initializeOpenVdb();
-    const auto direct = readGrid<openvdb::FloatGrid>(direct_path, "density");
-    const auto read_reference = readGrid<openvdb::FloatGrid>(reference_path, "density");
+    const auto direct = hyvox::test::readVdbGrid<openvdb::FloatGrid>(direct_path, "density");
+    const auto read_reference = hyvox::test::readVdbGrid<openvdb::FloatGrid>(reference_path, "density");
     ASSERT_TRUE(direct && read_reference);
     expectSameGrids(*direct, *read_reference);
     EXPECT_EQ(hyvox::io::vdbTreeMemUsage(density), reference->memUsage());
@@ -195,13 +150,13 @@ TEST(IoVdbDirectGrids, TilesOfOtherValuesAndLevelsEqualOpenVdbs) {
     const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string();
     writeFile(direct_path, hyvox::io::serializeVdbGrids(r, {grid, vectors}, 2));
     hyvox::io::writeGridsAtomic({reference, reference_vectors}, reference_path);
-    const auto direct = readGrid<openvdb::FloatGrid>(direct_path, "density");
-    const auto read_reference = readGrid<openvdb::FloatGrid>(reference_path, "density");
+    const auto direct = hyvox::test::readVdbGrid<openvdb::FloatGrid>(direct_path, "density");
+    const auto read_reference = hyvox::test::readVdbGrid<openvdb::FloatGrid>(reference_path, "density");
     ASSERT_TRUE(direct && read_reference);
     EXPECT_EQ(read_reference->tree().activeTileCount(), 4u);
     expectSameGrids(*direct, *read_reference);
-    const auto direct_vectors = readGrid<openvdb::Vec3SGrid>(direct_path, "velocity");
-    const auto read_reference_vectors = readGrid<openvdb::Vec3SGrid>(reference_path, "velocity");
+    const auto direct_vectors = hyvox::test::readVdbGrid<openvdb::Vec3SGrid>(direct_path, "velocity");
+    const auto read_reference_vectors = hyvox::test::readVdbGrid<openvdb::Vec3SGrid>(reference_path, "velocity");
     ASSERT_TRUE(direct_vectors && read_reference_vectors);
     expectSameGrids(*direct_vectors, *read_reference_vectors);
 }
@@ -261,16 +216,16 @@ TEST(IoVdbDirectGrids, AttributeGridsEqualOpenVdbs) {
         SCOPED_TRACE(other);
         for (const char* name : {"color", "normal"}) {
             SCOPED_TRACE(name);
-            const auto direct = readGrid<openvdb::Vec3SGrid>(direct_path, name);
-            const auto reference = readGrid<openvdb::Vec3SGrid>(other, name);
+            const auto direct = hyvox::test::readVdbGrid<openvdb::Vec3SGrid>(direct_path, name);
+            const auto reference = hyvox::test::readVdbGrid<openvdb::Vec3SGrid>(other, name);
             ASSERT_TRUE(direct && reference);
             EXPECT_EQ(reference->activeVoxelCount(), coords.size());
             expectSameGrids(*direct, *reference);
         }
         for (const char* name : {"density", "alpha"}) {
             SCOPED_TRACE(name);
-            const auto direct = readGrid<openvdb::FloatGrid>(direct_path, name);
-            const auto reference = readGrid<openvdb::FloatGrid>(other, name);
+            const auto direct = hyvox::test::readVdbGrid<openvdb::FloatGrid>(direct_path, name);
+            const auto reference = hyvox::test::readVdbGrid<openvdb::FloatGrid>(other, name);
             ASSERT_TRUE(direct && reference);
             expectSameGrids(*direct, *reference);
         }

@@ -17,4 +17,11 @@ std::string statsToJson(const VoxelizeResult& result);
 // Throws InvalidInput (bad path) or ResourceError (I/O failure); never leaves a partial file.
 void writeTextFileAtomic(const std::string& path, const std::string& text);
 
+// InvalidInput when no file could be written at `path` (by writeTextFileAtomic, writeVdb):
+// an empty path or one naming a folder, a folder, a device, FIFO or socket, a symlink to
+// nothing, a folder that does not exist. A symlink to a regular file is fine (the file is
+// replaced, the link kept). The writers check this themselves; front doors call it before
+// long work so that the work is not done for nothing.
+void checkOutputPath(const std::string& path);
+
 }  // namespace hyvox

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "hyvox/errors.h"
+#include "hyvox/stats_json.h"  // checkOutputPath
 
 namespace hyvox::io {
 namespace {
@@ -50,33 +51,58 @@ std::string baseOf(const std::string& path) {
 
 }  // namespace
 
-AtomicFile::AtomicFile(std::string destination) : destination_(std::move(destination)) {
-    if (destination_.empty()) throw InvalidInput("the output path is empty");
-    const std::string base = baseOf(destination_);
+namespace {
+
+struct Destination {
+    std::string target;   // the file replaced: the destination with a symlink resolved
+    long keep_mode = -1;  // the replaced file's permission bits, or -1 for a new file
+};
+
+// The file a write to `destination` replaces, or InvalidInput when none could be written
+// there (see hyvox::checkOutputPath).
+Destination checkDestination(const std::string& destination) {
+    if (destination.empty()) throw InvalidInput("the output path is empty");
+    const std::string base = baseOf(destination);
     if (base.empty() || base == "." || base == "..")
-        throw InvalidInput("the output path '" + destination_ + "' names a folder, not a file");
-    target_ = destination_;
+        throw InvalidInput("the output path '" + destination + "' names a folder, not a file");
+    Destination out{destination};
     struct stat st {};
-    if (::lstat(destination_.c_str(), &st) == 0) {
+    if (::lstat(destination.c_str(), &st) == 0) {
         // A symlink is followed: the file it names is replaced and the link stays (renaming
         // over the link itself would turn it into a regular file). A link to nothing is refused.
         if (S_ISLNK(st.st_mode)) {
-            char* resolved = ::realpath(destination_.c_str(), nullptr);
+            char* resolved = ::realpath(destination.c_str(), nullptr);
             if (!resolved || ::stat(resolved, &st) != 0) {
                 std::free(resolved);
-                throw InvalidInput("the output path '" + destination_ + "' is a symlink to nothing; refusing to write");
+                throw InvalidInput("the output path '" + destination + "' is a symlink to nothing; refusing to write");
             }
-            target_ = resolved;
+            out.target = resolved;
             std::free(resolved);
         }
-        if (S_ISDIR(st.st_mode)) throw InvalidInput("the output path '" + destination_ + "' is a folder");
+        if (S_ISDIR(st.st_mode)) throw InvalidInput("the output path '" + destination + "' is a folder");
         // A device, FIFO or socket would be replaced by a regular file (as root, -o /dev/null
         // would remove /dev/null): refused.
         if (!S_ISREG(st.st_mode))
-            throw InvalidInput("the output path '" + destination_ +
+            throw InvalidInput("the output path '" + destination +
                                "' is not a regular file (a device, FIFO or socket); refusing to replace it");
-        keep_mode_ = st.st_mode & 0777;  // the replaced file's permissions (never set-id bits)
+        out.keep_mode = st.st_mode & 0777;  // the replaced file's permissions (never set-id bits)
     }
+    // Other failures to stat the folder (no permission) are left to creating the file, which
+    // names the system's reason.
+    const std::string folder = folderOf(out.target);
+    struct stat folder_st {};
+    const bool missing = ::stat(folder.c_str(), &folder_st) == 0 ? !S_ISDIR(folder_st.st_mode)
+                                                                  : errno == ENOENT || errno == ENOTDIR;
+    if (missing) throw InvalidInput("cannot write '" + destination + "': folder '" + folder + "' does not exist");
+    return out;
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(std::string destination) : destination_(std::move(destination)) {
+    Destination checked = checkDestination(destination_);
+    target_ = std::move(checked.target);
+    keep_mode_ = checked.keep_mode;
 
     // Hidden, unique per process and call; O_EXCL so two writers never share a temporary. The
     // target's name is shortened in it, so a valid name of up to 255 bytes still has one.
@@ -144,3 +170,9 @@ void AtomicFile::writeWith(const std::function<void(std::ostream&)>& write) {
 }
 
 }  // namespace hyvox::io
+
+namespace hyvox {
+
+void checkOutputPath(const std::string& path) { io::checkDestination(path); }
+
+}  // namespace hyvox

@@ -463,15 +463,9 @@ private:
                 const std::size_t xyz[3] = {offset[std::size_t(x)], offset[std::size_t(y)], offset[std::size_t(z)]};
                 const int rgba[4] = {colors ? int(offset[std::size_t(r)]) : -1, colors ? int(offset[std::size_t(g)]) : -1,
                                      colors ? int(offset[std::size_t(b)]) : -1, a >= 0 ? int(offset[std::size_t(a)]) : -1};
-                // In chunks, so that a stop is seen at the same records as on the per-value path.
-                while (i < e.count) {
-                    poll(i);
-                    const std::uint64_t chunk = std::min<std::uint64_t>(e.count - i, kPollRecords);
-                    const std::uint64_t read =
-                        source.vertexRecords(chunk, stride, xyz, colors ? rgba : nullptr, mesh_.positions, mesh_.colors);
-                    i += read;
-                    if (read < chunk) break;
-                }
+                i = inChunks(e.count, [&](std::uint64_t chunk) {
+                    return source.vertexRecords(chunk, stride, xyz, colors ? rgba : nullptr, mesh_.positions, mesh_.colors);
+                });
             }
         }
         for (; i < e.count; ++i) {
@@ -507,13 +501,8 @@ private:
             if (e.properties.size() == 1 && list.count_type == Type::Uint8 &&
                 (list.type == Type::Int32 || list.type == Type::Uint32)) {
                 const auto vertex_limit = std::uint32_t(std::min<std::uint64_t>(vertex_count_, 1u << 31));
-                while (f < e.count) {  // in chunks, as the vertices
-                    poll(f);
-                    const std::uint64_t chunk = std::min<std::uint64_t>(e.count - f, kPollRecords);
-                    const std::uint64_t read = source.triangles(chunk, vertex_limit, mesh_.triangles);
-                    f += read;
-                    if (read < chunk) break;
-                }
+                f = inChunks(e.count,
+                             [&](std::uint64_t chunk) { return source.triangles(chunk, vertex_limit, mesh_.triangles); });
             }
         }
         for (; f < e.count; ++f) {
@@ -581,6 +570,23 @@ private:
     static constexpr std::uint64_t kPollRecords = 0x10000;
     void poll(std::uint64_t record) const {
         if (record % kPollRecords == 0) throwIfInterrupted(interrupter_);
+    }
+
+    // Runs a fast path (readChunk(n): reads up to n records, returns how many) over `count`
+    // records in chunks of kPollRecords, so that a stop is seen at the same records as on the
+    // per-value path. Returns the records read: fewer than `count` where the fast path left
+    // the rest to the per-value path.
+    template <typename ReadChunk>
+    std::uint64_t inChunks(std::uint64_t count, ReadChunk readChunk) const {
+        std::uint64_t done = 0;
+        while (done < count) {
+            poll(done);
+            const std::uint64_t chunk = std::min<std::uint64_t>(count - done, kPollRecords);
+            const std::uint64_t read = readChunk(chunk);
+            done += read;
+            if (read < chunk) break;
+        }
+        return done;
     }
 
     const Header& header_;

@@ -246,6 +246,14 @@ PlacedTree placeTree(const VdbGrid& grid) {
     return tree;
 }
 
+// Whether placeTree(a) is placeTree(b): both have the same leaves (origins, in order) and no tiles.
+bool sameLeavesNoTiles(const VdbGrid& a, const VdbGrid& b) {
+    if (!a.tiles.empty() || !b.tiles.empty() || a.leaves.size() != b.leaves.size()) return false;
+    for (std::size_t n = 0; n < a.leaves.size(); ++n)
+        if (a.leaves[n].origin != b.leaves[n].origin) return false;
+    return true;
+}
+
 // Grid::memUsage() of the tree: its leaves and the internal nodes that hold leaves or tiles.
 std::uint64_t memUsage(const PlacedTree& tree, VdbValueType type) {
     const TreeBytes& bytes = treeBytes(type);
@@ -407,7 +415,7 @@ void writeTopology(Bytes& out, const VdbGrid& grid, const PlacedTree& tree) {
         std::size_t upper_end = n;
         while (upper_end < items.size() && items[upper_end].upper == items[n].upper) ++upper_end;
         out.pod(upperOrigin(items[n].upper));
-        writeNodeTable(out, tree, n, upper_end, std::size_t(kUpperSlots) / 64, 2, channels,
+        writeNodeTable(out, tree, n, upper_end, kUpperWords, 2, channels,
                        [](const Placed& p) { return p.lower; });
         while (n < upper_end) {
             if (items[n].level == 2) {
@@ -416,7 +424,7 @@ void writeTopology(Bytes& out, const VdbGrid& grid, const PlacedTree& tree) {
             }
             std::size_t lower_end = n;
             while (lower_end < upper_end && items[lower_end].lower == items[n].lower) ++lower_end;
-            writeNodeTable(out, tree, n, lower_end, std::size_t(kLowerSlots) / 64, 1, channels,
+            writeNodeTable(out, tree, n, lower_end, kLowerWords, 1, channels,
                            [](const Placed& p) { return p.leaf; });
             for (; n < lower_end; ++n)
                 if (items[n].level == 0) out.raw(grid.leaves[items[n].index].mask, kLeafMaskBytes);
@@ -463,13 +471,14 @@ struct GridLayout {
     std::size_t end = 0;  // file position after the grid
 };
 
-GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const VdbGrid& grid, tbb::task_arena& arena) {
+// `tree`: placeTree(grid).
+GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const VdbGrid& grid, const PlacedTree& tree,
+                      tbb::task_arena& arena) {
     if (grid.layout != VdbLeafValues::Fill)
         for (const VdbLeaf& leaf : grid.leaves)
             if (!leaf.values && activeCount(leaf.mask))
                 throw InvalidInput("vdb writer: grid '" + grid.name + "' has a leaf without values");
     GridLayout layout;
-    const PlacedTree tree = placeTree(grid);
     // GridDescriptor::writeHeader and writeStreamPos (patched below).
     head.string(grid.name);
     head.string(grid.type == VdbValueType::Float ? "Tree_float_5_4_3" : "Tree_vec3s_5_4_3");
@@ -564,9 +573,12 @@ VdbBytes serializeVdbGrids(const VoxelizeResult& result, const std::vector<VdbGr
     std::vector<GridLayout> layouts;
     std::vector<Bytes> heads;
     std::size_t offset = head.size();
-    for (const VdbGrid& grid : grids) {
+    PlacedTree tree;
+    for (std::size_t g = 0; g < grids.size(); ++g) {
+        // The attribute grids share one set of leaves: they are placed (and sorted) once.
+        if (g == 0 || !sameLeavesNoTiles(grids[g], grids[g - 1])) tree = placeTree(grids[g]);
         heads.emplace_back(offset);
-        layouts.push_back(layOutGrid(heads.back(), result, grid, arena));
+        layouts.push_back(layOutGrid(heads.back(), result, grids[g], tree, arena));
         offset = layouts.back().end;
     }
     VdbBytes file;

@@ -23,7 +23,6 @@
 #include <cstdint>
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -95,8 +94,7 @@ std::uint64_t vdbTreeMemUsage(const VdbGrid& grid);
 
 // "density": the occupancy's own masks, 1.0 where set; its whole-leaf tiles too, where the
 // grid type has them (tileRuns(): runs of brick indices [begin, end), all 512 voxels set),
-// as level-1 tiles of 1.0. A template so it takes SparseGrid as it is before and after
-// tiles were added to it (and a test's stand-in).
+// as level-1 tiles of 1.0. A template so it also takes a test's stand-in for SparseGrid.
 template <typename Occupancy>
 VdbGrid densityGrid(const Occupancy& occupancy);
 
@@ -124,13 +122,6 @@ void checkGridBudget(const VoxelizeResult& result);
 
 // ---- densityGrid's template ----
 
-namespace detail {
-template <typename Occupancy, typename = void>
-struct HasTileRuns : std::false_type {};
-template <typename Occupancy>
-struct HasTileRuns<Occupancy, std::void_t<decltype(std::declval<const Occupancy&>().tileRuns())>> : std::true_type {};
-}  // namespace detail
-
 template <typename Occupancy>
 VdbGrid densityGrid(const Occupancy& occupancy) {
     VdbGrid grid;
@@ -143,9 +134,8 @@ VdbGrid densityGrid(const Occupancy& occupancy) {
     };
     grid.leaves.reserve(occupancy.leaves().size());
     for (const auto& leaf : occupancy.leaves()) grid.leaves.push_back({originOf(leaf.brick), leaf.words});
-    if constexpr (detail::HasTileRuns<Occupancy>::value)
-        for (const auto& run : occupancy.tileRuns())
-            for (std::uint64_t b = run.begin; b < run.end; ++b) grid.tiles.push_back({originOf(b), 1});
+    for (const auto& run : occupancy.tileRuns())
+        for (std::uint64_t b = run.begin; b < run.end; ++b) grid.tiles.push_back({originOf(b), 1});
     return grid;
 }
 

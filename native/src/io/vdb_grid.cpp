@@ -8,9 +8,6 @@
 #include <tbb/task_arena.h>
 
 #include <array>
-#include <atomic>
-#include <chrono>
-#include <cstdio>
 #include <memory>
 #include <mutex>
 #include <ostream>
@@ -19,7 +16,6 @@
 #include "hyvox/vdb.h"
 #include "hyvox/version.h"
 #include "io/atomic_file.h"
-#include "io/interruptible_stream.h"
 #include "io/vdb_attribute_grids.h"
 
 namespace hyvox::io {
@@ -80,16 +76,14 @@ openvdb::FloatGrid::Ptr makeFogGrid(const char* name, const GridSpec& grid) {
 
 }  // namespace
 
-openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& occupancy, Interrupter* interrupter) {
+openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& occupancy) {
     auto result = makeFogGrid("density", grid);
     const BrickLayout& bricks = occupancy.bricks();
     const std::vector<SparseGrid::Leaf>& source = occupancy.leaves();
     // Leaves are built in parallel (most of the work: 512 floats each) and handed to the
     // tree serially (addLeaf is not thread-safe, and cheap).
     std::vector<std::unique_ptr<FloatLeaf>> leaves(source.size());
-    std::atomic<std::size_t> built{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size(), 256), [&](const auto& range) {
-        throwIfInterrupted(interrupter, int(90 * built.load(std::memory_order_relaxed) / source.size()));
         for (std::size_t n = range.begin(); n != range.end(); ++n) {
             const SparseGrid::Leaf& from = source[n];
             const std::array<std::int32_t, 3> at = bricks.at(from.brick);
@@ -101,7 +95,6 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& 
             for (int v = 0; v < 512; ++v) values[v] = float((from.words[v >> 6] >> (v & 63)) & 1u);
             leaves[n] = std::move(leaf);
         }
-        built.fetch_add(range.size(), std::memory_order_relaxed);
     });
     auto& tree = result->tree();
     for (auto& leaf : leaves) tree.addLeaf(leaf.release());
@@ -128,26 +121,21 @@ openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<Vo
     return result;
 }
 
-openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interrupter) {
+openvdb::GridPtrVec makeGrids(const VoxelizeResult& result) {
     openvdb::GridPtrVec grids;
-    grids.push_back(makeDensityGrid(result.grid, result.occupancy, interrupter));
+    grids.push_back(makeDensityGrid(result.grid, result.occupancy));
     if (!result.counts.empty()) grids.push_back(makeCountGrid(result.grid, result.counts));
     for (auto& grid : makeAttributeGrids(result)) grids.push_back(grid);
     for (auto& g : grids) addMetadata(*g, result);
     return grids;
 }
 
-void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path, Interrupter* interrupter,
-                      std::uint64_t expected_bytes) {
+void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path) {
     initializeOpenVdb();
     // The temporary is removed unless the whole write and commit succeed.
     AtomicFile(path).writeWith([&](std::ostream& os) {
         try {
-            InterruptibleStreamBuf checked(os.rdbuf(), interrupter, expected_bytes, 91, 100);
-            std::ostream out(&checked);
-            out.exceptions(std::ios::badbit);  // a Cancelled from the buffer reaches us
-            CheckedArchive().writeTo(out, grids);
-            out.flush();
+            CheckedArchive().writeTo(os, grids);
         } catch (const openvdb::Exception& e) {
             throw ResourceError("writing '" + path + "' failed: " + e.what());
         }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// OpenVDB grids from voxelization results, for code that links OpenVDB itself (the writer,
-// tests, the benchmark). The public API (hyvox/vdb.h) keeps OpenVDB types out.
+// OpenVDB grids from voxelization results, for code that links OpenVDB itself (the tests
+// and the benchmark; writeVdb serializes its grids without OpenVDB, vdb_direct_writer.h).
+// The public API (hyvox/vdb.h) keeps OpenVDB types out.
 #include <openvdb/openvdb.h>
 
 #include <cstdint>
@@ -10,7 +11,6 @@
 
 #include "hyvox/sparse_grid.h"
 #include "hyvox/grid.h"
-#include "hyvox/interrupter.h"
 #include "hyvox/result.h"
 #include "io/vdb_direct_writer.h"  // densityGridBytes, checkGridBudget
 
@@ -25,20 +25,17 @@ openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid);
 
 // "density": 1 on occupied voxels (active), background 0, fog volume. Built a whole 8³ leaf
 // at a time, in parallel: each sparse leaf's words are the leaf's value mask, copied as they are.
-// `interrupter` (may be null) sees percent 0-90 of the leaves built and may cancel.
-openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& occupancy,
-                                        Interrupter* interrupter = nullptr);
+openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& occupancy);
 // "count": the values of a multi-valued result.
 openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<VoxelCount>& counts);
 
 // The grids writeVdb() stores (it serializes them itself, vdb_direct_writer.h): density,
-// plus count when result.counts is non-empty, each with the hyvox_* metadata.
-openvdb::GridPtrVec makeGrids(const VoxelizeResult& result, Interrupter* interrupter = nullptr);
+// plus count when result.counts is non-empty, plus the attribute grids, each with the
+// hyvox_* metadata.
+openvdb::GridPtrVec makeGrids(const VoxelizeResult& result);
 
-// Writes grids atomically (hyvox::io::AtomicFile); throws InvalidInput / ResourceError, and
-// Cancelled when `interrupter` (may be null) asks to stop while the bytes go out (it sees
-// progress 91-99 by the bytes written of expected_bytes); nothing is left behind then.
-void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path, Interrupter* interrupter = nullptr,
-                      std::uint64_t expected_bytes = 0);
+// Writes grids with OpenVDB's own writer, atomically (hyvox::io::AtomicFile); throws
+// InvalidInput / ResourceError; nothing is left behind on failure.
+void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path);
 
 }  // namespace hyvox::io

@@ -14,7 +14,6 @@
 #include "hyvox/errors.h"
 #include "hyvox/vdb.h"
 #include "io/atomic_file.h"
-#include "io/interruptible_stream.h"
 #include "io/vdb_direct_writer.h"
 
 namespace hyvox::io {
@@ -115,14 +114,16 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, i
     throwIfInterrupted(interrupter, 90);
     auto now = std::chrono::steady_clock::now();
     report.build_ms = std::chrono::duration<double, std::milli>(now - start).count();
-    // Written through a buffer that asks the interrupter as the bytes go out, so a large file's
-    // write can be followed and cancelled (the temporary is removed, an earlier file stays).
-    io::AtomicFile(path).writeWith([&](std::ostream& os) {
-        io::InterruptibleStreamBuf checked(os.rdbuf(), interrupter, file.size, 91, 100);
-        std::ostream out(&checked);
-        out.exceptions(std::ios::badbit);  // a Cancelled from the buffer reaches us
-        out.write(file.data.get(), std::streamsize(file.size));
-        out.flush();
+    // Written in chunks, asking the interrupter between them (progress 91-98), so a large
+    // file's write can be followed and cancelled (the temporary is removed, an earlier file stays).
+    io::AtomicFile(path).writeWith([&](std::ostream& out) {
+        constexpr std::size_t kChunk = 256 * 1024;
+        for (std::size_t at = 0; at < file.size;) {
+            const std::size_t n = std::min(kChunk, file.size - at);
+            out.write(file.data.get() + at, std::streamsize(n));
+            at += n;
+            if (at < file.size) throwIfInterrupted(interrupter, 91 + int(8 * at / file.size));
+        }
     });
     report.write_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - now).count();
     if (interrupter) interrupter->wasInterrupted(100);  // progress only: the file is in place
