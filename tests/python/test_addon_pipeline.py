@@ -256,7 +256,7 @@ def test_auto_runs_a_colour_group_with_a_method_that_makes_colour(hyvox, tmp_pat
     # Without colour auto keeps its choice.
     plain = Pipeline(VoxelizeSettings(voxel_size=0.25, color=True, method="auto"), str(tmp_path / "p"),
                      colour_exporter(Group("C", ["C"]), {}), module=hyvox)
-    assert backend.method_for_group(plain.settings, plain.method, False) == "hybrid"
+    assert backend.method_for_group(hyvox, plain.settings, plain.method, False) == "hybrid"
 
 
 def test_an_explicit_method_without_colour_says_what_to_do(hyvox, tmp_path):

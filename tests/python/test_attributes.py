@@ -210,6 +210,18 @@ def test_unknown_attribute_and_unsupported_method_are_refused(tetrahedron):
         hyvox.voxelize(v, t, resolution=8, attributes="normal", method="hybrid")
 
 
+@pytest.mark.parametrize("method", hyvox.METHODS)
+def test_attribute_methods_are_the_ones_that_compute_them(tetrahedron, method):
+    # hyvox.ATTRIBUTE_METHODS (what the add-on picks methods by) against what voxelize does.
+    v, t = tetrahedron
+    if method in hyvox.ATTRIBUTE_METHODS:
+        grid = hyvox.voxelize(v, t, resolution=8, attributes="normal", method=method)
+        assert len(grid.attributes()["normal"]) == grid.voxel_count > 0
+    else:
+        with pytest.raises(ValueError, match="does not compute them yet"):
+            hyvox.voxelize(v, t, resolution=8, attributes="normal", method=method)
+
+
 def test_a_texture_too_large_is_refused(tmp_path, tetrahedron):
     from PIL import Image
 

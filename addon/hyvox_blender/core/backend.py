@@ -18,7 +18,6 @@ if TYPE_CHECKING:
 AUTO_METHOD = "auto"  # the add-on's own method: hybrid when a GPU runs GL here, else cpu
 # The methods that compute attribute voxels (colour) today; the others refuse them with a
 # ValueError. "auto" runs a group with colour by cpu.
-ATTRIBUTE_METHODS = ("cpu", "reference", "tessellation")  # as native voxelize.cpp surfaceValues()
 
 _module = None
 _gl_probe = {}  # gl_device -> bool, probed once per session: creating an EGL context is slow
@@ -89,11 +88,11 @@ def resolve_method(module, settings: "VoxelizeSettings") -> str:
     return "hybrid" if gl_available(module, settings.options.get("gl_device", "")) else "cpu"
 
 
-def method_for_group(settings: "VoxelizeSettings", resolved: str, with_colour: bool) -> str:
+def method_for_group(module, settings: "VoxelizeSettings", resolved: str, with_colour: bool) -> str:
     """The method a group runs with: auto's choice, unless the group asks for colour and
     that method cannot make it (then cpu); an explicit method is kept (and refuses colour
     with its own message)."""
-    if with_colour and settings.method == AUTO_METHOD and resolved not in ATTRIBUTE_METHODS:
+    if with_colour and settings.method == AUTO_METHOD and resolved not in module.ATTRIBUTE_METHODS:
         return "cpu"
     return resolved
 
@@ -150,7 +149,7 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "Vox
         if isinstance(exc, MemoryError):
             raise HyvoxError("out of memory: lower the resolution or raise the memory budget") from exc
         if isinstance(exc, (ValueError, RuntimeError, TypeError, OSError)):
-            hint = " (turn Colour off, or use the CPU method)" if colour and method not in ATTRIBUTE_METHODS else ""
+            hint = " (turn Colour off, or use the CPU method)" if colour and method not in module.ATTRIBUTE_METHODS else ""
             raise HyvoxError(f"{method}: {exc}{hint}") from exc
         raise
 

@@ -262,7 +262,7 @@ class Pipeline:
             self._token = backend.make_token(self.module)
             start = time.perf_counter()
             colour = mesh.colour if self.settings.color and not self.colour_skipped else None
-            method = backend.method_for_group(self.settings, self.method, bool(colour))
+            method = backend.method_for_group(self.module, self.settings, self.method, bool(colour))
             result.method = method
             grid = backend.voxelize(self.module, mesh.vertices, mesh.triangles, self.settings,
                                     method, voxel_size=fixed_size, token=self._token, colour=colour)

@@ -47,6 +47,10 @@ std::vector<const char*> modeNames();    // in enum order
 std::vector<const char*> methodNames();
 std::vector<const char*> insideRuleNames();
 
+// Whether a method computes attribute voxels (colour, normal): the exact methods, and the
+// tessellation by averaging its points' values. The GL triangle/fragment/hybrid do not yet.
+bool computesAttributes(Method method);
+
 struct GlOptions {
     std::string device;      // "" = auto (hardware first, then software); "software"; or an index "0", "1"...
     std::string shader_dir;  // "" = the shaders embedded in the library; else a copy of shaders/ to read

@@ -19,7 +19,8 @@ from typing import Callable, Iterable, List, Optional, Tuple, Union
 import numpy as np
 
 from . import _core
-from ._core import (
+from ._core import (  # ATTRIBUTE_METHODS: the methods that compute colour/normal voxels
+    ATTRIBUTE_METHODS,
     OPTIONS,
     BackendError,
     Cancelled,
@@ -59,6 +60,7 @@ def ignored_options(method: str, names: Iterable[str]) -> List[str]:
 
 
 __all__ = [
+    "ATTRIBUTE_METHODS",
     "BackendError",
     "CancelToken",
     "Cancelled",

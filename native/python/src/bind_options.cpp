@@ -160,6 +160,10 @@ void bindOptions(py::module_& m) {
     for (std::size_t i = 0; i < optionSchema().size(); ++i)
         specs[i] = py::cast(&optionSchema()[i], py::return_value_policy::reference);
     m.attr("OPTIONS") = specs;
+    py::list attribute_methods;
+    for (const char* name : methodNames())
+        if (computesAttributes(parseMethod(name))) attribute_methods.append(name);
+    m.attr("ATTRIBUTE_METHODS") = py::tuple(attribute_methods);
 
     py::class_<VoxelizeOptions>(m, "Options", "The options of one voxelization, by schema name.")
         .def(py::init([](py::kwargs kwargs) {

@@ -59,6 +59,10 @@ std::vector<const char*> modeNames() { return namesOf(kModes); }
 std::vector<const char*> methodNames() { return namesOf(kMethods); }
 const char* toString(Mode mode) { return nameOf(kModes, mode); }
 const char* toString(Method method) { return nameOf(kMethods, method); }
+
+bool computesAttributes(Method method) {
+    return method == Method::Cpu || method == Method::Reference || method == Method::Tessellation;
+}
 Mode parseMode(const std::string& text) { return parseName(kModes, text, "mode"); }
 Method parseMethod(const std::string& text) { return parseName(kMethods, text, "method"); }
 std::vector<const char*> insideRuleNames() { return namesOf(kInsideRules); }

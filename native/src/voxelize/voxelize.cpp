@@ -105,7 +105,7 @@ std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, con
     if (options.mode == Mode::Solid)
         throw InvalidInput("attributes are computed for the surface modes (conservative, thin); solid mode does "
                            "not compute them yet");
-    if (options.method != Method::Cpu && options.method != Method::Reference && options.method != Method::Tessellation)
+    if (!computesAttributes(options.method))
         throw InvalidInput(std::string("attributes are computed by the cpu, reference and tessellation methods; method ") +
                            toString(options.method) + " does not compute them yet");
     return std::optional<attributes::SurfaceValues>(std::in_place, mesh, wanted);
