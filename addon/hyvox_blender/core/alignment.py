@@ -34,3 +34,26 @@ def object_offset(voxel_size: float, version: Sequence[int], override: str = "AU
     half = -0.5 * float(voxel_size)
     return (half, half, half)
 
+
+
+# EEVEE Next (Blender 4.2-4.5) draws a Volume only inside the object's bounds, and those
+# Blender computes from the grid's active 8^3 leaves with the last index taken as a point:
+# the bounds end where the top leaf's last voxel layer begins, as 4.x draws voxel i over
+# [i, i+1). Voxels in that layer (an object's +x/+y/+z side whenever its extent is a
+# multiple of 8 voxels, as at the usual resolutions) are drawn faint or not at all. Nothing
+# the add-on sets on the object, the Volume or the scene moves those bounds (measured with
+# 4.5.15: volumetric tile size, samples, start/end, render space, interpolation, a Volume
+# Displace modifier); only active voxels (or another grid in the file) beyond them do, and
+# the file's voxels stay the voxelization's. Cycles draws them whole. 5.0 bounds the grid
+# by its voxels' faces and draws the layer whole. Measured by
+# tests/blender/test_render_alignment.py (EEVEE, 2x2x2 cube, voxel 0.25, voxels 0..7):
+#   4.5.15: Volume bounds -1..0.75, darkest wall pixel -x 0.356 / +x 0.627, +x edge -0.758;
+#           voxel 1/3 (voxels 0..5, inside the leaf): 0.286-0.287 on every wall, edges
+#           -0.965/+0.991;
+#   5.0.1:  bounds -1..1, darkest wall pixel 0.306-0.309 on every wall, edges +-0.97.
+EEVEE_CLIPPING_VERSIONS = ((4, 2, 0), (5, 0, 0))  # [first, end)
+
+
+def eevee_clips_last_voxel_layer(version: Sequence[int]) -> bool:
+    first, end = EEVEE_CLIPPING_VERSIONS
+    return first <= tuple(version[:3]) < end
