@@ -187,14 +187,21 @@ class RenderAlignmentTest(AddonTestCase):
         self.assertGreater(walls[3] - walls[2], 4 * WALL_SPREAD, f"+y wall not faint: {walls}")
 
     def test_bounds_cover_every_voxel(self):
-        """Away from the origin too: the evaluated Volume's world bounds reach at least a
-        voxel beyond the voxels' faces on every side where EEVEE Next needs it (4.2-4.5),
-        and at least to the faces elsewhere."""
+        """Away from the origin too: where EEVEE Next needs it (4.2-4.5) the evaluated
+        Volume has the `hyvox_bounds` grid and its world bounds reach at least a voxel
+        beyond the voxels' faces on every side; elsewhere it has the file's grids only
+        (3.4's bounds also stop at the last voxels' centres, but its EEVEE draws outside
+        them, as test_eevee_voxels_on_leaf_faces measures)."""
         cube = helpers.cube(size=2.0, location=(7.0, -3.0, 2.0))
         helpers.select_only(cube)
         self.assertEqual(self.voxelize(voxel_size=SIZE), {"FINISHED"})
         (obj,) = self.volumes()
         evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get())
+        grids = sorted(grid.name for grid in evaluated.data.grids)
+        if not helpers.addon("core.alignment").eevee_clips_last_voxel_layer(bpy.app.version):
+            self.assertEqual(grids, ["density"])
+            return
+        self.assertEqual(grids, ["density", helpers.addon("blender.eevee_bounds").GRID_NAME])
         corners = np.array([tuple(evaluated.matrix_world @ Vector(c)) for c in evaluated.bound_box])
         low, high = corners.min(axis=0), corners.max(axis=0)
         offset = np.asarray(obj["hyvox_offset"])
@@ -202,8 +209,6 @@ class RenderAlignmentTest(AddonTestCase):
         # Where Blender draws the voxels: the file's places moved by the add-on's offset.
         faces_low = centres.min(axis=0) - SIZE / 2 + offset
         faces_high = centres.max(axis=0) + SIZE / 2 + offset
-        clips = helpers.addon("core.alignment").eevee_clips_last_voxel_layer(bpy.app.version)
-        margin = SIZE if clips else 0.0
         print("bounds", low, high, "voxel faces", faces_low, faces_high)
-        np.testing.assert_array_less(low, faces_low - margin + 1e-6)
-        np.testing.assert_array_less(faces_high + margin - 1e-6, high)
+        np.testing.assert_array_less(low, faces_low - SIZE + 1e-6)
+        np.testing.assert_array_less(faces_high + SIZE - 1e-6, high)
