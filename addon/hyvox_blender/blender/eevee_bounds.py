@@ -10,6 +10,8 @@ The corners come from the evaluated Volume (Bounding Box node), so a frame seque
 bounds change from frame to frame is covered on every frame.
 
 One node group serves every volume; each modifier passes its voxel size."""
+from typing import Optional
+
 import bpy
 
 GROUP_NAME = "hyvox EEVEE Bounds"
@@ -77,8 +79,19 @@ def _group() -> bpy.types.NodeTree:
     return tree
 
 
-def add_bounds_modifier(obj: bpy.types.Object, voxel_size: float) -> bpy.types.Modifier:
-    """The modifier on a Volume object made from voxels of this size."""
+# The nodes the group needs; a 4.x without them (untested: only 4.5 is) keeps Blender's bounds.
+NODES_NEEDED = ("GeometryNodePointsToSDFGrid", "GeometryNodeStoreNamedGrid", "GeometryNodeBoundBox")
+
+
+def available() -> bool:
+    return all(hasattr(bpy.types, name) for name in NODES_NEEDED)
+
+
+def add_bounds_modifier(obj: bpy.types.Object, voxel_size: float) -> Optional[bpy.types.Modifier]:
+    """The modifier on a Volume object made from voxels of this size (None where this
+    Blender lacks the nodes)."""
+    if not available():
+        return None
     tree = _group()
     modifier = obj.modifiers.new(MODIFIER_NAME, "NODES")
     modifier.node_group = tree
