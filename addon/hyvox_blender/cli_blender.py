@@ -6,6 +6,8 @@
         [--mode conservative|thin|solid] [--tess-gamma G] [--hybrid-cutoff C] [--padding P] \\
         [--objects A,B] [--separate] [--no-color] [--viewport] [--save OUT.blend] [--stats-json FILE]
 
+The add-on runs as Blender knows it: the extension (Blender 4.2+) this file was installed
+with, bl_ext.<repository>.hyvox_blender, else the legacy add-on of this file's folder.
 Voxelizes the named objects (default: the selection, or every visible mesh when nothing
 is selected) with the add-on's operator, so the result is the same as in the UI. A frame
 chunk (--frames 11-20) writes its own files name_0011.vdb...; chunks assemble. Modifiers
@@ -13,17 +15,19 @@ and Geometry Nodes are evaluated at render settings, as the render shows the sce
 (--viewport: at viewport settings); instances are included. Put Blender options such as
 -a (render the animation) before the `--`. Exits 1 on failure."""
 import argparse
+import importlib
 import json
 import os
 import sys
 
 
-def parse_args(argv):
+def parse_args(argv, package):
     """Options of the add-on's own (output, frames, objects...) plus the voxelize options the
     operator takes, with the schema's names, types and help (hyvox.OPTIONS). Values are
     checked by the operator, which refuses them with the schema's message."""
-    from hyvox_blender.blender.properties import SCENE_OPTIONS, option_spec
-    from hyvox_blender.core.backend import AUTO_METHOD
+    properties = importlib.import_module(package + ".blender.properties")
+    SCENE_OPTIONS, option_spec = properties.SCENE_OPTIONS, properties.option_spec
+    AUTO_METHOD = importlib.import_module(package + ".core.backend").AUTO_METHOD
     parser = argparse.ArgumentParser(prog="blender -b FILE --python cli_blender.py --",
                                      description="Voxelize objects of a .blend into OpenVDB volumes.")
     parser.add_argument("--output", "-o", help="folder for the .vdb files (default: next to the .blend)")
@@ -48,13 +52,29 @@ def parse_args(argv):
     return args
 
 
-def enable_addon():
-    """Make this file's add-on importable and enabled (also when not installed)."""
+def addon_package():
+    """The module name of the add-on whose folder holds this file: the one Blender lists
+    (bl_ext.<repository>.hyvox_blender for an installed extension, hyvox_blender for a
+    legacy add-on in a scripts folder), else this folder as a legacy add-on from its parent."""
     import addon_utils
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    here = os.path.dirname(os.path.realpath(__file__))
+    for module in addon_utils.modules():
+        if os.path.dirname(os.path.realpath(getattr(module, "__file__", None) or "")) == here:
+            return module.__name__
+    root = os.path.dirname(here)
     if root not in sys.path:
         sys.path.insert(0, root)
-    addon_utils.enable("hyvox_blender", default_set=False, handle_error=None)
+    return os.path.basename(here)
+
+
+def enable_addon():
+    """Enable this file's add-on (also when not installed, or installed but not enabled in
+    the preferences this Blender started with); returns its module name."""
+    import addon_utils
+    package = addon_package()
+    if addon_utils.enable(package, default_set=False, handle_error=None) is None:
+        raise SystemExit(f"hyvox: could not enable the add-on {package}")
+    return package
 
 
 def choose_objects(names):
@@ -79,11 +99,11 @@ def choose_objects(names):
 
 def main(argv):
     import bpy
-    enable_addon()
-    args = parse_args(argv)
-    from hyvox_blender.blender import operators
-    from hyvox_blender.blender.properties import SCENE_OPTIONS
-    from hyvox_blender.core.settings import parse_frame_range
+    package = enable_addon()
+    args = parse_args(argv, package)
+    operators = importlib.import_module(package + ".blender.operators")
+    SCENE_OPTIONS = importlib.import_module(package + ".blender.properties").SCENE_OPTIONS
+    parse_frame_range = importlib.import_module(package + ".core.settings").parse_frame_range
 
     choose_objects(args.objects.split(",") if args.objects else None)
     kwargs = {name: getattr(args, name) for name in ("method",) + SCENE_OPTIONS if getattr(args, name) is not None}

@@ -6,19 +6,29 @@ Along a row through the cube's middle, the side wall (one voxel thick, 2 units d
 fades in over one voxel around the true edge with trilinear interpolation; its density
 at the edge is 1/2, so with absorption D = ln 2 the transmittance there is
 exp(-D * 1/2 * 2) = 1/2. The 50% crossings of the image must therefore sit on the cube's
-edges; a half-voxel offset would move them by half a voxel. Tolerance: a quarter voxel."""
+edges; a half-voxel offset would move them by half a voxel. Tolerance: a quarter voxel.
+The four side walls are alike, so the darkest pixel of each must be the same (within
+WALL_SPREAD); a wall the renderer draws only in part (EEVEE Next 4.2-4.5 clipping the
+outermost voxel layer, see core/alignment.py) is measurably lighter.
+
+Where the voxels sit in their 8^3 leaf matters to Blender 4.2-4.5: at voxel size 1/4 the
+cube's voxels are 0..7, the +x/+y/+z walls on the leaf's top faces; at 1/3 they are 0..5,
+inside the leaf's bounds with room for the fade."""
 import math
 import os
 
 import bpy
 import numpy as np
+from mathutils import Vector
 
 import helpers
 from helpers import AddonTestCase
 
-SIZE = 0.25        # voxel size: 8 voxels across the cube
+SIZE = 0.25        # voxel size: 8 voxels across the cube, filling one leaf
+INSIDE_SIZE = 1 / 3  # 6 voxels across: the +x/+y/+z walls two voxels inside the leaf
 PIXELS = 96        # image width and height
 ORTHO = 3.0        # world units across the image
+WALL_SPREAD = 0.05  # darkest-value difference between walls (measured: EEVEE <= 0.004, Cycles 5.0 0.027; clipped 0.27)
 
 
 def setup_render(scene, volume_obj, engine="CYCLES"):
@@ -97,38 +107,108 @@ def world_x(pixel):
     return (pixel + 0.5 - PIXELS / 2) * ORTHO / PIXELS
 
 
+def profiles(pixels):
+    """Mean of the 4 middle rows (along x) and of the 4 middle columns (along y)."""
+    mid = PIXELS // 2
+    return pixels[mid - 2:mid + 2].mean(axis=0), pixels[:, mid - 2:mid + 2].mean(axis=1)
+
+
+def wall_minima(pixels):
+    """Darkest value of the -x, +x, -y and +y walls: each half of the mean of the middle
+    16 rows (columns), where the walls are uniform, so Cycles' noise averages out."""
+    mid = PIXELS // 2
+    rows, cols = pixels[mid - 8:mid + 8].mean(axis=0), pixels[:, mid - 8:mid + 8].mean(axis=1)
+    return [rows[:mid].min(), rows[mid:].min(), cols[:mid].min(), cols[mid:].min()]
+
+
 class RenderAlignmentTest(AddonTestCase):
-    def render_edges(self):
+    def render(self):
         pixels = helpers.render_pixels(os.path.join(self.out, "render.exr"))[:, :, 0]
         self.assertEqual(pixels.shape, (PIXELS, PIXELS))
-        mid = PIXELS // 2
-        rows = pixels[mid - 2:mid + 2].mean(axis=0)        # along x
-        cols = pixels[:, mid - 2:mid + 2].mean(axis=1)     # along y
+        return pixels
+
+    def render_edges(self, pixels=None):
+        rows, cols = profiles(self.render() if pixels is None else pixels)
         return [world_x(crossing(rows)), world_x(crossing(rows, True)),
                 world_x(crossing(cols)), world_x(crossing(cols, True))]
 
-    def check_engine(self, engine):
+    def render_cube(self, engine, size):
         cube = helpers.cube(size=2.0)
         helpers.select_only(cube)
-        self.assertEqual(self.voxelize(voxel_size=SIZE), {"FINISHED"})
+        self.assertEqual(self.voxelize(voxel_size=size), {"FINISHED"})
         (obj,) = self.volumes()
         cube.hide_render = True
         setup_render(bpy.context.scene, obj, engine)
-        edges = self.render_edges()
-        print(engine, "50% crossings (world):", ["%.4f" % e for e in edges], "voxel", SIZE)
+        pixels = self.render()
+        edges, walls = self.render_edges(pixels), wall_minima(pixels)
+        print(engine, "voxel %.4f" % size, "50% crossings (world) -x +x -y +y:", ["%.4f" % e for e in edges])
+        print(engine, "voxel %.4f" % size, "darkest wall pixel -x +x -y +y:", ["%.3f" % w for w in walls])
+        return obj, edges, walls
+
+    def check_engine(self, engine, size=SIZE):
+        obj, edges, walls = self.render_cube(engine, size)
         errors = np.abs(np.abs(edges) - 1.0)
-        self.assertLess(errors.max(), SIZE / 4, f"edges {edges}")
+        self.assertLess(errors.max(), size / 4, f"edges {edges}")
+        self.assertLess(max(walls) - min(walls), WALL_SPREAD, f"walls unlike: darkest pixels {walls}")
         # The other choice (correction toggled) must be visibly off, so the version rule
         # of core/alignment.py is measured both ways on the Blender running this.
         corrected = any(obj.location)
-        obj.location = (0, 0, 0) if corrected else (-SIZE / 2,) * 3
+        obj.location = (0, 0, 0) if corrected else (-size / 2,) * 3
         other = self.render_edges()
         print(engine, "corrected" if not corrected else "uncorrected", "crossings:",
               ["%.4f" % e for e in other])
-        self.assertGreater(np.abs(np.abs(other) - 1.0).max(), SIZE / 4)
+        self.assertGreater(np.abs(np.abs(other) - 1.0).max(), size / 4)
+        return obj
 
     def test_cycles(self):
         self.check_engine("CYCLES")
 
     def test_eevee(self):
-        self.check_engine(eevee_engine())
+        """Voxels inside their leaf: drawn whole by every EEVEE."""
+        self.check_engine(eevee_engine(), INSIDE_SIZE)
+
+    def test_eevee_voxels_on_leaf_faces(self):
+        """The +x/+y walls on the leaf's top faces: drawn whole with the add-on's bounds
+        modifier in 4.2-4.5 (blender/eevee_bounds.py), and there, without it, measurably
+        faint (so the version rule of core/alignment.py is measured both ways)."""
+        obj = self.check_engine(eevee_engine(), SIZE)
+        modifiers = [m for m in obj.modifiers if m.type == "NODES"]
+        if not helpers.addon("core.alignment").eevee_clips_last_voxel_layer(bpy.app.version):
+            self.assertEqual(modifiers, [])
+            return
+        (modifier,) = modifiers
+        modifier.show_render = modifier.show_viewport = False
+        obj.location = obj["hyvox_offset"]
+        pixels = self.render()
+        edges, walls = self.render_edges(pixels), wall_minima(pixels)
+        print("without the bounds modifier: crossings", ["%.4f" % e for e in edges],
+              "darkest", ["%.3f" % w for w in walls])
+        self.assertGreater(walls[1] - walls[0], 4 * WALL_SPREAD, f"+x wall not faint: {walls}")
+        self.assertGreater(walls[3] - walls[2], 4 * WALL_SPREAD, f"+y wall not faint: {walls}")
+
+    def test_bounds_cover_every_voxel(self):
+        """Away from the origin too: where EEVEE Next needs it (4.2-4.5) the evaluated
+        Volume has the `hyvox_bounds` grid and its world bounds reach at least a voxel
+        beyond the voxels' faces on every side; elsewhere it has the file's grids only
+        (3.4's bounds also stop at the last voxels' centres, but its EEVEE draws outside
+        them, as test_eevee_voxels_on_leaf_faces measures)."""
+        cube = helpers.cube(size=2.0, location=(7.0, -3.0, 2.0))
+        helpers.select_only(cube)
+        self.assertEqual(self.voxelize(voxel_size=SIZE), {"FINISHED"})
+        (obj,) = self.volumes()
+        evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get())
+        grids = sorted(grid.name for grid in evaluated.data.grids)
+        if not helpers.addon("core.alignment").eevee_clips_last_voxel_layer(bpy.app.version):
+            self.assertEqual(grids, ["density"])
+            return
+        self.assertEqual(grids, ["density", helpers.addon("blender.eevee_bounds").GRID_NAME])
+        corners = np.array([tuple(evaluated.matrix_world @ Vector(c)) for c in evaluated.bound_box])
+        low, high = corners.min(axis=0), corners.max(axis=0)
+        offset = np.asarray(obj["hyvox_offset"])
+        centres = helpers.vdb_world_centres(bpy.path.abspath(obj.data.filepath))
+        # Where Blender draws the voxels: the file's places moved by the add-on's offset.
+        faces_low = centres.min(axis=0) - SIZE / 2 + offset
+        faces_high = centres.max(axis=0) + SIZE / 2 + offset
+        print("bounds", low, high, "voxel faces", faces_low, faces_high)
+        np.testing.assert_array_less(low, faces_low - SIZE + 1e-6)
+        np.testing.assert_array_less(faces_high + SIZE - 1e-6, high)

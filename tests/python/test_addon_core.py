@@ -126,6 +126,14 @@ def test_half_voxel_shift_by_version():
     assert alignment.object_offset(0.5, (5, 0, 0)) == (0.0, 0.0, 0.0)
 
 
+def test_eevee_bounds_rule_covers_eevee_next_before_5():
+    # EEVEE Next (4.2-4.5) clips the last voxel layer; legacy EEVEE (3.4) and 5.0 do not
+    # (tests/blender/test_render_alignment.py renders it in 3.4.1, 4.5.15 and 5.0.1).
+    assert [alignment.eevee_clips_last_voxel_layer(v) for v in
+            [(3, 4, 1), (4, 1, 1), (4, 2, 0), (4, 5, 15), (5, 0, 0), (5, 0, 1)]] == \
+        [False, False, True, True, False, False]
+
+
 def test_merge_meshes_offsets_indices():
     a = (np.zeros((3, 3), np.float32), np.array([[0, 1, 2]], np.uint32))
     b = (np.ones((4, 3), np.float32), np.array([[0, 1, 2], [1, 2, 3]], np.uint32))

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Volume objects for a run's results: a Volume data-block reading the .vdb (or the
-sequence), an object named "<source>_voxels" carrying the half-voxel correction, a
+sequence), an object named "<source>_voxels" carrying the half-voxel correction (and in
+Blender 4.2-4.5 the bounds EEVEE Next needs: eevee_bounds.py), a
 Principled Volume material reading `density`, and its Color from the `color` grid when the
 run made one.
 
@@ -18,7 +19,7 @@ from mathutils import Vector
 
 from ..core import alignment, naming
 from ..core.pipeline import GroupResult
-from . import blocks_object
+from . import blocks_object, eevee_bounds
 
 from .export import RESULT_KEY as KEY  # custom property: which sources a result came from
 
@@ -162,6 +163,8 @@ def import_results(context, results: Dict[str, GroupResult], alignment_override:
             volume.materials.append(material or _make_material(name, result.voxel_size, result.has_color))
             obj = bpy.data.objects.new(name, volume)
             offset = alignment.object_offset(result.voxel_size, bpy.app.version, alignment_override)
+            if alignment.eevee_clips_last_voxel_layer(bpy.app.version):
+                eevee_bounds.add_bounds_modifier(obj, result.voxel_size)
         obj.location = offset
         obj["hyvox_offset"] = tuple(offset)
         if exact is not None:

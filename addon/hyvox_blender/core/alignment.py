@@ -34,3 +34,27 @@ def object_offset(voxel_size: float, version: Sequence[int], override: str = "AU
     half = -0.5 * float(voxel_size)
     return (half, half, half)
 
+
+
+# EEVEE Next (Blender 4.2-4.5) draws a Volume only inside the object's bounds, and those
+# Blender computes from the grid's active 8^3 leaves with the last index taken as a point:
+# the bounds end where the top leaf's last voxel layer begins, as 4.x draws voxel i over
+# [i, i+1). Voxels in that layer (an object's +x/+y/+z side whenever its extent is a
+# multiple of 8 voxels, as at the usual resolutions) are drawn faint or not at all. No
+# setting of the object, the Volume or the scene moves those bounds (measured with 4.5.15:
+# volumetric tile size, samples, start/end, render space, interpolation, a Volume Displace
+# modifier); active voxels of any grid of the Volume beyond them do. So for these versions
+# the add-on gives the Volume object a Geometry Nodes modifier that adds a small second
+# grid beyond the bounds (blender/eevee_bounds.py); the file and its voxels stay the
+# voxelization's. Cycles draws the layer whole either way; 5.0 bounds the grid by its
+# voxels' faces and EEVEE draws it whole. Measured by tests/blender/test_render_alignment.py
+# (EEVEE, 2x2x2 cube, voxel 0.25, voxels 0..7; darkest value of the -x/+x walls, edges):
+#   4.5.15 without the modifier: Volume bounds -1..0.75, 0.356/0.627, +x edge at -0.758;
+#          with it: 0.293-0.296 on every wall, edges within 0.01 of +-1 (Cycles: +-0.997);
+#   5.0.1: bounds -1..1, 0.306-0.309 on every wall, edges +-0.97.
+EEVEE_CLIPPING_VERSIONS = ((4, 2, 0), (5, 0, 0))  # [first, end)
+
+
+def eevee_clips_last_voxel_layer(version: Sequence[int]) -> bool:
+    first, end = EEVEE_CLIPPING_VERSIONS
+    return first <= tuple(version[:3]) < end
