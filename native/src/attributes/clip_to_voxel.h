@@ -37,25 +37,33 @@ struct Polygon {
 // polygons clipTriangleToVoxel gives box by box.
 void clipSlab(const Polygon& in, Polygon& out, int axis, double lo, double hi);
 
-// Area and centroid of a clipped polygon (n > 0).
-void measurePiece(const Polygon& polygon, ClippedPiece& out);
-
-// False when the triangle misses the box (grown by `margin` voxels on every side).
-bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel, ClippedPiece& out,
-                         double margin = 0.0);
-
-// A triangle's set-up for all its pieces: barycentrics and its unit normal.
+// A triangle's set-up for all its pieces: barycentrics, its unit normal, and the scale from
+// areas projected on its dominant plane to its own.
 class TriangleFrame {
 public:
     explicit TriangleFrame(const std::array<Point, 3>& corners);
     // Barycentrics of `point` (in the triangle's plane) clamped to [0, 1] and renormalised.
     std::array<double, 3> barycentrics(const Point& point) const;
     const Point& unitNormal() const { return unit_normal_; }
+    // The two axes after the dominant normal axis (cyclic), and half the factor from a
+    // cross product in them (same orientation as the triangle) to the area in 3D.
+    const std::array<int, 2>& projectionAxes() const { return projection_axes_; }
+    double projectedAreaScale() const { return projected_area_scale_; }
 
 private:
-    Point origin_, v0_, v1_;
-    double d00_, d01_, d11_, denom_;
+    Point origin_;
+    Point gradient_v_, gradient_w_;  // of the second and third barycentric
+    bool flat_ = false;
     Point unit_normal_;
+    std::array<int, 2> projection_axes_{0, 1};
+    double projected_area_scale_ = 0;
 };
+
+// Area and centroid of a clipped polygon (n > 0) of the triangle `frame` describes.
+void measurePiece(const Polygon& polygon, const TriangleFrame& frame, ClippedPiece& out);
+
+// False when the triangle misses the box (grown by `margin` voxels on every side).
+bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel,
+                         const TriangleFrame& frame, ClippedPiece& out, double margin = 0.0);
 
 }  // namespace hyvox::attributes
