@@ -32,15 +32,33 @@ void clipPlane(const Polygon& in, Polygon& out, double bound, double sign) {
     }
 }
 
+// A plane that has the whole polygon on its kept side leaves it as it is (no corner is
+// dropped, no crossing added), and one that has it all on the other side leaves nothing:
+// those clips are decided from the polygon's extent and skipped, with the same result.
 template <int Axis>
-void clipSlabAlong(const Polygon& in, Polygon& out, double lo, double hi) {
-    Polygon between;
-    clipPlane<Axis>(in, between, lo, 1.0);
-    if (between.n == 0) {
-        out.n = 0;
-        return;
+const Polygon& clipSlabAlong(const Polygon& in, Polygon& scratch, double lo, double hi) {
+    double from = in.p[0][Axis], to = from;
+    for (int c = 1; c < in.n; ++c) {
+        from = std::min(from, in.p[std::size_t(c)][Axis]);
+        to = std::max(to, in.p[std::size_t(c)][Axis]);
     }
-    clipPlane<Axis>(between, out, hi, -1.0);
+    if (to < lo || from > hi) {
+        scratch.n = 0;
+        return scratch;
+    }
+    const bool cut_lo = from < lo, cut_hi = to > hi;
+    if (cut_lo && cut_hi) {
+        Polygon between;
+        clipPlane<Axis>(in, between, lo, 1.0);
+        clipPlane<Axis>(between, scratch, hi, -1.0);
+    } else if (cut_lo) {
+        clipPlane<Axis>(in, scratch, lo, 1.0);
+    } else if (cut_hi) {
+        clipPlane<Axis>(in, scratch, hi, -1.0);
+    } else {
+        return in;
+    }
+    return scratch;
 }
 
 Point sub(const Point& a, const Point& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -48,25 +66,26 @@ double dot(const Point& a, const Point& b) { return a[0] * b[0] + a[1] * b[1] + 
 
 }  // namespace
 
-void clipSlab(const Polygon& in, Polygon& out, int axis, double lo, double hi) {
+const Polygon& clipSlab(const Polygon& in, Polygon& scratch, int axis, double lo, double hi) {
     switch (axis) {
-        case 0: clipSlabAlong<0>(in, out, lo, hi); break;
-        case 1: clipSlabAlong<1>(in, out, lo, hi); break;
-        default: clipSlabAlong<2>(in, out, lo, hi); break;
+        case 0: return clipSlabAlong<0>(in, scratch, lo, hi);
+        case 1: return clipSlabAlong<1>(in, scratch, lo, hi);
+        default: return clipSlabAlong<2>(in, scratch, lo, hi);
     }
 }
 
 bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel,
                          const TriangleFrame& frame, ClippedPiece& out, double margin) {
-    Polygon a, b;
-    a.n = 3;
-    std::copy(corners.begin(), corners.end(), a.p.begin());
-    for (int axis = 0; axis < 3; ++axis) {
-        clipSlab(a, b, axis, double(voxel[std::size_t(axis)]) - margin, double(voxel[std::size_t(axis)]) + 1.0 + margin);
-        if (b.n == 0) return false;
-        a = b;
-    }
-    measurePiece(a, frame, out);
+    Polygon whole, x_slab, xy_column, box;
+    whole.n = 3;
+    std::copy(corners.begin(), corners.end(), whole.p.begin());
+    const Polygon& a = clipSlab(whole, x_slab, 0, double(voxel[0]) - margin, double(voxel[0]) + 1.0 + margin);
+    if (a.n == 0) return false;
+    const Polygon& b = clipSlab(a, xy_column, 1, double(voxel[1]) - margin, double(voxel[1]) + 1.0 + margin);
+    if (b.n == 0) return false;
+    const Polygon& c = clipSlab(b, box, 2, double(voxel[2]) - margin, double(voxel[2]) + 1.0 + margin);
+    if (c.n == 0) return false;
+    measurePiece(c, frame, out);
     return true;
 }
 
@@ -136,8 +155,8 @@ std::array<double, 3> TriangleFrame::barycentrics(const Point& point) const {
     const Point d = sub(point, origin_);
     const double v = dot(d, gradient_v_), w = dot(d, gradient_w_);
     std::array<double, 3> bary{std::clamp(1.0 - v - w, 0.0, 1.0), std::clamp(v, 0.0, 1.0), std::clamp(w, 0.0, 1.0)};
-    const double sum = bary[0] + bary[1] + bary[2];
-    for (double& b : bary) b /= sum;
+    const double scale = 1.0 / (bary[0] + bary[1] + bary[2]);
+    for (double& b : bary) b *= scale;
     return bary;
 }
 

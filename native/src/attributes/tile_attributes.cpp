@@ -7,6 +7,7 @@
 #include <utility>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -108,11 +109,12 @@ TileBins binTriangles(const BackendJob& job, const BitGrid& bits, bool brute_for
 // from triangles one after the other.
 class LeafAccumulator {
 public:
-    LeafAccumulator(const BackendJob& job, const SurfaceValues& values, bool brute_force)
+    // `sums`: 512 * (channels + 1) zeros, the thread's, handed back zero (takeMeans() clears
+    // the set voxels', the only ones written).
+    LeafAccumulator(const BackendJob& job, const SurfaceValues& values, bool brute_force, std::vector<double>& sums)
         : job_(job), values_(values), brute_force_(brute_force), stride_(std::size_t(values.channels() + 1)),
-          sums_(512 * stride_, 0.0) {}
+          sums_(sums) {}
 
-    // The sums are all zero here: takeMeans() clears the set voxels' (the only ones written).
     void start(const std::uint64_t* words, const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
         words_ = words;
         lo_ = lo;
@@ -194,24 +196,24 @@ private:
                             add(frame, i, j, k, piece);
             return;
         }
-        Polygon whole, x_slab, xy_column, box;
+        Polygon whole, x_scratch, y_scratch, z_scratch;
         whole.n = 3;
         std::copy(corners.begin(), corners.end(), whole.p.begin());
         for (int i = r.lo[0]; i <= r.hi[0]; ++i) {
             const std::uint64_t word = mask[i & 7];
             if (!word) continue;
-            clipSlab(whole, x_slab, 0, i - margin, i + 1 + margin);
+            const Polygon& x_slab = clipSlab(whole, x_scratch, 0, i - margin, i + 1 + margin);
             if (x_slab.n == 0) continue;
             const auto [j_lo, j_hi] = reach(x_slab, 1, r.lo[1], r.hi[1]);
             for (int j = j_lo; j <= j_hi; ++j) {
                 const std::uint64_t row = (word >> ((j & 7) << 3)) & 0xffu;
                 if (!row) continue;
-                clipSlab(x_slab, xy_column, 1, j - margin, j + 1 + margin);
+                const Polygon& xy_column = clipSlab(x_slab, y_scratch, 1, j - margin, j + 1 + margin);
                 if (xy_column.n == 0) continue;
                 const auto [k_lo, k_hi] = reach(xy_column, 2, r.lo[2], r.hi[2]);
                 for (int k = k_lo; k <= k_hi; ++k) {
                     if (!((row >> (k & 7)) & 1u)) continue;
-                    clipSlab(xy_column, box, 2, k - margin, k + 1 + margin);
+                    const Polygon& box = clipSlab(xy_column, z_scratch, 2, k - margin, k + 1 + margin);
                     if (box.n == 0) continue;
                     measurePiece(box, frame, piece);
                     add(frame, i, j, k, piece);
@@ -234,7 +236,7 @@ private:
     const SurfaceValues& values_;
     const bool brute_force_;
     const std::size_t stride_;
-    std::vector<double> sums_;
+    std::vector<double>& sums_;
     const std::uint64_t* words_ = nullptr;
     std::array<int, 3> lo_{}, hi_{};
     std::uint64_t pieces_ = 0;
@@ -270,10 +272,11 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
     std::atomic<std::uint64_t> pieces{0}, unreached{0}, rounded{0};
     const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
     tbb::task_arena arena(threads);
+    tbb::enumerable_thread_specific<std::vector<double>> sums_of_thread(512 * std::size_t(values.channels() + 1), 0.0);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bins.occupied.size(), 4), [&](const auto& range) {
             throwIfInterrupted(job.interrupter);
-            LeafAccumulator leaf(job, values, brute_force);
+            LeafAccumulator leaf(job, values, brute_force, sums_of_thread.local());
             std::uint64_t local_unreached = 0, local_rounded = 0;
             for (std::size_t s = range.begin(); s != range.end(); ++s) {
                 const std::size_t b = bins.occupied[s];
