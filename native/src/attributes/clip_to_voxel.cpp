@@ -150,14 +150,4 @@ TriangleFrame::TriangleFrame(const std::array<Point, 3>& corners) : origin_(corn
     projected_area_scale_ = n[std::size_t(w)] != 0 ? 0.5 * length / n[std::size_t(w)] : 0.0;
 }
 
-std::array<double, 3> TriangleFrame::barycentrics(const Point& point) const {
-    if (flat_) return {1.0 / 3, 1.0 / 3, 1.0 / 3};  // a sliver flat to rounding: its centre
-    const Point d = sub(point, origin_);
-    const double v = dot(d, gradient_v_), w = dot(d, gradient_w_);
-    std::array<double, 3> bary{std::clamp(1.0 - v - w, 0.0, 1.0), std::clamp(v, 0.0, 1.0), std::clamp(w, 0.0, 1.0)};
-    const double scale = 1.0 / (bary[0] + bary[1] + bary[2]);
-    for (double& b : bary) b *= scale;
-    return bary;
-}
-
 }  // namespace hyvox::attributes

@@ -4,6 +4,7 @@
 // double (voxel space: voxel (i,j,k) is [i, i+1] x [j, j+1] x [k, k+1]). Points on a face
 // count as inside, so a triangle lying on a voxel face belongs to both voxels, and a touch
 // (an edge or corner on the box) is kept with no area.
+#include <algorithm>
 #include <array>
 
 namespace hyvox::attributes {
@@ -44,7 +45,17 @@ class TriangleFrame {
 public:
     explicit TriangleFrame(const std::array<Point, 3>& corners);
     // Barycentrics of `point` (in the triangle's plane) clamped to [0, 1] and renormalised.
-    std::array<double, 3> barycentrics(const Point& point) const;
+    // (Inline: it runs once per clipped piece.)
+    std::array<double, 3> barycentrics(const Point& point) const {
+        if (flat_) return {1.0 / 3, 1.0 / 3, 1.0 / 3};  // a sliver flat to rounding: its centre
+        const Point d{point[0] - origin_[0], point[1] - origin_[1], point[2] - origin_[2]};
+        const double v = d[0] * gradient_v_[0] + d[1] * gradient_v_[1] + d[2] * gradient_v_[2];
+        const double w = d[0] * gradient_w_[0] + d[1] * gradient_w_[1] + d[2] * gradient_w_[2];
+        std::array<double, 3> bary{std::clamp(1.0 - v - w, 0.0, 1.0), std::clamp(v, 0.0, 1.0), std::clamp(w, 0.0, 1.0)};
+        const double scale = 1.0 / (bary[0] + bary[1] + bary[2]);
+        for (double& b : bary) b *= scale;
+        return bary;
+    }
     const Point& unitNormal() const { return unit_normal_; }
     // The two axes after the dominant normal axis (cyclic), and half the factor from a
     // cross product in them (same orientation as the triangle) to the area in 3D.

@@ -2,6 +2,7 @@
 #include "attributes/surface_values.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -13,6 +14,20 @@ namespace {
 void requireFinite(const float* values, std::size_t count, const char* name) {
     for (std::size_t n = 0; n < count; ++n)
         if (!std::isfinite(values[n])) throw InvalidInput(std::string(name) + " contain NaN or Inf");
+}
+
+// srgbToLinear in float. Colours from bytes (k / 255 in float, as files and the Python front
+// door give them) take a table of the same values instead of a pow each.
+float decodeSrgb(float encoded) {
+    static const std::array<float, 256> of_byte = [] {
+        std::array<float, 256> table{};
+        for (int k = 0; k < 256; ++k) table[std::size_t(k)] = float(srgbToLinear(double(float(k) / 255.0f)));
+        return table;
+    }();
+    const float byte = encoded * 255.0f;
+    if (byte >= 0.0f && byte <= 255.0f && byte == float(int(byte)) && float(int(byte)) / 255.0f == encoded)
+        return of_byte[std::size_t(int(byte))];
+    return float(srgbToLinear(encoded));
 }
 
 }  // namespace
@@ -40,7 +55,7 @@ SurfaceValues::SurfaceValues(const MeshView& mesh, const AttributeSet& wanted) :
             if (mesh.colors_srgb) {
                 linear_colors_.assign(mesh.colors, mesh.colors + count);
                 for (std::size_t n = 0; n < count; ++n)
-                    if (n % std::size_t(color_stride_) < 3) linear_colors_[n] = float(srgbToLinear(linear_colors_[n]));
+                    if (n % std::size_t(color_stride_) < 3) linear_colors_[n] = decodeSrgb(linear_colors_[n]);
                 colors_ = linear_colors_.data();
             }
         } else if (mesh.palette && mesh.material_ids) {
