@@ -151,6 +151,9 @@ def test_textures_must_match_the_palette(tmp_path):
     with pytest.raises(ValueError, match="one entry .* per palette colour"):
         hyvox.voxelize(vertices, triangles, resolution=8, attributes="color", uvs=uvs, material_ids=material_ids,
                        palette=palette, textures=[pixels()])
+    with pytest.raises(ValueError, match="texture must be a path or an array"):
+        hyvox.voxelize(vertices, triangles, resolution=8, attributes="color", uvs=uvs, material_ids=material_ids,
+                       palette=palette, textures=[7, None])
     with pytest.raises(ValueError, match="needs the mesh's UVs"):
         hyvox.voxelize(vertices, triangles, resolution=8, attributes="color", material_ids=material_ids,
                        palette=palette, textures=[pixels(), None])

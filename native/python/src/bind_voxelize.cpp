@@ -96,7 +96,9 @@ MaterialTextures materialTextures(const std::optional<py::list>& list) {
             py::gil_scoped_release release;
             out.images.push_back(readPngTexture(path));
         } else {
-            out.images.push_back(*textureFromArray(py::array::ensure(entry)));
+            const py::array pixels = py::array::ensure(entry);
+            if (!pixels) throw py::value_error("textures: each entry is None, a PNG path or an array of pixels");
+            out.images.push_back(*textureFromArray(pixels));
         }
         out.of_material.push_back(&out.images.back());
     }
