@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The README's main job: build a scene from the Stanford bunny and Suzanne in headless
 Blender, voxelize both with the add-on's operator, and save the .blend, the .vdb files and
-a Cycles CPU render of each volume beside its mesh; print the stats.
+a Cycles CPU render of each volume beside its mesh; then the textured Spot cow voxelized
+with its colour (the add-on's Colour option: a `color` grid the volume's material shows),
+rendered beside its mesh into render_colour.png; print the stats.
 
     blender -b --factory-startup --python demo/run_demo.py -- --build B --output out/demo
 
@@ -119,6 +121,34 @@ def build_scene(args):
     return [suzanne, bunny]
 
 
+def add_textured_spot(args):
+    """Spot with its UVs and a material whose Base Color is its texture (the colour source the
+    add-on exports), standing where Suzanne stood."""
+    import numpy as np
+    from hyvox_blender.core import backend
+    vertices, triangles, attrs = backend.load_module().read_mesh(os.path.join(args.meshes, "spot_uv.ply"),
+                                                                 attributes=True)
+    spot = mesh_from_arrays("Spot", vertices, triangles)
+    uv_layer = spot.data.uv_layers.new(name="UVMap")
+    uv_layer.data.foreach_set("uv", np.ascontiguousarray(attrs["uvs"][triangles.astype(np.int64)], np.float32).ravel())
+    material = bpy.data.materials.new("SpotTexture")
+    material.use_nodes = True
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    nodes.clear()  # built here: the default nodes are not always there after a render
+    output = nodes.new("ShaderNodeOutputMaterial")
+    shader = nodes.new("ShaderNodeBsdfPrincipled")
+    links.new(shader.outputs["BSDF"], output.inputs["Surface"])
+    image = nodes.new("ShaderNodeTexImage")
+    image.image = bpy.data.images.load(os.path.join(args.meshes, "spot_texture.png"))
+    links.new(image.outputs["Color"], shader.inputs["Base Color"])
+    spot.data.materials.append(material)
+    spot.rotation_euler = (1.5708, 0, 0)  # y-up like the bunny
+    spot.rotation_euler[2] = 2.5  # facing the camera, a little to the side
+    bpy.context.view_layer.update()
+    fit(spot, 1.5, -1.3)
+    return spot
+
+
 def render_settings(scene, args, path):
     scene.render.engine = "CYCLES"
     scene.cycles.device = "CPU"
@@ -163,14 +193,37 @@ def main():
     start = time.perf_counter()
     bpy.ops.render.render(write_still=True)
     render_s = time.perf_counter() - start
+    summary = list(operators.last_summary)
+
+    # Colour: Spot's texture into a `color` grid (a surface: colour is not computed with Fill
+    # Interior); its volume shows it through the add-on's material (no flat colour set).
+    shown = [bpy.data.objects[name] for name in ("Bunny", "Suzanne", "Bunny_voxels", "Suzanne_voxels")]
+    for obj in shown:
+        obj.hide_render = True
+    spot = add_textured_spot(args)
+    for obj in bpy.context.view_layer.objects:
+        obj.select_set(obj is spot)
+    bpy.context.view_layer.objects.active = spot
+    bpy.ops.object.hyvox_voxelize(resolution=args.resolution, method=args.method, separate=True, color=True, fill_interior=False,
+                                  output_dir=os.path.join(output, "vdb"))
+    volume = bpy.data.objects["Spot_voxels"]
+    volume.location.x += 2.6  # the add-on's material as it is: its Color from the `color` grid
+    colour_png = os.path.join(output, "render_colour.png")
+    bpy.context.scene.render.filepath = colour_png
+    start = time.perf_counter()
+    bpy.ops.render.render(write_still=True)
+    render_s += time.perf_counter() - start
+    for obj in shown:
+        obj.hide_render = False
+    spot.hide_render = volume.hide_render = True  # the .blend opens on the first scene's look
     bpy.ops.wm.save_as_mainfile(filepath=blend)
 
     print("\n=== hyvox demo ===")
-    for line in operators.last_summary:
+    for line in summary + list(operators.last_summary):
         print(line)
     print(f"render {render_s:.1f} s")
     print("blend :", blend)
-    print("render:", png)
+    print("render:", png, colour_png)
 
 
 if __name__ == "__main__":

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # The main job on a fresh Debian 12 machine: install the packages, build hyvox, then let a
-# headless Blender voxelize a demo scene (Stanford bunny + Suzanne) with the add-on. Writes
-# out/demo/: the .blend, the .vdb files and a Cycles render PNG; prints the stats.
+# headless Blender voxelize a demo scene (Stanford bunny + Suzanne, then Spot with its
+# texture's colour) with the add-on. Writes out/demo/: the .blend, the .vdb files and the
+# Cycles renders render.png and render_colour.png; prints the stats.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

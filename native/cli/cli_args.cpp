@@ -110,7 +110,7 @@ std::string usageText(Command topic) {
             "  -o, --output FILE\n      the .vdb file to write (written atomically)\n"
             "  --stats-json FILE\n      write the grid, counts, timings, options and the method's figures as JSON\n"
             "  --texture IMG\n      a PNG sampled at the mesh's UVs for --attributes color (else the file's vertex\n"
-            "      colours are used)\n";
+            "      colours are used, else an OBJ's materials: MTL Kd and map_Kd)\n";
         return text + commonOptionsHelp() + voxelizeOptionsHelp(nullptr);
     }
     if (topic == Command::GammaSweep) {

@@ -7,6 +7,7 @@
 
 #include "command_support.h"
 #include "progress_line.h"
+#include "hyvox/attribute_grid.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/stats_json.h"
@@ -42,12 +43,19 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     auto start = std::chrono::steady_clock::now();
     const Mesh mesh = readMesh(args.mesh_path, &interrupter);
     const double read_ms = msSince(start);
+    for (const std::string& warning : mesh.warnings) std::fprintf(stderr, "hyvox: warning: %s\n", warning.c_str());
 
     MeshView view = mesh.view();
     Texture texture;
     if (!args.texture_path.empty()) {
         texture = readPngTexture(args.texture_path);
         view.texture = &texture;
+    }
+    // The materials' images (OBJ map_Kd), decoded only when colour is asked for.
+    MaterialTextures material_textures;
+    if (mesh.hasMaterials() && parseAttributeSet(args.options.attributes).color) {
+        material_textures = readMaterialTextures(mesh.material_textures);
+        view.material_textures = material_textures.of_material.data();
     }
     // The output is always a .vdb: a voxel size it cannot hold is refused before the work.
     checkVdbVoxelSize(makeGrid(validate(view).bounds, args.options.grid).voxel_size);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target for one strict mesh reader, chosen at build time (HYVOX_FUZZ_PLY or
 // HYVOX_FUZZ_OBJ): any bytes must give a mesh whose indices are in range, or InvalidInput.
+// The OBJ target also reads the bytes as an MTL (material file), whose seeds sit beside the
+// OBJ ones.
 // Anything else (another exception, a crash, a sanitizer report, a hang, memory beyond
 // -rss_limit_mb) is a finding.
 #include <cstddef>
@@ -8,11 +10,19 @@
 #include <cstdlib>
 
 #include "hyvox/errors.h"
+#include "io/mtl_reader.h"
 #include "io/obj_reader.h"
 #include "io/ply_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const char* bytes = reinterpret_cast<const char*>(data);
+#if !defined(HYVOX_FUZZ_PLY)
+    try {
+        for (const hyvox::io::MtlMaterial& m : hyvox::io::readMtl(bytes, size, "fuzz.mtl"))
+            if (m.name.empty()) std::abort();
+    } catch (const hyvox::InvalidInput&) {
+    }
+#endif
     try {
 #if defined(HYVOX_FUZZ_PLY)
         const hyvox::Mesh mesh = hyvox::io::readPly(bytes, size, "fuzz.ply");
@@ -24,6 +34,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (mesh.hasUvs() && mesh.uvs.size() != 2 * mesh.vertexCount()) std::abort();
         for (std::uint32_t i : mesh.triangles)
             if (i >= mesh.vertexCount()) std::abort();
+        if (mesh.hasMaterials()) {
+            if (mesh.material_ids.size() != mesh.triangleCount()) std::abort();
+            for (std::uint32_t m : mesh.material_ids)
+                if (m >= mesh.material_names.size() || 3 * std::size_t(m) + 2 >= mesh.material_colors.size()) std::abort();
+        }
     } catch (const hyvox::InvalidInput&) {
         // the expected answer to bad bytes
     }

@@ -236,6 +236,9 @@ def voxel_attributes(
             mean = mean[:, :3]
         if name == "normal":
             length = np.linalg.norm(mean, axis=1, keepdims=True)
+            # How well the direction is defined: where opposite faces cancel (a two-sided
+            # wall), it is left to rounding, which differs between any two area formulas.
+            out["normal_length"] = length[:, 0]
             mean = np.where(length > 0, mean / np.where(length > 0, length, 1), 0)
         out[name] = mean
     ijk = np.stack(

@@ -25,7 +25,16 @@ def compare(grid, oracle_ijk, oracle, *, atol, names=("color", "normal")):
     assert grid.stats["attribute_voxels_unreached"] == 0
     for name in names:
         assert got[name].shape[0] == len(ijk) == grid.voxel_count
-        np.testing.assert_allclose(got[name][order], oracle[name], rtol=0, atol=atol, err_msg=name)
+        value, expected = got[name][order], oracle[name]
+        if name == "normal" and "normal_length" in oracle:
+            # Normals that cancel to rounding (opposite faces of a thin wall) have no
+            # direction to compare: they are rare, and still unit or zero.
+            cancelled = oracle["normal_length"] < 1e-9
+            assert cancelled.sum() <= max(3, 1e-3 * len(ijk)), cancelled.sum()
+            lengths = np.linalg.norm(value[cancelled], axis=1)
+            assert np.all((np.abs(lengths - 1) < 1e-5) | (lengths == 0))
+            value, expected = value[~cancelled], expected[~cancelled]
+        np.testing.assert_allclose(value, expected, rtol=0, atol=atol, err_msg=name)
 
 
 @pytest.fixture(scope="module")

@@ -192,7 +192,7 @@ def test_generated_stubs_list_every_option():
                  else STUB_TYPES[spec.type])
         assert keywords.pop(spec.name) == f"Optional[{inner}]", spec.name
     assert set(keywords) == {"uvs", "normals", "displacement_pixels", "colors", "texture", "material_ids", "palette",
-                             "face_normals", "progress", "cancel"}
+                             "textures", "face_normals", "progress", "cancel"}
 
 
 def test_docstring_and_cli_help_list_every_option(cli):

@@ -38,6 +38,10 @@ struct MeshView {
     const float* palette = nullptr;               // palette_count * palette_channels, linear
     std::size_t palette_count = 0;
     int palette_channels = 0;  // 3 or 4
+    // Optional, with the palette: palette_count textures (null = that material's flat colour),
+    // each sampled at uvs on its material's triangles instead of the palette colour (OBJ+MTL
+    // map_Kd, as Blender's importer takes it: the image replaces Kd).
+    const Texture* const* material_textures = nullptr;
     // Per-face normals (triangle_count * 3); absent: normals if given, else the geometric normal.
     const float* face_normals = nullptr;
 };

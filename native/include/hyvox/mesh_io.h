@@ -23,11 +23,23 @@ struct Mesh {
     std::vector<float> colors;              // empty, or vertex_count × 4 (RGBA, 0..1, colour sRGB-encoded)
     bool colors_alpha = false;              // the file gave alpha (else alpha is 1)
     std::vector<float> uvs;                 // empty, or vertex_count × 2
+    // Materials (OBJ "usemtl", with its MTL files): empty, or one id per triangle into the
+    // material lists. Their colours are the mesh's colour source when it has no vertex
+    // colours (and no other texture is given).
+    std::vector<std::uint32_t> material_ids;
+    std::vector<std::string> material_names;     // in order of first use; "" = faces before any usemtl
+    std::vector<float> material_colors;          // 3 per material, linear RGB (MTL Kd; 0.8 grey without)
+    std::vector<std::string> material_textures;  // per material: its image file (MTL map_Kd), or ""
+    std::vector<std::string> material_libraries;  // OBJ "mtllib" files as written (readMesh reads them)
+    // What the reader could not use and left out (a missing .mtl or image, an unknown
+    // material): the front doors show these as warnings.
+    std::vector<std::string> warnings;
 
     std::size_t vertexCount() const { return positions.size() / 3; }
     std::size_t triangleCount() const { return triangles.size() / 3; }
     bool hasColors() const { return !colors.empty(); }
     bool hasUvs() const { return !uvs.empty(); }
+    bool hasMaterials() const { return !material_ids.empty(); }
     // A view for voxelize(); valid while this mesh lives and is not modified.
     MeshView view() const {
         MeshView v{positions.data(), vertexCount(), triangles.data(), triangleCount()};
@@ -37,6 +49,12 @@ struct Mesh {
             v.color_stride = 4;
             v.color_channels = colors_alpha ? 4 : 3;
             v.colors_srgb = true;
+        }
+        if (hasMaterials()) {  // the textures are decoded by the caller (loadMaterialTextures)
+            v.material_ids = material_ids.data();
+            v.palette = material_colors.data();
+            v.palette_count = material_colors.size() / 3;
+            v.palette_channels = 3;
         }
         return v;
     }

@@ -37,4 +37,12 @@ Texture textureFromLinear(const float* pixels, int width, int height, int channe
 // or larger than kMaxTexels.
 Texture readPngTexture(const std::string& path);
 
+// One decoded image per material for MeshView::material_textures: `paths` has one entry per
+// material, "" for none (Mesh::material_textures). Each file is read once.
+struct MaterialTextures {
+    std::vector<Texture> images;
+    std::vector<const Texture*> of_material;  // null where the material has none
+};
+MaterialTextures readMaterialTextures(const std::vector<std::string>& paths);
+
 }  // namespace hyvox

@@ -141,6 +141,7 @@ def voxelize(
     texture=None,
     material_ids=None,
     palette=None,
+    textures=None,
     face_normals=None,
     progress: Optional[Callable[[int], object]] = None,
     cancel: Optional[CancelToken] = None,
@@ -161,7 +162,9 @@ def voxelize(
         linear; row 0 = top), sampled bilinearly with repeat wrap at uvs (v = 0: bottom row);
     colors: (N, 3|4) per vertex or (3M, 3|4) per triangle corner; uint8 = sRGB-encoded bytes
         (as in files and Blender byte colours), float = linear;
-    material_ids: (M,) integers into palette: (P, 3|4) linear floats.
+    material_ids: (M,) integers into palette: (P, 3|4) linear floats;
+    textures: with them, one entry per palette colour: None (the flat colour) or a texture as
+        above, sampled at uvs on that material's triangles instead (OBJ+MTL map_Kd).
     normals (N, 3) per vertex are interpolated; face_normals: (M, 3) per triangle; neither:
         the geometric normal.
     progress: called on this thread with the percent done (int), while the voxelization
@@ -205,12 +208,11 @@ def voxelize(
     if isinstance(texture, (str, os.PathLike)):
         texture_path, texture = os.fspath(texture), None
     elif texture is not None:
-        texture = np.asarray(texture)
-        if texture.dtype.kind == "f":
-            texture = texture.astype(np.float32)
-        texture = np.ascontiguousarray(texture)
+        texture = _as_texture_entry(texture)
     if material_ids is not None:
         material_ids = _as_material_ids(material_ids)
+    if textures is not None:
+        textures = [_as_texture_entry(entry) for entry in textures]
     return _core.voxelize(
         _as_vertices(vertices),
         _as_triangles(triangles),
@@ -224,10 +226,23 @@ def voxelize(
         texture_path=texture_path,
         material_ids=material_ids,
         palette=None if palette is None else _as_float_rows(palette, "palette", np.asarray(palette).shape[-1]),
+        textures=textures,
         face_normals=_as_vertex_rows(face_normals, "face_normals", 3),
         cancel=cancel,
         progress=progress,
     )
+
+
+def _as_texture_entry(texture):
+    """A texture argument as the native module takes it: None, a path (str) or contiguous pixels."""
+    if texture is None or isinstance(texture, str):
+        return texture
+    if isinstance(texture, os.PathLike):
+        return os.fspath(texture)
+    texture = np.asarray(texture)
+    if texture.dtype.kind == "f":
+        texture = texture.astype(np.float32)
+    return np.ascontiguousarray(texture)
 
 
 def _options_doc() -> str:
@@ -250,19 +265,26 @@ def read_mesh(path: Union[str, os.PathLike], attributes: bool = False, cancel: O
 
     Returns (vertices float32 (N, 3), triangles uint32 (M, 3)), triangles exactly as in the
     file (degenerate ones included). With attributes=True, returns
-    (vertices, triangles, attrs) where attrs may hold "colors" (float32 (N, 4) RGBA 0..1)
-    and "uvs" (float32 (N, 2)). Raises ValueError for a missing or unreadable file, and
+    (vertices, triangles, attrs) where attrs may hold "colors" (float32 (N, 4) RGBA 0..1),
+    "uvs" (float32 (N, 2)) and, for an OBJ with materials, "material_ids" (uint32 (M,)),
+    "palette" (float32 (P, 3), linear MTL Kd), "textures" (P paths of map_Kd PNGs or None)
+    and "material_names"; these go to voxelize() as they are. What the reader could not use
+    (a missing .mtl or image: the material keeps its Kd) is a UserWarning. Raises ValueError for a missing or unreadable file, and
     hyvox.Cancelled when `cancel` (a hyvox.CancelToken) is cancelled from another thread while
     the file is read (the GIL is released meanwhile).
     """
     if cancel is not None and not isinstance(cancel, CancelToken):
         raise TypeError("cancel must be a hyvox.CancelToken or None")
-    vertices, triangles, colors, uvs = _core.read_mesh(os.fspath(path), cancel=cancel)
+    vertices, triangles, colors, uvs, materials, problems = _core.read_mesh(os.fspath(path), cancel=cancel)
     if not attributes:
         return vertices, triangles
+    for problem in problems:
+        warnings.warn(problem, UserWarning, stacklevel=2)
     attrs = {}
     if colors is not None:
         attrs["colors"] = colors
     if uvs is not None:
         attrs["uvs"] = uvs
+    if materials is not None:
+        attrs.update(materials)
     return vertices, triangles, attrs

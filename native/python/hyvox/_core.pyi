@@ -112,6 +112,7 @@ def voxelize(
     texture_path: Optional[str] = ...,
     material_ids: Optional[npt.NDArray[np.uint32]] = ...,
     palette: Optional[npt.NDArray[np.float32]] = ...,
+    textures: Optional[list[Union[str, npt.NDArray[Any], None]]] = ...,
     face_normals: Optional[npt.NDArray[np.float32]] = ...,
     cancel: Optional[CancelToken] = ...,
     progress: Optional[Callable[[int], object]] = ...,
@@ -124,5 +125,7 @@ def read_mesh(
     npt.NDArray[np.uint32],
     Optional[npt.NDArray[np.float32]],
     Optional[npt.NDArray[np.float32]],
+    Optional[Dict[str, Any]],
+    list[str],
 ]: ...
 def gl_devices() -> list[Dict[str, Union[int, str, bool]]]: ...

@@ -81,6 +81,30 @@ std::optional<Texture> textureFromArray(const std::optional<py::array>& array) {
     throw py::value_error("texture pixels must be uint8 or uint16 (sRGB) or float32 (linear)");
 }
 
+// One texture per material: a list whose entries are None, a PNG path or pixels as above.
+MaterialTextures materialTextures(const std::optional<py::list>& list) {
+    MaterialTextures out;
+    if (!list) return out;
+    out.images.reserve(list->size());  // no reallocation: of_material points into it
+    for (const py::handle entry : *list) {
+        if (entry.is_none()) {
+            out.of_material.push_back(nullptr);
+            continue;
+        }
+        if (py::isinstance<py::str>(entry)) {
+            const std::string path = entry.cast<std::string>();
+            py::gil_scoped_release release;
+            out.images.push_back(readPngTexture(path));
+        } else {
+            const py::array pixels = py::array::ensure(entry);
+            if (!pixels) throw py::value_error("textures: each entry is None, a PNG path or an array of pixels");
+            out.images.push_back(*textureFromArray(pixels));
+        }
+        out.of_material.push_back(&out.images.back());
+    }
+    return out;
+}
+
 // Colours: (N, 3|4) per vertex or (3M, 3|4) per corner.
 struct ColorRows {
     std::vector<float> values;
@@ -110,7 +134,7 @@ std::shared_ptr<VoxelizeResult> voxelizeArrays(const py::array& vertices, const 
                                                std::optional<py::array> colors, bool colors_srgb,
                                                std::optional<py::array> texture, std::optional<std::string> texture_path,
                                                std::optional<py::array> material_ids, std::optional<py::array> palette,
-                                               std::optional<py::array> face_normals,
+                                               std::optional<py::list> textures, std::optional<py::array> face_normals,
                                                std::shared_ptr<CancelToken> cancel, py::object progress) {
     options.tessellation.displacement_pixels = heightImage(displacement_pixels);
     if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw py::type_error("progress must be callable or None");
@@ -154,6 +178,14 @@ std::shared_ptr<VoxelizeResult> voxelizeArrays(const py::array& vertices, const 
         view.palette = palette_rows.data();
         view.palette_count = palette_rows.size() / std::size_t(view.palette_channels);
     }
+    const MaterialTextures material_textures = materialTextures(textures);
+    if (textures) {
+        if (!palette || material_textures.of_material.size() != view.palette_count)
+            throw py::value_error("textures must have one entry (None, a PNG path or pixels) per palette colour (" +
+                                  std::to_string(view.palette_count) + "), got " +
+                                  std::to_string(material_textures.of_material.size()));
+        view.material_textures = material_textures.of_material.data();
+    }
     std::vector<float> face_normal_rows;
     if (face_normals) {
         face_normal_rows = copyRows<float>(*face_normals, "face_normals", "float32", 3);
@@ -182,7 +214,7 @@ void bindVoxelize(py::module_& m) {
           py::arg("uvs") = py::none(), py::arg("normals") = py::none(), py::arg("displacement_pixels") = py::none(),
           py::arg("colors") = py::none(), py::arg("colors_srgb") = false, py::arg("texture") = py::none(),
           py::arg("texture_path") = py::none(), py::arg("material_ids") = py::none(), py::arg("palette") = py::none(),
-          py::arg("face_normals") = py::none(),
+          py::arg("textures") = py::none(), py::arg("face_normals") = py::none(),
           py::arg("cancel") = py::none(), py::arg("progress") = py::none(),
           "Voxelize float32 (N,3) vertices and uint32 (M,3) triangles (exact dtypes; hyvox.voxelize "
           "converts) with an Options object. Releases the GIL while it runs.");

@@ -4,6 +4,7 @@
 // double (voxel space: voxel (i,j,k) is [i, i+1] x [j, j+1] x [k, k+1]). Points on a face
 // count as inside, so a triangle lying on a voxel face belongs to both voxels, and a touch
 // (an edge or corner on the box) is kept with no area.
+#include <algorithm>
 #include <array>
 
 namespace hyvox::attributes {
@@ -34,28 +35,47 @@ struct Polygon {
 
 // The part of `in` between the planes x[axis] = lo and x[axis] = hi (inclusive), clipped
 // at lo first: clipping a triangle slab by slab (x, then y, then z) gives exactly the
-// polygons clipTriangleToVoxel gives box by box.
-void clipSlab(const Polygon& in, Polygon& out, int axis, double lo, double hi);
+// polygons clipTriangleToVoxel gives box by box. The result is `in` itself when both planes
+// keep all of it, else written to `scratch` (n = 0: nothing is left).
+const Polygon& clipSlab(const Polygon& in, Polygon& scratch, int axis, double lo, double hi);
 
-// Area and centroid of a clipped polygon (n > 0).
-void measurePiece(const Polygon& polygon, ClippedPiece& out);
-
-// False when the triangle misses the box (grown by `margin` voxels on every side).
-bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel, ClippedPiece& out,
-                         double margin = 0.0);
-
-// A triangle's set-up for all its pieces: barycentrics and its unit normal.
+// A triangle's set-up for all its pieces: barycentrics, its unit normal, and the scale from
+// areas projected on its dominant plane to its own.
 class TriangleFrame {
 public:
     explicit TriangleFrame(const std::array<Point, 3>& corners);
     // Barycentrics of `point` (in the triangle's plane) clamped to [0, 1] and renormalised.
-    std::array<double, 3> barycentrics(const Point& point) const;
+    // (Inline: it runs once per clipped piece.)
+    std::array<double, 3> barycentrics(const Point& point) const {
+        if (flat_) return {1.0 / 3, 1.0 / 3, 1.0 / 3};  // a sliver flat to rounding: its centre
+        const Point d{point[0] - origin_[0], point[1] - origin_[1], point[2] - origin_[2]};
+        const double v = d[0] * gradient_v_[0] + d[1] * gradient_v_[1] + d[2] * gradient_v_[2];
+        const double w = d[0] * gradient_w_[0] + d[1] * gradient_w_[1] + d[2] * gradient_w_[2];
+        std::array<double, 3> bary{std::clamp(1.0 - v - w, 0.0, 1.0), std::clamp(v, 0.0, 1.0), std::clamp(w, 0.0, 1.0)};
+        const double scale = 1.0 / (bary[0] + bary[1] + bary[2]);
+        for (double& b : bary) b *= scale;
+        return bary;
+    }
     const Point& unitNormal() const { return unit_normal_; }
+    // The two axes after the dominant normal axis (cyclic), and half the factor from a
+    // cross product in them (same orientation as the triangle) to the area in 3D.
+    const std::array<int, 2>& projectionAxes() const { return projection_axes_; }
+    double projectedAreaScale() const { return projected_area_scale_; }
 
 private:
-    Point origin_, v0_, v1_;
-    double d00_, d01_, d11_, denom_;
+    Point origin_;
+    Point gradient_v_, gradient_w_;  // of the second and third barycentric
+    bool flat_ = false;
     Point unit_normal_;
+    std::array<int, 2> projection_axes_{0, 1};
+    double projected_area_scale_ = 0;
 };
+
+// Area and centroid of a clipped polygon (n > 0) of the triangle `frame` describes.
+void measurePiece(const Polygon& polygon, const TriangleFrame& frame, ClippedPiece& out);
+
+// False when the triangle misses the box (grown by `margin` voxels on every side).
+bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel,
+                         const TriangleFrame& frame, ClippedPiece& out, double margin = 0.0);
 
 }  // namespace hyvox::attributes

@@ -2,11 +2,11 @@
 #include "attributes/surface_values.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
 #include "hyvox/errors.h"
-#include "hyvox/texture.h"
 
 namespace hyvox::attributes {
 namespace {
@@ -14,6 +14,20 @@ namespace {
 void requireFinite(const float* values, std::size_t count, const char* name) {
     for (std::size_t n = 0; n < count; ++n)
         if (!std::isfinite(values[n])) throw InvalidInput(std::string(name) + " contain NaN or Inf");
+}
+
+// srgbToLinear in float. Colours from bytes (k / 255 in float, as files and the Python front
+// door give them) take a table of the same values instead of a pow each.
+float decodeSrgb(float encoded) {
+    static const std::array<float, 256> of_byte = [] {
+        std::array<float, 256> table{};
+        for (int k = 0; k < 256; ++k) table[std::size_t(k)] = float(srgbToLinear(double(float(k) / 255.0f)));
+        return table;
+    }();
+    const float byte = encoded * 255.0f;
+    if (byte >= 0.0f && byte <= 255.0f && byte == float(int(byte)) && float(int(byte)) / 255.0f == encoded)
+        return of_byte[std::size_t(int(byte))];
+    return float(srgbToLinear(encoded));
 }
 
 }  // namespace
@@ -41,7 +55,7 @@ SurfaceValues::SurfaceValues(const MeshView& mesh, const AttributeSet& wanted) :
             if (mesh.colors_srgb) {
                 linear_colors_.assign(mesh.colors, mesh.colors + count);
                 for (std::size_t n = 0; n < count; ++n)
-                    if (n % std::size_t(color_stride_) < 3) linear_colors_[n] = float(srgbToLinear(linear_colors_[n]));
+                    if (n % std::size_t(color_stride_) < 3) linear_colors_[n] = decodeSrgb(linear_colors_[n]);
                 colors_ = linear_colors_.data();
             }
         } else if (mesh.palette && mesh.material_ids) {
@@ -56,6 +70,10 @@ SurfaceValues::SurfaceValues(const MeshView& mesh, const AttributeSet& wanted) :
                     throw InvalidInput("triangle " + std::to_string(t) + " has material id " +
                                        std::to_string(mesh.material_ids[t]) + ", but the palette has " +
                                        std::to_string(mesh.palette_count) + " colours");
+            if (mesh.material_textures && !mesh.uvs)
+                for (std::size_t m = 0; m < mesh.palette_count; ++m)
+                    if (mesh.material_textures[m])
+                        throw InvalidInput("material " + std::to_string(m) + " has a texture, which needs the mesh's UVs");
         } else {
             throw InvalidInput(
                 "attributes: color needs a colour source: vertex or corner colours, UVs and a texture, or material "
@@ -76,49 +94,63 @@ const float* SurfaceValues::colorRow(std::uint32_t triangle, int corner) const {
     return colors_ + row * std::size_t(color_stride_);
 }
 
-void SurfaceValues::evaluate(std::uint32_t triangle, const std::array<double, 3>& bary,
-                             const std::array<double, 3>& unit_normal, double* out) const {
+void SurfaceValues::prepare(std::uint32_t triangle, const std::array<double, 3>& unit_normal, CornerValues& out) const {
     const std::uint32_t* index = mesh_.triangles + 3 * std::size_t(triangle);
+    out.texture = nullptr;
+    int offset = 0;
     if (layout_.color) {
-        double rgba[4] = {0, 0, 0, 1};
+        const int written = layout_.alpha ? 4 : 3;
         switch (source_) {
-            case ColorSource::Texture: {
-                double u = 0, v = 0;
-                for (int c = 0; c < 3; ++c) {
-                    u += bary[std::size_t(c)] * double(mesh_.uvs[2 * std::size_t(index[c])]);
-                    v += bary[std::size_t(c)] * double(mesh_.uvs[2 * std::size_t(index[c]) + 1]);
-                }
-                const std::array<float, 4> texel = mesh_.texture->sample(u, v);
-                for (int n = 0; n < 4; ++n) rgba[n] = texel[std::size_t(n)];
-                break;
-            }
+            case ColorSource::Texture: out.texture = mesh_.texture; break;
             case ColorSource::Colors:
-                for (int n = 0; n < color_channels_; ++n) {
-                    rgba[n] = 0;
-                    for (int c = 0; c < 3; ++c) rgba[n] += bary[std::size_t(c)] * double(colorRow(triangle, c)[n]);
+                for (int c = 0; c < 3; ++c) {
+                    const float* row = colorRow(triangle, c);
+                    for (int n = 0; n < written; ++n) out.at[c][n] = row[n];
                 }
                 break;
             case ColorSource::Palette: {
-                const float* entry = mesh_.palette + std::size_t(mesh_.material_ids[triangle]) * std::size_t(color_channels_);
-                for (int n = 0; n < color_channels_; ++n) rgba[n] = entry[n];
+                const std::uint32_t material = mesh_.material_ids[triangle];
+                const float* entry = mesh_.palette + std::size_t(material) * std::size_t(color_channels_);
+                for (int c = 0; c < 3; ++c)
+                    for (int n = 0; n < written; ++n) out.at[c][n] = entry[n];
+                if (mesh_.material_textures) out.texture = mesh_.material_textures[material];
                 break;
             }
             case ColorSource::None: break;
         }
-        for (int n = 0; n < (layout_.alpha ? 4 : 3); ++n) *out++ = rgba[n];
-    }
-    if (layout_.normal) {
-        if (mesh_.face_normals) {
-            for (std::size_t a = 0; a < 3; ++a) out[a] = mesh_.face_normals[3 * std::size_t(triangle) + a];
-        } else if (mesh_.normals) {
-            for (std::size_t a = 0; a < 3; ++a) {
-                out[a] = 0;
-                for (int c = 0; c < 3; ++c) out[a] += bary[std::size_t(c)] * double(mesh_.normals[3 * std::size_t(index[c]) + a]);
+        if (out.texture)
+            for (int c = 0; c < 3; ++c) {
+                out.uv[c][0] = mesh_.uvs[2 * std::size_t(index[c])];
+                out.uv[c][1] = mesh_.uvs[2 * std::size_t(index[c]) + 1];
+                for (int n = 0; n < written; ++n) out.at[c][n] = 0;  // replaced by the texture's
             }
-        } else {
-            for (std::size_t a = 0; a < 3; ++a) out[a] = unit_normal[a];
-        }
+        offset = written;
     }
+    if (layout_.normal)
+        for (int c = 0; c < 3; ++c) {
+            double* normal = &out.at[c][offset];
+            for (std::size_t a = 0; a < 3; ++a)
+                normal[a] = mesh_.face_normals ? double(mesh_.face_normals[3 * std::size_t(triangle) + a])
+                            : mesh_.normals    ? double(mesh_.normals[3 * std::size_t(index[c]) + a])
+                                               : unit_normal[a];
+        }
+}
+
+void SurfaceValues::sampleTexture(const CornerValues& corners, const std::array<double, 3>& bary, double* out) const {
+    double u = 0, v = 0;
+    for (int c = 0; c < 3; ++c) {
+        u += bary[std::size_t(c)] * corners.uv[c][0];
+        v += bary[std::size_t(c)] * corners.uv[c][1];
+    }
+    const std::array<float, 4> texel = corners.texture->sample(u, v);
+    for (int n = 0; n < (layout_.alpha ? 4 : 3); ++n) out[n] = texel[std::size_t(n)];
+}
+
+void SurfaceValues::evaluate(std::uint32_t triangle, const std::array<double, 3>& bary,
+                             const std::array<double, 3>& unit_normal, double* out) const {
+    CornerValues corners;
+    prepare(triangle, unit_normal, corners);
+    interpolate(corners, bary, out);
 }
 
 void meanOfSums(const AttributeGrid& layout, const double* sums, double weight, float* mean) {

@@ -10,10 +10,20 @@
 
 #include "hyvox/attribute_grid.h"
 #include "hyvox/mesh.h"
+#include "hyvox/texture.h"
 
 namespace hyvox::attributes {
 
 constexpr int kMaxChannels = 7;  // RGB, alpha, normal
+
+// One triangle's values at its three corners, for interpolate(): the per-triangle part of
+// evaluate(), done once for all the triangle's pieces.
+struct CornerValues {
+    double at[3][kMaxChannels];        // each channel at each corner
+    const Texture* texture = nullptr;  // set: the colour channels come from it instead, at the
+    double uv[3][2];                   //   UV interpolated from these
+
+};
 
 class SurfaceValues {
 public:
@@ -30,9 +40,19 @@ public:
     void evaluate(std::uint32_t triangle, const std::array<double, 3>& bary, const std::array<double, 3>& unit_normal,
                   double* out) const;
 
+    // evaluate() in two steps: prepare() once per triangle, interpolate() at each point.
+    void prepare(std::uint32_t triangle, const std::array<double, 3>& unit_normal, CornerValues& out) const;
+    void interpolate(const CornerValues& corners, const std::array<double, 3>& bary, double* out) const {
+        const int channels = layout_.channels();
+        for (int n = 0; n < channels; ++n)
+            out[n] = bary[0] * corners.at[0][n] + bary[1] * corners.at[1][n] + bary[2] * corners.at[2][n];
+        if (corners.texture) sampleTexture(corners, bary, out);
+    }
+
 private:
     enum class ColorSource { None, Texture, Colors, Palette };
     const float* colorRow(std::uint32_t triangle, int corner) const;
+    void sampleTexture(const CornerValues& corners, const std::array<double, 3>& bary, double* out) const;
 
     const MeshView& mesh_;
     AttributeGrid layout_;

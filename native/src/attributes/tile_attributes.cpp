@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <utility>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -45,10 +47,20 @@ Corners voxelCorners(const BackendJob& job, std::uint32_t triangle) {
 bool bitSet(const std::uint64_t* words, int v) { return (words[v >> 6] >> (v & 63)) & 1u; }
 
 // The tile's non-empty bricks, and (unless brute force) the triangles (positions in
-// job.mesh.usable, ascending) whose candidate voxels reach each.
+// job.mesh.usable, ascending) whose candidate voxels reach each: brick s's are
+// triangles[first[s] .. first[s + 1]), counted first and then filled (no list per brick).
 struct TileBins {
-    std::vector<std::size_t> occupied;                  // tile brick indices
-    std::vector<std::vector<std::uint32_t>> triangles;  // per occupied brick
+    std::vector<std::size_t> occupied;  // tile brick indices
+    std::vector<std::size_t> first;     // occupied.size() + 1 offsets into triangles
+    std::vector<std::uint32_t> triangles;
+
+    struct Span {
+        const std::uint32_t* from;
+        const std::uint32_t* to;
+        const std::uint32_t* begin() const { return from; }
+        const std::uint32_t* end() const { return to; }
+    };
+    Span of(std::size_t slot) const { return {triangles.data() + first[slot], triangles.data() + first[slot + 1]}; }
 };
 
 TileBins binTriangles(const BackendJob& job, const BitGrid& bits, bool brute_force) {
@@ -65,17 +77,30 @@ TileBins binTriangles(const BackendJob& job, const BitGrid& bits, bool brute_for
         }
     }
     if (brute_force) return bins;
-    bins.triangles.resize(bins.occupied.size());
+    // Pass 0 counts each occupied brick's triangles, pass 1 places them in mesh order.
+    bins.first.assign(bins.occupied.size() + 1, 0);
+    std::vector<std::size_t> next;
     const auto& usable = job.mesh.usable;
-    for (std::uint32_t n = 0; n < usable.size(); ++n) {
-        const VoxelRange r = candidates(voxelCorners(job, usable[n]), tile_lo, tile_hi);
-        if (r.empty()) continue;
-        for (int bx = (r.lo[0] - tile_lo[0]) >> 3; bx <= (r.hi[0] - tile_lo[0]) >> 3; ++bx)
-            for (int by = (r.lo[1] - tile_lo[1]) >> 3; by <= (r.hi[1] - tile_lo[1]) >> 3; ++by)
-                for (int bz = (r.lo[2] - tile_lo[2]) >> 3; bz <= (r.hi[2] - tile_lo[2]) >> 3; ++bz) {
-                    const std::int64_t slot = slot_of_brick[bricks.index(bx, by, bz)];
-                    if (slot >= 0) bins.triangles[std::size_t(slot)].push_back(n);
-                }
+    for (int pass = 0; pass < 2; ++pass) {
+        for (std::uint32_t n = 0; n < usable.size(); ++n) {
+            const VoxelRange r = candidates(voxelCorners(job, usable[n]), tile_lo, tile_hi);
+            if (r.empty()) continue;
+            for (int bx = (r.lo[0] - tile_lo[0]) >> 3; bx <= (r.hi[0] - tile_lo[0]) >> 3; ++bx)
+                for (int by = (r.lo[1] - tile_lo[1]) >> 3; by <= (r.hi[1] - tile_lo[1]) >> 3; ++by)
+                    for (int bz = (r.lo[2] - tile_lo[2]) >> 3; bz <= (r.hi[2] - tile_lo[2]) >> 3; ++bz) {
+                        const std::int64_t slot = slot_of_brick[bricks.index(bx, by, bz)];
+                        if (slot < 0) continue;
+                        if (pass == 0)
+                            ++bins.first[std::size_t(slot) + 1];
+                        else
+                            bins.triangles[next[std::size_t(slot)]++] = n;
+                    }
+        }
+        if (pass == 0) {
+            for (std::size_t s = 0; s < bins.occupied.size(); ++s) bins.first[s + 1] += bins.first[s];
+            bins.triangles.resize(bins.first.back());
+            next.assign(bins.first.begin(), bins.first.end() - 1);
+        }
     }
     return bins;
 }
@@ -84,15 +109,16 @@ TileBins binTriangles(const BackendJob& job, const BitGrid& bits, bool brute_for
 // from triangles one after the other.
 class LeafAccumulator {
 public:
-    LeafAccumulator(const BackendJob& job, const SurfaceValues& values, bool brute_force)
+    // `sums`: 512 * (channels + 1) zeros, the thread's, handed back zero (takeMeans() clears
+    // the set voxels', the only ones written).
+    LeafAccumulator(const BackendJob& job, const SurfaceValues& values, bool brute_force, std::vector<double>& sums)
         : job_(job), values_(values), brute_force_(brute_force), stride_(std::size_t(values.channels() + 1)),
-          sums_(512 * stride_) {}
+          sums_(sums) {}
 
     void start(const std::uint64_t* words, const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
         words_ = words;
         lo_ = lo;
         hi_ = hi;
-        std::fill(sums_.begin(), sums_.end(), 0.0);
     }
 
     // Every triangle's exact pieces; then, for set voxels none reached (a touch the method's
@@ -113,17 +139,24 @@ public:
         return any_lost;
     }
 
-    // The means of the set voxels in bit order, normals renormalised; counts voxels still unreached.
-    void writeMeans(std::vector<float>& out, std::uint64_t& unreached) const {
-        const int channels = values_.channels();
-        for (int v = 0; v < 512; ++v) {
-            if (!bitSet(words_, v)) continue;
-            const double w = weight(v);
-            if (!(w > 0)) ++unreached;
-            float mean[kMaxChannels];
-            meanOfSums(values_.layout(), &sums_[std::size_t(v) * stride_], w, mean);
-            out.insert(out.end(), mean, mean + channels);
-        }
+    // The means of the set voxels in bit order, normals renormalised, and the sums cleared
+    // for the next leaf; counts voxels still unreached.
+    void takeMeans(std::vector<float>& out, std::uint64_t& unreached) {
+        const std::size_t channels = std::size_t(values_.channels());
+        std::size_t count = 0;
+        for (int word = 0; word < BitGrid::kWordsPerBrick; ++word) count += std::size_t(__builtin_popcountll(words_[word]));
+        out.resize(count * channels);
+        float* mean = out.data();
+        for (int word = 0; word < BitGrid::kWordsPerBrick; ++word)
+            for (std::uint64_t bits = words_[word]; bits; bits &= bits - 1) {
+                const int v = 64 * word + __builtin_ctzll(bits);
+                double* sums = &sums_[std::size_t(v) * stride_];
+                const double w = sums[stride_ - 1];
+                if (!(w > 0)) ++unreached;
+                meanOfSums(values_.layout(), sums, w, mean);
+                mean += channels;
+                std::fill(sums, sums + stride_, 0.0);
+            }
     }
 
     std::uint64_t pieces() const { return pieces_; }
@@ -131,10 +164,10 @@ public:
 private:
     double weight(int v) const { return sums_[std::size_t(v) * stride_ + stride_ - 1]; }
 
-    void add(std::uint32_t triangle, const TriangleFrame& frame, int i, int j, int k, const ClippedPiece& piece) {
+    void add(const TriangleFrame& frame, int i, int j, int k, const ClippedPiece& piece) {
         ++pieces_;
         double value[kMaxChannels];
-        values_.evaluate(triangle, frame.barycentrics(piece.centroid), frame.unitNormal(), value);
+        values_.interpolate(corner_values_, frame.barycentrics(piece.centroid), value);
         const double w = piece.area + kAreaEpsilon;
         double* voxel = &sums_[std::size_t(((i & 7) << 6) | ((j & 7) << 3) | (k & 7)) * stride_];
         for (std::size_t c = 0; c + 1 < stride_; ++c) voxel[c] += w * value[c];
@@ -144,55 +177,70 @@ private:
     // The triangle's pieces in the voxels of `mask`, clipped to their boxes grown by `margin`.
     // The reference clips box by box; cpu clips slab by slab (x, then y, then z), sharing
     // the first clips among a row's voxels: the same planes in the same order, so the same
-    // pieces.
+    // pieces. cpu also skips the rows and voxels its slab's extent cannot reach (those clips
+    // would come out empty; the ranges are one voxel wider than needed against rounding).
     void addTriangle(std::uint32_t n, const std::uint64_t* mask, double margin) {
         const std::uint32_t triangle = job_.mesh.usable[n];
         const Corners corners = voxelCorners(job_, triangle);
         const VoxelRange r = candidates(corners, lo_, hi_);
         if (r.empty()) return;
         const TriangleFrame frame(corners);
+        values_.prepare(triangle, frame.unitNormal(), corner_values_);
         ClippedPiece piece;
         if (brute_force_) {
             for (int i = r.lo[0]; i <= r.hi[0]; ++i)
                 for (int j = r.lo[1]; j <= r.hi[1]; ++j)
                     for (int k = r.lo[2]; k <= r.hi[2]; ++k)
                         if (bitSet(mask, ((i & 7) << 6) | ((j & 7) << 3) | (k & 7)) &&
-                            clipTriangleToVoxel(corners, {i, j, k}, piece, margin))
-                            add(triangle, frame, i, j, k, piece);
+                            clipTriangleToVoxel(corners, {i, j, k}, frame, piece, margin))
+                            add(frame, i, j, k, piece);
             return;
         }
-        Polygon whole, x_slab, xy_column, box;
+        Polygon whole, x_scratch, y_scratch, z_scratch;
         whole.n = 3;
         std::copy(corners.begin(), corners.end(), whole.p.begin());
         for (int i = r.lo[0]; i <= r.hi[0]; ++i) {
             const std::uint64_t word = mask[i & 7];
             if (!word) continue;
-            clipSlab(whole, x_slab, 0, i - margin, i + 1 + margin);
+            const Polygon& x_slab = clipSlab(whole, x_scratch, 0, i - margin, i + 1 + margin);
             if (x_slab.n == 0) continue;
-            for (int j = r.lo[1]; j <= r.hi[1]; ++j) {
+            const auto [j_lo, j_hi] = reach(x_slab, 1, r.lo[1], r.hi[1]);
+            for (int j = j_lo; j <= j_hi; ++j) {
                 const std::uint64_t row = (word >> ((j & 7) << 3)) & 0xffu;
                 if (!row) continue;
-                clipSlab(x_slab, xy_column, 1, j - margin, j + 1 + margin);
+                const Polygon& xy_column = clipSlab(x_slab, y_scratch, 1, j - margin, j + 1 + margin);
                 if (xy_column.n == 0) continue;
-                for (int k = r.lo[2]; k <= r.hi[2]; ++k) {
+                const auto [k_lo, k_hi] = reach(xy_column, 2, r.lo[2], r.hi[2]);
+                for (int k = k_lo; k <= k_hi; ++k) {
                     if (!((row >> (k & 7)) & 1u)) continue;
-                    clipSlab(xy_column, box, 2, k - margin, k + 1 + margin);
+                    const Polygon& box = clipSlab(xy_column, z_scratch, 2, k - margin, k + 1 + margin);
                     if (box.n == 0) continue;
-                    measurePiece(box, piece);
-                    add(triangle, frame, i, j, k, piece);
+                    measurePiece(box, frame, piece);
+                    add(frame, i, j, k, piece);
                 }
             }
         }
+    }
+
+    // The voxels along `axis`, within [lo, hi], whose closed box may meet the polygon.
+    static std::pair<int, int> reach(const Polygon& polygon, int axis, int lo, int hi) {
+        double from = polygon.p[0][std::size_t(axis)], to = from;
+        for (int c = 1; c < polygon.n; ++c) {
+            from = std::min(from, polygon.p[std::size_t(c)][std::size_t(axis)]);
+            to = std::max(to, polygon.p[std::size_t(c)][std::size_t(axis)]);
+        }
+        return {int(std::max(double(lo), std::floor(from) - 2.0)), int(std::min(double(hi), std::floor(to) + 1.0))};
     }
 
     const BackendJob& job_;
     const SurfaceValues& values_;
     const bool brute_force_;
     const std::size_t stride_;
-    std::vector<double> sums_;
+    std::vector<double>& sums_;
     const std::uint64_t* words_ = nullptr;
     std::array<int, 3> lo_{}, hi_{};
     std::uint64_t pieces_ = 0;
+    CornerValues corner_values_;
 };
 
 // 0, 1, ..., count - 1: the brute force's triangle list.
@@ -224,10 +272,11 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
     std::atomic<std::uint64_t> pieces{0}, unreached{0}, rounded{0};
     const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
     tbb::task_arena arena(threads);
+    tbb::enumerable_thread_specific<std::vector<double>> sums_of_thread(512 * std::size_t(values.channels() + 1), 0.0);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bins.occupied.size(), 4), [&](const auto& range) {
             throwIfInterrupted(job.interrupter);
-            LeafAccumulator leaf(job, values, brute_force);
+            LeafAccumulator leaf(job, values, brute_force, sums_of_thread.local());
             std::uint64_t local_unreached = 0, local_rounded = 0;
             for (std::size_t s = range.begin(); s != range.end(); ++s) {
                 const std::size_t b = bins.occupied[s];
@@ -239,11 +288,11 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
                 }
                 leaf.start(bits.data() + b * BitGrid::kWordsPerBrick, lo, hi);
                 const bool fell_back = brute_force ? leaf.accumulate(AllTriangles{std::uint32_t(job.mesh.usable.size())})
-                                                   : leaf.accumulate(bins.triangles[s]);
+                                                   : leaf.accumulate(bins.of(s));
                 local_rounded += fell_back;
                 AttributeLeaf& result = out[first + s];
                 result.brick = grid_bricks.index((offset[0] >> 3) + at[0], (offset[1] >> 3) + at[1], (offset[2] >> 3) + at[2]);
-                leaf.writeMeans(result.values, local_unreached);
+                leaf.takeMeans(result.values, local_unreached);
             }
             pieces.fetch_add(leaf.pieces(), std::memory_order_relaxed);
             unreached.fetch_add(local_unreached, std::memory_order_relaxed);

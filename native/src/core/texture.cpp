@@ -63,6 +63,7 @@ std::array<float, 4> Texture::sample(double u, double v) const {
     const double fx = x - x0, fy = y - y0;
     // Repeat wrap; the floor is finite (UVs are validated finite) but may be far outside.
     auto wrap = [](double index, int size) {
+        if (index >= 0 && index < size) return int(index);  // inside: what fmod would give, without the call
         const double r = std::fmod(index, double(size));
         return int(r < 0 ? r + size : r);
     };

@@ -12,6 +12,7 @@
 #include "io/assimp_reader.h"
 #include "io/file_bytes.h"
 #include "io/gzip_input.h"
+#include "io/obj_materials.h"
 #include "io/obj_reader.h"
 #include "io/ply_reader.h"
 
@@ -61,7 +62,11 @@ Mesh readMesh(const std::string& path, Interrupter* interrupter) {
     // A PLY is told by its first line whatever its name, compressed or not.
     if (extension == "ply" || io::looksLikePly(data.data(), data.size()))
         return io::readPly(data.data(), data.size(), path, interrupter);
-    if (extension == "obj") return io::readObj(data.data(), data.size(), path, interrupter);
+    if (extension == "obj") {
+        Mesh mesh = io::readObj(data.data(), data.size(), path, interrupter);
+        io::readObjMaterials(mesh, path);
+        return mesh;
+    }
     return io::readWithAssimp(data.data(), data.size(), extension, path, interrupter);  // another format, gzipped
 }
 

@@ -17,6 +17,7 @@ namespace hyvox::io {
 namespace {
 
 constexpr std::uint32_t kNoUv = std::numeric_limits<std::uint32_t>::max();
+constexpr std::uint32_t kNoMaterial = std::numeric_limits<std::uint32_t>::max();
 
 class ObjParser {
 public:
@@ -35,9 +36,20 @@ public:
                 readUv();
             else if (keyword == "f")
                 readFace();
-            // Anything else (#, vn, g, o, s, usemtl, mtllib, l, p, ...) holds nothing to voxelize.
+            else if (keyword == "usemtl")
+                useMaterial();
+            else if (keyword == "mtllib")
+                addLibraries();
+            // Anything else (#, vn, g, o, s, l, p, ...) holds nothing to voxelize.
         } while (scanner_.nextLine());
         if (mesh_.triangles.empty()) failMeshFile(name_, "contains no triangles (no 'f' line with 3 or more corners)");
+        if (any_material_) {
+            mesh_.material_colors.assign(3 * mesh_.material_names.size(), 0.8f);
+            mesh_.material_textures.assign(mesh_.material_names.size(), "");
+        } else {
+            mesh_.material_ids.clear();
+            mesh_.material_names.clear();
+        }
         if (!any_uv_) mesh_.uvs.clear();
         if (!any_color_) mesh_.colors.clear();
         return std::move(mesh_);
@@ -124,6 +136,29 @@ private:
         return it->second;
     }
 
+    // "usemtl NAME": the faces after it take the material NAME (numbered by first use).
+    void useMaterial() {
+        std::string_view first, word;
+        if (!scanner_.wordOnLine(first)) fail("'usemtl' needs a material name");
+        const char* end = first.data() + first.size();
+        while (scanner_.wordOnLine(word)) end = word.data() + word.size();
+        const std::string name(first.data(), std::size_t(end - first.data()));
+        any_material_ = true;
+        material_ = materialNamed(name);
+    }
+
+    std::uint32_t materialNamed(const std::string& name) {
+        const auto [it, inserted] = material_of_name_.emplace(name, std::uint32_t(mesh_.material_names.size()));
+        if (inserted) mesh_.material_names.push_back(name);
+        return it->second;
+    }
+
+    // "mtllib A.mtl [B.mtl ...]": the material files, read by readMesh beside the OBJ.
+    void addLibraries() {
+        std::string_view word;
+        while (scanner_.wordOnLine(word)) mesh_.material_libraries.emplace_back(word);
+    }
+
     // Fan-triangulated as the corners are read: (0,1,2), (0,2,3), ... in one pass.
     void readFace() {
         std::string_view word;
@@ -133,8 +168,11 @@ private:
             const std::uint32_t current = corner(word);
             if (n == 0)
                 first = current;
-            else if (n >= 2)
+            else if (n >= 2) {
                 mesh_.triangles.insert(mesh_.triangles.end(), {first, previous, current});
+                if (material_ == kNoMaterial) material_ = materialNamed("");
+                mesh_.material_ids.push_back(material_);
+            }
             previous = current;
             ++n;
         }
@@ -146,7 +184,10 @@ private:
     Interrupter* interrupter_;
     std::vector<float> file_positions_, file_colors_, file_uvs_;
     std::unordered_map<std::uint64_t, std::uint32_t> vertex_of_corner_;
-    bool any_uv_ = false, any_color_ = false;
+    bool any_uv_ = false, any_color_ = false, any_material_ = false;
+    // Faces before any usemtl: material "" (named on first use, when the file has materials).
+    std::unordered_map<std::string, std::uint32_t> material_of_name_;
+    std::uint32_t material_ = kNoMaterial;
     Mesh mesh_;
 };
 

@@ -2,8 +2,9 @@
 #pragma once
 // A strict Wavefront OBJ reader: positions ("v x y z", optionally "r g b" after them), texture
 // coordinates ("vt u v") and faces ("f" with 1-based or negative indices, "v", "v/vt",
-// "v//vn", "v/vt/vn"). Everything else (normals, groups, materials, lines, points) is
-// skipped. A malformed number, a face with fewer than 3 corners or an index that names no
+// "v//vn", "v/vt/vn"), and the material of each face ("usemtl NAME"; "mtllib" files are
+// listed for readMesh, which reads them: obj_materials.h). Everything else (normals, groups,
+// lines, points) is skipped. A malformed number, a face with fewer than 3 corners or an index that names no
 // vertex defined before it is an InvalidInput naming the file and the line.
 #include <cstddef>
 #include <string>

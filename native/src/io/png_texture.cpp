@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
 #include <memory>
 
 #include "hyvox/errors.h"
@@ -49,6 +50,23 @@ Texture readPngTexture(const std::string& path) {
     if (!png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr))
         throw InvalidInput("texture '" + path + "' could not be decoded: " + image.message);
     return textureFromBytes(pixels.data(), int(image.width), int(image.height), channels);
+}
+
+MaterialTextures readMaterialTextures(const std::vector<std::string>& paths) {
+    MaterialTextures out;
+    std::map<std::string, std::size_t> image_of_path;
+    std::vector<std::size_t> image_of_material(paths.size(), 0);
+    for (std::size_t m = 0; m < paths.size(); ++m) {
+        if (paths[m].empty()) continue;
+        const auto [it, inserted] = image_of_path.emplace(paths[m], out.images.size());
+        if (inserted) out.images.push_back(readPngTexture(paths[m]));
+        image_of_material[m] = it->second;
+    }
+    // Pointers once the images no longer move.
+    out.of_material.assign(paths.size(), nullptr);
+    for (std::size_t m = 0; m < paths.size(); ++m)
+        if (!paths[m].empty()) out.of_material[m] = &out.images[image_of_material[m]];
+    return out;
 }
 
 }  // namespace hyvox

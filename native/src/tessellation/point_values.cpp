@@ -2,6 +2,7 @@
 #include "tessellation/point_values.h"
 
 #include "attributes/clip_to_voxel.h"
+#include "hyvox/errors.h"
 
 namespace hyvox::tessellation {
 
@@ -16,6 +17,12 @@ std::string PointValues::defines() const {
 PointValues makePointValues(const ValidatedMesh& mesh, const GridSpec& grid, const attributes::SurfaceValues& values) {
     PointValues out;
     out.layout = values.layout();
+    // The shaders sample one texture; a texture per material (OBJ map_Kd) is the exact methods'.
+    if (out.layout.color && mesh.view.material_textures && !mesh.view.texture && !mesh.view.colors)
+        for (std::size_t m = 0; m < mesh.view.palette_count; ++m)
+            if (mesh.view.material_textures[m])
+                throw InvalidInput("the tessellation method samples one texture, not one per material: use the cpu "
+                                   "method for these materials' images");
     // SurfaceValues takes the texture first whenever the mesh has one (it refuses one without UVs).
     if (out.layout.color && mesh.view.texture) out.texture = mesh.view.texture;
     const std::size_t channels = std::size_t(out.channels());
