@@ -47,8 +47,9 @@ std::vector<const char*> modeNames();    // in enum order
 std::vector<const char*> methodNames();
 std::vector<const char*> insideRuleNames();
 
-// Whether a method computes attribute voxels (colour, normal): the exact methods, and the
-// tessellation by averaging its points' values. The GL triangle/fragment/hybrid do not yet.
+// Whether a method computes attribute voxels (colour, normal): the exact methods (cpu and
+// reference clip on the CPU, triangle/fragment/hybrid on the GPU), and the tessellation by
+// averaging its points' values. Every method does now; front doors ask this, not a list.
 bool computesAttributes(Method method);
 
 struct GlOptions {
