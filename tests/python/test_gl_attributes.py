@@ -142,3 +142,22 @@ def test_the_pair_list_grows_until_every_piece_fits():
     # passes through lattice points).
     assert abs(gl.stats["attribute_pieces"] - cpu.stats["attribute_pieces"]) < 1e-3 * cpu.stats["attribute_pieces"]
     assert_same_attributes(gl, cpu, ("normal",))
+
+
+@pytest.mark.parametrize("method", GL_METHODS)
+def test_progress_and_cancel_during_a_gl_attribute_run(spot_vcolor, method):
+    v, t, attrs = spot_vcolor
+    extra = dict(resolution=48, method=method, tile_size=16, colors=attrs["colors"][:, :3], attributes="color,normal")
+    seen = []
+    hyvox.voxelize(v, t, progress=seen.append, **extra)
+    assert seen == sorted(seen) and seen[-1] == 100 and len(set(seen)) > 3
+    # Cancelled as soon as the first tile reports: the run stops with Cancelled, not a result.
+    token = hyvox.CancelToken()
+
+    def cancel_after_first_tile(percent):
+        if percent > 0:
+            token.cancel()
+
+    with pytest.raises(hyvox.Cancelled):
+        hyvox.voxelize(v, t, cancel=token, progress=cancel_after_first_tile, **extra)
+    assert token.cancelled and not token.running
