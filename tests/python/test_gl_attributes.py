@@ -161,3 +161,17 @@ def test_progress_and_cancel_during_a_gl_attribute_run(spot_vcolor, method):
     with pytest.raises(hyvox.Cancelled):
         hyvox.voxelize(v, t, cancel=token, progress=cancel_after_first_tile, **extra)
     assert token.cancelled and not token.running
+
+
+def test_a_tile_whose_pairs_exceed_the_list_is_run_as_halves(spot_vcolor):
+    # A pair list (20 bytes a piece) with room for half the pieces cannot hold the one bit
+    # tile's pairs, so the tile is halved until each part's pairs fit; the values stay the same.
+    v, t, attrs = spot_vcolor
+    extra = dict(resolution=48, method="triangle", colors=attrs["colors"][:, :3], attributes="color,normal")
+    whole = hyvox.voxelize(v, t, **extra)
+    assert whole.stats["hybrid"]["tiles"] == 1
+    halved = hyvox.voxelize(v, t, gl_pair_list_bytes=20 * whole.stats["attribute_pieces"] // 2, **extra)
+    assert halved.stats["hybrid"]["tiles"] >= 2
+    assert np.array_equal(whole.coords(), halved.coords())
+    for name in ("color", "normal"):
+        assert np.array_equal(whole.attributes()[name], halved.attributes()[name])

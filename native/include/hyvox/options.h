@@ -58,6 +58,10 @@ struct GlOptions {
     // Largest bit-grid tile in bytes; 0 = one shader storage block (the device's limit).
     // Smaller values force tiling (tests of the tile borders).
     std::uint64_t tile_bytes = 0;
+    // Largest list of (voxel, triangle) pairs, in bytes, of the triangle/fragment/hybrid
+    // attribute pass (its pieces take 20 bytes each); 0 = one shader storage block. Smaller
+    // values make tiles whose pairs do not fit run as halves (tests of that halving).
+    std::uint64_t pair_list_bytes = 0;
     // Time GL passes by the wall clock around glFinish instead of GPU timer queries
     // (always on for Mesa's llvmpipe, whose timer queries miss compute work).
     bool wall_timing = false;

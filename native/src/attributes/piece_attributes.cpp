@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "attributes/clip_to_voxel.h"
+#include "hyvox/errors.h"
 
 namespace hyvox::attributes {
 namespace {
@@ -20,18 +21,20 @@ std::uint64_t voxelKey(const BrickLayout& bricks, const std::array<std::int32_t,
     return std::uint64_t(bricks.index(v[0] >> 3, v[1] >> 3, v[2] >> 3)) * 512u + bit;
 }
 
+// The sort key beside the piece's position, so sorting moves 16 bytes and reads no piece.
 struct KeyedPiece {
     std::uint64_t voxel;
-    const VoxelPiece* piece;
+    std::uint32_t triangle;
+    std::uint32_t index;  // in pieces
     bool operator<(const KeyedPiece& other) const {
-        return voxel != other.voxel ? voxel < other.voxel : piece->triangle < other.piece->triangle;
+        return voxel != other.voxel ? voxel < other.voxel : triangle < other.triangle;
     }
 };
 
 }  // namespace
 
 TileAttributeCounts computePieceAttributes(const BackendJob& job, const BitGrid& bits, const SurfaceValues& values,
-                                           std::vector<VoxelPiece>& pieces, std::vector<AttributeLeaf>& out) {
+                                           const std::vector<VoxelPiece>& pieces, std::vector<AttributeLeaf>& out) {
     const BrickLayout& tile_bricks = bits.bricks();
     const BrickLayout grid_bricks = job.grid.bricks();
     const std::array<std::int32_t, 3>& offset = job.tile.offset;
@@ -39,7 +42,9 @@ TileAttributeCounts computePieceAttributes(const BackendJob& job, const BitGrid&
     tbb::task_arena arena(threads);
 
     std::vector<KeyedPiece> sorted(pieces.size());
-    for (std::size_t n = 0; n < pieces.size(); ++n) sorted[n] = {voxelKey(tile_bricks, pieces[n].voxel), &pieces[n]};
+    if (pieces.size() > 0xffffffffu) throw ResourceError("more than 2^32 clipped pieces in one tile; use smaller tiles");
+    for (std::size_t n = 0; n < pieces.size(); ++n)
+        sorted[n] = {voxelKey(tile_bricks, pieces[n].voxel), pieces[n].triangle, std::uint32_t(n)};
     arena.execute([&] { tbb::parallel_sort(sorted.begin(), sorted.end()); });
     throwIfInterrupted(job.interrupter);
 
@@ -73,12 +78,12 @@ TileAttributeCounts computePieceAttributes(const BackendJob& job, const BitGrid&
                     while (next != sorted.end() && next->voxel < key) ++next;  // pieces of unset voxels: none expected
                     auto end = next;
                     bool any_exact = false;
-                    for (; end != sorted.end() && end->voxel == key; ++end) any_exact |= !end->piece->margin;
+                    for (; end != sorted.end() && end->voxel == key; ++end) any_exact |= !pieces[end->index].margin;
                     // As the cpu method: pieces clipped with the touch margin only where no exact one reached.
                     leaf_rounded |= next != end && !any_exact;
                     std::fill(sums.begin(), sums.end(), 0.0);
                     for (; next != end; ++next) {
-                        const VoxelPiece& piece = *next->piece;
+                        const VoxelPiece& piece = pieces[next->index];
                         if (piece.margin == any_exact) continue;
                         ++local_used;
                         const std::uint32_t triangle = job.mesh.usable[piece.triangle];

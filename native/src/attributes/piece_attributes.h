@@ -12,9 +12,9 @@
 
 namespace hyvox::attributes {
 
-// `pieces` (sorted here) hold every (voxel, triangle) pair of the tile whose voxel is set in
+// `pieces` hold every (voxel, triangle) pair of the tile whose voxel is set in
 // `bits`; a set voxel with none gets zeros and is counted as unreached.
 TileAttributeCounts computePieceAttributes(const BackendJob& job, const BitGrid& bits, const SurfaceValues& values,
-                                           std::vector<VoxelPiece>& pieces, std::vector<AttributeLeaf>& out);
+                                           const std::vector<VoxelPiece>& pieces, std::vector<AttributeLeaf>& out);
 
 }  // namespace hyvox::attributes

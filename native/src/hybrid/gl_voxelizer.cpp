@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "attributes/clip_to_voxel.h"
@@ -65,7 +66,7 @@ void measureTriangles(const gl::GpuMesh& mesh, std::vector<float>& extent, std::
 
 GlVoxelizer::GlVoxelizer(const gl::GpuMesh& mesh, const GridSpec& grid, Mode mode, Method method,
                          const std::string& shader_dir, gl::ProgramCache& programs, const gl::GlTuning& tuning,
-                         std::uint64_t tile_bytes)
+                         std::uint64_t tile_bytes, std::uint64_t pair_list_bytes)
     : grid_(grid),
       mode_(mode),
       method_(method),
@@ -73,6 +74,7 @@ GlVoxelizer::GlVoxelizer(const gl::GpuMesh& mesh, const GridSpec& grid, Mode mod
       programs_(programs),
       triangle_count_(std::uint32_t(mesh.triangleCount())),
       tiling_(grid, tile_bytes),  // refuses a slab larger than a tile before anything is allocated
+      pair_list_bytes_(pair_list_bytes),
       tuning_(tuning) {
     // Draw calls count vertices (3 per triangle) in a GLsizei.
     if (mesh.triangleCount() > 0x2aaaaaaaull)
@@ -283,10 +285,14 @@ std::vector<std::array<std::int32_t, 3>> GlVoxelizer::runVoxelList(double cutoff
     return voxels;
 }
 
-std::uint32_t GlVoxelizer::runTilePairs(const Programs& programs, double cutoff, PassTimes& times) {
+std::optional<std::uint32_t> GlVoxelizer::runTilePairs(const Programs& programs, const gl::BitTile& tile, double cutoff,
+                                                       PassTimes& times) {
+    setTileUniforms(programs, tile);
     // The pairs and their pieces are one storage block each; the shader's 32-bit count and
     // indices allow at most 2^31 besides.
-    const std::uint64_t block_bytes = std::uint64_t(std::max<GLint64>(glLimit(GL_MAX_SHADER_STORAGE_BLOCK_SIZE), 64));
+    std::uint64_t block_bytes = std::uint64_t(std::max<GLint64>(glLimit(GL_MAX_SHADER_STORAGE_BLOCK_SIZE), 64));
+    if (pair_list_bytes_ > 0)
+        block_bytes = std::max<std::uint64_t>(std::min(block_bytes, pair_list_bytes_), 64);
     const std::uint32_t max_capacity = std::uint32_t(
         std::min<std::uint64_t>({(block_bytes - kPairHeader) / kPairBytes, block_bytes / sizeof(GpuPiece), 1u << 31}));
     if (pair_capacity_ == 0)  // a first guess; a tile that overflows is run again with room for its count
@@ -314,11 +320,14 @@ std::uint32_t GlVoxelizer::runTilePairs(const Programs& programs, double cutoff,
             times.tiles += attempt.tiles;
             break;
         }
-        if (count > max_capacity)
+        if (count > max_capacity) {
+            if (tile.brick_x1 - tile.brick_x0 > 1)
+                return std::nullopt;  // the caller halves the tile
             throw ResourceError("colour and normal voxels need " + std::to_string(count) +
-                                " triangle/voxel pairs in one tile, more than the " + std::to_string(max_capacity) +
-                                " that fit this GL device's storage-block limit of " +
-                                std::to_string(block_bytes >> 20) + " MiB; use a larger voxel size or gl_tile_bytes");
+                                " triangle/voxel pairs in one 8-voxel slab, more than the " +
+                                std::to_string(max_capacity) + " that fit this GL device's storage-block limit of " +
+                                std::to_string(block_bytes >> 20) + " MiB; use a larger voxel size");
+        }
         pair_capacity_ = count;
     }
     if (count == 0)
@@ -344,20 +353,31 @@ PassTimes GlVoxelizer::runPieces(double cutoff, BitGrid* out, std::vector<attrib
     PassTimes times;
     std::vector<std::uint32_t> pair_words;
     std::vector<GpuPiece> clipped;
-    times.readback_ms = tiling_.run(bits_, out, [&](const gl::BitTile& tile) {
+    // Tiles to run, last first: a tile whose pairs exceed a storage block is replaced by its halves.
+    std::vector<gl::BitTile> todo(tiling_.tiles().rbegin(), tiling_.tiles().rend());
+    while (!todo.empty()) {
+        const gl::BitTile tile = todo.back();
+        todo.pop_back();
         if (before_tile)
             before_tile();
-        setTileUniforms(programs, tile);
-        const std::uint32_t count = runTilePairs(programs, cutoff, times);
-        pair_words.resize(std::size_t(count) * 4);
-        clipped.resize(count);
-        if (count) {
+        const std::optional<std::uint32_t> count = runTilePairs(programs, tile, cutoff, times);
+        if (!count) {
+            const int middle = (tile.brick_x0 + tile.brick_x1) / 2;
+            todo.push_back({middle, tile.brick_x1});
+            todo.push_back({tile.brick_x0, middle});
+            continue;
+        }
+        if (out)
+            times.readback_ms += tiling_.readBack(bits_, tile, *out);
+        pair_words.resize(std::size_t(*count) * 4);
+        clipped.resize(*count);
+        if (*count) {
             pairs_.download(kPairHeader, pair_words.size() * 4, pair_words.data());
             pieces_.download(0, clipped.size() * sizeof(GpuPiece), clipped.data());
         }
         gl::checkGl("reading back the clipped pieces");
-        pieces.reserve(pieces.size() + count);
-        for (std::size_t i = 0; i < count; ++i) {
+        pieces.reserve(pieces.size() + *count);
+        for (std::size_t i = 0; i < *count; ++i) {
             const GpuPiece& g = clipped[i];
             if (g.kind == HYVOX_PIECE_NONE)
                 continue;
@@ -368,7 +388,7 @@ PassTimes GlVoxelizer::runPieces(double cutoff, BitGrid* out, std::vector<attrib
                               {g.centroid[0], g.centroid[1], g.centroid[2]},
                               g.kind == HYVOX_PIECE_MARGIN});
         }
-    });
+    }
     return times;
 }
 

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,7 +38,8 @@ struct PassTimes {
 class GlVoxelizer {
 public:
     GlVoxelizer(const gl::GpuMesh& mesh, const GridSpec& grid, Mode mode, Method method, const std::string& shader_dir,
-                gl::ProgramCache& programs, const gl::GlTuning& tuning, std::uint64_t tile_bytes);
+                gl::ProgramCache& programs, const gl::GlTuning& tuning, std::uint64_t tile_bytes,
+                std::uint64_t pair_list_bytes = 0);
 
     // Runs every tile; writes bits into `out` (dims = grid dims) unless it is null (timing
     // runs). before_tile (optional) runs before each tile: a place to throw Cancelled.
@@ -48,7 +50,8 @@ public:
 
     // As run(), and also appends to `pieces` every (voxel, triangle) pair the passes find,
     // clipped on the GPU (shaders/hybrid/clip_pieces.comp), in no particular order. A tile
-    // whose pairs overflow the list is run again with room for them all.
+    // whose pairs overflow the list is run again with room for them all; one whose pairs
+    // exceed a storage block, as its two halves.
     PassTimes runPieces(double cutoff, BitGrid* out, std::vector<attributes::VoxelPiece>& pieces,
                         const std::function<void()>& before_tile = {});
 
@@ -67,8 +70,10 @@ private:
     // Built on first use, then kept for this voxelizer's runs.
     const Programs& programsFor(Output output);
     // One tile's pairs into pairs_ (room for pair_capacity_, grown and run again until they
-    // fit), then clipped into pieces_; returns the pair count.
-    std::uint32_t runTilePairs(const Programs& programs, double cutoff, PassTimes& times);
+    // fit), then clipped into pieces_; returns the pair count, or nothing when the pairs of a
+    // tile of several slabs exceed one storage block (run its halves instead).
+    std::optional<std::uint32_t> runTilePairs(const Programs& programs, const gl::BitTile& tile, double cutoff,
+                                              PassTimes& times);
     // One tile's passes into bits_ (its slab uniforms set before).
     void runTile(const Programs& programs, double cutoff, PassTimes& times);
     void setRunUniforms(const Programs& programs, double cutoff) const;  // the same for every tile
@@ -81,6 +86,7 @@ private:
     gl::ProgramCache& programs_;
     std::uint32_t triangle_count_;
     gl::BitTiling tiling_;
+    std::uint64_t pair_list_bytes_;  // GlOptions::pair_list_bytes (0 = the device's storage-block limit)
     Programs programs_by_output_[3];
     gl::Buffer vertices_, triangles_, bits_, large_, draw_, voxel_list_, pairs_, pieces_;
     std::uint32_t pair_capacity_ = 0;  // pairs pairs_ and pieces_ hold (kept across tiles)

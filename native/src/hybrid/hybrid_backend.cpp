@@ -52,7 +52,7 @@ HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<
         Stopwatch gl_watch;
         const gl::GlTuning tuning = gl::GlTuning::forDevice(worker.device().software, gl_options);
         GlVoxelizer voxelizer(mesh, tile_grid, job.options.mode, method, gl_options.shader_dir, worker.programs(),
-                              tuning, gl_options.tile_bytes);
+                              tuning, gl_options.tile_bytes, gl_options.pair_list_bytes);
         glFinish();
         run.upload_ms = gl_watch.restart();
         throwIfInterrupted(job.interrupter);
@@ -81,7 +81,7 @@ HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<
             // whose extra voxels the dispatcher skips (only set voxels get values).
             run.times = voxelizer.run(cutoff, out, [&] { throwIfInterrupted(job.interrupter); });
             GlVoxelizer conservative(mesh, tile_grid, Mode::Conservative, method, gl_options.shader_dir,
-                                     worker.programs(), tuning, gl_options.tile_bytes);
+                                     worker.programs(), tuning, gl_options.tile_bytes, gl_options.pair_list_bytes);
             const PassTimes pairs =
                 conservative.runPieces(cutoff, nullptr, *pieces, [&] { throwIfInterrupted(job.interrupter); });
             run.times.pass1_gpu_ms += pairs.pass1_gpu_ms;
