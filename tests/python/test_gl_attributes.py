@@ -175,3 +175,6 @@ def test_a_tile_whose_pairs_exceed_the_list_is_run_as_halves(spot_vcolor):
     assert np.array_equal(whole.coords(), halved.coords())
     for name in ("color", "normal"):
         assert np.array_equal(whole.attributes()[name], halved.attributes()[name])
+    # A list too small for one 8-voxel slab's pairs cannot be halved further: a clear error.
+    with pytest.raises(hyvox.ResourceError, match="pairs in one 8-voxel slab, more than the 3 that fit"):
+        hyvox.voxelize(v, t, gl_pair_list_bytes=64, **extra)

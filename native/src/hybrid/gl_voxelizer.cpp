@@ -325,8 +325,10 @@ std::optional<std::uint32_t> GlVoxelizer::runTilePairs(const Programs& programs,
                 return std::nullopt;  // the caller halves the tile
             throw ResourceError("colour and normal voxels need " + std::to_string(count) +
                                 " triangle/voxel pairs in one 8-voxel slab, more than the " +
-                                std::to_string(max_capacity) + " that fit this GL device's storage-block limit of " +
-                                std::to_string(block_bytes >> 20) + " MiB; use a larger voxel size");
+                                std::to_string(max_capacity) + " that fit the pair list's " +
+                                std::to_string(block_bytes) +
+                                " bytes (the GL device's storage-block limit, or gl_pair_list_bytes); use a larger "
+                                "voxel size");
         }
         pair_capacity_ = count;
     }
