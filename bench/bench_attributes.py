@@ -6,7 +6,9 @@
 
 Sponza (vertex colours) and Spot (UVs + 1024² texture). Each line: median wall time of the
 voxelize() call (the .vdb is not written) for each variant, runs interleaved so a busy
-machine slows all alike, and the ratios to binary. Target (issue 12): cpu colour + normal at
+machine slows all alike, and the ratios to binary, after one untimed binary run (shader
+compiles, hybrid's cutoff search). `--methods triangle,fragment,hybrid` prices the GL
+methods' colour (pairs clipped on the GPU, summed on the CPU). Target (issue 12): cpu colour + normal at
 512 under 2x binary. `--methods cpu,tessellation` adds the tessellation (gamma 2), whose
 colour is the mean of its points' values (its tiles shrink so that every brick's sums fit one
 storage block: llvmpipe's 128 MiB cuts Sponza at 256 into several); a row that does not fit
@@ -47,6 +49,8 @@ def main() -> None:
                 times = {variant: [] for variant in variants}
                 voxels = 0
                 try:
+                    # Untimed first: shader compiles and hybrid's cutoff search (cached per mesh and grid).
+                    hyvox.voxelize(v, t, resolution=resolution, method=method)
                     for _ in range(args.repeats):
                         for variant, attributes in variants.items():
                             extra = dict(sources, attributes=attributes) if attributes else {}

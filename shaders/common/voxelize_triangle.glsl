@@ -6,6 +6,7 @@
 #include "common/bit_output.glsl"
 
 struct LoadedTriangle {
+    uint tri;  // its index in the triangle list
     ivec3 origin;  // unswizzled global cell of vertex 0
     vec3 v0, v1, v2;  // relative to origin
     vec3 n;  // cross of two edges (unswizzled)
@@ -13,6 +14,7 @@ struct LoadedTriangle {
 
 LoadedTriangle loadForVoxelizing(uint tri) {
     LoadedTriangle l;
+    l.tri = tri;
     loadTriangle(tri, l.origin, l.v0, l.v1, l.v2);
     l.n = cross(l.v1 - l.v0, l.v2 - l.v1);
     return l;
@@ -40,20 +42,20 @@ bool voxelizeIfInsideOneVoxel(LoadedTriangle l) {
     const ivec3 lo = ivec3(ceil(bmin)) - 1, hi = ivec3(floor(bmax));
     if (lo != hi) return false;
     const ivec3 p = lo + l.origin;
-    if (all(greaterThanEqual(p, clipLow())) && all(lessThanEqual(p, clipHigh()))) setVoxel(p);
+    if (all(greaterThanEqual(p, clipLow())) && all(lessThanEqual(p, clipHigh()))) setVoxel(p, l.tri);
     return true;
 #endif
 }
 
 bool clippedAway(TriangleSetup t) { return any(greaterThan(t.lo, t.hi)); }
 
-// All voxels of global column (x, y) on the dominant plane.
-void voxelizeColumn(TriangleSetup t, ivec2 column) {
+// All voxels of global column (x, y) on the dominant plane; tri: the triangle t was set up from.
+void voxelizeColumn(TriangleSetup t, ivec2 column, uint tri) {
     const vec2 q = vec2(column - t.origin.xy);
     if (!insideXY(t, q)) return;
     const ivec2 range = depthRange(t, q);
     for (int z = range.x; z <= range.y; ++z)
-        if (insideRemaining(t, vec3(q, float(z - t.origin.z)))) setVoxel(unswizzle(ivec3(column, z), t.axis));
+        if (insideRemaining(t, vec3(q, float(z - t.origin.z)))) setVoxel(unswizzle(ivec3(column, z), t.axis), tri);
 }
 
 // Chunks bound the loop iterations of one invocation. Mesa's llvmpipe caps the loop
@@ -64,7 +66,7 @@ void voxelizeColumn(TriangleSetup t, ivec2 column) {
 // invocation walks the whole triangle, as in the paper.
 layout(location = HYVOX_LOC_CHUNK_SIDE) uniform int chunkSide;
 
-void voxelizeTriangleChunk(TriangleSetup t, uint chunk) {
+void voxelizeTriangleChunk(TriangleSetup t, uint tri, uint chunk) {
     ivec2 lo = t.lo.xy, hi = t.hi.xy;
     if (chunkSide > 0) {
         const ivec2 tiles = (hi - lo + chunkSide) / chunkSide;
@@ -75,7 +77,7 @@ void voxelizeTriangleChunk(TriangleSetup t, uint chunk) {
         return;
     }
     for (int x = lo.x; x <= hi.x; ++x)
-        for (int y = lo.y; y <= hi.y; ++y) voxelizeColumn(t, ivec2(x, y));
+        for (int y = lo.y; y <= hi.y; ++y) voxelizeColumn(t, ivec2(x, y), tri);
 }
 
 // Chunks past the first have nothing to do for a triangle that fits one chunk: skip its

@@ -26,6 +26,6 @@ void main() {
     if (large) {
         if (invocationChunk() == 0u) largeTriangles[atomicAdd(drawVertexCount, 3u) / 3u] = tri;
     } else {
-        voxelizeTriangleChunk(t, invocationChunk());
+        voxelizeTriangleChunk(t, tri, invocationChunk());
     }
 }

@@ -5,9 +5,10 @@
 #include "common/voxelize_triangle.glsl"
 
 flat in TriangleSetup gSetup;
+flat in uint gTriangle;
 
 void main() {
     const ivec2 column = ivec2(floor(gl_FragCoord.xy));
     if (any(lessThan(column, gSetup.lo.xy)) || any(greaterThan(column, gSetup.hi.xy))) return;
-    voxelizeColumn(gSetup, column);
+    voxelizeColumn(gSetup, column, gTriangle);
 }

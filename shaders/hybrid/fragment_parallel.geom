@@ -12,6 +12,7 @@ layout(location = HYVOX_LOC_VIEWPORT) uniform vec2 viewportSize;
 
 flat in uint vTriangle[];
 flat out TriangleSetup gSetup;
+flat out uint gTriangle;
 out float gl_ClipDistance[4];
 
 // l = sqrt(2)/2 voxel (half the pixel diagonal), plus 1/64 for the rasterizer's sub-pixel
@@ -47,6 +48,7 @@ void main() {
         gl_ClipDistance[2] = window.y - float(t.lo.y);
         gl_ClipDistance[3] = float(t.hi.y + 1) - window.y;
         gSetup = t;
+        gTriangle = vTriangle[0];
         EmitVertex();
     }
     EndPrimitive();

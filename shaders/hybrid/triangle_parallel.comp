@@ -11,5 +11,5 @@ void main() {
     if (beyondItsChunks(l, invocationChunk())) return;
     if (invocationChunk() == 0u && voxelizeIfInsideOneVoxel(l)) return;
     const TriangleSetup t = prepareLoaded(l);
-    if (!clippedAway(t)) voxelizeTriangleChunk(t, invocationChunk());
+    if (!clippedAway(t)) voxelizeTriangleChunk(t, tri, invocationChunk());
 }

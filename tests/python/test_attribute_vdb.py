@@ -73,3 +73,19 @@ def test_alpha_grid_when_the_colours_have_alpha(tmp_path):
     assert alpha.min() == np.float32(0.25) and alpha.max() == 1.0 and ((alpha > 0.25) & (alpha < 1)).any()
     assert_grid_matches(path, "alpha", grid, alpha)
     assert_grid_matches(path, "color", grid, grid.attributes()["color"])
+
+
+def test_cli_writes_the_gl_methods_attribute_grids(cli, mesh_dir, tmp_path):
+    # The GL methods' colour and normal voxels (clipped on the GPU) go into the .vdb as the
+    # cpu's do, and read back as the module computed them.
+    v, t, attrs = hyvox.read_mesh(mesh_dir / "spot_vcolor.ply", attributes=True)
+    colors = (attrs["colors"][:, :3] * 255).round().astype(np.uint8)
+    for method in ("triangle", "fragment", "hybrid"):
+        out = tmp_path / f"spot_{method}.vdb"
+        done = subprocess.run([str(cli), "voxelize", str(mesh_dir / "spot_vcolor.ply"), "-o", str(out), "-q",
+                               "--resolution", "32", "--method", method, "--attributes", "color,normal"],
+                              capture_output=True, text=True, timeout=120)
+        assert done.returncode == 0, done.stderr
+        grid = hyvox.voxelize(v, t, resolution=32, method=method, attributes="color,normal", colors=colors)
+        assert_grid_matches(out, "color", grid, grid.attributes()["color"])
+        assert_grid_matches(out, "normal", grid, grid.attributes()["normal"])

@@ -16,8 +16,8 @@ if TYPE_CHECKING:
     from .settings import VoxelizeSettings
 
 AUTO_METHOD = "auto"  # the add-on's own method: hybrid when a GPU runs GL here, else cpu
-# The methods that compute attribute voxels (colour) today; the others refuse them with a
-# ValueError. "auto" runs a group with colour by cpu.
+# The module's ATTRIBUTE_METHODS compute attribute voxels (colour); were auto's choice not
+# among them, a group with colour would run by cpu (every method computes them today).
 
 _module = None
 _gl_probe = {}  # gl_device -> bool, probed once per session: creating an EGL context is slow

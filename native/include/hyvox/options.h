@@ -47,8 +47,9 @@ std::vector<const char*> modeNames();    // in enum order
 std::vector<const char*> methodNames();
 std::vector<const char*> insideRuleNames();
 
-// Whether a method computes attribute voxels (colour, normal): the exact methods, and the
-// tessellation by averaging its points' values. The GL triangle/fragment/hybrid do not yet.
+// Whether a method computes attribute voxels (colour, normal): the exact methods (cpu and
+// reference clip on the CPU, triangle/fragment/hybrid on the GPU), and the tessellation by
+// averaging its points' values. Every method does now; front doors ask this, not a list.
 bool computesAttributes(Method method);
 
 struct GlOptions {
@@ -57,6 +58,10 @@ struct GlOptions {
     // Largest bit-grid tile in bytes; 0 = one shader storage block (the device's limit).
     // Smaller values force tiling (tests of the tile borders).
     std::uint64_t tile_bytes = 0;
+    // Largest list of (voxel, triangle) pairs, in bytes, of the triangle/fragment/hybrid
+    // attribute pass (its pieces take 20 bytes each); 0 = one shader storage block. Smaller
+    // values make tiles whose pairs do not fit run as halves (tests of that halving).
+    std::uint64_t pair_list_bytes = 0;
     // Time GL passes by the wall clock around glFinish instead of GPU timer queries
     // (always on for Mesa's llvmpipe, whose timer queries miss compute work).
     bool wall_timing = false;

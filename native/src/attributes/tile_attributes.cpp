@@ -39,11 +39,6 @@ VoxelRange candidates(const Corners& c, const std::array<int, 3>& clip_lo, const
     return r;
 }
 
-Corners voxelCorners(const BackendJob& job, std::uint32_t triangle) {
-    return {job.grid.toVoxel(job.mesh.vertex(triangle, 0)), job.grid.toVoxel(job.mesh.vertex(triangle, 1)),
-            job.grid.toVoxel(job.mesh.vertex(triangle, 2))};
-}
-
 bool bitSet(const std::uint64_t* words, int v) { return (words[v >> 6] >> (v & 63)) & 1u; }
 
 // The tile's non-empty bricks, and (unless brute force) the triangles (positions in
@@ -83,7 +78,7 @@ TileBins binTriangles(const BackendJob& job, const BitGrid& bits, bool brute_for
     const auto& usable = job.mesh.usable;
     for (int pass = 0; pass < 2; ++pass) {
         for (std::uint32_t n = 0; n < usable.size(); ++n) {
-            const VoxelRange r = candidates(voxelCorners(job, usable[n]), tile_lo, tile_hi);
+            const VoxelRange r = candidates(triangleCorners(job, usable[n]), tile_lo, tile_hi);
             if (r.empty()) continue;
             for (int bx = (r.lo[0] - tile_lo[0]) >> 3; bx <= (r.hi[0] - tile_lo[0]) >> 3; ++bx)
                 for (int by = (r.lo[1] - tile_lo[1]) >> 3; by <= (r.hi[1] - tile_lo[1]) >> 3; ++by)
@@ -181,7 +176,7 @@ private:
     // would come out empty; the ranges are one voxel wider than needed against rounding).
     void addTriangle(std::uint32_t n, const std::uint64_t* mask, double margin) {
         const std::uint32_t triangle = job_.mesh.usable[n];
-        const Corners corners = voxelCorners(job_, triangle);
+        const Corners corners = triangleCorners(job_, triangle);
         const VoxelRange r = candidates(corners, lo_, hi_);
         if (r.empty()) return;
         const TriangleFrame frame(corners);
@@ -260,6 +255,11 @@ struct AllTriangles {
 };
 
 }  // namespace
+
+std::array<Point, 3> triangleCorners(const BackendJob& job, std::uint32_t triangle) {
+    return {job.grid.toVoxel(job.mesh.vertex(triangle, 0)), job.grid.toVoxel(job.mesh.vertex(triangle, 1)),
+            job.grid.toVoxel(job.mesh.vertex(triangle, 2))};
+}
 
 TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& bits, const SurfaceValues& values,
                                           bool brute_force, std::vector<AttributeLeaf>& out) {

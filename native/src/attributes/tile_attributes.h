@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/attribute_leaf.h"
+#include "attributes/clip_to_voxel.h"
 #include "attributes/surface_values.h"
 #include "core/backends.h"
 
@@ -18,6 +19,10 @@ struct TileAttributeCounts {
     std::uint64_t voxels_unreached = 0;  // set voxels no clipped piece reached, even with the margin (value 0)
     std::uint64_t leaves_rounded = 0;    // leaves where the kTouchMargin fallback ran
 };
+
+// Triangle `triangle` of the mesh in the whole grid's voxel space, in double: the corners every
+// piece's barycentrics are taken on.
+std::array<Point, 3> triangleCorners(const BackendJob& job, std::uint32_t triangle);
 
 // brute_force (the reference method): every leaf scans all the tile's triangles instead of
 // the ones binned to it.

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/attribute_leaf.h"
+#include "core/voxel_piece.h"
 #include "hyvox/bit_grid.h"
 #include "hyvox/interrupter.h"
 #include "hyvox/mesh.h"
@@ -45,6 +46,8 @@ struct BackendJob {
     // The attributes asked for, for a method that computes them itself (tessellation);
     // null = none (the dispatcher computes the exact methods' afterwards).
     const attributes::SurfaceValues* attributes = nullptr;
+    // The GL methods clip the triangle/voxel pairs they find into out.pieces.
+    bool clip_pieces = false;
 };
 
 struct TileOutput {
@@ -52,6 +55,7 @@ struct TileOutput {
     std::vector<VoxelCount> counts;  // multi-valued methods, grid coordinates
     std::vector<attributes::AttributeLeaf> attributes;  // with job.attributes: every set voxel's values
     std::uint64_t attribute_voxels_unreached = 0;        // set voxels given no value (0)
+    std::vector<attributes::VoxelPiece> pieces;          // with job.clip_pieces: every pair's piece
 };
 
 void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats);           // src/cpu/

@@ -110,6 +110,10 @@ std::vector<OptionSpec> buildSchema() {
     add({"gl_tile_bytes", T::Integer, "gl", "GL Tile Size", "bytes",
          "largest bit-grid tile on the GPU; 0 = one storage block (the device's limit)", false, 0, double(1ull << 40),
          false, {}, {}, "HYVOX_GL_TILE_BYTES", HYVOX_FIELD(asInteger, gl.tile_bytes)});
+    add({"gl_pair_list_bytes", T::Integer, "gl", "GL Pair List Size", "bytes",
+         "largest list of (voxel, triangle) pairs the GL methods' colour/normal pass holds at once (a tile whose "
+         "pairs do not fit runs as halves); 0 = one storage block (the device's limit)", false, 0, double(1ull << 40),
+         false, {}, {}, nullptr, HYVOX_FIELD(asInteger, gl.pair_list_bytes)});
     add({"gl_wall_timing", T::Flag, "gl", "Wall-Clock GPU Timing", "",
          "time GL passes by the wall clock instead of GPU timer queries (always on for software GL)", false, 0, 0,
          false, {}, {}, "HYVOX_GL_WALL_TIMING", HYVOX_FIELD(asFlag, gl.wall_timing)});

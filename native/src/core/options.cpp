@@ -61,7 +61,15 @@ const char* toString(Mode mode) { return nameOf(kModes, mode); }
 const char* toString(Method method) { return nameOf(kMethods, method); }
 
 bool computesAttributes(Method method) {
-    return method == Method::Cpu || method == Method::Reference || method == Method::Tessellation;
+    switch (method) {
+        case Method::Cpu:
+        case Method::Reference:
+        case Method::Triangle:
+        case Method::Fragment:
+        case Method::Hybrid:
+        case Method::Tessellation: return true;
+    }
+    return false;
 }
 Mode parseMode(const std::string& text) { return parseName(kModes, text, "mode"); }
 Method parseMethod(const std::string& text) { return parseName(kMethods, text, "method"); }

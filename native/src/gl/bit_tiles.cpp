@@ -50,16 +50,20 @@ double BitTiling::run(const Buffer& bits, BitGrid* out, const std::function<void
     double readback_ms = 0;
     for (const BitTile& tile : tiles_) {
         work(tile);
-        if (!out) continue;
-        Stopwatch watch;
-        // Tiles are whole slabs of bricks: contiguous in the leaf layout, copied in place.
-        const std::size_t offset = std::size_t(tile.brick_x0) * slabBytes();
-        const std::size_t bytes = std::size_t(tile.brick_x1 - tile.brick_x0) * slabBytes();
-        bits.download(0, bytes, reinterpret_cast<unsigned char*>(out->data()) + offset);
-        checkGl("reading back the bit grid");
-        readback_ms += watch.elapsedMs();
+        if (out)
+            readback_ms += readBack(bits, tile, *out);
     }
     return readback_ms;
+}
+
+double BitTiling::readBack(const Buffer& bits, const BitTile& tile, BitGrid& out) const {
+    Stopwatch watch;
+    // Tiles are whole slabs of bricks: contiguous in the leaf layout, copied in place.
+    const std::size_t offset = std::size_t(tile.brick_x0) * slabBytes();
+    const std::size_t bytes = std::size_t(tile.brick_x1 - tile.brick_x0) * slabBytes();
+    bits.download(0, bytes, reinterpret_cast<unsigned char*>(out.data()) + offset);
+    checkGl("reading back the bit grid");
+    return watch.elapsedMs();
 }
 
 }  // namespace hyvox::gl

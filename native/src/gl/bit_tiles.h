@@ -39,6 +39,9 @@ public:
     // unless `out` is null (timing runs) they are then copied into place in *out. Returns the
     // milliseconds the copies took.
     double run(const Buffer& bits, BitGrid* out, const std::function<void(const BitTile&)>& work) const;
+    // Copies one tile's bits (any whole slabs of bricks, from offset 0 of `bits`) into place in
+    // *out; returns the milliseconds it took.
+    double readBack(const Buffer& bits, const BitTile& tile, BitGrid& out) const;
 
 private:
     std::size_t slabBytes() const;  // one slab of bricks: 8 voxels along x

@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <string>
 
+#include "attributes/clip_to_voxel.h"
 #include "gl/bindings.h"
 #include "gl/compute_dispatch.h"
 #include "gl/gl_debug.h"
@@ -17,10 +20,32 @@ namespace {
 
 using gl::glLimit;
 
-std::string definesFor(Mode mode, bool voxel_list, bool from_large_list) {
-    return std::string("#define HYVOX_THIN ") + (mode == Mode::Thin ? "1" : "0") + "\n#define HYVOX_VOXEL_LIST " +
-           (voxel_list ? "1" : "0") + "\n#define HYVOX_FROM_LARGE_LIST " + (from_large_list ? "1" : "0") + "\n";
+// The clip's thresholds are the cpu method's (attributes/clip_to_voxel.h), written as GLSL
+// double literals.
+std::string clipConstants() {
+    char text[160];
+    std::snprintf(text, sizeof text, "#define HYVOX_TOUCH_AREA %.17gLF\n#define HYVOX_TOUCH_MARGIN %.17gLF\n",
+                  attributes::kTouchArea, attributes::kTouchMargin);
+    return text;
 }
+
+template <typename Output>
+std::string definesFor(Mode mode, Output output, bool from_large_list) {
+    return std::string("#define HYVOX_THIN ") + (mode == Mode::Thin ? "1" : "0") + "\n#define HYVOX_VOXEL_LIST " +
+           (output == Output::VoxelList ? "1" : "0") + "\n#define HYVOX_ATTRIBUTE_PAIRS " +
+           (output == Output::AttributePairs ? "1" : "0") + "\n#define HYVOX_FROM_LARGE_LIST " +
+           (from_large_list ? "1" : "0") + "\n";
+}
+
+// std430 layout of Piece in shaders/hybrid/clip_pieces.comp.
+struct GpuPiece {
+    float area;
+    float centroid[3];
+    std::uint32_t kind;
+};
+static_assert(sizeof(GpuPiece) == 20, "must match the GLSL struct");
+constexpr std::size_t kPairBytes = 16;  // uvec4: x, y, z, triangle
+constexpr std::size_t kPairHeader = 16;  // the count, padded
 
 // Per triangle: the largest side of its bounding box and its area projected on its dominant
 // plane, in voxel units (llvmpipe's chunk count; see GlTuning::chunk_side).
@@ -41,7 +66,7 @@ void measureTriangles(const gl::GpuMesh& mesh, std::vector<float>& extent, std::
 
 GlVoxelizer::GlVoxelizer(const gl::GpuMesh& mesh, const GridSpec& grid, Mode mode, Method method,
                          const std::string& shader_dir, gl::ProgramCache& programs, const gl::GlTuning& tuning,
-                         std::uint64_t tile_bytes)
+                         std::uint64_t tile_bytes, std::uint64_t pair_list_bytes)
     : grid_(grid),
       mode_(mode),
       method_(method),
@@ -49,6 +74,7 @@ GlVoxelizer::GlVoxelizer(const gl::GpuMesh& mesh, const GridSpec& grid, Mode mod
       programs_(programs),
       triangle_count_(std::uint32_t(mesh.triangleCount())),
       tiling_(grid, tile_bytes),  // refuses a slab larger than a tile before anything is allocated
+      pair_list_bytes_(pair_list_bytes),
       tuning_(tuning) {
     // Draw calls count vertices (3 per triangle) in a GLsizei.
     if (mesh.triangleCount() > 0x2aaaaaaaull)
@@ -81,22 +107,25 @@ GlVoxelizer::GlVoxelizer(const gl::GpuMesh& mesh, const GridSpec& grid, Mode mod
     gl::checkGl("uploading the mesh");
 }
 
-const GlVoxelizer::Programs& GlVoxelizer::programsFor(bool voxel_list) {
-    Programs& p = programs_by_list_[voxel_list ? 1 : 0];
+const GlVoxelizer::Programs& GlVoxelizer::programsFor(Output output) {
+    Programs& p = programs_by_output_[int(output)];
     if (p.built)
         return p;
     if (method_ == Method::Triangle)
         p.triangle = gl::ActiveProgram(programs_.get({{GL_COMPUTE_SHADER, "hybrid/triangle_parallel.comp"}},
-                                                     definesFor(mode_, voxel_list, false), shader_dir_));
+                                                     definesFor(mode_, output, false), shader_dir_));
     if (method_ == Method::Hybrid)
         p.classify = gl::ActiveProgram(programs_.get({{GL_COMPUTE_SHADER, "hybrid/classify.comp"}},
-                                                     definesFor(mode_, voxel_list, false), shader_dir_));
+                                                     definesFor(mode_, output, false), shader_dir_));
     if (method_ != Method::Triangle)
         p.raster = gl::ActiveProgram(programs_.get({{GL_VERTEX_SHADER, "hybrid/fragment_parallel.vert"},
                                                     {GL_GEOMETRY_SHADER, "hybrid/fragment_parallel.geom"},
                                                     {GL_FRAGMENT_SHADER, "hybrid/fragment_parallel.frag"}},
-                                                   definesFor(mode_, voxel_list, method_ == Method::Hybrid),
+                                                   definesFor(mode_, output, method_ == Method::Hybrid),
                                                    shader_dir_));
+    if (output == Output::AttributePairs)
+        p.clip = gl::ActiveProgram(
+            programs_.get({{GL_COMPUTE_SHADER, "hybrid/clip_pieces.comp"}}, clipConstants(), shader_dir_));
     p.built = true;
     return p;
 }
@@ -188,7 +217,7 @@ std::uint32_t GlVoxelizer::chunksFor(double cutoff) const {
 }
 
 PassTimes GlVoxelizer::run(double cutoff, BitGrid* out, const std::function<void()>& before_tile) {
-    const Programs& programs = programsFor(false);
+    const Programs& programs = programsFor(Output::Bits);
     setRunUniforms(programs, cutoff);
     PassTimes times;
     times.readback_ms = tiling_.run(bits_, out, [&](const gl::BitTile& tile) {
@@ -201,7 +230,7 @@ PassTimes GlVoxelizer::run(double cutoff, BitGrid* out, const std::function<void
 }
 
 std::vector<std::array<std::int32_t, 3>> GlVoxelizer::runVoxelList(double cutoff, PassTimes* times_out) {
-    const Programs& programs = programsFor(true);
+    const Programs& programs = programsFor(Output::VoxelList);
     setRunUniforms(programs, cutoff);
     PassTimes times;
     std::vector<std::array<std::int32_t, 3>> voxels;
@@ -254,6 +283,115 @@ std::vector<std::array<std::int32_t, 3>> GlVoxelizer::runVoxelList(double cutoff
     if (times_out)
         *times_out = times;
     return voxels;
+}
+
+std::optional<std::uint32_t> GlVoxelizer::runTilePairs(const Programs& programs, const gl::BitTile& tile, double cutoff,
+                                                       PassTimes& times) {
+    setTileUniforms(programs, tile);
+    // The pairs and their pieces are one storage block each; the shader's 32-bit count and
+    // indices allow at most 2^31 besides.
+    std::uint64_t block_bytes = std::uint64_t(std::max<GLint64>(glLimit(GL_MAX_SHADER_STORAGE_BLOCK_SIZE), 64));
+    if (pair_list_bytes_ > 0)
+        block_bytes = std::max<std::uint64_t>(std::min(block_bytes, pair_list_bytes_), 64);
+    const std::uint32_t max_capacity = std::uint32_t(
+        std::min<std::uint64_t>({(block_bytes - kPairHeader) / kPairBytes, block_bytes / sizeof(GpuPiece), 1u << 31}));
+    if (pair_capacity_ == 0)  // a first guess; a tile that overflows is run again with room for its count
+        pair_capacity_ = std::min(
+            max_capacity,
+            std::uint32_t(std::clamp<std::uint64_t>(std::uint64_t(triangle_count_) * 8u, 1u << 16, 1u << 24)));
+    std::uint32_t count = 0;
+    for (;;) {
+        if (pairs_.size() < kPairHeader + std::size_t(pair_capacity_) * kPairBytes) {
+            pairs_ = gl::Buffer(kPairHeader + std::size_t(pair_capacity_) * kPairBytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+            pieces_ = gl::Buffer(std::size_t(pair_capacity_) * sizeof(GpuPiece), nullptr, 0);
+        }
+        const std::uint32_t zero = 0;
+        pairs_.upload(0, 4, &zero);
+        pairs_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_PAIRS);
+        programs.setUniform(HYVOX_LOC_PAIR_CAPACITY,
+                            [&](GLuint id) { glProgramUniform1ui(id, HYVOX_LOC_PAIR_CAPACITY, pair_capacity_); });
+        PassTimes attempt;
+        runTile(programs, cutoff, attempt);
+        times.pass1_gpu_ms += attempt.pass1_gpu_ms;  // a retried run's work took time too
+        times.pass2_gpu_ms += attempt.pass2_gpu_ms;
+        pairs_.download(0, 4, &count);
+        if (count <= pair_capacity_) {
+            times.large_triangles += attempt.large_triangles;
+            times.tiles += attempt.tiles;
+            break;
+        }
+        if (count > max_capacity) {
+            if (tile.brick_x1 - tile.brick_x0 > 1)
+                return std::nullopt;  // the caller halves the tile
+            throw ResourceError("colour and normal voxels need " + std::to_string(count) +
+                                " triangle/voxel pairs in one 8-voxel slab, more than the " +
+                                std::to_string(max_capacity) + " that fit the pair list's " +
+                                std::to_string(block_bytes) +
+                                " bytes (the GL device's storage-block limit, or gl_pair_list_bytes); use a larger "
+                                "voxel size");
+        }
+        pair_capacity_ = count;
+    }
+    if (count == 0)
+        return 0;
+    pieces_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_PIECES);
+    const gl::Program& clip = *programs.clip.program();
+    clip.use();
+    if (programs.clip.uses(HYVOX_LOC_PAIR_COUNT))
+        glProgramUniform1ui(clip.id(), HYVOX_LOC_PAIR_COUNT, count);
+    gl::PassTimer timer(tuning_.wall_timing);
+    timer.begin();
+    gl::dispatchPerItem(clip, count, 1);
+    timer.end();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    times.clip_gpu_ms += timer.milliseconds();
+    return count;
+}
+
+PassTimes GlVoxelizer::runPieces(double cutoff, BitGrid* out, std::vector<attributes::VoxelPiece>& pieces,
+                                 const std::function<void()>& before_tile) {
+    const Programs& programs = programsFor(Output::AttributePairs);
+    setRunUniforms(programs, cutoff);
+    PassTimes times;
+    std::vector<std::uint32_t> pair_words;
+    std::vector<GpuPiece> clipped;
+    // Tiles to run, last first: a tile whose pairs exceed a storage block is replaced by its halves.
+    std::vector<gl::BitTile> todo(tiling_.tiles().rbegin(), tiling_.tiles().rend());
+    while (!todo.empty()) {
+        const gl::BitTile tile = todo.back();
+        todo.pop_back();
+        if (before_tile)
+            before_tile();
+        const std::optional<std::uint32_t> count = runTilePairs(programs, tile, cutoff, times);
+        if (!count) {
+            const int middle = (tile.brick_x0 + tile.brick_x1) / 2;
+            todo.push_back({middle, tile.brick_x1});
+            todo.push_back({tile.brick_x0, middle});
+            continue;
+        }
+        if (out)
+            times.readback_ms += tiling_.readBack(bits_, tile, *out);
+        pair_words.resize(std::size_t(*count) * 4);
+        clipped.resize(*count);
+        if (*count) {
+            pairs_.download(kPairHeader, pair_words.size() * 4, pair_words.data());
+            pieces_.download(0, clipped.size() * sizeof(GpuPiece), clipped.data());
+        }
+        gl::checkGl("reading back the clipped pieces");
+        pieces.reserve(pieces.size() + *count);
+        for (std::size_t i = 0; i < *count; ++i) {
+            const GpuPiece& g = clipped[i];
+            if (g.kind == HYVOX_PIECE_NONE)
+                continue;
+            const std::uint32_t* w = &pair_words[4 * i];
+            pieces.push_back({{std::int32_t(w[0]), std::int32_t(w[1]), std::int32_t(w[2])},
+                              w[3],
+                              g.area,
+                              {g.centroid[0], g.centroid[1], g.centroid[2]},
+                              g.kind == HYVOX_PIECE_MARGIN});
+        }
+    }
+    return times;
 }
 
 }  // namespace hyvox::hybrid

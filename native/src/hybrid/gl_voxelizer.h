@@ -9,9 +9,11 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/voxel_piece.h"
 #include "gl/active_uniforms.h"
 #include "gl/bit_tiles.h"
 #include "gl/gl_objects.h"
@@ -29,13 +31,15 @@ struct PassTimes {
     double pass2_gpu_ms = 0;            // rasterization: fragment-parallel, or hybrid's large triangles
     std::uint64_t large_triangles = 0;  // hybrid: triangles deferred to pass 2 (summed over tiles)
     double readback_ms = 0;
+    double clip_gpu_ms = 0;  // attributes: clipping the triangle/voxel pairs (clip_pieces.comp)
     int tiles = 0;
 };
 
 class GlVoxelizer {
 public:
     GlVoxelizer(const gl::GpuMesh& mesh, const GridSpec& grid, Mode mode, Method method, const std::string& shader_dir,
-                gl::ProgramCache& programs, const gl::GlTuning& tuning, std::uint64_t tile_bytes);
+                gl::ProgramCache& programs, const gl::GlTuning& tuning, std::uint64_t tile_bytes,
+                std::uint64_t pair_list_bytes = 0);
 
     // Runs every tile; writes bits into `out` (dims = grid dims) unless it is null (timing
     // runs). before_tile (optional) runs before each tile: a place to throw Cancelled.
@@ -44,18 +48,32 @@ public:
     // Section 3.5: the set voxels as a list (x, y, z), each once, in no particular order.
     std::vector<std::array<std::int32_t, 3>> runVoxelList(double cutoff, PassTimes* times = nullptr);
 
+    // As run(), and also appends to `pieces` every (voxel, triangle) pair the passes find,
+    // clipped on the GPU (shaders/hybrid/clip_pieces.comp), in no particular order. A tile
+    // whose pairs overflow the list is run again with room for them all; one whose pairs
+    // exceed a storage block, as its two halves.
+    PassTimes runPieces(double cutoff, BitGrid* out, std::vector<attributes::VoxelPiece>& pieces,
+                        const std::function<void()>& before_tile = {});
+
 private:
+    // What the voxelizing passes write besides the bit grid.
+    enum class Output { Bits, VoxelList, AttributePairs };
     struct Programs {
-        gl::ActiveProgram triangle, classify, raster;
+        gl::ActiveProgram triangle, classify, raster, clip;
         bool built = false;
         // Calls set(program id) for each of the programs that uses uniform `location`.
         template <typename Set>
         void setUniform(GLint location, const Set& set) const {
-            gl::setUniform({&triangle, &classify, &raster}, location, set);
+            gl::setUniform({&triangle, &classify, &raster, &clip}, location, set);
         }
     };
-    // Built on first use, then kept for this voxelizer's runs ([voxel_list]).
-    const Programs& programsFor(bool voxel_list);
+    // Built on first use, then kept for this voxelizer's runs.
+    const Programs& programsFor(Output output);
+    // One tile's pairs into pairs_ (room for pair_capacity_, grown and run again until they
+    // fit), then clipped into pieces_; returns the pair count, or nothing when the pairs of a
+    // tile of several slabs exceed one storage block (run its halves instead).
+    std::optional<std::uint32_t> runTilePairs(const Programs& programs, const gl::BitTile& tile, double cutoff,
+                                              PassTimes& times);
     // One tile's passes into bits_ (its slab uniforms set before).
     void runTile(const Programs& programs, double cutoff, PassTimes& times);
     void setRunUniforms(const Programs& programs, double cutoff) const;  // the same for every tile
@@ -68,8 +86,10 @@ private:
     gl::ProgramCache& programs_;
     std::uint32_t triangle_count_;
     gl::BitTiling tiling_;
-    Programs programs_by_list_[2];
-    gl::Buffer vertices_, triangles_, bits_, large_, draw_, voxel_list_;
+    std::uint64_t pair_list_bytes_;  // GlOptions::pair_list_bytes (0 = the device's storage-block limit)
+    Programs programs_by_output_[3];
+    gl::Buffer vertices_, triangles_, bits_, large_, draw_, voxel_list_, pairs_, pieces_;
+    std::uint32_t pair_capacity_ = 0;  // pairs pairs_ and pieces_ hold (kept across tiles)
     gl::VertexArray empty_vao_;
     gl::Framebuffer framebuffer_;
     gl::GlTuning tuning_;

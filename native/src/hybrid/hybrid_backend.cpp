@@ -33,7 +33,8 @@ std::string cacheKey(const gl::GpuMesh& mesh, const GridSpec& grid, Mode mode, c
 
 }  // namespace
 
-HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<std::int32_t, 3>>* voxel_list) {
+HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<std::int32_t, 3>>* voxel_list,
+                    std::vector<attributes::VoxelPiece>* pieces) {
     const Method method = job.options.method;
     if (method != Method::Triangle && method != Method::Fragment && method != Method::Hybrid)
         throw BackendError(std::string("the hybrid backend does not run method '") + toString(method) + "'");
@@ -51,7 +52,7 @@ HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<
         Stopwatch gl_watch;
         const gl::GlTuning tuning = gl::GlTuning::forDevice(worker.device().software, gl_options);
         GlVoxelizer voxelizer(mesh, tile_grid, job.options.mode, method, gl_options.shader_dir, worker.programs(),
-                              tuning, gl_options.tile_bytes);
+                              tuning, gl_options.tile_bytes, gl_options.pair_list_bytes);
         glFinish();
         run.upload_ms = gl_watch.restart();
         throwIfInterrupted(job.interrupter);
@@ -74,10 +75,24 @@ HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<
         run.cutoff = method == Method::Hybrid ? cutoff : (method == Method::Triangle ? INFINITY : 0.0);
         if (voxel_list) {
             *voxel_list = voxelizer.runVoxelList(cutoff, &run.times);
+        } else if (pieces && job.options.mode == Mode::Thin) {
+            // A voxel's value sums every triangle whose closed box meets it, and the thin test
+            // leaves some of those out: the pairs come from a conservative pass of their own,
+            // whose extra voxels the dispatcher skips (only set voxels get values).
+            run.times = voxelizer.run(cutoff, out, [&] { throwIfInterrupted(job.interrupter); });
+            GlVoxelizer conservative(mesh, tile_grid, Mode::Conservative, method, gl_options.shader_dir,
+                                     worker.programs(), tuning, gl_options.tile_bytes, gl_options.pair_list_bytes);
+            const PassTimes pairs =
+                conservative.runPieces(cutoff, nullptr, *pieces, [&] { throwIfInterrupted(job.interrupter); });
+            run.times.pass1_gpu_ms += pairs.pass1_gpu_ms;
+            run.times.pass2_gpu_ms += pairs.pass2_gpu_ms;
+            run.times.clip_gpu_ms += pairs.clip_gpu_ms;
+        } else if (pieces) {
+            run.times = voxelizer.runPieces(cutoff, out, *pieces, [&] { throwIfInterrupted(job.interrupter); });
         } else {
             run.times = voxelizer.run(cutoff, out, [&] { throwIfInterrupted(job.interrupter); });
         }
-        run.voxelize_ms = gl_watch.restart() - run.times.readback_ms;
+        run.voxelize_ms = gl_watch.restart() - run.times.readback_ms - run.times.clip_gpu_ms;
     });
     return run;
 }
@@ -85,13 +100,15 @@ HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<
 }  // namespace hybrid
 
 void runHybridBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
-    const hybrid::HybridRun run = hybrid::runHybrid(job, &out.bits, nullptr);
+    const hybrid::HybridRun run = hybrid::runHybrid(job, &out.bits, nullptr, job.clip_pieces ? &out.pieces : nullptr);
     stats.addTiming("gl_prepare", run.prepare_ms);
     stats.addTiming("gl_upload", run.upload_ms);
     if (run.search_runs)
         stats.addTiming("gl_cutoff_search", run.search_ms);
     stats.addTiming("gl_voxelize", run.voxelize_ms);
     stats.addTiming("gl_readback", run.times.readback_ms);
+    if (job.clip_pieces)
+        stats.addTiming("gl_clip_pieces", run.times.clip_gpu_ms);
     // Summed over the dispatcher's tiles. The automatic cutoff is cached per whole mesh and
     // grid, so the first tile searches it and the others reuse it.
     HybridStats& figures = stats.hybrid ? *stats.hybrid : stats.hybrid.emplace();

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "attributes/piece_attributes.h"
 #include "attributes/tile_attributes.h"
 #include "core/backends.h"
 #include "core/stopwatch.h"
@@ -97,8 +98,8 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     }
 }
 
-// The attribute evaluator when options.attributes asks for any (the exact methods and the
-// tessellation, which averages its points' values).
+// The attribute evaluator when options.attributes asks for any (every method: the exact
+// definition, or the tessellation's average of its points' values).
 std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, const VoxelizeOptions& options) {
     const AttributeSet wanted = parseAttributeSet(options.attributes);
     if (!wanted.any()) return std::nullopt;
@@ -106,8 +107,7 @@ std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, con
         throw InvalidInput("attributes are computed for the surface modes (conservative, thin); solid mode does "
                            "not compute them yet");
     if (!computesAttributes(options.method))
-        throw InvalidInput(std::string("attributes are computed by the cpu, reference and tessellation methods; method ") +
-                           toString(options.method) + " does not compute them yet");
+        throw InvalidInput(std::string("method ") + toString(options.method) + " does not compute attributes");
     return std::optional<attributes::SurfaceValues>(std::in_place, mesh, wanted);
 }
 
@@ -130,8 +130,11 @@ struct Surface {
         if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, tiling::pointReach(grid, options), interrupter);
         stats.addTiming("tiles", watch.restart());
 
-        // The tessellation averages its own points' values; the exact methods' come after.
+        // The tessellation averages its own points' values; the GL methods clip their pieces on
+        // the GPU and the cpu and reference methods clip here, both summed after.
         const bool own_attributes = values && options.method == Method::Tessellation;
+        const bool gl_pieces = values && (options.method == Method::Triangle || options.method == Method::Fragment ||
+                                          options.method == Method::Hybrid);
         TileProgress progress(interrupter, plan.total());
         for (std::size_t t = 0; t < plan.total(); ++t) {
             if (!plan.whole() && bins[t].empty()) continue;
@@ -140,14 +143,22 @@ struct Surface {
             if (!plan.whole()) part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds};
             const ValidatedMesh& tile_mesh = plan.whole() ? validated : part;
             progress.setTile(t);
-            TileOutput out{BitGrid(tile.dims), {}, {}, 0};
+            TileOutput out{BitGrid(tile.dims), {}, {}, 0, {}};
             stats.addTiming("allocate", watch.restart());
-            const BackendJob job{tile_mesh, validated, grid, tile, options, &progress, own_attributes ? values : nullptr};
+            const BackendJob job{tile_mesh, validated, grid, tile, options, &progress,
+                                 own_attributes ? values : nullptr, gl_pieces};
             runBackend(job, out, stats);
             watch.restart();
             if (own_attributes) {
                 std::move(out.attributes.begin(), out.attributes.end(), std::back_inserter(*attribute_leaves));
                 stats.attribute_voxels_unreached += out.attribute_voxels_unreached;
+            } else if (gl_pieces) {
+                const auto counted = attributes::computePieceAttributes(job, out.bits, *values, out.pieces, *attribute_leaves);
+                std::vector<attributes::VoxelPiece>().swap(out.pieces);
+                stats.attribute_pieces += counted.pieces;
+                stats.attribute_voxels_unreached += counted.voxels_unreached;
+                stats.attribute_leaves_rounded += counted.leaves_rounded;
+                stats.addTiming("attributes", watch.restart());
             } else if (values) {
                 const auto counted = attributes::computeTileAttributes(job, out.bits, *values,
                                                                        options.method == Method::Reference, *attribute_leaves);
