@@ -23,10 +23,32 @@ vec2 outwardNormal(vec2 a, vec2 b, float orientation) {
     return orientation * vec2(e.y, -e.x) / length(e);
 }
 
+void emit(vec2 window, TriangleSetup t) {
+    gl_Position = vec4(window / viewportSize * 2.0 - 1.0, 0.0, 1.0);
+    gl_ClipDistance[0] = window.x - float(t.lo.x);
+    gl_ClipDistance[1] = float(t.hi.x + 1) - window.x;
+    gl_ClipDistance[2] = window.y - float(t.lo.y);
+    gl_ClipDistance[3] = float(t.hi.y + 1) - window.y;
+    gSetup = t;
+    EmitVertex();
+}
+
 void main() {
     const LoadedTriangle l = loadForVoxelizing(vTriangle[0]);
     const TriangleSetup t = prepareLoaded(l);
     if (clippedAway(t)) return;
+
+    if (planeless(t)) {
+        // No area to dilate (a segment or a point on this plane): a triangle over the whole
+        // candidate rectangle, which the clip distances trim to it; the fragment shader's
+        // tests pick the voxels.
+        const vec2 lo = vec2(t.lo.xy) - 1.0, size = vec2(t.hi.xy - t.lo.xy) + 3.0;
+        emit(lo, t);
+        emit(lo + vec2(2.0 * size.x, 0.0), t);
+        emit(lo + vec2(0.0, 2.0 * size.y), t);
+        EndPrimitive();
+        return;
+    }
 
     vec2 a[3] = vec2[3](swizzleToDominant(l.v0, t.axis).xy, swizzleToDominant(l.v1, t.axis).xy,
                         swizzleToDominant(l.v2, t.axis).xy);
@@ -40,14 +62,7 @@ void main() {
         const vec2 before = normals[(i + 2) % 3], after = normals[i];
         const float det = before.x * after.y - before.y * after.x;
         const vec2 offset = kDilation * vec2(after.y - before.y, before.x - after.x) / det;
-        const vec2 window = vec2(t.origin.xy) + a[i] + offset;
-        gl_Position = vec4(window / viewportSize * 2.0 - 1.0, 0.0, 1.0);
-        gl_ClipDistance[0] = window.x - float(t.lo.x);
-        gl_ClipDistance[1] = float(t.hi.x + 1) - window.x;
-        gl_ClipDistance[2] = window.y - float(t.lo.y);
-        gl_ClipDistance[3] = float(t.hi.y + 1) - window.y;
-        gSetup = t;
-        EmitVertex();
+        emit(vec2(t.origin.xy) + a[i] + offset, t);
     }
     EndPrimitive();
 }

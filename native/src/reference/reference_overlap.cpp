@@ -48,8 +48,11 @@ bool triangleBoxSat(const Vec3& a, const Vec3& b, const Vec3& c, double h) {
 }
 
 // Schwarz & Seidel's 6-separating test against the voxel centred at the origin whose box has
-// half-size h (the octahedron and the 2D diamonds inscribed in it have "radius" h).
-bool sixSeparatingTest(const Vec3& a, const Vec3& b, const Vec3& c, double h) {
+// half-size h (the octahedron and the 2D diamonds inscribed in it have "radius" h). A
+// planeless triangle (a segment or a point in voxel space) has no plane to test and no
+// winding in any projection: there every projected edge's line must pass the diamond,
+// on either side.
+bool sixSeparatingTest(const Vec3& a, const Vec3& b, const Vec3& c, double h, bool planeless) {
     // The triangle's bounding box must meet the box (the edge tests alone would accept
     // voxels beyond a sharp corner of the triangle).
     for (int axis = 0; axis < 3; ++axis) {
@@ -60,6 +63,16 @@ bool sixSeparatingTest(const Vec3& a, const Vec3& b, const Vec3& c, double h) {
     const Vec3 verts[3] = {a, b, c};
     const Vec3 edges[3] = {sub(b, a), sub(c, b), sub(a, c)};
     const Vec3 n = cross(edges[0], edges[1]);
+    if (planeless) {
+        const int planes[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+        for (const auto& plane : planes)
+            for (int i = 0; i < 3; ++i) {
+                const double nu = -edges[i][plane[1]], nv = edges[i][plane[0]];
+                const double distance = nu * (0.0 - verts[i][plane[0]]) + nv * (0.0 - verts[i][plane[1]]);
+                if (std::fabs(distance) > h * std::max(std::fabs(nu), std::fabs(nv))) return false;
+            }
+        return true;
+    }
 
     // Plane against the inscribed octahedron |x|+|y|+|z| <= h: its support in direction n is
     // h * max|n_i|, and the centre's signed distance (times |n|) is -n.a.
@@ -92,12 +105,17 @@ Triangle voxelSpaceTriangle(const ValidatedMesh& mesh, std::uint32_t index, cons
             grid.toVoxel(mesh.vertex(index, 2))};
 }
 
+bool planeless(const Triangle& triangle) {
+    const Vec3 n = cross(sub(triangle[1], triangle[0]), sub(triangle[2], triangle[1]));
+    return n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0;
+}
+
 bool overlaps(const Triangle& triangle, const Voxel& voxel, Mode mode, double delta) {
     // Work relative to the voxel centre: small numbers, and the box is symmetric.
     const Vec3 centre = centreOf(voxel);
     const Vec3 a = sub(triangle[0], centre), b = sub(triangle[1], centre), c = sub(triangle[2], centre);
     const double h = 0.5 + delta;
-    return mode == Mode::Conservative ? triangleBoxSat(a, b, c, h) : sixSeparatingTest(a, b, c, h);
+    return mode == Mode::Conservative ? triangleBoxSat(a, b, c, h) : sixSeparatingTest(a, b, c, h, planeless(triangle));
 }
 
 VoxelRange candidateVoxels(const Triangle& triangle, const std::array<std::int32_t, 3>& dims, double delta) {
