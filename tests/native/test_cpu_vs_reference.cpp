@@ -123,5 +123,35 @@ TEST(CpuVsReference, PlanelessNeedleFromTheFuzzer) {
     }
 }
 
+// A second fuzz finding (thin mode): a sliver from near the origin (two corners ~1e-37 apart)
+// to a corner at 1.4e-17, at resolution 35: in voxel space 35 voxels long and ~1e-19 wide,
+// with a plane. The reference took its edges from corners centred on each voxel (~17), which
+// rounds the width away: no plane, no winding, and its thin test accepted the whole
+// bounding box (16940 voxels against the cpu method's 26). It now takes them from the
+// corners, as the cpu method does. The thin voxels lie on the sliver: a strict subset of the
+// conservative ones (which the SAT decides soundly either way).
+TEST(CpuVsReference, ThinSliverNearTheOriginFromTheFuzzer) {
+    const std::vector<float> positions{0.0f,        4.9223826e-38f, -1.0652918e-37f,
+                                       1.41499e-17f, 8.843688e-18f,  8.843688e-18f,
+                                       -1.912195e-37f, -1.9029754e-37f, 0.0f};
+    const std::vector<std::uint32_t> triangles{0, 2, 1};  // (1, 0, 2) is zero-area in double: validate() skips it
+    const MeshView mesh = viewOf(positions, triangles);
+    VoxelizeOptions options;
+    options.grid.resolution = 35;
+    options.mode = Mode::Thin;
+    const Comparison cmp = compareWithReference(mesh, options);
+    std::printf("[ compare  ] thin sliver: %s\n", cmp.summary().c_str());
+    expectMatchesOracle(cmp);
+
+    options.method = Method::Reference;
+    const VoxelizeResult thin = voxelize(mesh, options);
+    options.mode = Mode::Conservative;
+    const VoxelizeResult conservative = voxelize(mesh, options);
+    EXPECT_GT(thin.occupancy.count(), 0u);
+    EXPECT_LT(thin.occupancy.count(), conservative.occupancy.count());
+    for (const auto& v : thin.occupancy.coords())
+        EXPECT_TRUE(conservative.occupancy.test(v[0], v[1], v[2])) << v[0] << "," << v[1] << "," << v[2];
+}
+
 }  // namespace
 }  // namespace hyvox::test

@@ -9,11 +9,13 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <filesystem>
 
 #include "hybrid/hybrid_run.h"
 #include "hyvox/voxelize.h"
+#include "support/mesh_arrays.h"
 #include "support/temp_dir.h"
 #include "support/test_mesh_loader.h"
 #include "support/triangle_soup.h"
@@ -183,6 +185,30 @@ TEST(GlSmall, PlanelessNeedlesMatchTheExactMethods) {
                 EXPECT_GE(cmp.result_voxels, std::uint64_t(resolution));
             }
         }
+}
+
+// The sliver of CpuVsReference.ThinSliverNearTheOriginFromTheFuzzer: 35 voxels long, ~1e-19
+// wide. The fragment method dropped it: the length of its short end underflowed in float,
+// and the dilated triangle became NaN.
+TEST(GlSmall, SliverWithAnEndTooShortForFloatMatchesTheExactMethods) {
+    const std::vector<float> positions{0.0f,         4.9223826e-38f, -1.0652918e-37f,
+                                       1.41499e-17f, 8.843688e-18f,  8.843688e-18f,
+                                       -1.912195e-37f, -1.9029754e-37f, 0.0f};
+    const std::vector<std::uint32_t> triangles{0, 2, 1};
+    const MeshView mesh = test::viewOf(positions, triangles);
+    for (Mode mode : {Mode::Conservative, Mode::Thin}) {
+        VoxelizeOptions o = options(mode == Mode::Conservative ? Method::Reference : Method::Cpu, mode);
+        o.grid.resolution = 35;
+        const VoxelizeResult oracle = voxelize(mesh, o);
+        for (Method method : kGlMethods) {
+            SCOPED_TRACE(std::string(toString(method)) + " " + toString(mode));
+            o.method = method;
+            const VoxelizeResult r = voxelize(mesh, o);
+            const auto cmp = test::compareResults(mesh, mode, r, oracle);
+            EXPECT_TRUE(cmp.unexplained.empty()) << cmp.summary();
+            EXPECT_GT(cmp.result_voxels, 0u);
+        }
+    }
 }
 
 test::TestMesh bunny() {

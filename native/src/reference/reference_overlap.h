@@ -11,11 +11,11 @@
 //     closed box, its plane meets the octahedron inscribed in the box (the "diamond" of
 //     the JCGT paper's Fig. 2, right), and in each of the three coordinate planes the
 //     three projected edge tests accept the inscribed 2D diamond (Fig. 3, right).
-//   Planeless triangles (edges' cross product exactly zero in voxel space: a segment or a
-//     point there, e.g. a needle whose near corners coincide once the grid is applied) are
-//     what is left of them: conservative needs nothing else (the SAT above is the segment's
-//     own test); thin replaces the plane and winding tests by each projected edge's line
-//     against the diamond, on either side.
+//   Planeless triangles (the cross product of the corners' edges, computed as the cpu method
+//     computes it, is exactly zero: a segment or a point in voxel space, e.g. a needle whose
+//     near corners coincide once the grid is applied) are what is left of them: conservative
+//     needs nothing else (the SAT above is the segment's own test); thin replaces the plane
+//     and winding tests by each projected edge's line against the diamond, on either side.
 #include <array>
 #include <cstdint>
 
@@ -31,9 +31,6 @@ using Voxel = std::array<int, 3>;
 
 // Voxel-space corners of triangle `index` of the mesh.
 Triangle voxelSpaceTriangle(const ValidatedMesh& mesh, std::uint32_t index, const GridSpec& grid);
-
-// Whether the triangle has no plane in voxel space (the cpu method decides it alike).
-bool planeless(const Triangle& triangle);
 
 // The overlap decision for one voxel. `delta` grows (> 0) or shrinks (< 0) the voxel box
 // (and, in thin mode, its inscribed octahedron and 2D diamonds) by that many voxel units
