@@ -65,7 +65,8 @@ PY
   fuzz "${format}_reader" "$seconds"
 done
 # The gzip input (with the PLY reader behind it), seeded with the PLY seeds compressed, and
-# voxelize() on random small meshes, cpu against the reference (its own bytes, no seeds).
+# voxelize() on random small meshes, cpu against the reference (its own bytes, seeded with
+# the decided findings).
 for target in gzip_input voxelize; do
   fresh "$target"
   if [ "$target" = gzip_input ]; then
@@ -76,6 +77,8 @@ for path in sys.argv[2:]:
         out.write(gzip.compress(f.read()))
 PY
   fi
+  # Decided findings replay first (tests/fuzz/findings/README.md).
+  if [ -d "tests/fuzz/seeds/$target" ]; then cp "tests/fuzz/seeds/$target"/* "build-fuzz/corpus/$target/"; fi
   fuzz "$target" "${FUZZ_SECONDS:-30}"
 done
 echo "fuzz_readers: no findings"

@@ -6,6 +6,11 @@
 //     closed-box SAT, so voxels that merely touch the triangle count.
 //   thin (6-separating, HYVOX_THIN=1): the plane must cross the voxel's centre segment along
 //     the dominant axis, and each 2D projection must meet the voxel's inscribed diamond.
+// A planeless triangle (its edges' cross product is zero: a segment or a point in voxel space,
+// e.g. a needle whose two near corners coincide there) is what is left of it, tested as the
+// cpu method and the reference do: every projected edge's line, on either side (each edge
+// with winding +1; the collinear edges point both ways), and no plane; its depth range comes
+// from the segment instead (segmentDepthRange).
 // The appendix pseudocode is not followed where it has typos: its line 19 tests p_xy
 // against the YZ/ZX edges (we use q.yz / q.zx), its thin offsets mix planes (we use
 // 0.5 * max(|n_e.x|, |n_e.y|) of the same plane), and its depth ranges floor/ceil the wrong
@@ -26,7 +31,11 @@ struct TriangleSetup {
     vec3 xy[3];    // per edge: 2D inward edge normal (x, y) and factored offset d (z)
     vec3 yz[3];
     vec3 zx[3];
+    vec3 segFrom;  // planeless only (n == 0): the segment from its first to its last corner
+    vec3 segDir;   // along its longest axis (swizzled, local)
 };
+
+bool planeless(TriangleSetup t) { return t.n.z == 0.0; }  // else n.z > 0 (see setupTriangle)
 
 // Edge function of projected edge e starting at projected vertex a, for a 2D triangle with
 // orientation sign s; returns (n_e, d_e) such that dot(n_e, q) + d_e >= 0 means voxel q's
@@ -57,7 +66,23 @@ TriangleSetup setupTriangle(vec3 v0, vec3 v1, vec3 v2, ivec3 origin, int axis, i
 
     const vec3 e0 = v1 - v0, e1 = v2 - v1, e2 = v0 - v2;
     vec3 n = cross(e0, e1);
-    const float sx = orientationSign(n.x), sy = orientationSign(n.y), sz = orientationSign(n.z);
+    const bool noPlane = n == vec3(0.0);
+    const float sx = noPlane ? 1.0 : orientationSign(n.x), sy = noPlane ? 1.0 : orientationSign(n.y),
+                sz = noPlane ? 1.0 : orientationSign(n.z);
+    t.segFrom = v0;
+    t.segDir = vec3(0.0);
+    if (noPlane) {
+        const vec3 extent = bmax - bmin;
+        const int m = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+        const vec3 v[3] = vec3[3](v0, v1, v2);
+        int first = 0, last = 0;
+        for (int i = 1; i < 3; ++i) {
+            if (v[i][m] < v[first][m]) first = i;
+            if (v[i][m] > v[last][m]) last = i;
+        }
+        t.segFrom = v[first];
+        t.segDir = v[last] - v[first];
+    }
     t.xy[0] = edgeFunction(e0.xy, v0.xy, sz);
     t.xy[1] = edgeFunction(e1.xy, v1.xy, sz);
     t.xy[2] = edgeFunction(e2.xy, v2.xy, sz);
@@ -88,8 +113,30 @@ bool insideXY(TriangleSetup t, vec2 q) {
     return edgeInside(t.xy[0], q) && edgeInside(t.xy[1], q) && edgeInside(t.xy[2], q);
 }
 
+// A planeless triangle's candidates in column q: the voxels around the part of its segment
+// above the column's square, both widened by a voxel on every side against rounding (the edge
+// tests decide). The depth axis is its shortest (prepareLoaded), so that part spans few.
+ivec2 segmentDepthRange(TriangleSetup t, vec2 q) {
+    float t0 = 0.0, t1 = 1.0;
+    for (int a = 0; a < 2; ++a) {
+        const float lo = q[a] - 1.0 - t.segFrom[a], hi = q[a] + 2.0 - t.segFrom[a];
+        if (t.segDir[a] != 0.0) {
+            const float ta = lo / t.segDir[a], tb = hi / t.segDir[a];
+            t0 = max(t0, min(ta, tb));
+            t1 = min(t1, max(ta, tb));
+        } else if (lo > 0.0 || hi < 0.0) {
+            return ivec2(1, 0);
+        }
+    }
+    if (t0 > t1) return ivec2(1, 0);
+    const float z0 = t.segFrom.z + t0 * t.segDir.z, z1 = t.segFrom.z + t1 * t.segDir.z;
+    const int zlo = int(ceil(min(z0, z1))) - 2, zhi = int(floor(max(z0, z1))) + 1;
+    return ivec2(max(t.lo.z, zlo + t.origin.z), min(t.hi.z, zhi + t.origin.z));
+}
+
 // Global z range of voxels in column q that the triangle's plane passes (step 4 of 3.1.3).
 ivec2 depthRange(TriangleSetup t, vec2 q) {
+    if (planeless(t)) return segmentDepthRange(t, q);
     const float inv = 1.0 / t.n.z, along = dot(t.n.xy, q);
 #if HYVOX_THIN
     // Voxel z holds the crossing height h iff z <= h <= z + 1.

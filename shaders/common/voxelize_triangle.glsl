@@ -20,8 +20,16 @@ LoadedTriangle loadForVoxelizing(uint tri) {
     return l;
 }
 
+// The depth axis: the normal's dominant axis, or for a planeless triangle (a segment) its
+// shortest, so each column holds few of its voxels (segmentDepthRange).
+int depthAxis(LoadedTriangle l) {
+    if (l.n != vec3(0.0)) return dominantAxis(l.n);
+    const vec3 extent = max(l.v0, max(l.v1, l.v2)) - min(l.v0, min(l.v1, l.v2));
+    return extent.x <= extent.y && extent.x <= extent.z ? 0 : (extent.y <= extent.z ? 1 : 2);
+}
+
 TriangleSetup prepareLoaded(LoadedTriangle l) {
-    const int axis = dominantAxis(l.n);
+    const int axis = depthAxis(l);
     return setupTriangle(swizzleToDominant(l.v0, axis), swizzleToDominant(l.v1, axis), swizzleToDominant(l.v2, axis),
                          swizzleToDominant(l.origin, axis), axis, swizzleToDominant(clipLow(), axis),
                          swizzleToDominant(clipHigh(), axis));

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target for voxelize() on small random meshes: the input bytes become up to 16
-// vertices (16-bit integers in 1/64 steps, scaled by a power of two from 2^-16 to 2^15: exact
-// in float, so the alignments that decide touching voxels occur often), up to 16 triangles
-// (indices taken modulo a slightly larger count, so some are out of range) and the grid
-// options (resolution, mode, padding, tile size). Raw float32 vertices (NaN, inf, 1e-37
-// next to 1e33) are left to the mesh validation tests: such slivers are below what the
-// cpu method's single precision decides the same way as the reference (findings/ has one). The oracle is inside the target: the cpu
-// method must set exactly the voxels of the double-precision reference, except voxels that
+// vertices, up to 16 triangles (indices taken modulo a slightly larger count, so some are out
+// of range) and the grid options (resolution, mode, padding, tile size). The vertices come
+// in one of two encodings, chosen by a bit of the options byte: raw float32 (NaN, inf,
+// denormals, 1e-37 next to 1e33: slivers and needles that voxel space cannot hold) or
+// 16-bit integers in 1/64 steps, scaled by a power of two from 2^-16 to 2^15 (exact in
+// float, so the alignments that decide touching voxels occur often). The oracle is inside
+// the target: the cpu method must set exactly the voxels of the double-precision reference, except voxels that
 // merely touch a triangle (the reference's rule says yes with the box grown by 1e-5 voxel
 // units and no with it shrunk by as much; DESIGN.md, "Correctness"), or both must refuse the
 // input with the same kind of error (InvalidInput / ResourceError). Anything else (a crash,
@@ -91,9 +91,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.grid.padding = (knobs >> 1) & 3;
     options.tile_size = (knobs & 8) ? 8 * (1 + ((knobs >> 4) & 3)) : 0;  // tile borders too
     options.threads = 1;
-    const float scale = std::ldexp(1.0f / 64, int(bytes.take<std::uint8_t>() % 32) - 16);
     std::vector<float> positions(3 * vertex_count);
-    for (float& p : positions) p = float(bytes.take<std::int16_t>()) * scale;
+    if (knobs & 128) {
+        for (float& p : positions) p = bytes.take<float>();
+    } else {
+        const float scale = std::ldexp(1.0f / 64, int(bytes.take<std::uint8_t>() % 32) - 16);
+        for (float& p : positions) p = float(bytes.take<std::int16_t>()) * scale;
+    }
     std::vector<std::uint32_t> triangles(3 * triangle_count);
     for (std::uint32_t& t : triangles) t = bytes.take<std::uint8_t>() % (vertex_count + 1);
     const hyvox::MeshView mesh{positions.data(), vertex_count, triangles.data(), triangle_count};

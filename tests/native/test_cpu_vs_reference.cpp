@@ -5,11 +5,14 @@
 // eps-grown / eps-shrunk rule).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <string>
 #include <tuple>
 #include <vector>
 
 #include "support/gtest_printers.h"
+#include "support/mesh_arrays.h"
 #include "support/test_mesh_loader.h"
 #include "support/voxel_checks.h"
 
@@ -65,6 +68,90 @@ INSTANTIATE_TEST_SUITE_P(At256, EveryMesh,
                                             ::testing::Values(256),
                                             ::testing::Values(Mode::Conservative, Mode::Thin)),
                          caseName);
+
+// Whether the segment from `from` to `to` meets voxel v's closed box grown by `eps` (slab
+// clipping in double: an oracle that shares nothing with the voxelizers' edge tests).
+bool segmentTouches(const std::array<double, 3>& from, const std::array<double, 3>& to, const Voxel& v, double eps) {
+    double t0 = 0.0, t1 = 1.0;
+    for (int a = 0; a < 3; ++a) {
+        const double lo = v[a] - eps - from[a], hi = v[a] + 1 + eps - from[a], d = to[a] - from[a];
+        if (d == 0.0) {
+            if (lo > 0.0 || hi < 0.0) return false;
+            continue;
+        }
+        t0 = std::max(t0, std::min(lo / d, hi / d));
+        t1 = std::min(t1, std::max(lo / d, hi / d));
+    }
+    return t0 <= t1;
+}
+
+// A fuzz finding (tests/fuzz/fuzz_voxelize.cpp on raw float32 vertices): a needle with one
+// corner at -2.5e33 and two 1e-37 apart near the origin, at resolution 35, padding 1. Its
+// area is not zero in world space, so validate() keeps it, but in voxel space (double) its
+// two near corners coincide: no plane, a segment along the grid's diagonal. The cpu method
+// dropped it (0 voxels); the voxels along the diagonal touch it. Checked against the
+// reference (up to touches) and against the segment itself: every voxel set is within 1e-9
+// of it, and no point of it lies outside the set voxels (no holes).
+TEST(CpuVsReference, PlanelessNeedleFromTheFuzzer) {
+    const std::vector<float> positions{-2.5045195e+33f, -2.5045195e+33f, -2.5045195e+33f,
+                                       -1.924353e-37f,  1.1985432e-38f,  0.0f,
+                                       -1.41794e-37f,   -1.917669e-37f,  -1.917669e-37f};
+    const std::vector<std::uint32_t> triangles{2, 1, 0};
+    const MeshView mesh = viewOf(positions, triangles);
+    for (Mode mode : {Mode::Conservative, Mode::Thin}) {
+        SCOPED_TRACE(toString(mode));
+        VoxelizeOptions options;
+        options.grid.resolution = 35;
+        options.grid.padding = 1;
+        options.mode = mode;
+        const Comparison cmp = compareWithReference(mesh, options);
+        std::printf("[ compare  ] needle %s: %s\n", toString(mode), cmp.summary().c_str());
+        expectMatchesOracle(cmp);
+
+        options.method = Method::Cpu;
+        const VoxelizeResult result = voxelize(mesh, options);
+        const auto far = result.grid.toVoxel(std::array<float, 3>{positions[0], positions[1], positions[2]});
+        const auto near = result.grid.toVoxel(std::array<float, 3>{positions[3], positions[4], positions[5]});
+        EXPECT_GE(result.occupancy.count(), 35u);  // at least one voxel per slab it crosses
+        for (const auto& v : result.occupancy.coords())
+            EXPECT_TRUE(segmentTouches(far, near, {v[0], v[1], v[2]}, 1e-9)) << v[0] << "," << v[1] << "," << v[2];
+        if (mode == Mode::Conservative) {
+            std::uint64_t samples = 0;
+            EXPECT_EQ(countHoles(mesh, result, &samples, nullptr), 0u);
+            EXPECT_GT(samples, 0u);
+        }
+    }
+}
+
+// A second fuzz finding (thin mode): a sliver from near the origin (two corners ~1e-37 apart)
+// to a corner at 1.4e-17, at resolution 35: in voxel space 35 voxels long and ~1e-19 wide,
+// with a plane. The reference took its edges from corners centred on each voxel (~17), which
+// rounds the width away: no plane, no winding, and its thin test accepted the whole
+// bounding box (16940 voxels against the cpu method's 26). It now takes them from the
+// corners, as the cpu method does. The thin voxels lie on the sliver: a strict subset of the
+// conservative ones (which the SAT decides soundly either way).
+TEST(CpuVsReference, ThinSliverNearTheOriginFromTheFuzzer) {
+    const std::vector<float> positions{0.0f,        4.9223826e-38f, -1.0652918e-37f,
+                                       1.41499e-17f, 8.843688e-18f,  8.843688e-18f,
+                                       -1.912195e-37f, -1.9029754e-37f, 0.0f};
+    const std::vector<std::uint32_t> triangles{0, 2, 1};  // (1, 0, 2) is zero-area in double: validate() skips it
+    const MeshView mesh = viewOf(positions, triangles);
+    VoxelizeOptions options;
+    options.grid.resolution = 35;
+    options.mode = Mode::Thin;
+    const Comparison cmp = compareWithReference(mesh, options);
+    std::printf("[ compare  ] thin sliver: %s\n", cmp.summary().c_str());
+    expectMatchesOracle(cmp);
+
+    options.method = Method::Reference;
+    const VoxelizeResult thin = voxelize(mesh, options);
+    options.mode = Mode::Conservative;
+    const VoxelizeResult conservative = voxelize(mesh, options);
+    EXPECT_GT(thin.occupancy.count(), 0u);
+    EXPECT_LT(thin.occupancy.count(), conservative.occupancy.count());
+    for (const auto& v : thin.occupancy.coords())
+        EXPECT_TRUE(conservative.occupancy.test(v[0], v[1], v[2])) << v[0] << "," << v[1] << "," << v[2];
+}
 
 }  // namespace
 }  // namespace hyvox::test

@@ -9,11 +9,13 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <filesystem>
 
 #include "hybrid/hybrid_run.h"
 #include "hyvox/voxelize.h"
+#include "support/mesh_arrays.h"
 #include "support/temp_dir.h"
 #include "support/test_mesh_loader.h"
 #include "support/triangle_soup.h"
@@ -152,6 +154,59 @@ TEST(GlSmall, LongSliversMatchTheReference) {
         EXPECT_TRUE(cmp.unexplained.empty()) << cmp.summary();
         if (method == Method::Hybrid) {
             EXPECT_EQ(hybridStats(r).large_triangles, 0u);
+        }
+    }
+}
+
+// Planeless needles (the fuzz finding of test_cpu_vs_reference.cpp, and one off the grid's
+// diagonal): a far corner at ~-2.5e33 and two corners 1e-37 apart near the origin, which
+// coincide in voxel space. Every GL method dropped them (a zero cross product: no dominant
+// axis, a NaN depth range, nothing to rasterize). At 200 they cross several llvmpipe chunks.
+TEST(GlSmall, PlanelessNeedlesMatchTheExactMethods) {
+    test::TriangleSoup soup;
+    const std::array<double, 3> near_a{-1.924353e-37, 1.1985432e-38, 0.0}, near_b{-1.41794e-37, -1.917669e-37, -1.917669e-37};
+    soup.add(near_b, near_a, {-2.5045195e+33, -2.5045195e+33, -2.5045195e+33});
+    soup.add(near_b, near_a, {-2.5045195e+33, -1.1e+33, -0.4e+33});
+    for (int resolution : {35, 200})
+        for (Mode mode : {Mode::Conservative, Mode::Thin}) {
+            VoxelizeOptions o = options(mode == Mode::Conservative ? Method::Reference : Method::Cpu, mode);
+            o.grid.resolution = resolution;
+            o.grid.padding = 1;
+            const VoxelizeResult oracle = voxelize(soup.view(), o);
+            EXPECT_GE(oracle.occupancy.count(), std::uint64_t(resolution));
+            for (Method method : kGlMethods) {
+                SCOPED_TRACE(std::string(toString(method)) + " " + toString(mode) + " " + std::to_string(resolution));
+                o.method = method;
+                const VoxelizeResult r = voxelize(soup.view(), o);
+                // Touches are many here (the diagonal needle runs through voxel corners), and
+                // float and double round them differently: only unexplained voxels count.
+                const auto cmp = test::compareResults(soup.view(), mode, r, oracle);
+                EXPECT_TRUE(cmp.unexplained.empty()) << cmp.summary();
+                EXPECT_GE(cmp.result_voxels, std::uint64_t(resolution));
+            }
+        }
+}
+
+// The sliver of CpuVsReference.ThinSliverNearTheOriginFromTheFuzzer: 35 voxels long, ~1e-19
+// wide. The fragment method dropped it: the length of its short end underflowed in float,
+// and the dilated triangle became NaN.
+TEST(GlSmall, SliverWithAnEndTooShortForFloatMatchesTheExactMethods) {
+    const std::vector<float> positions{0.0f,         4.9223826e-38f, -1.0652918e-37f,
+                                       1.41499e-17f, 8.843688e-18f,  8.843688e-18f,
+                                       -1.912195e-37f, -1.9029754e-37f, 0.0f};
+    const std::vector<std::uint32_t> triangles{0, 2, 1};
+    const MeshView mesh = test::viewOf(positions, triangles);
+    for (Mode mode : {Mode::Conservative, Mode::Thin}) {
+        VoxelizeOptions o = options(mode == Mode::Conservative ? Method::Reference : Method::Cpu, mode);
+        o.grid.resolution = 35;
+        const VoxelizeResult oracle = voxelize(mesh, o);
+        for (Method method : kGlMethods) {
+            SCOPED_TRACE(std::string(toString(method)) + " " + toString(mode));
+            o.method = method;
+            const VoxelizeResult r = voxelize(mesh, o);
+            const auto cmp = test::compareResults(mesh, mode, r, oracle);
+            EXPECT_TRUE(cmp.unexplained.empty()) << cmp.summary();
+            EXPECT_GT(cmp.result_voxels, 0u);
         }
     }
 }

@@ -16,4 +16,12 @@ struct GlDevice {
 // Every EGL device of the process. Creates no context; empty when EGL has no device platform.
 std::vector<GlDevice> listGlDevices();
 
+// A diagnostic: the GL objects alive in the process now, by kind (the GL methods' programs
+// stay cached per worker context; everything else lives for one run). The soak test checks
+// these stay flat over hundreds of runs.
+struct GlObjectCounts {
+    long buffers = 0, vertex_arrays = 0, framebuffers = 0, programs = 0, shaders = 0, queries = 0;
+};
+GlObjectCounts liveGlObjects();
+
 }  // namespace hyvox

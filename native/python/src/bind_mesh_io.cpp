@@ -56,6 +56,16 @@ void bindMeshIo(py::module_& m) {
             return devices;
         },
         "The EGL devices the GL methods can use: [{'index', 'name', 'software'}]. Creates no context.");
+
+    m.def(
+        "gl_live_objects",
+        [] {
+            const GlObjectCounts c = liveGlObjects();
+            return py::dict(py::arg("buffers") = c.buffers, py::arg("vertex_arrays") = c.vertex_arrays,
+                            py::arg("framebuffers") = c.framebuffers, py::arg("programs") = c.programs,
+                            py::arg("shaders") = c.shaders, py::arg("queries") = c.queries);
+        },
+        "Diagnostic: the GL objects alive in the process now, by kind (flat over repeated runs).");
 }
 
 }  // namespace hyvox::python

@@ -14,6 +14,7 @@
 #include "core/backends.h"
 #include "core/stopwatch.h"
 #include "cpu/mark_voxels.h"
+#include "cpu/rasterize_planeless.h"
 #include "cpu/rasterize_small.h"
 #include "cpu/rasterize_triangle.h"
 #include "cpu/triangle_setup.h"
@@ -68,6 +69,10 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                         for (int i = t.lo[0]; i <= t.hi[0]; ++i)
                             for (int j = t.lo[1]; j <= t.hi[1]; ++j)
                                 for (int k = t.lo[2]; k <= t.hi[2]; ++k) marker.mark(i, j, k);
+                        continue;
+                    }
+                    if (kind == cpu::SetupKind::Planeless) {
+                        cpu::rasterizePlaneless(corners, mode, t.lo, t.hi, marker);
                         continue;
                     }
                     if (cpu::fitsSmallPath(t)) {

@@ -66,7 +66,13 @@ SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const std::array<
                          e0[0] * e1[1] - e0[1] * e1[0]};
     const double an[3] = {std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])};
     const int w = (an[0] >= an[1] && an[0] >= an[2]) ? 0 : (an[1] >= an[2] ? 1 : 2);
-    if (an[w] == 0.0) return SetupKind::Outside;  // no plane in voxel space: nothing well defined
+    if (an[w] == 0.0) {
+        // No plane in voxel space (a needle whose near corners coincide there): what is left
+        // is a segment or a point, which still touches voxels (rasterize_planeless.h).
+        out.lo = {lo[0], lo[1], lo[2]};
+        out.hi = {hi[0], hi[1], hi[2]};
+        return SetupKind::Planeless;
+    }
     const int u = w == 2 ? 0 : w + 1, v = w == 0 ? 2 : w - 1;  // (w+1)%3, (w+2)%3
     out.w = w;
     out.lo = {lo[u], lo[v], lo[w]};
@@ -109,6 +115,14 @@ SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const std::array<
 }
 
 }  // namespace
+
+void setupEdgeTests(const std::array<std::array<double, 3>, 3>& c, double winding, int a, int b, Mode mode,
+                    EdgeTest out[3]) {
+    if (mode == Mode::Thin)
+        setupProjection<true>(c, winding, a, b, out);
+    else
+        setupProjection<false>(c, winding, a, b, out);
+}
 
 SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode,
                         const std::array<std::int32_t, 3>& clip_lo, const std::array<std::int32_t, 3>& clip_hi,

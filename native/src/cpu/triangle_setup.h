@@ -44,6 +44,9 @@ enum class SetupKind {
                     // along at least two axes: every candidate voxel (unswizzled, out.lo to
                     // out.hi) holds a point of the triangle and is marked without any test
     Full,           // run the factored test over out's swizzled range
+    Planeless,      // the corners' cross product is zero in voxel space (a segment or a
+                    // point there): rasterizePlaneless (rasterize_planeless.h) over the
+                    // unswizzled range out.lo to out.hi
 };
 
 // Builds the setup from voxel-space corners, the candidates clipped to the voxels
@@ -51,6 +54,16 @@ enum class SetupKind {
 SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode,
                         const std::array<std::int32_t, 3>& clip_lo, const std::array<std::int32_t, 3>& clip_hi,
                         TriangleSetup& out);
+
+// The edge tests of one projection (a, b) of the corners c (any axis order) for a 2D
+// triangle winding as sign `winding` (+1, -1; 0 makes tests that always pass).
+void setupEdgeTests(const std::array<std::array<double, 3>, 3>& c, double winding, int a, int b, Mode mode,
+                    EdgeTest out[3]);
+
+// Whether voxel p (its min corner, in the projection's two coordinates) passes edge test e.
+inline bool passes(const EdgeTest& e, double pa, double pb) {
+    return e.na * (pa - e.va) + e.nb * (pb - e.vb) + e.offset >= 0.0;
+}
 
 // floor / ceil of values already clamped to a safe int range by clampCoord (the baseline
 // x86-64 target has no inline rounding instruction, and libm calls dominate a small

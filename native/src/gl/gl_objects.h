@@ -2,17 +2,20 @@
 #pragma once
 // Move-only owners of GL object names, created with direct state access (glCreate*).
 // They must be created and destroyed on the GL worker thread (inside GlWorker::run).
+// Each one is counted while it holds a name (live_objects.h).
 #include <epoxy/gl.h>
 
 #include <cstddef>
 #include <utility>
+
+#include "gl/live_objects.h"
 
 namespace hyvox::gl {
 
 template <typename Traits>
 class GlObject {
 public:
-    GlObject() : id_(Traits::create()) {}
+    GlObject() : id_(Traits::create()) { counted(); }
     ~GlObject() { reset(); }
     GlObject(GlObject&& other) noexcept : id_(std::exchange(other.id_, 0)) {}
     GlObject& operator=(GlObject&& other) noexcept {
@@ -28,18 +31,24 @@ public:
     GLuint id() const { return id_; }
 
 protected:
-    explicit GlObject(GLuint adopted) : id_(adopted) {}
+    explicit GlObject(GLuint adopted) : id_(adopted) { counted(); }
     void reset() {
-        if (id_)
+        if (id_) {
             Traits::destroy(id_);
+            countDeleted(Traits::kKind);
+        }
         id_ = 0;
     }
 
 private:
+    void counted() const {
+        if (id_) countCreated(Traits::kKind);
+    }
     GLuint id_ = 0;
 };
 
 struct BufferTraits {
+    static constexpr GlKind kKind = GlKind::Buffer;
     static GLuint create() {
         GLuint id = 0;
         glCreateBuffers(1, &id);
@@ -48,6 +57,7 @@ struct BufferTraits {
     static void destroy(GLuint id) { glDeleteBuffers(1, &id); }
 };
 struct VertexArrayTraits {
+    static constexpr GlKind kKind = GlKind::VertexArray;
     static GLuint create() {
         GLuint id = 0;
         glCreateVertexArrays(1, &id);
@@ -56,6 +66,7 @@ struct VertexArrayTraits {
     static void destroy(GLuint id) { glDeleteVertexArrays(1, &id); }
 };
 struct FramebufferTraits {
+    static constexpr GlKind kKind = GlKind::Framebuffer;
     static GLuint create() {
         GLuint id = 0;
         glCreateFramebuffers(1, &id);
@@ -64,10 +75,12 @@ struct FramebufferTraits {
     static void destroy(GLuint id) { glDeleteFramebuffers(1, &id); }
 };
 struct ProgramTraits {
+    static constexpr GlKind kKind = GlKind::Program;
     static GLuint create() { return glCreateProgram(); }
     static void destroy(GLuint id) { glDeleteProgram(id); }
 };
 struct TimerQueryTraits {
+    static constexpr GlKind kKind = GlKind::Query;
     static GLuint create() {
         GLuint id = 0;
         glCreateQueries(GL_TIME_ELAPSED, 1, &id);
@@ -106,10 +119,14 @@ using Framebuffer = GlObject<FramebufferTraits>;
 
 class Shader {
 public:
-    explicit Shader(GLenum stage) : id_(glCreateShader(stage)) {}
+    explicit Shader(GLenum stage) : id_(glCreateShader(stage)) {
+        if (id_) countCreated(GlKind::Shader);
+    }
     ~Shader() {
-        if (id_)
+        if (id_) {
             glDeleteShader(id_);
+            countDeleted(GlKind::Shader);
+        }
     }
     Shader(Shader&& other) noexcept : id_(std::exchange(other.id_, 0)) {}
     Shader& operator=(Shader&& other) noexcept {

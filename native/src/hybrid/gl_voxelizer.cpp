@@ -91,7 +91,9 @@ GlVoxelizer::GlVoxelizer(const gl::GpuMesh& mesh, const GridSpec& grid, Mode mod
                                 std::to_string(raster_limit) + "-pixel framebuffer limit for method '" +
                                 toString(method) + "'; use method 'triangle' or a larger voxel size");
     }
-    if (tuning_.chunk_side > 0 && method != Method::Fragment) measureTriangles(mesh, extents_, areas_);
+    // `fragment` too: its pass 1 voxelizes the triangles of zero projected area (planeless
+    // ones: a needle across the grid needs as many chunks as any triangle).
+    if (tuning_.chunk_side > 0) measureTriangles(mesh, extents_, areas_);
 
     vertices_ = gl::Buffer(mesh.vertices.size() * sizeof(gl::GpuVertex), mesh.vertices.data(), 0);
     triangles_ = gl::Buffer(mesh.triangles.size() * sizeof(std::uint32_t), mesh.triangles.data(), 0);

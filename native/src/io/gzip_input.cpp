@@ -36,7 +36,9 @@ std::vector<char> gunzip(const std::vector<char>& input, const std::string& path
     const char* next = input.data();
     std::size_t left = input.size();
     for (;;) {
-        throwIfInterrupted(interrupter);  // one chunk (1 MiB of output) per turn
+        // One chunk (1 MiB of output) per turn; progress is the compressed input used (below
+        // 100: the reading goes on after decompression).
+        throwIfInterrupted(interrupter, int(99 * (input.size() - left) / std::max<std::size_t>(input.size(), 1)));
         // zlib counts in 32-bit units: feed at most 1 GiB at a time.
         const uInt feed = uInt(std::min<std::size_t>(left, 1u << 30));
         stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(next));

@@ -40,10 +40,7 @@ std::string extensionOf(const std::string& lower_path) {
 // opens files itself (some formats refer to other files beside them).
 constexpr std::size_t kMaxMeshFileBytes = std::size_t(1) << 40;
 
-}  // namespace
-
-Mesh readMesh(const std::string& path, Interrupter* interrupter) {
-    const InterrupterRun run(interrupter, "hyvox read mesh");
+Mesh readMeshFile(const std::string& path, Interrupter* interrupter) {
     io::checkMeshFile(path);
     const std::string lower_path = lower(path);
     const bool gzipped = endsWith(lower_path, ".gz");
@@ -68,6 +65,18 @@ Mesh readMesh(const std::string& path, Interrupter* interrupter) {
         return mesh;
     }
     return io::readWithAssimp(data.data(), data.size(), extension, path, interrupter);  // another format, gzipped
+}
+
+}  // namespace
+
+Mesh readMesh(const std::string& path, Interrupter* interrupter) {
+    const InterrupterRun run(interrupter, "hyvox read mesh");
+    // 0% and 100% at the ends of every read (a gzip reports its share in between), so a
+    // front end sees the reading start: the CLI's progress line, a test waiting to interrupt.
+    throwIfInterrupted(interrupter, 0);
+    Mesh mesh = readMeshFile(path, interrupter);
+    throwIfInterrupted(interrupter, 100);
+    return mesh;
 }
 
 }  // namespace hyvox

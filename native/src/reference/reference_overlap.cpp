@@ -19,9 +19,8 @@ Vec3 centreOf(const Voxel& voxel) { return {voxel[0] + 0.5, voxel[1] + 0.5, voxe
 // Akenine-Möller's separating-axis test of a triangle against the closed box centred at
 // the origin with half-size h: separated only if some axis strictly separates them, so a
 // triangle touching a face, edge or corner of the box counts as overlapping.
-bool triangleBoxSat(const Vec3& a, const Vec3& b, const Vec3& c, double h) {
+bool triangleBoxSat(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3 (&edges)[3], double h) {
     const Vec3 verts[3] = {a, b, c};
-    const Vec3 edges[3] = {sub(b, a), sub(c, b), sub(a, c)};
 
     auto separatedOn = [&](const Vec3& axis) {
         const double p0 = dot(axis, verts[0]), p1 = dot(axis, verts[1]), p2 = dot(axis, verts[2]);
@@ -48,8 +47,11 @@ bool triangleBoxSat(const Vec3& a, const Vec3& b, const Vec3& c, double h) {
 }
 
 // Schwarz & Seidel's 6-separating test against the voxel centred at the origin whose box has
-// half-size h (the octahedron and the 2D diamonds inscribed in it have "radius" h).
-bool sixSeparatingTest(const Vec3& a, const Vec3& b, const Vec3& c, double h) {
+// half-size h (the octahedron and the 2D diamonds inscribed in it have "radius" h). A
+// planeless triangle (a segment or a point in voxel space) has no plane to test and no
+// winding in any projection: there every projected edge's line must pass the diamond,
+// on either side.
+bool sixSeparatingTest(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3 (&edges)[3], double h) {
     // The triangle's bounding box must meet the box (the edge tests alone would accept
     // voxels beyond a sharp corner of the triangle).
     for (int axis = 0; axis < 3; ++axis) {
@@ -58,8 +60,17 @@ bool sixSeparatingTest(const Vec3& a, const Vec3& b, const Vec3& c, double h) {
         if (lo > h || hi < -h) return false;
     }
     const Vec3 verts[3] = {a, b, c};
-    const Vec3 edges[3] = {sub(b, a), sub(c, b), sub(a, c)};
     const Vec3 n = cross(edges[0], edges[1]);
+    if (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0) {
+        const int planes[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+        for (const auto& plane : planes)
+            for (int i = 0; i < 3; ++i) {
+                const double nu = -edges[i][plane[1]], nv = edges[i][plane[0]];
+                const double distance = nu * (0.0 - verts[i][plane[0]]) + nv * (0.0 - verts[i][plane[1]]);
+                if (std::fabs(distance) > h * std::max(std::fabs(nu), std::fabs(nv))) return false;
+            }
+        return true;
+    }
 
     // Plane against the inscribed octahedron |x|+|y|+|z| <= h: its support in direction n is
     // h * max|n_i|, and the centre's signed distance (times |n|) is -n.a.
@@ -96,8 +107,12 @@ bool overlaps(const Triangle& triangle, const Voxel& voxel, Mode mode, double de
     // Work relative to the voxel centre: small numbers, and the box is symmetric.
     const Vec3 centre = centreOf(voxel);
     const Vec3 a = sub(triangle[0], centre), b = sub(triangle[1], centre), c = sub(triangle[2], centre);
+    // The edges (and so the normal and the windings) from the corners themselves, not from
+    // the centred ones: centring rounds a sliver's width away near the grid's origin (1e-19
+    // beside 17), and with it the plane the thin test needs. The cpu method takes them alike.
+    const Vec3 edges[3] = {sub(triangle[1], triangle[0]), sub(triangle[2], triangle[1]), sub(triangle[0], triangle[2])};
     const double h = 0.5 + delta;
-    return mode == Mode::Conservative ? triangleBoxSat(a, b, c, h) : sixSeparatingTest(a, b, c, h);
+    return mode == Mode::Conservative ? triangleBoxSat(a, b, c, edges, h) : sixSeparatingTest(a, b, c, edges, h);
 }
 
 VoxelRange candidateVoxels(const Triangle& triangle, const std::array<std::int32_t, 3>& dims, double delta) {
