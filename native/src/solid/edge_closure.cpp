@@ -66,8 +66,12 @@ EdgeClosure checkEdges(const ValidatedMesh& mesh, const GridSpec& grid) {
         else if (uses > 2) ++out.nonmanifold_edges;
         else if (forward != backward) ++out.misoriented_edges;
         if (forward != backward) {
-            const float* a = view.positions + 3 * std::size_t(edges[first].low);
-            const float* b = view.positions + 3 * std::size_t(edges[first].high);
+            // Oriented the way the surplus uses run: the open edges then form closed loops
+            // (gradient_bound.cpp relies on that for its far-field bound).
+            const std::uint32_t from = forward > backward ? edges[first].low : edges[first].high;
+            const std::uint32_t to = forward > backward ? edges[first].high : edges[first].low;
+            const float* a = view.positions + 3 * std::size_t(from);
+            const float* b = view.positions + 3 * std::size_t(to);
             out.open_edges.push_back({grid.toVoxel(std::array<float, 3>{a[0], a[1], a[2]}),
                                       grid.toVoxel(std::array<float, 3>{b[0], b[1], b[2]}),
                                       forward > backward ? forward - backward : backward - forward});
