@@ -10,9 +10,11 @@ namespace {
 
 // The middle of a box may differ from the corners' interpolation by this much for the box to
 // be interpolated (the fast winding numbers themselves are off by up to about 0.01).
-constexpr double kAgree = 0.03;
+constexpr double kAgree = 0.02;
 // Voxels whose interpolated winding number lies closer to 0.5 than this are evaluated outright.
-constexpr double kMargin = 0.12;
+constexpr double kMargin = 0.06;
+// The sheets of open edges this many box sides from a box are taken out of its smooth part.
+constexpr double kNearSides = 1.0;
 // Samples are taken this far above a voxel centre, off any horizontal face through the centre
 // (g is continuous: its value holds at the centre).
 constexpr double kLift = 0.00390625;
@@ -31,6 +33,18 @@ double sheetWinding(const GradientBound::Sheet& sheet, const Vec3& q) {
     const double det = u[0] * v[1] - u[1] * v[0];  // u · (v × z)
     const double denominator = 1.0 + dot(u, v) + v[2] + u[2];
     return sheet.excess * std::atan2(det, denominator) / (2.0 * M_PI);
+}
+
+// Whether the column through q passes within kTie of the edge in xy, where the sheet's solid
+// angle and the rays' tie-breaking (snapped, symbolically perturbed) may disagree.
+constexpr double kTie = 1e-3;
+bool nearSheetEdge(const GradientBound::Sheet& sheet, const Vec3& q) {
+    const double dx = sheet.b[0] - sheet.a[0], dy = sheet.b[1] - sheet.a[1];
+    const double px = q[0] - sheet.a[0], py = q[1] - sheet.a[1];
+    const double length2 = dx * dx + dy * dy;
+    const double t = length2 > 0 ? std::clamp((px * dx + py * dy) / length2, 0.0, 1.0) : 0.0;
+    const double ex = px - t * dx, ey = py - t * dy;
+    return ex * ex + ey * ey < kTie * kTie;
 }
 
 // One brick's rays and samples.
@@ -128,12 +142,20 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
             });
             return;
         }
-        const Box span{{double(a[0]), double(a[1]), double(a[2])}, {b[0] + 1.0, b[1] + 1.0, b[2] + 1.0}};
-        bound_.sheetsMeeting(span, sheets);
+        // The sheets meeting the box, and those of the edges near it: without them g would
+        // vary fast near the box's sides (any set of sheets that holds those leaves g smooth).
+        int side = 0;
+        for (int d = 0; d < 3; ++d) side = std::max(side, b[d] - a[d] + 1);
+        const double reach = kNearSides * side;
+        const Box near{{a[0] - reach, a[1] - reach, a[2] - reach}, {b[0] + 1.0 + reach, b[1] + 1.0 + reach, b[2] + 1.0 + reach}};
+        bound_.sheetsMeeting(near, sheets);
         auto sheetSum = [&](const Int3& p) {
             double sum = 0;
             const Vec3 q{p[0] + 0.5, p[1] + 0.5, p[2] + 0.5};
-            for (const GradientBound::Sheet& s : sheets) sum += sheetWinding(s, q);
+            for (const GradientBound::Sheet& s : sheets) {
+                if (nearSheetEdge(s, q)) return double(NAN);  // not interpolated: see nearSheetEdge
+                sum += sheetWinding(s, q);
+            }
             return sum;
         };
         auto smooth = [&](const Int3& p) { return brick.minusCrossings(p) + sheetSum(p); };
@@ -148,12 +170,12 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
             return value;
         };
         const Int3 m{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2};
-        if (std::fabs(smooth(m) - interpolate(m)) <= kAgree) {
+        if (std::fabs(smooth(m) - interpolate(m)) <= kAgree) {  // false for NaN
             forEach(a, b, [&](const Int3& p) {
                 if (!pending(p)) return;
                 if (brick.sampled(p)) return decide(p, brick.crossings(p) + brick.minusCrossings(p));
                 const double w = brick.crossings(p) + interpolate(p) - sheetSum(p);
-                if (std::fabs(w - 0.5) < kMargin) return decide(p, brick.exactWinding(p));
+                if (!(std::fabs(w - 0.5) >= kMargin)) return decide(p, brick.exactWinding(p));  // NaN too
                 ++counters.interpolated_voxels;
                 decide(p, w);
             });
