@@ -138,22 +138,23 @@ bool GradientBound::parityMayChange(const Box& box, bool upward) const {
     return false;
 }
 
-void GradientBound::sheetsMeeting(const Box& box, std::vector<Sheet>& out) const {
+void GradientBound::sheetsMeeting(const Box& box, bool upward, std::vector<Sheet>& out) const {
     out.clear();
     if (nodes_.empty()) return;
+    auto wanted = [&](const Box& edge) { return reachesShadow(box, edge, upward); };
     std::int32_t stack[128];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
         const Node& node = nodes_[std::size_t(stack[--top])];
-        if (!reachesShadow(box, node.box, false)) continue;
+        if (!wanted(node.box)) continue;
         if (node.left >= 0) {
             stack[top++] = node.left;
             stack[top++] = node.right;
             continue;
         }
         for (std::uint32_t e = node.first; e < node.first + node.count; ++e)
-            if (reachesShadow(box, edges_[e].box, false)) out.push_back({edges_[e].a, edges_[e].b, double(edges_[e].excess)});
+            if (wanted(edges_[e].box)) out.push_back({edges_[e].a, edges_[e].b, double(edges_[e].excess)});
     }
 }
 

@@ -41,12 +41,13 @@ public:
     // Whether the parity of -z rays may differ between two points of `box` (with `upward`,
     // of +z rays): whether the sheet standing above (hanging below) an open edge meets it.
     bool parityMayChange(const Box& box, bool upward = false) const;
-    // The open edges whose sheet above (where -z rays pass them) meets `box`.
+    // The open edges whose sheet above (where -z rays pass them; `upward`: below, where +z
+    // rays do) meets `box`.
     struct Sheet {
         std::array<double, 3> a, b;  // the edge, in the direction of its surplus uses
         double excess;
     };
-    void sheetsMeeting(const Box& box, std::vector<Sheet>& out) const;
+    void sheetsMeeting(const Box& box, bool upward, std::vector<Sheet>& out) const;
     // Whether some open edge's box comes within `distance` of `box`.
     bool edgeWithin(const Box& box, double distance) const;
 

@@ -24,14 +24,15 @@ using Int3 = std::array<std::int32_t, 3>;
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // The winding number at q of the sheet of edge a -> b: the strip (b, a, a + ∞z, b + ∞z), whose
-// solid angle is that of the spherical triangle of the directions to b, to a and up.
-double sheetWinding(const GradientBound::Sheet& sheet, const Vec3& q) {
+// solid angle is that of the spherical triangle of the directions to b, to a and up (`up` -1:
+// the strip down, (b, a, a - ∞z, b - ∞z), the sheet of +z rays).
+double sheetWinding(const GradientBound::Sheet& sheet, const Vec3& q, double up) {
     Vec3 u{sheet.b[0] - q[0], sheet.b[1] - q[1], sheet.b[2] - q[2]};
     Vec3 v{sheet.a[0] - q[0], sheet.a[1] - q[1], sheet.a[2] - q[2]};
     const double lu = std::sqrt(dot(u, u)), lv = std::sqrt(dot(v, v));
     for (int k = 0; k < 3; ++k) u[k] /= lu, v[k] /= lv;
-    const double det = u[0] * v[1] - u[1] * v[0];  // u · (v × z)
-    const double denominator = 1.0 + dot(u, v) + v[2] + u[2];
+    const double det = up * (u[0] * v[1] - u[1] * v[0]);  // u · (v × up z)
+    const double denominator = 1.0 + dot(u, v) + up * (v[2] + u[2]);
     return sheet.excess * std::atan2(det, denominator) / (2.0 * M_PI);
 }
 
@@ -76,6 +77,11 @@ public:
     }
     bool sampled(const Int3& p) const { return !std::isnan(samples_[local(p)]); }
     int crossings(const Int3& p) { return below(columnOf(p), p[2] + 0.5); }
+    int columnCrossings(const Int3& p) {  // C: the signed crossings of the whole line
+        int sum = 0;
+        for (const auto& c : columnOf(p).crossings) sum += c.sign;
+        return sum;
+    }
     double exactWinding(const Int3& p) {
         ++counters_.point_evaluations;
         return winding_.at({p[0] + 0.5, p[1] + 0.5, p[2] + 0.5});
@@ -128,7 +134,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
             for (int j = a[1]; j <= b[1]; ++j)
                 for (int k = a[2]; k <= b[2]; ++k) f(Int3{i, j, k});
     };
-    std::vector<GradientBound::Sheet> sheets;
+    std::vector<GradientBound::Sheet> sheets, sheets_up;
 
     // Boxes of voxels [a, b] (corners included), halved where interpolation does not hold.
     auto visit = [&](auto&& self, const Int3& a, const Int3& b) -> void {
@@ -146,19 +152,27 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
         // vary fast near the box's sides (any set of sheets that holds those leaves g smooth).
         int side = 0;
         for (int d = 0; d < 3; ++d) side = std::max(side, b[d] - a[d] + 1);
+        // Rays down or up, whichever has fewer sheets here: w - c_down = -Σ sheets above edges
+        // and w - c_down + C = -Σ sheets below them (the rays up see C - c_down crossings, of
+        // the other sign).
         const double reach = kNearSides * side;
         const Box near{{a[0] - reach, a[1] - reach, a[2] - reach}, {b[0] + 1.0 + reach, b[1] + 1.0 + reach, b[2] + 1.0 + reach}};
-        bound_.sheetsMeeting(near, sheets);
+        bound_.sheetsMeeting(near, false, sheets);
+        bound_.sheetsMeeting(near, true, sheets_up);
+        const bool upward = sheets_up.size() < sheets.size();
+        if (upward) std::swap(sheets, sheets_up);
+        const double up = upward ? -1.0 : 1.0;
+        auto shift = [&](const Int3& p) { return upward ? brick.columnCrossings(p) : 0; };
         auto sheetSum = [&](const Int3& p) {
             double sum = 0;
             const Vec3 q{p[0] + 0.5, p[1] + 0.5, p[2] + 0.5};
             for (const GradientBound::Sheet& s : sheets) {
                 if (nearSheetEdge(s, q)) return double(NAN);  // not interpolated: see nearSheetEdge
-                sum += sheetWinding(s, q);
+                sum += sheetWinding(s, q, up);
             }
             return sum;
         };
-        auto smooth = [&](const Int3& p) { return brick.minusCrossings(p) + sheetSum(p); };
+        auto smooth = [&](const Int3& p) { return brick.minusCrossings(p) + shift(p) + sheetSum(p); };
         double corner[8];
         for (int c = 0; c < 8; ++c) corner[c] = smooth({c & 4 ? b[0] : a[0], c & 2 ? b[1] : a[1], c & 1 ? b[2] : a[2]});
         auto interpolate = [&](const Int3& p) {
@@ -174,7 +188,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
             forEach(a, b, [&](const Int3& p) {
                 if (!pending(p)) return;
                 if (brick.sampled(p)) return decide(p, brick.crossings(p) + brick.minusCrossings(p));
-                const double w = brick.crossings(p) + interpolate(p) - sheetSum(p);
+                const double w = brick.crossings(p) - shift(p) + interpolate(p) - sheetSum(p);
                 if (!(std::fabs(w - 0.5) >= kMargin)) return decide(p, brick.exactWinding(p));  // NaN too
                 ++counters.interpolated_voxels;
                 decide(p, w);
