@@ -14,7 +14,7 @@ constexpr double kAgree = 0.02;
 // Voxels whose interpolated winding number lies closer to 0.5 than this are evaluated outright.
 constexpr double kMargin = 0.06;
 // The sheets of open edges this many box sides from a box are taken out of its smooth part.
-constexpr double kNearSides = 1.0;
+constexpr double kNearSides = 0.5;
 // Samples are taken this far above a voxel centre, off any horizontal face through the centre
 // (g is continuous: its value holds at the centre).
 constexpr double kLift = 0.00390625;
