@@ -119,21 +119,21 @@ double GradientBound::windingSlope(const Box& box, double limit) const {
     return sum / (4.0 * M_PI);
 }
 
-bool GradientBound::parityMayChange(const Box& box, bool upward) const {
+bool GradientBound::parityMayChange(const Box& box) const {
     if (nodes_.empty()) return false;
     std::int32_t stack[128];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
         const Node& node = nodes_[std::size_t(stack[--top])];
-        if (!reachesShadow(box, node.box, upward)) continue;
+        if (!reachesShadow(box, node.box, false)) continue;
         if (node.left >= 0) {
             stack[top++] = node.left;
             stack[top++] = node.right;
             continue;
         }
         for (std::uint32_t e = node.first; e < node.first + node.count; ++e)
-            if (reachesShadow(box, edges_[e].box, upward)) return true;
+            if (reachesShadow(box, edges_[e].box, false)) return true;
     }
     return false;
 }
@@ -156,26 +156,6 @@ void GradientBound::sheetsMeeting(const Box& box, bool upward, std::vector<Sheet
         for (std::uint32_t e = node.first; e < node.first + node.count; ++e)
             if (wanted(edges_[e].box)) out.push_back({edges_[e].a, edges_[e].b, double(edges_[e].excess)});
     }
-}
-
-bool GradientBound::edgeWithin(const Box& box, double distance) const {
-    if (nodes_.empty()) return false;
-    const double d2 = distance * distance;
-    std::int32_t stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const Node& node = nodes_[std::size_t(stack[--top])];
-        if (boxDistance2(box, node.box) > d2) continue;
-        if (node.left >= 0) {
-            stack[top++] = node.left;
-            stack[top++] = node.right;
-            continue;
-        }
-        for (std::uint32_t e = node.first; e < node.first + node.count; ++e)
-            if (boxDistance2(box, edges_[e].box) <= d2) return true;
-    }
-    return false;
 }
 
 }  // namespace hyvox::solid

@@ -38,9 +38,8 @@ public:
     // An upper bound of |∇w| over `box`; stops adding (and returns a value above `limit`)
     // as soon as the bound passes `limit`. Infinite when an open edge meets the box.
     double windingSlope(const Box& box, double limit) const;
-    // Whether the parity of -z rays may differ between two points of `box` (with `upward`,
-    // of +z rays): whether the sheet standing above (hanging below) an open edge meets it.
-    bool parityMayChange(const Box& box, bool upward = false) const;
+    // Whether the parity of -z rays may differ between two points of `box`.
+    bool parityMayChange(const Box& box) const;
     // The open edges whose sheet above (where -z rays pass them; `upward`: below, where +z
     // rays do) meets `box`.
     struct Sheet {
@@ -48,8 +47,6 @@ public:
         double excess;
     };
     void sheetsMeeting(const Box& box, bool upward, std::vector<Sheet>& out) const;
-    // Whether some open edge's box comes within `distance` of `box`.
-    bool edgeWithin(const Box& box, double distance) const;
 
 private:
     struct Node {

@@ -9,9 +9,10 @@
 // stops passing an open edge's face. Closing the surface with every open edge's sheet (the
 // strip from the edge, run backwards, up to infinity) makes a surface whose winding number is
 // c: w - c = -Σ excess · (the sheets' winding numbers). So for a box of voxels, adding back the
-// winding numbers of the sheets that meet it (each an exact solid angle, a few operations)
-// leaves g = -Σ over the other sheets: harmonic, smooth, across the surface and around the
-// open edges inside the box alike.
+// winding numbers of the sheets that meet it or pass within half its side (each an exact solid
+// angle, a few operations) leaves g = -Σ over the other sheets: harmonic, smooth, across the
+// surface and around the open edges inside the box alike. Rays up work the same way with
+// sheets hanging below the edges; each box takes the direction with fewer sheets.
 //
 // A box is decided from g at its corners when g at its middle matches the corners'
 // interpolation; otherwise it is halved, down to voxels evaluated one by one. c comes exactly
