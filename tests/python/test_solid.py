@@ -226,6 +226,47 @@ def test_messy_shapes_match_brute_force_winding(name):
     assert np.array_equal(auto.to_dense()[tuple(free[clear].T)], solid.to_dense()[tuple(free[clear].T)])
 
 
+def atrium(leaves=300, seed=7):
+    """A Sponza-like open mesh: a room without a roof whose floor and walls are a few large
+    triangles, a thick gallery slab with one side left open, and many small open quads
+    (leaves) floating in and around it, each with four boundary edges."""
+    room_v, room_t = cube((0, 0, 0), (4, 3, 2))
+    room_t = room_t[np.any(room_v[room_t][:, :, 2] < 2, axis=1)]  # the top face removed
+    slab_v, slab_t = cube((0.2, 0.2, 0.9), (2.5, 2.8, 1.1))
+    slab_t = slab_t[~np.all(slab_v[slab_t][:, :, 0] == 2.5, axis=1)]  # its +x side removed
+    rng = np.random.default_rng(seed)
+    centres_ = rng.uniform((-1, -1, 0.2), (5, 4, 2.8), (leaves, 3))
+    u = rng.normal(size=(leaves, 3))
+    u /= np.linalg.norm(u, axis=1, keepdims=True)
+    w = np.cross(u, rng.normal(size=(leaves, 3)))
+    w /= np.linalg.norm(w, axis=1, keepdims=True)
+    size = rng.uniform(0.03, 0.15, (leaves, 1))
+    quad_v = np.concatenate([centres_ + size * (sa * u + sb * w) for sa, sb in [(-1, -1), (1, -1), (1, 1), (-1, 1)]], axis=1)
+    quad_v = quad_v.reshape(-1, 3)
+    base = 4 * np.arange(leaves)[:, None]
+    quad_t = np.concatenate([base + [0, 1, 2], base + [0, 2, 3]])
+    return join((room_v, room_t), (slab_v, slab_t), (quad_v.astype(np.float32), quad_t.astype(np.uint32)))
+
+
+def test_open_mesh_with_large_triangles_and_many_open_edges_matches_brute_force_winding():
+    # The case open meshes are decided by brick by brick from the smooth part of the winding
+    # number (w minus ray crossings, plus the open edges' sheets), interpolated: every voxel
+    # outside the surface is checked.
+    vertices, triangles = atrium()
+    solid, free, w = check_against_brute_force(vertices, triangles, 64)
+    assert (w >= 0.55).sum() > 1000 and (w <= 0.45).sum() > 1000
+    stats = solid.stats["solid"]
+    assert stats["boundary_edges"] > 1000 and stats["evaluation"] == "fast winding numbers"
+    assert stats["interpolated_voxels"] > len(free) / 2  # the interpolation decided most of them
+
+
+def test_sponza_matches_brute_force_winding(mesh_dir):
+    vertices, triangles = hyvox.read_mesh(mesh_dir / "sponza_crytek_262k_vcolor.ply.gz")
+    solid, _, w = check_against_brute_force(vertices, triangles, 64, samples=300, seed=11)
+    assert (w >= 0.55).any() and (w <= 0.45).any()
+    assert solid.stats["solid"]["interpolated_voxels"] > 0
+
+
 def test_overlap_is_filled_and_the_hollow_stays_empty():
     shapes = messy_shapes()
     overlap = hyvox.voxelize(*shapes["overlapping_cubes"][0], resolution=64, mode="solid")

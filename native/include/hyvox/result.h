@@ -108,6 +108,7 @@ struct SolidStats {
     std::uint64_t uniform_regions = 0;     // surface-free boxes decided by one evaluation
     std::uint64_t component_decisions = 0; // connected empty parts of surface bricks decided by one evaluation
     std::uint64_t point_evaluations = 0;   // inside tests run (winding numbers or ray parities)
+    std::uint64_t interpolated_voxels = 0; // open meshes: voxels decided from the winding number's interpolated smooth part
     template <typename F>
     void visit(F&& f) const {
         f("inside_rule", inside_rule);
@@ -121,6 +122,7 @@ struct SolidStats {
         f("uniform_regions", uniform_regions);
         f("component_decisions", component_decisions);
         f("point_evaluations", point_evaluations);
+        f("interpolated_voxels", interpolated_voxels);
     }
 };
 

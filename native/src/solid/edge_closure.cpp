@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "solid/edge_closure.h"
 
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <cstring>
 #include <tuple>
@@ -23,7 +25,9 @@ std::vector<std::uint32_t> weldVertices(const MeshView& view) {
     std::vector<std::uint32_t> order(view.vertex_count);
     for (std::uint32_t v = 0; v < order.size(); ++v) order[v] = v;
     auto key = [&](std::uint32_t v) { return positionKey(view.positions + 3 * std::size_t(v)); };
-    std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return key(x) < key(y); });
+    // Sorted on all threads: on meshes of a million triangles this check is most of solid mode's
+    // own time.
+    tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return key(x) < key(y); });
     std::vector<std::uint32_t> weld(view.vertex_count);
     for (std::size_t n = 0; n < order.size(); ++n)
         weld[order[n]] = n > 0 && key(order[n]) == key(order[n - 1]) ? weld[order[n - 1]] : order[n];
@@ -54,7 +58,7 @@ EdgeClosure checkEdges(const ValidatedMesh& mesh, const GridSpec& grid) {
             edges.push_back({std::min(from, to), std::max(from, to), from < to});
         }
     }
-    std::sort(edges.begin(), edges.end());
+    tbb::parallel_sort(edges.begin(), edges.end());
     EdgeClosure out;
     for (std::size_t first = 0; first < edges.size();) {
         std::size_t last = first;
@@ -66,8 +70,12 @@ EdgeClosure checkEdges(const ValidatedMesh& mesh, const GridSpec& grid) {
         else if (uses > 2) ++out.nonmanifold_edges;
         else if (forward != backward) ++out.misoriented_edges;
         if (forward != backward) {
-            const float* a = view.positions + 3 * std::size_t(edges[first].low);
-            const float* b = view.positions + 3 * std::size_t(edges[first].high);
+            // Oriented the way the surplus uses run: the open edges then form closed loops
+            // (gradient_bound.cpp relies on that for its far-field bound).
+            const std::uint32_t from = forward > backward ? edges[first].low : edges[first].high;
+            const std::uint32_t to = forward > backward ? edges[first].high : edges[first].low;
+            const float* a = view.positions + 3 * std::size_t(from);
+            const float* b = view.positions + 3 * std::size_t(to);
             out.open_edges.push_back({grid.toVoxel(std::array<float, 3>{a[0], a[1], a[2]}),
                                       grid.toVoxel(std::array<float, 3>{b[0], b[1], b[2]}),
                                       forward > backward ? forward - backward : backward - forward});

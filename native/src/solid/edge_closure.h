@@ -16,8 +16,8 @@
 namespace hyvox::solid {
 
 struct OpenEdge {
-    std::array<double, 3> a, b;  // voxel space
-    std::uint32_t excess;        // |uses a->b - uses b->a|
+    std::array<double, 3> a, b;  // voxel space, in the direction most uses run (a -> b)
+    std::uint32_t excess;        // uses a->b - uses b->a (> 0)
 };
 
 struct EdgeClosure {

@@ -11,6 +11,10 @@ namespace {
 
 constexpr double kFourPi = 4.0 * M_PI;
 constexpr std::uint32_t kLeafTriangles = 8;
+// Pieces a large triangle is cut into are at most this many voxels long, unless that would
+// make more than kPieceBudget times the triangle count (plus a floor), when the length grows.
+constexpr double kPieceVoxels = 4.0;
+constexpr double kPieceBudget = 3.0;
 
 Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -29,11 +33,65 @@ double triangleWinding(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& 
     return 2.0 * std::atan2(det, denominator) / kFourPi;
 }
 
+namespace {
+
+// Cuts triangle (a, b, c) in halves at the middle of its longest edge until no edge is longer
+// than `longest`. The halves' solid angles add up to the whole's at every point.
+void cutLongEdges(const Vec3& a, const Vec3& b, const Vec3& c, double longest2, std::vector<std::array<Vec3, 3>>& out) {
+    const double ab = dot(sub(a, b), sub(a, b)), bc = dot(sub(b, c), sub(b, c)), ca = dot(sub(c, a), sub(c, a));
+    const double top = std::max({ab, bc, ca});
+    if (top <= longest2) {
+        out.push_back({a, b, c});
+        return;
+    }
+    auto mid = [](const Vec3& x, const Vec3& y) { return Vec3{0.5 * (x[0] + y[0]), 0.5 * (x[1] + y[1]), 0.5 * (x[2] + y[2])}; };
+    if (top == ab) {
+        const Vec3 m = mid(a, b);
+        cutLongEdges(a, m, c, longest2, out);
+        cutLongEdges(m, b, c, longest2, out);
+    } else if (top == bc) {
+        const Vec3 m = mid(b, c);
+        cutLongEdges(a, b, m, longest2, out);
+        cutLongEdges(a, m, c, longest2, out);
+    } else {
+        const Vec3 m = mid(c, a);
+        cutLongEdges(a, b, m, longest2, out);
+        cutLongEdges(m, b, c, longest2, out);
+    }
+}
+
+// How many pieces cutLongEdges makes of a triangle with these squared edge lengths, about.
+double piecesAbout(double longest_edge2, double limit2) {
+    return longest_edge2 <= limit2 ? 1.0 : 2.0 * longest_edge2 / limit2;
+}
+
+}  // namespace
+
 FastWinding::FastWinding(const ValidatedMesh& mesh, const GridSpec& grid, double beta) : beta_(beta) {
-    triangles_.reserve(mesh.usable.size());
-    for (const std::uint32_t t : mesh.usable)
-        triangles_.push_back({grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)),
-                              grid.toVoxel(mesh.vertex(t, 2))});
+    // Large triangles are cut into pieces of a few voxels: a cluster's radius then follows the
+    // pieces near it rather than the one large triangle the median split put among small ones,
+    // which would open the cluster, and all its ancestors, for every point near the large one.
+    std::vector<std::array<Vec3, 3>> whole;
+    whole.reserve(mesh.usable.size());
+    std::vector<double> longest2;
+    longest2.reserve(mesh.usable.size());
+    for (const std::uint32_t t : mesh.usable) {
+        const std::array<Vec3, 3> tri{grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)),
+                                      grid.toVoxel(mesh.vertex(t, 2))};
+        whole.push_back(tri);
+        double top = 0;
+        for (int e = 0; e < 3; ++e) top = std::max(top, dot(sub(tri[e], tri[(e + 1) % 3]), sub(tri[e], tri[(e + 1) % 3])));
+        longest2.push_back(top);
+    }
+    double limit = kPieceVoxels;
+    const double budget = kPieceBudget * double(whole.size()) + 100000.0;
+    for (;; limit *= 2) {
+        double pieces = 0;
+        for (const double l2 : longest2) pieces += piecesAbout(l2, limit * limit);
+        if (pieces <= budget) break;
+    }
+    triangles_.reserve(whole.size());
+    for (const auto& [a, b, c] : whole) cutLongEdges(a, b, c, limit * limit, triangles_);
     nodes_.reserve(2 * triangles_.size() / kLeafTriangles + 2);
     build(0, std::uint32_t(triangles_.size()));
 }

@@ -14,6 +14,7 @@
 #include "solid/fast_winding.h"
 #include "solid/gradient_bound.h"
 #include "solid/ray_crossings.h"
+#include "solid/smooth_winding.h"
 
 namespace hyvox::solid {
 namespace {
@@ -45,6 +46,7 @@ struct InsideField {
     const RayCrossings* rays = nullptr;
     bool parity = false;  // rays: their parity (else their signed sum, the exact winding number)
     const GradientBound* bound = nullptr;
+    const SmoothWinding* smooth = nullptr;  // winding numbers of an open mesh, brick by brick
 
     double value(int i, int j, int k) const {
         if (winding) return winding->at({i + 0.5, j + 0.5, k + 0.5});
@@ -74,6 +76,7 @@ struct Output {
     std::vector<SparseGrid::Leaf> leaves;
     std::vector<SparseGrid::TileRun> runs;
     std::uint64_t uniform_regions = 0, component_decisions = 0, point_evaluations = 0;
+    SmoothWinding::Counters smooth;
 };
 
 class InsideFill {
@@ -242,6 +245,8 @@ private:
     }
 
     void decideFreeBrick(const Int3& b) {
+        static const std::uint64_t kNone[8] = {};
+        if (field_.smooth) return decideSmoothly(b, kNone);
         Output& out = outputs_.local();
         SparseGrid::Leaf leaf{};
         leaf.brick = bricks_.index(b[0], b[1], b[2]);
@@ -255,7 +260,24 @@ private:
 
     // One brick voxel by voxel: each 6-connected part of its voxels outside the surface is
     // decided by one test when the bound over the part's longest path allows, else per voxel.
+    // A brick of an open mesh by the smooth part of its winding number (solid/smooth_winding.h).
+    void decideSmoothly(const Int3& b, const std::uint64_t surface[8]) {
+        Output& out = outputs_.local();
+        std::uint64_t wanted[8];
+        gridMask(b, wanted);
+        for (int x = 0; x < 8; ++x) wanted[x] &= ~surface[x];
+        SparseGrid::Leaf leaf{};
+        leaf.brick = bricks_.index(b[0], b[1], b[2]);
+        Int3 lo, hi;
+        brickVoxels(b, lo, hi);
+        field_.smooth->decideBrick(lo, hi, wanted, leaf.words, out.smooth);
+        std::uint64_t any = 0;
+        for (std::uint64_t w : leaf.words) any |= w;
+        if (any) out.leaves.push_back(leaf);
+    }
+
     void decideBrick(const Int3& b, const std::uint64_t surface[8]) {
+        if (field_.smooth) return decideSmoothly(b, surface);
         Output& out = outputs_.local();
         std::uint64_t open[8];
         gridMask(b, open);
@@ -378,11 +400,12 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
     const GradientBound bound(closure.open_edges);
     std::unique_ptr<FastWinding> winding;
     std::unique_ptr<RayCrossings> rays;
-    if (by_rays)
-        rays = std::make_unique<RayCrossings>(mesh, grid);
-    else
-        winding = std::make_unique<FastWinding>(mesh, grid, options.solid.winding_beta);
-    const InsideField field{winding.get(), rays.get(), rule == InsideRule::Parity, &bound};
+    std::unique_ptr<SmoothWinding> smooth;
+    if (!by_rays) winding = std::make_unique<FastWinding>(mesh, grid, options.solid.winding_beta);
+    // Rays for parity and closed meshes; for the winding numbers of an open mesh, their integer part.
+    if (by_rays || !bound.empty()) rays = std::make_unique<RayCrossings>(mesh, grid);
+    if (winding && rays) smooth = std::make_unique<SmoothWinding>(*winding, *rays, bound);
+    const InsideField field{winding.get(), winding ? nullptr : rays.get(), rule == InsideRule::Parity, &bound, smooth.get()};
 
     // The surface's bricks, tiles included (every voxel of a tile is surface).
     static const std::uint64_t kAllSet[8] = {~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull};
@@ -403,7 +426,8 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
         for (const SparseGrid::TileRun& run : out.runs) inside.addTileRun(run.begin, run.end);
         stats.uniform_regions += out.uniform_regions;
         stats.component_decisions += out.component_decisions;
-        stats.point_evaluations += out.point_evaluations;
+        stats.point_evaluations += out.point_evaluations + out.smooth.point_evaluations;
+        stats.interpolated_voxels += out.smooth.interpolated_voxels;
         out = Output{};
     }
     inside.finish();

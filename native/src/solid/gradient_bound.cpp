@@ -10,6 +10,7 @@ namespace hyvox::solid {
 namespace {
 
 constexpr std::uint32_t kLeafEdges = 8;
+constexpr double kFarRadii = 2.0;  // a cluster this many radii away counts as a whole
 
 double boxDistance2(const Box& a, const Box& b) {
     double d2 = 0;
@@ -26,10 +27,11 @@ Box unite(const Box& a, const Box& b) {
     return out;
 }
 
-// Whether the box reaches the region above an edge whose own box is `edge`.
-bool reachesShadow(const Box& box, const Box& edge) {
+// Whether the box reaches the region above (`upward`: below) an edge whose own box is `edge`,
+// where rays down (up) pass the edge.
+bool reachesShadow(const Box& box, const Box& edge, bool upward) {
     return box.lo[0] <= edge.hi[0] && box.hi[0] >= edge.lo[0] && box.lo[1] <= edge.hi[1] && box.hi[1] >= edge.lo[1] &&
-           box.hi[2] >= edge.lo[2];
+           (upward ? box.lo[2] <= edge.hi[2] : box.hi[2] >= edge.lo[2]);
 }
 
 }  // namespace
@@ -44,7 +46,7 @@ GradientBound::GradientBound(const std::vector<OpenEdge>& edges) {
             box.hi[k] = std::max(e.a[k], e.b[k]);
             length2 += (e.a[k] - e.b[k]) * (e.a[k] - e.b[k]);
         }
-        edges_.push_back({box, double(e.excess) * std::sqrt(length2)});
+        edges_.push_back({box, double(e.excess) * std::sqrt(length2), e.a, e.b, e.excess});
     }
     if (!edges_.empty()) build(0, std::uint32_t(edges_.size()));
 }
@@ -59,7 +61,15 @@ std::int32_t GradientBound::build(std::uint32_t first, std::uint32_t count) {
     for (std::uint32_t e = first; e < first + count; ++e) {
         node.box = unite(node.box, edges_[e].box);
         node.weight += edges_[e].weight;
+        for (int k = 0; k < 3; ++k) node.net[k] += double(edges_[e].excess) * (edges_[e].b[k] - edges_[e].a[k]);
     }
+    for (int k = 0; k < 3; ++k) node.centre[k] = 0.5 * (node.box.lo[k] + node.box.hi[k]);
+    for (std::uint32_t e = first; e < first + count; ++e)
+        for (const auto* end : {&edges_[e].a, &edges_[e].b}) {
+            double r2 = 0;
+            for (int k = 0; k < 3; ++k) r2 += ((*end)[k] - node.centre[k]) * ((*end)[k] - node.centre[k]);
+            node.radius = std::max(node.radius, std::sqrt(r2));
+        }
     if (count > kLeafEdges) {
         const std::uint32_t half = splitAtMedian(edges_, first, count, node.box.lo, node.box.hi, [](const Edge& e, int axis) {
             return e.box.lo[axis] + e.box.hi[axis];  // twice the centre
@@ -80,11 +90,20 @@ double GradientBound::windingSlope(const Box& box, double limit) const {
     stack[top++] = 0;
     while (top > 0) {
         const Node& node = nodes_[std::size_t(stack[--top])];
-        const double d2 = boxDistance2(box, node.box);
-        double size2 = 0;
-        for (int k = 0; k < 3; ++k) size2 += (node.box.hi[k] - node.box.lo[k]) * (node.box.hi[k] - node.box.lo[k]);
-        if (d2 > 0 && d2 >= 4 * size2) {
-            sum += node.weight / d2;  // far enough: the whole cluster at the box's distance
+        // From the box to the cluster's centre: at least d for every point of the box.
+        double d2 = 0;
+        for (int k = 0; k < 3; ++k) {
+            const double gap = std::max({0.0, box.lo[k] - node.centre[k], node.centre[k] - box.hi[k]});
+            d2 += gap * gap;
+        }
+        const double d = std::sqrt(d2);
+        if (d >= kFarRadii * node.radius) {
+            // Far: the dipole bound (see the header), or the edges at the nearest distance.
+            const double net2 = node.net[0] * node.net[0] + node.net[1] * node.net[1] + node.net[2] * node.net[2];
+            const double gap = d - node.radius;
+            const double dipole = std::sqrt(net2) / d2 + 2.0 * node.weight * node.radius / (gap * gap * gap);
+            const double box_d2 = boxDistance2(box, node.box);
+            sum += box_d2 > 0 ? std::min(dipole, node.weight / box_d2) : dipole;
         } else if (node.left < 0) {
             for (std::uint32_t e = node.first; e < node.first + node.count; ++e) {
                 const double de2 = boxDistance2(box, edges_[e].box);
@@ -107,16 +126,36 @@ bool GradientBound::parityMayChange(const Box& box) const {
     stack[top++] = 0;
     while (top > 0) {
         const Node& node = nodes_[std::size_t(stack[--top])];
-        if (!reachesShadow(box, node.box)) continue;
+        if (!reachesShadow(box, node.box, false)) continue;
         if (node.left >= 0) {
             stack[top++] = node.left;
             stack[top++] = node.right;
             continue;
         }
         for (std::uint32_t e = node.first; e < node.first + node.count; ++e)
-            if (reachesShadow(box, edges_[e].box)) return true;
+            if (reachesShadow(box, edges_[e].box, false)) return true;
     }
     return false;
+}
+
+void GradientBound::sheetsMeeting(const Box& box, bool upward, std::vector<Sheet>& out) const {
+    out.clear();
+    if (nodes_.empty()) return;
+    auto wanted = [&](const Box& edge) { return reachesShadow(box, edge, upward); };
+    std::int32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = nodes_[std::size_t(stack[--top])];
+        if (!wanted(node.box)) continue;
+        if (node.left >= 0) {
+            stack[top++] = node.left;
+            stack[top++] = node.right;
+            continue;
+        }
+        for (std::uint32_t e = node.first; e < node.first + node.count; ++e)
+            if (wanted(edges_[e].box)) out.push_back({edges_[e].a, edges_[e].b, double(edges_[e].excess)});
+    }
 }
 
 }  // namespace hyvox::solid

@@ -105,11 +105,24 @@ RayCrossings::RayCrossings(const ValidatedMesh& mesh, const GridSpec& grid) {
 }
 
 int RayCrossings::at(int i, int j, int k) const {
+    const double pz = k + 0.5;
+    int crossings = 0;
+    forEachCrossing(i, j, [&](double z, int sign) {
+        if (z < pz) crossings += sign;
+    });
+    return crossings;
+}
+
+void RayCrossings::column(int i, int j, std::vector<Crossing>& out) const {
+    out.clear();
+    forEachCrossing(i, j, [&](double z, int sign) { out.push_back({z, sign}); });
+}
+
+template <typename Visit>
+void RayCrossings::forEachCrossing(int i, int j, Visit visit) const {
     const std::int64_t px = (std::int64_t(2 * i + 1)) << (kFractionBits - 1);
     const std::int64_t py = (std::int64_t(2 * j + 1)) << (kFractionBits - 1);
-    const double pz = k + 0.5;
     const std::size_t column = std::size_t(i >> 3) * std::size_t(columns_[1]) + std::size_t(j >> 3);
-    int crossings = 0;
     for (std::uint32_t n = column_start_[column]; n < column_start_[column + 1]; ++n) {
         const Triangle& t = triangles_[column_triangles_[n]];
         if (px < t.x_lo || px > t.x_hi || py < t.y_lo || py > t.y_hi) continue;
@@ -123,10 +136,8 @@ int RayCrossings::at(int i, int j, int k) const {
         const double w1 = double(orient(t.x[2], t.y[2], t.x[0], t.y[0], px, py));
         const double w2 = double(orient(t.x[0], t.y[0], t.x[1], t.y[1], px, py));
         const double total = w0 + w1 + w2;
-        const double z = (w0 * t.z[0] + w1 * t.z[1] + w2 * t.z[2]) / total;
-        if (z < pz) crossings += t.sign;
+        visit((w0 * t.z[0] + w1 * t.z[1] + w2 * t.z[2]) / total, t.sign);
     }
-    return crossings;
 }
 
 }  // namespace hyvox::solid

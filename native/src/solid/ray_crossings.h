@@ -25,8 +25,18 @@ public:
     // The signed crossings of the ray from voxel (i,j,k)'s centre down (their count modulo 2 is
     // the parity). The centre must not lie on the surface.
     int at(int i, int j, int k) const;
+    // Every crossing of the whole line through voxel column (i, j)'s centres: its height and
+    // sign, in no order. The signed crossings below height z are the signs of those below z.
+    struct Crossing {
+        double z;
+        int sign;
+    };
+    void column(int i, int j, std::vector<Crossing>& out) const;
 
 private:
+    // Calls visit(height, sign) for each crossing of column (i, j)'s line.
+    template <typename Visit>
+    void forEachCrossing(int i, int j, Visit visit) const;
     struct Triangle {
         std::array<std::int64_t, 3> x, y;  // snapped xy of the corners
         std::array<double, 3> z;           // voxel-space z of the corners

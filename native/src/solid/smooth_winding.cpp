@@ -1,0 +1,213 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "solid/smooth_winding.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace hyvox::solid {
+namespace {
+
+// The middle of a box may differ from the corners' interpolation by this much for the box to
+// be interpolated (the fast winding numbers themselves are off by up to about 0.01).
+constexpr double kAgree = 0.02;
+// Voxels whose interpolated winding number lies closer to 0.5 than this are evaluated outright.
+constexpr double kMargin = 0.06;
+// The sheets of open edges this many box sides from a box are taken out of its smooth part.
+constexpr double kNearSides = 0.5;
+// Samples are taken this far above a voxel centre, off any horizontal face through the centre
+// (g is continuous: its value holds at the centre).
+constexpr double kLift = 0.00390625;
+
+using Int3 = std::array<std::int32_t, 3>;
+
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// The winding number at q of the sheet of edge a -> b: the strip (b, a, a + ∞z, b + ∞z), whose
+// solid angle is that of the spherical triangle of the directions to b, to a and up (`up` -1:
+// the strip down, (b, a, a - ∞z, b - ∞z), the sheet of +z rays).
+double sheetWinding(const GradientBound::Sheet& sheet, const Vec3& q, double up) {
+    Vec3 u{sheet.b[0] - q[0], sheet.b[1] - q[1], sheet.b[2] - q[2]};
+    Vec3 v{sheet.a[0] - q[0], sheet.a[1] - q[1], sheet.a[2] - q[2]};
+    const double lu = std::sqrt(dot(u, u)), lv = std::sqrt(dot(v, v));
+    for (int k = 0; k < 3; ++k) u[k] /= lu, v[k] /= lv;
+    const double det = up * (u[0] * v[1] - u[1] * v[0]);  // u · (v × up z)
+    const double denominator = 1.0 + dot(u, v) + up * (v[2] + u[2]);
+    return sheet.excess * std::atan2(det, denominator) / (2.0 * M_PI);
+}
+
+// Whether the column through q passes within kTie of the edge in xy, where the sheet's solid
+// angle and the rays' tie-breaking (snapped, symbolically perturbed) may disagree.
+constexpr double kTie = 1e-3;
+bool nearSheetEdge(const GradientBound::Sheet& sheet, const Vec3& q) {
+    const double dx = sheet.b[0] - sheet.a[0], dy = sheet.b[1] - sheet.a[1];
+    const double px = q[0] - sheet.a[0], py = q[1] - sheet.a[1];
+    const double length2 = dx * dx + dy * dy;
+    const double t = length2 > 0 ? std::clamp((px * dx + py * dy) / length2, 0.0, 1.0) : 0.0;
+    const double ex = px - t * dx, ey = py - t * dy;
+    return ex * ex + ey * ey < kTie * kTie;
+}
+
+// One brick's rays and samples.
+class Brick {
+public:
+    Brick(const FastWinding& winding, const RayCrossings& rays, SmoothWinding::Counters& counters)
+        : winding_(winding), rays_(rays), counters_(counters) {
+        std::fill(std::begin(samples_), std::end(samples_), NAN);
+    }
+
+    static int local(const Int3& p) { return ((p[0] & 7) << 6) | ((p[1] & 7) << 3) | (p[2] & 7); }
+
+    // w - c at voxel p's centre (sampled just above it).
+    double minusCrossings(const Int3& p) {
+        double& cached = samples_[local(p)];
+        if (std::isnan(cached)) {
+            const Column& column = columnOf(p);
+            double h = p[2] + 0.5 + kLift;
+            // Off every crossing by more than the rounding of its height.
+            for (bool moved = true; moved;) {
+                moved = false;
+                for (const auto& c : column.crossings)
+                    if (std::fabs(c.z - h) < 1e-6) h += kLift, moved = true;
+            }
+            ++counters_.point_evaluations;
+            cached = winding_.at({p[0] + 0.5, p[1] + 0.5, h}) - below(column, h);
+        }
+        return cached;
+    }
+    bool sampled(const Int3& p) const { return !std::isnan(samples_[local(p)]); }
+    int crossings(const Int3& p) { return below(columnOf(p), p[2] + 0.5); }
+    int columnCrossings(const Int3& p) {  // C: the signed crossings of the whole line
+        int sum = 0;
+        for (const auto& c : columnOf(p).crossings) sum += c.sign;
+        return sum;
+    }
+    double exactWinding(const Int3& p) {
+        ++counters_.point_evaluations;
+        return winding_.at({p[0] + 0.5, p[1] + 0.5, p[2] + 0.5});
+    }
+
+private:
+    struct Column {
+        bool filled = false;
+        std::vector<RayCrossings::Crossing> crossings;
+    };
+    static int below(const Column& column, double h) {
+        int count = 0;
+        for (const auto& c : column.crossings)
+            if (c.z < h) count += c.sign;
+        return count;
+    }
+    Column& columnOf(const Int3& p) {
+        Column& column = columns_[p[0] & 7][p[1] & 7];
+        if (!column.filled) {
+            rays_.column(p[0], p[1], column.crossings);
+            column.filled = true;
+        }
+        return column;
+    }
+
+    const FastWinding& winding_;
+    const RayCrossings& rays_;
+    SmoothWinding::Counters& counters_;
+    Column columns_[8][8];
+    double samples_[512];  // w - c; NaN: not sampled
+};
+
+}  // namespace
+
+void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std::array<std::int32_t, 3>& hi,
+                                const std::uint64_t wanted[8], std::uint64_t inside[8], Counters& counters) const {
+    Brick brick(winding_, rays_, counters);
+    std::uint64_t done[8] = {};
+    auto pending = [&](const Int3& p) {
+        const int n = Brick::local(p);
+        return ((wanted[n >> 6] & ~done[n >> 6]) >> (n & 63)) & 1;
+    };
+    auto decide = [&](const Int3& p, double w) {
+        const int n = Brick::local(p);
+        done[n >> 6] |= std::uint64_t(1) << (n & 63);
+        if (w >= 0.5) inside[n >> 6] |= std::uint64_t(1) << (n & 63);
+    };
+    auto forEach = [](const Int3& a, const Int3& b, auto&& f) {
+        for (int i = a[0]; i <= b[0]; ++i)
+            for (int j = a[1]; j <= b[1]; ++j)
+                for (int k = a[2]; k <= b[2]; ++k) f(Int3{i, j, k});
+    };
+    std::vector<GradientBound::Sheet> sheets, sheets_up;
+
+    // Boxes of voxels [a, b] (corners included), halved where interpolation does not hold.
+    auto visit = [&](auto&& self, const Int3& a, const Int3& b) -> void {
+        bool any = false;
+        forEach(a, b, [&](const Int3& p) { any = any || pending(p); });
+        if (!any) return;
+        if (b[0] - a[0] <= 1 && b[1] - a[1] <= 1 && b[2] - a[2] <= 1) {
+            // Every voxel is a corner: each evaluated.
+            forEach(a, b, [&](const Int3& p) {
+                if (pending(p)) decide(p, brick.crossings(p) + brick.minusCrossings(p));
+            });
+            return;
+        }
+        // The sheets meeting the box, and those of the edges near it: without them g would
+        // vary fast near the box's sides (any set of sheets that holds those leaves g smooth).
+        int side = 0;
+        for (int d = 0; d < 3; ++d) side = std::max(side, b[d] - a[d] + 1);
+        // Rays down or up, whichever has fewer sheets here: w - c_down = -Σ sheets above edges
+        // and w - c_down + C = -Σ sheets below them (the rays up see C - c_down crossings, of
+        // the other sign).
+        const double reach = kNearSides * side;
+        const Box near{{a[0] - reach, a[1] - reach, a[2] - reach}, {b[0] + 1.0 + reach, b[1] + 1.0 + reach, b[2] + 1.0 + reach}};
+        bound_.sheetsMeeting(near, false, sheets);
+        bound_.sheetsMeeting(near, true, sheets_up);
+        const bool upward = sheets_up.size() < sheets.size();
+        if (upward) std::swap(sheets, sheets_up);
+        const double up = upward ? -1.0 : 1.0;
+        auto shift = [&](const Int3& p) { return upward ? brick.columnCrossings(p) : 0; };
+        auto sheetSum = [&](const Int3& p) {
+            double sum = 0;
+            const Vec3 q{p[0] + 0.5, p[1] + 0.5, p[2] + 0.5};
+            for (const GradientBound::Sheet& s : sheets) {
+                if (nearSheetEdge(s, q)) return double(NAN);  // not interpolated: see nearSheetEdge
+                sum += sheetWinding(s, q, up);
+            }
+            return sum;
+        };
+        auto smooth = [&](const Int3& p) { return brick.minusCrossings(p) + shift(p) + sheetSum(p); };
+        double corner[8];
+        for (int c = 0; c < 8; ++c) corner[c] = smooth({c & 4 ? b[0] : a[0], c & 2 ? b[1] : a[1], c & 1 ? b[2] : a[2]});
+        auto interpolate = [&](const Int3& p) {
+            double t[3];
+            for (int d = 0; d < 3; ++d) t[d] = b[d] > a[d] ? double(p[d] - a[d]) / (b[d] - a[d]) : 0.0;
+            double value = 0;
+            for (int c = 0; c < 8; ++c)
+                value += corner[c] * (c & 4 ? t[0] : 1 - t[0]) * (c & 2 ? t[1] : 1 - t[1]) * (c & 1 ? t[2] : 1 - t[2]);
+            return value;
+        };
+        const Int3 m{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2};
+        if (std::fabs(smooth(m) - interpolate(m)) <= kAgree) {  // false for NaN
+            forEach(a, b, [&](const Int3& p) {
+                if (!pending(p)) return;
+                if (brick.sampled(p)) return decide(p, brick.crossings(p) + brick.minusCrossings(p));
+                const double w = brick.crossings(p) - shift(p) + interpolate(p) - sheetSum(p);
+                if (!(std::fabs(w - 0.5) >= kMargin)) return decide(p, brick.exactWinding(p));  // NaN too
+                ++counters.interpolated_voxels;
+                decide(p, w);
+            });
+            return;
+        }
+        // Halve every side of two or more voxels; the halves share the middle plane.
+        for (int part = 0; part < 8; ++part) {
+            Int3 ca = a, cb = b;
+            bool skip = false;
+            for (int d = 0; d < 3; ++d) {
+                const bool upper = (part >> d) & 1;
+                if (b[d] - a[d] < 2) skip = skip || upper;
+                else (upper ? ca : cb)[d] = m[d];
+            }
+            if (!skip) self(self, ca, cb);
+        }
+    };
+    visit(visit, lo, {hi[0] - 1, hi[1] - 1, hi[2] - 1});
+}
+
+}  // namespace hyvox::solid
