@@ -3,9 +3,11 @@
 // with TBB. Bits are set with relaxed atomic ORs on whole words (no locks). A triangle
 // covering many columns of its dominant plane is split by rows into tasks of its own, so
 // one big wall cannot leave a core idle. Small triangles take shortcuts that decide the
-// same voxels (triangle_setup.h, rasterize_small.h).
+// same voxels (vertex_cells.h, triangle_setup.h, rasterize_small.h).
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <memory>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -13,10 +15,12 @@
 
 #include "core/backends.h"
 #include "core/stopwatch.h"
+#include "hyvox/zero_page_allocator.h"
 #include "cpu/mark_voxels.h"
 #include "cpu/rasterize_small.h"
 #include "cpu/rasterize_triangle.h"
 #include "cpu/triangle_setup.h"
+#include "cpu/vertex_cells.h"
 
 namespace hyvox {
 namespace {
@@ -25,6 +29,23 @@ namespace {
 constexpr long kSplitColumns = 64 * 64;
 constexpr int kRowsPerTask = 8;
 constexpr std::size_t kTrianglesPerChunk = 1024;
+
+// Every vertex's cells (vertex_cells.h), computed once each in parallel, or null when the
+// tile's triangles are too few for that to pay (a closed mesh has about two triangles per
+// vertex; a tile of a large grid holds a few of the mesh's triangles).
+std::unique_ptr<cpu::VertexCell[]> vertexCells(const ValidatedMesh& mesh, const GridSpec& spec) {
+    const std::size_t n = mesh.view.vertex_count;
+    if (2 * n > 3 * mesh.usable.size()) return nullptr;
+    std::unique_ptr<cpu::VertexCell[]> cells(new cpu::VertexCell[n]);
+    adviseHugePages(cells.get(), n * sizeof(cells[0]));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t v = r.begin(); v != r.end(); ++v) {
+            const float* p = mesh.view.positions + 3 * v;
+            cells[v] = cpu::vertexCell(spec.toVoxel(std::array<float, 3>{p[0], p[1], p[2]}));
+        }
+    });
+    return cells;
+}
 
 void rasterizeRowsAnyAxis(const cpu::TriangleSetup& t, int row_begin, int row_end, cpu::WordMarker& marker) {
     switch (t.w) {
@@ -51,13 +72,29 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
     tbb::task_arena arena(threads);
     arena.execute([&] {
+        const std::unique_ptr<cpu::VertexCell[]> cells = vertexCells(mesh, spec);
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, usable.size(), kTrianglesPerChunk),
             [&](const tbb::blocked_range<std::size_t>& chunk) {
                 throwIfInterrupted(job.interrupter,
                                    int(100 * done.load(std::memory_order_relaxed) / std::max<std::size_t>(usable.size(), 1)));
                 cpu::WordMarker marker(grid, offset);
+                auto markAll = [&](const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+                    for (int i = lo[0]; i <= hi[0]; ++i)
+                        for (int j = lo[1]; j <= hi[1]; ++j)
+                            for (int k = lo[2]; k <= hi[2]; ++k) marker.mark(i, j, k);
+                };
                 for (std::size_t n = chunk.begin(); n != chunk.end(); ++n) {
+                    if (cells) {
+                        // The integer first look decides what setupTriangle would say first.
+                        const std::uint32_t* idx = mesh.view.triangles + 3 * std::size_t(usable[n]);
+                        const cpu::CellRange range = cpu::cellRange(cells[idx[0]], cells[idx[1]], cells[idx[2]], offset, last);
+                        if (range.outside) continue;
+                        if (mode != Mode::Thin && range.single_axes >= 2) {
+                            markAll(range.lo, range.hi);
+                            continue;
+                        }
+                    }
                     const std::array<std::array<double, 3>, 3> corners{spec.toVoxel(mesh.vertex(usable[n], 0)),
                                                                        spec.toVoxel(mesh.vertex(usable[n], 1)),
                                                                        spec.toVoxel(mesh.vertex(usable[n], 2))};
@@ -65,9 +102,7 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                     const cpu::SetupKind kind = cpu::setupTriangle(corners, mode, offset, last, t);
                     if (kind == cpu::SetupKind::Outside) continue;
                     if (kind == cpu::SetupKind::AllCandidates) {
-                        for (int i = t.lo[0]; i <= t.hi[0]; ++i)
-                            for (int j = t.lo[1]; j <= t.hi[1]; ++j)
-                                for (int k = t.lo[2]; k <= t.hi[2]; ++k) marker.mark(i, j, k);
+                        markAll(t.lo, t.hi);
                         continue;
                     }
                     if (cpu::fitsSmallPath(t)) {
