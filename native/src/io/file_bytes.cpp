@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "hyvox/zero_page_allocator.h"
 #include "io/mesh_file_error.h"
 
 namespace hyvox::io {
@@ -36,10 +35,7 @@ Fd openRegular(const std::string& path, struct stat& st) {
 }
 
 std::vector<char> readUpTo(const Fd& file, const std::string& path, std::size_t n) {
-    std::vector<char> bytes;
-    bytes.reserve(n);
-    adviseHugePages(bytes.data(), n);  // before the pages are first touched
-    bytes.resize(n);
+    std::vector<char> bytes(n);
     std::size_t got = 0;
     while (got < n) {
         const ssize_t r = ::read(file.fd, bytes.data() + got, n - got);
