@@ -80,14 +80,21 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                 throwIfInterrupted(job.interrupter,
                                    int(100 * done.load(std::memory_order_relaxed) / std::max<std::size_t>(usable.size(), 1)));
                 cpu::WordMarker marker(grid, offset);
+                auto corners = [&](std::uint32_t triangle) {
+                    return std::array<std::array<double, 3>, 3>{spec.toVoxel(mesh.vertex(triangle, 0)),
+                                                                spec.toVoxel(mesh.vertex(triangle, 1)),
+                                                                spec.toVoxel(mesh.vertex(triangle, 2))};
+                };
                 auto markAll = [&](const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
                     for (int i = lo[0]; i <= hi[0]; ++i)
                         for (int j = lo[1]; j <= hi[1]; ++j)
                             for (int k = lo[2]; k <= hi[2]; ++k) marker.mark(i, j, k);
                 };
                 for (std::size_t n = chunk.begin(); n != chunk.end(); ++n) {
+                    cpu::TriangleSetup t;
+                    cpu::SetupKind kind;
                     if (cells) {
-                        // The integer first look decides what setupTriangle would say first.
+                        // The integer first look finds the candidate range setupTriangle would.
                         // Its loads are the loop's cost (vertices are spread over megabytes):
                         // those of a triangle a few ahead are requested now.
                         if (n + kPrefetchAhead < chunk.end()) {
@@ -95,18 +102,16 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                             for (int c = 0; c < 3; ++c) __builtin_prefetch(&cells[ahead[c]]);
                         }
                         const std::uint32_t* idx = mesh.view.triangles + 3 * std::size_t(usable[n]);
-                        const cpu::CellRange range = cpu::cellRange(cells[idx[0]], cells[idx[1]], cells[idx[2]], offset, last);
-                        if (range.outside) continue;
-                        if (mode != Mode::Thin && range.single_axes >= 2) {
+                        const cpu::CandidateRange range = cpu::cellRange(cells[idx[0]], cells[idx[1]], cells[idx[2]], offset, last);
+                        if (range.outside()) continue;
+                        if (mode != Mode::Thin && range.singleAxes() >= 2) {
                             markAll(range.lo, range.hi);
                             continue;
                         }
+                        kind = cpu::setupTriangle(corners(usable[n]), mode, range, t);
+                    } else {
+                        kind = cpu::setupTriangle(corners(usable[n]), mode, offset, last, t);
                     }
-                    const std::array<std::array<double, 3>, 3> corners{spec.toVoxel(mesh.vertex(usable[n], 0)),
-                                                                       spec.toVoxel(mesh.vertex(usable[n], 1)),
-                                                                       spec.toVoxel(mesh.vertex(usable[n], 2))};
-                    cpu::TriangleSetup t;
-                    const cpu::SetupKind kind = cpu::setupTriangle(corners, mode, offset, last, t);
                     if (kind == cpu::SetupKind::Outside) continue;
                     if (kind == cpu::SetupKind::AllCandidates) {
                         markAll(t.lo, t.hi);

@@ -31,17 +31,10 @@ inline VertexCell vertexCell(const std::array<double, 3>& voxel) {
     return cell;
 }
 
-// The triangle's candidate voxels clipped to clip_lo..clip_hi (unswizzled, inclusive), and
-// how many axes its extent lies within one voxel's range along (unclipped).
-struct CellRange {
-    std::array<int, 3> lo, hi;
-    int single_axes = 0;
-    bool outside = false;
-};
-
-inline CellRange cellRange(const VertexCell& a, const VertexCell& b, const VertexCell& c,
-                           const std::array<std::int32_t, 3>& clip_lo, const std::array<std::int32_t, 3>& clip_hi) {
-    CellRange r;
+// The triangle's candidate range (triangle_setup.h), from its corners' cells.
+inline CandidateRange cellRange(const VertexCell& a, const VertexCell& b, const VertexCell& c,
+                                const std::array<std::int32_t, 3>& clip_lo, const std::array<std::int32_t, 3>& clip_hi) {
+    CandidateRange r;
     for (int axis = 0; axis < 3; ++axis) {
         const int first = std::min(std::min(a.first[axis], b.first[axis]), c.first[axis]);
         const int last = std::max(std::max(a.first[axis] + int(a.on_plane >> axis & 1u),
@@ -49,8 +42,7 @@ inline CellRange cellRange(const VertexCell& a, const VertexCell& b, const Verte
                                   c.first[axis] + int(c.on_plane >> axis & 1u));
         r.lo[axis] = std::max(clip_lo[axis], first);
         r.hi[axis] = std::min(clip_hi[axis], last);
-        r.outside |= r.lo[axis] > r.hi[axis];
-        r.single_axes += first == last;
+        r.single[axis] = first == last;
     }
     return r;
 }
