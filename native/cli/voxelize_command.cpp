@@ -58,8 +58,11 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
         view.material_textures = material_textures.of_material.data();
     }
     // The output is always a .vdb: a voxel size it cannot hold is refused before the work.
-    checkVdbVoxelSize(makeGrid(validate(view).bounds, args.options.grid).voxel_size);
-    VoxelizeResult result = voxelize(view, args.options, &interrupter);
+    start = std::chrono::steady_clock::now();
+    const ValidatedMesh validated = validate(view, args.options, &interrupter);
+    const double validate_ms = msSince(start);
+    checkVdbVoxelSize(makeGrid(validated.bounds, args.options.grid).voxel_size);
+    VoxelizeResult result = voxelize(validated, args.options, &interrupter, validate_ms);
     result.stats.timings_ms.insert(result.stats.timings_ms.begin(), {"read_mesh", read_ms});
 
     if (stop.load()) throw Cancelled();

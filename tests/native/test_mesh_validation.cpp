@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
+#include <string>
 #include <vector>
 
 #include "hyvox/errors.h"
@@ -66,6 +68,88 @@ TEST(MeshValidation, AllDegenerateIsAClearError) {
     const std::vector<float> p{0, 0, 0, 1, 1, 1, 2, 2, 2};
     const std::vector<std::uint32_t> t{0, 1, 2};
     EXPECT_THROW(hyvox::validate(view(p, t)), hyvox::InvalidInput);
+}
+
+// validate() checks chunks of 65,536 vertices / triangles in parallel. A mesh of several
+// chunks with degenerate triangles scattered over them (runs of them, whole degenerate
+// chunks) against a plain serial pass written here: the same usable list, count and bounds.
+struct ScatteredMesh {
+    std::vector<float> positions;
+    std::vector<std::uint32_t> triangles;
+};
+
+ScatteredMesh scatteredMesh(std::size_t triangles, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> coord(-50.0f, 50.0f);
+    ScatteredMesh m;
+    const std::size_t vertices = triangles / 2 + 3;
+    for (std::size_t i = 0; i < 3 * vertices; ++i) m.positions.push_back(coord(rng));
+    std::uniform_int_distribution<std::uint32_t> vertex(0, std::uint32_t(vertices - 1));
+    for (std::size_t t = 0; t < triangles; ++t) {
+        const std::uint32_t a = vertex(rng), b = vertex(rng), c = vertex(rng);
+        // Degenerate: all of chunk 1 (65,536..131,071), every 7th triangle, a run in chunk 3.
+        const bool degenerate = (t >= 65536 && t < 131072) || t % 7 == 3 || (t >= 200000 && t < 200100);
+        if (degenerate)
+            m.triangles.insert(m.triangles.end(), {a, a, c});
+        else
+            m.triangles.insert(m.triangles.end(), {a, b, c});
+    }
+    return m;
+}
+
+TEST(MeshValidation, ChunkedPassEqualsASerialPass) {
+    const ScatteredMesh m = scatteredMesh(300000, 5);
+    const auto mesh = hyvox::validate(view(m.positions, m.triangles));
+    std::vector<std::uint32_t> usable;
+    double lo[3] = {1e30, 1e30, 1e30}, hi[3] = {-1e30, -1e30, -1e30};
+    for (std::size_t t = 0; t < m.triangles.size() / 3; ++t) {
+        const std::uint32_t* idx = &m.triangles[3 * t];
+        const float* a = &m.positions[3 * idx[0]];
+        const float* b = &m.positions[3 * idx[1]];
+        const float* c = &m.positions[3 * idx[2]];
+        const double e0[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
+        const double e1[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
+        const bool zero = e0[1] * e1[2] - e0[2] * e1[1] == 0 && e0[2] * e1[0] - e0[0] * e1[2] == 0 &&
+                          e0[0] * e1[1] - e0[1] * e1[0] == 0;
+        if (idx[0] == idx[1] || idx[1] == idx[2] || idx[0] == idx[2] || zero) continue;
+        usable.push_back(std::uint32_t(t));
+        for (const float* p : {a, b, c})
+            for (int axis = 0; axis < 3; ++axis) {
+                lo[axis] = std::min(lo[axis], double(p[axis]));
+                hi[axis] = std::max(hi[axis], double(p[axis]));
+            }
+    }
+    EXPECT_EQ(mesh.usable, usable);
+    EXPECT_EQ(mesh.degenerate_count, m.triangles.size() / 3 - usable.size());
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_EQ(mesh.bounds.min[axis], lo[axis]);
+        EXPECT_EQ(mesh.bounds.max[axis], hi[axis]);
+    }
+}
+
+// Problems in several chunks: the message names the first, as a serial pass would.
+TEST(MeshValidation, TheFirstProblemIsReportedWhateverTheChunk) {
+    ScatteredMesh m = scatteredMesh(300000, 9);
+    const auto vertices = std::uint32_t(m.positions.size() / 3);
+    m.triangles[3 * 250000 + 1] = vertices + 5;
+    m.triangles[3 * 140000 + 2] = vertices;
+    m.triangles[3 * 140001] = vertices + 1;
+    try {
+        hyvox::validate(view(m.positions, m.triangles));
+        FAIL() << "expected InvalidInput";
+    } catch (const hyvox::InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("triangle 140000 refers to vertex " + std::to_string(vertices)),
+                  std::string::npos)
+            << e.what();
+    }
+    m.positions[3 * 140000 + 1] = std::numeric_limits<float>::quiet_NaN();
+    m.positions[3 * 70000] = std::numeric_limits<float>::infinity();
+    try {
+        hyvox::validate(view(m.positions, m.triangles));
+        FAIL() << "expected InvalidInput";
+    } catch (const hyvox::InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("vertex 70000 has a non-finite"), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace

@@ -13,4 +13,11 @@ namespace hyvox {
 VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options,
                         Interrupter* interrupter = nullptr);
 
+// The same for a mesh validate() already checked (the CLI lays out the grid first, to
+// refuse a voxel size its output cannot hold before the work); `validate_ms` is reported as
+// the validate stage. validate() below runs in an arena of options.threads.
+VoxelizeResult voxelize(const ValidatedMesh& validated, const VoxelizeOptions& options, Interrupter* interrupter,
+                        double validate_ms);
+ValidatedMesh validate(const MeshView& mesh, const VoxelizeOptions& options, Interrupter* interrupter);
+
 }  // namespace hyvox

@@ -16,6 +16,11 @@ void* allocateZeroPages(std::size_t bytes);
 void freeZeroPages(void* p, std::size_t bytes);
 }  // namespace detail
 
+// Asks for huge pages under [p, p + bytes) (the 2 MiB-aligned part of it) before its pages are
+// first written: each 4 KiB first touch is a page fault, and arrays of millions of triangles
+// spend more time in those faults than in filling them. A hint: without THP it does nothing.
+void adviseHugePages(void* p, std::size_t bytes) noexcept;
+
 template <typename T>
 struct ZeroPageAllocator {
     using value_type = T;

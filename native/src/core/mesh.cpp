@@ -1,12 +1,23 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// validate(): one pass over the vertices and one over the triangles, each cut into chunks
+// that TBB checks in parallel (in the caller's arena). A chunk stops at its first problem;
+// the problem of the lowest chunk is reported, so the message names the same first bad
+// vertex or triangle as a serial pass would.
 #include "hyvox/mesh.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <optional>
 #include <string>
 #include <tuple>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "hyvox/errors.h"
+#include "hyvox/zero_page_allocator.h"
 
 namespace hyvox {
 namespace {
@@ -22,6 +33,82 @@ bool isZeroArea(const float* a, const float* b, const float* c) {
     return n0 == 0.0 && n1 == 0.0 && n2 == 0.0;
 }
 
+constexpr std::size_t kChunk = kInterruptCheckTriangles;
+constexpr std::size_t kPrefetchAhead = 8;
+
+std::size_t chunkCount(std::size_t n) { return (n + kChunk - 1) / kChunk; }
+
+// The first problem each chunk found (empty: none); thrown for the lowest chunk.
+void throwFirstProblem(const std::vector<std::string>& problems) {
+    for (const std::string& problem : problems)
+        if (!problem.empty()) throw InvalidInput(problem);
+}
+
+void checkVerticesFinite(const MeshView& mesh) {
+    std::vector<std::string> problems(chunkCount(mesh.vertex_count));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, problems.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
+            const std::size_t end = std::min(mesh.vertex_count, (chunk + 1) * kChunk);
+            // All finite: a sum of finite products stays finite except on overflow, so the
+            // per-value test runs only on chunks where the cheap test fails.
+            bool all_finite = true;
+            for (std::size_t i = 3 * chunk * kChunk; i < 3 * end; ++i) all_finite &= std::isfinite(mesh.positions[i]);
+            if (all_finite) continue;
+            for (std::size_t v = chunk * kChunk; v < end; ++v)
+                for (int a = 0; a < 3; ++a)
+                    if (!std::isfinite(mesh.positions[3 * v + a])) {
+                        problems[chunk] = "vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or Inf)";
+                        break;
+                    }
+        }
+    });
+    throwFirstProblem(problems);
+}
+
+// One chunk of triangles: its usable indices written from `usable` on (at most one per
+// triangle), their bounds, and its degenerate count, or the first problem in it.
+struct TriangleChunk {
+    std::size_t usable_count = 0;
+    std::size_t degenerate_count = 0;
+    Bounds bounds;
+    std::string problem;
+};
+
+void checkTriangles(const MeshView& mesh, std::size_t begin, std::size_t end, std::uint32_t* usable, TriangleChunk& out) {
+    const double inf = std::numeric_limits<double>::infinity();
+    double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};
+    for (std::size_t t = begin; t < end; ++t) {
+        // Vertices are spread over megabytes: those of a triangle a few ahead are requested now.
+        if (t + kPrefetchAhead < end)
+            for (int c = 0; c < 3; ++c) {
+                const std::uint32_t ahead = mesh.triangles[3 * (t + kPrefetchAhead) + c];
+                if (ahead < mesh.vertex_count) __builtin_prefetch(mesh.positions + 3 * std::size_t(ahead));
+            }
+        const std::uint32_t* idx = mesh.triangles + 3 * t;
+        for (int c = 0; c < 3; ++c)
+            if (idx[c] >= mesh.vertex_count) {
+                out.problem = "triangle " + std::to_string(t) + " refers to vertex " + std::to_string(idx[c]) +
+                              ", but the mesh has only " + std::to_string(mesh.vertex_count) + " vertices";
+                return;
+            }
+        const float* a = mesh.positions + 3 * std::size_t(idx[0]);
+        const float* b = mesh.positions + 3 * std::size_t(idx[1]);
+        const float* c = mesh.positions + 3 * std::size_t(idx[2]);
+        if (idx[0] == idx[1] || idx[1] == idx[2] || idx[0] == idx[2] || isZeroArea(a, b, c)) {
+            ++out.degenerate_count;
+            continue;
+        }
+        usable[out.usable_count++] = std::uint32_t(t);
+        for (const float* p : {a, b, c})
+            for (int axis = 0; axis < 3; ++axis) {
+                lo[axis] = std::min(lo[axis], double(p[axis]));
+                hi[axis] = std::max(hi[axis], double(p[axis]));
+            }
+    }
+    out.bounds.min = {lo[0], lo[1], lo[2]};
+    out.bounds.max = {hi[0], hi[1], hi[2]};
+}
+
 }  // namespace
 
 ValidatedMesh validate(const MeshView& mesh, Interrupter* interrupter) {
@@ -32,11 +119,7 @@ ValidatedMesh validate(const MeshView& mesh, Interrupter* interrupter) {
     if (mesh.vertex_count > std::numeric_limits<std::uint32_t>::max())
         throw InvalidInput("too many vertices for 32-bit indices");
 
-    for (std::size_t v = 0; v < mesh.vertex_count; ++v)
-        for (int a = 0; a < 3; ++a)
-            if (!std::isfinite(mesh.positions[3 * v + a]))
-                throw InvalidInput("vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or Inf)");
-
+    checkVerticesFinite(mesh);
     for (const auto& [values, width, name] : {std::tuple{mesh.uvs, 2, "UV"}, std::tuple{mesh.normals, 3, "normal"}})
         if (values)
             for (std::size_t i = 0; i < mesh.vertex_count * width; ++i)
@@ -45,31 +128,40 @@ ValidatedMesh validate(const MeshView& mesh, Interrupter* interrupter) {
 
     ValidatedMesh out;
     out.view = mesh;
+    // Each chunk writes its usable indices at its own first triangle; the gaps left by
+    // degenerate triangles are closed after (no moves at all when none is degenerate).
     out.usable.reserve(mesh.triangle_count);
+    adviseHugePages(out.usable.data(), mesh.triangle_count * sizeof(std::uint32_t));
+    out.usable.resize(mesh.triangle_count);
+    std::vector<TriangleChunk> chunks(chunkCount(mesh.triangle_count));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
+            throwIfInterrupted(interrupter);
+            const std::size_t begin = chunk * kChunk;
+            checkTriangles(mesh, begin, std::min(mesh.triangle_count, begin + kChunk), out.usable.data() + begin,
+                           chunks[chunk]);
+        }
+    });
+    for (const TriangleChunk& chunk : chunks)
+        if (!chunk.problem.empty()) throw InvalidInput(chunk.problem);
+
     const double inf = std::numeric_limits<double>::infinity();
     out.bounds.min = {inf, inf, inf};
     out.bounds.max = {-inf, -inf, -inf};
-    for (std::size_t t = 0; t < mesh.triangle_count; ++t) {
-        if (t % kInterruptCheckTriangles == 0) throwIfInterrupted(interrupter);
-        const std::uint32_t* idx = mesh.triangles + 3 * t;
-        for (int c = 0; c < 3; ++c)
-            if (idx[c] >= mesh.vertex_count)
-                throw InvalidInput("triangle " + std::to_string(t) + " refers to vertex " + std::to_string(idx[c]) +
-                                   ", but the mesh has only " + std::to_string(mesh.vertex_count) + " vertices");
-        const float* a = mesh.positions + 3 * std::size_t(idx[0]);
-        const float* b = mesh.positions + 3 * std::size_t(idx[1]);
-        const float* c = mesh.positions + 3 * std::size_t(idx[2]);
-        if (idx[0] == idx[1] || idx[1] == idx[2] || idx[0] == idx[2] || isZeroArea(a, b, c)) {
-            ++out.degenerate_count;
-            continue;
+    std::size_t kept = 0;
+    for (std::size_t c = 0; c < chunks.size(); ++c) {
+        const TriangleChunk& chunk = chunks[c];
+        if (kept != c * kChunk && chunk.usable_count > 0)
+            std::memmove(out.usable.data() + kept, out.usable.data() + c * kChunk, chunk.usable_count * sizeof(std::uint32_t));
+        kept += chunk.usable_count;
+        out.degenerate_count += chunk.degenerate_count;
+        if (chunk.usable_count == 0) continue;
+        for (int axis = 0; axis < 3; ++axis) {
+            out.bounds.min[axis] = std::min(out.bounds.min[axis], chunk.bounds.min[axis]);
+            out.bounds.max[axis] = std::max(out.bounds.max[axis], chunk.bounds.max[axis]);
         }
-        out.usable.push_back(std::uint32_t(t));
-        for (const float* p : {a, b, c})
-            for (int axis = 0; axis < 3; ++axis) {
-                if (p[axis] < out.bounds.min[axis]) out.bounds.min[axis] = p[axis];
-                if (p[axis] > out.bounds.max[axis]) out.bounds.max[axis] = p[axis];
-            }
     }
+    out.usable.resize(kept);
     if (out.usable.empty())
         throw InvalidInput("all " + std::to_string(mesh.triangle_count) +
                            " triangles are degenerate (zero area); nothing to voxelize");

@@ -3,9 +3,11 @@
 // with TBB. Bits are set with relaxed atomic ORs on whole words (no locks). A triangle
 // covering many columns of its dominant plane is split by rows into tasks of its own, so
 // one big wall cannot leave a core idle. Small triangles take shortcuts that decide the
-// same voxels (triangle_setup.h, rasterize_small.h).
+// same voxels (vertex_cells.h, triangle_setup.h, rasterize_small.h).
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <memory>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -13,11 +15,13 @@
 
 #include "core/backends.h"
 #include "core/stopwatch.h"
+#include "hyvox/zero_page_allocator.h"
 #include "cpu/mark_voxels.h"
 #include "cpu/rasterize_planeless.h"
 #include "cpu/rasterize_small.h"
 #include "cpu/rasterize_triangle.h"
 #include "cpu/triangle_setup.h"
+#include "cpu/vertex_cells.h"
 
 namespace hyvox {
 namespace {
@@ -26,6 +30,24 @@ namespace {
 constexpr long kSplitColumns = 64 * 64;
 constexpr int kRowsPerTask = 8;
 constexpr std::size_t kTrianglesPerChunk = 1024;
+constexpr std::size_t kPrefetchAhead = 8;
+
+// Every vertex's cells (vertex_cells.h), computed once each in parallel, or null when the
+// tile's triangles are too few for that to pay (a closed mesh has about two triangles per
+// vertex; a tile of a large grid holds a few of the mesh's triangles).
+std::unique_ptr<cpu::VertexCell[]> vertexCells(const ValidatedMesh& mesh, const GridSpec& spec) {
+    const std::size_t n = mesh.view.vertex_count;
+    if (2 * n > 3 * mesh.usable.size()) return nullptr;
+    std::unique_ptr<cpu::VertexCell[]> cells(new cpu::VertexCell[n]);
+    adviseHugePages(cells.get(), n * sizeof(cells[0]));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t v = r.begin(); v != r.end(); ++v) {
+            const float* p = mesh.view.positions + 3 * v;
+            cells[v] = cpu::vertexCell(spec.toVoxel(std::array<float, 3>{p[0], p[1], p[2]}));
+        }
+    });
+    return cells;
+}
 
 void rasterizeRowsAnyAxis(const cpu::TriangleSetup& t, int row_begin, int row_end, cpu::WordMarker& marker) {
     switch (t.w) {
@@ -52,27 +74,55 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
     tbb::task_arena arena(threads);
     arena.execute([&] {
+        const std::unique_ptr<cpu::VertexCell[]> cells = vertexCells(mesh, spec);
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, usable.size(), kTrianglesPerChunk),
             [&](const tbb::blocked_range<std::size_t>& chunk) {
                 throwIfInterrupted(job.interrupter,
                                    int(100 * done.load(std::memory_order_relaxed) / std::max<std::size_t>(usable.size(), 1)));
                 cpu::WordMarker marker(grid, offset);
+                auto corners = [&](std::uint32_t triangle) {
+                    return std::array<std::array<double, 3>, 3>{spec.toVoxel(mesh.vertex(triangle, 0)),
+                                                                spec.toVoxel(mesh.vertex(triangle, 1)),
+                                                                spec.toVoxel(mesh.vertex(triangle, 2))};
+                };
+                auto markAll = [&](const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+                    for (int i = lo[0]; i <= hi[0]; ++i)
+                        for (int j = lo[1]; j <= hi[1]; ++j)
+                            for (int k = lo[2]; k <= hi[2]; ++k) marker.mark(i, j, k);
+                };
                 for (std::size_t n = chunk.begin(); n != chunk.end(); ++n) {
-                    const std::array<std::array<double, 3>, 3> corners{spec.toVoxel(mesh.vertex(usable[n], 0)),
-                                                                       spec.toVoxel(mesh.vertex(usable[n], 1)),
-                                                                       spec.toVoxel(mesh.vertex(usable[n], 2))};
                     cpu::TriangleSetup t;
-                    const cpu::SetupKind kind = cpu::setupTriangle(corners, mode, offset, last, t);
+                    cpu::SetupKind kind;
+                    std::array<std::array<double, 3>, 3> voxel_corners;
+                    if (cells) {
+                        // The integer first look finds the candidate range setupTriangle would.
+                        // Its loads are the loop's cost (vertices are spread over megabytes):
+                        // those of a triangle a few ahead are requested now.
+                        if (n + kPrefetchAhead < chunk.end()) {
+                            const std::uint32_t* ahead = mesh.view.triangles + 3 * std::size_t(usable[n + kPrefetchAhead]);
+                            for (int c = 0; c < 3; ++c) __builtin_prefetch(&cells[ahead[c]]);
+                        }
+                        const std::uint32_t* idx = mesh.view.triangles + 3 * std::size_t(usable[n]);
+                        const cpu::CandidateRange range = cpu::cellRange(cells[idx[0]], cells[idx[1]], cells[idx[2]], offset, last);
+                        if (range.outside()) continue;
+                        if (mode != Mode::Thin && range.singleAxes() >= 2) {
+                            markAll(range.lo, range.hi);
+                            continue;
+                        }
+                        voxel_corners = corners(usable[n]);
+                        kind = cpu::setupTriangle(voxel_corners, mode, range, t);
+                    } else {
+                        voxel_corners = corners(usable[n]);
+                        kind = cpu::setupTriangle(voxel_corners, mode, offset, last, t);
+                    }
                     if (kind == cpu::SetupKind::Outside) continue;
                     if (kind == cpu::SetupKind::AllCandidates) {
-                        for (int i = t.lo[0]; i <= t.hi[0]; ++i)
-                            for (int j = t.lo[1]; j <= t.hi[1]; ++j)
-                                for (int k = t.lo[2]; k <= t.hi[2]; ++k) marker.mark(i, j, k);
+                        markAll(t.lo, t.hi);
                         continue;
                     }
                     if (kind == cpu::SetupKind::Planeless) {
-                        cpu::rasterizePlaneless(corners, mode, t.lo, t.hi, marker);
+                        cpu::rasterizePlaneless(voxel_corners, mode, t.lo, t.hi, marker);
                         continue;
                     }
                     if (cpu::fitsSmallPath(t)) {

@@ -7,7 +7,10 @@
 // without branches into a bit mask, with the very same arithmetic as the general loops (so
 // both paths decide every voxel alike), and only the accepted voxels are marked.
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cstdint>
+#include <utility>
 
 #include "cpu/mark_voxels.h"
 #include "cpu/triangle_setup.h"
@@ -18,7 +21,7 @@ inline bool fitsSmallPath(const TriangleSetup& t) {
     return t.hi[0] - t.lo[0] <= 2 && t.hi[1] - t.lo[1] <= 2 && t.hi[2] - t.lo[2] <= 2;
 }
 
-// NU x NV x NW candidates from t.lo (each 2 or 3); those beyond t.hi are dropped.
+// The NU x NV x NW candidates from t.lo (each 1 to 3: t.hi - t.lo + 1).
 template <int NU, int NV, int NW>
 inline void rasterizeFixed(const TriangleSetup& t, WordMarker& marker) {
     const double nu = t.normal[0], nv = t.normal[1], inv_nw = 1.0 / t.normal[2];
@@ -67,18 +70,17 @@ inline void rasterizeFixed(const TriangleSetup& t, WordMarker& marker) {
     }
 }
 
+// One instance per candidate count along each axis (1 to 3): a triangle that lies within
+// one voxel's range along one axis tests half the voxels a 2 x 2 x 2 loop would.
+using SmallRasterizer = void (*)(const TriangleSetup&, WordMarker&);
+template <std::size_t... Code>
+constexpr std::array<SmallRasterizer, sizeof...(Code)> smallRasterizers(std::index_sequence<Code...>) {
+    return {&rasterizeFixed<int(Code / 9) + 1, int(Code / 3 % 3) + 1, int(Code % 3) + 1>...};
+}
+
 inline void rasterizeSmall(const TriangleSetup& t, WordMarker& marker) {
-    const int code = (t.hi[0] - t.lo[0] == 2) << 2 | (t.hi[1] - t.lo[1] == 2) << 1 | (t.hi[2] - t.lo[2] == 2);
-    switch (code) {
-        case 0: rasterizeFixed<2, 2, 2>(t, marker); break;
-        case 1: rasterizeFixed<2, 2, 3>(t, marker); break;
-        case 2: rasterizeFixed<2, 3, 2>(t, marker); break;
-        case 3: rasterizeFixed<2, 3, 3>(t, marker); break;
-        case 4: rasterizeFixed<3, 2, 2>(t, marker); break;
-        case 5: rasterizeFixed<3, 2, 3>(t, marker); break;
-        case 6: rasterizeFixed<3, 3, 2>(t, marker); break;
-        default: rasterizeFixed<3, 3, 3>(t, marker); break;
-    }
+    static constexpr std::array<SmallRasterizer, 27> kBySize = smallRasterizers(std::make_index_sequence<27>{});
+    kBySize[std::size_t((t.hi[0] - t.lo[0]) * 9 + (t.hi[1] - t.lo[1]) * 3 + (t.hi[2] - t.lo[2]))](t, marker);
 }
 
 }  // namespace hyvox::cpu

@@ -35,28 +35,32 @@ inline void setupProjection(const std::array<std::array<double, 3>, 3>& p, doubl
     }
 }
 
-template <bool Thin>
-SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const std::array<std::int32_t, 3>& clip_lo,
-                const std::array<std::int32_t, 3>& clip_hi, TriangleSetup& out) {
-    // Clipped candidate range per unswizzled axis: voxel i's closed box meets [lo, hi] iff
-    // lo - 1 <= i <= hi.
-    int lo[3], hi[3];
-    bool one[3];  // unclipped: the triangle's extent on this axis lies in one voxel's range
+CandidateRange candidateRange(const std::array<std::array<double, 3>, 3>& c, const std::array<std::int32_t, 3>& clip_lo,
+                              const std::array<std::int32_t, 3>& clip_hi) {
+    // Voxel i's closed box meets [lo, hi] iff lo - 1 <= i <= hi.
+    CandidateRange r;
     for (int a = 0; a < 3; ++a) {
         const double mn = std::min(std::min(c[0][a], c[1][a]), c[2][a]);
         const double mx = std::max(std::max(c[0][a], c[1][a]), c[2][a]);
         const int first = ceilToInt(clampCoord(mn)) - 1, last = floorToInt(clampCoord(mx));
-        lo[a] = std::max(clip_lo[a], first);
-        hi[a] = std::min(clip_hi[a], last);
-        if (lo[a] > hi[a]) return SetupKind::Outside;
-        one[a] = first == last;
+        r.lo[a] = std::max(clip_lo[a], first);
+        r.hi[a] = std::min(clip_hi[a], last);
+        r.single[a] = first == last;
     }
+    return r;
+}
+
+template <bool Thin>
+SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const CandidateRange& range, TriangleSetup& out) {
+    const std::array<int, 3>& lo = range.lo;
+    const std::array<int, 3>& hi = range.hi;
+    const std::array<bool, 3>& one = range.single;
     // Within one voxel's range along two axes, the triangle lies in one column of voxels;
     // its extent along the third axis is an interval meeting every candidate's range, so
     // each candidate's closed box holds a point of it. (Most triangles of a fine mesh.)
-    if (!Thin && int(one[0]) + int(one[1]) + int(one[2]) >= 2) {
-        out.lo = {lo[0], lo[1], lo[2]};
-        out.hi = {hi[0], hi[1], hi[2]};
+    if (!Thin && range.singleAxes() >= 2) {
+        out.lo = lo;
+        out.hi = hi;
         return SetupKind::AllCandidates;
     }
 
@@ -127,8 +131,14 @@ void setupEdgeTests(const std::array<std::array<double, 3>, 3>& c, double windin
 SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode,
                         const std::array<std::int32_t, 3>& clip_lo, const std::array<std::int32_t, 3>& clip_hi,
                         TriangleSetup& out) {
-    return mode == Mode::Thin ? setup<true>(corners, clip_lo, clip_hi, out)
-                              : setup<false>(corners, clip_lo, clip_hi, out);
+    const CandidateRange range = candidateRange(corners, clip_lo, clip_hi);
+    if (range.outside()) return SetupKind::Outside;
+    return setupTriangle(corners, mode, range, out);
+}
+
+SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode, const CandidateRange& range,
+                        TriangleSetup& out) {
+    return mode == Mode::Thin ? setup<true>(corners, range, out) : setup<false>(corners, range, out);
 }
 
 }  // namespace hyvox::cpu

@@ -65,6 +65,19 @@ inline bool passes(const EdgeTest& e, double pa, double pb) {
     return e.na * (pa - e.va) + e.nb * (pb - e.vb) + e.offset >= 0.0;
 }
 
+// The setup's first step: the triangle's candidate voxels (unswizzled, inclusive) clipped to
+// the tile, and per axis whether its unclipped extent lies within one voxel's range.
+struct CandidateRange {
+    std::array<int, 3> lo{0, 0, 0}, hi{-1, -1, -1};
+    std::array<bool, 3> single{false, false, false};
+    bool outside() const { return lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2]; }
+    int singleAxes() const { return int(single[0]) + int(single[1]) + int(single[2]); }
+};
+
+// The rest of the setup, for a range found otherwise (vertex_cells.h); not outside().
+SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode, const CandidateRange& range,
+                        TriangleSetup& out);
+
 // floor / ceil of values already clamped to a safe int range by clampCoord (the baseline
 // x86-64 target has no inline rounding instruction, and libm calls dominate a small
 // triangle's cost).

@@ -12,6 +12,8 @@
 #include "io/assimp_reader.h"
 #include "io/file_bytes.h"
 #include "io/gzip_input.h"
+#include "io/mapped_file.h"
+#include "io/mesh_file_error.h"
 #include "io/obj_materials.h"
 #include "io/obj_reader.h"
 #include "io/ply_reader.h"
@@ -40,6 +42,20 @@ std::string extensionOf(const std::string& lower_path) {
 // opens files itself (some formats refer to other files beside them).
 constexpr std::size_t kMaxMeshFileBytes = std::size_t(1) << 40;
 
+// The bytes of a PLY or OBJ file, or of another format that was gzipped.
+Mesh readBytes(const char* data, std::size_t size, const std::string& path, const std::string& extension,
+               Interrupter* interrupter) {
+    throwIfInterrupted(interrupter);
+    // A PLY is told by its first line whatever its name, compressed or not.
+    if (extension == "ply" || io::looksLikePly(data, size)) return io::readPly(data, size, path, interrupter);
+    if (extension == "obj") {
+        Mesh mesh = io::readObj(data, size, path, interrupter);
+        io::readObjMaterials(mesh, path);
+        return mesh;
+    }
+    return io::readWithAssimp(data, size, extension, path, interrupter);  // another format, gzipped
+}
+
 Mesh readMeshFile(const std::string& path, Interrupter* interrupter) {
     io::checkMeshFile(path);
     const std::string lower_path = lower(path);
@@ -54,17 +70,21 @@ Mesh readMeshFile(const std::string& path, Interrupter* interrupter) {
         return io::looksLikePly(prefix.data(), prefix.size());
     }();
     if (!ours) return io::readWithAssimp(path, extension, interrupter);
-    const std::vector<char> data = gzipped ? io::readGzipFile(path, interrupter) : io::readFileBytes(path, kMaxMeshFileBytes);
-    throwIfInterrupted(interrupter);
-    // A PLY is told by its first line whatever its name, compressed or not.
-    if (extension == "ply" || io::looksLikePly(data.data(), data.size()))
-        return io::readPly(data.data(), data.size(), path, interrupter);
-    if (extension == "obj") {
-        Mesh mesh = io::readObj(data.data(), data.size(), path, interrupter);
-        io::readObjMaterials(mesh, path);
+    if (!gzipped) {
+        const io::MappedFile file(path, kMaxMeshFileBytes);
+        Mesh mesh;
+        try {
+            mesh = readBytes(file.data(), file.size(), path, extension, interrupter);
+        } catch (const InvalidInput&) {
+            // Zeros where another process cut the file short: not the file's own error.
+            if (file.changedWhileRead()) io::failMeshFile(path, "changed size while it was read");
+            throw;
+        }
+        if (file.changedWhileRead()) io::failMeshFile(path, "changed size while it was read");
         return mesh;
     }
-    return io::readWithAssimp(data.data(), data.size(), extension, path, interrupter);  // another format, gzipped
+    const std::vector<char> data = io::readGzipFile(path, interrupter);
+    return readBytes(data.data(), data.size(), path, extension, interrupter);
 }
 
 }  // namespace

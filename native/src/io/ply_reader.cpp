@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hyvox/zero_page_allocator.h"
 #include "io/mesh_file_error.h"
 #include "io/text_scanner.h"
 
@@ -437,6 +438,7 @@ private:
         }
         const bool colors = r >= 0 && g >= 0 && b >= 0, uvs = u >= 0 && v >= 0;
         mesh_.positions.reserve(3 * e.count);
+        adviseHugePages(mesh_.positions.data(), mesh_.positions.capacity() * sizeof(float));
         if (colors) mesh_.colors.reserve(4 * e.count);
         mesh_.colors_alpha = colors && a >= 0;
         if (uvs) mesh_.uvs.reserve(2 * e.count);
@@ -496,6 +498,7 @@ private:
         const std::uint64_t min_face_bytes =
             std::is_same_v<Source, AsciiSource> ? 8 : sizeOf(list.count_type) + 3 * sizeOf(list.type);
         mesh_.triangles.reserve(3 * std::min<std::uint64_t>(e.count, source.remaining() / min_face_bytes));
+        adviseHugePages(mesh_.triangles.data(), mesh_.triangles.capacity() * sizeof(std::uint32_t));
         std::uint64_t f = 0;
         if constexpr (std::is_same_v<Source, BinarySource>) {
             if (e.properties.size() == 1 && list.count_type == Type::Uint8 &&

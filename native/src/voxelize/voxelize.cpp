@@ -19,6 +19,8 @@
 #include "tessellation/point_values.h"
 #include "tile_plan.h"
 
+#include <tbb/task_arena.h>
+
 namespace hyvox {
 namespace {
 
@@ -208,15 +210,23 @@ void addInside(const ValidatedMesh& validated, const GridSpec& grid, const Surfa
 
 }  // namespace
 
-VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, Interrupter* interrupter) {
-    checkOptions(options);
-    const InterrupterRun run(interrupter, "hyvox voxelize");
+ValidatedMesh validate(const MeshView& mesh, const VoxelizeOptions& options, Interrupter* interrupter) {
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    return arena.execute([&] { return validate(mesh, interrupter); });
+}
+
+namespace {
+
+// voxelize() after its options were checked and its interrupter started.
+VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeOptions& options,
+                                 Interrupter* interrupter, double validate_ms) {
+    const MeshView& mesh = validated.view;
 
     VoxelizeResult result;
     Stats& stats = result.stats;
     stats.options = options;
     Stopwatch watch;
-    const ValidatedMesh validated = validate(mesh, interrupter);
+    stats.addTiming("validate", validate_ms);
     const std::optional<attributes::SurfaceValues> surface = surfaceValues(mesh, options);
     std::vector<attributes::AttributeLeaf> attribute_leaves;
     result.grid = makeGrid(validated.bounds, options.grid);
@@ -266,6 +276,23 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     if (stats.solid) stats.solid->tile_bricks = result.occupancy.tileCount();
     stats.addTiming("count", watch.restart());
     return result;
+}
+
+}  // namespace
+
+VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, Interrupter* interrupter) {
+    checkOptions(options);
+    const InterrupterRun run(interrupter, "hyvox voxelize");
+    Stopwatch watch;
+    const ValidatedMesh validated = validate(mesh, options, interrupter);
+    return voxelizeValidated(validated, options, interrupter, watch.elapsedMs());
+}
+
+VoxelizeResult voxelize(const ValidatedMesh& validated, const VoxelizeOptions& options, Interrupter* interrupter,
+                        double validate_ms) {
+    checkOptions(options);
+    const InterrupterRun run(interrupter, "hyvox voxelize");
+    return voxelizeValidated(validated, options, interrupter, validate_ms);
 }
 
 }  // namespace hyvox
