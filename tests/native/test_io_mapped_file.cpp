@@ -43,11 +43,13 @@ std::string stripPly(int quads, std::size_t& header_size) {
     return header + body;
 }
 
-// Truncates `path` to `size` bytes the first time it is asked; never says stop.
+// Truncates `path` to `size` bytes the first time it is asked after the file is open (the
+// read's 0% report comes before that); never says stop.
 class Truncator final : public hyvox::Interrupter {
 public:
     Truncator(fs::path path, std::size_t size) : path_(std::move(path)), size_(size) {}
-    bool wasInterrupted(int) override {
+    bool wasInterrupted(int percent) override {
+        if (percent == 0) return false;
         if (!done_) fs::resize_file(path_, size_);
         done_ = true;
         return false;
