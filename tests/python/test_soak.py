@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import hyvox
+from shapes import icosphere
 
 GL_METHODS = ("triangle", "fragment", "hybrid")
 WARM_UP_ROUNDS = 3
@@ -21,33 +22,6 @@ MEASURED_ROUNDS = 40
 # bits per call (14 KiB) would add ~14 MiB over the measured calls (~1000), one of its
 # coords arrays far more.
 RSS_SLACK_MIB = 4.0
-
-
-def icosphere(subdivisions=2):
-    """A closed sphere mesh (320 triangles at 2): a known closed surface, no files needed."""
-    t = (1.0 + 5 ** 0.5) / 2
-    vertices = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
-                (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
-    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
-             (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11),
-             (6, 2, 10), (8, 6, 7), (9, 8, 1)]
-    vertices = [np.array(v, float) / np.linalg.norm(v) for v in vertices]
-    for _ in range(subdivisions):
-        midpoints, refined = {}, []
-
-        def middle(a, b):
-            key = (min(a, b), max(a, b))
-            if key not in midpoints:
-                m = vertices[a] + vertices[b]
-                vertices.append(m / np.linalg.norm(m))
-                midpoints[key] = len(vertices) - 1
-            return midpoints[key]
-
-        for a, b, c in faces:
-            ab, bc, ca = middle(a, b), middle(b, c), middle(c, a)
-            refined += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
-        faces = refined
-    return np.array(vertices, np.float32), np.array(faces, np.uint32)
 
 
 def resident_mib():

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 import hyvox
+from shapes import icosphere
 
 CLOSED_FILES = ["happy_buddha_100k.ply", "armadillo_52k.ply", "igea_cyberware_268k.ply.gz", "spot_vcolor.ply"]
 OPEN_FILES = ["bunny_stanford_69k.ply", "shark_holes.ply", "elephant_holes.ply", "spider_messy.ply"]
@@ -43,31 +44,6 @@ def join(*meshes):
         triangles.append(t + base)
         base += len(v)
     return np.concatenate(vertices), np.concatenate(triangles).astype(np.uint32)
-
-
-def sphere(subdivisions=3):
-    t = (1 + 5 ** 0.5) / 2
-    v = [np.array(p, float) / np.linalg.norm(p) for p in
-         [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
-          (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]]
-    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
-             (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11),
-             (6, 2, 10), (8, 6, 7), (9, 8, 1)]
-    for _ in range(subdivisions):
-        middle, finer = {}, []
-
-        def mid(a, b):
-            key = (min(a, b), max(a, b))
-            if key not in middle:
-                m = v[a] + v[b]
-                v.append(m / np.linalg.norm(m))
-                middle[key] = len(v) - 1
-            return middle[key]
-        for a, b, c in faces:
-            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
-            finer += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
-        faces = finer
-    return np.array(v, np.float32), np.array(faces, np.uint32)
 
 
 def messy_shapes():
@@ -163,7 +139,7 @@ def test_closed_mesh_files_match_openvdb(mesh_dir, name, inside):
 @pytest.mark.parametrize("inside", ["parity", "winding", "auto"])
 @pytest.mark.parametrize("shape", ["cube", "sphere"])
 def test_closed_shapes_match_openvdb(shape, inside):
-    vertices, triangles = cube((0.1, 0.2, 0.3), (1.3, 1.1, 0.9)) if shape == "cube" else sphere()
+    vertices, triangles = cube((0.1, 0.2, 0.3), (1.3, 1.1, 0.9)) if shape == "cube" else icosphere(3)
     solid = check_against_openvdb(vertices, triangles, inside=inside)
     stats = solid.stats["solid"]
     assert stats["boundary_edges"] == stats["nonmanifold_edges"] == stats["misoriented_edges"] == 0
@@ -282,7 +258,7 @@ def test_overlap_is_filled_and_the_hollow_stays_empty():
 
 def test_count_is_surface_plus_inside_and_interiors_are_tiles(tmp_path):
     import pyopenvdb as vdb
-    vertices, triangles = sphere()
+    vertices, triangles = icosphere(3)
     solid, surface = solid_and_surface(vertices, triangles, 96)
     stats = solid.stats
     assert solid.voxel_count == surface.voxel_count + stats["solid"]["inside_voxels"]

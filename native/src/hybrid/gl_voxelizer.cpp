@@ -250,17 +250,9 @@ std::vector<std::array<std::int32_t, 3>> GlVoxelizer::runVoxelList(double cutoff
         for (;;) {
             if (voxel_list_.size() < 16 + std::size_t(capacity) * 12)
                 voxel_list_ = gl::Buffer(16 + std::size_t(capacity) * 12, nullptr, GL_DYNAMIC_STORAGE_BIT);
-            const std::uint32_t zero = 0;
-            voxel_list_.upload(0, 4, &zero);
-            voxel_list_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_VOXEL_LIST);
-            programs.setUniform(HYVOX_LOC_LIST_CAPACITY,
-                                [&](GLuint id) { glProgramUniform1ui(id, HYVOX_LOC_LIST_CAPACITY, capacity); });
             PassTimes attempt;
-            runTile(programs, cutoff, attempt);
-            times.pass1_gpu_ms += attempt.pass1_gpu_ms;  // a retried run's work took time too
-            times.pass2_gpu_ms += attempt.pass2_gpu_ms;
-            std::uint32_t count = 0;
-            voxel_list_.download(0, 4, &count);
+            const std::uint32_t count = runTileIntoList(programs, cutoff, voxel_list_, HYVOX_SSBO_VOXEL_LIST,
+                                                        HYVOX_LOC_LIST_CAPACITY, capacity, times, attempt);
             if (count > capacity) {
                 if (count > max_capacity)
                     throw ResourceError("the voxel list needs " + std::to_string(count) +
@@ -287,6 +279,22 @@ std::vector<std::array<std::int32_t, 3>> GlVoxelizer::runVoxelList(double cutoff
     return voxels;
 }
 
+std::uint32_t GlVoxelizer::runTileIntoList(const Programs& programs, double cutoff, gl::Buffer& list, GLuint binding,
+                                           GLint capacity_location, std::uint32_t capacity, PassTimes& times,
+                                           PassTimes& attempt) {
+    const std::uint32_t zero = 0;
+    list.upload(0, 4, &zero);
+    list.bindBase(GL_SHADER_STORAGE_BUFFER, binding);
+    programs.setUniform(capacity_location,
+                        [&](GLuint id) { glProgramUniform1ui(id, capacity_location, capacity); });
+    runTile(programs, cutoff, attempt);
+    times.pass1_gpu_ms += attempt.pass1_gpu_ms;  // a retried run's work took time too
+    times.pass2_gpu_ms += attempt.pass2_gpu_ms;
+    std::uint32_t count = 0;
+    list.download(0, 4, &count);
+    return count;
+}
+
 std::optional<std::uint32_t> GlVoxelizer::runTilePairs(const Programs& programs, const gl::BitTile& tile, double cutoff,
                                                        PassTimes& times) {
     setTileUniforms(programs, tile);
@@ -307,16 +315,9 @@ std::optional<std::uint32_t> GlVoxelizer::runTilePairs(const Programs& programs,
             pairs_ = gl::Buffer(kPairHeader + std::size_t(pair_capacity_) * kPairBytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
             pieces_ = gl::Buffer(std::size_t(pair_capacity_) * sizeof(GpuPiece), nullptr, 0);
         }
-        const std::uint32_t zero = 0;
-        pairs_.upload(0, 4, &zero);
-        pairs_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_PAIRS);
-        programs.setUniform(HYVOX_LOC_PAIR_CAPACITY,
-                            [&](GLuint id) { glProgramUniform1ui(id, HYVOX_LOC_PAIR_CAPACITY, pair_capacity_); });
         PassTimes attempt;
-        runTile(programs, cutoff, attempt);
-        times.pass1_gpu_ms += attempt.pass1_gpu_ms;  // a retried run's work took time too
-        times.pass2_gpu_ms += attempt.pass2_gpu_ms;
-        pairs_.download(0, 4, &count);
+        count = runTileIntoList(programs, cutoff, pairs_, HYVOX_SSBO_PAIRS, HYVOX_LOC_PAIR_CAPACITY, pair_capacity_,
+                                times, attempt);
         if (count <= pair_capacity_) {
             times.large_triangles += attempt.large_triangles;
             times.tiles += attempt.tiles;

@@ -76,6 +76,13 @@ private:
                                               PassTimes& times);
     // One tile's passes into bits_ (its slab uniforms set before).
     void runTile(const Programs& programs, double cutoff, PassTimes& times);
+    // runTile with the passes also appending to `list` (a 32-bit count, then entries) bound at
+    // `binding`, with room for `capacity` entries. Returns the count the passes asked for
+    // (over capacity: the rest was dropped, run again with more room); the GPU time goes to
+    // `times` either way, the tile's counters to `attempt`.
+    std::uint32_t runTileIntoList(const Programs& programs, double cutoff, gl::Buffer& list, GLuint binding,
+                                  GLint capacity_location, std::uint32_t capacity, PassTimes& times,
+                                  PassTimes& attempt);
     void setRunUniforms(const Programs& programs, double cutoff) const;  // the same for every tile
     void setTileUniforms(const Programs& programs, const gl::BitTile& tile) const;
 
