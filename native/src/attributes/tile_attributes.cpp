@@ -302,16 +302,23 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
     return {pieces.load(), unreached.load(), rounded.load()};
 }
 
-void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid) {
+void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid, int threads) {
     std::sort(leaves.begin(), leaves.end(), [](const AttributeLeaf& a, const AttributeLeaf& b) { return a.brick < b.brick; });
-    std::size_t total = 0;
-    for (const AttributeLeaf& leaf : leaves) total += leaf.values.size();
+    // Each leaf's place in the result, then the copies (and frees) in parallel: the values of
+    // a large grid are tens of MB.
+    std::vector<std::size_t> start(leaves.size() + 1, 0);
+    for (std::size_t n = 0; n < leaves.size(); ++n) start[n + 1] = start[n] + leaves[n].values.size();
     grid.values.clear();
-    grid.values.reserve(total);
-    for (AttributeLeaf& leaf : leaves) {
-        grid.values.insert(grid.values.end(), leaf.values.begin(), leaf.values.end());
-        std::vector<float>().swap(leaf.values);
-    }
+    grid.values.resize(start.back());
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 64), [&](const auto& range) {
+            for (std::size_t n = range.begin(); n != range.end(); ++n) {
+                std::copy(leaves[n].values.begin(), leaves[n].values.end(), grid.values.begin() + std::ptrdiff_t(start[n]));
+                std::vector<float>().swap(leaves[n].values);
+            }
+        });
+    });
 }
 
 }  // namespace hyvox::attributes
