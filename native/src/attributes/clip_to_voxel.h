@@ -34,9 +34,8 @@ struct Polygon {
 };
 
 // The part of `in` between the planes x[axis] = lo and x[axis] = hi (inclusive), clipped
-// at lo first: clipping a triangle slab by slab (x, then y, then z) gives exactly the
-// polygons clipTriangleToVoxel gives box by box. The result is `in` itself when both planes
-// keep all of it, else written to `scratch` (n = 0: nothing is left).
+// at lo first (clipTriangleToVoxel's steps). The result is `in` itself when both planes keep
+// all of it, else written to `scratch` (n = 0: nothing is left).
 const Polygon& clipSlab(const Polygon& in, Polygon& scratch, int axis, double lo, double hi);
 
 // A triangle's set-up for all its pieces: barycentrics, its unit normal, and the scale from

@@ -12,6 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include "attributes/clip_to_voxel.h"
+#include "attributes/sweep_cells.h"
 
 namespace hyvox::attributes {
 namespace {
@@ -170,10 +171,8 @@ private:
     }
 
     // The triangle's pieces in the voxels of `mask`, clipped to their boxes grown by `margin`.
-    // The reference clips box by box; cpu clips slab by slab (x, then y, then z), sharing
-    // the first clips among a row's voxels: the same planes in the same order, so the same
-    // pieces. cpu also skips the rows and voxels its slab's extent cannot reach (those clips
-    // would come out empty; the ranges are one voxel wider than needed against rounding).
+    // cpu cuts the triangle slab by slab (sweep_cells.h) and skips the slabs and rows whose
+    // voxels are all unset; the reference, and the margin fallback of both, clip box by box.
     void addTriangle(std::uint32_t n, const std::uint64_t* mask, double margin) {
         const std::uint32_t triangle = job_.mesh.usable[n];
         const Corners corners = triangleCorners(job_, triangle);
@@ -182,7 +181,7 @@ private:
         const TriangleFrame frame(corners);
         values_.prepare(triangle, frame.unitNormal(), corner_values_);
         ClippedPiece piece;
-        if (brute_force_) {
+        if (brute_force_ || margin > 0) {
             for (int i = r.lo[0]; i <= r.hi[0]; ++i)
                 for (int j = r.lo[1]; j <= r.hi[1]; ++j)
                     for (int k = r.lo[2]; k <= r.hi[2]; ++k)
@@ -191,40 +190,26 @@ private:
                             add(frame, i, j, k, piece);
             return;
         }
-        Polygon whole, x_scratch, y_scratch, z_scratch;
-        whole.n = 3;
-        std::copy(corners.begin(), corners.end(), whole.p.begin());
-        for (int i = r.lo[0]; i <= r.hi[0]; ++i) {
+        SweepLines lines;
+        TracedPolygon whole;
+        whole.shape.n = 3;
+        for (std::size_t c = 0; c < 3; ++c) {
+            whole.shape.p[c] = corners[c];
+            whole.line[c] = lines.add(corners[c], corners[(c + 1) % 3]);
+        }
+        sweepSlabs<0>(whole, r.lo[0], r.hi[0], lines, true, [&](int i, const TracedPolygon& x_slab) {
             const std::uint64_t word = mask[i & 7];
-            if (!word) continue;
-            const Polygon& x_slab = clipSlab(whole, x_scratch, 0, i - margin, i + 1 + margin);
-            if (x_slab.n == 0) continue;
-            const auto [j_lo, j_hi] = reach(x_slab, 1, r.lo[1], r.hi[1]);
-            for (int j = j_lo; j <= j_hi; ++j) {
+            if (!word) return;
+            sweepSlabs<1>(x_slab, r.lo[1], r.hi[1], lines, true, [&](int j, const TracedPolygon& column) {
                 const std::uint64_t row = (word >> ((j & 7) << 3)) & 0xffu;
-                if (!row) continue;
-                const Polygon& xy_column = clipSlab(x_slab, y_scratch, 1, j - margin, j + 1 + margin);
-                if (xy_column.n == 0) continue;
-                const auto [k_lo, k_hi] = reach(xy_column, 2, r.lo[2], r.hi[2]);
-                for (int k = k_lo; k <= k_hi; ++k) {
-                    if (!((row >> (k & 7)) & 1u)) continue;
-                    const Polygon& box = clipSlab(xy_column, z_scratch, 2, k - margin, k + 1 + margin);
-                    if (box.n == 0) continue;
-                    measurePiece(box, frame, piece);
+                if (!row) return;
+                sweepSlabs<2>(column, r.lo[2], r.hi[2], lines, false, [&](int k, const TracedPolygon& cell) {
+                    if (!((row >> (k & 7)) & 1u)) return;
+                    measurePiece(cell.shape, frame, piece);
                     add(frame, i, j, k, piece);
-                }
-            }
-        }
-    }
-
-    // The voxels along `axis`, within [lo, hi], whose closed box may meet the polygon.
-    static std::pair<int, int> reach(const Polygon& polygon, int axis, int lo, int hi) {
-        double from = polygon.p[0][std::size_t(axis)], to = from;
-        for (int c = 1; c < polygon.n; ++c) {
-            from = std::min(from, polygon.p[std::size_t(c)][std::size_t(axis)]);
-            to = std::max(to, polygon.p[std::size_t(c)][std::size_t(axis)]);
-        }
-        return {int(std::max(double(lo), std::floor(from) - 2.0)), int(std::min(double(hi), std::floor(to) + 1.0))};
+                });
+            });
+        });
     }
 
     const BackendJob& job_;
