@@ -77,7 +77,7 @@ void splitAtPlane(const TracedPolygon& in, double at, SweepLines& lines, bool re
         if (dc == 0) {
             push(below, nb, cur, dn <= 0 ? line : cut);
             push(above, na, cur, dn >= 0 ? line : cut);
-            onPlane(cur);
+            if (cut != SweepLines::kNone) onPlane(cur);
             continue;
         }
         if (dc < 0) push(below, nb, cur, line);
@@ -101,7 +101,7 @@ void splitAtPlane(const TracedPolygon& in, double at, SweepLines& lines, bool re
             // Leaving a side, the crossing's edge runs along the plane; entering, along `line`.
             push(below, nb, crossing, dc < 0 ? cut : line);
             push(above, na, crossing, dc < 0 ? line : cut);
-            onPlane(crossing);
+            if (cut != SweepLines::kNone) onPlane(crossing);
         }
     }
     below.shape.n = nb;

@@ -77,9 +77,16 @@ TileBins binTriangles(const BackendJob& job, const BitGrid& bits, bool brute_for
     bins.first.assign(bins.occupied.size() + 1, 0);
     std::vector<std::size_t> next;
     const auto& usable = job.mesh.usable;
+    // Each triangle's candidate voxels first, in parallel (the corners' divisions and the
+    // vertex reads are most of the binning).
+    std::vector<VoxelRange> ranges(usable.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, usable.size(), 4096), [&](const auto& range) {
+        for (std::size_t n = range.begin(); n != range.end(); ++n)
+            ranges[n] = candidates(triangleCorners(job, usable[n]), tile_lo, tile_hi);
+    });
     for (int pass = 0; pass < 2; ++pass) {
         for (std::uint32_t n = 0; n < usable.size(); ++n) {
-            const VoxelRange r = candidates(triangleCorners(job, usable[n]), tile_lo, tile_hi);
+            const VoxelRange& r = ranges[n];
             if (r.empty()) continue;
             for (int bx = (r.lo[0] - tile_lo[0]) >> 3; bx <= (r.hi[0] - tile_lo[0]) >> 3; ++bx)
                 for (int by = (r.lo[1] - tile_lo[1]) >> 3; by <= (r.hi[1] - tile_lo[1]) >> 3; ++by)
@@ -162,11 +169,9 @@ private:
 
     void add(const TriangleFrame& frame, int i, int j, int k, const ClippedPiece& piece) {
         ++pieces_;
-        double value[kMaxChannels];
-        values_.interpolate(corner_values_, frame.barycentrics(piece.centroid), value);
         const double w = piece.area + kAreaEpsilon;
         double* voxel = &sums_[std::size_t(((i & 7) << 6) | ((j & 7) << 3) | (k & 7)) * stride_];
-        for (std::size_t c = 0; c + 1 < stride_; ++c) voxel[c] += w * value[c];
+        values_.addWeighted(corner_values_, frame.barycentrics(piece.centroid), w, voxel);
         voxel[stride_ - 1] += w;
     }
 
@@ -248,15 +253,15 @@ std::array<Point, 3> triangleCorners(const BackendJob& job, std::uint32_t triang
 
 TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& bits, const SurfaceValues& values,
                                           bool brute_force, std::vector<AttributeLeaf>& out) {
-    const TileBins bins = binTriangles(job, bits, brute_force);
+    const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
+    tbb::task_arena arena(threads);
+    const TileBins bins = arena.execute([&] { return binTriangles(job, bits, brute_force); });
     const BrickLayout& tile_bricks = bits.bricks();
     const BrickLayout grid_bricks = job.grid.bricks();
     const std::array<std::int32_t, 3>& offset = job.tile.offset;
     const std::size_t first = out.size();
     out.resize(first + bins.occupied.size());
     std::atomic<std::uint64_t> pieces{0}, unreached{0}, rounded{0};
-    const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
-    tbb::task_arena arena(threads);
     tbb::enumerable_thread_specific<std::vector<double>> sums_of_thread(512 * std::size_t(values.channels() + 1), 0.0);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bins.occupied.size(), 4), [&](const auto& range) {

@@ -68,7 +68,7 @@ std::array<float, 4> Texture::sample(double u, double v) const {
         return int(r < 0 ? r + size : r);
     };
     const int xa = wrap(x0, width), ya = wrap(y0, height);
-    const int xb = (xa + 1) % width, yb = (ya + 1) % height;
+    const int xb = xa + 1 == width ? 0 : xa + 1, yb = ya + 1 == height ? 0 : ya + 1;  // no integer division
     auto texel = [&](int tx, int ty, int c) {
         return double(texels[(std::size_t(ty) * std::size_t(width) + std::size_t(tx)) * std::size_t(channels) + std::size_t(c)]);
     };
