@@ -43,9 +43,9 @@ struct TracedPolygon {
 };
 
 // The parts of `in` with x[Axis] <= at (`below`) and >= at (`above`); corners on the plane go
-// to both, crossing points are placed exactly on it. The new edges along the plane get line
-// `cut`; with `record_cut`, its ends (the extreme points on the plane) are added to `lines` as
-// that line (`cut` must then be lines.n). Either side may be left empty (n = 0).
+// to both, crossing points are placed exactly on it. With `record_cut` the new edges along
+// the plane get a new line of `lines` (its ends: the extreme points on the plane), else none
+// (kNone: those edges are not cut again). Either side may be left empty (n = 0).
 template <int Axis>
 void splitAtPlane(const TracedPolygon& in, double at, SweepLines& lines, bool record_cut, TracedPolygon& below,
                   TracedPolygon& above) {
@@ -106,13 +106,7 @@ void splitAtPlane(const TracedPolygon& in, double at, SweepLines& lines, bool re
     }
     below.shape.n = nb;
     above.shape.n = na;
-    if (cut != SweepLines::kNone) {
-        if (on_plane > 0) {
-            lines.add(lowest, highest);
-        } else {
-            lines.add(Point{}, Point{});  // no edge uses it; keeps ids in step
-        }
-    }
+    if (cut != SweepLines::kNone && on_plane > 0) lines.add(lowest, highest);  // else no edge took `cut`
 }
 
 // Calls visit(i, piece) for every voxel index i in [lo, hi] along Axis whose closed slab
