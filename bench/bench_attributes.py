@@ -2,7 +2,7 @@
 """The price of colour: binary vs colour vs colour + normal voxelization, side by side in one run.
 
     PYTHONPATH=build/python /usr/bin/python3 bench/bench_attributes.py [--resolutions 256,512]
-        [--repeats 3] [--methods cpu] [--mesh-dir ../shared/data/meshes]
+        [--repeats 3] [--methods cpu] [--mesh-dir ../shared/data/meshes] [--threads N] [--cpu-time]
 
 Sponza (vertex colours) and Spot (UVs + 1024² texture). Each line: median wall time of the
 voxelize() call (the .vdb is not written) for each variant, runs interleaved so a busy
@@ -12,7 +12,8 @@ methods' colour (pairs clipped on the GPU, summed on the CPU). Target (issue 12)
 512 under 2x binary. `--methods cpu,tessellation` adds the tessellation (gamma 2), whose
 colour is the mean of its points' values (its tiles shrink so that every brick's sums fit one
 storage block: llvmpipe's 128 MiB cuts Sponza at 256 into several); a row that does not fit
-the device says so and the bench goes on.
+the device says so and the bench goes on. `--cpu-time` times the process's CPU time instead
+of the wall (with `--threads 1`: the work itself, steadier than the wall on a shared machine).
 """
 import argparse
 import pathlib
@@ -38,9 +39,13 @@ def main() -> None:
     parser.add_argument("--resolutions", default="256,512")
     parser.add_argument("--methods", default="cpu")
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--threads", type=int, default=0, help="voxelize's threads (0: all cores)")
+    parser.add_argument("--cpu-time", action="store_true", help="time the process's CPU time, not the wall")
     args = parser.parse_args()
+    clock = time.process_time if args.cpu_time else time.perf_counter
     variants = {"binary": None, "color": "color", "color+normal": "color,normal"}
-    print(f"hyvox {hyvox.__version__}; median of {args.repeats} (seconds), ratio to binary")
+    print(f"hyvox {hyvox.__version__}; median of {args.repeats} ({'CPU' if args.cpu_time else 'wall'} seconds, "
+          f"threads {args.threads or 'all'}), ratio to binary")
     print(f"{'scene':24} {'method':12} {'res':>5} " + " ".join(f"{name:>13}" for name in variants) +
           f" {'color/bin':>10} {'c+n/bin':>8} {'voxels':>10}")
     for name, v, t, sources in scenes(args.mesh_dir):
@@ -50,13 +55,14 @@ def main() -> None:
                 voxels = 0
                 try:
                     # Untimed first: shader compiles and hybrid's cutoff search (cached per mesh and grid).
-                    hyvox.voxelize(v, t, resolution=resolution, method=method)
+                    hyvox.voxelize(v, t, resolution=resolution, method=method, threads=args.threads)
                     for _ in range(args.repeats):
                         for variant, attributes in variants.items():
                             extra = dict(sources, attributes=attributes) if attributes else {}
-                            start = time.perf_counter()
-                            grid = hyvox.voxelize(v, t, resolution=resolution, method=method, **extra)
-                            times[variant].append(time.perf_counter() - start)
+                            start = clock()
+                            grid = hyvox.voxelize(v, t, resolution=resolution, method=method, threads=args.threads,
+                                                  **extra)
+                            times[variant].append(clock() - start)
                             voxels = grid.voxel_count
                 except hyvox.ResourceError as error:
                     print(f"{name:24} {method:12} {resolution:5} does not fit: {error}", flush=True)

@@ -166,15 +166,17 @@ def test_triangle_on_a_voxel_face(method):
     np.testing.assert_allclose(got["normal"], [[0, 0, 1], [0, 0, 1]], atol=1e-6)
 
 
-def test_cpu_slab_clipping_equals_the_reference_box_clipping(spot_vcolor):
-    # cpu clips slab by slab, reference box by box: the same planes in the same order.
+def test_cpu_slab_sweep_equals_the_reference_box_clipping(spot_vcolor):
+    # cpu cuts each triangle slab by slab, reference clips it box by box: the same pieces, whose
+    # corners round differently (a few ulp in double), so the means may differ in the last bit
+    # of their float. A piece lost or counted twice moves a mean by far more than 1e-6.
     v, t, attrs = spot_vcolor
     cpu, reference = (hyvox.voxelize(v, t, resolution=64, method=m, colors=attrs["colors"][:, :3],
                                      attributes="color,normal") for m in EXACT)
     assert np.array_equal(cpu.coords(), reference.coords())
     assert cpu.stats["attribute_pieces"] == reference.stats["attribute_pieces"]
     for name in ("color", "normal"):
-        assert np.array_equal(cpu.attributes()[name], reference.attributes()[name])
+        np.testing.assert_allclose(cpu.attributes()[name], reference.attributes()[name], rtol=0, atol=1e-6)
 
 
 def test_threads_do_not_change_the_values(spot_vcolor):

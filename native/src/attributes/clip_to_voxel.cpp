@@ -106,10 +106,11 @@ void measurePiece(const Polygon& a, const TriangleFrame& frame, ClippedPiece& ou
         area += tri;
         for (std::size_t d = 0; d < 3; ++d) moment[d] += tri * (p0[d] + p1[d] + p2[d]);
     }
-    for (double& m : moment) m /= 3.0;
     out.area = std::max(area, 0.0);  // a touch's rounding may leave it a hair below zero
     if (area >= kTouchArea) {
-        for (std::size_t d = 0; d < 3; ++d) out.centroid[d] = moment[d] / area;
+        // Each fan triangle's centroid is its corners' sum / 3: one division for all three axes.
+        const double inverse = 1.0 / (3.0 * area);
+        for (std::size_t d = 0; d < 3; ++d) out.centroid[d] = moment[d] * inverse;
         return;
     }
     // A touch: the midpoint of the two points farthest apart (a point: itself).

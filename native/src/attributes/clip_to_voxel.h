@@ -34,9 +34,8 @@ struct Polygon {
 };
 
 // The part of `in` between the planes x[axis] = lo and x[axis] = hi (inclusive), clipped
-// at lo first: clipping a triangle slab by slab (x, then y, then z) gives exactly the
-// polygons clipTriangleToVoxel gives box by box. The result is `in` itself when both planes
-// keep all of it, else written to `scratch` (n = 0: nothing is left).
+// at lo first (clipTriangleToVoxel's steps). The result is `in` itself when both planes keep
+// all of it, else written to `scratch` (n = 0: nothing is left).
 const Polygon& clipSlab(const Polygon& in, Polygon& scratch, int axis, double lo, double hi);
 
 // A triangle's set-up for all its pieces: barycentrics, its unit normal, and the scale from
@@ -51,7 +50,11 @@ public:
         const Point d{point[0] - origin_[0], point[1] - origin_[1], point[2] - origin_[2]};
         const double v = d[0] * gradient_v_[0] + d[1] * gradient_v_[1] + d[2] * gradient_v_[2];
         const double w = d[0] * gradient_w_[0] + d[1] * gradient_w_[1] + d[2] * gradient_w_[2];
-        std::array<double, 3> bary{std::clamp(1.0 - v - w, 0.0, 1.0), std::clamp(v, 0.0, 1.0), std::clamp(w, 0.0, 1.0)};
+        const double u = 1.0 - v - w;
+        // A centroid of a piece of the triangle is inside it: renormalise only what rounding
+        // put outside.
+        if (u >= 0 && v >= 0 && w >= 0 && u <= 1 && v <= 1 && w <= 1) return {u, v, w};
+        std::array<double, 3> bary{std::clamp(u, 0.0, 1.0), std::clamp(v, 0.0, 1.0), std::clamp(w, 0.0, 1.0)};
         const double scale = 1.0 / (bary[0] + bary[1] + bary[2]);
         for (double& b : bary) b *= scale;
         return bary;

@@ -159,7 +159,10 @@ void meanOfSums(const AttributeGrid& layout, const double* sums, double weight, 
         std::fill(mean, mean + channels, 0.0f);
         return;
     }
-    for (int c = 0; c < channels; ++c) mean[c] = float(sums[c] / weight);
+    // The weight's reciprocal (at least 1e-6): one division per voxel instead of one per
+    // channel, a few ulp in double, far below the float the mean is stored in.
+    const double inverse_weight = 1.0 / weight;
+    for (int c = 0; c < channels; ++c) mean[c] = float(sums[c] * inverse_weight);
     if (!layout.normal) return;
     const double* n = sums + layout.normalOffset();
     const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);

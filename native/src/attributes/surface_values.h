@@ -48,6 +48,19 @@ public:
             out[n] = bary[0] * corners.at[0][n] + bary[1] * corners.at[1][n] + bary[2] * corners.at[2][n];
         if (corners.texture) sampleTexture(corners, bary, out);
     }
+    // sums[n] += weight * the interpolated value of channel n: the weight goes into the
+    // barycentrics, and the values go straight into the sums (no array in between).
+    void addWeighted(const CornerValues& corners, const std::array<double, 3>& bary, double weight, double* sums) const {
+        const int channels = layout_.channels();
+        if (corners.texture) {
+            double value[kMaxChannels];
+            interpolate(corners, bary, value);
+            for (int n = 0; n < channels; ++n) sums[n] += weight * value[n];
+            return;
+        }
+        const double w0 = weight * bary[0], w1 = weight * bary[1], w2 = weight * bary[2];
+        for (int n = 0; n < channels; ++n) sums[n] += w0 * corners.at[0][n] + w1 * corners.at[1][n] + w2 * corners.at[2][n];
+    }
 
 private:
     enum class ColorSource { None, Texture, Colors, Palette };

@@ -12,6 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include "attributes/clip_to_voxel.h"
+#include "attributes/sweep_cells.h"
 
 namespace hyvox::attributes {
 namespace {
@@ -76,9 +77,16 @@ TileBins binTriangles(const BackendJob& job, const BitGrid& bits, bool brute_for
     bins.first.assign(bins.occupied.size() + 1, 0);
     std::vector<std::size_t> next;
     const auto& usable = job.mesh.usable;
+    // Each triangle's candidate voxels first, in parallel (the corners' divisions and the
+    // vertex reads are most of the binning).
+    std::vector<VoxelRange> ranges(usable.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, usable.size(), 4096), [&](const auto& range) {
+        for (std::size_t n = range.begin(); n != range.end(); ++n)
+            ranges[n] = candidates(triangleCorners(job, usable[n]), tile_lo, tile_hi);
+    });
     for (int pass = 0; pass < 2; ++pass) {
         for (std::uint32_t n = 0; n < usable.size(); ++n) {
-            const VoxelRange r = candidates(triangleCorners(job, usable[n]), tile_lo, tile_hi);
+            const VoxelRange& r = ranges[n];
             if (r.empty()) continue;
             for (int bx = (r.lo[0] - tile_lo[0]) >> 3; bx <= (r.hi[0] - tile_lo[0]) >> 3; ++bx)
                 for (int by = (r.lo[1] - tile_lo[1]) >> 3; by <= (r.hi[1] - tile_lo[1]) >> 3; ++by)
@@ -161,19 +169,15 @@ private:
 
     void add(const TriangleFrame& frame, int i, int j, int k, const ClippedPiece& piece) {
         ++pieces_;
-        double value[kMaxChannels];
-        values_.interpolate(corner_values_, frame.barycentrics(piece.centroid), value);
         const double w = piece.area + kAreaEpsilon;
         double* voxel = &sums_[std::size_t(((i & 7) << 6) | ((j & 7) << 3) | (k & 7)) * stride_];
-        for (std::size_t c = 0; c + 1 < stride_; ++c) voxel[c] += w * value[c];
+        values_.addWeighted(corner_values_, frame.barycentrics(piece.centroid), w, voxel);
         voxel[stride_ - 1] += w;
     }
 
     // The triangle's pieces in the voxels of `mask`, clipped to their boxes grown by `margin`.
-    // The reference clips box by box; cpu clips slab by slab (x, then y, then z), sharing
-    // the first clips among a row's voxels: the same planes in the same order, so the same
-    // pieces. cpu also skips the rows and voxels its slab's extent cannot reach (those clips
-    // would come out empty; the ranges are one voxel wider than needed against rounding).
+    // cpu cuts the triangle slab by slab (sweep_cells.h) and skips the slabs and rows whose
+    // voxels are all unset; the reference, and the margin fallback of both, clip box by box.
     void addTriangle(std::uint32_t n, const std::uint64_t* mask, double margin) {
         const std::uint32_t triangle = job_.mesh.usable[n];
         const Corners corners = triangleCorners(job_, triangle);
@@ -182,7 +186,7 @@ private:
         const TriangleFrame frame(corners);
         values_.prepare(triangle, frame.unitNormal(), corner_values_);
         ClippedPiece piece;
-        if (brute_force_) {
+        if (brute_force_ || margin > 0) {
             for (int i = r.lo[0]; i <= r.hi[0]; ++i)
                 for (int j = r.lo[1]; j <= r.hi[1]; ++j)
                     for (int k = r.lo[2]; k <= r.hi[2]; ++k)
@@ -191,40 +195,26 @@ private:
                             add(frame, i, j, k, piece);
             return;
         }
-        Polygon whole, x_scratch, y_scratch, z_scratch;
-        whole.n = 3;
-        std::copy(corners.begin(), corners.end(), whole.p.begin());
-        for (int i = r.lo[0]; i <= r.hi[0]; ++i) {
+        SweepLines lines;
+        TracedPolygon whole;
+        whole.shape.n = 3;
+        for (std::size_t c = 0; c < 3; ++c) {
+            whole.shape.p[c] = corners[c];
+            whole.line[c] = lines.add(corners[c], corners[(c + 1) % 3]);
+        }
+        sweepSlabs<0>(whole, r.lo[0], r.hi[0], lines, true, [&](int i, const TracedPolygon& x_slab) {
             const std::uint64_t word = mask[i & 7];
-            if (!word) continue;
-            const Polygon& x_slab = clipSlab(whole, x_scratch, 0, i - margin, i + 1 + margin);
-            if (x_slab.n == 0) continue;
-            const auto [j_lo, j_hi] = reach(x_slab, 1, r.lo[1], r.hi[1]);
-            for (int j = j_lo; j <= j_hi; ++j) {
+            if (!word) return;
+            sweepSlabs<1>(x_slab, r.lo[1], r.hi[1], lines, true, [&](int j, const TracedPolygon& column) {
                 const std::uint64_t row = (word >> ((j & 7) << 3)) & 0xffu;
-                if (!row) continue;
-                const Polygon& xy_column = clipSlab(x_slab, y_scratch, 1, j - margin, j + 1 + margin);
-                if (xy_column.n == 0) continue;
-                const auto [k_lo, k_hi] = reach(xy_column, 2, r.lo[2], r.hi[2]);
-                for (int k = k_lo; k <= k_hi; ++k) {
-                    if (!((row >> (k & 7)) & 1u)) continue;
-                    const Polygon& box = clipSlab(xy_column, z_scratch, 2, k - margin, k + 1 + margin);
-                    if (box.n == 0) continue;
-                    measurePiece(box, frame, piece);
+                if (!row) return;
+                sweepSlabs<2>(column, r.lo[2], r.hi[2], lines, false, [&](int k, const TracedPolygon& cell) {
+                    if (!((row >> (k & 7)) & 1u)) return;
+                    measurePiece(cell.shape, frame, piece);
                     add(frame, i, j, k, piece);
-                }
-            }
-        }
-    }
-
-    // The voxels along `axis`, within [lo, hi], whose closed box may meet the polygon.
-    static std::pair<int, int> reach(const Polygon& polygon, int axis, int lo, int hi) {
-        double from = polygon.p[0][std::size_t(axis)], to = from;
-        for (int c = 1; c < polygon.n; ++c) {
-            from = std::min(from, polygon.p[std::size_t(c)][std::size_t(axis)]);
-            to = std::max(to, polygon.p[std::size_t(c)][std::size_t(axis)]);
-        }
-        return {int(std::max(double(lo), std::floor(from) - 2.0)), int(std::min(double(hi), std::floor(to) + 1.0))};
+                });
+            });
+        });
     }
 
     const BackendJob& job_;
@@ -263,15 +253,15 @@ std::array<Point, 3> triangleCorners(const BackendJob& job, std::uint32_t triang
 
 TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& bits, const SurfaceValues& values,
                                           bool brute_force, std::vector<AttributeLeaf>& out) {
-    const TileBins bins = binTriangles(job, bits, brute_force);
+    const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
+    tbb::task_arena arena(threads);
+    const TileBins bins = arena.execute([&] { return binTriangles(job, bits, brute_force); });
     const BrickLayout& tile_bricks = bits.bricks();
     const BrickLayout grid_bricks = job.grid.bricks();
     const std::array<std::int32_t, 3>& offset = job.tile.offset;
     const std::size_t first = out.size();
     out.resize(first + bins.occupied.size());
     std::atomic<std::uint64_t> pieces{0}, unreached{0}, rounded{0};
-    const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
-    tbb::task_arena arena(threads);
     tbb::enumerable_thread_specific<std::vector<double>> sums_of_thread(512 * std::size_t(values.channels() + 1), 0.0);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bins.occupied.size(), 4), [&](const auto& range) {
@@ -302,16 +292,23 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
     return {pieces.load(), unreached.load(), rounded.load()};
 }
 
-void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid) {
+void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid, int threads) {
     std::sort(leaves.begin(), leaves.end(), [](const AttributeLeaf& a, const AttributeLeaf& b) { return a.brick < b.brick; });
-    std::size_t total = 0;
-    for (const AttributeLeaf& leaf : leaves) total += leaf.values.size();
+    // Each leaf's place in the result, then the copies (and frees) in parallel: the values of
+    // a large grid are tens of MB.
+    std::vector<std::size_t> start(leaves.size() + 1, 0);
+    for (std::size_t n = 0; n < leaves.size(); ++n) start[n + 1] = start[n] + leaves[n].values.size();
     grid.values.clear();
-    grid.values.reserve(total);
-    for (AttributeLeaf& leaf : leaves) {
-        grid.values.insert(grid.values.end(), leaf.values.begin(), leaf.values.end());
-        std::vector<float>().swap(leaf.values);
-    }
+    grid.values.resize(start.back());
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 64), [&](const auto& range) {
+            for (std::size_t n = range.begin(); n != range.end(); ++n) {
+                std::copy(leaves[n].values.begin(), leaves[n].values.end(), grid.values.begin() + std::ptrdiff_t(start[n]));
+                std::vector<float>().swap(leaves[n].values);
+            }
+        });
+    });
 }
 
 }  // namespace hyvox::attributes

@@ -30,7 +30,7 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
                                           bool brute_force, std::vector<AttributeLeaf>& out);
 
 // Puts the leaves of all tiles in brick order (the order of SparseGrid::finish) and
-// concatenates their values into grid.values.
-void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid);
+// concatenates their values into grid.values, on `threads` threads (0: all).
+void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid, int threads);
 
 }  // namespace hyvox::attributes

@@ -29,8 +29,12 @@ Texture decoded(const Pixel* pixels, int width, int height, int channels, double
     // 256 or 65536 levels: one table instead of a pow per texel.
     std::vector<float> table(std::size_t(maximum) + 1);
     for (std::size_t level = 0; level < table.size(); ++level) table[level] = float(srgbToLinear(double(level) / maximum));
-    for (std::size_t n = 0; n < count; ++n)
-        out.texels[n] = int(n % std::size_t(channels)) == 3 ? float(double(pixels[n]) / maximum) : table[pixels[n]];
+    // Texel by texel, channel by channel (no n % channels per value).
+    const std::size_t stride = std::size_t(channels);
+    for (std::size_t texel = 0; texel < count; texel += stride) {
+        for (std::size_t c = 0; c < 3; ++c) out.texels[texel + c] = table[pixels[texel + c]];
+        if (stride == 4) out.texels[texel + 3] = float(double(pixels[texel + 3]) / maximum);
+    }
     return out;
 }
 
@@ -68,7 +72,7 @@ std::array<float, 4> Texture::sample(double u, double v) const {
         return int(r < 0 ? r + size : r);
     };
     const int xa = wrap(x0, width), ya = wrap(y0, height);
-    const int xb = (xa + 1) % width, yb = (ya + 1) % height;
+    const int xb = xa + 1 == width ? 0 : xa + 1, yb = ya + 1 == height ? 0 : ya + 1;  // no integer division
     auto texel = [&](int tx, int ty, int c) {
         return double(texels[(std::size_t(ty) * std::size_t(width) + std::size_t(tx)) * std::size_t(channels) + std::size_t(c)]);
     };

@@ -269,7 +269,7 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     result.occupancy.finish();
     if (surface) {
         result.attributes = surface->layout();
-        attributes::assembleAttributes(attribute_leaves, result.attributes);
+        attributes::assembleAttributes(attribute_leaves, result.attributes, options.threads);
     }
     stats.voxel_count = result.occupancy.count();
     stats.leaves = result.occupancy.leafCount();
