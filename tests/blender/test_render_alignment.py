@@ -28,7 +28,8 @@ SIZE = 0.25        # voxel size: 8 voxels across the cube, filling one leaf
 INSIDE_SIZE = 1 / 3  # 6 voxels across: the +x/+y/+z walls two voxels inside the leaf
 PIXELS = 96        # image width and height
 ORTHO = 3.0        # world units across the image
-WALL_SPREAD = 0.05  # darkest-value difference between walls (measured: EEVEE <= 0.004, Cycles 5.0 0.027; clipped 0.27)
+WALL_SPREAD = 0.05  # darkest-value difference between walls (measured: EEVEE <= 0.004, Cycles 5.0 0.013,
+                    # 5.3 0.003 at 64 samples, where 16 gave 5.3 0.051; clipped walls 0.27)
 # Blender 4.3.0 (the only 4.3 on PyPI) renders the whole EEVEE frame black, background
 # included, whenever a Volume object is in view (measured on llvmpipe, Mesa 22.3.6; a mesh
 # with a volume material renders). There the EEVEE tests check that it still does (a 4.3
@@ -77,7 +78,7 @@ def setup_render(scene, volume_obj, engine="CYCLES"):
     scene.eevee.volumetric_start, scene.eevee.volumetric_end = 5.0, 15.0
     scene.eevee.taa_render_samples = 8
     scene.cycles.device = "CPU"
-    scene.cycles.samples = 16
+    scene.cycles.samples = 64  # 16 left Cycles 5.3's walls 0.05 apart (noise)
     scene.cycles.use_denoising = False  # Debian's Blender has no OpenImageDenoise
     scene.cycles.volume_step_rate = 0.25
     scene.cycles.max_bounces = 0
