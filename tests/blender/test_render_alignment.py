@@ -32,10 +32,11 @@ WALL_SPREAD = 0.05  # darkest-value difference between walls (measured: EEVEE <=
                     # 5.3 0.003 at 64 samples, where 16 gave 5.3 0.051; clipped walls 0.27)
 # Blender 4.3.0 (the only 4.3 on PyPI) renders the whole EEVEE frame black, background
 # included, whenever a Volume object is in view (measured on llvmpipe, Mesa 22.3.6; a mesh
-# with a volume material renders). There the EEVEE tests check that it still does (a 4.3
-# that draws will fail them, to be measured), and test_bounds_without_the_modifier checks
-# what the clipping rule rests on without rendering.
-EEVEE_BLACK_FRAME_VERSIONS = ((4, 3, 0),)
+# with a volume material renders). In 4.3 (Debian 13 has a later 4.3.x, untested) such a
+# frame is taken as that defect and nothing more is measured in it; a 4.3 that draws is
+# measured as every other version. test_bounds_without_the_modifier checks what the
+# clipping rule rests on without rendering.
+EEVEE_BLACK_FRAME_RELEASE = (4, 3)
 
 
 def setup_render(scene, volume_obj, engine="CYCLES"):
@@ -176,14 +177,15 @@ class RenderAlignmentTest(AddonTestCase):
         self.check_engine("CYCLES")
 
     def eevee_draws_nothing(self, size):
-        """True (after checking that the frame is black) in the versions that draw no
-        EEVEE frame with a Volume in it: see EEVEE_BLACK_FRAME_VERSIONS."""
-        if tuple(bpy.app.version[:3]) not in EEVEE_BLACK_FRAME_VERSIONS:
+        """True where this Blender's EEVEE drew the cube's frame all black (4.3: see
+        EEVEE_BLACK_FRAME_RELEASE); elsewhere False without rendering."""
+        if tuple(bpy.app.version[:2]) != EEVEE_BLACK_FRAME_RELEASE:
             return False
         self.cube_scene(eevee_engine(), size)
         pixels = self.render()
-        self.assertLess(pixels.max(), 0.01, "this Blender's EEVEE draws the frame now: measure it")
-        return True
+        helpers.clear_scene()
+        print("EEVEE frame: brightest pixel %.3f" % pixels.max())
+        return pixels.max() < 0.01
 
     def test_eevee(self):
         """Voxels inside their leaf: drawn whole by every EEVEE."""
