@@ -243,8 +243,8 @@ class RenderAlignmentTest(AddonTestCase):
     def test_bounds_without_the_modifier(self):
         """What the rule of core/alignment.py rests on, measured without rendering: without
         the add-on's modifier Blender's own bounds of the Volume end where the last voxel
-        layer begins in 3.4 to 4.5, and reach that layer's faces from 5.0. (3.4's EEVEE draws outside the bounds,
-        EEVEE Next does not: test_eevee_voxels_on_leaf_faces.)"""
+        layer begins in 3.4 to 4.5, and reach that layer's faces from 5.0. (3.4's EEVEE
+        draws outside the bounds, EEVEE Next does not: test_eevee_voxels_on_leaf_faces.)"""
         cube = helpers.cube(size=2.0, location=(7.0, -3.0, 2.0))
         helpers.select_only(cube)
         self.assertEqual(self.voxelize(voxel_size=SIZE), {"FINISHED"})
