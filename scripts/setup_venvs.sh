@@ -9,6 +9,9 @@
 #   bpyNN       Blender N.N from PyPI (the `bpy` module): the add-on tests there
 #               (tests/blender/CMakeLists.txt registers them for each bpy list found):
 #               py311: bpy45 (4.5 LTS), bpy50; py313: bpy51, bpy53 (5.1 moved to 3.13)
+#   extra/bpyNN Blender releases tested on request only (HYVOX_BPY_EXTRA=1 here and
+#               -DHYVOX_BPY_EXTRA=ON in CMake; scripts/test_bpy_extra.sh does both):
+#               py311: bpy42, bpy43, bpy44 (the other EEVEE Next releases)
 # Each is made once per version of its list (a copy of the list inside marks it done), so
 # re-running is cheap.
 #   setup_venvs.sh --lists   prints the list folder for this machine's Python and exits
@@ -37,7 +40,15 @@ make_venv() {  # make_venv LIST VENV
 
 # The venvs are made side by side (mostly download time); any failure fails the script.
 pids=()
-for list in "$lists"/*.txt; do
+extra=()
+if [ "${HYVOX_BPY_EXTRA:-0}" = 1 ]; then
+  extra=("$lists"/extra/*.txt)
+  if [ ! -f "${extra[0]}" ]; then
+    echo "setup_venvs: HYVOX_BPY_EXTRA=1 but there is no $lists/extra/*.txt" >&2
+    exit 1
+  fi
+fi
+for list in "$lists"/*.txt "${extra[@]}"; do
   name=$(basename "$list" .txt)
   venv="$dir/$name"
   if cmp -s "$list" "$venv/requirements.txt"; then

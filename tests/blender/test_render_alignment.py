@@ -28,7 +28,15 @@ SIZE = 0.25        # voxel size: 8 voxels across the cube, filling one leaf
 INSIDE_SIZE = 1 / 3  # 6 voxels across: the +x/+y/+z walls two voxels inside the leaf
 PIXELS = 96        # image width and height
 ORTHO = 3.0        # world units across the image
-WALL_SPREAD = 0.05  # darkest-value difference between walls (measured: EEVEE <= 0.004, Cycles 5.0 0.027; clipped 0.27)
+WALL_SPREAD = 0.05  # darkest-value difference between walls (measured: EEVEE <= 0.004, Cycles 5.0 0.013,
+                    # 5.3 0.003 at 64 samples, where 16 gave 5.3 0.051; clipped walls 0.27)
+# Blender 4.3.0 (the only 4.3 on PyPI) renders the whole EEVEE frame black, background
+# included, whenever a Volume object is in view (measured on llvmpipe, Mesa 22.3.6; a mesh
+# with a volume material renders). In 4.3 (Debian 13 has a later 4.3.x, untested) such a
+# frame is taken as that defect and nothing more is measured in it; a 4.3 that draws is
+# measured as every other version. test_bounds_without_the_modifier checks what the
+# clipping rule rests on without rendering.
+EEVEE_BLACK_FRAME_RELEASE = (4, 3)
 
 
 def setup_render(scene, volume_obj, engine="CYCLES"):
@@ -71,7 +79,7 @@ def setup_render(scene, volume_obj, engine="CYCLES"):
     scene.eevee.volumetric_start, scene.eevee.volumetric_end = 5.0, 15.0
     scene.eevee.taa_render_samples = 8
     scene.cycles.device = "CPU"
-    scene.cycles.samples = 16
+    scene.cycles.samples = 64  # 16 left Cycles 5.3's walls 0.05 apart (noise)
     scene.cycles.use_denoising = False  # Debian's Blender has no OpenImageDenoise
     scene.cycles.volume_step_rate = 0.25
     scene.cycles.max_bounces = 0
@@ -132,13 +140,18 @@ class RenderAlignmentTest(AddonTestCase):
         return [world_x(crossing(rows)), world_x(crossing(rows, True)),
                 world_x(crossing(cols)), world_x(crossing(cols, True))]
 
-    def render_cube(self, engine, size):
+    def cube_scene(self, engine, size):
+        """The voxelized cube in the render set-up; its Volume object."""
         cube = helpers.cube(size=2.0)
         helpers.select_only(cube)
         self.assertEqual(self.voxelize(voxel_size=size), {"FINISHED"})
         (obj,) = self.volumes()
         cube.hide_render = True
         setup_render(bpy.context.scene, obj, engine)
+        return obj
+
+    def render_cube(self, engine, size):
+        obj = self.cube_scene(engine, size)
         pixels = self.render()
         edges, walls = self.render_edges(pixels), wall_minima(pixels)
         print(engine, "voxel %.4f" % size, "50% crossings (world) -x +x -y +y:", ["%.4f" % e for e in edges])
@@ -163,14 +176,28 @@ class RenderAlignmentTest(AddonTestCase):
     def test_cycles(self):
         self.check_engine("CYCLES")
 
+    def eevee_draws_nothing(self, size):
+        """True where this Blender's EEVEE drew the cube's frame all black (4.3: see
+        EEVEE_BLACK_FRAME_RELEASE); elsewhere False without rendering."""
+        if tuple(bpy.app.version[:2]) != EEVEE_BLACK_FRAME_RELEASE:
+            return False
+        self.cube_scene(eevee_engine(), size)
+        pixels = self.render()
+        helpers.clear_scene()
+        print("EEVEE frame: brightest pixel %.3f" % pixels.max())
+        return pixels.max() < 0.01
+
     def test_eevee(self):
         """Voxels inside their leaf: drawn whole by every EEVEE."""
-        self.check_engine(eevee_engine(), INSIDE_SIZE)
+        if not self.eevee_draws_nothing(INSIDE_SIZE):
+            self.check_engine(eevee_engine(), INSIDE_SIZE)
 
     def test_eevee_voxels_on_leaf_faces(self):
         """The +x/+y walls on the leaf's top faces: drawn whole with the add-on's bounds
         modifier in 4.2-4.5 (blender/eevee_bounds.py), and there, without it, measurably
         faint (so the version rule of core/alignment.py is measured both ways)."""
+        if self.eevee_draws_nothing(SIZE):
+            return
         obj = self.check_engine(eevee_engine(), SIZE)
         modifiers = [m for m in obj.modifiers if m.type == "NODES"]
         if not helpers.addon("core.alignment").eevee_clips_last_voxel_layer(bpy.app.version):
@@ -212,3 +239,27 @@ class RenderAlignmentTest(AddonTestCase):
         print("bounds", low, high, "voxel faces", faces_low, faces_high)
         np.testing.assert_array_less(low, faces_low - SIZE + 1e-6)
         np.testing.assert_array_less(faces_high + SIZE - 1e-6, high)
+
+    def test_bounds_without_the_modifier(self):
+        """What the rule of core/alignment.py rests on, measured without rendering: without
+        the add-on's modifier Blender's own bounds of the Volume end where the last voxel
+        layer begins in 3.4 to 4.5, and reach that layer's faces from 5.0. (3.4's EEVEE
+        draws outside the bounds, EEVEE Next does not: test_eevee_voxels_on_leaf_faces.)"""
+        cube = helpers.cube(size=2.0, location=(7.0, -3.0, 2.0))
+        helpers.select_only(cube)
+        self.assertEqual(self.voxelize(voxel_size=SIZE), {"FINISHED"})
+        (obj,) = self.volumes()
+        for modifier in list(obj.modifiers):
+            obj.modifiers.remove(modifier)
+        evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get())
+        corners = np.array([tuple(evaluated.matrix_world @ Vector(c)) for c in evaluated.bound_box])
+        low, high = corners.min(axis=0), corners.max(axis=0)
+        centres = helpers.vdb_world_centres(bpy.path.abspath(obj.data.filepath))
+        # Where every version draws the voxels (the render tests check it): the file's boxes.
+        faces_low, faces_high = centres.min(axis=0) - SIZE / 2, centres.max(axis=0) + SIZE / 2
+        print("Blender bounds", low, high, "voxel faces", faces_low, faces_high)
+        np.testing.assert_allclose(low, faces_low, atol=1e-5)
+        if tuple(bpy.app.version[:3]) < (5, 0, 0):
+            np.testing.assert_allclose(high, faces_high - SIZE, atol=1e-5)
+        else:
+            np.testing.assert_allclose(high, faces_high, atol=1e-5)

@@ -10,8 +10,6 @@ The corners come from the evaluated Volume (Bounding Box node), so a frame seque
 bounds change from frame to frame is covered on every frame.
 
 One node group serves every volume; each modifier passes its voxel size."""
-from typing import Optional
-
 import bpy
 
 GROUP_NAME = "hyvox EEVEE Bounds"
@@ -79,21 +77,41 @@ def _group() -> bpy.types.NodeTree:
     return tree
 
 
-# The nodes the group needs; a 4.x without them (untested: only 4.5 is) keeps Blender's bounds.
+# The nodes the group needs (all in 4.2-4.5; a Blender without them keeps its own bounds).
 NODES_NEEDED = ("GeometryNodePointsToSDFGrid", "GeometryNodeStoreNamedGrid", "GeometryNodeBoundBox")
 
 
-def available() -> bool:
-    return all(hasattr(bpy.types, name) for name in NODES_NEEDED)
+class BoundsUnavailable(Exception):
+    """The modifier could not be added; the message says why."""
 
 
-def add_bounds_modifier(obj: bpy.types.Object, voxel_size: float) -> Optional[bpy.types.Modifier]:
-    """The modifier on a Volume object made from voxels of this size (None where this
-    Blender lacks the nodes)."""
-    if not available():
-        return None
-    tree = _group()
-    modifier = obj.modifiers.new(MODIFIER_NAME, "NODES")
-    modifier.node_group = tree
-    modifier[tree.interface.items_tree[VOXEL_SIZE_INPUT].identifier] = float(voxel_size)
+def add_bounds_modifier(obj: bpy.types.Object, voxel_size: float) -> bpy.types.Modifier:
+    """The modifier on a Volume object made from voxels of this size. Raises
+    BoundsUnavailable when this Blender or this file does not allow it (nodes missing, a
+    node group of this name that is not ours, an object that cannot take modifiers),
+    leaving no half-made modifier or node group behind: the volume is fine without it,
+    only EEVEE may draw its last voxel layer faint."""
+    missing = [name for name in NODES_NEEDED if not hasattr(bpy.types, name)]
+    if missing:
+        raise BoundsUnavailable("this Blender has no " + ", ".join(missing) + " node")
+    groups_before = set(bpy.data.node_groups)
+    modifier = None
+    try:
+        tree = _group()
+        modifier = obj.modifiers.new(MODIFIER_NAME, "NODES")
+        modifier.node_group = tree
+        modifier[tree.interface.items_tree[VOXEL_SIZE_INPUT].identifier] = float(voxel_size)
+    except Exception as exc:  # Blender's API raises RuntimeError, TypeError, KeyError...
+        if modifier is not None:
+            obj.modifiers.remove(modifier)
+        for group in set(bpy.data.node_groups) - groups_before:
+            bpy.data.node_groups.remove(group)
+        raise BoundsUnavailable(f"{type(exc).__name__}: {exc}") from exc
     return modifier
+
+
+def unavailable_message(object_name: str, reason: BoundsUnavailable) -> str:
+    """The operator's warning, for the artist."""
+    return (f"{object_name}: EEVEE may not draw the last voxel layer on the +X/+Y/+Z side "
+            f"(Cycles draws it): the \"{MODIFIER_NAME}\" modifier that fixes this could not "
+            f"be added ({reason})")

@@ -12,7 +12,7 @@ and the artist's location, rotation and scale (relative to the source when paren
 from an overlapping one only the material and collections. By default the new volume is
 parented to its source (the active object of a group), so moving the source moves it; a
 frame sequence is not parented, as its voxels already follow the animation."""
-from typing import Dict, List, Optional
+from typing import Callable, Dict, List, Optional
 
 import bpy
 from mathutils import Vector
@@ -136,9 +136,11 @@ def _parent_to(obj: bpy.types.Object, source: Optional[bpy.types.Object]) -> Non
 
 
 def import_results(context, results: Dict[str, GroupResult], alignment_override: str = "AUTO",
-                   parent_to_source: bool = True) -> List[bpy.types.Object]:
+                   parent_to_source: bool = True,
+                   warn: Callable[[str], None] = print) -> List[bpy.types.Object]:
     """Create one Volume object per result, replacing earlier ones (see the module's
-    docstring); returns them."""
+    docstring); returns them. warn(text): what the artist should know (the operator
+    reports it), e.g. a volume left without its EEVEE bounds."""
     all_sources = {name for result in results.values() for name in result.group.sources}
     kept = []
     for old in _replaced(all_sources):
@@ -164,7 +166,10 @@ def import_results(context, results: Dict[str, GroupResult], alignment_override:
             obj = bpy.data.objects.new(name, volume)
             offset = alignment.object_offset(result.voxel_size, bpy.app.version, alignment_override)
             if alignment.eevee_clips_last_voxel_layer(bpy.app.version):
-                eevee_bounds.add_bounds_modifier(obj, result.voxel_size)
+                try:
+                    eevee_bounds.add_bounds_modifier(obj, result.voxel_size)
+                except eevee_bounds.BoundsUnavailable as reason:
+                    warn(eevee_bounds.unavailable_message(obj.name, reason))
         obj.location = offset
         obj["hyvox_offset"] = tuple(offset)
         if exact is not None:

@@ -99,7 +99,8 @@ class _Run:
         pipeline.commit()
         start = time.perf_counter()
         objects = importer.import_results(context, pipeline.results, self.override,
-                                          parent_to_source=self.used["parent_to_source"])
+                                          parent_to_source=self.used["parent_to_source"],
+                                          warn=self.warn)
         pipeline.timings.import_ms += (time.perf_counter() - start) * 1000.0
         self.show_results(context, objects)
         lines = summary.long_report(pipeline.results, pipeline.timings)
