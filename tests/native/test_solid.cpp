@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
 #include "hyvox/sparse_grid.h"
 #include "hyvox/voxelize.h"
 #include "solid/fast_winding.h"
+#include "solid/sheet_sum.h"
 #include "support/mesh_arrays.h"
 #include "support/test_mesh_loader.h"
 
@@ -212,6 +214,72 @@ TEST(SolidWinding, FastWindingNumbersMatchTheExactSum) {
     const double at2 = worstError(2.0), at8 = worstError(8.0);
     EXPECT_LT(at2, 0.05);
     EXPECT_LT(at8, at2 / 10);
+}
+
+// The float, vectorised sum of the open edges' sheets (solid/sheet_sum.h) against each sheet
+// as two tall triangles (1e9 voxels: the missing top adds under 1e-8), summed in double with
+// triangleWinding, at grid-sized coordinates (near 1000), with edges up to 600 voxels long and
+// sheets standing 500 voxels below the points (float cancellation would show there).
+TEST(SolidWinding, FloatSheetSumMatchesTallTriangles) {
+    std::mt19937 rng(11);
+    const solid::Vec3 origin{1000, 700, 900};
+    std::uniform_real_distribution<double> near(-20.0, 28.0), span(-300.0, 300.0), inside(0.0, 9.0);
+    double worst = 0;
+    int tested = 0, poisoned = 0;
+    for (const bool upward : {false, true}) {
+        std::vector<solid::GradientBound::Sheet> sheets;
+        for (int n = 0; n < 1000; ++n) {
+            solid::GradientBound::Sheet s;
+            const bool longer = n % 4 == 0;
+            for (int k = 0; k < 3; ++k) {
+                s.a[k] = origin[k] + near(rng);
+                s.b[k] = s.a[k] + (longer ? span(rng) : near(rng) / 4);
+            }
+            if (n % 50 == 0) s.b[0] = s.a[0], s.b[1] = s.a[1];  // vertical edges too
+            if (n % 5 == 1) {  // far below the box (above it for rays up): tall sheets
+                const double drop = upward ? 500.0 : -500.0;
+                s.a[2] += drop, s.b[2] += drop;
+            }
+            s.excess = 1 + n % 3;
+            sheets.push_back(s);
+        }
+        solid::SheetSum sum;
+        sum.assign(sheets, upward, origin);
+        const double height = upward ? -1e9 : 1e9;
+        for (int n = 0; n < 200; ++n) {
+            const solid::Vec3 q{origin[0] + inside(rng), origin[1] + inside(rng), origin[2] + inside(rng)};
+            double exact = 0, closest = HUGE_VAL;
+            for (const auto& s : sheets) {
+                const solid::Vec3 a_top{s.a[0], s.a[1], s.a[2] + height}, b_top{s.b[0], s.b[1], s.b[2] + height};
+                exact += s.excess *
+                         (solid::triangleWinding(s.b, s.a, a_top, q) + solid::triangleWinding(s.b, a_top, b_top, q));
+                // The distance in xy from q's column to the edge.
+                const double dx = s.b[0] - s.a[0], dy = s.b[1] - s.a[1], length2 = dx * dx + dy * dy;
+                const double px = q[0] - s.a[0], py = q[1] - s.a[1];
+                const double t = length2 > 0 ? std::clamp((px * dx + py * dy) / length2, 0.0, 1.0) : 0.0;
+                closest = std::min(closest, std::hypot(px - t * dx, py - t * dy));
+            }
+            const double value = sum.at(q);
+            if (closest < 0.9e-3) {  // the column meets an edge: no value
+                EXPECT_TRUE(std::isnan(value));
+                ++poisoned;
+            } else if (closest > 1.1e-3) {
+                ASSERT_FALSE(std::isnan(value));
+                worst = std::max(worst, std::fabs(value - exact));
+                ++tested;
+            }
+        }
+        // Columns through an edge, 1e-4 voxel beside it: no value.
+        for (std::size_t n = 2; n < sheets.size(); n += 25) {
+            const auto& s = sheets[n];
+            const solid::Vec3 q{0.5 * (s.a[0] + s.b[0]) + 1e-4, 0.5 * (s.a[1] + s.b[1]), origin[2] + 4.5};
+            EXPECT_TRUE(std::isnan(sum.at(q))) << n;
+            ++poisoned;
+        }
+    }
+    EXPECT_GT(tested, 300);
+    EXPECT_LT(worst, 5e-5);
+    std::printf("float sheet sums: %d points, worst error %.3g, %d columns on an edge\n", tested, worst, poisoned);
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "solid/sheet_sum.h"
+
 namespace hyvox::solid {
 namespace {
 
@@ -20,33 +22,6 @@ constexpr double kNearSides = 0.5;
 constexpr double kLift = 0.00390625;
 
 using Int3 = std::array<std::int32_t, 3>;
-
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-// The winding number at q of the sheet of edge a -> b: the strip (b, a, a + ∞z, b + ∞z), whose
-// solid angle is that of the spherical triangle of the directions to b, to a and up (`up` -1:
-// the strip down, (b, a, a - ∞z, b - ∞z), the sheet of +z rays).
-double sheetWinding(const GradientBound::Sheet& sheet, const Vec3& q, double up) {
-    Vec3 u{sheet.b[0] - q[0], sheet.b[1] - q[1], sheet.b[2] - q[2]};
-    Vec3 v{sheet.a[0] - q[0], sheet.a[1] - q[1], sheet.a[2] - q[2]};
-    const double lu = std::sqrt(dot(u, u)), lv = std::sqrt(dot(v, v));
-    for (int k = 0; k < 3; ++k) u[k] /= lu, v[k] /= lv;
-    const double det = up * (u[0] * v[1] - u[1] * v[0]);  // u · (v × up z)
-    const double denominator = 1.0 + dot(u, v) + up * (v[2] + u[2]);
-    return sheet.excess * std::atan2(det, denominator) / (2.0 * M_PI);
-}
-
-// Whether the column through q passes within kTie of the edge in xy, where the sheet's solid
-// angle and the rays' tie-breaking (snapped, symbolically perturbed) may disagree.
-constexpr double kTie = 1e-3;
-bool nearSheetEdge(const GradientBound::Sheet& sheet, const Vec3& q) {
-    const double dx = sheet.b[0] - sheet.a[0], dy = sheet.b[1] - sheet.a[1];
-    const double px = q[0] - sheet.a[0], py = q[1] - sheet.a[1];
-    const double length2 = dx * dx + dy * dy;
-    const double t = length2 > 0 ? std::clamp((px * dx + py * dy) / length2, 0.0, 1.0) : 0.0;
-    const double ex = px - t * dx, ey = py - t * dy;
-    return ex * ex + ey * ey < kTie * kTie;
-}
 
 // One brick's rays and samples.
 class Brick {
@@ -135,6 +110,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
                 for (int k = a[2]; k <= b[2]; ++k) f(Int3{i, j, k});
     };
     std::vector<GradientBound::Sheet> sheets, sheets_up;
+    SheetSum sheet_sum;
 
     // Boxes of voxels [a, b] (corners included), halved where interpolation does not hold.
     auto visit = [&](auto&& self, const Int3& a, const Int3& b) -> void {
@@ -161,17 +137,10 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
         bound_.sheetsMeeting(near, true, sheets_up);
         const bool upward = sheets_up.size() < sheets.size();
         if (upward) std::swap(sheets, sheets_up);
-        const double up = upward ? -1.0 : 1.0;
+        sheet_sum.assign(sheets, upward, {double(a[0]), double(a[1]), double(a[2])});
         auto shift = [&](const Int3& p) { return upward ? brick.columnCrossings(p) : 0; };
-        auto sheetSum = [&](const Int3& p) {
-            double sum = 0;
-            const Vec3 q{p[0] + 0.5, p[1] + 0.5, p[2] + 0.5};
-            for (const GradientBound::Sheet& s : sheets) {
-                if (nearSheetEdge(s, q)) return double(NAN);  // not interpolated: see nearSheetEdge
-                sum += sheetWinding(s, q, up);
-            }
-            return sum;
-        };
+        // NaN where a voxel's column passes (nearly) through an edge: not interpolated.
+        auto sheetSum = [&](const Int3& p) { return sheet_sum.at({p[0] + 0.5, p[1] + 0.5, p[2] + 0.5}); };
         auto smooth = [&](const Int3& p) { return brick.minusCrossings(p) + shift(p) + sheetSum(p); };
         double corner[8];
         for (int c = 0; c < 8; ++c) corner[c] = smooth({c & 4 ? b[0] : a[0], c & 2 ? b[1] : a[1], c & 1 ? b[2] : a[2]});
