@@ -23,31 +23,37 @@ constexpr double kLift = 0.00390625;
 
 using Int3 = std::array<std::int32_t, 3>;
 
-// One brick's rays and samples.
+// One brick's rays and samples, over the brick's voxels and the next voxel along each axis
+// (the corners the brick shares with its neighbours).
 class Brick {
 public:
-    Brick(const FastWinding& winding, const RayCrossings& rays, SmoothWinding::Counters& counters)
-        : winding_(winding), rays_(rays), counters_(counters) {
+    Brick(const FastWinding& winding, const RayCrossings& rays, SmoothWinding::LatticeSamples& lattice,
+          const Int3& lo, SmoothWinding::Counters& counters)
+        : winding_(winding), rays_(rays), lattice_(lattice), lo_(lo), counters_(counters) {
         std::fill(std::begin(samples_), std::end(samples_), NAN);
     }
 
-    static int local(const Int3& p) { return ((p[0] & 7) << 6) | ((p[1] & 7) << 3) | (p[2] & 7); }
-
-    // w - c at voxel p's centre (sampled just above it).
+    // w - c at voxel p's centre (sampled just above it). Points of the lattice of brick
+    // corners (every coordinate a multiple of 8) are kept for the neighbouring bricks.
     double minusCrossings(const Int3& p) {
         double& cached = samples_[local(p)];
-        if (std::isnan(cached)) {
-            const Column& column = columnOf(p);
-            double h = p[2] + 0.5 + kLift;
-            // Off every crossing by more than the rounding of its height.
-            for (bool moved = true; moved;) {
-                moved = false;
-                for (const auto& c : column.crossings)
-                    if (std::fabs(c.z - h) < 1e-6) h += kLift, moved = true;
-            }
-            ++counters_.point_evaluations;
-            cached = winding_.at({p[0] + 0.5, p[1] + 0.5, h}) - below(column, h);
+        if (!std::isnan(cached)) return cached;
+        const bool on_lattice = (p[0] & 7) == 0 && (p[1] & 7) == 0 && (p[2] & 7) == 0;
+        if (on_lattice) {
+            const auto found = lattice_.find(latticeKey(p));
+            if (found != lattice_.end()) return cached = found->second;
         }
+        const Column& column = columnOf(p);
+        double h = p[2] + 0.5 + kLift;
+        // Off every crossing by more than the rounding of its height.
+        for (bool moved = true; moved;) {
+            moved = false;
+            for (const auto& c : column.crossings)
+                if (std::fabs(c.z - h) < 1e-6) h += kLift, moved = true;
+        }
+        ++counters_.point_evaluations;
+        cached = winding_.at({p[0] + 0.5, p[1] + 0.5, h}) - below(column, h);
+        if (on_lattice) lattice_.emplace(latticeKey(p), cached);  // another thread's equal value may win
         return cached;
     }
     bool sampled(const Int3& p) const { return !std::isnan(samples_[local(p)]); }
@@ -73,8 +79,12 @@ private:
             if (c.z < h) count += c.sign;
         return count;
     }
+    int local(const Int3& p) const { return ((p[0] - lo_[0]) * 9 + (p[1] - lo_[1])) * 9 + (p[2] - lo_[2]); }
+    static std::uint64_t latticeKey(const Int3& p) {
+        return (std::uint64_t(p[0] >> 3) << 42) | (std::uint64_t(p[1] >> 3) << 21) | std::uint64_t(p[2] >> 3);
+    }
     Column& columnOf(const Int3& p) {
-        Column& column = columns_[p[0] & 7][p[1] & 7];
+        Column& column = columns_[p[0] - lo_[0]][p[1] - lo_[1]];
         if (!column.filled) {
             rays_.column(p[0], p[1], column.crossings);
             column.filled = true;
@@ -84,23 +94,27 @@ private:
 
     const FastWinding& winding_;
     const RayCrossings& rays_;
+    SmoothWinding::LatticeSamples& lattice_;
+    Int3 lo_;
     SmoothWinding::Counters& counters_;
-    Column columns_[8][8];
-    double samples_[512];  // w - c; NaN: not sampled
+    Column columns_[9][9];
+    double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
 };
 
 }  // namespace
 
 void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std::array<std::int32_t, 3>& hi,
                                 const std::uint64_t wanted[8], std::uint64_t inside[8], Counters& counters) const {
-    Brick brick(winding_, rays_, counters);
+    Brick brick(winding_, rays_, lattice_, lo, counters);
     std::uint64_t done[8] = {};
+    auto bit = [](const Int3& p) { return ((p[0] & 7) << 6) | ((p[1] & 7) << 3) | (p[2] & 7); };
     auto pending = [&](const Int3& p) {
-        const int n = Brick::local(p);
+        if (p[0] >= hi[0] || p[1] >= hi[1] || p[2] >= hi[2]) return std::uint64_t(0);  // the next brick's
+        const int n = bit(p);
         return ((wanted[n >> 6] & ~done[n >> 6]) >> (n & 63)) & 1;
     };
     auto decide = [&](const Int3& p, double w) {
-        const int n = Brick::local(p);
+        const int n = bit(p);
         done[n >> 6] |= std::uint64_t(1) << (n & 63);
         if (w >= 0.5) inside[n >> 6] |= std::uint64_t(1) << (n & 63);
     };
@@ -176,7 +190,11 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
             if (!skip) self(self, ca, cb);
         }
     };
-    visit(visit, lo, {hi[0] - 1, hi[1] - 1, hi[2] - 1});
+    // The brick and, where the grid goes on, the first voxels of the next bricks: the corners
+    // are then lattice points, each sampled once for the eight bricks around it.
+    Int3 top;
+    for (int d = 0; d < 3; ++d) top[d] = hi[d] == lo[d] + 8 && hi[d] < dims_[d] ? hi[d] : hi[d] - 1;
+    visit(visit, lo, top);
 }
 
 }  // namespace hyvox::solid
