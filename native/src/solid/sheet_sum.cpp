@@ -62,6 +62,12 @@ void SheetSum::assign(const std::vector<GradientBound::Sheet>& sheets, bool upwa
     terms_.resize(padded);
 }
 
+// Where the platform dispatches a function by the processor it runs on (GNU ifunc), an AVX2
+// copy as well: eight floats a step instead of four. Same operations in the same order (no
+// FMA), so both give the same bits.
+#if defined(__x86_64__) && defined(__linux__) && (defined(__GNUC__) || defined(__clang__))
+__attribute__((target_clones("avx2", "default")))
+#endif
 double SheetSum::at(const std::array<double, 3>& point) const {
     const float qx = float(point[0] - origin_[0]), qy = float(point[1] - origin_[1]), qz = float(point[2] - origin_[2]);
     const float up = up_;
