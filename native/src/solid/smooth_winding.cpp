@@ -27,9 +27,10 @@ using Int3 = std::array<std::int32_t, 3>;
 // (the corners the brick shares with its neighbours).
 class Brick {
 public:
+    // The voxels [lo, top] (top at most lo + 8).
     Brick(const FastWinding& winding, const RayCrossings& rays, SmoothWinding::LatticeSamples& lattice,
-          const Int3& lo, SmoothWinding::Counters& counters)
-        : winding_(winding), rays_(rays), lattice_(lattice), lo_(lo), counters_(counters) {
+          const Int3& lo, const Int3& top, SmoothWinding::Counters& counters)
+        : winding_(winding), rays_(rays), lattice_(lattice), lo_(lo), top_(top), counters_(counters) {
         std::fill(std::begin(samples_), std::end(samples_), NAN);
     }
 
@@ -48,7 +49,7 @@ public:
         // Off every crossing by more than the rounding of its height.
         for (bool moved = true; moved;) {
             moved = false;
-            for (const auto& c : column.crossings)
+            for (const auto& c : column)
                 if (std::fabs(c.z - h) < 1e-6) h += kLift, moved = true;
         }
         ++counters_.point_evaluations;
@@ -60,7 +61,7 @@ public:
     int crossings(const Int3& p) { return below(columnOf(p), p[2] + 0.5); }
     int columnCrossings(const Int3& p) {  // C: the signed crossings of the whole line
         int sum = 0;
-        for (const auto& c : columnOf(p).crossings) sum += c.sign;
+        for (const auto& c : columnOf(p)) sum += c.sign;
         return sum;
     }
     double exactWinding(const Int3& p) {
@@ -69,13 +70,10 @@ public:
     }
 
 private:
-    struct Column {
-        bool filled = false;
-        std::vector<RayCrossings::Crossing> crossings;
-    };
+    using Column = std::vector<RayCrossings::Crossing>;
     static int below(const Column& column, double h) {
         int count = 0;
-        for (const auto& c : column.crossings)
+        for (const auto& c : column)
             if (c.z < h) count += c.sign;
         return count;
     }
@@ -83,21 +81,22 @@ private:
     static std::uint64_t latticeKey(const Int3& p) {
         return (std::uint64_t(p[0] >> 3) << 42) | (std::uint64_t(p[1] >> 3) << 21) | std::uint64_t(p[2] >> 3);
     }
-    Column& columnOf(const Int3& p) {
-        Column& column = columns_[p[0] - lo_[0]][p[1] - lo_[1]];
-        if (!column.filled) {
-            rays_.column(p[0], p[1], column.crossings);
-            column.filled = true;
+    // The rays of all the brick's columns are found together, on first use.
+    const Column& columnOf(const Int3& p) {
+        if (!columns_filled_) {
+            rays_.columns(lo_[0], lo_[1], top_[0] - lo_[0] + 1, top_[1] - lo_[1] + 1, columns_);
+            columns_filled_ = true;
         }
-        return column;
+        return columns_[(p[0] - lo_[0]) * (top_[1] - lo_[1] + 1) + (p[1] - lo_[1])];
     }
 
     const FastWinding& winding_;
     const RayCrossings& rays_;
     SmoothWinding::LatticeSamples& lattice_;
-    Int3 lo_;
+    Int3 lo_, top_;
     SmoothWinding::Counters& counters_;
-    Column columns_[9][9];
+    bool columns_filled_ = false;
+    Column columns_[9 * 9];
     double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
 };
 
@@ -105,7 +104,11 @@ private:
 
 void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std::array<std::int32_t, 3>& hi,
                                 const std::uint64_t wanted[8], std::uint64_t inside[8], Counters& counters) const {
-    Brick brick(winding_, rays_, lattice_, lo, counters);
+    // The brick and, where the grid goes on, the first voxels of the next bricks: the corners
+    // are then lattice points, each sampled once for the eight bricks around it.
+    Int3 top;
+    for (int d = 0; d < 3; ++d) top[d] = hi[d] == lo[d] + 8 && hi[d] < dims_[d] ? hi[d] : hi[d] - 1;
+    Brick brick(winding_, rays_, lattice_, lo, top, counters);
     std::uint64_t done[8] = {};
     auto bit = [](const Int3& p) { return ((p[0] & 7) << 6) | ((p[1] & 7) << 3) | (p[2] & 7); };
     auto pending = [&](const Int3& p) {
@@ -190,10 +193,6 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
             if (!skip) self(self, ca, cb);
         }
     };
-    // The brick and, where the grid goes on, the first voxels of the next bricks: the corners
-    // are then lattice points, each sampled once for the eight bricks around it.
-    Int3 top;
-    for (int d = 0; d < 3; ++d) top[d] = hi[d] == lo[d] + 8 && hi[d] < dims_[d] ? hi[d] : hi[d] - 1;
     visit(visit, lo, top);
 }
 
