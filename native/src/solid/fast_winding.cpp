@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "solid/median_split.h"
+#include "solid/solid_angle_sum.h"
 
 namespace hyvox::solid {
 namespace {
@@ -94,6 +95,12 @@ FastWinding::FastWinding(const ValidatedMesh& mesh, const GridSpec& grid, double
     for (const auto& [a, b, c] : whole) cutLongEdges(a, b, c, limit * limit, triangles_);
     nodes_.reserve(2 * triangles_.size() / kLeafTriangles + 2);
     build(0, std::uint32_t(triangles_.size()));
+    // The leaves' triangles once more as arrays of coordinates, in tree order, for the
+    // vectorised sum of their solid angles.
+    for (int n = 0; n < 9; ++n) {
+        corner_arrays_[std::size_t(n)].resize(triangles_.size());
+        for (std::size_t t = 0; t < triangles_.size(); ++t) corner_arrays_[std::size_t(n)][t] = triangles_[t][std::size_t(n / 3)][std::size_t(n % 3)];
+    }
 }
 
 std::int32_t FastWinding::build(std::uint32_t first, std::uint32_t count) {
@@ -142,6 +149,8 @@ std::int32_t FastWinding::build(std::uint32_t first, std::uint32_t count) {
 
 double FastWinding::at(const Vec3& q) const {
     if (nodes_.empty()) return 0.0;
+    TriangleArrays arrays;
+    for (std::size_t n = 0; n < 9; ++n) arrays.corners[n] = corner_arrays_[n].data();
     double sum = 0;  // solid angle over 4π, exact parts
     double far = 0;  // expansions, times 4π
     std::int32_t stack[128];
@@ -160,8 +169,7 @@ double FastWinding::at(const Vec3& q) const {
                 for (int j = 0; j < 3; ++j) rmr += r[i] * m[3 * i + j] * r[j];
             far += dot(node.area, r) / r3 + trace / r3 - 3.0 * rmr / (r3 * r2);
         } else if (node.left < 0) {
-            for (std::uint32_t t = node.first; t < node.first + node.count; ++t)
-                sum += triangleWinding(triangles_[t][0], triangles_[t][1], triangles_[t][2], q);
+            sum += solidAngleSum(arrays, node.first, node.count, q);
         } else {
             stack[top++] = node.left;
             stack[top++] = node.right;

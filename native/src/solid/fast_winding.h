@@ -39,6 +39,7 @@ private:
 
     double beta_;
     std::vector<std::array<Vec3, 3>> triangles_;  // voxel space, in tree order
+    std::array<std::vector<double>, 9> corner_arrays_;  // the same, coordinate 3 c + k of corner c
     std::vector<Node> nodes_;
 };
 
