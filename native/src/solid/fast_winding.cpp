@@ -95,6 +95,17 @@ FastWinding::FastWinding(const ValidatedMesh& mesh, const GridSpec& grid, double
     for (const auto& [a, b, c] : whole) cutLongEdges(a, b, c, limit * limit, triangles_);
     nodes_.reserve(2 * triangles_.size() / kLeafTriangles + 2);
     build(0, std::uint32_t(triangles_.size()));
+    // What the traversal reads for every node it visits, apart from what it reads only for the
+    // clusters it expands (fewer bytes per visit).
+    visits_.reserve(nodes_.size());
+    expansions_.reserve(nodes_.size());
+    for (const Node& node : nodes_) {
+        const double far = beta_ * node.radius;
+        visits_.push_back({node.centre, far * far, node.first, node.count, node.left, node.right});
+        const auto& m = node.moment;
+        expansions_.push_back({node.area, m[0] + m[4] + m[8], m});
+    }
+    nodes_ = {};
     // The leaves' triangles once more as arrays of coordinates, in tree order, for the
     // vectorised sum of their solid angles.
     for (int n = 0; n < 9; ++n) {
@@ -148,7 +159,7 @@ std::int32_t FastWinding::build(std::uint32_t first, std::uint32_t count) {
 }
 
 double FastWinding::at(const Vec3& q) const {
-    if (nodes_.empty()) return 0.0;
+    if (visits_.empty()) return 0.0;
     TriangleArrays arrays;
     for (std::size_t n = 0; n < 9; ++n) arrays.corners[n] = corner_arrays_[n].data();
     double sum = 0;  // solid angle over 4π, exact parts
@@ -157,17 +168,18 @@ double FastWinding::at(const Vec3& q) const {
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-        const Node& node = nodes_[std::size_t(stack[--top])];
+        const std::size_t id = std::size_t(stack[--top]);
+        const Visit& node = visits_[id];
         const Vec3 r = sub(node.centre, q);
         const double r2 = dot(r, r);
-        if (r2 > beta_ * beta_ * node.radius * node.radius) {
+        if (r2 > node.far2) {
+            const Expansion& e = expansions_[id];
             const double r1 = std::sqrt(r2), r3 = r2 * r1;
-            const auto& m = node.moment;
-            const double trace = m[0] + m[4] + m[8];
+            const auto& m = e.moment;
             double rmr = 0;
             for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j) rmr += r[i] * m[3 * i + j] * r[j];
-            far += dot(node.area, r) / r3 + trace / r3 - 3.0 * rmr / (r3 * r2);
+            far += dot(e.area, r) / r3 + e.trace / r3 - 3.0 * rmr / (r3 * r2);
         } else if (node.left < 0) {
             sum += solidAngleSum(arrays, node.first, node.count, q);
         } else {
