@@ -183,8 +183,12 @@ double FastWinding::at(const Vec3& q) const {
         } else if (node.left < 0) {
             sum += solidAngleSum(arrays, node.first, node.count, q);
         } else {
-            stack[top++] = node.left;
-            stack[top++] = node.right;
+            // The children are read next: start loading them now (the tree outgrows the caches).
+            for (const std::int32_t child : {node.left, node.right}) {
+                __builtin_prefetch(&visits_[std::size_t(child)]);
+                __builtin_prefetch(&expansions_[std::size_t(child)]);
+                stack[top++] = child;
+            }
         }
     }
     return sum + far / kFourPi;
