@@ -194,4 +194,47 @@ double FastWinding::at(const Vec3& q) const {
     return sum + far / kFourPi;
 }
 
+void FastWinding::atMany(const Vec3* points, std::size_t count, double* out) const {
+    std::fill(out, out + count, 0.0);
+    if (visits_.empty() || count == 0) return;
+    TriangleArrays arrays;
+    for (std::size_t n = 0; n < 9; ++n) arrays.corners[n] = corner_arrays_[n].data();
+    // Per point the same decisions and the same order of additions as at() (children right
+    // first, each subtree whole), kept in two sums as there: the same values to the bit.
+    std::vector<double> far(count, 0.0);
+    std::vector<std::uint32_t> lists(count * 64);  // the points still near, one list per depth
+    for (std::uint32_t i = 0; i < count; ++i) lists[i] = i;
+    auto visit = [&](auto&& self, std::int32_t id, std::size_t depth, std::size_t n) -> void {
+        const Visit& node = visits_[std::size_t(id)];
+        const std::uint32_t* list = &lists[depth * count];
+        std::uint32_t* near = &lists[(depth + 1) * count];
+        std::size_t near_count = 0;
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::uint32_t i = list[k];
+            const Vec3 r = sub(node.centre, points[i]);
+            const double r2 = dot(r, r);
+            if (r2 > node.far2) {
+                const Expansion& e = expansions_[std::size_t(id)];
+                const double r1 = std::sqrt(r2), r3 = r2 * r1;
+                const auto& m = e.moment;
+                double rmr = 0;
+                for (int a = 0; a < 3; ++a)
+                    for (int b = 0; b < 3; ++b) rmr += r[a] * m[3 * a + b] * r[b];
+                far[i] += dot(e.area, r) / r3 + e.trace / r3 - 3.0 * rmr / (r3 * r2);
+            } else {
+                near[near_count++] = i;
+            }
+        }
+        if (near_count == 0) return;
+        if (node.left < 0) {
+            for (std::size_t k = 0; k < near_count; ++k) out[near[k]] += solidAngleSum(arrays, node.first, node.count, points[near[k]]);
+            return;
+        }
+        self(self, node.right, depth + 1, near_count);
+        self(self, node.left, depth + 1, near_count);
+    };
+    visit(visit, 0, 0, count);
+    for (std::size_t i = 0; i < count; ++i) out[i] += far[i] / kFourPi;
+}
+
 }  // namespace hyvox::solid

@@ -64,9 +64,14 @@ public:
         for (const auto& c : columnOf(p)) sum += c.sign;
         return sum;
     }
-    double exactWinding(const Int3& p) {
-        ++counters_.point_evaluations;
-        return winding_.at({p[0] + 0.5, p[1] + 0.5, p[2] + 0.5});
+    // The winding numbers at the centres of `voxels`, into `out`, in one walk of the tree.
+    void exactWindings(const std::vector<Int3>& voxels, std::vector<double>& out) {
+        counters_.point_evaluations += voxels.size();
+        centres_.resize(voxels.size());
+        for (std::size_t n = 0; n < voxels.size(); ++n)
+            centres_[n] = {voxels[n][0] + 0.5, voxels[n][1] + 0.5, voxels[n][2] + 0.5};
+        out.resize(voxels.size());
+        winding_.atMany(centres_.data(), centres_.size(), out.data());
     }
 
 private:
@@ -97,6 +102,7 @@ private:
     SmoothWinding::Counters& counters_;
     bool columns_filled_ = false;
     Column columns_[9 * 9];
+    std::vector<Vec3> centres_;
     double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
 };
 
@@ -120,6 +126,15 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
         const int n = bit(p);
         done[n >> 6] |= std::uint64_t(1) << (n & 63);
         if (w >= 0.5) inside[n >> 6] |= std::uint64_t(1) << (n & 63);
+    };
+    // Voxels whose interpolated winding number lies near 0.5: evaluated outright, together,
+    // once the boxes are done (marked done now, so that a box sharing them skips them).
+    std::vector<Int3> outright;
+    std::vector<double> outright_values;
+    auto defer = [&](const Int3& p) {
+        const int n = bit(p);
+        done[n >> 6] |= std::uint64_t(1) << (n & 63);
+        outright.push_back(p);
     };
     auto forEach = [](const Int3& a, const Int3& b, auto&& f) {
         for (int i = a[0]; i <= b[0]; ++i)
@@ -175,7 +190,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
                 if (!pending(p)) return;
                 if (brick.sampled(p)) return decide(p, brick.crossings(p) + brick.minusCrossings(p));
                 const double w = brick.crossings(p) - shift(p) + interpolate(p) - sheetSum(p);
-                if (!(std::fabs(w - 0.5) >= kMargin)) return decide(p, brick.exactWinding(p));  // NaN too
+                if (!(std::fabs(w - 0.5) >= kMargin)) return defer(p);  // NaN too
                 ++counters.interpolated_voxels;
                 decide(p, w);
             });
@@ -194,6 +209,9 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
         }
     };
     visit(visit, lo, top);
+    brick.exactWindings(outright, outright_values);
+    for (std::size_t n = 0; n < outright.size(); ++n)
+        if (outright_values[n] >= 0.5) inside[bit(outright[n]) >> 6] |= std::uint64_t(1) << (bit(outright[n]) & 63);
 }
 
 }  // namespace hyvox::solid
