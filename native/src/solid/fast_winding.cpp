@@ -106,6 +106,13 @@ FastWinding::FastWinding(const ValidatedMesh& mesh, const GridSpec& grid, double
         expansions_.push_back({node.area, m[0] + m[4] + m[8], m});
     }
     nodes_ = {};
+    // The tree's depth (a parent's index is below its children's), for atMany()'s lists.
+    std::vector<std::uint32_t> depth(visits_.size(), 0);
+    for (std::size_t id = 0; id < visits_.size(); ++id) {
+        if (visits_[id].left < 0) continue;
+        depth[std::size_t(visits_[id].left)] = depth[std::size_t(visits_[id].right)] = depth[id] + 1;
+        levels_ = std::max(levels_, depth[id] + 2);
+    }
     // The leaves' triangles once more as arrays of coordinates, in tree order, for the
     // vectorised sum of their solid angles.
     for (int n = 0; n < 9; ++n) {
@@ -201,8 +208,12 @@ void FastWinding::atMany(const Vec3* points, std::size_t count, double* out) con
     for (std::size_t n = 0; n < 9; ++n) arrays.corners[n] = corner_arrays_[n].data();
     // Per point the same decisions and the same order of additions as at() (children right
     // first, each subtree whole), kept in two sums as there: the same values to the bit.
-    std::vector<double> far(count, 0.0);
-    std::vector<std::uint32_t> lists(count * 64);  // the points still near, one list per depth
+    // Per thread, kept between calls (no allocation per brick): the expansions' sums, and the
+    // points still near at each depth of the walk, one list per depth.
+    thread_local std::vector<double> far;
+    thread_local std::vector<std::uint32_t> lists;
+    far.assign(count, 0.0);
+    lists.resize(count * std::size_t(levels_ + 1));
     for (std::uint32_t i = 0; i < count; ++i) lists[i] = i;
     auto visit = [&](auto&& self, std::int32_t id, std::size_t depth, std::size_t n) -> void {
         const Visit& node = visits_[std::size_t(id)];

@@ -57,6 +57,7 @@ private:
     std::vector<Node> nodes_;  // while building
     std::vector<Visit> visits_;
     std::vector<Expansion> expansions_;
+    std::uint32_t levels_ = 1;  // nodes on the longest path from the root, plus one
 };
 
 }  // namespace hyvox::solid
