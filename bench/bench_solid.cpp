@@ -3,7 +3,10 @@
 // an unlimited interior band followed by sdfToFogVolume (what Blender's Mesh to Volume does
 // with Fill Volume), same voxel size and placement, same process, same threads, one run.
 //
-//   bench_solid [--runs R] [--res N]... [--mesh-dir DIR] [MESH...]
+//   bench_solid [--runs R] [--res N]... [--mesh-dir DIR] [--fog-dir DIR] [MESH...]
+//
+// --fog-dir: also writes OpenVDB's active fog voxels inside hyvox's grid to
+// DIR/MESH_RES.fog.ijk (int32 i, j, k per voxel, tiles expanded), for bench_solid_three_way.py.
 //
 // Defaults: the Buddha, the 871k dragon and Sponza at 256, 512 and 1024, median of 3 runs.
 // Columns (milliseconds, medians):
@@ -20,6 +23,7 @@
 #include <cfloat>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -40,7 +44,7 @@ struct Row {
     std::uint64_t hyvox_voxels = 0, openvdb_voxels = 0, openvdb_only = 0, hyvox_only_inside = 0;
 };
 
-Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, int runs) {
+Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, int runs, const std::string& fog_dir) {
     Row row;
     row.mesh = name;
     row.resolution = resolution;
@@ -85,12 +89,23 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
     row.openvdb_ms = median(theirs);
     row.openvdb_voxels = fog->activeVoxelCount();
     // Fog voxels hyvox lacks (tiles of the fog expanded voxel by voxel).
+    std::vector<std::int32_t> fog_voxels;
     for (auto it = fog->cbeginValueOn(); it; ++it) {
         const openvdb::CoordBBox box = it.getBoundingBox();
         for (auto c = box.begin(); c; ++c) {
             const openvdb::Coord p = *c;
             const bool in_grid = result.occupancy.inside(p.x(), p.y(), p.z());
             if (!in_grid || !result.occupancy.test(p.x(), p.y(), p.z())) ++row.openvdb_only;
+            if (in_grid && !fog_dir.empty()) fog_voxels.insert(fog_voxels.end(), {p.x(), p.y(), p.z()});
+        }
+    }
+    if (!fog_dir.empty()) {
+        const std::string path = fog_dir + "/" + name.substr(name.find_last_of('/') + 1) + "_" + std::to_string(resolution) + ".fog.ijk";
+        std::ofstream out(path, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(fog_voxels.data()), std::streamsize(fog_voxels.size() * sizeof(std::int32_t)));
+        if (!out) {
+            std::fprintf(stderr, "cannot write %s\n", path.c_str());
+            std::exit(1);
         }
     }
     // hyvox's inside voxels (not on its surface) that the fog lacks, leaf by leaf and tile by tile.
@@ -119,11 +134,13 @@ int main(int argc, char** argv) {
     std::vector<int> resolutions;
     std::string mesh_dir = std::getenv("HYVOX_MESH_DIR") ? std::getenv("HYVOX_MESH_DIR") : HYVOX_BENCH_MESH_DIR;
     std::vector<std::string> files;
+    std::string fog_dir;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
         if (arg == "--runs") runs = std::atoi(hyvox::bench::optionValue(argc, argv, a).c_str());
         else if (arg == "--res") resolutions.push_back(std::atoi(hyvox::bench::optionValue(argc, argv, a).c_str()));
         else if (arg == "--mesh-dir") mesh_dir = hyvox::bench::optionValue(argc, argv, a);
+        else if (arg == "--fog-dir") fog_dir = hyvox::bench::optionValue(argc, argv, a);
         else files.push_back(arg);
     }
     if (resolutions.empty()) resolutions = {256, 512, 1024};
@@ -135,7 +152,7 @@ int main(int argc, char** argv) {
         const std::string path = file.find('/') == std::string::npos ? mesh_dir + "/" + file : file;
         const hyvox::Mesh mesh = hyvox::readMesh(path);
         for (const int res : resolutions) {
-            const Row r = runCase(file, mesh, res, runs);
+            const Row r = runCase(file, mesh, res, runs, fog_dir);
             std::printf("%-34s %5d %-34s %9.1f %9.1f %9.1f %7.1f %12llu %12llu %10llu %10llu\n", r.mesh.c_str(),
                         r.resolution, r.rule.c_str(), r.hyvox_ms, r.with_vdb_ms, r.openvdb_ms, r.openvdb_ms / r.with_vdb_ms,
                         (unsigned long long)r.hyvox_voxels, (unsigned long long)r.openvdb_voxels,

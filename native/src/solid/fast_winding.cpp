@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "solid/median_split.h"
+#include "solid/solid_angle_sum.h"
 
 namespace hyvox::solid {
 namespace {
@@ -94,6 +95,30 @@ FastWinding::FastWinding(const ValidatedMesh& mesh, const GridSpec& grid, double
     for (const auto& [a, b, c] : whole) cutLongEdges(a, b, c, limit * limit, triangles_);
     nodes_.reserve(2 * triangles_.size() / kLeafTriangles + 2);
     build(0, std::uint32_t(triangles_.size()));
+    // What the traversal reads for every node it visits, apart from what it reads only for the
+    // clusters it expands (fewer bytes per visit).
+    visits_.reserve(nodes_.size());
+    expansions_.reserve(nodes_.size());
+    for (const Node& node : nodes_) {
+        const double far = beta_ * node.radius;
+        visits_.push_back({node.centre, far * far, node.first, node.count, node.left, node.right});
+        const auto& m = node.moment;
+        expansions_.push_back({node.area, m[0] + m[4] + m[8], m});
+    }
+    nodes_ = {};
+    // The tree's depth (a parent's index is below its children's), for atMany()'s lists.
+    std::vector<std::uint32_t> depth(visits_.size(), 0);
+    for (std::size_t id = 0; id < visits_.size(); ++id) {
+        if (visits_[id].left < 0) continue;
+        depth[std::size_t(visits_[id].left)] = depth[std::size_t(visits_[id].right)] = depth[id] + 1;
+        levels_ = std::max(levels_, depth[id] + 2);
+    }
+    // The leaves' triangles once more as arrays of coordinates, in tree order, for the
+    // vectorised sum of their solid angles.
+    for (int n = 0; n < 9; ++n) {
+        corner_arrays_[std::size_t(n)].resize(triangles_.size());
+        for (std::size_t t = 0; t < triangles_.size(); ++t) corner_arrays_[std::size_t(n)][t] = triangles_[t][std::size_t(n / 3)][std::size_t(n % 3)];
+    }
 }
 
 std::int32_t FastWinding::build(std::uint32_t first, std::uint32_t count) {
@@ -141,33 +166,86 @@ std::int32_t FastWinding::build(std::uint32_t first, std::uint32_t count) {
 }
 
 double FastWinding::at(const Vec3& q) const {
-    if (nodes_.empty()) return 0.0;
+    if (visits_.empty()) return 0.0;
+    TriangleArrays arrays;
+    for (std::size_t n = 0; n < 9; ++n) arrays.corners[n] = corner_arrays_[n].data();
     double sum = 0;  // solid angle over 4π, exact parts
     double far = 0;  // expansions, times 4π
     std::int32_t stack[128];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-        const Node& node = nodes_[std::size_t(stack[--top])];
+        const std::size_t id = std::size_t(stack[--top]);
+        const Visit& node = visits_[id];
         const Vec3 r = sub(node.centre, q);
         const double r2 = dot(r, r);
-        if (r2 > beta_ * beta_ * node.radius * node.radius) {
+        if (r2 > node.far2) {
+            const Expansion& e = expansions_[id];
             const double r1 = std::sqrt(r2), r3 = r2 * r1;
-            const auto& m = node.moment;
-            const double trace = m[0] + m[4] + m[8];
+            const auto& m = e.moment;
             double rmr = 0;
             for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j) rmr += r[i] * m[3 * i + j] * r[j];
-            far += dot(node.area, r) / r3 + trace / r3 - 3.0 * rmr / (r3 * r2);
+            far += dot(e.area, r) / r3 + e.trace / r3 - 3.0 * rmr / (r3 * r2);
         } else if (node.left < 0) {
-            for (std::uint32_t t = node.first; t < node.first + node.count; ++t)
-                sum += triangleWinding(triangles_[t][0], triangles_[t][1], triangles_[t][2], q);
+            sum += solidAngleSum(arrays, node.first, node.count, q);
         } else {
-            stack[top++] = node.left;
-            stack[top++] = node.right;
+            // The children are read next: start loading them now (the tree outgrows the caches).
+            for (const std::int32_t child : {node.left, node.right}) {
+                __builtin_prefetch(&visits_[std::size_t(child)]);
+                __builtin_prefetch(&expansions_[std::size_t(child)]);
+                stack[top++] = child;
+            }
         }
     }
     return sum + far / kFourPi;
+}
+
+void FastWinding::atMany(const Vec3* points, std::size_t count, double* out) const {
+    std::fill(out, out + count, 0.0);
+    if (visits_.empty() || count == 0) return;
+    TriangleArrays arrays;
+    for (std::size_t n = 0; n < 9; ++n) arrays.corners[n] = corner_arrays_[n].data();
+    // Per point the same decisions and the same order of additions as at() (children right
+    // first, each subtree whole), kept in two sums as there: the same values to the bit.
+    // Per thread, kept between calls (no allocation per brick): the expansions' sums, and the
+    // points still near at each depth of the walk, one list per depth.
+    thread_local std::vector<double> far;
+    thread_local std::vector<std::uint32_t> lists;
+    far.assign(count, 0.0);
+    lists.resize(count * std::size_t(levels_ + 1));
+    for (std::uint32_t i = 0; i < count; ++i) lists[i] = i;
+    auto visit = [&](auto&& self, std::int32_t id, std::size_t depth, std::size_t n) -> void {
+        const Visit& node = visits_[std::size_t(id)];
+        const std::uint32_t* list = &lists[depth * count];
+        std::uint32_t* near = &lists[(depth + 1) * count];
+        std::size_t near_count = 0;
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::uint32_t i = list[k];
+            const Vec3 r = sub(node.centre, points[i]);
+            const double r2 = dot(r, r);
+            if (r2 > node.far2) {
+                const Expansion& e = expansions_[std::size_t(id)];
+                const double r1 = std::sqrt(r2), r3 = r2 * r1;
+                const auto& m = e.moment;
+                double rmr = 0;
+                for (int a = 0; a < 3; ++a)
+                    for (int b = 0; b < 3; ++b) rmr += r[a] * m[3 * a + b] * r[b];
+                far[i] += dot(e.area, r) / r3 + e.trace / r3 - 3.0 * rmr / (r3 * r2);
+            } else {
+                near[near_count++] = i;
+            }
+        }
+        if (near_count == 0) return;
+        if (node.left < 0) {
+            for (std::size_t k = 0; k < near_count; ++k) out[near[k]] += solidAngleSum(arrays, node.first, node.count, points[near[k]]);
+            return;
+        }
+        self(self, node.right, depth + 1, near_count);
+        self(self, node.left, depth + 1, near_count);
+    };
+    visit(visit, 0, 0, count);
+    for (std::size_t i = 0; i < count; ++i) out[i] += far[i] / kFourPi;
 }
 
 }  // namespace hyvox::solid

@@ -25,6 +25,9 @@ class FastWinding {
 public:
     FastWinding(const ValidatedMesh& mesh, const GridSpec& grid, double beta);
     double at(const Vec3& q) const;
+    // at() for many points at once (equal to it bit for bit): the points share one walk of
+    // the tree, which then stays in the caches.
+    void atMany(const Vec3* points, std::size_t count, double* out) const;
 
 private:
     struct Node {
@@ -36,10 +39,25 @@ private:
         std::int32_t left = -1, right = -1;
     };
     std::int32_t build(std::uint32_t first, std::uint32_t count);
+    struct Visit {           // per node, what deciding to expand or open it reads
+        Vec3 centre;
+        double far2;         // (beta radius)²: expanded from farther than this
+        std::uint32_t first, count;
+        std::int32_t left, right;
+    };
+    struct Expansion {       // per node, what expanding it reads
+        Vec3 area;
+        double trace;        // of the moment
+        std::array<double, 9> moment;
+    };
 
     double beta_;
     std::vector<std::array<Vec3, 3>> triangles_;  // voxel space, in tree order
-    std::vector<Node> nodes_;
+    std::array<std::vector<double>, 9> corner_arrays_;  // the same, coordinate 3 c + k of corner c
+    std::vector<Node> nodes_;  // while building
+    std::vector<Visit> visits_;
+    std::vector<Expansion> expansions_;
+    std::uint32_t levels_ = 1;  // nodes on the longest path from the root, plus one
 };
 
 }  // namespace hyvox::solid

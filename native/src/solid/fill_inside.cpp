@@ -404,7 +404,7 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
     if (!by_rays) winding = std::make_unique<FastWinding>(mesh, grid, options.solid.winding_beta);
     // Rays for parity and closed meshes; for the winding numbers of an open mesh, their integer part.
     if (by_rays || !bound.empty()) rays = std::make_unique<RayCrossings>(mesh, grid);
-    if (winding && rays) smooth = std::make_unique<SmoothWinding>(*winding, *rays, bound);
+    if (winding && rays) smooth = std::make_unique<SmoothWinding>(*winding, *rays, bound, grid.dims);
     const InsideField field{winding.get(), winding ? nullptr : rays.get(), rule == InsideRule::Parity, &bound, smooth.get()};
 
     // The surface's bricks, tiles included (every voxel of a tile is surface).

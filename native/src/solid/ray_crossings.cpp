@@ -119,25 +119,62 @@ void RayCrossings::column(int i, int j, std::vector<Crossing>& out) const {
 }
 
 template <typename Visit>
+void RayCrossings::crossing(const Triangle& t, std::int64_t px, std::int64_t py, Visit visit) {
+    const int s0 = side(t.x[1], t.y[1], t.x[2], t.y[2], px, py);
+    const int s1 = side(t.x[2], t.y[2], t.x[0], t.y[0], px, py);
+    const int s2 = side(t.x[0], t.y[0], t.x[1], t.y[1], px, py);
+    if (s0 != s1 || s1 != s2) return;
+    // The crossing's height from the barycentric weights (in double: the centre is at least
+    // half a voxel from the surface, far beyond this rounding).
+    const double w0 = double(orient(t.x[1], t.y[1], t.x[2], t.y[2], px, py));
+    const double w1 = double(orient(t.x[2], t.y[2], t.x[0], t.y[0], px, py));
+    const double w2 = double(orient(t.x[0], t.y[0], t.x[1], t.y[1], px, py));
+    const double total = w0 + w1 + w2;
+    visit((w0 * t.z[0] + w1 * t.z[1] + w2 * t.z[2]) / total, t.sign);
+}
+
+namespace {
+// Ray i's fixed-point coordinate: the middle of voxel column i.
+std::int64_t rayAt(int i) { return (std::int64_t(2 * i + 1)) << (kFractionBits - 1); }
+}  // namespace
+
+template <typename Visit>
 void RayCrossings::forEachCrossing(int i, int j, Visit visit) const {
-    const std::int64_t px = (std::int64_t(2 * i + 1)) << (kFractionBits - 1);
-    const std::int64_t py = (std::int64_t(2 * j + 1)) << (kFractionBits - 1);
+    const std::int64_t px = rayAt(i), py = rayAt(j);
     const std::size_t column = std::size_t(i >> 3) * std::size_t(columns_[1]) + std::size_t(j >> 3);
     for (std::uint32_t n = column_start_[column]; n < column_start_[column + 1]; ++n) {
         const Triangle& t = triangles_[column_triangles_[n]];
         if (px < t.x_lo || px > t.x_hi || py < t.y_lo || py > t.y_hi) continue;
-        const int s0 = side(t.x[1], t.y[1], t.x[2], t.y[2], px, py);
-        const int s1 = side(t.x[2], t.y[2], t.x[0], t.y[0], px, py);
-        const int s2 = side(t.x[0], t.y[0], t.x[1], t.y[1], px, py);
-        if (s0 != s1 || s1 != s2) continue;
-        // The crossing's height from the barycentric weights (in double: the centre is at least
-        // half a voxel from the surface, far beyond this rounding).
-        const double w0 = double(orient(t.x[1], t.y[1], t.x[2], t.y[2], px, py));
-        const double w1 = double(orient(t.x[2], t.y[2], t.x[0], t.y[0], px, py));
-        const double w2 = double(orient(t.x[0], t.y[0], t.x[1], t.y[1], px, py));
-        const double total = w0 + w1 + w2;
-        visit((w0 * t.z[0] + w1 * t.z[1] + w2 * t.z[2]) / total, t.sign);
+        crossing(t, px, py, visit);
     }
+}
+
+void RayCrossings::columns(int i0, int j0, int ni, int nj, std::vector<Crossing>* out) const {
+    for (int n = 0; n < ni * nj; ++n) out[n].clear();
+    // Each bucket of 8×8 rays the block meets, once: its triangles against its own rays of the
+    // block that lie in the triangle's xy box (a triangle listed in several buckets is seen
+    // once per ray).
+    const std::int64_t half = std::int64_t(1) << (kFractionBits - 1);
+    auto firstRay = [&](std::int64_t lo) { return std::int64_t((lo - half + (std::int64_t(1) << kFractionBits) - 1) >> kFractionBits); };
+    auto lastRay = [&](std::int64_t hi) { return std::int64_t((hi - half) >> kFractionBits); };
+    for (int bx = i0 >> 3; bx <= (i0 + ni - 1) >> 3; ++bx)
+        for (int by = j0 >> 3; by <= (j0 + nj - 1) >> 3; ++by) {
+            const int i_lo = std::max(i0, 8 * bx), i_hi = std::min(i0 + ni - 1, 8 * bx + 7);
+            const int j_lo = std::max(j0, 8 * by), j_hi = std::min(j0 + nj - 1, 8 * by + 7);
+            const std::size_t column = std::size_t(bx) * std::size_t(columns_[1]) + std::size_t(by);
+            for (std::uint32_t n = column_start_[column]; n < column_start_[column + 1]; ++n) {
+                const Triangle& t = triangles_[column_triangles_[n]];
+                const int first_i = int(std::max<std::int64_t>(i_lo, firstRay(t.x_lo)));
+                const int last_i = int(std::min<std::int64_t>(i_hi, lastRay(t.x_hi)));
+                const int first_j = int(std::max<std::int64_t>(j_lo, firstRay(t.y_lo)));
+                const int last_j = int(std::min<std::int64_t>(j_hi, lastRay(t.y_hi)));
+                for (int i = first_i; i <= last_i; ++i)
+                    for (int j = first_j; j <= last_j; ++j) {
+                        std::vector<Crossing>& list = out[(i - i0) * nj + (j - j0)];
+                        crossing(t, rayAt(i), rayAt(j), [&](double z, int sign) { list.push_back({z, sign}); });
+                    }
+            }
+        }
 }
 
 }  // namespace hyvox::solid

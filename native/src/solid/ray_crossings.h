@@ -32,11 +32,19 @@ public:
         int sign;
     };
     void column(int i, int j, std::vector<Crossing>& out) const;
+    // The same for the block of columns [i0, i0 + ni) × [j0, j0 + nj) (inside the grid), into
+    // out[(i - i0) nj + (j - j0)]: one pass over each 8×8 bucket's triangles instead of one per
+    // column.
+    void columns(int i0, int j0, int ni, int nj, std::vector<Crossing>* out) const;
 
 private:
     // Calls visit(height, sign) for each crossing of column (i, j)'s line.
     template <typename Visit>
     void forEachCrossing(int i, int j, Visit visit) const;
+    struct Triangle;
+    // Calls visit(height, sign) if ray (px, py) (fixed point) crosses t.
+    template <typename Visit>
+    static void crossing(const Triangle& t, std::int64_t px, std::int64_t py, Visit visit);
     struct Triangle {
         std::array<std::int64_t, 3> x, y;  // snapped xy of the corners
         std::array<double, 3> z;           // voxel-space z of the corners

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "solid/sheet_sum.h"
+
 namespace hyvox::solid {
 namespace {
 
@@ -21,113 +23,118 @@ constexpr double kLift = 0.00390625;
 
 using Int3 = std::array<std::int32_t, 3>;
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-// The winding number at q of the sheet of edge a -> b: the strip (b, a, a + ∞z, b + ∞z), whose
-// solid angle is that of the spherical triangle of the directions to b, to a and up (`up` -1:
-// the strip down, (b, a, a - ∞z, b - ∞z), the sheet of +z rays).
-double sheetWinding(const GradientBound::Sheet& sheet, const Vec3& q, double up) {
-    Vec3 u{sheet.b[0] - q[0], sheet.b[1] - q[1], sheet.b[2] - q[2]};
-    Vec3 v{sheet.a[0] - q[0], sheet.a[1] - q[1], sheet.a[2] - q[2]};
-    const double lu = std::sqrt(dot(u, u)), lv = std::sqrt(dot(v, v));
-    for (int k = 0; k < 3; ++k) u[k] /= lu, v[k] /= lv;
-    const double det = up * (u[0] * v[1] - u[1] * v[0]);  // u · (v × up z)
-    const double denominator = 1.0 + dot(u, v) + up * (v[2] + u[2]);
-    return sheet.excess * std::atan2(det, denominator) / (2.0 * M_PI);
-}
-
-// Whether the column through q passes within kTie of the edge in xy, where the sheet's solid
-// angle and the rays' tie-breaking (snapped, symbolically perturbed) may disagree.
-constexpr double kTie = 1e-3;
-bool nearSheetEdge(const GradientBound::Sheet& sheet, const Vec3& q) {
-    const double dx = sheet.b[0] - sheet.a[0], dy = sheet.b[1] - sheet.a[1];
-    const double px = q[0] - sheet.a[0], py = q[1] - sheet.a[1];
-    const double length2 = dx * dx + dy * dy;
-    const double t = length2 > 0 ? std::clamp((px * dx + py * dy) / length2, 0.0, 1.0) : 0.0;
-    const double ex = px - t * dx, ey = py - t * dy;
-    return ex * ex + ey * ey < kTie * kTie;
-}
-
-// One brick's rays and samples.
+// One brick's rays and samples, over the brick's voxels and the next voxel along each axis
+// (the corners the brick shares with its neighbours).
 class Brick {
 public:
-    Brick(const FastWinding& winding, const RayCrossings& rays, SmoothWinding::Counters& counters)
-        : winding_(winding), rays_(rays), counters_(counters) {
+    // The voxels [lo, top] (top at most lo + 8).
+    Brick(const FastWinding& winding, const RayCrossings& rays, SmoothWinding::LatticeSamples& lattice,
+          const Int3& lo, const Int3& top, SmoothWinding::Counters& counters)
+        : winding_(winding), rays_(rays), lattice_(lattice), lo_(lo), top_(top), counters_(counters) {
         std::fill(std::begin(samples_), std::end(samples_), NAN);
     }
 
-    static int local(const Int3& p) { return ((p[0] & 7) << 6) | ((p[1] & 7) << 3) | (p[2] & 7); }
-
-    // w - c at voxel p's centre (sampled just above it).
+    // w - c at voxel p's centre (sampled just above it). Points of the lattice of brick
+    // corners (every coordinate a multiple of 8) are kept for the neighbouring bricks.
     double minusCrossings(const Int3& p) {
         double& cached = samples_[local(p)];
-        if (std::isnan(cached)) {
-            const Column& column = columnOf(p);
-            double h = p[2] + 0.5 + kLift;
-            // Off every crossing by more than the rounding of its height.
-            for (bool moved = true; moved;) {
-                moved = false;
-                for (const auto& c : column.crossings)
-                    if (std::fabs(c.z - h) < 1e-6) h += kLift, moved = true;
-            }
-            ++counters_.point_evaluations;
-            cached = winding_.at({p[0] + 0.5, p[1] + 0.5, h}) - below(column, h);
+        if (!std::isnan(cached)) return cached;
+        const bool on_lattice = (p[0] & 7) == 0 && (p[1] & 7) == 0 && (p[2] & 7) == 0;
+        if (on_lattice) {
+            const auto found = lattice_.find(latticeKey(p));
+            if (found != lattice_.end()) return cached = found->second;
         }
+        const Column& column = columnOf(p);
+        double h = p[2] + 0.5 + kLift;
+        // Off every crossing by more than the rounding of its height.
+        for (bool moved = true; moved;) {
+            moved = false;
+            for (const auto& c : column)
+                if (std::fabs(c.z - h) < 1e-6) h += kLift, moved = true;
+        }
+        ++counters_.point_evaluations;
+        cached = winding_.at({p[0] + 0.5, p[1] + 0.5, h}) - below(column, h);
+        if (on_lattice) lattice_.emplace(latticeKey(p), cached);  // another thread's equal value may win
         return cached;
     }
     bool sampled(const Int3& p) const { return !std::isnan(samples_[local(p)]); }
     int crossings(const Int3& p) { return below(columnOf(p), p[2] + 0.5); }
     int columnCrossings(const Int3& p) {  // C: the signed crossings of the whole line
         int sum = 0;
-        for (const auto& c : columnOf(p).crossings) sum += c.sign;
+        for (const auto& c : columnOf(p)) sum += c.sign;
         return sum;
     }
-    double exactWinding(const Int3& p) {
-        ++counters_.point_evaluations;
-        return winding_.at({p[0] + 0.5, p[1] + 0.5, p[2] + 0.5});
+    // The winding numbers at the centres of `voxels`, into `out`, in one walk of the tree.
+    void exactWindings(const std::vector<Int3>& voxels, std::vector<double>& out) {
+        counters_.point_evaluations += voxels.size();
+        centres_.resize(voxels.size());
+        for (std::size_t n = 0; n < voxels.size(); ++n)
+            centres_[n] = {voxels[n][0] + 0.5, voxels[n][1] + 0.5, voxels[n][2] + 0.5};
+        out.resize(voxels.size());
+        winding_.atMany(centres_.data(), centres_.size(), out.data());
     }
 
 private:
-    struct Column {
-        bool filled = false;
-        std::vector<RayCrossings::Crossing> crossings;
-    };
+    using Column = std::vector<RayCrossings::Crossing>;
     static int below(const Column& column, double h) {
         int count = 0;
-        for (const auto& c : column.crossings)
+        for (const auto& c : column)
             if (c.z < h) count += c.sign;
         return count;
     }
-    Column& columnOf(const Int3& p) {
-        Column& column = columns_[p[0] & 7][p[1] & 7];
-        if (!column.filled) {
-            rays_.column(p[0], p[1], column.crossings);
-            column.filled = true;
+    int local(const Int3& p) const { return ((p[0] - lo_[0]) * 9 + (p[1] - lo_[1])) * 9 + (p[2] - lo_[2]); }
+    static std::uint64_t latticeKey(const Int3& p) {
+        return (std::uint64_t(p[0] >> 3) << 42) | (std::uint64_t(p[1] >> 3) << 21) | std::uint64_t(p[2] >> 3);
+    }
+    // The rays of all the brick's columns are found together, on first use.
+    const Column& columnOf(const Int3& p) {
+        if (!columns_filled_) {
+            rays_.columns(lo_[0], lo_[1], top_[0] - lo_[0] + 1, top_[1] - lo_[1] + 1, columns_);
+            columns_filled_ = true;
         }
-        return column;
+        return columns_[(p[0] - lo_[0]) * (top_[1] - lo_[1] + 1) + (p[1] - lo_[1])];
     }
 
     const FastWinding& winding_;
     const RayCrossings& rays_;
+    SmoothWinding::LatticeSamples& lattice_;
+    Int3 lo_, top_;
     SmoothWinding::Counters& counters_;
-    Column columns_[8][8];
-    double samples_[512];  // w - c; NaN: not sampled
+    bool columns_filled_ = false;
+    Column columns_[9 * 9];
+    std::vector<Vec3> centres_;
+    double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
 };
 
 }  // namespace
 
 void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std::array<std::int32_t, 3>& hi,
                                 const std::uint64_t wanted[8], std::uint64_t inside[8], Counters& counters) const {
-    Brick brick(winding_, rays_, counters);
+    // The brick and, where the grid goes on, the first voxels of the next bricks: the corners
+    // are then lattice points, each sampled once for the eight bricks around it.
+    Int3 top;
+    for (int d = 0; d < 3; ++d) top[d] = hi[d] == lo[d] + 8 && hi[d] < dims_[d] ? hi[d] : hi[d] - 1;
+    Brick brick(winding_, rays_, lattice_, lo, top, counters);
     std::uint64_t done[8] = {};
+    auto bit = [](const Int3& p) { return ((p[0] & 7) << 6) | ((p[1] & 7) << 3) | (p[2] & 7); };
     auto pending = [&](const Int3& p) {
-        const int n = Brick::local(p);
+        if (p[0] >= hi[0] || p[1] >= hi[1] || p[2] >= hi[2]) return std::uint64_t(0);  // the next brick's
+        const int n = bit(p);
         return ((wanted[n >> 6] & ~done[n >> 6]) >> (n & 63)) & 1;
     };
     auto decide = [&](const Int3& p, double w) {
-        const int n = Brick::local(p);
+        const int n = bit(p);
         done[n >> 6] |= std::uint64_t(1) << (n & 63);
         if (w >= 0.5) inside[n >> 6] |= std::uint64_t(1) << (n & 63);
+    };
+    // Voxels whose interpolated winding number lies near 0.5: evaluated outright, together,
+    // once the boxes are done (marked done now, so that a box sharing them skips them).
+    std::vector<Int3> outright;
+    std::vector<double> outright_values;
+    auto defer = [&](const Int3& p) {
+        const int n = bit(p);
+        done[n >> 6] |= std::uint64_t(1) << (n & 63);
+        outright.push_back(p);
     };
     auto forEach = [](const Int3& a, const Int3& b, auto&& f) {
         for (int i = a[0]; i <= b[0]; ++i)
@@ -135,6 +142,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
                 for (int k = a[2]; k <= b[2]; ++k) f(Int3{i, j, k});
     };
     std::vector<GradientBound::Sheet> sheets, sheets_up;
+    SheetSum sheet_sum;
 
     // Boxes of voxels [a, b] (corners included), halved where interpolation does not hold.
     auto visit = [&](auto&& self, const Int3& a, const Int3& b) -> void {
@@ -161,17 +169,10 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
         bound_.sheetsMeeting(near, true, sheets_up);
         const bool upward = sheets_up.size() < sheets.size();
         if (upward) std::swap(sheets, sheets_up);
-        const double up = upward ? -1.0 : 1.0;
+        sheet_sum.assign(sheets, upward, {double(a[0]), double(a[1]), double(a[2])});
         auto shift = [&](const Int3& p) { return upward ? brick.columnCrossings(p) : 0; };
-        auto sheetSum = [&](const Int3& p) {
-            double sum = 0;
-            const Vec3 q{p[0] + 0.5, p[1] + 0.5, p[2] + 0.5};
-            for (const GradientBound::Sheet& s : sheets) {
-                if (nearSheetEdge(s, q)) return double(NAN);  // not interpolated: see nearSheetEdge
-                sum += sheetWinding(s, q, up);
-            }
-            return sum;
-        };
+        // NaN where a voxel's column passes (nearly) through an edge: not interpolated.
+        auto sheetSum = [&](const Int3& p) { return sheet_sum.at({p[0] + 0.5, p[1] + 0.5, p[2] + 0.5}); };
         auto smooth = [&](const Int3& p) { return brick.minusCrossings(p) + shift(p) + sheetSum(p); };
         double corner[8];
         for (int c = 0; c < 8; ++c) corner[c] = smooth({c & 4 ? b[0] : a[0], c & 2 ? b[1] : a[1], c & 1 ? b[2] : a[2]});
@@ -189,7 +190,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
                 if (!pending(p)) return;
                 if (brick.sampled(p)) return decide(p, brick.crossings(p) + brick.minusCrossings(p));
                 const double w = brick.crossings(p) - shift(p) + interpolate(p) - sheetSum(p);
-                if (!(std::fabs(w - 0.5) >= kMargin)) return decide(p, brick.exactWinding(p));  // NaN too
+                if (!(std::fabs(w - 0.5) >= kMargin)) return defer(p);  // NaN too
                 ++counters.interpolated_voxels;
                 decide(p, w);
             });
@@ -207,7 +208,10 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
             if (!skip) self(self, ca, cb);
         }
     };
-    visit(visit, lo, {hi[0] - 1, hi[1] - 1, hi[2] - 1});
+    visit(visit, lo, top);
+    brick.exactWindings(outright, outright_values);
+    for (std::size_t n = 0; n < outright.size(); ++n)
+        if (outright_values[n] >= 0.5) inside[bit(outright[n]) >> 6] |= std::uint64_t(1) << (bit(outright[n]) & 63);
 }
 
 }  // namespace hyvox::solid

@@ -15,12 +15,16 @@
 // sheets hanging below the edges; each box takes the direction with fewer sheets.
 //
 // A box is decided from g at its corners when g at its middle matches the corners'
-// interpolation; otherwise it is halved, down to voxels evaluated one by one. c comes exactly
+// interpolation; otherwise it is halved, down to voxels evaluated one by one. A brick's box
+// reaches the first voxels of the next bricks, so that its corners lie on the lattice of
+// brick corners, each sampled once for the (up to) eight bricks around it. c comes exactly
 // from the rays at every voxel, and a voxel whose interpolated w lies near 0.5 is evaluated
 // outright. This is a checked interpolation, not a bound: the tests compare it with the
 // brute-force winding number on open meshes.
 #include <array>
 #include <cstdint>
+
+#include <tbb/concurrent_unordered_map.h>
 
 #include "solid/fast_winding.h"
 #include "solid/gradient_bound.h"
@@ -34,8 +38,11 @@ public:
         std::uint64_t point_evaluations = 0;   // fast winding numbers evaluated
         std::uint64_t interpolated_voxels = 0; // voxels decided from the interpolated smooth part
     };
-    SmoothWinding(const FastWinding& winding, const RayCrossings& rays, const GradientBound& bound)
-        : winding_(winding), rays_(rays), bound_(bound) {}
+    // w - c at the lattice points sampled so far, by brick-corner index.
+    using LatticeSamples = tbb::concurrent_unordered_map<std::uint64_t, double>;
+    SmoothWinding(const FastWinding& winding, const RayCrossings& rays, const GradientBound& bound,
+                  const std::array<std::int32_t, 3>& dims)
+        : winding_(winding), rays_(rays), bound_(bound), dims_(dims) {}
     // Sets in `inside` the voxels of `wanted` (a brick's bits) whose winding number is at least
     // 0.5; the brick's voxels inside the grid are [lo, hi).
     void decideBrick(const std::array<std::int32_t, 3>& lo, const std::array<std::int32_t, 3>& hi,
@@ -45,6 +52,8 @@ private:
     const FastWinding& winding_;
     const RayCrossings& rays_;
     const GradientBound& bound_;
+    std::array<std::int32_t, 3> dims_;       // the grid's
+    mutable LatticeSamples lattice_;         // shared by the threads deciding bricks
 };
 
 }  // namespace hyvox::solid
