@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/triangle_normal.h"
+
 namespace hyvox::cpu {
 namespace {
 
@@ -64,10 +66,8 @@ SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const CandidateRa
         return SetupKind::AllCandidates;
     }
 
-    const double e0[3] = {c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]};
-    const double e1[3] = {c[2][0] - c[1][0], c[2][1] - c[1][1], c[2][2] - c[1][2]};
-    const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2],
-                         e0[0] * e1[1] - e0[1] * e1[0]};
+    // From the two shortest edges: a sliver's width survives (core/triangle_normal.h).
+    const std::array<double, 3> n = stableTriangleNormal(c[0], c[1], c[2]);
     const double an[3] = {std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])};
     const int w = (an[0] >= an[1] && an[0] >= an[2]) ? 0 : (an[1] >= an[2] ? 1 : 2);
     if (an[w] == 0.0) {
