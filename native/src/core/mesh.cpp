@@ -16,21 +16,23 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/triangle_normal.h"
 #include "hyvox/errors.h"
 #include "hyvox/zero_page_allocator.h"
 
 namespace hyvox {
 namespace {
 
+// Zero area: the normal of the corners in double is exactly zero. Double products of
+// float inputs are exact enough that "exactly zero" is meaningful, and every backend skips the
+// same triangles. The normal is the one every double method takes (from the two shortest
+// edges, core/triangle_normal.h), so the rule does not depend on which corner comes first:
+// from a corner's two edges a 1e-37-wide sliver beside 1e-17-long edges was zero for one
+// corner and not for the others.
 bool isZeroArea(const float* a, const float* b, const float* c) {
-    // Double products of float inputs are exact enough that "exactly zero" is meaningful:
-    // every backend skips the same triangles.
-    const double e0[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
-    const double e1[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-    const double n0 = e0[1] * e1[2] - e0[2] * e1[1];
-    const double n1 = e0[2] * e1[0] - e0[0] * e1[2];
-    const double n2 = e0[0] * e1[1] - e0[1] * e1[0];
-    return n0 == 0.0 && n1 == 0.0 && n2 == 0.0;
+    const auto corner = [](const float* p) { return Corner3{double(p[0]), double(p[1]), double(p[2])}; };
+    const Corner3 n = stableTriangleNormal(corner(a), corner(b), corner(c));
+    return n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0;
 }
 
 constexpr std::size_t kChunk = kInterruptCheckTriangles;
