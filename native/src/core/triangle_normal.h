@@ -37,6 +37,47 @@ namespace hyvox {
 
 using Corner3 = std::array<double, 3>;
 
+namespace triangle_normal_detail {
+
+// Lexicographic a < b, without branches (the common case decides on x alone, at random).
+inline bool lexLess(const Corner3& a, const Corner3& b) {
+    return (a[0] < b[0]) | ((a[0] == b[0]) & ((a[1] < b[1]) | ((a[1] == b[1]) & (a[2] < b[2]))));
+}
+
+// The edges e[i] = c[i + 1] - c[i] (edge i is opposite corner i + 2) and the longest's index.
+struct Edges {
+    Corner3 e[3];
+    int longest;
+};
+
+inline Edges edgesOf(const Corner3& c0, const Corner3& c1, const Corner3& c2) {
+    const Corner3* c[3] = {&c0, &c1, &c2};
+    Edges out;
+    double length2[3];
+    for (int i = 0; i < 3; ++i) {
+        const Corner3& from = *c[i];
+        const Corner3& to = *c[i == 2 ? 0 : i + 1];
+        out.e[i] = {to[0] - from[0], to[1] - from[1], to[2] - from[2]};
+        length2[i] = out.e[i][0] * out.e[i][0] + out.e[i][1] * out.e[i][1] + out.e[i][2] * out.e[i][2];
+    }
+    const bool one_over_zero = length2[1] > length2[0];
+    out.longest = length2[2] > (one_over_zero ? length2[1] : length2[0]) ? 2 : int(one_over_zero);
+    if (__builtin_expect(length2[0] == length2[1] || length2[1] == length2[2] || length2[2] == length2[0], 0)) {
+        // Ties: the edge opposite the lexicographically smaller corner.
+        for (int i = 0; i < 3; ++i) {
+            const int k = out.longest;
+            if (i != k && length2[i] == length2[k] && lexLess(*c[(i + 2) % 3], *c[(k + 2) % 3])) out.longest = i;
+        }
+    }
+    return out;
+}
+
+inline Corner3 cross(const Corner3& a, const Corner3& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+}  // namespace triangle_normal_detail
+
 // The corners' indices in canonical order, and whether that order is a reflection of (0, 1, 2).
 struct CornerOrder {
     std::array<int, 3> index;
@@ -45,36 +86,26 @@ struct CornerOrder {
 
 inline CornerOrder canonicalCornerOrder(const Corner3& c0, const Corner3& c1, const Corner3& c2) {
     const Corner3* c[3] = {&c0, &c1, &c2};
-    double length2[3];  // edge i runs from corner i to corner i + 1, opposite corner i + 2
-    for (int i = 0; i < 3; ++i) {
-        const Corner3& from = *c[i];
-        const Corner3& to = *c[i == 2 ? 0 : i + 1];
-        const double d[3] = {to[0] - from[0], to[1] - from[1], to[2] - from[2]};
-        length2[i] = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    }
-    int longest = 0;
-    for (int i = 1; i < 3; ++i)
-        if (length2[i] > length2[longest] ||
-            (length2[i] == length2[longest] && *c[(i + 2) % 3] < *c[(longest + 2) % 3]))
-            longest = i;
-    const int first = (longest + 2) % 3, next = longest, last = (longest + 1) % 3;  // (first, next, last) is a rotation
-    if (*c[last] < *c[next]) return {{first, last, next}, true};
-    return {{first, next, last}, false};
+    const int longest = triangle_normal_detail::edgesOf(c0, c1, c2).longest;
+    // (opposite, next, last) is a rotation of (0, 1, 2).
+    const int opposite = longest == 0 ? 2 : longest - 1, next = longest, last = longest == 2 ? 0 : longest + 1;
+    const bool reflected = triangle_normal_detail::lexLess(*c[last], *c[next]);
+    return {{opposite, reflected ? last : next, reflected ? next : last}, reflected};
 }
 
 // The normal of corners already in canonical order: (p - v) x (q - v), the two shortest edges.
 inline Corner3 canonicalNormal(const Corner3& v, const Corner3& p, const Corner3& q) {
-    const double a[3] = {p[0] - v[0], p[1] - v[1], p[2] - v[2]};
-    const double b[3] = {q[0] - v[0], q[1] - v[1], q[2] - v[2]};
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    return triangle_normal_detail::cross({p[0] - v[0], p[1] - v[1], p[2] - v[2]}, {q[0] - v[0], q[1] - v[1], q[2] - v[2]});
 }
 
-// The normal from the two shortest edges, oriented as c0, c1, c2 wind.
+// The normal from the two shortest edges, oriented as c0, c1, c2 wind: e[k+1] x e[k+2] for
+// the longest edge k. With (v, p, q) the rotation of the corners that starts opposite edge k,
+// e[k+1] = v - q and e[k+2] = p - v, so this is (p - v) x (q - v) bit for bit: the
+// canonical corners' canonicalNormal, negated when their order is a reflection.
 inline Corner3 stableTriangleNormal(const Corner3& c0, const Corner3& c1, const Corner3& c2) {
-    const Corner3* c[3] = {&c0, &c1, &c2};
-    const CornerOrder order = canonicalCornerOrder(c0, c1, c2);
-    const Corner3 n = canonicalNormal(*c[order.index[0]], *c[order.index[1]], *c[order.index[2]]);
-    return order.reflected ? Corner3{-n[0], -n[1], -n[2]} : n;
+    const triangle_normal_detail::Edges edges = triangle_normal_detail::edgesOf(c0, c1, c2);
+    const int k = edges.longest;
+    return triangle_normal_detail::cross(edges.e[k == 2 ? 0 : k + 1], edges.e[k == 0 ? 2 : k - 1]);
 }
 
 }  // namespace hyvox
