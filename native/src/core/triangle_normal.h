@@ -10,11 +10,11 @@
 // accurate: the two shortest, which meet at the corner opposite the longest edge (its angle
 // is the largest, at least 60 degrees). A fuzzed sliver 42 voxels long and 2.5e-76 wide
 // (tests/fuzz/seeds/voxelize/sliver_beside_a_diagonal.bin) lost its width to e0 x e1: the
-// normal turned by 1.7e-6 rad and the plane test set the voxels on the wrong side of a diagonal
-// the sliver passes 1.5e-5 voxel from. From its two short edges the normal is exact.
+// normal turned by 1.7e-6 rad and the plane test set the voxels on the wrong side of a
+// diagonal the sliver passes 1.5e-5 voxel from. From its two short edges the normal is exact.
 //
-// The choice depends only on the corners' values, and so does the order the cpu method sets a
-// triangle up in (canonicalCornerOrder): the corner opposite the longest edge first, then
+// The choice depends only on the corners' values, and so does the order the cpu method sets
+// a triangle up in (canonicalCornerOrder): the corner opposite the longest edge first, then
 // the other two in lexicographic order. A tie for the longest edge is broken by the corner
 // opposite it (the lexicographically smaller); tied edges whose opposite corners are equal
 // both leave a zero edge, and both give a zero normal. Any rotation or reflection of the
@@ -26,11 +26,11 @@
 // is planeless in world space (zero area). One that is planeless only in voxel space (its
 // width rounded away by the grid) is voxelized as the segment or point it is there
 // (cpu/rasterize_planeless.h, and alike in the reference; the GL shaders decide it in float
-// from their own cross product, shaders/common/overlap.glsl). Any other
-// triangle keeps its plane and windings however thin, in thin mode too: its plane, not its
-// thinness, decides which voxel of a column holds it, as for any triangle. A "nearly
-// planeless" tolerance would depend on the scale; an exact zero of a computation fixed by
-// the corners' values does not, and gives every corner order the same answer.
+// from their own cross product, shaders/common/overlap.glsl). Any other triangle keeps its
+// plane and windings however thin, in thin mode too: its plane, not its thinness, decides
+// which voxel of a column holds it, as for any triangle. A "nearly planeless" tolerance
+// would depend on the scale; an exact zero of a computation fixed by the corners' values
+// does not, and gives every corner order the same answer.
 #include <array>
 
 namespace hyvox {
@@ -95,7 +95,8 @@ inline CornerOrder canonicalCornerOrder(const Corner3& c0, const Corner3& c1, co
 
 // The normal of corners already in canonical order: (p - v) x (q - v), the two shortest edges.
 inline Corner3 canonicalNormal(const Corner3& v, const Corner3& p, const Corner3& q) {
-    return triangle_normal_detail::cross({p[0] - v[0], p[1] - v[1], p[2] - v[2]}, {q[0] - v[0], q[1] - v[1], q[2] - v[2]});
+    return triangle_normal_detail::cross({p[0] - v[0], p[1] - v[1], p[2] - v[2]},
+                                         {q[0] - v[0], q[1] - v[1], q[2] - v[2]});
 }
 
 // The normal from the two shortest edges, oriented as c0, c1, c2 wind: e[k+1] x e[k+2] for

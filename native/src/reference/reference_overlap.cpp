@@ -112,7 +112,7 @@ bool overlaps(const Triangle& triangle, const Voxel& voxel, Mode mode, double de
     // the centred ones: centring rounds a sliver's width away near the grid's origin (1e-19
     // beside 17), and with it the plane the thin test needs. The cpu method takes them alike.
     const Vec3 edges[3] = {sub(triangle[1], triangle[0]), sub(triangle[2], triangle[1]), sub(triangle[0], triangle[2])};
-    // The normal from the two shortest edges, as every method takes it: e0 x e1 loses a
+    // The normal from the two shortest edges, as the cpu method takes it: e0 x e1 loses a
     // sliver's width to rounding (core/triangle_normal.h).
     const Vec3 n = stableTriangleNormal(triangle[0], triangle[1], triangle[2]);
     const double h = 0.5 + delta;
