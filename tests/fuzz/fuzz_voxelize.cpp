@@ -92,11 +92,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.tile_size = (knobs & 8) ? 8 * (1 + ((knobs >> 4) & 3)) : 0;  // tile borders too
     options.threads = 1;
     std::vector<float> positions(3 * vertex_count);
-    // Raw float32 vertices still find an open sliver case (tests/fuzz/findings/README.md): CI
-    // fuzzes the 16-bit encoding only until it is decided; HYVOX_FUZZ_RAW_FLOATS=1 turns raw
-    // floats on for fuzzing by hand.
-    static const bool raw_floats = std::getenv("HYVOX_FUZZ_RAW_FLOATS") != nullptr;
-    if ((knobs & 128) && raw_floats) {
+    if (knobs & 128) {
         for (float& p : positions) p = bytes.take<float>();
     } else {
         const float scale = std::ldexp(1.0f / 64, int(bytes.take<std::uint8_t>() % 32) - 16);

@@ -153,5 +153,60 @@ TEST(CpuVsReference, ThinSliverNearTheOriginFromTheFuzzer) {
         EXPECT_TRUE(conservative.occupancy.test(v[0], v[1], v[2])) << v[0] << "," << v[1] << "," << v[2];
 }
 
+// A third fuzz finding (raw float32 vertices, conservative): a sliver from (0, 2.5e-65, 0) to
+// (30, 0, 29.99956) in voxel space whose third corner stands 2.5e-76 above the far one in y.
+// It passes 1.5e-5 voxel below the x = z diagonal at x = 1, so it meets (1,0,0), (2,0,1), ...
+// and not (0,0,1), (1,0,2), ... The cpu method set the wrong side (10 voxels): its normal,
+// e0 x e1, lost the width to rounding (a 42-voxel edge's y difference rounds by 1e-81, the
+// width is 2.5e-76) and tilted its plane past the diagonal. Taken from the two shortest edges
+// (core/triangle_normal.h) it is exact. Checked against the reference (up to touches) and
+// against the segment the sliver lies within 2.5e-76 of: every voxel set meets it, every
+// voxel it crosses by more than 1e-9 in x and z is set. tests/python/test_sliver_exact_oracle.py decides
+// the same voxels in exact arithmetic.
+TEST(CpuVsReference, SliverBesideADiagonalFromTheFuzzer) {
+    const std::vector<float> positions{-2.50451951e+33f, 2.11894795e-33f, -2.50448284e+33f,
+                                       8.85928915e-41f,  0.0f,            -1.91017832e-37f,
+                                       -9.40395481e-38f, 2.1019477e-44f,  8.0f};
+    const std::vector<std::uint32_t> triangles{1, 0, 2};
+    const MeshView mesh = viewOf(positions, triangles);
+    for (Mode mode : {Mode::Conservative, Mode::Thin}) {
+        SCOPED_TRACE(toString(mode));
+        VoxelizeOptions options;
+        options.grid.resolution = 30;
+        options.mode = mode;
+        const Comparison cmp = compareWithReference(mesh, options);
+        std::printf("[ compare  ] sliver beside a diagonal %s: %s\n", toString(mode), cmp.summary().c_str());
+        expectMatchesOracle(cmp);
+        EXPECT_EQ(cmp.result_only + cmp.oracle_only, 0u);  // no touches either: 1.5e-5 > 1e-5
+    }
+    VoxelizeOptions options;
+    options.grid.resolution = 30;
+    options.method = Method::Cpu;
+    const VoxelizeResult result = voxelize(mesh, options);
+    // The far corner is the grid's origin corner; the two near the world's origin are the
+    // grid's opposite end.
+    const auto far = result.grid.toVoxel(std::array<float, 3>{positions[0], positions[1], positions[2]});
+    const auto near = result.grid.toVoxel(std::array<float, 3>{positions[3], positions[4], positions[5]});
+    ASSERT_GT(near[0], 29.0);  // the sliver spans the grid along x and z
+    ASSERT_GT(near[2], 29.0);
+    // It lies on the grid's y = 0 face (y <= 2.5e-65): y never separates it from a voxel of
+    // the one layer, so the segment is put in that layer's middle, where shrinking the box
+    // by 1e-9 leaves only x and z to decide.
+    ASSERT_EQ(result.grid.dims[1], 1);
+    const std::array<double, 3> from{far[0], 0.5, far[2]}, to{near[0], 0.5, near[2]};
+    for (int x = 0; x < 30; ++x)
+        for (int z = 0; z < 30; ++z) {
+            const Voxel v{x, 0, z};
+            if (segmentTouches(from, to, v, -1e-9)) {
+                EXPECT_TRUE(result.occupancy.test(x, 0, z)) << x << ",0," << z;
+            }
+            if (!segmentTouches(from, to, v, 1e-9)) {
+                EXPECT_FALSE(result.occupancy.test(x, 0, z)) << x << ",0," << z;
+            }
+        }
+    EXPECT_TRUE(result.occupancy.test(1, 0, 0));   // the side the sliver passes
+    EXPECT_FALSE(result.occupancy.test(0, 0, 1));  // the side the tilted plane reached
+}
+
 }  // namespace
 }  // namespace hyvox::test

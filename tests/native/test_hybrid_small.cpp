@@ -211,6 +211,31 @@ TEST(GlSmall, SliverWithAnEndTooShortForFloatMatchesTheExactMethods) {
     }
 }
 
+// The sliver of CpuVsReference.SliverBesideADiagonalFromTheFuzzer: 2.5e-76 wide, passing
+// 1.5e-5 voxel beside the x = z diagonal. The cpu method set the wrong side (its double
+// normal lost the width); in float the GL methods see a segment (the width underflows) and
+// set the right side. This keeps them there.
+TEST(GlSmall, SliverBesideADiagonalMatchesTheExactMethods) {
+    const std::vector<float> positions{-2.50451951e+33f, 2.11894795e-33f, -2.50448284e+33f,
+                                       8.85928915e-41f,  0.0f,            -1.91017832e-37f,
+                                       -9.40395481e-38f, 2.1019477e-44f,  8.0f};
+    const std::vector<std::uint32_t> triangles{1, 0, 2};
+    const MeshView mesh = test::viewOf(positions, triangles);
+    for (Mode mode : {Mode::Conservative, Mode::Thin}) {
+        VoxelizeOptions o = options(mode == Mode::Conservative ? Method::Reference : Method::Cpu, mode);
+        o.grid.resolution = 30;
+        const VoxelizeResult oracle = voxelize(mesh, o);
+        for (Method method : kGlMethods) {
+            SCOPED_TRACE(std::string(toString(method)) + " " + toString(mode));
+            o.method = method;
+            const VoxelizeResult r = voxelize(mesh, o);
+            const auto cmp = test::compareResults(mesh, mode, r, oracle);
+            EXPECT_TRUE(cmp.unexplained.empty()) << cmp.summary();
+            EXPECT_GE(cmp.result_voxels, 30u);  // one voxel per slab along x at least
+        }
+    }
+}
+
 test::TestMesh bunny() {
     return test::loadTestMesh(test::meshPath("bunny_stanford_69k.ply"));
 }

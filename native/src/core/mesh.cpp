@@ -16,21 +16,37 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/triangle_normal.h"
 #include "hyvox/errors.h"
 #include "hyvox/zero_page_allocator.h"
 
 namespace hyvox {
 namespace {
 
+// Zero area: the normal of the corners in double is exactly zero. Double products of
+// float inputs are exact enough that "exactly zero" is meaningful, and every backend skips the
+// same triangles. The normal is the one every double method takes (from the two shortest
+// edges, core/triangle_normal.h), so the rule does not depend on which corner comes first:
+// a needle 1e-37 wide beside edges of 1e33 was zero from one corner's two edges and not
+// from another's.
+//
+// Most triangles are far from zero area: the cross product of the edges from corner a decides
+// them. Each way of computing a component (these edges or the two shortest, each at most
+// twice as long per coordinate) errs by under 40 * 2^-53 * L^2, L the largest coordinate of
+// e0 and e1; a component above 2^-40 * L^2 here therefore has a true value, and a value in the
+// stable normal, far from zero.
 bool isZeroArea(const float* a, const float* b, const float* c) {
-    // Double products of float inputs are exact enough that "exactly zero" is meaningful:
-    // every backend skips the same triangles.
     const double e0[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
     const double e1[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-    const double n0 = e0[1] * e1[2] - e0[2] * e1[1];
-    const double n1 = e0[2] * e1[0] - e0[0] * e1[2];
-    const double n2 = e0[0] * e1[1] - e0[1] * e1[0];
-    return n0 == 0.0 && n1 == 0.0 && n2 == 0.0;
+    const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
+    double largest = 0.0;
+    for (int i = 0; i < 3; ++i) largest = std::max({largest, std::fabs(e0[i]), std::fabs(e1[i])});
+    const double surely_not_zero = 0x1p-40 * largest * largest;
+    if (std::fabs(n[0]) > surely_not_zero || std::fabs(n[1]) > surely_not_zero || std::fabs(n[2]) > surely_not_zero)
+        return false;
+    const auto corner = [](const float* p) { return Corner3{double(p[0]), double(p[1]), double(p[2])}; };
+    const Corner3 stable = stableTriangleNormal(corner(a), corner(b), corner(c));
+    return stable[0] == 0.0 && stable[1] == 0.0 && stable[2] == 0.0;
 }
 
 constexpr std::size_t kChunk = kInterruptCheckTriangles;

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "core/clamp_coord.h"
+#include "core/triangle_normal.h"
 #include "cpu/triangle_setup.h"
 
 namespace hyvox::cpu {
@@ -27,8 +28,12 @@ struct SlabTests {
 
 }  // namespace
 
-void rasterizePlaneless(const std::array<std::array<double, 3>, 3>& c, Mode mode, const std::array<int, 3>& lo,
+void rasterizePlaneless(const std::array<std::array<double, 3>, 3>& given, Mode mode, const std::array<int, 3>& lo,
                         const std::array<int, 3>& hi, WordMarker& marker) {
+    // The corners in the order setupTriangle takes them (core/triangle_normal.h): every
+    // order of the same corners rounds alike.
+    const CornerOrder order = canonicalCornerOrder(given[0], given[1], given[2]);
+    const std::array<std::array<double, 3>, 3> c{given[order.index[0]], given[order.index[1]], given[order.index[2]]};
     SlabTests tests;
     for (int plane = 0; plane < 3; ++plane) {
         setupEdgeTests(c, 1.0, kPlanes[plane][0], kPlanes[plane][1], mode, tests.edges[plane]);

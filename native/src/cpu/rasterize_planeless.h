@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// Triangles without a plane in voxel space: the cross product of their voxel-space edges is
-// exactly zero in double. validate() has already skipped the triangles of zero area in world
-// space; these have an area that voxel space cannot hold. A needle with two corners 1e-37
+// Triangles without a plane in voxel space: the cross product of their two shortest
+// voxel-space edges (core/triangle_normal.h) is exactly zero in double. validate() has
+// already skipped the triangles of zero area in world space; these have an area that voxel
+// space cannot hold. A needle with two corners 1e-37
 // apart beside a third at 1e33 becomes, once the grid's origin and voxel size are applied, a
 // segment whose two near ends coincide. What is left (a segment, or a point) still touches
 // voxels, and the rule is the reference's (reference_overlap.h), taken without the plane:

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/triangle_normal.h"
+
 namespace hyvox::cpu {
 namespace {
 
@@ -51,7 +53,7 @@ CandidateRange candidateRange(const std::array<std::array<double, 3>, 3>& c, con
 }
 
 template <bool Thin>
-SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const CandidateRange& range, TriangleSetup& out) {
+SetupKind setup(const std::array<std::array<double, 3>, 3>& given, const CandidateRange& range, TriangleSetup& out) {
     const std::array<int, 3>& lo = range.lo;
     const std::array<int, 3>& hi = range.hi;
     const std::array<bool, 3>& one = range.single;
@@ -64,10 +66,13 @@ SetupKind setup(const std::array<std::array<double, 3>, 3>& c, const CandidateRa
         return SetupKind::AllCandidates;
     }
 
-    const double e0[3] = {c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]};
-    const double e1[3] = {c[2][0] - c[1][0], c[2][1] - c[1][1], c[2][2] - c[1][2]};
-    const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2],
-                         e0[0] * e1[1] - e0[1] * e1[0]};
+    // The corners in an order of their values alone, so every order of the same corners
+    // rounds alike and sets the same voxels; the normal from the two shortest edges keeps a
+    // sliver's width (core/triangle_normal.h). Neither rule depends on the winding:
+    // conservative and thin voxels are the same for both sides.
+    const CornerOrder order = canonicalCornerOrder(given[0], given[1], given[2]);
+    const std::array<std::array<double, 3>, 3> c{given[order.index[0]], given[order.index[1]], given[order.index[2]]};
+    const std::array<double, 3> n = canonicalNormal(c[0], c[1], c[2]);
     const double an[3] = {std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])};
     const int w = (an[0] >= an[1] && an[0] >= an[2]) ? 0 : (an[1] >= an[2] ? 1 : 2);
     if (an[w] == 0.0) {

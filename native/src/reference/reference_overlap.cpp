@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/triangle_normal.h"
+
 namespace hyvox::reference {
 namespace {
 
@@ -19,7 +21,7 @@ Vec3 centreOf(const Voxel& voxel) { return {voxel[0] + 0.5, voxel[1] + 0.5, voxe
 // Akenine-Möller's separating-axis test of a triangle against the closed box centred at
 // the origin with half-size h: separated only if some axis strictly separates them, so a
 // triangle touching a face, edge or corner of the box counts as overlapping.
-bool triangleBoxSat(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3 (&edges)[3], double h) {
+bool triangleBoxSat(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3 (&edges)[3], const Vec3& n, double h) {
     const Vec3 verts[3] = {a, b, c};
 
     auto separatedOn = [&](const Vec3& axis) {
@@ -29,7 +31,7 @@ bool triangleBoxSat(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3 (&ed
     };
 
     // Triangle normal first: it rejects most voxels of a large triangle's bounding box.
-    if (separatedOn(cross(edges[0], edges[1]))) return false;
+    if (separatedOn(n)) return false;
     // The three box normals.
     for (int axis = 0; axis < 3; ++axis) {
         const double lo = std::min({a[axis], b[axis], c[axis]});
@@ -51,7 +53,7 @@ bool triangleBoxSat(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3 (&ed
 // planeless triangle (a segment or a point in voxel space) has no plane to test and no
 // winding in any projection: there every projected edge's line must pass the diamond,
 // on either side.
-bool sixSeparatingTest(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3 (&edges)[3], double h) {
+bool sixSeparatingTest(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3 (&edges)[3], const Vec3& n, double h) {
     // The triangle's bounding box must meet the box (the edge tests alone would accept
     // voxels beyond a sharp corner of the triangle).
     for (int axis = 0; axis < 3; ++axis) {
@@ -60,7 +62,6 @@ bool sixSeparatingTest(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3 (
         if (lo > h || hi < -h) return false;
     }
     const Vec3 verts[3] = {a, b, c};
-    const Vec3 n = cross(edges[0], edges[1]);
     if (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0) {
         const int planes[3][2] = {{0, 1}, {1, 2}, {2, 0}};
         for (const auto& plane : planes)
@@ -111,8 +112,11 @@ bool overlaps(const Triangle& triangle, const Voxel& voxel, Mode mode, double de
     // the centred ones: centring rounds a sliver's width away near the grid's origin (1e-19
     // beside 17), and with it the plane the thin test needs. The cpu method takes them alike.
     const Vec3 edges[3] = {sub(triangle[1], triangle[0]), sub(triangle[2], triangle[1]), sub(triangle[0], triangle[2])};
+    // The normal from the two shortest edges, as the cpu method takes it: e0 x e1 loses a
+    // sliver's width to rounding (core/triangle_normal.h).
+    const Vec3 n = stableTriangleNormal(triangle[0], triangle[1], triangle[2]);
     const double h = 0.5 + delta;
-    return mode == Mode::Conservative ? triangleBoxSat(a, b, c, edges, h) : sixSeparatingTest(a, b, c, edges, h);
+    return mode == Mode::Conservative ? triangleBoxSat(a, b, c, edges, n, h) : sixSeparatingTest(a, b, c, edges, n, h);
 }
 
 VoxelRange candidateVoxels(const Triangle& triangle, const std::array<std::int32_t, 3>& dims, double delta) {

@@ -11,8 +11,9 @@
 //     closed box, its plane meets the octahedron inscribed in the box (the "diamond" of
 //     the JCGT paper's Fig. 2, right), and in each of the three coordinate planes the
 //     three projected edge tests accept the inscribed 2D diamond (Fig. 3, right).
-//   Planeless triangles (the cross product of the corners' edges, computed as the cpu method
-//     computes it, is exactly zero: a segment or a point in voxel space, e.g. a needle whose
+//   The normal is the cross product of the two shortest edges, as the cpu method computes
+//     it (core/triangle_normal.h: a sliver keeps its plane, and every corner order gives it).
+//   Planeless triangles (that normal is exactly zero: a segment or a point in voxel space, e.g. a needle whose
 //     near corners coincide once the grid is applied) are what is left of them: conservative
 //     needs nothing else (the SAT above is the segment's own test); thin replaces the plane
 //     and winding tests by each projected edge's line against the diamond, on either side.
