@@ -27,12 +27,7 @@ using Pieces = std::map<Voxel, ClippedPiece>;
 Pieces sweep(const Corners& corners, int lo, int hi) {
     const TriangleFrame frame(corners);
     SweepLines lines;
-    TracedPolygon whole;
-    whole.shape.n = 3;
-    for (std::size_t c = 0; c < 3; ++c) {
-        whole.shape.p[c] = corners[c];
-        whole.line[c] = lines.add(corners[c], corners[(c + 1) % 3]);
-    }
+    const TracedPolygon whole = tracedTriangle(corners, lines);
     Pieces pieces;
     using hyvox::attributes::sweepSlabs;
     sweepSlabs<0>(whole, lo, hi, lines, true, [&](int i, const TracedPolygon& slab) {

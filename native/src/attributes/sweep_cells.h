@@ -42,6 +42,17 @@ struct TracedPolygon {
     std::array<std::uint8_t, Polygon::kMaxCorners> line;
 };
 
+// The triangle itself, where the sweep starts: its edges on lines of their own.
+inline TracedPolygon tracedTriangle(const std::array<Point, 3>& corners, SweepLines& lines) {
+    TracedPolygon whole;
+    whole.shape.n = 3;
+    for (std::size_t c = 0; c < 3; ++c) {
+        whole.shape.p[c] = corners[c];
+        whole.line[c] = lines.add(corners[c], corners[(c + 1) % 3]);
+    }
+    return whole;
+}
+
 // The parts of `in` with x[Axis] <= at (`below`) and >= at (`above`); corners on the plane go
 // to both, crossing points are placed exactly on it. With `record_cut` the new edges along
 // the plane get a new line of `lines` (its ends: the extreme points on the plane), else none

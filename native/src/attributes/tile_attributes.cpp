@@ -196,12 +196,7 @@ private:
             return;
         }
         SweepLines lines;
-        TracedPolygon whole;
-        whole.shape.n = 3;
-        for (std::size_t c = 0; c < 3; ++c) {
-            whole.shape.p[c] = corners[c];
-            whole.line[c] = lines.add(corners[c], corners[(c + 1) % 3]);
-        }
+        const TracedPolygon whole = tracedTriangle(corners, lines);
         sweepSlabs<0>(whole, r.lo[0], r.hi[0], lines, true, [&](int i, const TracedPolygon& x_slab) {
             const std::uint64_t word = mask[i & 7];
             if (!word) return;
