@@ -193,6 +193,17 @@ def add_vertex_coloured_sponza(args):
     return sponza
 
 
+def voxelize_with_colour(obj, args, output):
+    """obj alone through the operator with the Colour option (a surface: colour is not
+    computed with Fill Interior); returns its new Volume object."""
+    for other in bpy.context.view_layer.objects:
+        other.select_set(other is obj)
+    bpy.context.view_layer.objects.active = obj
+    bpy.ops.object.hyvox_voxelize(resolution=args.resolution, method=args.method, separate=True, color=True,
+                                  fill_interior=False, output_dir=os.path.join(output, "vdb"))
+    return bpy.data.objects[obj.name + "_voxels"]
+
+
 def vector_math(tree, operation, a, b):
     """A Vector Math node computing `a operation b` (each a socket or a constant triple)."""
     node = tree.nodes.new("ShaderNodeVectorMath")
@@ -261,18 +272,13 @@ def main():
     render_s = time.perf_counter() - start
     summary = list(operators.last_summary)
 
-    # Colour: Spot's texture into a `color` grid (a surface: colour is not computed with Fill
-    # Interior); its volume shows it through the add-on's material (no flat colour set).
+    # Colour: Spot's texture into a `color` grid; its volume shows it through the add-on's
+    # material (no flat colour set), brightened as show_surface_colour explains.
     shown = [bpy.data.objects[name] for name in ("Bunny", "Suzanne", "Bunny_voxels", "Suzanne_voxels")]
     for obj in shown:
         obj.hide_render = True
     spot = add_textured_spot(args)
-    for obj in bpy.context.view_layer.objects:
-        obj.select_set(obj is spot)
-    bpy.context.view_layer.objects.active = spot
-    bpy.ops.object.hyvox_voxelize(resolution=args.resolution, method=args.method, separate=True, color=True, fill_interior=False,
-                                  output_dir=os.path.join(output, "vdb"))
-    volume = bpy.data.objects["Spot_voxels"]
+    volume = voxelize_with_colour(spot, args, output)
     volume.location.x += 2.6
     show_surface_colour(volume)
     cycles = bpy.context.scene.cycles
@@ -288,13 +294,8 @@ def main():
     # Sponza's vertex colours the same way, seen from above (its roof is open).
     spot.hide_render = volume.hide_render = True
     sponza = add_vertex_coloured_sponza(args)
-    for obj in bpy.context.view_layer.objects:
-        obj.select_set(obj is sponza)
-    bpy.context.view_layer.objects.active = sponza
-    bpy.ops.object.hyvox_voxelize(resolution=args.resolution, method=args.method, separate=True, color=True, fill_interior=False,
-                                  output_dir=os.path.join(output, "vdb"))
+    sponza_volume = voxelize_with_colour(sponza, args, output)
     summary += operators.last_summary
-    sponza_volume = bpy.data.objects["Sponza_voxels"]
     sponza_volume.location.x += 3.2
     show_surface_colour(sponza_volume)
     scene = bpy.context.scene
