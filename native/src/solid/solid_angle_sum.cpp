@@ -32,9 +32,9 @@ inline double arctangent2(double y, double x) {
 
 }  // namespace
 
-// An AVX2 copy where the platform dispatches by processor (see sheet_sum.cpp); no FMA, so
-// the same bits either way.
-#if defined(__x86_64__) && defined(__linux__) && (defined(__GNUC__) || defined(__clang__))
+// An AVX2 copy where the platform dispatches by processor (GCC; see sheet_sum.cpp); no FMA,
+// so the same bits either way.
+#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("avx2", "default")))
 #endif
 double solidAngleSum(const TriangleArrays& triangles, std::size_t first, std::size_t count, const std::array<double, 3>& q) {
