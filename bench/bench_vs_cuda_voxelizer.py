@@ -150,13 +150,19 @@ def main():
                 run_python(hyvox_module, mesh, 64, args.threads, work)
             for res in [int(r) for r in args.res.split(",")]:
                 ours, peers, pys, bases = [], [], [], []
-                for _ in range(args.runs):
-                    if args.baseline:
-                        bases.append(run_hyvox(os.path.join(args.baseline, "hyvox"), mesh, res, args.threads, work, env))
-                    ours.append(run_hyvox(hyvox, mesh, res, args.threads, work, env))
-                    peers.append(run_peer(args.peer, mesh, res, env))
-                    if hyvox_module is not None:
-                        pys.append(run_python(hyvox_module, mesh, res, args.threads, work))
+                contenders = [lambda: ours.append(run_hyvox(hyvox, mesh, res, args.threads, work, env)),
+                              lambda: peers.append(run_peer(args.peer, mesh, res, env))]
+                if args.baseline:
+                    contenders.append(lambda: bases.append(
+                        run_hyvox(os.path.join(args.baseline, "hyvox"), mesh, res, args.threads, work, env)))
+                if hyvox_module is not None:
+                    contenders.append(lambda: pys.append(run_python(hyvox_module, mesh, res, args.threads, work)))
+                for run in range(args.runs):
+                    # Each run starts with the next contender: whoever runs right after the
+                    # peer finds memory it has just used (its dense grid), which slowed the
+                    # Python call that always ran after it by up to 2x at 1024.
+                    for k in range(len(contenders)):
+                        contenders[(run + k) % len(contenders)]()
                 row = {"mesh": os.path.basename(mesh), "res": res, "voxels": ours[0]["voxels"]}
                 for key in ("read", "vox", "vdb", "stages", "proc"):
                     row["hyvox " + key] = median_of(ours, key)
