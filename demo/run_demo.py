@@ -73,6 +73,29 @@ def fit(obj, height, x):
     bpy.context.view_layer.update()
 
 
+def add_camera(name, location, tilt):
+    """A 32 mm camera at `location` looking along +y, tilted down from the vertical by `tilt`."""
+    camera = bpy.data.objects.new(name, bpy.data.cameras.new(name))
+    camera.location = location
+    camera.rotation_euler = (tilt, 0.0, 0.0)
+    camera.data.lens = 32
+    bpy.context.scene.collection.objects.link(camera)
+    return camera
+
+
+def principled_material(name):
+    """A material of one Principled BSDF, built here (the default nodes are not always there
+    after a render); returns it and its shader node."""
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    output = nodes.new("ShaderNodeOutputMaterial")
+    shader = nodes.new("ShaderNodeBsdfPrincipled")
+    material.node_tree.links.new(shader.outputs["BSDF"], output.inputs["Surface"])
+    return material, shader
+
+
 def build_scene(args):
     from hyvox_blender.core import backend
     # Start from an empty scene (reloading factory settings would disable the add-on).
@@ -104,12 +127,7 @@ def build_scene(args):
     floor = bpy.context.active_object
     floor.name = "Floor"
 
-    camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
-    camera.location = (0.0, -10.5, 2.3)
-    camera.rotation_euler = (1.44, 0.0, 0.0)
-    camera.data.lens = 32
-    scene.collection.objects.link(camera)
-    scene.camera = camera
+    scene.camera = add_camera("Camera", (0.0, -10.5, 2.3), 1.44)
     sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
     sun.data.energy = 3.0
     sun.rotation_euler = (0.7, 0.2, 0.6)
@@ -132,16 +150,10 @@ def add_textured_spot(args):
     spot = mesh_from_arrays("Spot", vertices, triangles)
     uv_layer = spot.data.uv_layers.new(name="UVMap")
     uv_layer.data.foreach_set("uv", np.ascontiguousarray(attrs["uvs"][triangles.astype(np.int64)], np.float32).ravel())
-    material = bpy.data.materials.new("SpotTexture")
-    material.use_nodes = True
-    nodes, links = material.node_tree.nodes, material.node_tree.links
-    nodes.clear()  # built here: the default nodes are not always there after a render
-    output = nodes.new("ShaderNodeOutputMaterial")
-    shader = nodes.new("ShaderNodeBsdfPrincipled")
-    links.new(shader.outputs["BSDF"], output.inputs["Surface"])
-    image = nodes.new("ShaderNodeTexImage")
+    material, shader = principled_material("SpotTexture")
+    image = material.node_tree.nodes.new("ShaderNodeTexImage")
     image.image = bpy.data.images.load(os.path.join(args.meshes, "spot_texture.png"))
-    links.new(image.outputs["Color"], shader.inputs["Base Color"])
+    material.node_tree.links.new(image.outputs["Color"], shader.inputs["Base Color"])
     spot.data.materials.append(material)
     spot.rotation_euler = (1.5708, 0, 0)  # y-up like the bunny
     spot.rotation_euler[2] = 2.5  # facing the camera, a little to the side
@@ -176,16 +188,10 @@ def add_vertex_coloured_sponza(args):
     colours = sponza.data.color_attributes.new("Col", "FLOAT_COLOR", "POINT")
     rgba = np.concatenate([linear, np.ones((len(linear), 1))], axis=1).astype(np.float32)
     colours.data.foreach_set("color", rgba.ravel())
-    material = bpy.data.materials.new("SponzaColours")
-    material.use_nodes = True
-    nodes, links = material.node_tree.nodes, material.node_tree.links
-    nodes.clear()
-    output = nodes.new("ShaderNodeOutputMaterial")
-    shader = nodes.new("ShaderNodeBsdfPrincipled")
-    links.new(shader.outputs["BSDF"], output.inputs["Surface"])
-    attribute = nodes.new("ShaderNodeAttribute")
+    material, shader = principled_material("SponzaColours")
+    attribute = material.node_tree.nodes.new("ShaderNodeAttribute")
     attribute.attribute_name = "Col"
-    links.new(attribute.outputs["Color"], shader.inputs["Base Color"])
+    material.node_tree.links.new(attribute.outputs["Color"], shader.inputs["Base Color"])
     sponza.data.materials.append(material)
     sponza.rotation_euler = (1.5708, 0, 0)  # y-up
     bpy.context.view_layer.update()
@@ -300,12 +306,7 @@ def main():
     show_surface_colour(sponza_volume)
     scene = bpy.context.scene
     camera = scene.camera
-    above = bpy.data.objects.new("Camera above", bpy.data.cameras.new("Camera above"))
-    above.location = (0.0, -4.2, 4.6)
-    above.rotation_euler = (0.75, 0.0, 0.0)
-    above.data.lens = 32
-    scene.collection.objects.link(above)
-    scene.camera = above
+    scene.camera = add_camera("Camera above", (0.0, -4.2, 4.6), 0.75)
     sponza_png = os.path.join(output, "render_colour_sponza.png")
     scene.render.filepath = sponza_png
     start = time.perf_counter()
