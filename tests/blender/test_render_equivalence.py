@@ -103,7 +103,8 @@ class RenderEquivalenceTest(AddonTestCase):
         # The same voxels either way; the render evaluation runs only when the rule says no.
         operators = helpers.addon("blender.operators")
         render_calls = []
-        real_render, real_rule = operators.render_depsgraph.with_render_depsgraph, operators.render_equivalence.same_in_renders
+        real_render = operators.render_depsgraph.with_render_depsgraph
+        real_rule = operators.render_equivalence.same_in_renders
 
         def counting_render(*args):
             render_calls.append(1)

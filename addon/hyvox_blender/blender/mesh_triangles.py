@@ -12,8 +12,8 @@ version (a getter per triangle), and computing the loop triangles 10-15 ms more.
   foreach_get copies in one go (under 1 ms), and `loop_triangles`' `loops` (the corners of
   each triangle) also copy in one go with a uint32 buffer (2-5 ms): their vertices are one
   numpy gather away.
-Blender 3.4's loops (`vertex_index`, 17 ms) and loop triangles' `loops` (22 ms) are both
-read per element, so there quads and n-gons keep foreach_get("vertices").
+In Blender 3.4 the loops' `vertex_index` (17 ms of CPU) plus loop triangles' `loops` (22 ms)
+cost more than their `vertices` (30 ms), which quads and n-gons keep reading there.
 Quads are not split here: which diagonal Blender takes depends on a float32 test (and, in
 3.4, on whether face normals were cached), and the other diagonal of a non-planar quad is
 another surface."""
@@ -21,10 +21,16 @@ import bpy
 import numpy as np
 
 
-def _corner_vertices(mesh: bpy.types.Mesh) -> np.ndarray:
+def _corner_vert_attribute(mesh: bpy.types.Mesh):
+    """Blender 3.6+'s `.corner_vert` (the vertex of each face corner), or None."""
+    attributes = getattr(mesh, "attributes", None)
+    attribute = attributes.get(".corner_vert") if attributes is not None else None
+    return attribute if attribute is not None and attribute.data_type == "INT" else None
+
+
+def _corner_vertices(mesh: bpy.types.Mesh, corner_vert) -> np.ndarray:
     """The vertex of each face corner, (L,) uint32."""
-    corner_vert = mesh.attributes.get(".corner_vert") if hasattr(mesh, "attributes") else None
-    if corner_vert is not None and corner_vert.data_type == "INT":
+    if corner_vert is not None:
         corners = np.empty(len(mesh.loops), np.int32)  # an IntAttribute's own type: one copy
         corner_vert.data.foreach_get("value", corners)
         return corners.view(np.uint32)
@@ -33,18 +39,12 @@ def _corner_vertices(mesh: bpy.types.Mesh) -> np.ndarray:
     return corners
 
 
-def _has_corner_vert_attribute(mesh: bpy.types.Mesh) -> bool:
-    return hasattr(mesh, "attributes") and mesh.attributes.get(".corner_vert") is not None
-
-
 def _triangle_faces_in_order(mesh: bpy.types.Mesh) -> bool:
-    """True when every face is a triangle and face f starts at corner 3f. Face offsets are
-    ascending by construction from 3.6 on; 3.4 stores each face's start, so look."""
+    """True when every face is a triangle and face f starts at corner 3f (ascending face
+    offsets by construction from 4.0 on; before, each face stores its start: look)."""
     if len(mesh.loops) != 3 * len(mesh.polygons):  # each face has 3 corners or more
         return False
-    if _has_corner_vert_attribute(mesh):
-        return True
-    starts = np.empty(len(mesh.polygons), np.uint32)  # loop_start is unsigned: raw copy
+    starts = np.empty(len(mesh.polygons), np.uint32)  # loop_start is unsigned: a raw copy
     mesh.polygons.foreach_get("loop_start", starts)
     return bool(np.array_equal(starts, np.arange(0, 3 * len(starts), 3, dtype=np.uint32)))
 
@@ -59,15 +59,15 @@ def loop_triangles(mesh: bpy.types.Mesh) -> np.ndarray:
     """The mesh's loop triangles' vertices, (M,3) uint32, in Blender's order."""
     if len(mesh.polygons) == 0:
         return np.zeros((0, 3), np.uint32)
+    corner_vert = _corner_vert_attribute(mesh)
     if _triangle_faces_in_order(mesh):
-        return _corner_vertices(mesh).reshape(-1, 3)
+        return _corner_vertices(mesh, corner_vert).reshape(-1, 3)
     ensure_loop_triangles(mesh)
     count = len(mesh.loop_triangles)
-    if _has_corner_vert_attribute(mesh):
+    if corner_vert is not None:
         corners_of_triangles = np.empty(count * 3, np.uint32)
         mesh.loop_triangles.foreach_get("loops", corners_of_triangles)
-        return _corner_vertices(mesh)[corners_of_triangles].reshape(-1, 3)
+        return _corner_vertices(mesh, corner_vert)[corners_of_triangles].reshape(-1, 3)
     triangles = np.empty(count * 3, np.uint32)
     mesh.loop_triangles.foreach_get("vertices", triangles)
     return triangles.reshape(-1, 3)
-
