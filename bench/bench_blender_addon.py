@@ -8,7 +8,10 @@ triangles) and level 6 (4M), at 256 and 512 voxels along the longest side.
         [--levels 4,6] [--resolutions 256,512] [--repeat 3] [--method cpu] [--json FILE]
 
 Both sides start from the same plain (modifier-applied) mesh so subdivision is not timed.
-Prints a table of medians and where hyvox's time goes."""
+Prints a table of medians and where hyvox's time goes (the breakdown of the fastest run;
+the add-on share, (export + import) / total, is the median of the runs' own shares, and the
+export's CPU time the median of the runs').
+--skip-mesh-to-volume times hyvox only."""
 import argparse
 import json
 import os
@@ -29,6 +32,8 @@ def parse_args():
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--method", default="cpu")
     parser.add_argument("--json", help="also write the rows as JSON here")
+    parser.add_argument("--skip-mesh-to-volume", action="store_true",
+                        help="time hyvox only (the add-on's own share; Mesh to Volume takes minutes)")
     return parser.parse_args(argv)
 
 
@@ -56,12 +61,29 @@ def time_hyvox(obj, voxel_size, method, out):
     bpy.context.view_layer.objects.active = obj
     for o in bpy.context.view_layer.objects:
         o.select_set(o is obj)
-    start = time.perf_counter()
-    bpy.ops.object.hyvox_voxelize(voxel_size=voxel_size, method=method, output_dir=out)
-    total = (time.perf_counter() - start) * 1000.0
     from hyvox_blender.blender import operators
+    # The export's CPU time too (the process's, all threads; the export runs alone on the main
+    # thread before voxelizing): on a loaded machine its wall time mostly measures the scheduler.
+    export_frame, export_cpu = operators._Run.export_frame, []
+
+    def timed_export(run, frame):
+        start_cpu = time.process_time()
+        try:
+            return export_frame(run, frame)
+        finally:
+            export_cpu.append((time.process_time() - start_cpu) * 1000.0)
+
+    operators._Run.export_frame = timed_export
+    try:
+        start = time.perf_counter()
+        # A surface, like the Mesh to Volume band it is compared with (Fill Interior is on by default).
+        bpy.ops.object.hyvox_voxelize(voxel_size=voxel_size, method=method, output_dir=out, fill_interior=False)
+        total = (time.perf_counter() - start) * 1000.0
+    finally:
+        operators._Run.export_frame = export_frame
     record = dict(operators.last_run_record)
-    return total, record["timings_ms"], record["volumes"][0]["voxel_counts"][0]
+    timings = dict(record["timings_ms"], export_cpu=sum(export_cpu))
+    return total, timings, record["volumes"][0]["voxel_counts"][0]
 
 
 def time_mesh_to_volume(obj, voxel_size):
@@ -97,7 +119,8 @@ def main():
             for resolution in [int(x) for x in args.resolutions.split(",")]:
                 voxel_size = extent / resolution
                 runs = [time_hyvox(obj, voxel_size, args.method, out) for _ in range(args.repeat)]
-                m2v = [time_mesh_to_volume(obj, voxel_size) for _ in range(args.repeat)]
+                m2v = [0.0] if args.skip_mesh_to_volume else [
+                    time_mesh_to_volume(obj, voxel_size) for _ in range(args.repeat)]
                 best = min(runs, key=lambda r: r[0])
                 row = {
                     "level": level, "triangles": triangles, "resolution": resolution,
@@ -105,6 +128,9 @@ def main():
                     "hyvox_ms": statistics.median(r[0] for r in runs),
                     "mesh_to_volume_ms": statistics.median(m2v),
                     "voxels": best[2], "breakdown_ms": best[1],
+                    # The add-on's own overhead (export + import) as a share of each run's total.
+                    "addon_share": statistics.median((r[1]["export"] + r[1]["import"]) / r[1]["total"] for r in runs),
+                    "export_cpu_ms": statistics.median(r[1]["export_cpu"] for r in runs),
                 }
                 row["speedup"] = row["mesh_to_volume_ms"] / row["hyvox_ms"]
                 rows.append(row)
@@ -112,15 +138,16 @@ def main():
                       f"Mesh to Volume {row['mesh_to_volume_ms']:.0f} ms", flush=True)
 
     print(f"\nBlender {bpy.app.version_string}, {os.cpu_count()} CPUs, hyvox method {args.method}, "
-          f"median of {args.repeat}")
+          f"median of {args.repeat}, load average {os.getloadavg()[0]:.1f}")
     print("| mesh | triangles | res | hyvox operator ms | Mesh to Volume ms | speed-up | "
-          "export | voxelize | write | import | voxels |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+          "export | voxelize | write | import | add-on share | export CPU | voxels |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in rows:
         b = r["breakdown_ms"]
         print(f"| Suzanne L{r['level']} | {r['triangles']:,} | {r['resolution']} | {r['hyvox_ms']:.0f} | "
               f"{r['mesh_to_volume_ms']:.0f} | {r['speedup']:.1f}x | {b['export']:.0f} | "
-              f"{b['voxelize']:.0f} | {b['write']:.0f} | {b['import']:.0f} | {r['voxels']:,} |")
+              f"{b['voxelize']:.0f} | {b['write']:.0f} | {b['import']:.0f} | {100 * r['addon_share']:.0f}% | "
+              f"{r['export_cpu_ms']:.0f} | {r['voxels']:,} |")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=2)

@@ -11,7 +11,7 @@ import bpy
 from ..core import backend, naming, summary
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
-from . import export, importer, properties, render_depsgraph
+from . import export, importer, properties, render_depsgraph, render_equivalence
 from .gather import gather
 
 # The last run's summary lines (shown in the panel) and record (for scripts).
@@ -60,7 +60,8 @@ class _Run:
             self.scene.frame_set(frame)
         viewport = bpy.context.evaluated_depsgraph_get()
         colour = bool(self.used["color"])
-        if self.used["evaluation"] == "VIEWPORT":
+        names = [name for group in self.groups for name in group.sources]
+        if self.used["evaluation"] == "VIEWPORT" or render_equivalence.same_in_renders(names, bpy.context.view_layer):
             return export.export_groups(self.groups, viewport, warn=self.warn, colour=colour)
         try:
             return render_depsgraph.with_render_depsgraph(bpy.context, lambda depsgraph: export.export_groups(
