@@ -58,11 +58,15 @@ public:
         return cached;
     }
     bool sampled(const Int3& p) const { return !std::isnan(samples_[local(p)]); }
-    int crossings(const Int3& p) { return below(columnOf(p), p[2] + 0.5); }
-    int columnCrossings(const Int3& p) {  // C: the signed crossings of the whole line
-        int sum = 0;
-        for (const auto& c : columnOf(p)) sum += c.sign;
-        return sum;
+    // The signed crossings below voxel p's centre, and C, those of the whole line (from the
+    // columns' tables: every voxel of a column asks).
+    int crossings(const Int3& p) {
+        columnOf(p);
+        return below_[column(p)][p[2] - lo_[2]];
+    }
+    int columnCrossings(const Int3& p) {
+        columnOf(p);
+        return total_[column(p)];
     }
     // The winding numbers at the centres of `voxels`, into `out`, in one walk of the tree.
     void exactWindings(const std::vector<Int3>& voxels, std::vector<double>& out) {
@@ -86,13 +90,30 @@ private:
     static std::uint64_t latticeKey(const Int3& p) {
         return (std::uint64_t(p[0] >> 3) << 42) | (std::uint64_t(p[1] >> 3) << 21) | std::uint64_t(p[2] >> 3);
     }
-    // The rays of all the brick's columns are found together, on first use.
+    int column(const Int3& p) const { return (p[0] - lo_[0]) * (top_[1] - lo_[1] + 1) + (p[1] - lo_[1]); }
+    // The rays of all the brick's columns are found together, on first use, with each
+    // column's crossings below the brick's voxel centres (the same comparisons as below()).
     const Column& columnOf(const Int3& p) {
         if (!columns_filled_) {
-            rays_.columns(lo_[0], lo_[1], top_[0] - lo_[0] + 1, top_[1] - lo_[1] + 1, columns_);
+            const int ni = top_[0] - lo_[0] + 1, nj = top_[1] - lo_[1] + 1, nz = top_[2] - lo_[2] + 1;
+            rays_.columns(lo_[0], lo_[1], ni, nj, columns_);
+            for (int n = 0; n < ni * nj; ++n) {
+                int step[10] = {};  // step[k]: crossings below centre k but not below centre k - 1
+                total_[n] = 0;
+                for (const auto& c : columns_[n]) {
+                    total_[n] += c.sign;
+                    if (std::isnan(c.z)) continue;  // below no centre, as in below()
+                    // The first centre above c.z: a guess from the difference, then the comparisons.
+                    int k = int(std::clamp(std::floor(c.z - (lo_[2] + 0.5)), -1.0, double(nz))) + 1;
+                    while (k > 0 && c.z < lo_[2] + (k - 1) + 0.5) --k;
+                    while (k < nz && !(c.z < lo_[2] + k + 0.5)) ++k;
+                    step[k] += c.sign;
+                }
+                for (int k = 0, sum = 0; k < nz; ++k) below_[n][k] = sum += step[k];
+            }
             columns_filled_ = true;
         }
-        return columns_[(p[0] - lo_[0]) * (top_[1] - lo_[1] + 1) + (p[1] - lo_[1])];
+        return columns_[column(p)];
     }
 
     const FastWinding& winding_;
@@ -101,7 +122,15 @@ private:
     Int3 lo_, top_;
     SmoothWinding::Counters& counters_;
     bool columns_filled_ = false;
-    Column columns_[9 * 9];
+    // The columns' crossings, in storage each thread keeps from brick to brick (no allocation
+    // per brick once it has grown).
+    Column* columns_ = columnStore();
+    int below_[9 * 9][9];  // per column, the signed crossings below each of the brick's centres
+    int total_[9 * 9];     // per column, C
+    static Column* columnStore() {
+        thread_local Column store[9 * 9];
+        return store;
+    }
     std::vector<Vec3> centres_;
     double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
 };
