@@ -3,7 +3,7 @@
 // an unlimited interior band followed by sdfToFogVolume (what Blender's Mesh to Volume does
 // with Fill Volume), same voxel size and placement, same process, same threads, one run.
 //
-//   bench_solid [--runs R] [--res N]... [--mesh-dir DIR] [--fog-dir DIR] [MESH...]
+//   bench_solid [--runs R] [--res N]... [--mesh-dir DIR] [--fog-dir DIR] [MESH...]   (--help: usage)
 //
 // --fog-dir: also writes OpenVDB's active fog voxels inside hyvox's grid to
 // DIR/MESH_RES.fog.ijk (int32 i, j, k per voxel, tiles expanded), for bench_solid_three_way.py.
@@ -23,6 +23,7 @@
 #include <cfloat>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -127,9 +128,30 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
     return row;
 }
 
+constexpr const char* kUsage =
+    "usage: bench_solid [--runs R] [--res N]... [--mesh-dir DIR] [--fog-dir DIR] [MESH...]\n"
+    "  hyvox mode=solid (inside rule auto) against OpenVDB meshToVolume + sdfToFogVolume\n"
+    "  --runs R       timed runs per case, the median printed (default 3)\n"
+    "  --res N        a resolution (repeatable; default 256, 512 and 1024)\n"
+    "  --mesh-dir DIR where mesh names without a '/' are read (default $HYVOX_MESH_DIR or the\n"
+    "                 project's meshes)\n"
+    "  --fog-dir DIR  also write OpenVDB's fog voxels to DIR/MESH_RES.fog.ijk\n"
+    "  MESH           default: the Buddha, the 871k dragon and Sponza\n";
+
+// A positive whole number for `option`, or the usage and exit status 2.
+int positive(const char* option, const std::string& text) {
+    char* end = nullptr;
+    const long value = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || value < 1 || value > 1 << 20) {
+        std::fprintf(stderr, "%s needs a positive whole number, not '%s'\n%s", option, text.c_str(), kUsage);
+        std::exit(2);
+    }
+    return int(value);
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
     int runs = 3;
     std::vector<int> resolutions;
     std::string mesh_dir = std::getenv("HYVOX_MESH_DIR") ? std::getenv("HYVOX_MESH_DIR") : HYVOX_BENCH_MESH_DIR;
@@ -137,11 +159,18 @@ int main(int argc, char** argv) {
     std::string fog_dir;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
-        if (arg == "--runs") runs = std::atoi(hyvox::bench::optionValue(argc, argv, a).c_str());
-        else if (arg == "--res") resolutions.push_back(std::atoi(hyvox::bench::optionValue(argc, argv, a).c_str()));
+        if (arg == "--help" || arg == "-h") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        }
+        if (arg == "--runs") runs = positive("--runs", hyvox::bench::optionValue(argc, argv, a));
+        else if (arg == "--res") resolutions.push_back(positive("--res", hyvox::bench::optionValue(argc, argv, a)));
         else if (arg == "--mesh-dir") mesh_dir = hyvox::bench::optionValue(argc, argv, a);
         else if (arg == "--fog-dir") fog_dir = hyvox::bench::optionValue(argc, argv, a);
-        else files.push_back(arg);
+        else if (arg.size() > 1 && arg[0] == '-') {
+            std::fprintf(stderr, "unknown option '%s'\n%s", arg.c_str(), kUsage);
+            return 2;
+        } else files.push_back(arg);
     }
     if (resolutions.empty()) resolutions = {256, 512, 1024};
     if (files.empty()) files = {"happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz", "sponza_crytek_262k_vcolor.ply.gz"};
@@ -161,4 +190,7 @@ int main(int argc, char** argv) {
         }
     }
     return 0;
+} catch (const std::exception& error) {  // a mesh that cannot be read, a grid too large, ...
+    std::fprintf(stderr, "bench_solid: %s\n", error.what());
+    return 1;
 }

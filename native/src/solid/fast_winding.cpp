@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "solid/fast_winding.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -12,6 +14,8 @@ namespace {
 
 constexpr double kFourPi = 4.0 * M_PI;
 constexpr std::uint32_t kLeafTriangles = 8;
+// Subtrees of at least this many triangles build their two halves as parallel tasks.
+constexpr std::uint32_t kParallelTriangles = 4096;
 // Pieces a large triangle is cut into are at most this many voxels long, unless that would
 // make more than kPieceBudget times the triangle count (plus a floor), when the length grows.
 constexpr double kPieceVoxels = 4.0;
@@ -61,6 +65,12 @@ void cutLongEdges(const Vec3& a, const Vec3& b, const Vec3& c, double longest2, 
     }
 }
 
+// The nodes of the tree over `count` triangles (a leaf holds up to kLeafTriangles; an inner
+// node splits its triangles count / 2 to the left): the node ids a subtree takes.
+std::uint32_t treeNodes(std::uint32_t count) {
+    return count > kLeafTriangles ? 1 + treeNodes(count / 2) + treeNodes(count - count / 2) : 1;
+}
+
 // How many pieces cutLongEdges makes of a triangle with these squared edge lengths, about.
 double piecesAbout(double longest_edge2, double limit2) {
     return longest_edge2 <= limit2 ? 1.0 : 2.0 * longest_edge2 / limit2;
@@ -93,8 +103,11 @@ FastWinding::FastWinding(const ValidatedMesh& mesh, const GridSpec& grid, double
     }
     triangles_.reserve(whole.size());
     for (const auto& [a, b, c] : whole) cutLongEdges(a, b, c, limit * limit, triangles_);
-    nodes_.reserve(2 * triangles_.size() / kLeafTriangles + 2);
-    build(0, std::uint32_t(triangles_.size()));
+    // Depth first, the left subtree before the right: each subtree's ids follow from the
+    // triangle counts alone, so the two halves of a node build in parallel into their own
+    // ranges and the tree is the same as a serial build's.
+    nodes_.resize(treeNodes(std::uint32_t(triangles_.size())));
+    build(0, 0, std::uint32_t(triangles_.size()));
     // What the traversal reads for every node it visits, apart from what it reads only for the
     // clusters it expands (fewer bytes per visit).
     visits_.reserve(nodes_.size());
@@ -121,9 +134,7 @@ FastWinding::FastWinding(const ValidatedMesh& mesh, const GridSpec& grid, double
     }
 }
 
-std::int32_t FastWinding::build(std::uint32_t first, std::uint32_t count) {
-    const auto id = std::int32_t(nodes_.size());
-    nodes_.emplace_back();
+void FastWinding::build(std::int32_t id, std::uint32_t first, std::uint32_t count) {
     Node node;
     node.first = first;
     node.count = count;
@@ -158,11 +169,14 @@ std::int32_t FastWinding::build(std::uint32_t first, std::uint32_t count) {
         const std::uint32_t half = splitAtMedian(triangles_, first, count, lo, hi, [](const std::array<Vec3, 3>& t, int axis) {
             return t[0][axis] + t[1][axis] + t[2][axis];  // three times the centroid
         });
-        node.left = build(first, half);
-        node.right = build(first + half, count - half);
+        node.left = id + 1;
+        node.right = id + 1 + std::int32_t(treeNodes(half));
+        auto left = [&] { build(node.left, first, half); };
+        auto right = [&] { build(node.right, first + half, count - half); };
+        if (count >= kParallelTriangles) tbb::parallel_invoke(left, right);
+        else left(), right();
     }
     nodes_[std::size_t(id)] = node;
-    return id;
 }
 
 double FastWinding::at(const Vec3& q) const {

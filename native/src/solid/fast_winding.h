@@ -38,7 +38,8 @@ private:
         std::uint32_t first = 0, count = 0;  // triangles [first, first + count) when a leaf
         std::int32_t left = -1, right = -1;
     };
-    std::int32_t build(std::uint32_t first, std::uint32_t count);
+    // Node `id` and its subtree over triangles [first, first + count).
+    void build(std::int32_t id, std::uint32_t first, std::uint32_t count);
     struct Visit {           // per node, what deciding to expand or open it reads
         Vec3 centre;
         double far2;         // (beta radius)²: expanded from farther than this
@@ -54,7 +55,7 @@ private:
     double beta_;
     std::vector<std::array<Vec3, 3>> triangles_;  // voxel space, in tree order
     std::array<std::vector<double>, 9> corner_arrays_;  // the same, coordinate 3 c + k of corner c
-    std::vector<Node> nodes_;  // while building
+    std::vector<Node> nodes_;  // while building, depth first
     std::vector<Visit> visits_;
     std::vector<Expansion> expansions_;
     std::uint32_t levels_ = 1;  // nodes on the longest path from the root, plus one

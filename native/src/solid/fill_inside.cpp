@@ -3,6 +3,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -372,7 +373,10 @@ std::string edgeFinding(const EdgeClosure& c) {
 
 SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
                       const VoxelizeOptions& options, Interrupter* interrupter, SolidStats& stats) {
-    const EdgeClosure closure = checkEdges(mesh, grid);
+    // Everything here runs on the options' threads (the sorts and the trees' builds included).
+    const int threads = options.threads > 0 ? options.threads : tbb::task_arena::automatic;
+    tbb::task_arena arena(threads);
+    const EdgeClosure closure = arena.execute([&] { return checkEdges(mesh, grid); });
     stats.boundary_edges = closure.boundary_edges;
     stats.nonmanifold_edges = closure.nonmanifold_edges;
     stats.misoriented_edges = closure.misoriented_edges;
@@ -401,9 +405,17 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
     std::unique_ptr<FastWinding> winding;
     std::unique_ptr<RayCrossings> rays;
     std::unique_ptr<SmoothWinding> smooth;
-    if (!by_rays) winding = std::make_unique<FastWinding>(mesh, grid, options.solid.winding_beta);
-    // Rays for parity and closed meshes; for the winding numbers of an open mesh, their integer part.
-    if (by_rays || !bound.empty()) rays = std::make_unique<RayCrossings>(mesh, grid);
+    // The fast winding tree and the rays (for parity and closed meshes; for the winding numbers
+    // of an open mesh, their integer part) are independent: built side by side.
+    arena.execute([&] {
+        tbb::parallel_invoke(
+            [&] {
+                if (!by_rays) winding = std::make_unique<FastWinding>(mesh, grid, options.solid.winding_beta);
+            },
+            [&] {
+                if (by_rays || !bound.empty()) rays = std::make_unique<RayCrossings>(mesh, grid);
+            });
+    });
     if (winding && rays) smooth = std::make_unique<SmoothWinding>(*winding, *rays, bound, grid.dims);
     const InsideField field{winding.get(), winding ? nullptr : rays.get(), rule == InsideRule::Parity, &bound, smooth.get()};
 
@@ -416,8 +428,6 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
         for (std::uint64_t b = run.begin; b < run.end; ++b) bricks.push_back({surface.bricks().at(b), kAllSet});
 
     InsideFill fill(grid, field, interrupter);
-    const int threads = options.threads > 0 ? options.threads : tbb::task_arena::automatic;
-    tbb::task_arena arena(threads);
     arena.execute([&] { fill.run(bricks); });
 
     SparseGrid inside(grid.dims);

@@ -35,6 +35,18 @@ int side(std::int64_t ux, std::int64_t uy, std::int64_t vx, std::int64_t vy, std
     return vx > ux ? 1 : -1;                // d/dpy of orient = vx - ux (u != v here)
 }
 
+// Ray i's fixed-point coordinate: the middle of voxel column i.
+std::int64_t rayAt(int i) { return (std::int64_t(2 * i + 1)) << (kFractionBits - 1); }
+// The first ray at or after fixed-point coordinate `lo`, and the last at or before `hi`.
+std::int64_t firstRay(std::int64_t lo) {
+    const std::int64_t half = std::int64_t(1) << (kFractionBits - 1);
+    return (lo - half + (std::int64_t(1) << kFractionBits) - 1) >> kFractionBits;
+}
+std::int64_t lastRay(std::int64_t hi) {
+    const std::int64_t half = std::int64_t(1) << (kFractionBits - 1);
+    return (hi - half) >> kFractionBits;
+}
+
 }  // namespace
 
 RayCrossings::RayCrossings(const ValidatedMesh& mesh, const GridSpec& grid) {
@@ -95,12 +107,23 @@ RayCrossings::RayCrossings(const ValidatedMesh& mesh, const GridSpec& grid) {
     }
     for (std::size_t c = 0; c < column_count; ++c) column_start_[c + 1] += column_start_[c];
     column_triangles_.resize(column_start_.back());
+    column_rays_.resize(column_start_.back());
     std::vector<std::uint32_t> fill(column_start_.begin(), column_start_.end() - 1);
     for (std::uint32_t n = 0; n < triangles_.size(); ++n) {
-        columnRange(triangles_[n], r);
+        const Triangle& tri = triangles_[n];
+        columnRange(tri, r);
+        const std::int64_t rays_x[2] = {firstRay(tri.x_lo), lastRay(tri.x_hi)};
+        const std::int64_t rays_y[2] = {firstRay(tri.y_lo), lastRay(tri.y_hi)};
         for (std::int32_t cx = r[0]; cx <= r[1]; ++cx)
-            for (std::int32_t cy = r[2]; cy <= r[3]; ++cy)
-                column_triangles_[fill[std::size_t(cx) * std::size_t(columns_[1]) + std::size_t(cy)]++] = n;
+            for (std::int32_t cy = r[2]; cy <= r[3]; ++cy) {
+                const std::uint32_t slot = fill[std::size_t(cx) * std::size_t(columns_[1]) + std::size_t(cy)]++;
+                column_triangles_[slot] = n;
+                // The bucket's rays in the triangle's box, as offsets 0..7 (first > last: none).
+                auto offset = [](std::int64_t ray, std::int32_t bucket) {
+                    return std::uint8_t(std::clamp<std::int64_t>(ray - 8 * std::int64_t(bucket), -1, 8) + 1);
+                };
+                column_rays_[slot] = {offset(rays_x[0], cx), offset(rays_x[1], cx), offset(rays_y[0], cy), offset(rays_y[1], cy)};
+            }
     }
 }
 
@@ -133,10 +156,6 @@ void RayCrossings::crossing(const Triangle& t, std::int64_t px, std::int64_t py,
     visit((w0 * t.z[0] + w1 * t.z[1] + w2 * t.z[2]) / total, t.sign);
 }
 
-namespace {
-// Ray i's fixed-point coordinate: the middle of voxel column i.
-std::int64_t rayAt(int i) { return (std::int64_t(2 * i + 1)) << (kFractionBits - 1); }
-}  // namespace
 
 template <typename Visit>
 void RayCrossings::forEachCrossing(int i, int j, Visit visit) const {
@@ -153,21 +172,20 @@ void RayCrossings::columns(int i0, int j0, int ni, int nj, std::vector<Crossing>
     for (int n = 0; n < ni * nj; ++n) out[n].clear();
     // Each bucket of 8×8 rays the block meets, once: its triangles against its own rays of the
     // block that lie in the triangle's xy box (a triangle listed in several buckets is seen
-    // once per ray).
-    const std::int64_t half = std::int64_t(1) << (kFractionBits - 1);
-    auto firstRay = [&](std::int64_t lo) { return std::int64_t((lo - half + (std::int64_t(1) << kFractionBits) - 1) >> kFractionBits); };
-    auto lastRay = [&](std::int64_t hi) { return std::int64_t((hi - half) >> kFractionBits); };
+    // once per ray). The rays in the box come from the bucket's compact list, so a triangle
+    // none of whose rays is wanted (most, in the buckets a block touches with one row) is
+    // skipped without reading it.
     for (int bx = i0 >> 3; bx <= (i0 + ni - 1) >> 3; ++bx)
         for (int by = j0 >> 3; by <= (j0 + nj - 1) >> 3; ++by) {
             const int i_lo = std::max(i0, 8 * bx), i_hi = std::min(i0 + ni - 1, 8 * bx + 7);
             const int j_lo = std::max(j0, 8 * by), j_hi = std::min(j0 + nj - 1, 8 * by + 7);
             const std::size_t column = std::size_t(bx) * std::size_t(columns_[1]) + std::size_t(by);
             for (std::uint32_t n = column_start_[column]; n < column_start_[column + 1]; ++n) {
+                const std::array<std::uint8_t, 4>& rays = column_rays_[n];
+                const int first_i = std::max(i_lo, 8 * bx + rays[0] - 1), last_i = std::min(i_hi, 8 * bx + rays[1] - 1);
+                const int first_j = std::max(j_lo, 8 * by + rays[2] - 1), last_j = std::min(j_hi, 8 * by + rays[3] - 1);
+                if (first_i > last_i || first_j > last_j) continue;
                 const Triangle& t = triangles_[column_triangles_[n]];
-                const int first_i = int(std::max<std::int64_t>(i_lo, firstRay(t.x_lo)));
-                const int last_i = int(std::min<std::int64_t>(i_hi, lastRay(t.x_hi)));
-                const int first_j = int(std::max<std::int64_t>(j_lo, firstRay(t.y_lo)));
-                const int last_j = int(std::min<std::int64_t>(j_hi, lastRay(t.y_hi)));
                 for (int i = first_i; i <= last_i; ++i)
                     for (int j = first_j; j <= last_j; ++j) {
                         std::vector<Crossing>& list = out[(i - i0) * nj + (j - j0)];

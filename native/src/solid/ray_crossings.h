@@ -55,6 +55,10 @@ private:
     std::vector<Triangle> triangles_;               // those whose projection is not a line
     std::vector<std::uint32_t> column_start_;       // CSR: triangles of column (cx, cy)
     std::vector<std::uint32_t> column_triangles_;
+    // Beside each entry of column_triangles_: the bucket's rays in the triangle's xy box, as
+    // (first x, last x, first y, last y), each the ray's offset in the bucket plus 1, clamped
+    // to 0..9 (so "first > last" says no ray).
+    std::vector<std::array<std::uint8_t, 4>> column_rays_;
 };
 
 }  // namespace hyvox::solid

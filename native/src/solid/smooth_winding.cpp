@@ -37,32 +37,58 @@ public:
     // w - c at voxel p's centre (sampled just above it). Points of the lattice of brick
     // corners (every coordinate a multiple of 8) are kept for the neighbouring bricks.
     double minusCrossings(const Int3& p) {
-        double& cached = samples_[local(p)];
-        if (!std::isnan(cached)) return cached;
-        const bool on_lattice = (p[0] & 7) == 0 && (p[1] & 7) == 0 && (p[2] & 7) == 0;
-        if (on_lattice) {
-            const auto found = lattice_.find(latticeKey(p));
-            if (found != lattice_.end()) return cached = found->second;
+        sample(&p, 1);
+        return samples_[local(p)];
+    }
+    // minusCrossings() of `count` points (at most 9), those not yet known evaluated together
+    // (one walk of the tree: FastWinding::atMany, equal to at() bit for bit).
+    void sample(const Int3* points, int count) {
+        Vec3 lifted[9];
+        int wanted[9];
+        int n = 0;
+        for (int q = 0; q < count; ++q) {
+            const Int3& p = points[q];
+            double& cached = samples_[local(p)];
+            if (!std::isnan(cached) || std::find(wanted, wanted + n, local(p)) != wanted + n) continue;
+            if (onLattice(p)) {
+                const auto found = lattice_.find(latticeKey(p));
+                if (found != lattice_.end()) {
+                    cached = found->second;
+                    continue;
+                }
+            }
+            const Column& column = columnOf(p);
+            double h = p[2] + 0.5 + kLift;
+            // Off every crossing by more than the rounding of its height.
+            for (bool moved = true; moved;) {
+                moved = false;
+                for (const auto& c : column)
+                    if (std::fabs(c.z - h) < 1e-6) h += kLift, moved = true;
+            }
+            lifted[n] = {p[0] + 0.5, p[1] + 0.5, h};
+            wanted[n++] = local(p);
         }
-        const Column& column = columnOf(p);
-        double h = p[2] + 0.5 + kLift;
-        // Off every crossing by more than the rounding of its height.
-        for (bool moved = true; moved;) {
-            moved = false;
-            for (const auto& c : column)
-                if (std::fabs(c.z - h) < 1e-6) h += kLift, moved = true;
+        if (n == 0) return;
+        counters_.point_evaluations += std::uint64_t(n);
+        double w[9];
+        winding_.atMany(lifted, std::size_t(n), w);
+        for (int q = 0; q < n; ++q) {
+            const Int3 p{lo_[0] + wanted[q] / 81, lo_[1] + wanted[q] / 9 % 9, lo_[2] + wanted[q] % 9};
+            const double value = w[q] - below(columnOf(p), lifted[q][2]);
+            samples_[wanted[q]] = value;
+            if (onLattice(p)) lattice_.emplace(latticeKey(p), value);  // another thread's equal value may win
         }
-        ++counters_.point_evaluations;
-        cached = winding_.at({p[0] + 0.5, p[1] + 0.5, h}) - below(column, h);
-        if (on_lattice) lattice_.emplace(latticeKey(p), cached);  // another thread's equal value may win
-        return cached;
     }
     bool sampled(const Int3& p) const { return !std::isnan(samples_[local(p)]); }
-    int crossings(const Int3& p) { return below(columnOf(p), p[2] + 0.5); }
-    int columnCrossings(const Int3& p) {  // C: the signed crossings of the whole line
-        int sum = 0;
-        for (const auto& c : columnOf(p)) sum += c.sign;
-        return sum;
+    // The signed crossings below voxel p's centre, and C, those of the whole line (from the
+    // columns' tables: every voxel of a column asks).
+    int crossings(const Int3& p) {
+        columnOf(p);
+        return below_[column(p)][p[2] - lo_[2]];
+    }
+    int columnCrossings(const Int3& p) {
+        columnOf(p);
+        return total_[column(p)];
     }
     // The winding numbers at the centres of `voxels`, into `out`, in one walk of the tree.
     void exactWindings(const std::vector<Int3>& voxels, std::vector<double>& out) {
@@ -82,17 +108,35 @@ private:
             if (c.z < h) count += c.sign;
         return count;
     }
+    static bool onLattice(const Int3& p) { return (p[0] & 7) == 0 && (p[1] & 7) == 0 && (p[2] & 7) == 0; }
     int local(const Int3& p) const { return ((p[0] - lo_[0]) * 9 + (p[1] - lo_[1])) * 9 + (p[2] - lo_[2]); }
     static std::uint64_t latticeKey(const Int3& p) {
         return (std::uint64_t(p[0] >> 3) << 42) | (std::uint64_t(p[1] >> 3) << 21) | std::uint64_t(p[2] >> 3);
     }
-    // The rays of all the brick's columns are found together, on first use.
+    int column(const Int3& p) const { return (p[0] - lo_[0]) * (top_[1] - lo_[1] + 1) + (p[1] - lo_[1]); }
+    // The rays of all the brick's columns are found together, on first use, with each
+    // column's crossings below the brick's voxel centres (the same comparisons as below()).
     const Column& columnOf(const Int3& p) {
         if (!columns_filled_) {
-            rays_.columns(lo_[0], lo_[1], top_[0] - lo_[0] + 1, top_[1] - lo_[1] + 1, columns_);
+            const int ni = top_[0] - lo_[0] + 1, nj = top_[1] - lo_[1] + 1, nz = top_[2] - lo_[2] + 1;
+            rays_.columns(lo_[0], lo_[1], ni, nj, columns_);
+            for (int n = 0; n < ni * nj; ++n) {
+                int step[10] = {};  // step[k]: crossings below centre k but not below centre k - 1
+                total_[n] = 0;
+                for (const auto& c : columns_[n]) {
+                    total_[n] += c.sign;
+                    if (std::isnan(c.z)) continue;  // below no centre, as in below()
+                    // The first centre above c.z: a guess from the difference, then the comparisons.
+                    int k = int(std::clamp(std::floor(c.z - (lo_[2] + 0.5)), -1.0, double(nz))) + 1;
+                    while (k > 0 && c.z < lo_[2] + (k - 1) + 0.5) --k;
+                    while (k < nz && !(c.z < lo_[2] + k + 0.5)) ++k;
+                    step[k] += c.sign;
+                }
+                for (int k = 0, sum = 0; k < nz; ++k) below_[n][k] = sum += step[k];
+            }
             columns_filled_ = true;
         }
-        return columns_[(p[0] - lo_[0]) * (top_[1] - lo_[1] + 1) + (p[1] - lo_[1])];
+        return columns_[column(p)];
     }
 
     const FastWinding& winding_;
@@ -101,7 +145,15 @@ private:
     Int3 lo_, top_;
     SmoothWinding::Counters& counters_;
     bool columns_filled_ = false;
-    Column columns_[9 * 9];
+    // The columns' crossings, in storage each thread keeps from brick to brick (no allocation
+    // per brick once it has grown).
+    Column* columns_ = columnStore();
+    int below_[9 * 9][9];  // per column, the signed crossings below each of the brick's centres
+    int total_[9 * 9];     // per column, C
+    static Column* columnStore() {
+        thread_local Column store[9 * 9];
+        return store;
+    }
     std::vector<Vec3> centres_;
     double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
 };
@@ -174,8 +226,13 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
         // NaN where a voxel's column passes (nearly) through an edge: not interpolated.
         auto sheetSum = [&](const Int3& p) { return sheet_sum.at({p[0] + 0.5, p[1] + 0.5, p[2] + 0.5}); };
         auto smooth = [&](const Int3& p) { return brick.minusCrossings(p) + shift(p) + sheetSum(p); };
+        const Int3 m{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2};
+        Int3 points[9];
+        for (int c = 0; c < 8; ++c) points[c] = {c & 4 ? b[0] : a[0], c & 2 ? b[1] : a[1], c & 1 ? b[2] : a[2]};
+        points[8] = m;
+        brick.sample(points, 9);  // the corners and the middle the next lines read, in one walk
         double corner[8];
-        for (int c = 0; c < 8; ++c) corner[c] = smooth({c & 4 ? b[0] : a[0], c & 2 ? b[1] : a[1], c & 1 ? b[2] : a[2]});
+        for (int c = 0; c < 8; ++c) corner[c] = smooth(points[c]);
         auto interpolate = [&](const Int3& p) {
             double t[3];
             for (int d = 0; d < 3; ++d) t[d] = b[d] > a[d] ? double(p[d] - a[d]) / (b[d] - a[d]) : 0.0;
@@ -184,7 +241,6 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
                 value += corner[c] * (c & 4 ? t[0] : 1 - t[0]) * (c & 2 ? t[1] : 1 - t[1]) * (c & 1 ? t[2] : 1 - t[2]);
             return value;
         };
-        const Int3 m{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2};
         if (std::fabs(smooth(m) - interpolate(m)) <= kAgree) {  // false for NaN
             forEach(a, b, [&](const Int3& p) {
                 if (!pending(p)) return;

@@ -38,8 +38,19 @@ public:
         std::uint64_t point_evaluations = 0;   // fast winding numbers evaluated
         std::uint64_t interpolated_voxels = 0; // voxels decided from the interpolated smooth part
     };
+    // The brick-corner index mixed over all 64 bits: the map's buckets are picked by the low
+    // bits, which in the index itself are z alone (with std::hash, the identity, every corner
+    // of one z plane fell in one bucket, and finding one walked a list of thousands).
+    struct LatticeHash {
+        std::size_t operator()(std::uint64_t key) const {
+            key ^= key >> 33;
+            key *= 0xff51afd7ed558ccdULL;  // the finaliser of MurmurHash3
+            key ^= key >> 33;
+            return std::size_t(key);
+        }
+    };
     // w - c at the lattice points sampled so far, by brick-corner index.
-    using LatticeSamples = tbb::concurrent_unordered_map<std::uint64_t, double>;
+    using LatticeSamples = tbb::concurrent_unordered_map<std::uint64_t, double, LatticeHash>;
     SmoothWinding(const FastWinding& winding, const RayCrossings& rays, const GradientBound& bound,
                   const std::array<std::int32_t, 3>& dims)
         : winding_(winding), rays_(rays), bound_(bound), dims_(dims) {}
