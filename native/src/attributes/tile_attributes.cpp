@@ -12,7 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include "attributes/clip_to_voxel.h"
-#include "attributes/sweep_cells.h"
+#include "attributes/sweep_triangle.h"
 
 namespace hyvox::attributes {
 namespace {
@@ -120,6 +120,7 @@ public:
 
     void start(const std::uint64_t* words, const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
         words_ = words;
+        leaf_voxels_.reset(words);
         lo_ = lo;
         hi_ = hi;
     }
@@ -167,7 +168,8 @@ public:
 private:
     double weight(int v) const { return sums_[std::size_t(v) * stride_ + stride_ - 1]; }
 
-    void add(const TriangleFrame& frame, int i, int j, int k, const ClippedPiece& piece) {
+    // Inlined into each of the sweep's visits (it runs once per piece).
+    [[gnu::always_inline]] void add(const TriangleFrame& frame, int i, int j, int k, const ClippedPiece& piece) {
         ++pieces_;
         const double w = piece.area + kAreaEpsilon;
         double* voxel = &sums_[std::size_t(((i & 7) << 6) | ((j & 7) << 3) | (k & 7)) * stride_];
@@ -176,8 +178,8 @@ private:
     }
 
     // The triangle's pieces in the voxels of `mask`, clipped to their boxes grown by `margin`.
-    // cpu cuts the triangle slab by slab (sweep_cells.h) and skips the slabs and rows whose
-    // voxels are all unset; the reference, and the margin fallback of both, clip box by box.
+    // cpu sweeps the triangle (sweep_triangle.h) past the slabs and columns whose voxels are
+    // all unset; the reference, and the margin fallback of both, clip box by box.
     void addTriangle(std::uint32_t n, const std::uint64_t* mask, double margin) {
         const std::uint32_t triangle = job_.mesh.usable[n];
         const Corners corners = triangleCorners(job_, triangle);
@@ -195,20 +197,8 @@ private:
                             add(frame, i, j, k, piece);
             return;
         }
-        SweepLines lines;
-        const TracedPolygon whole = tracedTriangle(corners, lines);
-        sweepSlabs<0>(whole, r.lo[0], r.hi[0], lines, true, [&](int i, const TracedPolygon& x_slab) {
-            const std::uint64_t word = mask[i & 7];
-            if (!word) return;
-            sweepSlabs<1>(x_slab, r.lo[1], r.hi[1], lines, true, [&](int j, const TracedPolygon& column) {
-                const std::uint64_t row = (word >> ((j & 7) << 3)) & 0xffu;
-                if (!row) return;
-                sweepSlabs<2>(column, r.lo[2], r.hi[2], lines, false, [&](int k, const TracedPolygon& cell) {
-                    if (!((row >> (k & 7)) & 1u)) return;
-                    measurePiece(cell.shape, frame, piece);
-                    add(frame, i, j, k, piece);
-                });
-            });
+        sweepTriangle(corners, frame, r.lo, r.hi, leaf_voxels_, [&](const Voxel& v, const ClippedPiece& cut) {
+            add(frame, v[0], v[1], v[2], cut);
         });
     }
 
@@ -218,6 +208,7 @@ private:
     const std::size_t stride_;
     std::vector<double>& sums_;
     const std::uint64_t* words_ = nullptr;
+    LeafVoxels leaf_voxels_;  // words_, asked along each sweep order
     std::array<int, 3> lo_{}, hi_{};
     std::uint64_t pieces_ = 0;
     CornerValues corner_values_;
