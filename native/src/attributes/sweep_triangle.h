@@ -24,38 +24,6 @@ struct EveryVoxel {
     bool voxel(const Voxel& /*v*/) const { return true; }
 };
 
-// The voxels set in an 8³ leaf (bits x << 6 | y << 3 | z, as BitGrid's bricks), with each
-// sweep order's column masks (bit (a & 7) << 3 | (b & 7)) made once per leaf.
-class LeafVoxels {
-public:
-    void reset(const std::uint64_t* words) {
-        words_ = words;
-        columns_ = {0, 0, 0};
-        for (int x = 0; x < 8; ++x) {
-            const std::uint64_t word = words[x];
-            columns_[0] |= word;  // (a, b) = (y, z): bit y << 3 | z, any x
-            std::uint64_t zs = word;  // the z bits set in any y of this x
-            zs |= zs >> 32;
-            zs |= zs >> 16;
-            zs |= zs >> 8;
-            for (int y = 0; y < 8; ++y)  // (a, b) = (x, y): byte y of word x
-                if ((word >> (8 * y)) & 0xffu) columns_[2] |= std::uint64_t(1) << (x << 3 | y);
-            for (int z = 0; z < 8; ++z)  // (a, b) = (z, x)
-                if ((zs >> z) & 1u) columns_[1] |= std::uint64_t(1) << (z << 3 | x);
-        }
-    }
-    bool slab(int d, int a) const { return (columns_[std::size_t(d)] >> ((a & 7) << 3)) & 0xffu; }
-    bool column(int d, int a, int b) const { return (columns_[std::size_t(d)] >> ((a & 7) << 3 | (b & 7))) & 1u; }
-    bool voxel(const Voxel& v) const {
-        const int bit = (v[0] & 7) << 6 | (v[1] & 7) << 3 | (v[2] & 7);
-        return (words_[bit >> 6] >> (bit & 63)) & 1u;
-    }
-
-private:
-    const std::uint64_t* words_ = nullptr;
-    std::array<std::uint64_t, 3> columns_{};
-};
-
 namespace detail {
 
 template <int D, typename Wanted, typename Visit>
