@@ -265,14 +265,10 @@ public:
         return leaves_lost;
     }
 
-    // The means of leaf `leaf`'s set voxels (`words`) in bit order, normals renormalised, and
-    // their sums cleared for the next region; counts voxels still unreached.
-    void takeMeans(int leaf, const std::uint64_t* words, std::vector<float>& out, std::uint64_t& unreached) {
+    // The means of leaf `leaf`'s set voxels (`words`) in bit order into `mean`, normals
+    // renormalised, and their sums cleared for the next region; counts voxels still unreached.
+    void takeMeans(int leaf, const std::uint64_t* words, float* mean, std::uint64_t& unreached) {
         const std::size_t channels = std::size_t(values_.channels());
-        std::size_t count = 0;
-        for (int word = 0; word < BitGrid::kWordsPerBrick; ++word) count += std::size_t(__builtin_popcountll(words[word]));
-        out.resize(count * channels);
-        float* mean = out.data();
         for (int word = 0; word < BitGrid::kWordsPerBrick; ++word)
             for (std::uint64_t bits = words[word]; bits; bits &= bits - 1) {
                 const int v = 64 * word + __builtin_ctzll(bits);
@@ -366,8 +362,24 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
     const BrickLayout& tile_bricks = bits.bricks();
     const BrickLayout grid_bricks = job.grid.bricks();
     const std::array<std::int32_t, 3>& offset = job.tile.offset;
+    // The tile's means go into one block, each leaf's at its place in brick order.
     const std::size_t first = out.size();
     out.resize(first + bins.occupied.size());
+    const std::size_t channels = std::size_t(values.channels());
+    std::size_t floats = 0;
+    for (std::size_t s = 0; s < bins.occupied.size(); ++s) {
+        const std::uint64_t* words = bits.data() + bins.occupied[s] * BitGrid::kWordsPerBrick;
+        std::size_t count = 0;
+        for (int word = 0; word < BitGrid::kWordsPerBrick; ++word) count += std::size_t(__builtin_popcountll(words[word]));
+        const std::array<std::int32_t, 3> at = tile_bricks.at(bins.occupied[s]);
+        AttributeLeaf& leaf = out[first + s];
+        leaf.brick = grid_bricks.index((offset[0] >> 3) + at[0], (offset[1] >> 3) + at[1], (offset[2] >> 3) + at[2]);
+        leaf.offset = floats;
+        leaf.count = count * channels;
+        floats += leaf.count;
+    }
+    const auto block = std::make_shared<std::vector<float>>(floats);
+    for (std::size_t s = 0; s < bins.occupied.size(); ++s) out[first + s].block = block;
     std::atomic<std::uint64_t> pieces{0}, unreached{0}, rounded{0};
     tbb::enumerable_thread_specific<std::vector<double>> sums_of_thread(
         std::size_t(kRegionLeaves) * 512 * std::size_t(values.channels() + 1), 0.0);
@@ -392,11 +404,8 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
                                      : region.accumulate(bins.of(r));
                 for (std::size_t l = bins.leaves_first[r]; l != bins.leaves_first[r + 1]; ++l) {
                     const TileBins::Leaf& leaf = bins.leaves[l];
-                    const std::array<std::int32_t, 3> at = tile_bricks.at(bins.occupied[leaf.slot]);
-                    AttributeLeaf& result = out[first + leaf.slot];
-                    result.brick =
-                        grid_bricks.index((offset[0] >> 3) + at[0], (offset[1] >> 3) + at[1], (offset[2] >> 3) + at[2]);
-                    region.takeMeans(leaf.number, words[std::size_t(leaf.number)], result.values, local_unreached);
+                    region.takeMeans(leaf.number, words[std::size_t(leaf.number)],
+                                     block->data() + out[first + leaf.slot].offset, local_unreached);
                 }
             }
             pieces.fetch_add(region.pieces(), std::memory_order_relaxed);
@@ -409,21 +418,33 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
 
 void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid, int threads) {
     std::sort(leaves.begin(), leaves.end(), [](const AttributeLeaf& a, const AttributeLeaf& b) { return a.brick < b.brick; });
-    // Each leaf's place in the result, then the copies (and frees) in parallel: the values of
-    // a large grid are tens of MB.
+    // Each leaf's place in the result.
     std::vector<std::size_t> start(leaves.size() + 1, 0);
-    for (std::size_t n = 0; n < leaves.size(); ++n) start[n + 1] = start[n] + leaves[n].values.size();
+    for (std::size_t n = 0; n < leaves.size(); ++n) start[n + 1] = start[n] + leaves[n].size();
+    // One block with every leaf's values in brick order (the cpu method's, one tile) is the
+    // result as it is.
+    const bool one_block = !leaves.empty() && leaves[0].block && leaves[0].block->size() == start.back() &&
+                           std::all_of(leaves.begin(), leaves.end(), [&](const AttributeLeaf& leaf) {
+                               return leaf.block == leaves[0].block && leaf.offset == start[std::size_t(&leaf - leaves.data())];
+                           });
+    if (one_block) {
+        grid.values = std::move(*leaves[0].block);
+        leaves.clear();
+        return;
+    }
+    // Else the copies (and frees) in parallel: the values of a large grid are tens of MB.
     grid.values.clear();
     grid.values.resize(start.back());
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 64), [&](const auto& range) {
             for (std::size_t n = range.begin(); n != range.end(); ++n) {
-                std::copy(leaves[n].values.begin(), leaves[n].values.end(), grid.values.begin() + std::ptrdiff_t(start[n]));
+                std::copy(leaves[n].data(), leaves[n].data() + leaves[n].size(), grid.values.begin() + std::ptrdiff_t(start[n]));
                 std::vector<float>().swap(leaves[n].values);
             }
         });
     });
+    leaves.clear();  // the blocks go with their last leaf
 }
 
 }  // namespace hyvox::attributes
