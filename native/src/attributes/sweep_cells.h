@@ -140,7 +140,7 @@ void sweepSlabs(const TracedPolygon& polygon, int lo, int hi, SweepLines& lines,
     const double low_clamp = double(lo) - 2, high_clamp = double(hi) + 2;
     const int first = std::max(lo, int(std::ceil(std::clamp(from, low_clamp, high_clamp))) - 1);
     const int last = std::min(hi, int(std::floor(std::clamp(to, low_clamp, high_clamp))));
-    if (first > last) return;
+    if (first > last || (skip_from <= first && skip_to >= last)) return;  // nothing to visit
     const int lines_before = lines.n;
     TracedPolygon buffers[3];
     TracedPolygon* slab = &buffers[0];

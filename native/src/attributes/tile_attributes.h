@@ -30,7 +30,8 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
                                           bool brute_force, std::vector<AttributeLeaf>& out);
 
 // Puts the leaves of all tiles in brick order (the order of SparseGrid::finish) and
-// concatenates their values into grid.values, on `threads` threads (0: all).
+// concatenates their values into grid.values, on `threads` threads (0: all); a block that
+// holds them all in that order becomes grid.values as it is.
 void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid, int threads);
 
 }  // namespace hyvox::attributes
