@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // A triangle cut into the voxels' closed boxes it meets by sweeping planes: into x slabs,
-// each slab into y columns, each column into z cells. Each plane cuts a polygon once and
+// each slab into y columns, each column into z cells (sweep_triangle.h permutes the axes so
+// that z is the triangle's dominant one, and skips the columns it measures without cuts). Each plane cuts a polygon once and
 // hands both sides on (the part below is the slab's, the rest goes on to the next plane), so a
 // piece costs about one cut per axis, where clipping box by box (clipTriangleToVoxel) costs
 // two per axis.
