@@ -90,11 +90,13 @@ bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<i
 }
 
 void measurePiece(const Polygon& a, const TriangleFrame& frame, ClippedPiece& out) {
+    measurePiece(a, frame.projectionAxes()[0], frame.projectionAxes()[1], frame.projectedAreaScale(), out);
+}
+
+void measurePiece(const Polygon& a, int u, int v, double scale, ClippedPiece& out) {
     // Area and centroid by a fan from the first corner (the piece is convex and lies in the
     // triangle's plane): each fan triangle's area from its projection on the triangle's
     // dominant plane (one 2D cross product, scaled), no square root per piece.
-    const int u = frame.projectionAxes()[0], v = frame.projectionAxes()[1];
-    const double scale = frame.projectedAreaScale();
     double area = 0;
     Point moment{0, 0, 0};
     const Point& p0 = a.p[0];

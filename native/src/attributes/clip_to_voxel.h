@@ -76,6 +76,9 @@ private:
 
 // Area and centroid of a clipped polygon (n > 0) of the triangle `frame` describes.
 void measurePiece(const Polygon& polygon, const TriangleFrame& frame, ClippedPiece& out);
+// The same with the projection given: the polygon's cross products in axes (u, v) times
+// `projected_area_scale` are areas (TriangleFrame::projectionAxes, projectedAreaScale).
+void measurePiece(const Polygon& polygon, int u, int v, double projected_area_scale, ClippedPiece& out);
 
 // False when the triangle misses the box (grown by `margin` voxels on every side).
 bool clipTriangleToVoxel(const std::array<Point, 3>& corners, const std::array<int, 3>& voxel,

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // A triangle cut into the voxels' closed boxes it meets by sweeping planes: into x slabs,
-// each slab into y columns, each column into z cells. Each plane cuts a polygon once and
+// each slab into y columns, each column into z cells (sweep_triangle.h permutes the axes so
+// that z is the triangle's dominant one, and skips the columns it measures without cuts). Each plane cuts a polygon once and
 // hands both sides on (the part below is the slab's, the rest goes on to the next plane), so a
 // piece costs about one cut per axis, where clipping box by box (clipTriangleToVoxel) costs
 // two per axis.
@@ -123,9 +124,12 @@ void splitAtPlane(const TracedPolygon& in, double at, SweepLines& lines, bool re
 // Calls visit(i, piece) for every voxel index i in [lo, hi] along Axis whose closed slab
 // [i, i + 1] the polygon (n > 0) meets, in ascending order; `piece` is valid during the call.
 // With `record_cuts`, the planes' cut lines are added to `lines` and taken off again at the
-// end (the visits may add and take off their own after them).
+// end (the visits may add and take off their own after them). The slabs [skip_from, skip_to]
+// are neither cut apart nor visited (the caller measures them another way): one cut at
+// skip_to + 1 drops them.
 template <int Axis, typename Visit>
-void sweepSlabs(const TracedPolygon& polygon, int lo, int hi, SweepLines& lines, bool record_cuts, Visit&& visit) {
+void sweepSlabs(const TracedPolygon& polygon, int lo, int hi, SweepLines& lines, bool record_cuts, Visit&& visit,
+                int skip_from = 1, int skip_to = 0) {
     const Polygon& shape = polygon.shape;
     double from = shape.p[0][Axis], to = from;
     for (int c = 1; c < shape.n; ++c) {
@@ -137,7 +141,7 @@ void sweepSlabs(const TracedPolygon& polygon, int lo, int hi, SweepLines& lines,
     const double low_clamp = double(lo) - 2, high_clamp = double(hi) + 2;
     const int first = std::max(lo, int(std::ceil(std::clamp(from, low_clamp, high_clamp))) - 1);
     const int last = std::min(hi, int(std::floor(std::clamp(to, low_clamp, high_clamp))));
-    if (first > last) return;
+    if (first > last || (skip_from <= first && skip_to >= last)) return;  // nothing to visit
     const int lines_before = lines.n;
     TracedPolygon buffers[3];
     TracedPolygon* slab = &buffers[0];
@@ -154,6 +158,15 @@ void sweepSlabs(const TracedPolygon& polygon, int lo, int hi, SweepLines& lines,
         std::swap(rest, spare);
     }
     for (int i = first; i <= last; ++i) {
+        if (i >= skip_from && i <= skip_to) {
+            if (skip_to >= last) break;
+            splitAtPlane<Axis>(*current, double(skip_to) + 1.0, lines, record_cuts, *slab, *rest);
+            if (rest->shape.n == 0) break;
+            current = rest;
+            std::swap(rest, spare);
+            i = skip_to;
+            continue;
+        }
         const double top = double(i) + 1.0;
         if (to < top || (to == top && i == last)) {  // the slab holds all that is left
             visit(i, *current);

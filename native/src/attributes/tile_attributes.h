@@ -2,8 +2,8 @@
 #pragma once
 // Attribute voxels of one tile: for every voxel a method set, the weighted mean over the
 // triangles whose closed box meets it (DESIGN.md, "Attributes"). Sums and weights are
-// accumulated in double per 8³ leaf, one leaf per task, each leaf's triangles in the
-// mesh's order: the result does not depend on the thread count.
+// accumulated in double per region of 4³ leaves, one region per task, each region's
+// triangles in the mesh's order: the result does not depend on the thread count.
 #include <cstdint>
 #include <vector>
 
@@ -24,13 +24,14 @@ struct TileAttributeCounts {
 // piece's barycentrics are taken on.
 std::array<Point, 3> triangleCorners(const BackendJob& job, std::uint32_t triangle);
 
-// brute_force (the reference method): every leaf scans all the tile's triangles instead of
+// brute_force (the reference method): every region scans all the tile's triangles instead of
 // the ones binned to it.
 TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& bits, const SurfaceValues& values,
                                           bool brute_force, std::vector<AttributeLeaf>& out);
 
 // Puts the leaves of all tiles in brick order (the order of SparseGrid::finish) and
-// concatenates their values into grid.values, on `threads` threads (0: all).
+// concatenates their values into grid.values, on `threads` threads (0: all); a block that
+// holds them all in that order becomes grid.values as it is.
 void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid, int threads);
 
 }  // namespace hyvox::attributes
