@@ -77,6 +77,7 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     const Mode mode = job.options.mode;
     std::atomic<std::size_t> done{0};
     std::atomic<std::uint64_t> split_triangles{0};
+    std::atomic<std::uint64_t> already_covered{0};
 
     const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
     tbb::task_arena arena(threads);
@@ -130,15 +131,20 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                                           rasterizeRowsAnyAxis(t, r.begin(), r.end(), row_marker);
                                       });
                 };
+                std::uint64_t covered = 0;  // this chunk's skipped triangles
                 if (!cells) {
                     for (std::size_t n = chunk.begin(); n != chunk.end(); ++n) {
                         const auto voxel_corners = corners(usable[n]);
                         const cpu::CandidateRange range = cpu::candidateRange(voxel_corners, offset, last);
                         if (range.outside()) continue;
                         // Every candidate set already: nothing to add (mark_voxels.h).
-                        if (fewCandidates(range) && marker.allMarked(range.lo, range.hi)) continue;
+                        if (fewCandidates(range) && marker.allMarked(range.lo, range.hi)) {
+                            ++covered;
+                            continue;
+                        }
                         rasterize(voxel_corners, range);
                     }
+                    already_covered.fetch_add(covered, std::memory_order_relaxed);
                     done.fetch_add(chunk.size(), std::memory_order_relaxed);
                     return;
                 }
@@ -177,16 +183,21 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                         const std::size_t n = block + deferred[d];
                         const cpu::CandidateRange range = cellRangeOf(n);
                         // Every candidate set already: nothing to add (mark_voxels.h).
-                        if (fewCandidates(range) && marker.allMarked(range.lo, range.hi)) continue;
+                        if (fewCandidates(range) && marker.allMarked(range.lo, range.hi)) {
+                            ++covered;
+                            continue;
+                        }
                         rasterize(corners(usable[n]), range);
                     }
                 }
+                already_covered.fetch_add(covered, std::memory_order_relaxed);
                 done.fetch_add(chunk.size(), std::memory_order_relaxed);
             });
     });
     stats.addTiming("voxelize", watch.elapsedMs());
     if (!stats.cpu) stats.cpu.emplace();
     stats.cpu->split_triangles += split_triangles.load();
+    stats.cpu->triangles_already_covered += already_covered.load();
 }
 
 }  // namespace hyvox
