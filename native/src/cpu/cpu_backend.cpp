@@ -180,6 +180,11 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                     std::copy(deferred + later_begin, deferred + (block_end - block), deferred + deferred_count);
                     deferred_count += block_end - block - later_begin;
                     for (std::size_t d = 0; d != deferred_count; ++d) {
+                        // Their corners' coordinates are not cached yet: requested a few ahead.
+                        if (d + kPrefetchAhead < deferred_count) {
+                            const std::uint32_t* ahead = mesh.view.triangles + 3 * std::size_t(usable[block + deferred[d + kPrefetchAhead]]);
+                            for (int c = 0; c < 3; ++c) __builtin_prefetch(mesh.view.positions + 3 * std::size_t(ahead[c]));
+                        }
                         const std::size_t n = block + deferred[d];
                         const cpu::CandidateRange range = cellRangeOf(n);
                         // Every candidate set already: nothing to add (mark_voxels.h).
