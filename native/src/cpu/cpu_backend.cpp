@@ -131,20 +131,29 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                                           rasterizeRowsAnyAxis(t, r.begin(), r.end(), row_marker);
                                       });
                 };
-                std::uint64_t covered = 0;  // this chunk's skipped triangles
+                // This chunk's triangles checked against the voxels set, and skipped, per kind
+                // (within one voxel's range along one axis, or none). Where few of a kind are
+                // skipped (coarser triangles: the 203k dragon at 512 skips 3%, the bunny none)
+                // its check stops for the rest of the chunk.
+                std::uint64_t checked[2] = {0, 0}, skipped[2] = {0, 0};
+                auto coveredAlready = [&](const cpu::CandidateRange& range) {
+                    const int kind = range.singleAxes() == 0 ? 0 : 1;
+                    if (!fewCandidates(range) || (checked[kind] >= 64 && 16 * skipped[kind] < checked[kind])) return false;
+                    ++checked[kind];
+                    if (!marker.allMarked(range.lo, range.hi)) return false;
+                    ++skipped[kind];
+                    return true;
+                };
                 if (!cells) {
                     for (std::size_t n = chunk.begin(); n != chunk.end(); ++n) {
                         const auto voxel_corners = corners(usable[n]);
                         const cpu::CandidateRange range = cpu::candidateRange(voxel_corners, offset, last);
                         if (range.outside()) continue;
                         // Every candidate set already: nothing to add (mark_voxels.h).
-                        if (fewCandidates(range) && marker.allMarked(range.lo, range.hi)) {
-                            ++covered;
-                            continue;
-                        }
+                        if (coveredAlready(range)) continue;
                         rasterize(voxel_corners, range);
                     }
-                    already_covered.fetch_add(covered, std::memory_order_relaxed);
+                    already_covered.fetch_add(skipped[0] + skipped[1], std::memory_order_relaxed);
                     done.fetch_add(chunk.size(), std::memory_order_relaxed);
                     return;
                 }
@@ -188,14 +197,11 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                         const std::size_t n = block + deferred[d];
                         const cpu::CandidateRange range = cellRangeOf(n);
                         // Every candidate set already: nothing to add (mark_voxels.h).
-                        if (fewCandidates(range) && marker.allMarked(range.lo, range.hi)) {
-                            ++covered;
-                            continue;
-                        }
+                        if (coveredAlready(range)) continue;
                         rasterize(corners(usable[n]), range);
                     }
                 }
-                already_covered.fetch_add(covered, std::memory_order_relaxed);
+                already_covered.fetch_add(skipped[0] + skipped[1], std::memory_order_relaxed);
                 done.fetch_add(chunk.size(), std::memory_order_relaxed);
             });
     });
