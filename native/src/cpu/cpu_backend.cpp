@@ -162,8 +162,10 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                     return cpu::cellRange(cells[idx[0]], cells[idx[1]], cells[idx[2]], offset, last);
                 };
                 // Two passes over each block of the chunk: the triangles decided from integers
-                // alone mark their voxels first, so that more of the others find all of their
-                // candidates set when their turn comes (the 203k dragon at 128: 47% -> 60%).
+                // alone mark their voxels first, then the widest of the rest (within one
+                // voxel's range along no axis), then the others, so that more of them find all
+                // of their candidates set when their turn comes (one thread, the 203k dragon at
+                // 128: 54,051 triangles skipped, 40,299 in the mesh's order in chunks of 1024).
                 std::uint16_t deferred[kTrianglesPerChunk];
                 for (std::size_t block = chunk.begin(); block < chunk.end(); block += kTrianglesPerChunk) {
                     const std::size_t block_end = std::min(chunk.end(), block + kTrianglesPerChunk);
