@@ -19,9 +19,13 @@ namespace hyvox {
 
 struct CpuStats {
     std::uint64_t split_triangles = 0;  // large triangles cut into pieces for the thread pool
+    // Small triangles not set up: every candidate voxel was set already (by their neighbours;
+    // depends on the order the threads reach them).
+    std::uint64_t triangles_already_covered = 0;
     template <typename F>
     void visit(F&& f) const {
         f("split_triangles", split_triangles);
+        f("triangles_already_covered", triangles_already_covered);
     }
 };
 

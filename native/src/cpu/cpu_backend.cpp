@@ -29,7 +29,7 @@ namespace {
 // Columns of the dominant plane above which a triangle's rows become separate tasks.
 constexpr long kSplitColumns = 64 * 64;
 constexpr int kRowsPerTask = 8;
-constexpr std::size_t kTrianglesPerChunk = 1024;
+constexpr std::size_t kTrianglesPerChunk = 4096;
 constexpr std::size_t kPrefetchAhead = 8;
 
 // Every vertex's cells (vertex_cells.h), computed once each in parallel, or null when the
@@ -47,6 +47,13 @@ std::unique_ptr<cpu::VertexCell[]> vertexCells(const ValidatedMesh& mesh, const 
         }
     });
     return cells;
+}
+
+// At most 3 candidates along each axis (the small triangles of rasterize_small.h): those are
+// checked against the voxels already set before any setup; a larger triangle rarely finds
+// all of its candidates set.
+bool fewCandidates(const cpu::CandidateRange& r) {
+    return r.hi[0] - r.lo[0] <= 2 && r.hi[1] - r.lo[1] <= 2 && r.hi[2] - r.lo[2] <= 2;
 }
 
 void rasterizeRowsAnyAxis(const cpu::TriangleSetup& t, int row_begin, int row_end, cpu::WordMarker& marker) {
@@ -70,6 +77,7 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     const Mode mode = job.options.mode;
     std::atomic<std::size_t> done{0};
     std::atomic<std::uint64_t> split_triangles{0};
+    std::atomic<std::uint64_t> already_covered{0};
 
     const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
     tbb::task_arena arena(threads);
@@ -91,49 +99,29 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                         for (int j = lo[1]; j <= hi[1]; ++j)
                             for (int k = lo[2]; k <= hi[2]; ++k) marker.mark(i, j, k);
                 };
-                for (std::size_t n = chunk.begin(); n != chunk.end(); ++n) {
+                // The factored test of one triangle whose candidate range is not outside.
+                auto rasterize = [&](const std::array<std::array<double, 3>, 3>& voxel_corners,
+                                     const cpu::CandidateRange& range) {
                     cpu::TriangleSetup t;
-                    cpu::SetupKind kind;
-                    std::array<std::array<double, 3>, 3> voxel_corners;
-                    if (cells) {
-                        // The integer first look finds the candidate range setupTriangle would.
-                        // Its loads are the loop's cost (vertices are spread over megabytes):
-                        // those of a triangle a few ahead are requested now.
-                        if (n + kPrefetchAhead < chunk.end()) {
-                            const std::uint32_t* ahead = mesh.view.triangles + 3 * std::size_t(usable[n + kPrefetchAhead]);
-                            for (int c = 0; c < 3; ++c) __builtin_prefetch(&cells[ahead[c]]);
-                        }
-                        const std::uint32_t* idx = mesh.view.triangles + 3 * std::size_t(usable[n]);
-                        const cpu::CandidateRange range = cpu::cellRange(cells[idx[0]], cells[idx[1]], cells[idx[2]], offset, last);
-                        if (range.outside()) continue;
-                        if (mode != Mode::Thin && range.singleAxes() >= 2) {
-                            markAll(range.lo, range.hi);
-                            continue;
-                        }
-                        voxel_corners = corners(usable[n]);
-                        kind = cpu::setupTriangle(voxel_corners, mode, range, t);
-                    } else {
-                        voxel_corners = corners(usable[n]);
-                        kind = cpu::setupTriangle(voxel_corners, mode, offset, last, t);
-                    }
-                    if (kind == cpu::SetupKind::Outside) continue;
+                    const cpu::SetupKind kind = cpu::setupTriangle(voxel_corners, mode, range, t);
+                    if (kind == cpu::SetupKind::Outside) return;
                     if (kind == cpu::SetupKind::AllCandidates) {
                         markAll(t.lo, t.hi);
-                        continue;
+                        return;
                     }
                     if (kind == cpu::SetupKind::Planeless) {
                         cpu::rasterizePlaneless(voxel_corners, mode, t.lo, t.hi, marker);
-                        continue;
+                        return;
                     }
                     if (cpu::fitsSmallPath(t)) {
                         cpu::rasterizeSmall(t, marker);
-                        continue;
+                        return;
                     }
                     const int rows = t.hi[1] - t.lo[1] + 1;
                     const long columns = long(rows) * (t.hi[0] - t.lo[0] + 1);
                     if (columns <= kSplitColumns) {
                         rasterizeRowsAnyAxis(t, t.lo[1], t.hi[1] + 1, marker);
-                        continue;
+                        return;
                     }
                     split_triangles.fetch_add(1, std::memory_order_relaxed);
                     tbb::parallel_for(tbb::blocked_range<int>(t.lo[1], t.hi[1] + 1, kRowsPerTask),
@@ -142,13 +130,87 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                                           cpu::WordMarker row_marker(grid, offset);
                                           rasterizeRowsAnyAxis(t, r.begin(), r.end(), row_marker);
                                       });
+                };
+                // This chunk's triangles checked against the voxels set, and skipped, per kind
+                // (within one voxel's range along one axis, or none). Where few of a kind are
+                // skipped (coarser triangles: the 203k dragon at 512 skips 3%, the bunny none)
+                // its check stops for the rest of the chunk.
+                std::uint64_t checked[2] = {0, 0}, skipped[2] = {0, 0};
+                auto coveredAlready = [&](const cpu::CandidateRange& range) {
+                    const int kind = range.singleAxes() == 0 ? 0 : 1;
+                    if (!fewCandidates(range) || (checked[kind] >= 64 && 16 * skipped[kind] < checked[kind])) return false;
+                    ++checked[kind];
+                    if (!marker.allMarked(range.lo, range.hi)) return false;
+                    ++skipped[kind];
+                    return true;
+                };
+                if (!cells) {
+                    for (std::size_t n = chunk.begin(); n != chunk.end(); ++n) {
+                        const auto voxel_corners = corners(usable[n]);
+                        const cpu::CandidateRange range = cpu::candidateRange(voxel_corners, offset, last);
+                        if (range.outside()) continue;
+                        // Every candidate set already: nothing to add (mark_voxels.h).
+                        if (coveredAlready(range)) continue;
+                        rasterize(voxel_corners, range);
+                    }
+                    already_covered.fetch_add(skipped[0] + skipped[1], std::memory_order_relaxed);
+                    done.fetch_add(chunk.size(), std::memory_order_relaxed);
+                    return;
                 }
+                auto cellRangeOf = [&](std::size_t n) {
+                    const std::uint32_t* idx = mesh.view.triangles + 3 * std::size_t(usable[n]);
+                    return cpu::cellRange(cells[idx[0]], cells[idx[1]], cells[idx[2]], offset, last);
+                };
+                // Two passes over each block of the chunk: the triangles decided from integers
+                // alone mark their voxels first, then the widest of the rest (within one
+                // voxel's range along no axis), then the others, so that more of them find all
+                // of their candidates set when their turn comes (one thread, the 203k dragon at
+                // 128: 54,051 triangles skipped, 40,299 in the mesh's order in chunks of 1024).
+                std::uint16_t deferred[kTrianglesPerChunk];
+                for (std::size_t block = chunk.begin(); block < chunk.end(); block += kTrianglesPerChunk) {
+                    const std::size_t block_end = std::min(chunk.end(), block + kTrianglesPerChunk);
+                    std::size_t deferred_count = 0, later_begin = block_end - block;
+                    for (std::size_t n = block; n != block_end; ++n) {
+                        // The integer first look finds the candidate range setupTriangle would.
+                        // Its loads are the loop's cost (vertices are spread over megabytes):
+                        // those of a triangle a few ahead are requested now.
+                        if (n + kPrefetchAhead < block_end) {
+                            const std::uint32_t* ahead = mesh.view.triangles + 3 * std::size_t(usable[n + kPrefetchAhead]);
+                            for (int c = 0; c < 3; ++c) __builtin_prefetch(&cells[ahead[c]]);
+                        }
+                        const cpu::CandidateRange range = cellRangeOf(n);
+                        if (range.outside()) continue;
+                        if (mode != Mode::Thin && range.singleAxes() >= 2)
+                            markAll(range.lo, range.hi);
+                        else if (range.singleAxes() == 0)
+                            deferred[deferred_count++] = std::uint16_t(n - block);
+                        else
+                            deferred[--later_begin] = std::uint16_t(n - block);
+                    }
+                    std::reverse(deferred + later_begin, deferred + block_end - block);
+                    std::copy(deferred + later_begin, deferred + (block_end - block), deferred + deferred_count);
+                    deferred_count += block_end - block - later_begin;
+                    for (std::size_t d = 0; d != deferred_count; ++d) {
+                        // Their corners' coordinates are not cached yet: requested a few ahead.
+                        if (d + kPrefetchAhead < deferred_count) {
+                            const std::uint32_t* ahead = mesh.view.triangles + 3 * std::size_t(usable[block + deferred[d + kPrefetchAhead]]);
+                            for (int c = 0; c < 3; ++c) __builtin_prefetch(mesh.view.positions + 3 * std::size_t(ahead[c]));
+                        }
+                        const std::size_t n = block + deferred[d];
+                        const cpu::CandidateRange range = cellRangeOf(n);
+                        // Every candidate set already: nothing to add (mark_voxels.h).
+                        if (coveredAlready(range)) continue;
+                        rasterize(corners(usable[n]), range);
+                    }
+                }
+                already_covered.fetch_add(skipped[0] + skipped[1], std::memory_order_relaxed);
                 done.fetch_add(chunk.size(), std::memory_order_relaxed);
             });
     });
     stats.addTiming("voxelize", watch.elapsedMs());
     if (!stats.cpu) stats.cpu.emplace();
     stats.cpu->split_triangles += split_triangles.load();
+    stats.cpu->triangles_already_covered += already_covered.load();
 }
 
 }  // namespace hyvox

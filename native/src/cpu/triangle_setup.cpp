@@ -37,20 +37,6 @@ inline void setupProjection(const std::array<std::array<double, 3>, 3>& p, doubl
     }
 }
 
-CandidateRange candidateRange(const std::array<std::array<double, 3>, 3>& c, const std::array<std::int32_t, 3>& clip_lo,
-                              const std::array<std::int32_t, 3>& clip_hi) {
-    // Voxel i's closed box meets [lo, hi] iff lo - 1 <= i <= hi.
-    CandidateRange r;
-    for (int a = 0; a < 3; ++a) {
-        const double mn = std::min(std::min(c[0][a], c[1][a]), c[2][a]);
-        const double mx = std::max(std::max(c[0][a], c[1][a]), c[2][a]);
-        const int first = ceilToInt(clampCoord(mn)) - 1, last = floorToInt(clampCoord(mx));
-        r.lo[a] = std::max(clip_lo[a], first);
-        r.hi[a] = std::min(clip_hi[a], last);
-        r.single[a] = first == last;
-    }
-    return r;
-}
 
 template <bool Thin>
 SetupKind setup(const std::array<std::array<double, 3>, 3>& given, const CandidateRange& range, TriangleSetup& out) {
@@ -124,6 +110,21 @@ SetupKind setup(const std::array<std::array<double, 3>, 3>& given, const Candida
 }
 
 }  // namespace
+
+CandidateRange candidateRange(const std::array<std::array<double, 3>, 3>& c, const std::array<std::int32_t, 3>& clip_lo,
+                              const std::array<std::int32_t, 3>& clip_hi) {
+    // Voxel i's closed box meets [lo, hi] iff lo - 1 <= i <= hi.
+    CandidateRange r;
+    for (int a = 0; a < 3; ++a) {
+        const double mn = std::min(std::min(c[0][a], c[1][a]), c[2][a]);
+        const double mx = std::max(std::max(c[0][a], c[1][a]), c[2][a]);
+        const int first = ceilToInt(clampCoord(mn)) - 1, last = floorToInt(clampCoord(mx));
+        r.lo[a] = std::max(clip_lo[a], first);
+        r.hi[a] = std::min(clip_hi[a], last);
+        r.single[a] = first == last;
+    }
+    return r;
+}
 
 void setupEdgeTests(const std::array<std::array<double, 3>, 3>& c, double winding, int a, int b, Mode mode,
                     EdgeTest out[3]) {

@@ -74,7 +74,13 @@ struct CandidateRange {
     int singleAxes() const { return int(single[0]) + int(single[1]) + int(single[2]); }
 };
 
-// The rest of the setup, for a range found otherwise (vertex_cells.h); not outside().
+// The candidate range of voxel-space corners, clipped to clip_lo..clip_hi (the first step of
+// setupTriangle above).
+CandidateRange candidateRange(const std::array<std::array<double, 3>, 3>& corners,
+                              const std::array<std::int32_t, 3>& clip_lo, const std::array<std::int32_t, 3>& clip_hi);
+
+// The rest of the setup, for a range found by candidateRange or cellRange (vertex_cells.h);
+// not outside().
 SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode, const CandidateRange& range,
                         TriangleSetup& out);
 
