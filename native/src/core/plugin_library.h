@@ -17,6 +17,14 @@
 //   - the folder of the binary holding this code (the CLI, the Python module _core*.so),
 //     and its parent (the wheel keeps the CLI in hyvox/bin/, the plugins in hyvox/);
 //   - the build folder the plugins were built in (tests and benchmarks in the build tree).
+//
+// A plugin links its own copy of the hyvox code it uses (hidden): what crosses between it
+// and its host are hyvox's plain types (meshes, jobs, stats: the same headers, one build),
+// exceptions (GCC matches exception types by name across shared objects) and the host's
+// Interrupter (a virtual call). State stays on one side: the GL worker threads, the cutoff
+// cache and the GL object counts are the GL plugin's; the allocators hyvox uses are
+// stateless (malloc, mmap). A plugin from another build is not detected: the search looks
+// beside the binary first, where a package puts its own.
 #include <string>
 
 // A plugin's entry point: the only symbol it exports (its copies of hyvox's internals are
