@@ -19,11 +19,11 @@ namespace hyvox::io {
 // new one: the rename is one step, and what was written is in the kernel's page cache,
 // which outlives the process. Only a power loss or kernel crash within the next few seconds
 // (before the kernel writes the cache back) can lose the new file; on ext4 (auto_da_alloc)
-// a rename over an existing file even forces its data out first. This is what OpenVDB's
+// a rename over an existing file even starts writing the new data out. This is what OpenVDB's
 // own writer (no sync at all: it writes straight to the path), Blender's .blend save
 // (temporary + rename, no fsync: neither binary imports fsync) and the cuda_voxelizer peer
 // do; an fsync costs 4-45 ms of wall time on the test VM's ext4, as long as a whole
-// voxelization at 128 (bench/README.md, "The .vdb's fsync").
+// voxelization at 128 (bench/README.md, "The fixed cost of a run").
 //
 // Durable (the durable_write option): fsync the temporary before the rename and the folder
 // after it, so that once commit() returns the new file survives a power loss too. (A failed

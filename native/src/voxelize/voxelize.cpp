@@ -95,7 +95,9 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
         case Method::Reference: runReferenceBackend(job, out, stats); break;
         case Method::Triangle:
         case Method::Fragment:
-        case Method::Hybrid: glMethods(std::string("the ") + toString(job.options.method) + " method").run_hybrid(job, out, stats); break;
+        case Method::Hybrid:
+            glMethods(std::string("the ") + toString(job.options.method) + " method").run_hybrid(job, out, stats);
+            break;
         case Method::Tessellation: glMethods("the tessellation method").run_tessellation(job, out, stats); break;
     }
 }
