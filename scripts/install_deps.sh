@@ -22,6 +22,7 @@ packages=(
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri              # headless GL (Mesa llvmpipe)
   pybind11-dev python3-dev python3-numpy python3-pytest python3-openvdb python3-pil  # PIL: the attribute oracle reads textures
   python3-venv ccache                                               # wheel + bpy venvs; the wheel's build reuses objects
+  strace                                                            # the durable_write test watches fsync/rename calls
   libgtest-dev clang                                                 # clang: libFuzzer for the mesh-reader fuzzing
   blender xvfb xauth                                                # add-on tests (modal path in a window)
 )

@@ -71,7 +71,7 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     result.stats.addTiming("write_vdb", written.write_ms);
     result.stats.vdb_bytes = written.grid_bytes;
 
-    if (!args.stats_json_path.empty()) writeTextFileAtomic(args.stats_json_path, statsToJson(result));
+    if (!args.stats_json_path.empty()) writeTextFileAtomic(args.stats_json_path, statsToJson(result), result.stats.options.durable_write);
     if (!args.quiet) printSummary(args, mesh, result);
 }
 

@@ -9,11 +9,14 @@
 - pip installs it into VENV (numpy only, no system site-packages) without the network;
 - in a process started with an empty environment (no LD_LIBRARY_PATH, no PYTHONPATH),
   `import hyvox` + a CPU voxelization map only libraries from the installed wheel plus
-  the base system ones every manylinux wheel may use (/proc/self/maps), and a GL method
-  takes libEGL from the system and sets the same voxels as the CPU method;
+  the base system ones every manylinux wheel may use (/proc/self/maps), and none of the
+  plugins (native/src/core/plugin_library.h); a GL method loads the wheel's GL plugin,
+  takes libEGL from the system and sets the same voxels as the CPU method; an STL loads
+  the wheel's assimp plugin with the wheel's libassimp;
 - its voxels equal the build tree's module's; the `hyvox` command writes a .vdb that
   pyopenvdb reads back as the same voxels; ldd finds every library of the installed CLI
-  binary inside the wheel or in that base set."""
+  binary and of the plugins inside the wheel or in that base set (libEGL: the system's),
+  and the installed CLI finds the plugins (an STL, a GL method)."""
 import glob
 import json
 import os
@@ -107,6 +110,21 @@ class InstalledWheelTest(unittest.TestCase):
                    if not self.in_wheel(p) and soname_of(p) not in BASE_SYSTEM]
         self.assertEqual(outside, [], "libraries loaded from outside the wheel")
         self.assertTrue(any("/hyvox.libs/libtbb-" in p for p in self.child["loaded_by_import_and_cpu"]))
+        plugins = [p for p in self.child["loaded_by_import_and_cpu"]
+                   if re.search(r"/(libhyvox_|libassimp|libepoxy|libEGL)", p)]
+        self.assertEqual(plugins, [], "a cpu run loaded a plugin or what it brings")
+
+    def test_plugins_load_from_the_wheel_when_needed(self):
+        def loaded(step, prefix):
+            return [p for p in self.child[step] if os.path.basename(p).startswith(prefix)]
+        (gl_plugin,) = loaded("loaded_by_gl", "libhyvox_gl_methods.so")
+        self.assertTrue(self.in_wheel(gl_plugin), gl_plugin)
+        self.assertTrue(all(self.in_wheel(p) for p in loaded("loaded_by_gl", "libepoxy")), self.child["loaded_by_gl"])
+        (assimp_plugin,) = loaded("loaded_by_stl", "libhyvox_assimp.so")
+        self.assertTrue(self.in_wheel(assimp_plugin), assimp_plugin)
+        (assimp,) = loaded("loaded_by_stl", "libassimp")
+        self.assertTrue(self.in_wheel(assimp), assimp)
+        self.assertEqual(self.child["stl_triangles"], 1)
 
     def test_gl_driver_from_the_system(self):
         egl = [p for p in self.child["loaded_by_gl"] if os.path.basename(p).startswith("libEGL.so")]
@@ -139,16 +157,27 @@ class InstalledWheelTest(unittest.TestCase):
         key = lambda a: a[np.lexsort(np.round(a, 6).T[::-1])]
         np.testing.assert_allclose(key(centres), key(expected), atol=1e-6 * self.child["voxel_size"])
 
-    def test_cli_binary_libraries(self):
-        binary = os.path.join(self.site, "hyvox", "bin", "hyvox")
-        lines = run(["ldd", binary], env=self.clean_env).stdout.splitlines()
-        self.assertFalse([line for line in lines if "not found" in line], lines)
-        for line in lines:
-            parts = line.split()
-            path = parts[2] if "=>" in parts and len(parts) > 2 else parts[0]
-            if self.in_wheel(path) or soname_of(path) in BASE_SYSTEM:
-                continue
-            self.fail(f"{binary} resolves {line.strip()} outside the wheel")
+    def test_cli_binary_and_plugin_libraries(self):
+        plugins = sorted(glob.glob(os.path.join(self.site, "hyvox", "libhyvox_*.so")))
+        self.assertEqual([os.path.basename(p) for p in plugins], ["libhyvox_assimp.so", "libhyvox_gl_methods.so"])
+        for binary in [os.path.join(self.site, "hyvox", "bin", "hyvox")] + plugins:
+            lines = run(["ldd", binary], env=self.clean_env).stdout.splitlines()
+            self.assertFalse([line for line in lines if "not found" in line], lines)
+            for line in lines:
+                parts = line.split()
+                path = parts[2] if "=>" in parts and len(parts) > 2 else parts[0]
+                if self.in_wheel(path) or soname_of(path) in BASE_SYSTEM or os.path.basename(path).startswith(GL_STACK):
+                    continue
+                self.fail(f"{binary} resolves {line.strip()} outside the wheel")
+
+    def test_installed_cli_finds_the_plugins(self):
+        stl = os.path.join(self.tmp.name, "triangle.stl")  # written by wheel_child.py
+        for args in ([stl], [MESH, "--method", "hybrid"]):
+            out = os.path.join(self.tmp.name, "plugin.vdb")
+            run([os.path.join(VENV, "bin", "hyvox"), "voxelize", *args, "-o", out, "-q", "--resolution", "32"],
+                env=self.clean_env)
+            self.assertGreater(os.path.getsize(out), 0)
+            os.remove(out)
 
 
 if __name__ == "__main__":

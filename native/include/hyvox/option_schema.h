@@ -36,7 +36,7 @@ using OptionValue =
 struct OptionSpec {
     const char* name;   // Python keyword; the CLI flag is "--" + name with '-' for '_'
     OptionType type;
-    const char* group;  // "grid", "run", "gl", "hybrid", "tessellation"
+    const char* group;  // "grid", "run", "output", "solid", "gl", "hybrid", "tessellation"
     const char* label;  // a short title for a UI ("Resolution", "Tessellation γ")
     const char* unit;   // "voxels", "world units", "MiB", "bytes", "" ...
     const char* help;   // one line

@@ -126,6 +126,11 @@ struct VoxelizeOptions {
     // Attribute voxels to compute beside the occupancy: a comma list of "color" and "normal"
     // (hyvox/attribute_grid.h); "" = none.
     std::string attributes;
+    // Output files (.vdb, stats JSON) synced to disk before their write returns (fsync of the
+    // file and its folder): they then survive a power loss too. Off: the atomic rename alone
+    // (no half-written file whatever happens to hyvox), as OpenVDB and Blender write
+    // (src/io/atomic_file.h says why).
+    bool durable_write = false;
     GlOptions gl;
     HybridOptions hybrid;
     TessellationOptions tessellation;

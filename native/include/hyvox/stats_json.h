@@ -13,9 +13,10 @@ namespace hyvox {
 
 std::string statsToJson(const VoxelizeResult& result);
 
-// Writes text to a file atomically (temporary file in the same folder + rename).
+// Writes text to a file atomically (temporary file in the same folder + rename; `durable`:
+// synced to disk as the durable_write option says).
 // Throws InvalidInput (bad path) or ResourceError (I/O failure); never leaves a partial file.
-void writeTextFileAtomic(const std::string& path, const std::string& text);
+void writeTextFileAtomic(const std::string& path, const std::string& text, bool durable = false);
 
 // InvalidInput when no file could be written at `path` (by writeTextFileAtomic, writeVdb):
 // an empty path or one naming a folder, a folder, a device, FIFO or socket, a symlink to

@@ -25,7 +25,8 @@ namespace hyvox {
 // Writes atomically: a temporary file in the same folder, renamed over `path` only after
 // everything was written. On any failure the temporary file is removed, an existing file
 // at `path` is left as it was, and InvalidInput (bad path) or ResourceError (I/O failure)
-// is thrown. A grid that would not fit the run's memory budget (the result's options), with
+// is thrown. Synced to disk (file and folder) only when the result's options say
+// durable_write (stats.options; src/io/atomic_file.h: why not by default). A grid that would not fit the run's memory budget (the result's options), with
 // the result it is made from, is refused before it is built (ResourceError). The file is
 // serialized leaf by leaf on up to `threads` cores (0 = all; src/io/vdb_direct_writer.h), like
 // VoxelizeOptions. `interrupter` (may be null) sees the progress (building the grids 0-90,

@@ -90,6 +90,11 @@ std::vector<OptionSpec> buildSchema() {
     add({"attributes", T::Text, "run", "Attributes", "",
          "attribute voxels to compute: a comma list of color (linear RGB, alpha when the source has it) and "
          "normal; '' = none", false, 0, 0, false, {}, {}, nullptr, HYVOX_FIELD(asText, attributes)});
+    // --- output files ---
+    add({"durable_write", T::Flag, "output", "Durable Write", "",
+         "sync each output file (.vdb, stats JSON) and its folder to disk before the write returns, so it "
+         "survives a power loss; off: written to a temporary and renamed (never half-written), not synced",
+         false, 0, 0, false, {}, {}, nullptr, HYVOX_FIELD(asFlag, durable_write)});
     // --- solid mode ---
     add({"inside", T::Choice, "solid", "Inside Rule", "",
          "solid: parity = odd ray crossings (closed meshes); winding = winding number >= 0.5 (holes, "

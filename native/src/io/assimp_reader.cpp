@@ -1,191 +1,30 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Mesh files through assimp. Only aiProcess_Triangulate is requested: the cleaning steps
-// (JoinIdenticalVertices, FindDegenerates, SortByPType + removal, ...) would drop or merge
-// triangles, and the voxelizer must see the file's triangles as they are (validate() skips
-// and counts degenerate ones itself).
+// The formats hyvox does not read itself go to assimp, in the plugin libhyvox_assimp.so,
+// loaded here on the first such file: a PLY or OBJ run never loads libassimp and the ten
+// libraries it brings (core/plugin_library.h).
 #include "io/assimp_reader.h"
 
-#include <assimp/BaseImporter.h>
-#include <assimp/Importer.hpp>
-#include <assimp/ProgressHandler.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-
-#include <algorithm>
-#include <cctype>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <limits>
-#include <string>
-#include <unordered_map>
-#include <vector>
-
-#include "hyvox/errors.h"
+#include "core/plugin_library.h"
+#include "io/assimp_import.h"
 
 namespace hyvox::io {
 namespace {
 
-struct Appender {
-    Mesh& out;
-    bool want_colors;
-    bool want_uvs;
-
-    void append(const aiMesh& mesh, const aiMatrix4x4& transform) {
-        if (!(mesh.mPrimitiveTypes & (aiPrimitiveType_TRIANGLE | aiPrimitiveType_POLYGON))) return;
-        const std::size_t base = out.vertexCount();
-        if (base + mesh.mNumVertices > std::numeric_limits<std::uint32_t>::max())
-            throw InvalidInput("the mesh has too many vertices for 32-bit indices");
-        const bool identity = transform.IsIdentity();
-        for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
-            const aiVector3D p = identity ? mesh.mVertices[v] : transform * mesh.mVertices[v];
-            out.positions.insert(out.positions.end(), {p.x, p.y, p.z});
-            if (want_colors) {
-                const aiColor4D c = mesh.HasVertexColors(0) ? mesh.mColors[0][v] : aiColor4D(1, 1, 1, 1);
-                out.colors.insert(out.colors.end(), {c.r, c.g, c.b, c.a});
-            }
-            if (want_uvs) {
-                const aiVector3D t = mesh.HasTextureCoords(0) ? mesh.mTextureCoords[0][v] : aiVector3D(0, 0, 0);
-                out.uvs.insert(out.uvs.end(), {t.x, t.y});
-            }
-        }
-        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-            const aiFace& face = mesh.mFaces[f];
-            if (face.mNumIndices != 3) continue;  // points and lines: nothing to voxelize
-            for (int c = 0; c < 3; ++c) out.triangles.push_back(std::uint32_t(base + face.mIndices[c]));
-        }
-    }
-
-    void walk(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, std::vector<bool>& seen) {
-        const aiMatrix4x4 transform = parent * node.mTransformation;
-        for (unsigned m = 0; m < node.mNumMeshes; ++m) {
-            const unsigned index = node.mMeshes[m];
-            if (index >= scene.mNumMeshes) continue;
-            seen[index] = true;
-            append(*scene.mMeshes[index], transform);
-        }
-        for (unsigned c = 0; c < node.mNumChildren; ++c) walk(scene, *node.mChildren[c], transform, seen);
-    }
-};
-
-// Assimp's STL importer gives every face corner its own vertex. Welding corners whose
-// attributes are bitwise equal restores the file's shared vertices (and vertex count)
-// without touching any triangle.
-void weldIdenticalVertices(Mesh& mesh) {
-    const std::size_t n = mesh.vertexCount();
-    const std::size_t colors = mesh.hasColors() ? 4 : 0;
-    const std::size_t uvs = mesh.hasUvs() ? 2 : 0;
-    struct Key {
-        float v[9];
-        std::size_t size;
-        bool operator==(const Key& o) const { return std::memcmp(v, o.v, size * sizeof(float)) == 0; }
-    };
-    struct Hash {
-        std::size_t operator()(const Key& k) const {
-            std::uint64_t h = 1469598103934665603ull;
-            const auto* bytes = reinterpret_cast<const unsigned char*>(k.v);
-            for (std::size_t b = 0; b < k.size * sizeof(float); ++b) h = (h ^ bytes[b]) * 1099511628211ull;
-            return std::size_t(h);
-        }
-    };
-    std::unordered_map<Key, std::uint32_t, Hash> index;
-    index.reserve(n);
-    std::vector<std::uint32_t> remap(n);
-    Mesh out;
-    for (std::size_t v = 0; v < n; ++v) {
-        Key key{};
-        key.size = 3 + colors + uvs;
-        std::memcpy(key.v, &mesh.positions[3 * v], 3 * sizeof(float));
-        if (colors) std::memcpy(key.v + 3, &mesh.colors[4 * v], 4 * sizeof(float));
-        if (uvs) std::memcpy(key.v + 3 + colors, &mesh.uvs[2 * v], 2 * sizeof(float));
-        const auto [it, inserted] = index.emplace(key, std::uint32_t(out.vertexCount()));
-        if (inserted) {
-            out.positions.insert(out.positions.end(), key.v, key.v + 3);
-            if (colors) out.colors.insert(out.colors.end(), key.v + 3, key.v + 7);
-            if (uvs) out.uvs.insert(out.uvs.end(), key.v + 3 + colors, key.v + 5 + colors);
-        }
-        remap[v] = it->second;
-    }
-    out.triangles = std::move(mesh.triangles);
-    for (std::uint32_t& t : out.triangles) t = remap[t];
-    mesh = std::move(out);
-}
-
-// The importer without its PLY and OBJ loaders, so that no file, whatever its name or
-// content, reaches them. UnregisterLoader hands the loader back to us to delete.
-void removeOwnFormats(Assimp::Importer& importer) {
-    for (const char* extension : {"ply", "obj"})
-        if (Assimp::BaseImporter* loader = importer.GetImporter(extension)) {
-            importer.UnregisterLoader(loader);
-            delete loader;
-        }
-}
-
-Mesh toMesh(const aiScene* scene, Assimp::Importer& importer, const std::string& path, const std::string& extension) {
-    if (!scene) throw InvalidInput("cannot read mesh file '" + path + "': " + importer.GetErrorString());
-    Mesh mesh;
-    Appender appender{mesh, false, false};
-    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-        appender.want_colors |= scene->mMeshes[m]->HasVertexColors(0);
-        appender.want_uvs |= scene->mMeshes[m]->HasTextureCoords(0);
-    }
-    std::vector<bool> seen(scene->mNumMeshes, false);
-    if (scene->mRootNode) appender.walk(*scene, *scene->mRootNode, aiMatrix4x4(), seen);
-    for (unsigned m = 0; m < scene->mNumMeshes; ++m)
-        if (!seen[m]) appender.append(*scene->mMeshes[m], aiMatrix4x4());
-
-    if (mesh.triangleCount() == 0) throw InvalidInput("mesh file '" + path + "' contains no triangles");
-    if (extension == "stl") weldIdenticalVertices(mesh);
-    return mesh;
-}
-
-// assimp asks its progress handler at its own steps; returning false makes the read stop
-// and return no scene, which readWithAssimp then reports as hyvox::Cancelled.
-class InterruptingProgress final : public Assimp::ProgressHandler {
-public:
-    explicit InterruptingProgress(Interrupter* interrupter) : interrupter_(interrupter) {}
-    bool Update(float) override {
-        stopped_ = stopped_ || (interrupter_ && interrupter_->wasInterrupted(-1));
-        return !stopped_;
-    }
-    bool stopped() const { return stopped_; }
-
-private:
-    Interrupter* interrupter_;
-    bool stopped_ = false;
-};
-
-// The importer owns (and deletes) the handler it is given.
-InterruptingProgress& watch(Assimp::Importer& importer, Interrupter* interrupter) {
-    auto* progress = new InterruptingProgress(interrupter);
-    importer.SetProgressHandler(progress);
-    return *progress;
-}
-
-Mesh finish(const aiScene* scene, Assimp::Importer& importer, const InterruptingProgress& progress,
-            const std::string& path, const std::string& extension, Interrupter* interrupter) {
-    if (progress.stopped()) throw Cancelled();
-    throwIfInterrupted(interrupter);
-    return toMesh(scene, importer, path, extension);
+const AssimpImport& assimp(const std::string& path) {
+    using Entry = decltype(&hyvox_assimp_import);
+    const auto entry = reinterpret_cast<Entry>(pluginSymbol("assimp", "hyvox_assimp_import", "reading '" + path + "'"));
+    return *entry();
 }
 
 }  // namespace
 
 Mesh readWithAssimp(const std::string& path, const std::string& extension, Interrupter* interrupter) {
-    Assimp::Importer importer;
-    removeOwnFormats(importer);
-    const InterruptingProgress& progress = watch(importer, interrupter);
-    const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
-    return finish(scene, importer, progress, path, extension, interrupter);
+    return assimp(path).file(path, extension, interrupter);
 }
 
 Mesh readWithAssimp(const char* data, std::size_t size, const std::string& extension, const std::string& path,
                     Interrupter* interrupter) {
-    Assimp::Importer importer;
-    removeOwnFormats(importer);
-    const InterruptingProgress& progress = watch(importer, interrupter);
-    const aiScene* scene = importer.ReadFileFromMemory(data, size, aiProcess_Triangulate, extension.c_str());
-    return finish(scene, importer, progress, path, extension, interrupter);
+    return assimp(path).bytes(data, size, extension, path, interrupter);
 }
 
 }  // namespace hyvox::io

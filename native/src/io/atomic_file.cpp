@@ -99,7 +99,8 @@ Destination checkDestination(const std::string& destination) {
 
 }  // namespace
 
-AtomicFile::AtomicFile(std::string destination) : destination_(std::move(destination)) {
+AtomicFile::AtomicFile(std::string destination, Durability durability)
+    : destination_(std::move(destination)), durability_(durability) {
     Destination checked = checkDestination(destination_);
     target_ = std::move(checked.target);
     keep_mode_ = checked.keep_mode;
@@ -141,16 +142,24 @@ AtomicFile::~AtomicFile() {
 }
 
 void AtomicFile::commit() {
-    // fsync before rename, so a crash right after cannot leave an empty destination.
-    const int fd = ::open(temp_.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) throw ResourceError("cannot write '" + destination_ + "': reopening the temporary failed: " + errnoText());
-    const bool synced = ::fsync(fd) == 0;
-    const std::string sync_error = synced ? "" : errnoText();
-    ::close(fd);
-    if (!synced) throw ResourceError("cannot write '" + destination_ + "': fsync failed: " + sync_error);
+    // Durable: the data on disk before the name points at it, so a power loss right after
+    // cannot leave an empty destination (the reasons for not doing it by default: Durability).
+    if (durability_ == Durability::Durable) syncPath(temp_, "the temporary");
     if (std::rename(temp_.c_str(), target_.c_str()) != 0)
         throw ResourceError("cannot write '" + destination_ + "': renaming the temporary failed: " + errnoText());
     committed_ = true;
+    // ... and the rename itself (the folder's entry) on disk before commit() returns.
+    if (durability_ == Durability::Durable) syncPath(folderOf(target_), "its folder");
+}
+
+void AtomicFile::syncPath(const std::string& path, const char* what) const {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        throw ResourceError("cannot write '" + destination_ + "': opening " + what + " to sync it failed: " + errnoText());
+    const bool synced = ::fsync(fd) == 0;
+    const std::string sync_error = synced ? "" : errnoText();
+    ::close(fd);
+    if (!synced) throw ResourceError("cannot write '" + destination_ + "': fsync of " + what + " failed: " + sync_error);
 }
 
 void AtomicFile::writeWith(const std::function<void(std::ostream&)>& write) {

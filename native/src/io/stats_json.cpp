@@ -125,8 +125,8 @@ std::string statsToJson(const VoxelizeResult& result) {
     return out.str();
 }
 
-void writeTextFileAtomic(const std::string& path, const std::string& text) {
-    io::AtomicFile(path).writeWith([&](std::ostream& os) { os << text; });
+void writeTextFileAtomic(const std::string& path, const std::string& text, bool durable) {
+    io::AtomicFile(path, durable ? io::Durability::Durable : io::Durability::Atomic).writeWith([&](std::ostream& os) { os << text; });
 }
 
 }  // namespace hyvox

@@ -116,7 +116,8 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, i
     report.build_ms = std::chrono::duration<double, std::milli>(now - start).count();
     // Written in chunks, asking the interrupter between them (progress 91-98), so a large
     // file's write can be followed and cancelled (the temporary is removed, an earlier file stays).
-    io::AtomicFile(path).writeWith([&](std::ostream& out) {
+    const auto durability = result.stats.options.durable_write ? io::Durability::Durable : io::Durability::Atomic;
+    io::AtomicFile(path, durability).writeWith([&](std::ostream& out) {
         constexpr std::size_t kChunk = 256 * 1024;
         for (std::size_t at = 0; at < file.size;) {
             const std::size_t n = std::min(kChunk, file.size - at);

@@ -12,8 +12,8 @@
 #include "attributes/piece_attributes.h"
 #include "attributes/tile_attributes.h"
 #include "core/backends.h"
+#include "core/gl_methods.h"
 #include "core/stopwatch.h"
-#include "gl/device_limits.h"
 #include "solid/fill_inside.h"
 #include "hyvox/option_schema.h"
 #include "tessellation/point_values.h"
@@ -95,8 +95,10 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
         case Method::Reference: runReferenceBackend(job, out, stats); break;
         case Method::Triangle:
         case Method::Fragment:
-        case Method::Hybrid: runHybridBackend(job, out, stats); break;
-        case Method::Tessellation: runTessellationBackend(job, out, stats); break;
+        case Method::Hybrid:
+            glMethods(std::string("the ") + toString(job.options.method) + " method").run_hybrid(job, out, stats);
+            break;
+        case Method::Tessellation: glMethods("the tessellation method").run_tessellation(job, out, stats); break;
     }
 }
 
@@ -233,7 +235,9 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     const GridSpec& grid = result.grid;
     // The tessellation holds a tile's bits in one storage buffer (the hybrid methods cut theirs
     // into slabs themselves): its tiles also follow the device's limit.
-    std::uint64_t device_limit = options.method == Method::Tessellation ? gl::maxStorageBlockBytes(options.gl.device) : 0;
+    std::uint64_t device_limit = options.method == Method::Tessellation
+                                    ? glMethods("the tessellation method").max_storage_block_bytes(options.gl.device)
+                                    : 0;
     // Its attribute sums take a block per brick the points reach: tiles small enough for all.
     if (surface && options.method == Method::Tessellation)
         device_limit = tessellation::tileBitBytesForSums(device_limit, options.memoryBudgetBytes() / 2, surface->channels());

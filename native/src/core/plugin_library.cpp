@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "core/plugin_library.h"
+
+#include <dlfcn.h>
+#include <sys/stat.h>
+
+#include <cstdlib>
+#include <map>
+#include <mutex>
+#include <vector>
+
+#include "hyvox/errors.h"
+
+namespace hyvox {
+namespace {
+
+std::string folderOf(const std::string& path) {
+    const auto slash = path.find_last_of('/');
+    return slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+}
+
+// The folders to look in (plugin_library.h), in order.
+std::vector<std::string> searchFolders() {
+    if (const char* forced = std::getenv("HYVOX_PLUGIN_DIR"); forced && *forced) return {forced};
+    std::vector<std::string> folders;
+    Dl_info self{};
+    if (::dladdr(reinterpret_cast<void*>(&searchFolders), &self) && self.dli_fname && *self.dli_fname) {
+        // dli_fname is the path the binary was loaded by (absolute for shared objects; for a
+        // program, as it was started): resolved, so a symlink to the CLI finds its plugins.
+        std::string binary = self.dli_fname;
+        if (char* real = ::realpath(binary.c_str(), nullptr)) {
+            binary = real;
+            std::free(real);
+        }
+        folders.push_back(folderOf(binary));
+        folders.push_back(folderOf(folders.back()));
+    }
+#ifdef HYVOX_BUILD_PLUGIN_DIR
+    folders.push_back(HYVOX_BUILD_PLUGIN_DIR);
+#endif
+    return folders;
+}
+
+bool isFile(const std::string& path) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+std::mutex mutex;
+std::map<std::string, void*> loaded;  // name -> dlopen handle, never closed
+
+void* load(const std::string& name, const std::string& purpose) {
+    const std::string file = "libhyvox_" + name + ".so";
+    std::string looked;
+    for (const std::string& folder : searchFolders()) {
+        const std::string path = folder + "/" + file;
+        if (!isFile(path)) {
+            looked += (looked.empty() ? "" : ", ") + folder;
+            continue;
+        }
+        // RTLD_LOCAL: its symbols (its own copy of hyvox's internals, all hidden but the
+        // entry point) never stand in for anyone else's. RTLD_NOW: a missing symbol fails here.
+        if (void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) return handle;
+        const char* why = ::dlerror();
+        throw BackendError(purpose + " needs " + path + ", which cannot be loaded: " + (why ? why : "unknown error"));
+    }
+    throw BackendError(purpose + " needs " + file + ", which is not installed with hyvox (looked in " +
+                       (looked.empty() ? std::string("no folder") : looked) + ")");
+}
+
+}  // namespace
+
+void* pluginSymbol(const std::string& name, const char* symbol, const std::string& purpose) {
+    std::lock_guard<std::mutex> lock(mutex);
+    void*& handle = loaded[name];
+    if (!handle) {
+        try {
+            handle = load(name, purpose);
+        } catch (...) {
+            loaded.erase(name);
+            throw;
+        }
+    }
+    ::dlerror();
+    void* address = ::dlsym(handle, symbol);
+    if (!address)
+        throw BackendError(purpose + " needs the symbol " + symbol + " of libhyvox_" + name +
+                           ".so, which does not have it (a plugin from another hyvox build?)");
+    return address;
+}
+
+bool pluginLoaded(const std::string& name) {
+    std::lock_guard<std::mutex> lock(mutex);
+    return loaded.count(name) != 0;
+}
+
+}  // namespace hyvox

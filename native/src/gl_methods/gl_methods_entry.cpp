@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The entry point of the plugin libhyvox_gl_methods.so: the GL methods' table
+// (core/gl_methods.h) over the GL layer, the hybrid and the tessellation backends.
+#include "core/gl_methods.h"
+
+#include "gl/device_limits.h"
+#include "gl/egl_device.h"
+#include "gl/live_objects.h"
+
+namespace hyvox {
+namespace {
+
+std::vector<GlDevice> listDevices() {
+    std::vector<GlDevice> out;
+    for (const auto& d : gl::listEglDevices()) out.push_back({d.index, d.name, d.software});
+    return out;
+}
+
+GlObjectCounts liveObjects() {
+    auto live = [](gl::GlKind kind) { return gl::live_gl_objects[int(kind)].load(std::memory_order_relaxed); };
+    GlObjectCounts counts;
+    counts.buffers = live(gl::GlKind::Buffer);
+    counts.vertex_arrays = live(gl::GlKind::VertexArray);
+    counts.framebuffers = live(gl::GlKind::Framebuffer);
+    counts.programs = live(gl::GlKind::Program);
+    counts.shaders = live(gl::GlKind::Shader);
+    counts.queries = live(gl::GlKind::Query);
+    return counts;
+}
+
+const GlMethods table{runHybridBackend, runTessellationBackend, gl::maxStorageBlockBytes, listDevices, liveObjects};
+
+}  // namespace
+}  // namespace hyvox
+
+extern "C" HYVOX_PLUGIN_ENTRY const hyvox::GlMethods* hyvox_gl_methods() { return &hyvox::table; }

@@ -1,0 +1,163 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# The plugins (native/src/core/plugin_library.h): libassimp and the GL stack are loaded only
+# when a file or a method needs them, and what needs them still works, from the CLI and the
+# module. Which libraries a process loaded is asked of the dynamic linker (LD_DEBUG=files)
+# or the kernel (/proc/self/maps), not of hyvox; the voxels of a run through a plugin are
+# compared with the same mesh through hyvox's own readers and the cpu method.
+import json
+import os
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import hyvox
+
+# What the plugins bring: none of it belongs in a cpu run of a PLY or OBJ.
+ASSIMP = ("libhyvox_assimp.so", "libassimp.so", "libdraco.so")
+GL = ("libhyvox_gl_methods.so", "libepoxy.so", "libEGL.so")
+PYTHONPATH = str(pathlib.Path(hyvox.__file__).resolve().parents[1])
+
+
+def tetra_stl(path, vertices, triangles):
+    """The mesh as an ASCII STL (a format only assimp reads here)."""
+    facets = "".join("facet normal 0 0 0\nouter loop\n" +
+                     "".join("vertex %r %r %r\n" % tuple(vertices[c]) for c in t) + "endloop\nendfacet\n"
+                     for t in triangles)
+    path.write_text("solid t\n" + facets + "endsolid t\n")
+    return path
+
+
+def loaded_by(command, env=None):
+    """The shared objects the dynamic linker opened for `command` (LD_DEBUG=files), and its result."""
+    done = subprocess.run(command, capture_output=True, text=True, timeout=300,
+                          env={**(env or os.environ), "LD_DEBUG": "files"})
+    opened = {line.split("file=")[1].split()[0] for line in done.stderr.splitlines() if "file=" in line}
+    return {os.path.basename(name) for name in opened}, done
+
+
+def has_any(names, libraries):
+    return [n for n in names if any(n.startswith(lib) for lib in libraries)]
+
+
+def voxels_of(path):
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "blender"))
+    import vdb_dump  # pyopenvdb: an independent reader
+    coords, _, _, _ = vdb_dump.read(str(path))
+    return set(map(tuple, np.asarray(coords).reshape(-1, 3).tolist()))
+
+
+def test_cli_cpu_run_of_ply_and_obj_loads_no_plugin(cli, mesh_dir, tetra_obj, tmp_path):
+    for mesh in (mesh_dir / "bunny_stanford_69k.ply", tetra_obj):
+        names, done = loaded_by([str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "o.vdb"), "-q",
+                                 "--resolution=32", "--method=cpu"])
+        assert done.returncode == 0, done.stderr[-2000:]
+        assert "libtbb.so.12" in names  # the witness sees what the CLI loads
+        assert not has_any(names, ASSIMP + GL + ("libopenvdb.so",)), names
+
+
+def test_cli_reads_stl_through_the_assimp_plugin(cli, tetrahedron, tetra_obj, tmp_path):
+    stl = tetra_stl(tmp_path / "tetra.stl", *tetrahedron)
+    names, done = loaded_by([str(cli), "voxelize", str(stl), "-o", str(tmp_path / "stl.vdb"), "-q", "--resolution=16"])
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert has_any(names, ("libhyvox_assimp.so",)) and has_any(names, ("libassimp.so",)), names
+    assert not has_any(names, GL), names
+    subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "obj.vdb"), "-q", "--resolution=16"],
+                   check=True, timeout=120)
+    stl_voxels = voxels_of(tmp_path / "stl.vdb")
+    assert stl_voxels and stl_voxels == voxels_of(tmp_path / "obj.vdb")
+
+
+def test_cli_gl_method_through_the_gl_plugin(cli, tetra_obj, tmp_path):
+    names, done = loaded_by([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "gl.vdb"), "-q",
+                             "--resolution=16", "--method=hybrid"])
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert has_any(names, ("libhyvox_gl_methods.so",)) and has_any(names, ("libepoxy.so",)), names
+    assert not has_any(names, ASSIMP), names
+    subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "cpu.vdb"), "-q", "--resolution=16",
+                    "--method=cpu"], check=True, timeout=120)
+    gl_voxels = voxels_of(tmp_path / "gl.vdb")
+    assert gl_voxels and gl_voxels == voxels_of(tmp_path / "cpu.vdb")  # the exact methods agree
+
+
+MODULE_CHILD = r"""
+import json, sys
+import numpy as np
+import hyvox
+
+def mapped():
+    with open("/proc/self/maps") as maps:
+        return sorted({l.split()[5].rsplit("/", 1)[-1] for l in maps if len(l.split()) >= 6 and ".so" in l.split()[5]})
+
+out = {"import": mapped()}
+v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32)
+t = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], np.uint32)
+cpu = hyvox.voxelize(v, t, resolution=16, method="cpu")
+out["live_before_gl"] = hyvox._core.gl_live_objects()
+out["cpu"] = mapped()
+gl = hyvox.voxelize(v, t, resolution=16, method="hybrid")
+out["gl"] = mapped()
+out["gl_equals_cpu"] = bool(np.array_equal(gl.coords(), cpu.coords())) and len(cpu.coords()) > 0
+out["devices"] = hyvox._core.gl_devices()
+stl = hyvox.read_mesh(sys.argv[1])
+out["stl"] = mapped()
+out["stl_equals"] = bool(np.array_equal(np.asarray(stl[0])[np.asarray(stl[1])], v[t]))  # the same triangles
+print(json.dumps(out))
+"""
+
+
+def test_module_loads_each_plugin_when_first_needed(tetrahedron, tmp_path):
+    stl = tetra_stl(tmp_path / "tetra.stl", *tetrahedron)
+    done = subprocess.run([sys.executable, "-c", MODULE_CHILD, str(stl)], capture_output=True, text=True, timeout=300,
+                          env={**os.environ, "PYTHONPATH": PYTHONPATH})
+    assert done.returncode == 0, done.stderr[-3000:]
+    out = json.loads(done.stdout)
+    assert any(n.startswith("_core") for n in out["cpu"])
+    assert not has_any(out["cpu"], ASSIMP + GL), out["cpu"]
+    assert out["live_before_gl"] == dict.fromkeys(out["live_before_gl"], 0)  # asked without loading GL
+    assert has_any(out["gl"], GL[:2]) and not has_any(out["gl"], ASSIMP), out["gl"]
+    assert out["gl_equals_cpu"]
+    assert out["devices"] and all({"index", "name", "software"} <= set(d) for d in out["devices"])
+    assert has_any(out["stl"], ASSIMP[:2]), out["stl"]
+    assert out["stl_equals"]
+
+
+def test_a_missing_plugin_is_a_clear_error_and_nothing_else_needs_it(cli, tetrahedron, tetra_obj, tmp_path):
+    empty = tmp_path / "no_plugins"
+    empty.mkdir()
+    env = {**os.environ, "HYVOX_PLUGIN_DIR": str(empty)}
+    stl = tetra_stl(tmp_path / "tetra.stl", *tetrahedron)
+    run = lambda *args: subprocess.run([str(cli), "voxelize", *map(str, args), "-o", str(tmp_path / "o.vdb"), "-q",
+                                        "--resolution=8"], capture_output=True, text=True, timeout=120, env=env)
+    done = run(stl)
+    assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
+    assert f"reading '{stl}' needs libhyvox_assimp.so, which is not installed with hyvox (looked in {empty})" \
+        in done.stderr, done.stderr
+    done = run(tetra_obj, "--method=hybrid")
+    assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
+    assert "the hybrid method needs libhyvox_gl_methods.so, which is not installed with hyvox" in done.stderr, done.stderr
+    done = run(tetra_obj, "--method=cpu")  # a cpu run of an OBJ needs neither
+    assert done.returncode == 0, done.stderr
+    # The module: a RuntimeError with the same message.
+    child = ("import hyvox\n"
+             "try:\n    hyvox.voxelize([[0.,0,0],[1.,0,0],[0.,1,0]], [[0,1,2]], method='tessellation')\n"
+             "except RuntimeError as e:\n    print(e)\n")
+    done = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True, timeout=120,
+                          env={**env, "PYTHONPATH": PYTHONPATH})
+    assert "the tessellation method needs libhyvox_gl_methods.so, which is not installed" in done.stdout, \
+        done.stdout + done.stderr
+
+
+def test_a_plugin_that_does_not_load_says_why(cli, tetrahedron, tmp_path):
+    # A file of the plugin's name that is no shared object: dlopen's own reason is shown.
+    folder = tmp_path / "damaged"
+    folder.mkdir()
+    (folder / "libhyvox_assimp.so").write_bytes(b"not a shared object\n" * 64)
+    stl = tetra_stl(tmp_path / "tetra.stl", *tetrahedron)
+    done = subprocess.run([str(cli), "voxelize", str(stl), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=8"],
+                          capture_output=True, text=True, timeout=120, env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)})
+    assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
+    assert f"needs {folder}/libhyvox_assimp.so, which cannot be loaded: " in done.stderr, done.stderr
+    assert "invalid ELF header" in done.stderr, done.stderr
