@@ -69,28 +69,43 @@ void expectSamePiece(const ClippedPiece& got, const ClippedPiece& expected, cons
     for (std::size_t d = 0; d < 3; ++d) EXPECT_NEAR(got.centroid[d], expected.centroid[d], 1e-9) << v[0] << " " << v[1] << " " << v[2];
 }
 
+// A triangle of corners spread up to a random `size` around a random centre.
+Corners randomTriangle(std::mt19937& random, std::uniform_real_distribution<double>& coordinate,
+                       std::uniform_real_distribution<double>& size) {
+    const Point centre{coordinate(random), coordinate(random), coordinate(random)};
+    const double scale = size(random);
+    std::uniform_real_distribution<double> offset(-scale, scale);
+    Corners corners;
+    for (Point& corner : corners)
+        for (std::size_t d = 0; d < 3; ++d) corner[d] = centre[d] + offset(random);
+    return corners;
+}
+
+// The sweep over [lo, hi) finds exactly box clipping's voxels, with pieces alike, and their
+// areas add up to the triangle's (within `relative` of it). Returns the number of pieces.
+std::size_t expectSweepEqualsBoxClipping(const Corners& corners, int lo, int hi, double relative, int t,
+                                         std::uint64_t* inner = nullptr) {
+    const Pieces swept = sweep(corners, lo, hi, inner), clipped = clipBoxes(corners, lo, hi, 0.0);
+    EXPECT_EQ(swept.size(), clipped.size()) << "triangle " << t;
+    double total = 0;
+    for (const auto& [voxel, piece] : clipped) {
+        const auto found = swept.find(voxel);
+        if (found == swept.end()) {
+            ADD_FAILURE() << "triangle " << t << ": the sweep misses a voxel";
+            continue;
+        }
+        expectSamePiece(found->second, piece, voxel);
+        total += found->second.area;
+    }
+    EXPECT_NEAR(total, triangleArea(corners), relative * (1 + triangleArea(corners))) << "triangle " << t;
+    return swept.size();
+}
+
 // Triangles in general position: exactly the voxels box clipping finds, pieces alike.
 TEST(AttributeSweep, RandomTrianglesGiveTheBoxClippingPieces) {
     std::mt19937 random(12);
     std::uniform_real_distribution<double> coordinate(0.0, 8.0), size(0.01, 6.0);
-    for (int t = 0; t < 300; ++t) {
-        const Point centre{coordinate(random), coordinate(random), coordinate(random)};
-        const double scale = size(random);
-        std::uniform_real_distribution<double> offset(-scale, scale);
-        Corners corners;
-        for (Point& corner : corners)
-            for (std::size_t d = 0; d < 3; ++d) corner[d] = centre[d] + offset(random);
-        const Pieces swept = sweep(corners, -8, 16), clipped = clipBoxes(corners, -8, 16, 0.0);
-        ASSERT_EQ(swept.size(), clipped.size()) << "triangle " << t;
-        double total = 0;
-        for (const auto& [voxel, piece] : clipped) {
-            const auto found = swept.find(voxel);
-            ASSERT_NE(found, swept.end()) << "triangle " << t;
-            expectSamePiece(found->second, piece, voxel);
-            total += found->second.area;
-        }
-        EXPECT_NEAR(total, triangleArea(corners), 1e-12 * (1 + triangleArea(corners))) << "triangle " << t;
-    }
+    for (int t = 0; t < 300; ++t) expectSweepEqualsBoxClipping(randomTriangle(random, coordinate, size), -8, 16, 1e-12, t);
 }
 
 // A range that starts or ends inside the triangle (a leaf's) gets the same pieces as one
@@ -171,25 +186,8 @@ TEST(AttributeSweep, LargeTrianglesGiveTheBoxClippingPiecesInInnerColumns) {
     std::mt19937 random(31);
     std::uniform_real_distribution<double> coordinate(8.0, 16.0), size(4.0, 16.0);
     std::uint64_t inner = 0, all = 0;
-    for (int t = 0; t < 60; ++t) {
-        const Point centre{coordinate(random), coordinate(random), coordinate(random)};
-        const double scale = size(random);
-        std::uniform_real_distribution<double> offset(-scale, scale);
-        Corners corners;
-        for (Point& corner : corners)
-            for (std::size_t d = 0; d < 3; ++d) corner[d] = centre[d] + offset(random);
-        const Pieces swept = sweep(corners, -10, 34, &inner), clipped = clipBoxes(corners, -10, 34, 0.0);
-        all += swept.size();
-        ASSERT_EQ(swept.size(), clipped.size()) << "triangle " << t;
-        double total = 0;
-        for (const auto& [voxel, piece] : clipped) {
-            const auto found = swept.find(voxel);
-            ASSERT_NE(found, swept.end()) << "triangle " << t;
-            expectSamePiece(found->second, piece, voxel);
-            total += found->second.area;
-        }
-        EXPECT_NEAR(total, triangleArea(corners), 1e-11 * (1 + triangleArea(corners))) << "triangle " << t;
-    }
+    for (int t = 0; t < 60; ++t)
+        all += expectSweepEqualsBoxClipping(randomTriangle(random, coordinate, size), -10, 34, 1e-11, t, &inner);
     EXPECT_GT(inner, all / 4) << "the inner columns' way was hardly taken";
 }
 
