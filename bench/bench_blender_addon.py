@@ -108,6 +108,15 @@ def time_mesh_to_volume(obj, voxel_size):
     return ms
 
 
+def _ms(value):
+    """Milliseconds for the table; '-' where Mesh to Volume was skipped."""
+    return "-" if value is None else f"{value:.0f}"
+
+
+def _speedup(value):
+    return "-" if value is None else f"{value:.1f}x"
+
+
 def main():
     args = parse_args()
     enable_addon(args.build)
@@ -119,23 +128,23 @@ def main():
             for resolution in [int(x) for x in args.resolutions.split(",")]:
                 voxel_size = extent / resolution
                 runs = [time_hyvox(obj, voxel_size, args.method, out) for _ in range(args.repeat)]
-                m2v = [0.0] if args.skip_mesh_to_volume else [
+                m2v = None if args.skip_mesh_to_volume else [
                     time_mesh_to_volume(obj, voxel_size) for _ in range(args.repeat)]
                 best = min(runs, key=lambda r: r[0])
                 row = {
                     "level": level, "triangles": triangles, "resolution": resolution,
                     "voxel_size": voxel_size, "method": args.method,
                     "hyvox_ms": statistics.median(r[0] for r in runs),
-                    "mesh_to_volume_ms": statistics.median(m2v),
+                    "mesh_to_volume_ms": statistics.median(m2v) if m2v else None,
                     "voxels": best[2], "breakdown_ms": best[1],
                     # The add-on's own overhead (export + import) as a share of each run's total.
                     "addon_share": statistics.median((r[1]["export"] + r[1]["import"]) / r[1]["total"] for r in runs),
                     "export_cpu_ms": statistics.median(r[1]["export_cpu"] for r in runs),
                 }
-                row["speedup"] = row["mesh_to_volume_ms"] / row["hyvox_ms"]
+                row["speedup"] = row["mesh_to_volume_ms"] / row["hyvox_ms"] if m2v else None
                 rows.append(row)
                 print(f"L{level} {resolution}: hyvox {row['hyvox_ms']:.0f} ms, "
-                      f"Mesh to Volume {row['mesh_to_volume_ms']:.0f} ms", flush=True)
+                      f"Mesh to Volume {_ms(row['mesh_to_volume_ms'])} ms", flush=True)
 
     print(f"\nBlender {bpy.app.version_string}, {os.cpu_count()} CPUs, hyvox method {args.method}, "
           f"median of {args.repeat}, load average {os.getloadavg()[0]:.1f}")
@@ -145,7 +154,7 @@ def main():
     for r in rows:
         b = r["breakdown_ms"]
         print(f"| Suzanne L{r['level']} | {r['triangles']:,} | {r['resolution']} | {r['hyvox_ms']:.0f} | "
-              f"{r['mesh_to_volume_ms']:.0f} | {r['speedup']:.1f}x | {b['export']:.0f} | "
+              f"{_ms(r['mesh_to_volume_ms'])} | {_speedup(r['speedup'])} | {b['export']:.0f} | "
               f"{b['voxelize']:.0f} | {b['write']:.0f} | {b['import']:.0f} | {100 * r['addon_share']:.0f}% | "
               f"{r['export_cpu_ms']:.0f} | {r['voxels']:,} |")
     if args.json:
