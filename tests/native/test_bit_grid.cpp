@@ -2,9 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <set>
+#include <vector>
 
 #include "hyvox/bit_grid.h"
+#include "hyvox/zero_page_allocator.h"
 
 namespace {
 
@@ -27,6 +30,20 @@ TEST(BitGrid, LayoutMatchesOpenVdbLeafOffsets) {
     const std::size_t brick = (1 * 2 + 0) * 2 + 0;
     const int n = (3 << 6) | (5 << 3) | 2;
     EXPECT_EQ(grid.data()[brick * 8 + (n >> 6)], std::uint64_t(1) << (n & 63));
+}
+
+TEST(ZeroPageAllocator, ArraysAreZeroWritableToTheEndAndLargeOnesStartOnAHugePage) {
+    // Sizes below, at and around the mapping threshold (1 MiB) and the huge page (2 MiB).
+    for (const std::size_t count : {std::size_t(100), std::size_t(1) << 18, (std::size_t(1) << 18) + 3,
+                                    std::size_t(1) << 19, (std::size_t(3) << 19) + 7}) {
+        std::vector<std::uint32_t, hyvox::ZeroPageAllocator<std::uint32_t>> words(count);
+        EXPECT_TRUE(std::all_of(words.begin(), words.end(), [](std::uint32_t w) { return w == 0; })) << count;
+        if (count * sizeof(std::uint32_t) >= (std::size_t(1) << 20)) {
+            EXPECT_EQ(reinterpret_cast<std::uintptr_t>(words.data()) % (std::uintptr_t(1) << 21), 0u) << count;
+        }
+        for (std::size_t i = 0; i < count; ++i) words[i] = std::uint32_t(i);  // every page is mapped
+        EXPECT_EQ(words.back(), std::uint32_t(count - 1));
+    }
 }
 
 }  // namespace

@@ -16,13 +16,21 @@
 #include "hyvox/errors.h"
 #include "hyvox/texture.h"
 #include "hyvox/voxelize.h"
+#include "hyvox/zero_page_allocator.h"
 
 namespace hyvox::python {
 namespace {
 
+// The private copies of the caller's arrays. Their memory is fresh pages asking for huge
+// pages, filled by one memcpy: a std::vector would zero them first, and 4 KiB first touches
+// of the 871k-triangle dragon's 15 MiB cost more than the copy itself (the CLI's mesh
+// arrays get the same hint before they are filled).
+template <typename T>
+using PrivateRows = std::vector<T, ZeroPageAllocator<T>>;
+
 // Exact dtype and layout, or ValueError: the Python layer converts, this only refuses.
 template <typename T>
-std::vector<T> copyRows(const py::array& array, const char* name, const char* dtype, py::ssize_t width = 3) {
+PrivateRows<T> copyRows(const py::array& array, const char* name, const char* dtype, py::ssize_t width = 3) {
     if (!py::isinstance<py::array_t<T>>(array))  // dtype equivalent to T, native byte order
         throw py::value_error(std::string(name) + " must be a numpy array of dtype " + dtype);
     if (array.ndim() != 2 || array.shape(1) != width)
@@ -31,16 +39,16 @@ std::vector<T> copyRows(const py::array& array, const char* name, const char* dt
     // released, and validated indices must stay valid.
     const auto contiguous = py::array_t<T, py::array::c_style>::ensure(array);
     if (!contiguous) throw py::error_already_set();
-    std::vector<T> copy(std::size_t(contiguous.size()));
+    PrivateRows<T> copy(std::size_t(contiguous.size()));  // not zeroed: see ZeroPageAllocator
     if (!copy.empty()) std::memcpy(copy.data(), contiguous.data(), copy.size() * sizeof(T));
     return copy;
 }
 
 // Optional per-vertex rows (uvs, normals): one row per vertex, or absent.
-std::vector<float> copyVertexRows(const std::optional<py::array>& array, const char* name, py::ssize_t width,
+PrivateRows<float> copyVertexRows(const std::optional<py::array>& array, const char* name, py::ssize_t width,
                                   std::size_t vertex_count) {
     if (!array) return {};
-    std::vector<float> rows = copyRows<float>(*array, name, "float32", width);
+    PrivateRows<float> rows = copyRows<float>(*array, name, "float32", width);
     if (rows.size() != vertex_count * std::size_t(width))
         throw py::value_error(std::string(name) + " must have one row per vertex (" + std::to_string(vertex_count) +
                               "), got " + std::to_string(rows.size() / std::size_t(width)));
@@ -107,7 +115,7 @@ MaterialTextures materialTextures(const std::optional<py::list>& list) {
 
 // Colours: (N, 3|4) per vertex or (3M, 3|4) per corner.
 struct ColorRows {
-    std::vector<float> values;
+    PrivateRows<float> values;
     int channels = 0;
     bool per_corner = false;
 };
@@ -139,10 +147,10 @@ std::shared_ptr<VoxelizeResult> voxelizeArrays(const py::array& vertices, const 
     options.tessellation.displacement_pixels = heightImage(displacement_pixels);
     if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw py::type_error("progress must be callable or None");
 
-    const std::vector<float> positions = copyRows<float>(vertices, "vertices", "float32");
-    const std::vector<std::uint32_t> indices = copyRows<std::uint32_t>(triangles, "triangles", "uint32");
-    const std::vector<float> uv_rows = copyVertexRows(uvs, "uvs", 2, positions.size() / 3);
-    const std::vector<float> normal_rows = copyVertexRows(normals, "normals", 3, positions.size() / 3);
+    const PrivateRows<float> positions = copyRows<float>(vertices, "vertices", "float32");
+    const PrivateRows<std::uint32_t> indices = copyRows<std::uint32_t>(triangles, "triangles", "uint32");
+    const PrivateRows<float> uv_rows = copyVertexRows(uvs, "uvs", 2, positions.size() / 3);
+    const PrivateRows<float> normal_rows = copyVertexRows(normals, "normals", 3, positions.size() / 3);
     MeshView view{positions.data(), positions.size() / 3, indices.data(), indices.size() / 3};
     if (uvs) view.uvs = uv_rows.data();
     if (normals) view.normals = normal_rows.data();
@@ -160,7 +168,7 @@ std::shared_ptr<VoxelizeResult> voxelizeArrays(const py::array& vertices, const 
         image = readPngTexture(*texture_path);
     }
     if (image) view.texture = &*image;
-    std::vector<std::uint32_t> material_rows;
+    PrivateRows<std::uint32_t> material_rows;
     if (material_ids) {
         material_rows = copyRows<std::uint32_t>(material_ids->reshape({material_ids->size(), py::ssize_t(1)}),
                                                 "material_ids", "uint32", 1);
@@ -169,7 +177,7 @@ std::shared_ptr<VoxelizeResult> voxelizeArrays(const py::array& vertices, const 
                                   std::to_string(view.triangle_count) + "), got " + std::to_string(material_rows.size()));
         view.material_ids = material_rows.data();
     }
-    std::vector<float> palette_rows;
+    PrivateRows<float> palette_rows;
     if (palette) {
         if (palette->ndim() != 2 || (palette->shape(1) != 3 && palette->shape(1) != 4))
             throw py::value_error("palette must have shape (P, 3) or (P, 4)");
@@ -186,7 +194,7 @@ std::shared_ptr<VoxelizeResult> voxelizeArrays(const py::array& vertices, const 
                                   std::to_string(material_textures.of_material.size()));
         view.material_textures = material_textures.of_material.data();
     }
-    std::vector<float> face_normal_rows;
+    PrivateRows<float> face_normal_rows;
     if (face_normals) {
         face_normal_rows = copyRows<float>(*face_normals, "face_normals", "float32", 3);
         if (face_normal_rows.size() != 3 * view.triangle_count)
