@@ -126,8 +126,9 @@ private:
                 for (const auto& c : columns_[n]) {
                     total_[n] += c.sign;
                     if (std::isnan(c.z)) continue;  // below no centre, as in below()
-                    // The first centre above c.z: a guess from the difference, then the comparisons.
-                    int k = int(std::clamp(std::floor(c.z - (lo_[2] + 0.5)), -1.0, double(nz))) + 1;
+                    // The first centre above c.z (nz: none is), a guess from the difference, then
+                    // the comparisons; the guess stays within 0..nz, as step[] does.
+                    int k = int(std::clamp(std::floor(c.z - (lo_[2] + 0.5)), -1.0, double(nz - 1))) + 1;
                     while (k > 0 && c.z < lo_[2] + (k - 1) + 0.5) --k;
                     while (k < nz && !(c.z < lo_[2] + k + 0.5)) ++k;
                     step[k] += c.sign;
