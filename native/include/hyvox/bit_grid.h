@@ -38,6 +38,8 @@ public:
         return bricks_.indexOfVoxel(i, j, k) * kWordsPerBrick + std::size_t(i & 7);
     }
     static std::uint64_t bitMask(int j, int k) { return std::uint64_t(1) << (((j & 7) << 3) | (k & 7)); }
+    // Voxel (i,j,k)'s bit among its brick's 512 (word i & 7, bit (j & 7) * 8 + (k & 7)).
+    static int bitInBrick(int i, int j, int k) { return ((i & 7) << 6) | ((j & 7) << 3) | (k & 7); }
 
     bool inside(int i, int j, int k) const {
         return i >= 0 && j >= 0 && k >= 0 && i < dims_[0] && j < dims_[1] && k < dims_[2];

@@ -17,7 +17,7 @@ namespace {
 
 // A voxel's place in the tile's bit grid: brick, then bit (the order of the leaves' values).
 std::uint64_t voxelKey(const BrickLayout& bricks, const std::array<std::int32_t, 3>& v) {
-    const std::uint64_t bit = std::uint64_t(((v[0] & 7) << 6) | ((v[1] & 7) << 3) | (v[2] & 7));
+    const std::uint64_t bit = std::uint64_t(BitGrid::bitInBrick(v[0], v[1], v[2]));
     return std::uint64_t(bricks.index(v[0] >> 3, v[1] >> 3, v[2] >> 3)) * 512u + bit;
 }
 

@@ -198,7 +198,7 @@ public:
     }
     bool voxel(const Voxel& v) const {
         const std::uint64_t* w = words_[std::size_t(leafOf(v))];
-        const int bit = (v[0] & 7) << 6 | (v[1] & 7) << 3 | (v[2] & 7);
+        const int bit = BitGrid::bitInBrick(v[0], v[1], v[2]);
         return w && ((w[bit >> 6] >> (bit & 63)) & 1u);
     }
     // The leaf number and the place in its sums of a voxel of the region.
@@ -291,7 +291,7 @@ private:
     [[gnu::always_inline]] void add(const TriangleFrame& frame, const Voxel& v, const ClippedPiece& piece) {
         ++pieces_;
         const double w = piece.area + kAreaEpsilon;
-        double* voxel = voxelSums(voxels_.leafOf(v), (v[0] & 7) << 6 | (v[1] & 7) << 3 | (v[2] & 7));
+        double* voxel = voxelSums(voxels_.leafOf(v), BitGrid::bitInBrick(v[0], v[1], v[2]));
         values_.addWeighted(corner_values_, frame.barycentrics(piece.centroid), w, voxel);
         voxel[stride_ - 1] += w;
     }

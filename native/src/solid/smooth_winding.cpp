@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "hyvox/bit_grid.h"
 #include "solid/sheet_sum.h"
 
 namespace hyvox::solid {
@@ -169,7 +170,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
     for (int d = 0; d < 3; ++d) top[d] = hi[d] == lo[d] + 8 && hi[d] < dims_[d] ? hi[d] : hi[d] - 1;
     Brick brick(winding_, rays_, lattice_, lo, top, counters);
     std::uint64_t done[8] = {};
-    auto bit = [](const Int3& p) { return ((p[0] & 7) << 6) | ((p[1] & 7) << 3) | (p[2] & 7); };
+    auto bit = [](const Int3& p) { return BitGrid::bitInBrick(p[0], p[1], p[2]); };
     auto pending = [&](const Int3& p) {
         if (p[0] >= hi[0] || p[1] >= hi[1] || p[2] >= hi[2]) return std::uint64_t(0);  // the next brick's
         const int n = bit(p);
