@@ -1,0 +1,580 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "attributes/inside_values.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "core/triangle_normal.h"
+
+namespace hyvox::attributes {
+namespace {
+
+using Int3 = std::array<std::int32_t, 3>;
+using Mask = std::array<std::uint64_t, BitGrid::kWordsPerBrick>;
+
+bool testBit(const Mask& mask, int bit) { return (mask[std::size_t(bit >> 6)] >> (bit & 63)) & 1u; }
+void setBit(Mask& mask, int bit) { mask[std::size_t(bit >> 6)] |= std::uint64_t(1) << (bit & 63); }
+int popcount(std::uint64_t word) { return __builtin_popcountll(word); }
+std::uint64_t below(int bit) { return (std::uint64_t(1) << (bit & 63)) - 1; }
+
+// The 27 bricks around a brick (itself in the middle), numbered (dx+1)*9 + (dy+1)*3 + (dz+1).
+int nearIndex(int dx, int dy, int dz) { return (dx + 1) * 9 + (dy + 1) * 3 + (dz + 1); }
+
+// ---- tile regions ----
+
+// The tile bricks grouped as OpenVDB's prune() groups the density's tiles: a 128³ node (16³
+// bricks) whose bricks are all tiles is one region, a 4096³ node whose 128³ nodes all are is
+// one; every other tile brick is a region of its own. Looked up per brick in O(1): a table of
+// the grid's 128³ nodes, each with a mask of its tile bricks.
+class TileRegions {
+public:
+    struct Region {
+        Int3 lo;  // first brick
+        std::int32_t side;  // bricks: 1, 16 or 512
+        int level;          // 1, 2, 3
+    };
+
+    TileRegions(const SparseGrid& solid, const std::vector<std::uint64_t>& valued_tile_bricks) : bricks_(solid.bricks()) {
+        for (int a = 0; a < 3; ++a) nodes_[a] = (bricks_.counts[a] + kNodeBricks - 1) / kNodeBricks;
+        node_of_.assign(std::size_t(nodes_[0]) * std::size_t(nodes_[1]) * std::size_t(nodes_[2]), -1);
+        std::size_t v = 0;
+        for (const SparseGrid::TileRun& run : solid.tileRuns())
+            for (std::uint64_t b = run.begin; b < run.end; ++b) {
+                while (v < valued_tile_bricks.size() && valued_tile_bricks[v] < b) ++v;
+                if (v < valued_tile_bricks.size() && valued_tile_bricks[v] == b) continue;
+                const Int3 at = bricks_.at(b);
+                std::int32_t& slot = node_of_[nodeIndex(at[0] / kNodeBricks, at[1] / kNodeBricks, at[2] / kNodeBricks)];
+                if (slot < 0) {
+                    slot = std::int32_t(node_.size());
+                    node_.emplace_back();
+                }
+                const int bit = slotInNode(at);
+                node_[std::size_t(slot)].mask[std::size_t(bit >> 6)] |= std::uint64_t(1) << (bit & 63);
+            }
+        // 4096³ nodes wholly of whole 128³ nodes.
+        std::unordered_map<std::uint64_t, std::uint32_t> whole_in_top;
+        for (Node& node : node_) {
+            int count = 0;
+            for (std::uint64_t word : node.mask) count += popcount(word);
+            node.whole = count == kNodeBricks * kNodeBricks * kNodeBricks;
+        }
+        forEachNode([&](const Int3& n, Node& node) {
+            if (node.whole) ++whole_in_top[topKey(n)];
+        });
+        // Region ids node by node in node order, a node's bricks in slot order.
+        std::unordered_map<std::uint64_t, std::int64_t> top_region;
+        forEachNode([&](const Int3& n, Node& node) {
+            if (node.whole && whole_in_top[topKey(n)] == std::uint32_t(kTopNodes * kTopNodes * kTopNodes)) {
+                auto [it, fresh] = top_region.emplace(topKey(n), std::int64_t(regions_.size()));
+                if (fresh) {
+                    const Int3 lo{n[0] / kTopNodes * kTopNodes * kNodeBricks, n[1] / kTopNodes * kTopNodes * kNodeBricks,
+                                  n[2] / kTopNodes * kTopNodes * kNodeBricks};
+                    regions_.push_back({lo, kTopNodes * kNodeBricks, 3});
+                }
+                node.base = it->second;
+                return;
+            }
+            node.base = std::int64_t(regions_.size());
+            if (node.whole) {
+                regions_.push_back({{n[0] * kNodeBricks, n[1] * kNodeBricks, n[2] * kNodeBricks}, kNodeBricks, 2});
+                return;
+            }
+            std::uint32_t before = 0;
+            for (int w = 0; w < kNodeWords; ++w) {
+                node.before[std::size_t(w)] = before;
+                std::uint64_t word = node.mask[std::size_t(w)];
+                before += std::uint32_t(popcount(word));
+                while (word) {
+                    const int bit = w * 64 + __builtin_ctzll(word);
+                    word &= word - 1;
+                    regions_.push_back({{n[0] * kNodeBricks + (bit >> 8), n[1] * kNodeBricks + ((bit >> 4) & 15),
+                                         n[2] * kNodeBricks + (bit & 15)},
+                                        1, 1});
+                }
+            }
+        });
+    }
+
+    const std::vector<Region>& regions() const { return regions_; }
+
+    // The region holding brick (bx, by, bz), -1 when none (not a tile, or outside the grid).
+    std::int64_t at(std::int32_t bx, std::int32_t by, std::int32_t bz) const {
+        if (bx < 0 || by < 0 || bz < 0 || bx >= bricks_.counts[0] || by >= bricks_.counts[1] || bz >= bricks_.counts[2])
+            return -1;
+        const std::int32_t slot = node_of_[nodeIndex(bx / kNodeBricks, by / kNodeBricks, bz / kNodeBricks)];
+        if (slot < 0) return -1;
+        const Node& node = node_[std::size_t(slot)];
+        if (node.whole) return node.base;
+        const int bit = slotInNode({bx, by, bz});
+        const std::uint64_t word = node.mask[std::size_t(bit >> 6)];
+        if (!((word >> (bit & 63)) & 1u)) return -1;
+        return node.base + std::int64_t(node.before[std::size_t(bit >> 6)]) + popcount(word & below(bit));
+    }
+
+    // The regions touching region r (by a face, edge or corner), ascending.
+    std::vector<std::int64_t> neighbours(std::int64_t r) const {
+        const Region& region = regions_[std::size_t(r)];
+        std::vector<std::int64_t> out;
+        const Int3& lo = region.lo;
+        const std::int32_t hi[3] = {lo[0] + region.side, lo[1] + region.side, lo[2] + region.side};
+        for (std::int32_t x = lo[0] - 1; x <= hi[0]; ++x)
+            for (std::int32_t y = lo[1] - 1; y <= hi[1]; ++y) {
+                const bool inner = x >= lo[0] && x < hi[0] && y >= lo[1] && y < hi[1];
+                for (std::int32_t z = lo[2] - 1; z <= hi[2]; z = inner && z == lo[2] - 1 ? hi[2] : z + 1) {
+                    const std::int64_t id = at(x, y, z);
+                    if (id >= 0 && id != r && (out.empty() || out.back() != id)) out.push_back(id);
+                }
+            }
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+        return out;
+    }
+
+private:
+    static constexpr int kNodeBricks = 16;  // a 128³ node's side in bricks
+    static constexpr int kTopNodes = 32;    // a 4096³ node's side in 128³ nodes
+    static constexpr int kNodeWords = kNodeBricks * kNodeBricks * kNodeBricks / 64;
+    struct Node {
+        std::array<std::uint64_t, kNodeWords> mask{};    // its tile bricks, slot (x*16 + y)*16 + z
+        std::array<std::uint32_t, kNodeWords> before{};  // tile bricks in the words before
+        bool whole = false;
+        std::int64_t base = 0;  // its first region (or its region, when whole)
+    };
+
+    std::size_t nodeIndex(std::int32_t nx, std::int32_t ny, std::int32_t nz) const {
+        return (std::size_t(nx) * std::size_t(nodes_[1]) + std::size_t(ny)) * std::size_t(nodes_[2]) + std::size_t(nz);
+    }
+    static int slotInNode(const Int3& at) {
+        return ((at[0] % kNodeBricks) << 8) | ((at[1] % kNodeBricks) << 4) | (at[2] % kNodeBricks);
+    }
+    std::uint64_t topKey(const Int3& n) const {
+        const std::uint64_t tops_y = std::uint64_t(nodes_[1] / kTopNodes + 1), tops_z = std::uint64_t(nodes_[2] / kTopNodes + 1);
+        return (std::uint64_t(n[0] / kTopNodes) * tops_y + std::uint64_t(n[1] / kTopNodes)) * tops_z +
+               std::uint64_t(n[2] / kTopNodes);
+    }
+    template <typename F>
+    void forEachNode(F&& f) {
+        for (std::int32_t x = 0; x < nodes_[0]; ++x)
+            for (std::int32_t y = 0; y < nodes_[1]; ++y)
+                for (std::int32_t z = 0; z < nodes_[2]; ++z) {
+                    const std::int32_t slot = node_of_[nodeIndex(x, y, z)];
+                    if (slot >= 0) f(Int3{x, y, z}, node_[std::size_t(slot)]);
+                }
+    }
+
+    BrickLayout bricks_;
+    Int3 nodes_{};
+    std::vector<std::int32_t> node_of_;  // per 128³ node of the grid: index into node_, -1 = no tile brick
+    std::vector<Node> node_;
+    std::vector<Region> regions_;
+};
+
+// ---- leaf voxels ----
+
+// The bricks whose voxels have values one by one, in brick order (the order of
+// AttributeGrid::values): their set voxels, those valued so far, and the values.
+struct LeafVoxels {
+    BrickLayout layout;
+    std::vector<std::uint64_t> brick;
+    std::vector<Int3> at;
+    std::vector<Mask> set, valued;
+    std::vector<std::array<std::uint32_t, BitGrid::kWordsPerBrick>> before;  // set voxels in the words before
+    std::vector<std::size_t> first;                                          // voxel number of the first
+    std::vector<std::array<std::int32_t, 27>> near;  // the 27 bricks around, index here or -1
+    std::vector<float> values;                       // channels per set voxel
+    std::size_t channels = 0;
+
+    std::int64_t find(std::uint64_t b) const {
+        const auto it = std::lower_bound(brick.begin(), brick.end(), b);
+        return it != brick.end() && *it == b ? std::int64_t(it - brick.begin()) : -1;
+    }
+    std::size_t offset(std::size_t n, int bit) const {
+        const std::uint64_t word = set[n][std::size_t(bit >> 6)];
+        return (first[n] + before[n][std::size_t(bit >> 6)] + std::size_t(popcount(word & below(bit)))) * channels;
+    }
+    float* value(std::size_t n, int bit) { return values.data() + offset(n, bit); }
+    const float* value(std::size_t n, int bit) const { return values.data() + offset(n, bit); }
+    std::uint64_t pending(std::size_t n) const {
+        std::uint64_t count = 0;
+        for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) count += std::uint64_t(popcount(set[n][std::size_t(w)] & ~valued[n][std::size_t(w)]));
+        return count;
+    }
+};
+
+// The regions' values (in the AttributeTile each will become) and the layer that gave them.
+struct RegionValues {
+    std::vector<AttributeTile> tiles;
+    std::vector<std::int32_t> layer;  // -1: none yet
+};
+
+struct Fresh {
+    int bit;
+    std::array<float, kMaxChannels> value;
+};
+
+// Leaf layers from the voxels valued so far until no pending voxel gains a value; with
+// `regions`, a valued region's voxels count as valued neighbours. Returns {layers, voxels}.
+std::pair<std::uint64_t, std::uint64_t> leafLayers(LeafVoxels& leaf, const AttributeGrid& layout,
+                                                   const TileRegions* regions, const RegionValues* region_values,
+                                                   tbb::task_arena& arena) {
+    const int channels = int(leaf.channels);
+    std::vector<std::uint32_t> pending;  // bricks with set voxels not valued yet
+    for (std::size_t n = 0; n < leaf.brick.size(); ++n)
+        if (leaf.pending(n)) pending.push_back(std::uint32_t(n));
+    std::vector<std::uint32_t> active = pending;
+    std::uint64_t layers = 0, voxels = 0;
+    std::vector<std::uint8_t> changed(leaf.brick.size(), 0);
+    while (!active.empty()) {
+        std::vector<std::vector<Fresh>> fresh(active.size());
+        arena.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, active.size(), 16), [&](const auto& range) {
+                for (std::size_t a = range.begin(); a != range.end(); ++a) {
+                    const std::size_t n = active[a];
+                    const Int3& at = leaf.at[n];
+                    for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) {
+                        std::uint64_t word = leaf.set[n][std::size_t(w)] & ~leaf.valued[n][std::size_t(w)];
+                        while (word) {
+                            const int bit = w * 64 + __builtin_ctzll(word);
+                            word &= word - 1;
+                            const int x = bit >> 6, y = (bit >> 3) & 7, z = bit & 7;
+                            double sums[kMaxChannels] = {};
+                            int count = 0;
+                            for (int dx = -1; dx <= 1; ++dx)
+                                for (int dy = -1; dy <= 1; ++dy)
+                                    for (int dz = -1; dz <= 1; ++dz) {
+                                        if (dx == 0 && dy == 0 && dz == 0) continue;
+                                        const int nx = x + dx, ny = y + dy, nz = z + dz;
+                                        const int ox = nx < 0 ? -1 : nx > 7 ? 1 : 0, oy = ny < 0 ? -1 : ny > 7 ? 1 : 0,
+                                                  oz = nz < 0 ? -1 : nz > 7 ? 1 : 0;
+                                        const std::int32_t other = leaf.near[n][std::size_t(nearIndex(ox, oy, oz))];
+                                        const float* value = nullptr;
+                                        if (other >= 0) {
+                                            const int nbit = ((nx & 7) << 6) | ((ny & 7) << 3) | (nz & 7);
+                                            if (testBit(leaf.valued[std::size_t(other)], nbit)) value = leaf.value(std::size_t(other), nbit);
+                                        } else if (regions) {
+                                            const std::int64_t r = regions->at(at[0] + ox, at[1] + oy, at[2] + oz);
+                                            if (r >= 0 && region_values->layer[std::size_t(r)] >= 0)
+                                                value = region_values->tiles[std::size_t(r)].values.data();
+                                        }
+                                        if (!value) continue;
+                                        for (int c = 0; c < channels; ++c) sums[c] += double(value[c]);
+                                        ++count;
+                                    }
+                            if (count == 0) continue;
+                            Fresh f{bit, {}};
+                            meanOfSums(layout, sums, double(count), f.value.data());
+                            fresh[a].push_back(f);
+                        }
+                    }
+                }
+            });
+        });
+        // Committed after the whole layer: a voxel's value saw only earlier layers.
+        std::uint64_t gained = 0;
+        for (std::size_t a = 0; a < active.size(); ++a) {
+            const std::size_t n = active[a];
+            for (const Fresh& f : fresh[a]) {
+                std::copy(f.value.begin(), f.value.begin() + channels, leaf.value(n, f.bit));
+                setBit(leaf.valued[n], f.bit);
+            }
+            changed[n] = !fresh[a].empty();
+            gained += fresh[a].size();
+        }
+        if (gained == 0) break;
+        ++layers;
+        voxels += gained;
+        // Next: the bricks still pending with a brick around them (or itself) that gained values.
+        pending.erase(std::remove_if(pending.begin(), pending.end(), [&](std::uint32_t n) { return !leaf.pending(n); }),
+                      pending.end());
+        std::vector<std::uint32_t> next;
+        for (std::uint32_t n : pending) {
+            bool near_changed = false;
+            for (std::int32_t other : leaf.near[n]) near_changed = near_changed || (other >= 0 && changed[std::size_t(other)]);
+            if (near_changed) next.push_back(n);
+        }
+        for (std::uint32_t n : active) changed[n] = 0;
+        active.swap(next);
+    }
+    return {layers, voxels};
+}
+
+// Region layer 0: each region's shell mean over the valued leaf voxels. Contributions are
+// found brick by brick in parallel and summed per region in brick order.
+void shellValues(const LeafVoxels& leaf, const AttributeGrid& layout, const TileRegions& regions, RegionValues& out,
+                 tbb::task_arena& arena) {
+    struct Contribution {
+        std::int64_t region;
+        std::uint32_t brick;
+        std::uint32_t count;
+        std::array<double, kMaxChannels> sums;
+    };
+    const int channels = int(leaf.channels);
+    std::vector<std::vector<Contribution>> per_brick(leaf.brick.size());
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaf.brick.size(), 64), [&](const auto& range) {
+            for (std::size_t n = range.begin(); n != range.end(); ++n) {
+                const Int3& at = leaf.at[n];
+                std::int64_t touching[26];
+                int count = 0;
+                for (int dx = -1; dx <= 1; ++dx)
+                    for (int dy = -1; dy <= 1; ++dy)
+                        for (int dz = -1; dz <= 1; ++dz) {
+                            if (dx == 0 && dy == 0 && dz == 0) continue;
+                            const std::int64_t r = regions.at(at[0] + dx, at[1] + dy, at[2] + dz);
+                            if (r >= 0) touching[count++] = r;
+                        }
+                std::sort(touching, touching + count);
+                count = int(std::unique(touching, touching + count) - touching);
+                for (int t = 0; t < count; ++t) {
+                    const TileRegions::Region& region = regions.regions()[std::size_t(touching[t])];
+                    Contribution c{touching[t], std::uint32_t(n), 0, {}};
+                    for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) {
+                        std::uint64_t word = leaf.valued[n][std::size_t(w)];
+                        while (word) {
+                            const int bit = w * 64 + __builtin_ctzll(word);
+                            word &= word - 1;
+                            const std::int32_t v[3] = {at[0] * 8 + (bit >> 6), at[1] * 8 + ((bit >> 3) & 7), at[2] * 8 + (bit & 7)};
+                            bool shell = true;
+                            for (int a = 0; a < 3; ++a)
+                                shell = shell && v[a] >= region.lo[a] * 8 - 1 && v[a] <= (region.lo[a] + region.side) * 8;
+                            if (!shell) continue;
+                            const float* value = leaf.value(n, bit);
+                            for (int ch = 0; ch < channels; ++ch) c.sums[std::size_t(ch)] += double(value[ch]);
+                            ++c.count;
+                        }
+                    }
+                    if (c.count) per_brick[n].push_back(c);
+                }
+            }
+        });
+    });
+    std::vector<Contribution> all;
+    for (auto& list : per_brick) {
+        all.insert(all.end(), list.begin(), list.end());
+        std::vector<Contribution>().swap(list);
+    }
+    std::stable_sort(all.begin(), all.end(), [](const Contribution& a, const Contribution& b) { return a.region < b.region; });
+    for (std::size_t n = 0; n < all.size();) {
+        std::array<double, kMaxChannels> sums{};
+        std::uint64_t count = 0;
+        const std::int64_t r = all[n].region;
+        for (; n < all.size() && all[n].region == r; ++n) {
+            for (int ch = 0; ch < channels; ++ch) sums[std::size_t(ch)] += all[n].sums[std::size_t(ch)];
+            count += all[n].count;
+        }
+        meanOfSums(layout, sums.data(), double(count), out.tiles[std::size_t(r)].values.data());
+        out.layer[std::size_t(r)] = 0;
+    }
+}
+
+// Region layers after layer 0; returns how many valued something.
+std::uint64_t regionLayers(const AttributeGrid& layout, const TileRegions& regions, RegionValues& out, tbb::task_arena& arena) {
+    const int channels = layout.channels();
+    std::vector<std::int64_t> frontier;
+    for (std::size_t r = 0; r < out.layer.size(); ++r)
+        if (out.layer[r] == 0) frontier.push_back(std::int64_t(r));
+    std::uint64_t layers = 0;
+    while (!frontier.empty()) {
+        std::vector<std::vector<std::int64_t>> found(frontier.size());
+        arena.execute([&] {
+            tbb::parallel_for(std::size_t(0), frontier.size(), [&](std::size_t f) {
+                for (std::int64_t r : regions.neighbours(frontier[f]))
+                    if (out.layer[std::size_t(r)] < 0) found[f].push_back(r);
+            });
+        });
+        std::vector<std::int64_t> candidates;
+        for (const auto& list : found) candidates.insert(candidates.end(), list.begin(), list.end());
+        std::sort(candidates.begin(), candidates.end());
+        candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+        if (candidates.empty()) break;
+        std::vector<std::array<float, kMaxChannels>> value(candidates.size());
+        arena.execute([&] {
+            tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t c) {
+                double sums[kMaxChannels] = {};
+                int count = 0;
+                for (std::int64_t r : regions.neighbours(candidates[c])) {
+                    if (out.layer[std::size_t(r)] < 0) continue;
+                    for (int ch = 0; ch < channels; ++ch) sums[ch] += double(out.tiles[std::size_t(r)].values[std::size_t(ch)]);
+                    ++count;
+                }
+                meanOfSums(layout, sums, double(count), value[c].data());
+            });
+        });
+        ++layers;
+        for (std::size_t c = 0; c < candidates.size(); ++c) {
+            out.tiles[std::size_t(candidates[c])].values = value[c];
+            out.layer[std::size_t(candidates[c])] = std::int32_t(layers);
+        }
+        frontier.swap(candidates);
+    }
+    return layers;
+}
+
+std::vector<ValuedBrick> surfaceBricks(const SparseGrid& surface, const AttributeGrid& surface_values) {
+    const std::vector<ValuedBrick> bricks = valuedBricks(surface, surface_values);
+    std::size_t total = 0;
+    for (const ValuedBrick& b : bricks)
+        for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) total += std::size_t(popcount(b.mask[w]));
+    if (total * std::size_t(surface_values.channels()) != surface_values.values.size())
+        throw std::logic_error("valueInside: the surface values do not match the surface voxels");
+    return bricks;
+}
+
+}  // namespace
+
+AttributeGrid valueInside(const SparseGrid& surface, const AttributeGrid& surface_values, const SparseGrid& solid,
+                          const std::vector<float>& mesh_mean, int threads, InsideValueCounts& counts) {
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    AttributeGrid out;
+    out.color = surface_values.color;
+    out.alpha = surface_values.alpha;
+    out.normal = surface_values.normal;
+    const std::size_t channels = std::size_t(out.channels());
+    const std::vector<ValuedBrick> from = surfaceBricks(surface, surface_values);
+
+    // Whole bricks of the solid that hold surface voxels keep their voxels' values.
+    auto isSolidTile = [&](std::uint64_t b) {
+        const auto& runs = solid.tileRuns();
+        const auto it = std::upper_bound(runs.begin(), runs.end(), b,
+                                         [](std::uint64_t x, const SparseGrid::TileRun& run) { return x < run.begin; });
+        return it != runs.begin() && b < std::prev(it)->end;
+    };
+    for (const ValuedBrick& b : from)
+        if (isSolidTile(b.brick)) out.valued_tile_bricks.push_back(b.brick);
+
+    LeafVoxels leaf;
+    leaf.layout = solid.bricks();
+    leaf.channels = channels;
+    for (const ValuedBrick& b : valuedBricks(solid, out)) {
+        leaf.brick.push_back(b.brick);
+        leaf.at.push_back(leaf.layout.at(b.brick));
+        Mask mask;
+        std::array<std::uint32_t, BitGrid::kWordsPerBrick> before{};
+        std::uint32_t running = 0;
+        for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) {
+            mask[std::size_t(w)] = b.mask[w];
+            before[std::size_t(w)] = running;
+            running += std::uint32_t(popcount(b.mask[w]));
+        }
+        leaf.set.push_back(mask);
+        leaf.before.push_back(before);
+        leaf.first.push_back(b.first);
+    }
+    const std::size_t bricks = leaf.brick.size();
+    leaf.valued.assign(bricks, Mask{});
+    leaf.near.resize(bricks);
+    std::size_t total = 0;
+    for (std::size_t n = 0; n < bricks; ++n)
+        for (std::uint64_t word : leaf.set[n]) total += std::size_t(popcount(word));
+    leaf.values.assign(total * channels, 0.0f);
+    arena.execute([&] {
+        tbb::parallel_for(std::size_t(0), bricks, [&](std::size_t n) {
+            const Int3& at = leaf.at[n];
+            for (int dx = -1; dx <= 1; ++dx)
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dz = -1; dz <= 1; ++dz) {
+                        const int x = at[0] + dx, y = at[1] + dy, z = at[2] + dz;
+                        const bool in = x >= 0 && y >= 0 && z >= 0 && x < leaf.layout.counts[0] &&
+                                        y < leaf.layout.counts[1] && z < leaf.layout.counts[2];
+                        leaf.near[n][std::size_t(nearIndex(dx, dy, dz))] =
+                            in ? std::int32_t(leaf.find(leaf.layout.index(x, y, z))) : -1;
+                    }
+        });
+        // Layer 0: the surface voxels' own values.
+        tbb::parallel_for(std::size_t(0), from.size(), [&](std::size_t s) {
+            const ValuedBrick& b = from[s];
+            const std::int64_t n = leaf.find(b.brick);
+            if (n < 0) throw std::logic_error("valueInside: a surface brick is not in the solid");
+            std::size_t voxel = b.first;
+            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) {
+                std::uint64_t word = b.mask[w];
+                while (word) {
+                    const int bit = w * 64 + __builtin_ctzll(word);
+                    word &= word - 1;
+                    if (!testBit(leaf.set[std::size_t(n)], bit)) throw std::logic_error("valueInside: a surface voxel is not in the solid");
+                    const float* value = surface_values.values.data() + voxel++ * channels;
+                    std::copy(value, value + channels, leaf.value(std::size_t(n), bit));
+                    setBit(leaf.valued[std::size_t(n)], bit);
+                }
+            }
+        });
+    });
+
+    const auto [layers, voxels] = leafLayers(leaf, out, nullptr, nullptr, arena);
+    counts.layers = layers;
+    counts.voxels = voxels;
+
+    const TileRegions regions(solid, out.valued_tile_bricks);
+    RegionValues region_values;
+    region_values.tiles.resize(regions.regions().size());
+    region_values.layer.assign(regions.regions().size(), -1);
+    for (std::size_t r = 0; r < regions.regions().size(); ++r) {
+        const TileRegions::Region& region = regions.regions()[r];
+        AttributeTile& tile = region_values.tiles[r];
+        for (int a = 0; a < 3; ++a) tile.origin[a] = region.lo[a] * BrickLayout::kSide;
+        tile.level = region.level;
+    }
+    counts.regions = regions.regions().size();
+    shellValues(leaf, out, regions, region_values, arena);
+    counts.region_layers = regionLayers(out, regions, region_values, arena);
+
+    // Leaf voxels the surface could not reach through leaves: on from the regions.
+    bool pending = false;
+    for (std::size_t n = 0; n < bricks && !pending; ++n) pending = leaf.pending(n) != 0;
+    if (pending) {
+        const auto through = leafLayers(leaf, out, &regions, &region_values, arena);
+        counts.through_regions = through.second;
+        counts.layers += through.first;
+    }
+    // Still nothing: the mesh's mean.
+    for (std::size_t n = 0; n < bricks; ++n) {
+        if (!leaf.pending(n)) continue;
+        for (int bit = 0; bit < 512; ++bit)
+            if (testBit(leaf.set[n], bit) && !testBit(leaf.valued[n], bit)) {
+                std::copy(mesh_mean.begin(), mesh_mean.end(), leaf.value(n, bit));
+                setBit(leaf.valued[n], bit);
+                ++counts.fallback;
+            }
+    }
+    for (std::size_t r = 0; r < region_values.layer.size(); ++r)
+        if (region_values.layer[r] < 0) {
+            std::copy(mesh_mean.begin(), mesh_mean.end(), region_values.tiles[r].values.begin());
+            ++counts.fallback;
+        }
+    out.values = std::move(leaf.values);
+    out.tiles = std::move(region_values.tiles);
+    return out;
+}
+
+std::vector<float> meshMeanValue(const ValidatedMesh& mesh, const SurfaceValues& values) {
+    const int channels = values.channels();
+    double sums[kMaxChannels] = {};
+    double area = 0;
+    for (std::uint32_t t : mesh.usable) {
+        Corner3 corner[3];
+        for (int k = 0; k < 3; ++k) {
+            const auto p = mesh.vertex(t, k);
+            corner[k] = {double(p[0]), double(p[1]), double(p[2])};
+        }
+        const Corner3 normal = stableTriangleNormal(corner[0], corner[1], corner[2]);
+        const double length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+        if (!(length > 0)) continue;
+        const std::array<double, 3> unit{normal[0] / length, normal[1] / length, normal[2] / length};
+        double value[kMaxChannels];
+        values.evaluate(t, {1.0 / 3, 1.0 / 3, 1.0 / 3}, unit, value);
+        for (int c = 0; c < channels; ++c) sums[c] += 0.5 * length * value[c];
+        area += 0.5 * length;
+    }
+    std::vector<float> mean(std::size_t(channels), 0.0f);
+    meanOfSums(values.layout(), sums, area, mean.data());
+    return mean;
+}
+
+}  // namespace hyvox::attributes
