@@ -243,3 +243,27 @@ def test_bad_attribute_input_in_solid_mode_is_a_clear_error():
         hyvox.voxelize(v, t, resolution=16, mode="solid", attributes="color")  # no colour source
     with pytest.raises(ValueError, match="unknown attribute"):
         hyvox.voxelize(v, t, resolution=16, mode="solid", attributes="colour")
+
+
+def test_a_128_node_wholly_inside_is_one_tile_in_every_grid(tmp_path):
+    # A cube of 264 voxels holds the 128³ node [128, 256)³ wholly inside: OpenVDB prunes the
+    # density's bricks there into one level-2 tile, and the colour and normal grids must hold
+    # the same tile (one value), not 4096 tiles or 2 million voxels.
+    v = np.array([(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)], np.float32)
+    t = np.array([(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1), (2, 3, 7), (2, 7, 6),
+                  (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)], np.uint32)
+    colors = np.tile(np.float32([0.3, 0.6, 0.1]), (8, 1))
+    solid = hyvox.voxelize(v, t, resolution=264, method="cpu", mode="solid", colors=colors, attributes="color,normal")
+    path = tmp_path / "cube.vdb"
+    solid.write_vdb(str(path))
+    density_tiles, count = read_tiles(path, "density")
+    big = [box for box in density_tiles if np.all(np.subtract(box[1], box[0]) == 127)]
+    assert big == [((128, 128, 128), (255, 255, 255))]
+    for name in ("color", "normal"):
+        tiles, grid_count = read_tiles(path, name)
+        assert grid_count == count == solid.voxel_count
+        assert sorted(tiles) == sorted(density_tiles)
+    colour_tiles, _ = read_tiles(path, "color")
+    for value in colour_tiles.values():
+        np.testing.assert_allclose(value, (0.3, 0.6, 0.1), atol=1e-6)
+    assert solid.stats["solid"]["attribute_fallback"] == 0

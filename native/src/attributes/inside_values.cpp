@@ -21,7 +21,14 @@ using Mask = std::array<std::uint64_t, BitGrid::kWordsPerBrick>;
 
 bool testBit(const Mask& mask, int bit) { return (mask[std::size_t(bit >> 6)] >> (bit & 63)) & 1u; }
 void setBit(Mask& mask, int bit) { mask[std::size_t(bit >> 6)] |= std::uint64_t(1) << (bit & 63); }
-int popcount(std::uint64_t word) { return __builtin_popcountll(word); }
+// Set bits of a word, branch-free: the build targets baseline x86-64, where
+// __builtin_popcountll is a library call, and ranks are this file's inner loop.
+int popcount(std::uint64_t word) {
+    word = word - ((word >> 1) & 0x5555555555555555ull);
+    word = (word & 0x3333333333333333ull) + ((word >> 2) & 0x3333333333333333ull);
+    word = (word + (word >> 4)) & 0x0f0f0f0f0f0f0f0full;
+    return int((word * 0x0101010101010101ull) >> 56);
+}
 std::uint64_t below(int bit) { return (std::uint64_t(1) << (bit & 63)) - 1; }
 
 // The 27 bricks around a brick (itself in the middle), numbered (dx+1)*9 + (dy+1)*3 + (dz+1).
@@ -214,93 +221,153 @@ struct RegionValues {
     std::vector<std::int32_t> layer;  // -1: none yet
 };
 
-struct Fresh {
-    int bit;
-    std::array<float, kMaxChannels> value;
+
+// The 26-neighbourhood dilation of a brick's mask, one axis at a time (a 3x3x3 box is the
+// product of three 3-taps): along z (bit z of each 8-bit row; the rows' ends from the bricks
+// before and after), along y (rows of a word), along x (words). `before`/`after`: the masks of
+// the bricks before and after along that axis.
+constexpr std::uint64_t kRowStart = 0x0101010101010101ull, kRowEnd = 0x8080808080808080ull;
+Mask dilateZ(const Mask& m, const Mask& before, const Mask& after) {
+    Mask out;
+    for (std::size_t x = 0; x < 8; ++x)
+        out[x] = m[x] | ((m[x] << 1) & ~kRowStart) | ((m[x] >> 1) & ~kRowEnd) | ((before[x] >> 7) & kRowStart) |
+                 ((after[x] << 7) & kRowEnd);
+    return out;
+}
+Mask dilateY(const Mask& m, const Mask& before, const Mask& after) {
+    Mask out;
+    for (std::size_t x = 0; x < 8; ++x) out[x] = m[x] | (m[x] << 8) | (m[x] >> 8) | (before[x] >> 56) | (after[x] << 56);
+    return out;
+}
+Mask dilateX(const Mask& m, const Mask& before, const Mask& after) {
+    Mask out;
+    for (std::size_t x = 0; x < 8; ++x) out[x] = m[x] | (x > 0 ? m[x - 1] : before[7]) | (x < 7 ? m[x + 1] : after[0]);
+    return out;
+}
+
+// For each voxel of a brick, its 26 neighbours in (dx, dy, dz) order: the brick around
+// (nearIndex) and the bit in it. Made once.
+struct NeighbourTable {
+    struct Step {
+        std::uint8_t brick;
+        std::uint16_t bit;
+    };
+    std::array<std::array<Step, 26>, 512> steps;
 };
+const NeighbourTable& neighbourTable() {
+    static const NeighbourTable table = [] {
+        NeighbourTable t{};
+        for (int bit = 0; bit < 512; ++bit) {
+            const int x = bit >> 6, y = (bit >> 3) & 7, z = bit & 7;
+            int m = 0;
+            for (int dx = -1; dx <= 1; ++dx)
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dz = -1; dz <= 1; ++dz) {
+                        if (dx == 0 && dy == 0 && dz == 0) continue;
+                        const int nx = x + dx, ny = y + dy, nz = z + dz;
+                        const int ox = nx < 0 ? -1 : nx > 7 ? 1 : 0, oy = ny < 0 ? -1 : ny > 7 ? 1 : 0, oz = nz < 0 ? -1 : nz > 7 ? 1 : 0;
+                        t.steps[std::size_t(bit)][std::size_t(m++)] = {std::uint8_t(nearIndex(ox, oy, oz)),
+                                                                       std::uint16_t(((nx & 7) << 6) | ((ny & 7) << 3) | (nz & 7))};
+                    }
+        }
+        return t;
+    }();
+    return table;
+}
 
 // Leaf layers from the voxels valued so far until no pending voxel gains a value; with
-// `regions`, a valued region's voxels count as valued neighbours. Returns {layers, voxels}.
+// `regions`, a valued region's voxels count as valued neighbours. Each layer finds its voxels
+// as the pending ones under the dilation of the valued ones, so a voxel is averaged once.
+// Returns {layers, voxels}.
 std::pair<std::uint64_t, std::uint64_t> leafLayers(LeafVoxels& leaf, const AttributeGrid& layout,
                                                    const TileRegions* regions, const RegionValues* region_values,
                                                    tbb::task_arena& arena) {
     const int channels = int(leaf.channels);
-    std::vector<std::uint32_t> pending;  // bricks with set voxels not valued yet
-    for (std::size_t n = 0; n < leaf.brick.size(); ++n)
-        if (leaf.pending(n)) pending.push_back(std::uint32_t(n));
-    std::vector<std::uint32_t> active = pending;
-    std::uint64_t layers = 0, voxels = 0;
-    std::vector<std::uint8_t> changed(leaf.brick.size(), 0);
-    while (!active.empty()) {
-        std::vector<std::vector<Fresh>> fresh(active.size());
+    const std::size_t bricks = leaf.brick.size();
+    static const Mask kNone{}, kAll{~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull};
+    // The bricks around each that are valued regions (their voxels all valued), as bits by nearIndex.
+    std::vector<std::uint32_t> region_around(bricks, 0);
+    if (regions)
         arena.execute([&] {
-            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, active.size(), 16), [&](const auto& range) {
+            tbb::parallel_for(std::size_t(0), bricks, [&](std::size_t n) {
+                for (int k = 0; k < 27; ++k) {
+                    if (leaf.near[n][std::size_t(k)] >= 0) continue;
+                    const std::int64_t r = regions->at(leaf.at[n][0] + k / 9 - 1, leaf.at[n][1] + (k / 3) % 3 - 1,
+                                                       leaf.at[n][2] + k % 3 - 1);
+                    if (r >= 0 && region_values->layer[std::size_t(r)] >= 0) region_around[n] |= 1u << k;
+                }
+            });
+        });
+    auto around = [&](const std::vector<Mask>& masks, std::size_t n, int dx, int dy, int dz) -> const Mask& {
+        const int k = nearIndex(dx, dy, dz);
+        const std::int32_t other = leaf.near[n][std::size_t(k)];
+        if (other >= 0) return masks[std::size_t(other)];
+        return (region_around[n] >> k) & 1u ? kAll : kNone;
+    };
+    std::vector<std::uint32_t> pending;  // bricks with set voxels not valued yet
+    for (std::size_t n = 0; n < bricks; ++n)
+        if (leaf.pending(n)) pending.push_back(std::uint32_t(n));
+    const NeighbourTable& table = neighbourTable();
+    std::uint64_t layers = 0, voxels = 0;
+    while (!pending.empty()) {
+        // This layer's voxels, written in place (no read sees them: reads take valued voxels
+        // only, and `valued` changes after the layer).
+        std::vector<Mask> fresh(pending.size());
+        arena.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pending.size(), 16), [&](const auto& range) {
                 for (std::size_t a = range.begin(); a != range.end(); ++a) {
-                    const std::size_t n = active[a];
+                    const std::size_t n = pending[a];
                     const Int3& at = leaf.at[n];
+                    // The valued voxels' dilation over the 27 bricks around: along z in each of
+                    // the 9 columns, along y in each of the 3 slabs, then along x. (All from this
+                    // brick's own neighbourhood: a brick between two leaves need not be a leaf.)
+                    Mask slab[3];
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        Mask column[3];
+                        for (int dy = -1; dy <= 1; ++dy)
+                            column[dy + 1] = dilateZ(around(leaf.valued, n, dx, dy, 0), around(leaf.valued, n, dx, dy, -1),
+                                                     around(leaf.valued, n, dx, dy, 1));
+                        slab[dx + 1] = dilateY(column[1], column[0], column[2]);
+                    }
+                    const Mask reach = dilateX(slab[1], slab[0], slab[2]);
                     for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) {
-                        std::uint64_t word = leaf.set[n][std::size_t(w)] & ~leaf.valued[n][std::size_t(w)];
-                        while (word) {
+                        const std::uint64_t word_fresh = leaf.set[n][std::size_t(w)] & ~leaf.valued[n][std::size_t(w)] & reach[std::size_t(w)];
+                        fresh[a][std::size_t(w)] = word_fresh;
+                        for (std::uint64_t word = word_fresh; word; word &= word - 1) {
                             const int bit = w * 64 + __builtin_ctzll(word);
-                            word &= word - 1;
-                            const int x = bit >> 6, y = (bit >> 3) & 7, z = bit & 7;
                             double sums[kMaxChannels] = {};
                             int count = 0;
-                            for (int dx = -1; dx <= 1; ++dx)
-                                for (int dy = -1; dy <= 1; ++dy)
-                                    for (int dz = -1; dz <= 1; ++dz) {
-                                        if (dx == 0 && dy == 0 && dz == 0) continue;
-                                        const int nx = x + dx, ny = y + dy, nz = z + dz;
-                                        const int ox = nx < 0 ? -1 : nx > 7 ? 1 : 0, oy = ny < 0 ? -1 : ny > 7 ? 1 : 0,
-                                                  oz = nz < 0 ? -1 : nz > 7 ? 1 : 0;
-                                        const std::int32_t other = leaf.near[n][std::size_t(nearIndex(ox, oy, oz))];
-                                        const float* value = nullptr;
-                                        if (other >= 0) {
-                                            const int nbit = ((nx & 7) << 6) | ((ny & 7) << 3) | (nz & 7);
-                                            if (testBit(leaf.valued[std::size_t(other)], nbit)) value = leaf.value(std::size_t(other), nbit);
-                                        } else if (regions) {
-                                            const std::int64_t r = regions->at(at[0] + ox, at[1] + oy, at[2] + oz);
-                                            if (r >= 0 && region_values->layer[std::size_t(r)] >= 0)
-                                                value = region_values->tiles[std::size_t(r)].values.data();
-                                        }
-                                        if (!value) continue;
-                                        for (int c = 0; c < channels; ++c) sums[c] += double(value[c]);
-                                        ++count;
-                                    }
-                            if (count == 0) continue;
-                            Fresh f{bit, {}};
-                            meanOfSums(layout, sums, double(count), f.value.data());
-                            fresh[a].push_back(f);
+                            auto add = [&](const float* value) {
+                                for (int c = 0; c < channels; ++c) sums[c] += double(value[c]);
+                                ++count;
+                            };
+                            for (const NeighbourTable::Step& step : table.steps[std::size_t(bit)]) {
+                                const std::int32_t other = leaf.near[n][step.brick];
+                                if (other >= 0) {
+                                    if (testBit(leaf.valued[std::size_t(other)], step.bit)) add(leaf.value(std::size_t(other), step.bit));
+                                } else if ((region_around[n] >> step.brick) & 1u) {
+                                    add(region_values->tiles[std::size_t(regions->at(at[0] + step.brick / 9 - 1, at[1] + (step.brick / 3) % 3 - 1,
+                                                                                     at[2] + step.brick % 3 - 1))]
+                                            .values.data());
+                                }
+                            }
+                            meanOfSums(layout, sums, double(count), leaf.value(n, bit));
                         }
                     }
                 }
             });
         });
-        // Committed after the whole layer: a voxel's value saw only earlier layers.
         std::uint64_t gained = 0;
-        for (std::size_t a = 0; a < active.size(); ++a) {
-            const std::size_t n = active[a];
-            for (const Fresh& f : fresh[a]) {
-                std::copy(f.value.begin(), f.value.begin() + channels, leaf.value(n, f.bit));
-                setBit(leaf.valued[n], f.bit);
+        for (std::size_t a = 0; a < pending.size(); ++a)
+            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) {
+                leaf.valued[pending[a]][std::size_t(w)] |= fresh[a][std::size_t(w)];
+                gained += std::uint64_t(popcount(fresh[a][std::size_t(w)]));
             }
-            changed[n] = !fresh[a].empty();
-            gained += fresh[a].size();
-        }
         if (gained == 0) break;
         ++layers;
         voxels += gained;
-        // Next: the bricks still pending with a brick around them (or itself) that gained values.
         pending.erase(std::remove_if(pending.begin(), pending.end(), [&](std::uint32_t n) { return !leaf.pending(n); }),
                       pending.end());
-        std::vector<std::uint32_t> next;
-        for (std::uint32_t n : pending) {
-            bool near_changed = false;
-            for (std::int32_t other : leaf.near[n]) near_changed = near_changed || (other >= 0 && changed[std::size_t(other)]);
-            if (near_changed) next.push_back(n);
-        }
-        for (std::uint32_t n : active) changed[n] = 0;
-        active.swap(next);
     }
     return {layers, voxels};
 }
@@ -335,21 +402,21 @@ void shellValues(const LeafVoxels& leaf, const AttributeGrid& layout, const Tile
                 for (int t = 0; t < count; ++t) {
                     const TileRegions::Region& region = regions.regions()[std::size_t(touching[t])];
                     Contribution c{touching[t], std::uint32_t(n), 0, {}};
-                    for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) {
-                        std::uint64_t word = leaf.valued[n][std::size_t(w)];
-                        while (word) {
-                            const int bit = w * 64 + __builtin_ctzll(word);
-                            word &= word - 1;
-                            const std::int32_t v[3] = {at[0] * 8 + (bit >> 6), at[1] * 8 + ((bit >> 3) & 7), at[2] * 8 + (bit & 7)};
-                            bool shell = true;
-                            for (int a = 0; a < 3; ++a)
-                                shell = shell && v[a] >= region.lo[a] * 8 - 1 && v[a] <= (region.lo[a] + region.side) * 8;
-                            if (!shell) continue;
-                            const float* value = leaf.value(n, bit);
-                            for (int ch = 0; ch < channels; ++ch) c.sums[std::size_t(ch)] += double(value[ch]);
-                            ++c.count;
-                        }
+                    // The brick's voxels within one voxel of the region's box: a face, edge or corner.
+                    int lo[3], hi[3];
+                    for (int a = 0; a < 3; ++a) {
+                        lo[a] = std::max(region.lo[a] * 8 - 1 - at[a] * 8, 0);
+                        hi[a] = std::min((region.lo[a] + region.side) * 8 - at[a] * 8, 7);
                     }
+                    for (int x = lo[0]; x <= hi[0]; ++x)
+                        for (int y = lo[1]; y <= hi[1]; ++y)
+                            for (int z = lo[2]; z <= hi[2]; ++z) {
+                                const int bit = (x << 6) | (y << 3) | z;
+                                if (!testBit(leaf.valued[n], bit)) continue;
+                                const float* value = leaf.value(n, bit);
+                                for (int ch = 0; ch < channels; ++ch) c.sums[std::size_t(ch)] += double(value[ch]);
+                                ++c.count;
+                            }
                     if (c.count) per_brick[n].push_back(c);
                 }
             }
@@ -475,17 +542,23 @@ AttributeGrid valueInside(const SparseGrid& surface, const AttributeGrid& surfac
         for (std::uint64_t word : leaf.set[n]) total += std::size_t(popcount(word));
     leaf.values.assign(total * channels, 0.0f);
     arena.execute([&] {
-        tbb::parallel_for(std::size_t(0), bricks, [&](std::size_t n) {
-            const Int3& at = leaf.at[n];
-            for (int dx = -1; dx <= 1; ++dx)
-                for (int dy = -1; dy <= 1; ++dy)
-                    for (int dz = -1; dz <= 1; ++dz) {
-                        const int x = at[0] + dx, y = at[1] + dy, z = at[2] + dz;
-                        const bool in = x >= 0 && y >= 0 && z >= 0 && x < leaf.layout.counts[0] &&
-                                        y < leaf.layout.counts[1] && z < leaf.layout.counts[2];
-                        leaf.near[n][std::size_t(nearIndex(dx, dy, dz))] =
-                            in ? std::int32_t(leaf.find(leaf.layout.index(x, y, z))) : -1;
-                    }
+        // The bricks around each, one direction at a time: the bricks `at + offset` come in
+        // ascending order as `at` does, so one walk along the sorted bricks finds them all.
+        tbb::parallel_for(0, 27, [&](int k) {
+            const int offset[3] = {k / 9 - 1, (k / 3) % 3 - 1, k % 3 - 1};
+            std::size_t m = 0;
+            for (std::size_t n = 0; n < bricks; ++n) {
+                const Int3& at = leaf.at[n];
+                const int x = at[0] + offset[0], y = at[1] + offset[1], z = at[2] + offset[2];
+                std::int32_t found = -1;
+                if (x >= 0 && y >= 0 && z >= 0 && x < leaf.layout.counts[0] && y < leaf.layout.counts[1] &&
+                    z < leaf.layout.counts[2]) {
+                    const std::uint64_t b = leaf.layout.index(x, y, z);
+                    while (m < bricks && leaf.brick[m] < b) ++m;
+                    if (m < bricks && leaf.brick[m] == b) found = std::int32_t(m);
+                }
+                leaf.near[n][std::size_t(k)] = found;
+            }
         });
         // Layer 0: the surface voxels' own values.
         tbb::parallel_for(std::size_t(0), from.size(), [&](std::size_t s) {
