@@ -297,3 +297,17 @@ def test_a_solid_run_stores_colour_on_every_voxel(hyvox, tmp_path):
                        colour_exporter(Group("C", ["C"]), {}), module=hyvox)
     (shell,) = surface.run().values()
     assert result.voxel_counts[0] > shell.voxel_counts[0]
+
+
+def test_a_coloured_solid_vox_file_has_every_voxel_coloured(hyvox, tmp_path):
+    # The .vox of Fill Interior + Colour: every solid voxel, inside ones included, in the cube's colour.
+    from test_addon_blocks import parse_vox, voxels_of
+    from hyvox_blender.core import vox
+    colour = {"colors": np.tile(np.float32([0.25, 0.5, 0.75, 1.0]), (36, 1))}
+    settings = VoxelizeSettings(voxel_size=0.1, color=True, method="cpu", mode="solid", export_vox=True)
+    pipeline = Pipeline(settings, str(tmp_path), colour_exporter(Group("C", ["C"]), colour), module=hyvox)
+    (result,) = pipeline.run().values()
+    (path,) = result.vox_files
+    got = voxels_of(parse_vox(open(path, "rb").read()))
+    assert len(got) == result.voxel_counts[0] == 20 ** 3  # a 2-unit cube at 0.1: 20³, all inside or surface
+    assert set(got.values()) == {tuple(vox.linear_to_srgb8(np.array([[0.25, 0.5, 0.75]]))[0])}
