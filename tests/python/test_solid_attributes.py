@@ -267,3 +267,14 @@ def test_a_128_node_wholly_inside_is_one_tile_in_every_grid(tmp_path):
     for value in colour_tiles.values():
         np.testing.assert_allclose(value, (0.3, 0.6, 0.1), atol=1e-6)
     assert solid.stats["solid"]["attribute_fallback"] == 0
+
+
+def test_open_cube_inside_follows_the_rule_too(tmp_path):
+    # A cube without one face (winding number): the inside's boundary there is no surface.
+    v = np.array([(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)], np.float32)
+    t = np.array([(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1), (2, 3, 7), (2, 7, 6),
+                  (0, 2, 6), (0, 6, 4)], np.uint32)  # x = 1 face removed
+    colors = np.random.default_rng(3).random((8, 3)).astype(np.float32)
+    solid, tiles, _ = check_solid_attributes(v, t, tmp_path, method="cpu", resolution=48, colors=colors)
+    assert solid.stats["solid"]["inside_rule"] == "winding"
+    assert tiles
