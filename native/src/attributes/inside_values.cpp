@@ -9,8 +9,9 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
-#include <unordered_map>
 
+#include "attributes/bit_count.h"
+#include "attributes/tile_regions.h"
 #include "core/triangle_normal.h"
 
 namespace hyvox::attributes {
@@ -21,169 +22,9 @@ using Mask = std::array<std::uint64_t, BitGrid::kWordsPerBrick>;
 
 bool testBit(const Mask& mask, int bit) { return (mask[std::size_t(bit >> 6)] >> (bit & 63)) & 1u; }
 void setBit(Mask& mask, int bit) { mask[std::size_t(bit >> 6)] |= std::uint64_t(1) << (bit & 63); }
-// Set bits of a word, branch-free: the build targets baseline x86-64, where
-// __builtin_popcountll is a library call, and ranks are this file's inner loop.
-int popcount(std::uint64_t word) {
-    word = word - ((word >> 1) & 0x5555555555555555ull);
-    word = (word & 0x3333333333333333ull) + ((word >> 2) & 0x3333333333333333ull);
-    word = (word + (word >> 4)) & 0x0f0f0f0f0f0f0f0full;
-    return int((word * 0x0101010101010101ull) >> 56);
-}
-std::uint64_t below(int bit) { return (std::uint64_t(1) << (bit & 63)) - 1; }
 
 // The 27 bricks around a brick (itself in the middle), numbered (dx+1)*9 + (dy+1)*3 + (dz+1).
 int nearIndex(int dx, int dy, int dz) { return (dx + 1) * 9 + (dy + 1) * 3 + (dz + 1); }
-
-// ---- tile regions ----
-
-// The tile bricks grouped as OpenVDB's prune() groups the density's tiles: a 128³ node (16³
-// bricks) whose bricks are all tiles is one region, a 4096³ node whose 128³ nodes all are is
-// one; every other tile brick is a region of its own. Looked up per brick in O(1): a table of
-// the grid's 128³ nodes, each with a mask of its tile bricks.
-class TileRegions {
-public:
-    struct Region {
-        Int3 lo;  // first brick
-        std::int32_t side;  // bricks: 1, 16 or 512
-        int level;          // 1, 2, 3
-    };
-
-    TileRegions(const SparseGrid& solid, const std::vector<std::uint64_t>& valued_tile_bricks) : bricks_(solid.bricks()) {
-        for (int a = 0; a < 3; ++a) nodes_[a] = (bricks_.counts[a] + kNodeBricks - 1) / kNodeBricks;
-        node_of_.assign(std::size_t(nodes_[0]) * std::size_t(nodes_[1]) * std::size_t(nodes_[2]), -1);
-        std::size_t v = 0;
-        for (const SparseGrid::TileRun& run : solid.tileRuns())
-            for (std::uint64_t b = run.begin; b < run.end; ++b) {
-                while (v < valued_tile_bricks.size() && valued_tile_bricks[v] < b) ++v;
-                if (v < valued_tile_bricks.size() && valued_tile_bricks[v] == b) continue;
-                const Int3 at = bricks_.at(b);
-                std::int32_t& slot = node_of_[nodeIndex(at[0] / kNodeBricks, at[1] / kNodeBricks, at[2] / kNodeBricks)];
-                if (slot < 0) {
-                    slot = std::int32_t(node_.size());
-                    node_.emplace_back();
-                }
-                const int bit = slotInNode(at);
-                node_[std::size_t(slot)].mask[std::size_t(bit >> 6)] |= std::uint64_t(1) << (bit & 63);
-            }
-        // 4096³ nodes wholly of whole 128³ nodes.
-        std::unordered_map<std::uint64_t, std::uint32_t> whole_in_top;
-        for (Node& node : node_) {
-            int count = 0;
-            for (std::uint64_t word : node.mask) count += popcount(word);
-            node.whole = count == kNodeBricks * kNodeBricks * kNodeBricks;
-        }
-        forEachNode([&](const Int3& n, Node& node) {
-            if (node.whole) ++whole_in_top[topKey(n)];
-        });
-        // Region ids node by node in node order, a node's bricks in slot order.
-        std::unordered_map<std::uint64_t, std::int64_t> top_region;
-        forEachNode([&](const Int3& n, Node& node) {
-            if (node.whole && whole_in_top[topKey(n)] == std::uint32_t(kTopNodes * kTopNodes * kTopNodes)) {
-                auto [it, fresh] = top_region.emplace(topKey(n), std::int64_t(regions_.size()));
-                if (fresh) {
-                    const Int3 lo{n[0] / kTopNodes * kTopNodes * kNodeBricks, n[1] / kTopNodes * kTopNodes * kNodeBricks,
-                                  n[2] / kTopNodes * kTopNodes * kNodeBricks};
-                    regions_.push_back({lo, kTopNodes * kNodeBricks, 3});
-                }
-                node.base = it->second;
-                return;
-            }
-            node.base = std::int64_t(regions_.size());
-            if (node.whole) {
-                regions_.push_back({{n[0] * kNodeBricks, n[1] * kNodeBricks, n[2] * kNodeBricks}, kNodeBricks, 2});
-                return;
-            }
-            std::uint32_t before = 0;
-            for (int w = 0; w < kNodeWords; ++w) {
-                node.before[std::size_t(w)] = before;
-                std::uint64_t word = node.mask[std::size_t(w)];
-                before += std::uint32_t(popcount(word));
-                while (word) {
-                    const int bit = w * 64 + __builtin_ctzll(word);
-                    word &= word - 1;
-                    regions_.push_back({{n[0] * kNodeBricks + (bit >> 8), n[1] * kNodeBricks + ((bit >> 4) & 15),
-                                         n[2] * kNodeBricks + (bit & 15)},
-                                        1, 1});
-                }
-            }
-        });
-    }
-
-    const std::vector<Region>& regions() const { return regions_; }
-
-    // The region holding brick (bx, by, bz), -1 when none (not a tile, or outside the grid).
-    std::int64_t at(std::int32_t bx, std::int32_t by, std::int32_t bz) const {
-        if (bx < 0 || by < 0 || bz < 0 || bx >= bricks_.counts[0] || by >= bricks_.counts[1] || bz >= bricks_.counts[2])
-            return -1;
-        const std::int32_t slot = node_of_[nodeIndex(bx / kNodeBricks, by / kNodeBricks, bz / kNodeBricks)];
-        if (slot < 0) return -1;
-        const Node& node = node_[std::size_t(slot)];
-        if (node.whole) return node.base;
-        const int bit = slotInNode({bx, by, bz});
-        const std::uint64_t word = node.mask[std::size_t(bit >> 6)];
-        if (!((word >> (bit & 63)) & 1u)) return -1;
-        return node.base + std::int64_t(node.before[std::size_t(bit >> 6)]) + popcount(word & below(bit));
-    }
-
-    // The regions touching region r (by a face, edge or corner), ascending.
-    std::vector<std::int64_t> neighbours(std::int64_t r) const {
-        const Region& region = regions_[std::size_t(r)];
-        std::vector<std::int64_t> out;
-        const Int3& lo = region.lo;
-        const std::int32_t hi[3] = {lo[0] + region.side, lo[1] + region.side, lo[2] + region.side};
-        for (std::int32_t x = lo[0] - 1; x <= hi[0]; ++x)
-            for (std::int32_t y = lo[1] - 1; y <= hi[1]; ++y) {
-                const bool inner = x >= lo[0] && x < hi[0] && y >= lo[1] && y < hi[1];
-                for (std::int32_t z = lo[2] - 1; z <= hi[2]; z = inner && z == lo[2] - 1 ? hi[2] : z + 1) {
-                    const std::int64_t id = at(x, y, z);
-                    if (id >= 0 && id != r && (out.empty() || out.back() != id)) out.push_back(id);
-                }
-            }
-        std::sort(out.begin(), out.end());
-        out.erase(std::unique(out.begin(), out.end()), out.end());
-        return out;
-    }
-
-private:
-    static constexpr int kNodeBricks = 16;  // a 128³ node's side in bricks
-    static constexpr int kTopNodes = 32;    // a 4096³ node's side in 128³ nodes
-    static constexpr int kNodeWords = kNodeBricks * kNodeBricks * kNodeBricks / 64;
-    struct Node {
-        std::array<std::uint64_t, kNodeWords> mask{};    // its tile bricks, slot (x*16 + y)*16 + z
-        std::array<std::uint32_t, kNodeWords> before{};  // tile bricks in the words before
-        bool whole = false;
-        std::int64_t base = 0;  // its first region (or its region, when whole)
-    };
-
-    std::size_t nodeIndex(std::int32_t nx, std::int32_t ny, std::int32_t nz) const {
-        return (std::size_t(nx) * std::size_t(nodes_[1]) + std::size_t(ny)) * std::size_t(nodes_[2]) + std::size_t(nz);
-    }
-    static int slotInNode(const Int3& at) {
-        return ((at[0] % kNodeBricks) << 8) | ((at[1] % kNodeBricks) << 4) | (at[2] % kNodeBricks);
-    }
-    std::uint64_t topKey(const Int3& n) const {
-        const std::uint64_t tops_y = std::uint64_t(nodes_[1] / kTopNodes + 1), tops_z = std::uint64_t(nodes_[2] / kTopNodes + 1);
-        return (std::uint64_t(n[0] / kTopNodes) * tops_y + std::uint64_t(n[1] / kTopNodes)) * tops_z +
-               std::uint64_t(n[2] / kTopNodes);
-    }
-    template <typename F>
-    void forEachNode(F&& f) {
-        for (std::int32_t x = 0; x < nodes_[0]; ++x)
-            for (std::int32_t y = 0; y < nodes_[1]; ++y)
-                for (std::int32_t z = 0; z < nodes_[2]; ++z) {
-                    const std::int32_t slot = node_of_[nodeIndex(x, y, z)];
-                    if (slot >= 0) f(Int3{x, y, z}, node_[std::size_t(slot)]);
-                }
-    }
-
-    BrickLayout bricks_;
-    Int3 nodes_{};
-    std::vector<std::int32_t> node_of_;  // per 128³ node of the grid: index into node_, -1 = no tile brick
-    std::vector<Node> node_;
-    std::vector<Region> regions_;
-};
-
-// ---- leaf voxels ----
 
 // The bricks whose voxels have values one by one, in brick order (the order of
 // AttributeGrid::values): their set voxels, those valued so far, and the values.
@@ -204,7 +45,7 @@ struct LeafVoxels {
     }
     std::size_t offset(std::size_t n, int bit) const {
         const std::uint64_t word = set[n][std::size_t(bit >> 6)];
-        return (first[n] + before[n][std::size_t(bit >> 6)] + std::size_t(popcount(word & below(bit)))) * channels;
+        return (first[n] + before[n][std::size_t(bit >> 6)] + std::size_t(popcountBelow(word, bit))) * channels;
     }
     float* value(std::size_t n, int bit) { return values.data() + offset(n, bit); }
     const float* value(std::size_t n, int bit) const { return values.data() + offset(n, bit); }
