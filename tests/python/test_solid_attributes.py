@@ -278,3 +278,12 @@ def test_open_cube_inside_follows_the_rule_too(tmp_path):
     solid, tiles, _ = check_solid_attributes(v, t, tmp_path, method="cpu", resolution=48, colors=colors)
     assert solid.stats["solid"]["inside_rule"] == "winding"
     assert tiles
+
+
+def test_inside_values_over_the_memory_budget_are_refused(spot_vcolor):
+    # The inside's values (every leaf voxel's channels) are counted before they are allocated.
+    v, t, colors = spot_vcolor
+    kw = dict(resolution=400, mode="solid", colors=colors, attributes="color,normal")
+    with pytest.raises(hyvox.ResourceError, match="inside's attribute values need about"):
+        hyvox.voxelize(v, t, memory_budget_mib=100, **kw)
+    assert hyvox.voxelize(v, t, memory_budget_mib=100, resolution=400, mode="solid").voxel_count > 0

@@ -113,6 +113,23 @@ std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, con
     return std::optional<attributes::SurfaceValues>(std::in_place, mesh, wanted);
 }
 
+// Refuse before allocating: the inside values hold every leaf voxel's channels (whole bricks
+// with surface voxels included) and about 400 bytes a brick, beside the surface's values and
+// the two grids.
+void checkInsideValuesBudget(const SparseGrid& surface, const VoxelizeResult& result, const VoxelizeOptions& options) {
+    const SparseGrid& solid = result.occupancy;
+    const double tiles = double(solid.tileCount());
+    const double leaf_voxels = double(solid.count()) - 512.0 * tiles +
+                               512.0 * std::min(tiles, double(surface.leafCount() + surface.tileCount()));
+    const double bricks = double(solid.leafCount()) + std::min(tiles, double(surface.leafCount() + surface.tileCount()));
+    const double held = double(result.attributes.values.size()) * 4.0 + double(surface.byteSize() + solid.byteSize());
+    const double need = leaf_voxels * double(result.attributes.channels()) * 4.0 + bricks * 400.0;
+    if (held + need > double(options.memoryBudgetBytes()))
+        throw ResourceError("the inside's attribute values need about " + mib(std::uint64_t(need)) + " beside " +
+                            mib(std::uint64_t(held)) + " held, more than the memory budget of " +
+                            std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size");
+}
+
 // The bricks `grid` (finished) holds as whole tiles, ascending.
 std::vector<std::uint64_t> tileBricks(const SparseGrid& grid) {
     std::vector<std::uint64_t> bricks;
@@ -288,6 +305,7 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     checkSomethingLanded(stats, reach);
     result.occupancy.finish();
     if (surface && solid) {
+        checkInsideValuesBudget(solid_surface, result, options);
         attributes::InsideValueCounts counted;
         result.attributes = attributes::valueInside(solid_surface, result.attributes, result.occupancy,
                                                     attributes::meshMeanValue(validated, *surface), options.threads, counted);
