@@ -11,6 +11,7 @@
 #include <map>
 #include <vector>
 
+#include "attributes/tile_regions.h"
 #include "hyvox/vdb.h"
 #include "hyvox/voxelize.h"
 #include "io/vdb_grid.h"
@@ -253,3 +254,49 @@ TEST(SolidAttributes, DirectFileEqualsOpenVdbsAndSharesTheDensitysTree) {
 }
 
 }  // namespace
+
+namespace {
+
+// Tile bricks [lo, hi) (in bricks) added as runs along z.
+void addTileBox(SparseGrid& grid, std::array<int, 3> lo, std::array<int, 3> hi) {
+    for (int x = lo[0]; x < hi[0]; ++x)
+        for (int y = lo[1]; y < hi[1]; ++y)
+            grid.addTileRun(grid.bricks().index(x, y, lo[2]), grid.bricks().index(x, y, hi[2] - 1) + 1);
+}
+
+}  // namespace
+
+TEST(SolidAttributes, TileRegionsAreOpenVdbsPrunedTiles) {
+    // A 4096³ node wholly tiles (level 3), a 128³ node beside it (level 2), a 128³ node with one
+    // brick valued voxel by voxel (4095 level-1 regions), and a lone brick.
+    SparseGrid grid({8192, 4224, 4104});
+    addTileBox(grid, {0, 0, 0}, {512, 512, 512});
+    addTileBox(grid, {512, 0, 0}, {528, 16, 16});
+    addTileBox(grid, {512, 32, 0}, {528, 48, 16});
+    addTileBox(grid, {700, 20, 3}, {701, 21, 4});
+    grid.finish();
+    const std::vector<std::uint64_t> valued{grid.bricks().index(515, 40, 7)};
+    const attributes::TileRegions regions(grid, valued);
+    const auto& all = regions.regions();
+    ASSERT_EQ(all.size(), 1u + 1u + 4095u + 1u);
+    std::map<int, int> levels;
+    for (const auto& r : all) ++levels[r.level];
+    EXPECT_EQ(levels[3], 1);
+    EXPECT_EQ(levels[2], 1);
+    EXPECT_EQ(levels[1], 4096);
+    const std::int64_t top = regions.at(0, 0, 0), node = regions.at(520, 5, 5), lone = regions.at(700, 20, 3);
+    EXPECT_EQ(regions.at(511, 511, 511), top);
+    EXPECT_EQ(all[std::size_t(top)].level, 3);
+    EXPECT_EQ(all[std::size_t(node)].level, 2);
+    EXPECT_EQ(regions.at(512, 0, 0), node);
+    EXPECT_EQ(regions.at(515, 40, 7), -1) << "a valued brick is no region";
+    EXPECT_EQ(regions.at(699, 20, 3), -1);
+    EXPECT_EQ(all[std::size_t(lone)].level, 1);
+    EXPECT_TRUE(regions.neighbours(lone).empty());
+    // The 128³ node touches the 4096³ one (face x = 4096) and nothing else.
+    EXPECT_EQ(regions.neighbours(node), std::vector<std::int64_t>{top});
+    const auto around_top = regions.neighbours(top);
+    EXPECT_EQ(around_top.size(), 1u + 16u * 16u) << "the 128³ node and the other node's bricks on its face";
+    // A brick next to the valued one: its 25 tile neighbours (the valued brick is not one).
+    EXPECT_EQ(regions.neighbours(regions.at(516, 40, 7)).size(), 25u);
+}

@@ -203,7 +203,7 @@ def test_spot_solid_colours_follow_the_layer_rule(spot_vcolor, tmp_path, method,
         assert tiles, "spot at 64 has whole-brick tiles"
 
 
-@pytest.mark.parametrize("method", ["cpu", "reference", "triangle"])
+@pytest.mark.parametrize("method", ["cpu", "reference", "triangle", "fragment"])
 def test_two_colour_sphere_fills_with_tiles_and_tile_layers(tmp_path, method):
     v, t, colors = two_colour_sphere()
     solid, tiles, tile_layers = check_solid_attributes(v, t, tmp_path, method=method, resolution=64, colors=colors)
