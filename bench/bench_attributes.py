@@ -3,6 +3,7 @@
 
     PYTHONPATH=build/python /usr/bin/python3 bench/bench_attributes.py [--resolutions 256,512]
         [--repeats 3] [--methods cpu] [--mesh-dir ../shared/data/meshes] [--threads N] [--cpu-time]
+        [--mode conservative|solid]
 
 Sponza (vertex colours) and Spot (UVs + 1024² texture). Each line: median wall time of the
 voxelize() call (the .vdb is not written) for each variant, runs interleaved so a busy
@@ -14,6 +15,9 @@ colour is the mean of its points' values (its tiles shrink so that every brick's
 storage block: llvmpipe's 128 MiB cuts Sponza at 256 into several); a row that does not fit
 the device says so and the bench goes on. `--cpu-time` times the process's CPU time instead
 of the wall (with `--threads 1`: the work itself, steadier than the wall on a shared machine).
+`--mode solid` prices colour in solid mode (every variant solid; the colour + normal run's
+stages `attributes` (the surface's values) and `attributes_inside` (the inside's, by layers)
+are printed in ms).
 """
 import argparse
 import pathlib
@@ -41,13 +45,14 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--threads", type=int, default=0, help="voxelize's threads (0: all cores)")
     parser.add_argument("--cpu-time", action="store_true", help="time the process's CPU time, not the wall")
+    parser.add_argument("--mode", default="conservative", help="the mode of every variant (conservative, solid)")
     args = parser.parse_args()
     clock = time.process_time if args.cpu_time else time.perf_counter
     variants = {"binary": None, "color": "color", "color+normal": "color,normal"}
-    print(f"hyvox {hyvox.__version__}; median of {args.repeats} ({'CPU' if args.cpu_time else 'wall'} seconds, "
-          f"threads {args.threads or 'all'}), ratio to binary")
+    print(f"hyvox {hyvox.__version__}; mode {args.mode}; median of {args.repeats} "
+          f"({'CPU' if args.cpu_time else 'wall'} seconds, threads {args.threads or 'all'}), ratio to binary")
     print(f"{'scene':24} {'method':12} {'res':>5} " + " ".join(f"{name:>13}" for name in variants) +
-          f" {'color/bin':>10} {'c+n/bin':>8} {'voxels':>10}")
+          f" {'color/bin':>10} {'c+n/bin':>8} {'voxels':>10} {'surface ms':>10} {'inside ms':>10}")
     for name, v, t, sources in scenes(args.mesh_dir):
         for method in args.methods.split(","):
             for resolution in (int(r) for r in args.resolutions.split(",")):
@@ -55,15 +60,19 @@ def main() -> None:
                 voxels = 0
                 try:
                     # Untimed first: shader compiles and hybrid's cutoff search (cached per mesh and grid).
-                    hyvox.voxelize(v, t, resolution=resolution, method=method, threads=args.threads)
+                    hyvox.voxelize(v, t, resolution=resolution, method=method, threads=args.threads, mode=args.mode)
+                    stages = {}
                     for _ in range(args.repeats):
                         for variant, attributes in variants.items():
                             extra = dict(sources, attributes=attributes) if attributes else {}
                             start = clock()
                             grid = hyvox.voxelize(v, t, resolution=resolution, method=method, threads=args.threads,
-                                                  **extra)
+                                                  mode=args.mode, **extra)
                             times[variant].append(clock() - start)
                             voxels = grid.voxel_count
+                            if variant == "color+normal":
+                                for stage in ("attributes", "attributes_inside"):
+                                    stages.setdefault(stage, []).append(grid.stats["timings_ms"].get(stage, 0.0))
                 except hyvox.ResourceError as error:
                     print(f"{name:24} {method:12} {resolution:5} does not fit: {error}", flush=True)
                     continue
@@ -71,7 +80,7 @@ def main() -> None:
                 print(f"{name:24} {method:12} {resolution:5} " +
                       " ".join(f"{median[variant]:13.3f}" for variant in variants) +
                       f" {median['color'] / median['binary']:10.2f} {median['color+normal'] / median['binary']:8.2f}"
-                      f" {voxels:10}", flush=True)
+                      f" {voxels:10}" + "".join(f" {statistics.median(stages[s]):10.0f}" for s in stages), flush=True)
 
 
 if __name__ == "__main__":

@@ -61,7 +61,7 @@ class CliScriptTest(AddonTestCase):
         bpy.ops.wm.save_as_mainfile(filepath=blend, copy=True)
         for extra, grids in (((), ["color", "density"]), (("--no-color",), ["density"])):
             vdb_dir = os.path.join(self.out, "vdb" + "".join(extra))
-            # Colour is stored on surfaces: the scene's default (Fill Interior) would make it solid.
+            # A surface run, so the grids' voxels are the cube's shell.
             done = self.run_cli(blend, "--output", vdb_dir, "--resolution", "8", "--objects", "Cube",
                                 "--mode", "conservative", *extra)
             self.assertEqual(done.returncode, 0, done.stdout[-2000:] + done.stderr[-2000:])

@@ -81,7 +81,7 @@ def principled_material(name, base_color):
 
 class _ColourCase(AddonTestCase):
     def voxelize(self, **kw):
-        kw.setdefault("color", True)  # Colour is off by default (and with Fill Interior)
+        kw.setdefault("color", True)  # Colour is off by default
         return super().voxelize(**kw)
 
 

@@ -2,7 +2,8 @@
 """Fill Interior (on by default, like Mesh to Volume's Fill Volume) makes the run solid: the
 Volume holds exactly the module's solid voxels, and renders as a filled body: seen through
 its middle a filled sphere absorbs far more light than its hollow shell. The render is kept
-as a PNG in $HYVOX_RENDER_DIR when that is set (to look at it)."""
+as a PNG in $HYVOX_RENDER_DIR when that is set (to look at it). With Colour, the inside takes
+the colour of the surface around it: the `color` grid has the density's voxels and tiles."""
 import math
 import os
 
@@ -11,6 +12,7 @@ import numpy as np
 
 import helpers
 from helpers import AddonTestCase
+from test_colour import GREEN, RED, face_halves, split_cube
 from test_render_alignment import PIXELS, setup_render
 
 
@@ -74,3 +76,39 @@ class FillInteriorTest(AddonTestCase):
         self.assertLess(solid, 0.6)
         self.assertGreater(shell, 0.85)
         self.assertGreater(shell - solid, 0.3)
+
+    def test_colour_with_fill_interior_colours_every_voxel(self):
+        import pyopenvdb as vdb
+        obj = split_cube()
+        mesh = obj.data
+        attribute = mesh.color_attributes.new("Col", "FLOAT_COLOR", "CORNER")
+        per_loop = np.repeat(face_halves(mesh), [p.loop_total for p in mesh.polygons])
+        attribute.data.foreach_set("color", np.where(per_loop[:, None], RED, GREEN).astype(np.float32).ravel())
+        helpers.select_only(obj)
+        self.assertTrue(bpy.context.scene.hyvox.fill_interior)
+        self.assertEqual(bpy.ops.object.hyvox_voxelize(output_dir=self.out, method="cpu", voxel_size=0.0625,
+                                                       color=True), {"FINISHED"})
+        (volume,) = self.volumes()
+        path = bpy.path.abspath(volume.data.filepath)
+        grids = {name: vdb.read(path, name) for name in ("density", "color")}
+
+        def tiles(grid):
+            return sorted((tuple(i.min), tuple(i.max)) for i in grid.citerOnValues() if i.count > 1)
+
+        density, color = grids["density"], grids["color"]
+        self.assertEqual(color.activeVoxelCount(), density.activeVoxelCount())
+        self.assertEqual(tiles(color), tiles(density))
+        self.assertTrue(tiles(color), "two 24-voxel solid cubes have whole-brick tiles")
+        # Solid: far more than the two shells (24³ each, 6 · 24² on the surface).
+        self.assertGreater(density.activeVoxelCount(), 2 * 20 ** 3)
+        # Each cube's inside has its surface's one colour, tiles included.
+        to_world = density.transform.indexToWorld
+        for item in color.citerOnValues():
+            centre = np.add(item.min, item.max) / 2.0
+            expected = RED if to_world(tuple(centre))[0] < 0 else GREEN
+            np.testing.assert_allclose(item.value, expected[:3], atol=1e-5)
+        nodes = volume.data.materials[0].node_tree.nodes
+        attribute_node = next(n for n in nodes if n.type == "ATTRIBUTE")
+        self.assertEqual(attribute_node.attribute_name, "color")
+        shader = next(n for n in nodes if n.type == "PRINCIPLED_VOLUME")
+        self.assertEqual(shader.inputs["Color"].links[0].from_node.name, attribute_node.name)

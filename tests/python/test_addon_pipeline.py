@@ -275,18 +275,39 @@ def test_auto_keeps_hybrid_for_colour_now_that_it_makes_colour(hyvox, tmp_path, 
         np.testing.assert_allclose(item.value, (0.25, 0.5, 0.75), atol=1e-6)
 
 
-def test_a_solid_run_stores_no_colour(hyvox, tmp_path):
-    colour = {"colors": np.ones((36, 4), np.float32)}
-    settings = VoxelizeSettings(voxel_size=0.25, color=True, method="cpu", mode="solid")
+def test_a_solid_run_stores_colour_on_every_voxel(hyvox, tmp_path):
+    # Fill Interior with Colour: the inside takes the surface's colour (one colour here), and
+    # the color grid has exactly the density's voxels, tiles included.
+    colour = {"colors": np.tile(np.float32([0.25, 0.5, 0.75, 1.0]), (36, 1))}
+    settings = VoxelizeSettings(voxel_size=0.05, color=True, method="cpu", mode="solid")
     pipeline = Pipeline(settings, str(tmp_path), colour_exporter(Group("C", ["C"]), colour), module=hyvox)
-    assert pipeline.colour_skipped
     (result,) = pipeline.run().values()
-    assert not result.has_color
+    assert result.has_color
     import pyopenvdb as vdb
-    names = [g.name for g in vdb.readAllGridMetadata(result.files[0])]
-    assert names == ["density"]
+    names = sorted(g.name for g in vdb.readAllGridMetadata(result.files[0]))
+    assert names == ["alpha", "color", "density"]  # the colours are RGBA
+    density, color = (vdb.read(result.files[0], name) for name in ("density", "color"))
+    assert color.activeVoxelCount() == density.activeVoxelCount() == result.voxel_counts[0]
+    tiles = [item for item in color.citerOnValues() if item.count > 1]
+    assert tiles, "a 40-voxel solid cube has whole-brick tiles"
+    for item in color.citerOnValues():
+        np.testing.assert_allclose(item.value, (0.25, 0.5, 0.75), atol=1e-6)
     # Solid: more voxels than the cube's surface shell (the inside is filled).
-    surface = Pipeline(VoxelizeSettings(voxel_size=0.25, method="cpu"), str(tmp_path / "s"),
+    surface = Pipeline(VoxelizeSettings(voxel_size=0.05, method="cpu"), str(tmp_path / "s"),
                        colour_exporter(Group("C", ["C"]), {}), module=hyvox)
     (shell,) = surface.run().values()
     assert result.voxel_counts[0] > shell.voxel_counts[0]
+
+
+def test_a_coloured_solid_vox_file_has_every_voxel_coloured(hyvox, tmp_path):
+    # The .vox of Fill Interior + Colour: every solid voxel, inside ones included, in the cube's colour.
+    from test_addon_blocks import parse_vox, voxels_of
+    from hyvox_blender.core import vox
+    colour = {"colors": np.tile(np.float32([0.25, 0.5, 0.75, 1.0]), (36, 1))}
+    settings = VoxelizeSettings(voxel_size=0.1, color=True, method="cpu", mode="solid", export_vox=True)
+    pipeline = Pipeline(settings, str(tmp_path), colour_exporter(Group("C", ["C"]), colour), module=hyvox)
+    (result,) = pipeline.run().values()
+    (path,) = result.vox_files
+    got = voxels_of(parse_vox(open(path, "rb").read()))
+    assert len(got) == result.voxel_counts[0] == 20 ** 3  # a 2-unit cube at 0.1: 20³, all inside or surface
+    assert set(got.values()) == {tuple(vox.linear_to_srgb8(np.array([[0.25, 0.5, 0.75]]))[0])}

@@ -43,8 +43,6 @@ class _Run:
         # run overwrote (farm chunks ask for fixed names to assemble one sequence).
         run_tag = naming.new_run_tag() if op.unique_file_names else None
         self.pipeline = Pipeline(settings, folder, self.export_frame, run_tag=run_tag)  # validates the settings
-        if self.pipeline.colour_skipped:
-            op.report({"INFO"}, "No colour grid: colour is stored on surface voxels, not with Fill Interior")
         if self.pipeline.ignored_options:
             op.report({"INFO"}, backend.ignored_message(self.pipeline.ignored_options, self.pipeline.method))
         # The redo panel shows, and a redo repeats, exactly what this run used.

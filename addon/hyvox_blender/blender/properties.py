@@ -176,8 +176,8 @@ def scene_and_operator_properties(operator=False):
                                default="VOLUME", **skip),
         "color": BoolProperty(name="Colour", description="Also store the colour the objects' materials "
                               "show (the render colour attribute, else the Base Color's image or value) in a "
-                              "`color` grid, which the volume's material and Blocks use (surface voxels: not with Fill "
-                              "Interior)", default=False, **skip),
+                              "`color` grid, which the volume's material and Blocks use (with Fill Interior, the inside "
+                              "takes the colour of the surface around it)", default=False, **skip),
         "export_vox": BoolProperty(name="MagicaVoxel File", description="Also write the voxels as a MagicaVoxel "
                                    ".vox file next to the .vdb (split into models of at most 256 per side; at "
                                    "most 255 colours)", default=False, **skip),

@@ -97,9 +97,6 @@ class Pipeline:
         self.method = backend.resolve_method(self.module, settings)
         # Settings changed for another method: the operator reports them (INFO).
         self.ignored_options: List[str] = backend.ignored_settings(self.module, settings, self.method)
-        # Colour is an average over the surface inside each voxel: solid's inside voxels have
-        # none, so a solid run stores no colour (the operator reports it, INFO).
-        self.colour_skipped = bool(settings.color and settings.options.get("mode") == "solid")
         self.frames: List[Optional[int]] = list(settings.frames) if settings.is_sequence else [None]
         self.results: Dict[str, GroupResult] = {}
         self.timings = Timings()
@@ -261,7 +258,9 @@ class Pipeline:
             fixed_size = result.voxel_size if result.voxel_size else None
             self._token = backend.make_token(self.module)
             start = time.perf_counter()
-            colour = mesh.colour if self.settings.color and not self.colour_skipped else None
+            # Solid runs too: the inside voxels take their colour from the surface inward
+            # (the module's solid-mode attributes).
+            colour = mesh.colour if self.settings.color else None
             method = backend.method_for_group(self.module, self.settings, self.method, bool(colour))
             result.method = method
             grid = backend.voxelize(self.module, mesh.vertices, mesh.triangles, self.settings,

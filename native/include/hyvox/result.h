@@ -113,6 +113,16 @@ struct SolidStats {
     std::uint64_t component_decisions = 0; // connected empty parts of surface bricks decided by one evaluation
     std::uint64_t point_evaluations = 0;   // inside tests run (winding numbers or ray parities)
     std::uint64_t interpolated_voxels = 0; // open meshes: voxels decided from the winding number's interpolated smooth part
+    // With attributes (attributes/inside_values.h): inside voxels held in leaves valued by layers
+    // from the surface, the layers that took; tile regions (one value each) and the region
+    // layers after those valued from their shell; leaf voxels valued beside regions; voxels and
+    // regions left to the mesh's mean (0 for a connected inside).
+    std::uint64_t attribute_inside_voxels = 0;
+    std::uint64_t attribute_layers = 0;
+    std::uint64_t attribute_tile_regions = 0;
+    std::uint64_t attribute_region_layers = 0;
+    std::uint64_t attribute_through_regions = 0;
+    std::uint64_t attribute_fallback = 0;
     template <typename F>
     void visit(F&& f) const {
         f("inside_rule", inside_rule);
@@ -127,6 +137,12 @@ struct SolidStats {
         f("component_decisions", component_decisions);
         f("point_evaluations", point_evaluations);
         f("interpolated_voxels", interpolated_voxels);
+        f("attribute_inside_voxels", attribute_inside_voxels);
+        f("attribute_layers", attribute_layers);
+        f("attribute_tile_regions", attribute_tile_regions);
+        f("attribute_region_layers", attribute_region_layers);
+        f("attribute_through_regions", attribute_through_regions);
+        f("attribute_fallback", attribute_fallback);
     }
 };
 

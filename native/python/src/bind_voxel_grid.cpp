@@ -90,16 +90,22 @@ py::array_t<bool> toDense(const Grid& g) {
 }
 
 // The attribute grids as numpy arrays aligned with coords(): {"color": (K,3), "alpha": (K,),
-// "normal": (K,3)}, those the run computed.
+// "normal": (K,3)}, those the run computed. A solid's tile voxels, which coords() lists one by
+// one, each carry their tile region's value (the result holds one per region).
 py::dict attributeArrays(const Grid& g) {
     const AttributeGrid& a = g->attributes;
     py::dict out;
     if (a.empty()) return out;
-    const std::size_t count = a.voxelCount(), channels = std::size_t(a.channels());
+    std::vector<float> all;
+    {
+        py::gil_scoped_release release;
+        all = valuesInCoordsOrder(g->occupancy, a);
+    }
+    const std::size_t channels = std::size_t(a.channels()), count = all.size() / channels;
     auto take = [&](int offset, int width) {
         std::vector<float> values(count * std::size_t(width));
         for (std::size_t v = 0; v < count; ++v)
-            for (int c = 0; c < width; ++c) values[v * std::size_t(width) + std::size_t(c)] = a.values[v * channels + std::size_t(offset + c)];
+            for (int c = 0; c < width; ++c) values[v * std::size_t(width) + std::size_t(c)] = all[v * channels + std::size_t(offset + c)];
         return values;
     };
     const auto k = py::ssize_t(count);
@@ -127,7 +133,8 @@ The voxels of one voxelization. Voxel (i, j, k) covers the closed box
         .def("attributes", &attributeArrays,
              "The attribute voxels the run computed (option attributes), aligned row by row with coords(): "
              "{'color': float32 (K, 3) linear RGB, 'alpha': float32 (K,), 'normal': float32 (K, 3) unit or zero}; "
-             "an empty dict when none were asked for.")
+             "an empty dict when none were asked for. Solid mode: the voxels of a whole-brick tile region "
+             "(listed one by one in coords()) each carry the region's one value.")
         .def("to_dense", &toDense,
              "The occupancy as a dense bool array of shape dims, indexed [i, j, k]; ResourceError when that "
              "box does not fit the run's memory budget.")

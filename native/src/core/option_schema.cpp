@@ -89,7 +89,8 @@ std::vector<OptionSpec> buildSchema() {
     // --- attribute voxels ---
     add({"attributes", T::Text, "run", "Attributes", "",
          "attribute voxels to compute: a comma list of color (linear RGB, alpha when the source has it) and "
-         "normal; '' = none", false, 0, 0, false, {}, {}, nullptr, HYVOX_FIELD(asText, attributes)});
+         "normal; '' = none. Solid mode: the inside takes the surface's values, layer by layer inward", false, 0, 0,
+         false, {}, {}, nullptr, HYVOX_FIELD(asText, attributes)});
     // --- output files ---
     add({"durable_write", T::Flag, "output", "Durable Write", "",
          "sync each output file (.vdb, stats JSON) and its folder to disk before the write returns, so it "

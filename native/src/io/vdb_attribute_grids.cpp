@@ -12,23 +12,12 @@
 namespace hyvox::io {
 namespace {
 
-// The first value (voxel number in coords() order) of every leaf: the running count of set bits.
-std::vector<std::size_t> leafStarts(const SparseGrid& occupancy) {
-    std::vector<std::size_t> starts;
-    starts.reserve(occupancy.leafCount());
-    std::size_t total = 0;
-    for (const SparseGrid::Leaf& leaf : occupancy.leaves()) {
-        starts.push_back(total);
-        for (std::uint64_t word : leaf.words) total += std::size_t(__builtin_popcountll(word));
-    }
-    return starts;
-}
-
 // A grid of `width` channels (1: float, 3: Vec3f) taken from the attribute values at
-// channel `offset`, one leaf per occupied leaf, built in parallel and added serially.
+// channel `offset`: a leaf per valued brick (built in parallel, added serially) and a tile per
+// tile region.
 template <typename GridType>
 typename GridType::Ptr makeGrid(const VoxelizeResult& result, const char* name, int offset,
-                                const std::vector<std::size_t>& starts) {
+                                const std::vector<ValuedBrick>& valued) {
     using Leaf = typename GridType::TreeType::LeafNodeType;
     using Value = typename GridType::ValueType;
     initializeOpenVdb();
@@ -37,30 +26,37 @@ typename GridType::Ptr makeGrid(const VoxelizeResult& result, const char* name, 
     grid->setTransform(makeTransform(result.grid));
     const AttributeGrid& a = result.attributes;
     const std::size_t channels = std::size_t(a.channels());
-    const auto& source = result.occupancy.leaves();
     const BrickLayout& bricks = result.occupancy.bricks();
-    std::vector<std::unique_ptr<Leaf>> leaves(source.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size(), 256), [&](const auto& range) {
+    auto valueAt = [](const float* value) {
+        if constexpr (std::is_same_v<Value, float>)
+            return value[0];
+        else
+            return Value(value[0], value[1], value[2]);
+    };
+    std::vector<std::unique_ptr<Leaf>> leaves(valued.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, valued.size(), 256), [&](const auto& range) {
         for (std::size_t n = range.begin(); n != range.end(); ++n) {
-            const SparseGrid::Leaf& from = source[n];
+            const ValuedBrick& from = valued[n];
             const std::array<std::int32_t, 3> at = bricks.at(from.brick);
             auto leaf = std::make_unique<Leaf>(openvdb::Coord(at[0] * 8, at[1] * 8, at[2] * 8), Value(0), false);
             auto& mask = leaf->getValueMask();
-            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) mask.template getWord<std::uint64_t>(w) = from.words[w];
+            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) mask.template getWord<std::uint64_t>(w) = from.mask[w];
             Value* values = leaf->buffer().data();
-            std::size_t voxel = starts[n];
+            std::size_t voxel = from.first;
             for (int v = 0; v < 512; ++v) {
-                if (!((from.words[v >> 6] >> (v & 63)) & 1u)) continue;
-                const float* value = &a.values[voxel++ * channels + std::size_t(offset)];
-                if constexpr (std::is_same_v<Value, float>)
-                    values[v] = value[0];
-                else
-                    values[v] = Value(value[0], value[1], value[2]);
+                if (!((from.mask[v >> 6] >> (v & 63)) & 1u)) continue;
+                values[v] = valueAt(&a.values[voxel++ * channels + std::size_t(offset)]);
             }
             leaves[n] = std::move(leaf);
         }
     });
     for (auto& leaf : leaves) grid->tree().addLeaf(leaf.release());
+    if (!a.tiles.empty()) {
+        typename GridType::Accessor accessor(grid->tree());
+        for (const AttributeTile& tile : a.tiles)
+            accessor.addTile(unsigned(tile.level), openvdb::Coord(tile.origin[0], tile.origin[1], tile.origin[2]),
+                             valueAt(tile.values.data() + offset), true);
+    }
     return grid;
 }
 
@@ -70,7 +66,7 @@ openvdb::GridPtrVec makeAttributeGrids(const VoxelizeResult& result) {
     openvdb::GridPtrVec grids;
     const AttributeGrid& a = result.attributes;
     if (a.empty()) return grids;
-    const std::vector<std::size_t> starts = leafStarts(result.occupancy);
+    const std::vector<ValuedBrick> starts = valuedBricks(result.occupancy, a);
     if (a.color) {
         auto color = makeGrid<openvdb::Vec3SGrid>(result, "color", a.colorOffset(), starts);
         color->setVectorType(openvdb::VEC_INVARIANT);

@@ -519,36 +519,64 @@ GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const VdbGrid& 
 
 std::uint64_t vdbTreeMemUsage(const VdbGrid& grid) { return memUsage(placeTree(grid), grid.type); }
 
-VdbGrid attributeGrid(const SparseGrid& occupancy, const float* values, int channels, int offset, std::string name,
+VdbGrid resultDensityGrid(const VoxelizeResult& result) {
+    VdbGrid grid = densityGrid(result.occupancy);
+    const std::vector<std::uint64_t>& valued = result.attributes.valued_tile_bricks;
+    if (valued.empty()) return grid;
+    static constexpr std::uint64_t kFullMask[BitGrid::kWordsPerBrick] = {~0ull, ~0ull, ~0ull, ~0ull,
+                                                                          ~0ull, ~0ull, ~0ull, ~0ull};
+    const BrickLayout& bricks = result.occupancy.bricks();
+    auto brickOf = [&](const std::array<std::int32_t, 3>& origin) {
+        return bricks.index(origin[0] / BrickLayout::kSide, origin[1] / BrickLayout::kSide, origin[2] / BrickLayout::kSide);
+    };
+    std::vector<VdbTile> tiles;
+    for (const VdbTile& tile : grid.tiles) {
+        if (std::binary_search(valued.begin(), valued.end(), std::uint64_t(brickOf(tile.origin)))) {
+            grid.leaves.push_back({tile.origin, kFullMask});
+        } else {
+            tiles.push_back(tile);
+        }
+    }
+    grid.tiles = std::move(tiles);
+    return grid;
+}
+
+VdbGrid attributeGrid(const SparseGrid& occupancy, const AttributeGrid& attributes, int offset, std::string name,
                       VdbValueType type, std::string vector_type) {
-    VdbGrid grid = densityGrid(occupancy);
-    grid.tiles.clear();  // attribute voxels lie on the surface: leaves only
+    VdbGrid grid;
     grid.name = std::move(name);
     grid.type = type;
     grid.grid_class.clear();
     grid.vector_type = std::move(vector_type);
     grid.layout = VdbLeafValues::Packed;
-    grid.stride = std::size_t(channels);
-    std::size_t voxel = 0;  // set voxels before this leaf, in coords() order
-    for (VdbLeaf& leaf : grid.leaves) {
-        leaf.values = values + voxel * std::size_t(channels) + std::size_t(offset);
-        voxel += activeCount(leaf.mask);
+    const std::size_t channels = std::size_t(attributes.channels());
+    grid.stride = channels;
+    const BrickLayout& bricks = occupancy.bricks();
+    const std::vector<ValuedBrick> valued = valuedBricks(occupancy, attributes);
+    grid.leaves.reserve(valued.size());
+    for (const ValuedBrick& brick : valued) {
+        const std::array<std::int32_t, 3> b = bricks.at(brick.brick);
+        grid.leaves.push_back({{b[0] * BrickLayout::kSide, b[1] * BrickLayout::kSide, b[2] * BrickLayout::kSide}, brick.mask,
+                               attributes.values.data() + brick.first * channels + std::size_t(offset)});
+    }
+    const int width = grid.channels();
+    for (const AttributeTile& tile : attributes.tiles) {
+        VdbTile out{tile.origin, tile.level, {0.0f, 0.0f, 0.0f}};
+        for (int c = 0; c < width; ++c) out.value[std::size_t(c)] = tile.values[std::size_t(offset + c)];
+        grid.tiles.push_back(out);
     }
     return grid;
 }
 
 void appendAttributeGrids(std::vector<VdbGrid>& grids, const SparseGrid& occupancy, const AttributeGrid& attributes) {
     if (attributes.empty()) return;
-    const float* values = attributes.values.data();
-    const int channels = attributes.channels();
     if (attributes.color)
-        grids.push_back(attributeGrid(occupancy, values, channels, attributes.colorOffset(), "color",
-                                      VdbValueType::Vec3f, "invariant"));
+        grids.push_back(attributeGrid(occupancy, attributes, attributes.colorOffset(), "color", VdbValueType::Vec3f, "invariant"));
     if (attributes.alpha)
-        grids.push_back(attributeGrid(occupancy, values, channels, attributes.alphaOffset(), "alpha", VdbValueType::Float));
+        grids.push_back(attributeGrid(occupancy, attributes, attributes.alphaOffset(), "alpha", VdbValueType::Float));
     if (attributes.normal)
-        grids.push_back(attributeGrid(occupancy, values, channels, attributes.normalOffset(), "normal",
-                                      VdbValueType::Vec3f, "covariant normalize"));
+        grids.push_back(attributeGrid(occupancy, attributes, attributes.normalOffset(), "normal", VdbValueType::Vec3f,
+                                      "covariant normalize"));
 }
 
 std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves) {

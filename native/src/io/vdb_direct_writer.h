@@ -98,11 +98,16 @@ std::uint64_t vdbTreeMemUsage(const VdbGrid& grid);
 template <typename Occupancy>
 VdbGrid densityGrid(const Occupancy& occupancy);
 
-// A per-voxel attribute as a grid active exactly on the occupancy's leaf voxels: `values`
-// holds `channels` floats per set voxel in coords() order (leaf by leaf, set bits
-// ascending), this grid's channels (1 or 3 by `type`) start at `offset`. Class none, like
+// "density" of a result: densityGrid(result.occupancy), with the tile bricks the attribute
+// grids hold voxel by voxel (result.attributes.valued_tile_bricks) as full leaves, so that
+// every grid of the file has one tree shape.
+VdbGrid resultDensityGrid(const VoxelizeResult& result);
+
+// One attribute as a grid active exactly on the occupancy's voxels: leaves where the values are
+// per voxel (valuedBricks), tiles of one value over the solid's tile regions. This grid's
+// channels (1 or 3 by `type`) start at channel `offset` of `attributes`. Class none, like
 // OpenVDB's default; `vector_type` for Vec3f (see VdbGrid).
-VdbGrid attributeGrid(const SparseGrid& occupancy, const float* values, int channels, int offset, std::string name,
+VdbGrid attributeGrid(const SparseGrid& occupancy, const AttributeGrid& attributes, int offset, std::string name,
                       VdbValueType type, std::string vector_type = "");
 
 // The attribute voxels' grids (result.attributes), as makeGrids builds them with OpenVDB:

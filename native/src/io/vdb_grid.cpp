@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <mutex>
@@ -76,7 +77,8 @@ openvdb::FloatGrid::Ptr makeFogGrid(const char* name, const GridSpec& grid) {
 
 }  // namespace
 
-openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& occupancy) {
+openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& occupancy,
+                                        const std::vector<std::uint64_t>& full_leaves) {
     auto result = makeFogGrid("density", grid);
     const BrickLayout& bricks = occupancy.bricks();
     const std::vector<SparseGrid::Leaf>& source = occupancy.leaves();
@@ -107,9 +109,16 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& 
             for (std::uint64_t b = run.begin; b < run.end; ++b) {
                 const std::array<std::int32_t, 3> at = bricks.at(b);
                 const int side = BrickLayout::kSide;
-                accessor.addTile(1, openvdb::Coord(at[0] * side, at[1] * side, at[2] * side), 1.0f, true);
+                if (!std::binary_search(full_leaves.begin(), full_leaves.end(), std::uint64_t(b)))
+                    accessor.addTile(1, openvdb::Coord(at[0] * side, at[1] * side, at[2] * side), 1.0f, true);
             }
         tree.prune();
+        // After prune(), which would fold these constant leaves back into tiles.
+        for (std::uint64_t b : full_leaves) {
+            const std::array<std::int32_t, 3> at = bricks.at(b);
+            const int side = BrickLayout::kSide;
+            accessor.addLeaf(new FloatLeaf(openvdb::Coord(at[0] * side, at[1] * side, at[2] * side), 1.0f, true));
+        }
     }
     return result;
 }
@@ -123,7 +132,7 @@ openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<Vo
 
 openvdb::GridPtrVec makeGrids(const VoxelizeResult& result) {
     openvdb::GridPtrVec grids;
-    grids.push_back(makeDensityGrid(result.grid, result.occupancy));
+    grids.push_back(makeDensityGrid(result.grid, result.occupancy, result.attributes.valued_tile_bricks));
     if (!result.counts.empty()) grids.push_back(makeCountGrid(result.grid, result.counts));
     for (auto& grid : makeAttributeGrids(result)) grids.push_back(grid);
     for (auto& g : grids) addMetadata(*g, result);

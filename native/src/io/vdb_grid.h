@@ -25,7 +25,10 @@ openvdb::math::Transform::Ptr makeTransform(const GridSpec& grid);
 
 // "density": 1 on occupied voxels (active), background 0, fog volume. Built a whole 8³ leaf
 // at a time, in parallel: each sparse leaf's words are the leaf's value mask, copied as they are.
-openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& occupancy);
+// The tile bricks in `full_leaves` (sorted) become full leaves instead (the attribute grids'
+// valued tile bricks: all grids get one tree shape).
+openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& occupancy,
+                                        const std::vector<std::uint64_t>& full_leaves = {});
 // "count": the values of a multi-valued result.
 openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<VoxelCount>& counts);
 

@@ -24,7 +24,8 @@ static std::uint64_t attributeGridBytes(const VoxelizeResult& result) {
     const AttributeGrid& a = result.attributes;
     const std::uint64_t per_voxel = (a.color ? 12 : 0) + (a.alpha ? 4 : 0) + (a.normal ? 12 : 0);
     // Leaves dominate (512 values and a mask each); the nodes above add a few percent.
-    return std::uint64_t(double(result.occupancy.leafCount()) * 512.0 * double(per_voxel) * 1.05);
+    const double leaves = double(result.occupancy.leafCount() + a.valued_tile_bricks.size());
+    return std::uint64_t((leaves * 512.0 + double(a.tiles.size())) * double(per_voxel) * 1.05);
 }
 
 void checkGridBudget(const VoxelizeResult& result) {
@@ -97,7 +98,7 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, i
     const InterrupterRun run(interrupter, "hyvox write");
     VdbWriteReport report;
     auto start = std::chrono::steady_clock::now();
-    std::vector<io::VdbGrid> grids{io::densityGrid(result.occupancy)};
+    std::vector<io::VdbGrid> grids{io::resultDensityGrid(result)};
     io::CountLeaves counts;
     if (!result.counts.empty()) {
         counts = io::countLeaves(result.counts);

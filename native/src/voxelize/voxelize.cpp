@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "attributes/inside_values.h"
 #include "attributes/piece_attributes.h"
 #include "attributes/tile_attributes.h"
 #include "core/backends.h"
@@ -107,12 +108,34 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
 std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, const VoxelizeOptions& options) {
     const AttributeSet wanted = parseAttributeSet(options.attributes);
     if (!wanted.any()) return std::nullopt;
-    if (options.mode == Mode::Solid)
-        throw InvalidInput("attributes are computed for the surface modes (conservative, thin); solid mode does "
-                           "not compute them yet");
     if (!computesAttributes(options.method))
         throw InvalidInput(std::string("method ") + toString(options.method) + " does not compute attributes");
     return std::optional<attributes::SurfaceValues>(std::in_place, mesh, wanted);
+}
+
+// Refuse before allocating: the inside values hold every leaf voxel's channels (whole bricks
+// with surface voxels included) and about 400 bytes a brick, beside the surface's values and
+// the two grids.
+void checkInsideValuesBudget(const SparseGrid& surface, const VoxelizeResult& result, const VoxelizeOptions& options) {
+    const SparseGrid& solid = result.occupancy;
+    const double tiles = double(solid.tileCount());
+    const double leaf_voxels = double(solid.count()) - 512.0 * tiles +
+                               512.0 * std::min(tiles, double(surface.leafCount() + surface.tileCount()));
+    const double bricks = double(solid.leafCount()) + std::min(tiles, double(surface.leafCount() + surface.tileCount()));
+    const double held = double(result.attributes.values.size()) * 4.0 + double(surface.byteSize() + solid.byteSize());
+    const double need = leaf_voxels * double(result.attributes.channels()) * 4.0 + bricks * 400.0;
+    if (held + need > double(options.memoryBudgetBytes()))
+        throw ResourceError("the inside's attribute values need about " + mib(std::uint64_t(need)) + " beside " +
+                            mib(std::uint64_t(held)) + " held, more than the memory budget of " +
+                            std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size");
+}
+
+// The bricks `grid` (finished) holds as whole tiles, ascending.
+std::vector<std::uint64_t> tileBricks(const SparseGrid& grid) {
+    std::vector<std::uint64_t> bricks;
+    for (const SparseGrid::TileRun& run : grid.tileRuns())
+        for (std::uint64_t b = run.begin; b < run.end; ++b) bricks.push_back(b);
+    return bricks;
 }
 
 // The surface pass: the method's backend tile by tile into result.occupancy (not finished).
@@ -264,6 +287,16 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
         surface_pass.attribute_leaves = &attribute_leaves;
     }
     surface_pass.run(surface_options, result, stats);
+    // Solid with attributes: the surface's voxels and values are kept apart, the inside's
+    // values are derived from them once the inside is known (attributes/inside_values.h).
+    SparseGrid solid_surface;
+    if (surface) {
+        result.occupancy.finish();
+        result.attributes = surface->layout();
+        attributes::assembleAttributes(attribute_leaves, result.attributes, options.threads);
+        result.attributes.valued_tile_bricks = tileBricks(result.occupancy);
+        if (solid) solid_surface = result.occupancy;
+    }
     if (solid) {
         surface_pass.values = nullptr;  // the barrier pass (tessellation) computes no attributes
         addInside(validated, grid, surface_pass, options, result, stats, interrupter, watch);
@@ -271,9 +304,19 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     throwIfInterrupted(interrupter, 100);
     checkSomethingLanded(stats, reach);
     result.occupancy.finish();
-    if (surface) {
-        result.attributes = surface->layout();
-        attributes::assembleAttributes(attribute_leaves, result.attributes, options.threads);
+    if (surface && solid) {
+        checkInsideValuesBudget(solid_surface, result, options);
+        attributes::InsideValueCounts counted;
+        result.attributes = attributes::valueInside(solid_surface, result.attributes, result.occupancy,
+                                                    attributes::meshMeanValue(validated, *surface), options.threads, counted);
+        SolidStats& s = *stats.solid;
+        s.attribute_inside_voxels = counted.voxels;
+        s.attribute_layers = counted.layers;
+        s.attribute_tile_regions = counted.regions;
+        s.attribute_region_layers = counted.region_layers;
+        s.attribute_through_regions = counted.through_regions;
+        s.attribute_fallback = counted.fallback;
+        stats.addTiming("attributes_inside", watch.restart());
     }
     stats.voxel_count = result.occupancy.count();
     stats.leaves = result.occupancy.leafCount();
