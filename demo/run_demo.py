@@ -199,14 +199,13 @@ def add_vertex_coloured_sponza(args):
     return sponza
 
 
-def voxelize_with_colour(obj, args, output):
-    """obj alone through the operator with the Colour option (a surface: colour is not
-    computed with Fill Interior); returns its new Volume object."""
+def voxelize_with_colour(obj, args, output, fill_interior):
+    """obj alone through the operator with the Colour option; returns its new Volume object."""
     for other in bpy.context.view_layer.objects:
         other.select_set(other is obj)
     bpy.context.view_layer.objects.active = obj
     bpy.ops.object.hyvox_voxelize(resolution=args.resolution, method=args.method, separate=True, color=True,
-                                  fill_interior=False, output_dir=os.path.join(output, "vdb"))
+                                  fill_interior=fill_interior, output_dir=os.path.join(output, "vdb"))
     return bpy.data.objects[obj.name + "_voxels"]
 
 
@@ -278,13 +277,14 @@ def main():
     render_s = time.perf_counter() - start
     summary = list(operators.last_summary)
 
-    # Colour: Spot's texture into a `color` grid; its volume shows it through the add-on's
-    # material (no flat colour set), brightened as show_surface_colour explains.
+    # Colour: Spot's texture into a `color` grid, filled (the add-on's default Fill Interior:
+    # the inside takes its colours from the surface inward); its volume shows it through the
+    # add-on's material (no flat colour set), brightened as show_surface_colour explains.
     shown = [bpy.data.objects[name] for name in ("Bunny", "Suzanne", "Bunny_voxels", "Suzanne_voxels")]
     for obj in shown:
         obj.hide_render = True
     spot = add_textured_spot(args)
-    volume = voxelize_with_colour(spot, args, output)
+    volume = voxelize_with_colour(spot, args, output, fill_interior=True)
     volume.location.x += 2.6
     show_surface_colour(volume)
     cycles = bpy.context.scene.cycles
@@ -297,10 +297,10 @@ def main():
     bpy.ops.render.render(write_still=True)
     render_s += time.perf_counter() - start
 
-    # Sponza's vertex colours the same way, seen from above (its roof is open).
+    # Sponza's vertex colours the same way, as a surface seen from above (its roof is open).
     spot.hide_render = volume.hide_render = True
     sponza = add_vertex_coloured_sponza(args)
-    sponza_volume = voxelize_with_colour(sponza, args, output)
+    sponza_volume = voxelize_with_colour(sponza, args, output, fill_interior=False)
     summary += operators.last_summary
     sponza_volume.location.x += 3.2
     show_surface_colour(sponza_volume)
