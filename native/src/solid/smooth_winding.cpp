@@ -18,6 +18,10 @@ constexpr double kAgree = 0.02;
 constexpr double kMargin = 0.06;
 // The sheets of open edges this many box sides from a box are taken out of its smooth part.
 constexpr double kNearSides = 0.5;
+// A brick's voxels evaluated outright share the clusters far from all of them (one walk of the
+// tree for the box, FastWinding::atBox) when there are at least this many: below, the walk
+// for the box costs more than it saves.
+constexpr std::size_t kSharedFarField = 32;
 // Samples are taken this far above a voxel centre, off any horizontal face through the centre
 // (g is continuous: its value holds at the centre).
 constexpr double kLift = 0.00390625;
@@ -98,7 +102,10 @@ public:
         for (std::size_t n = 0; n < voxels.size(); ++n)
             centres_[n] = {voxels[n][0] + 0.5, voxels[n][1] + 0.5, voxels[n][2] + 0.5};
         out.resize(voxels.size());
-        winding_.atMany(centres_.data(), centres_.size(), out.data());
+        // Enough of them, and one walk of the tree for the box pays (FastWinding::atBox);
+        // the choice depends on the brick alone, never on the threads.
+        if (voxels.size() >= kSharedFarField) winding_.atBox(centres_.data(), centres_.size(), out.data());
+        else winding_.atMany(centres_.data(), centres_.size(), out.data());
     }
 
 private:
