@@ -403,7 +403,7 @@ TEST(SolidWinding, LocalExpansionMatchesTheClustersFieldsPointByPoint) {
 // FastWinding::atBox, a box of points at once (solid/box_winding.cpp), on Sponza (open, large
 // triangles cut into pieces) at 128: against at() point by point and against the exact sum of
 // the triangles' solid angles, in boxes the size of a brick all over the grid. With every
-// cluster opened (beta 1e9) it is the exact sum; at beta 2 its error is that of the fast
+// cluster opened (beta 1e9) it is the exact sum (summed in float); at beta 2 its error is that of the fast
 // winding numbers themselves (within the margin the decisions are tested with) and no larger
 // than at()'s on average.
 TEST(SolidWinding, BoxOfPointsMatchesOneAtATimeAndTheExactSum) {
@@ -435,7 +435,8 @@ TEST(SolidWinding, BoxOfPointsMatchesOneAtATimeAndTheExactSum) {
             const std::vector<solid::Vec3> points = boxOfPoints(12);
             std::vector<double> values(points.size());
             sharp.atBox(points.data(), points.size(), values.data());
-            for (std::size_t n = 0; n < points.size(); ++n) EXPECT_NEAR(values[n], exact(points[n]), 1e-9);
+            // Every triangle near: the float sum of 378k pieces (measured within 5e-8).
+            for (std::size_t n = 0; n < points.size(); ++n) EXPECT_NEAR(values[n], exact(points[n]), 1e-6);
         }
     }
     const solid::FastWinding fast(validated, grid, 2.0);

@@ -40,7 +40,7 @@ double distance(const Vec3& a, const Vec3& b) {
 // Per thread, kept from box to box (no allocation per brick once grown).
 struct BoxScratch {
     LocalExpansion expansion;
-    std::array<std::vector<double>, 9> near;  // the near triangles, coordinate 3 c + k of corner c
+    std::array<std::vector<float>, 9> near;  // the near triangles, coordinate 3 c + k of corner c, from the centre
     std::vector<std::int32_t> small;          // clusters each point walks
     std::vector<std::int32_t> stack;
 };
@@ -85,7 +85,8 @@ void FastWinding::atBox(const Vec3* points, std::size_t count, double* out) cons
                     const Vec3 area{0.5 * (u[1] * v[2] - u[2] * v[1]), 0.5 * (u[2] * v[0] - u[0] * v[2]), 0.5 * (u[0] * v[1] - u[1] * v[0])};
                     expansion.add(centroid, area, nullptr);
                 } else {
-                    for (std::size_t n = 0; n < 9; ++n) scratch.near[n].push_back(triangles_[t][n / 3][n % 3]);
+                    for (std::size_t n = 0; n < 9; ++n)
+                        scratch.near[n].push_back(float(triangles_[t][n / 3][n % 3] - centre[n % 3]));
                 }
             }
         } else if (radius <= rho) {
@@ -95,11 +96,12 @@ void FastWinding::atBox(const Vec3* points, std::size_t count, double* out) cons
             stack.push_back(node.right);
         }
     }
-    TriangleArrays near;
+    FloatTriangleArrays near;
     for (std::size_t n = 0; n < 9; ++n) near.corners[n] = scratch.near[n].data();
     const std::size_t near_count = scratch.near[0].size();
     for (std::size_t i = 0; i < count; ++i) {
-        double sum = near_count > 0 ? solidAngleSum(near, 0, near_count, points[i]) : 0.0;
+        const std::array<float, 3> q{float(points[i][0] - centre[0]), float(points[i][1] - centre[1]), float(points[i][2] - centre[2])};
+        double sum = near_count > 0 ? solidAngleSum(near, near_count, q) : 0.0;
         double expanded = 0;
         for (const std::int32_t id : scratch.small) walk(id, points[i], sum, expanded);
         out[i] = sum + (expanded + expansion.at(points[i])) / kFourPi;
