@@ -127,7 +127,7 @@ private:
     const Column& columnOf(const Int3& p) {
         if (!columns_filled_) {
             const int ni = top_[0] - lo_[0] + 1, nj = top_[1] - lo_[1] + 1, nz = top_[2] - lo_[2] + 1;
-            rays_.columns(lo_[0], lo_[1], ni, nj, columns_);
+            columns_ = columnsOf(rays_, lo_[0], lo_[1], ni, nj);
             for (int n = 0; n < ni * nj; ++n) {
                 int step[10] = {};  // step[k]: crossings below centre k but not below centre k - 1
                 total_[n] = 0;
@@ -154,14 +154,36 @@ private:
     Int3 lo_, top_;
     SmoothWinding::Counters& counters_;
     bool columns_filled_ = false;
-    // The columns' crossings, in storage each thread keeps from brick to brick (no allocation
-    // per brick once it has grown).
-    Column* columns_ = columnStore();
+    // The columns' crossings, in storage each thread keeps from brick to brick.
+    const Column* columns_ = nullptr;
     int below_[9 * 9][9];  // per column, the signed crossings below each of the brick's centres
     int total_[9 * 9];     // per column, C
-    static Column* columnStore() {
-        thread_local Column store[9 * 9];
-        return store;
+    // The crossings of a block of columns are whole lines: the same for every brick of a stack
+    // along z. Each thread keeps the blocks of the last few bricks it decided (its next bricks
+    // are mostly their neighbours: the octree's order), and finds a block there before it
+    // asks the rays (the blocks are the same whichever thread finds them).
+    static const Column* columnsOf(const RayCrossings& rays, int i0, int j0, int ni, int nj) {
+        struct Block {
+            std::array<int, 4> key{-1, -1, -1, -1};
+            std::uint64_t last_used = 0;
+            Column columns[9 * 9];  // no allocation per brick once grown
+        };
+        constexpr int kBlocks = 8;
+        thread_local Block blocks[kBlocks];
+        thread_local std::uint64_t clock = 0;
+        const std::array<int, 4> key{i0, j0, ni, nj};
+        Block* oldest = &blocks[0];
+        for (Block& block : blocks) {
+            if (block.key == key) {
+                block.last_used = ++clock;
+                return block.columns;
+            }
+            if (block.last_used < oldest->last_used) oldest = &block;
+        }
+        rays.columns(i0, j0, ni, nj, oldest->columns);
+        oldest->key = key;
+        oldest->last_used = ++clock;
+        return oldest->columns;
     }
     std::vector<Vec3> centres_;
     double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
