@@ -19,7 +19,8 @@
 // reaches the first voxels of the next bricks, so that its corners lie on the lattice of
 // brick corners, each sampled once for the (up to) eight bricks around it. c comes exactly
 // from the rays at every voxel, and a voxel whose interpolated w lies near 0.5 is evaluated
-// outright. This is a checked interpolation, not a bound: the tests compare it with the
+// outright (a brick's many such voxels together, the clusters far from all of them as one
+// local expansion: FastWinding::atBox, solid/box_winding.cpp). This is a checked interpolation, not a bound: the tests compare it with the
 // brute-force winding number on open meshes.
 #include <array>
 #include <cstdint>
