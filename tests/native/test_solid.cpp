@@ -468,6 +468,80 @@ TEST(SolidWinding, BoxOfPointsMatchesOneAtATimeAndTheExactSum) {
     EXPECT_LT(sum_box, sum_at * 1.1 + 1e-3 * checked);
 }
 
+// Calls one after another on one thread (what a thread keeps from brick to brick, the rays'
+// columns of its last bricks, is keyed by the call): open boxes on the same grid, open at the
+// top, at the bottom, at the top again (the same columns, other crossings). Each against the
+// exact winding number, and the repeated call equal to the first in its voxels and its counts.
+// (This does not catch every stale column: w - c is sampled and interpolated with the same c,
+// so a wrong c mostly costs more evaluations; with the key left out these boxes still passed.)
+TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
+    auto openBox = [](bool open_top) {
+        std::vector<float> positions;
+        std::vector<std::uint32_t> triangles;
+        auto polygon = [&](const std::vector<std::array<float, 3>>& corners) {
+            const auto base = std::uint32_t(positions.size() / 3);
+            for (const auto& c : corners) positions.insert(positions.end(), c.begin(), c.end());
+            for (std::uint32_t k = 1; k + 1 < corners.size(); ++k) triangles.insert(triangles.end(), {base, base + k, base + k + 1});
+        };
+        // [0.2, 0.8] x [0.2, 0.8] x [0.5, 3.5], faces outward, one end left open; two specks
+        // stretch the bounds to [0, 1] x [0, 1] x [0, 4].
+        const float a = 0.2f, b = 0.8f, lo = 0.5f, hi = 3.5f;
+        if (open_top) polygon({{a, a, lo}, {a, b, lo}, {b, b, lo}, {b, a, lo}});
+        else polygon({{a, a, hi}, {b, a, hi}, {b, b, hi}, {a, b, hi}});
+        polygon({{a, a, lo}, {b, a, lo}, {b, a, hi}, {a, a, hi}});
+        polygon({{a, b, lo}, {a, b, hi}, {b, b, hi}, {b, b, lo}});
+        polygon({{a, a, lo}, {a, a, hi}, {a, b, hi}, {a, b, lo}});
+        polygon({{b, a, lo}, {b, b, lo}, {b, b, hi}, {b, a, hi}});
+        polygon({{0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}});
+        polygon({{1, 1, 4}, {0.99f, 1, 4}, {1, 0.99f, 4}});
+        return std::make_pair(positions, triangles);
+    };
+    std::vector<VoxelizeResult> results;
+    for (const bool open_top : {true, false, true}) {
+        const auto [positions, triangles] = openBox(open_top);
+        VoxelizeOptions options;
+        options.mode = Mode::Solid;
+        options.threads = 1;
+        options.grid.resolution = 64;
+        VoxelizeOptions surface_options = options;
+        surface_options.mode = Mode::Conservative;
+        const VoxelizeResult solid = voxelize(test::viewOf(positions, triangles), options);
+        const VoxelizeResult surface = voxelize(test::viewOf(positions, triangles), surface_options);
+        ASSERT_EQ(solid.stats.solid->evaluation, "fast winding numbers");
+        ASSERT_LE(solid.grid.dims[0], 16);
+        ASSERT_LE(solid.grid.dims[1], 16);
+        std::vector<std::array<solid::Vec3, 3>> corners;
+        for (std::size_t t = 0; t < triangles.size(); t += 3) {
+            std::array<solid::Vec3, 3> c;
+            for (int k = 0; k < 3; ++k) {
+                const float* p = &positions[3 * triangles[t + std::size_t(k)]];
+                c[std::size_t(k)] = solid.grid.toVoxel(std::array<double, 3>{p[0], p[1], p[2]});
+            }
+            corners.push_back(c);
+        }
+        int inside = 0, outside = 0, wrong = 0;
+        for (int i = 0; i < solid.grid.dims[0]; ++i)
+            for (int j = 0; j < solid.grid.dims[1]; ++j)
+                for (int k = 0; k < solid.grid.dims[2]; ++k) {
+                    if (surface.occupancy.test(i, j, k)) continue;
+                    const solid::Vec3 q{i + 0.5, j + 0.5, k + 0.5};
+                    double w = 0;
+                    for (const auto& c : corners) w += solid::triangleWinding(c[0], c[1], c[2], q);
+                    if (std::fabs(w - 0.5) < 0.05) continue;
+                    ++(w >= 0.5 ? inside : outside);
+                    wrong += solid.occupancy.test(i, j, k) != (w >= 0.5);
+                }
+        EXPECT_GT(inside, 1000) << open_top;
+        EXPECT_GT(outside, 1000) << open_top;
+        EXPECT_EQ(wrong, 0) << open_top;
+        results.push_back(solid);
+    }
+    const SolidStats &first = *results[0].stats.solid, &again = *results[2].stats.solid;
+    EXPECT_EQ(again.point_evaluations, first.point_evaluations);
+    EXPECT_EQ(again.interpolated_voxels, first.interpolated_voxels);
+    EXPECT_EQ(results[2].stats.voxel_count, results[0].stats.voxel_count);
+}
+
 // An open room (no roof, a few large triangles) with small open quads floating in and around
 // it, so that most bricks are decided from the interpolated smooth part of the winding
 // number: every voxel outside the surface against the exact sum of the triangles' solid

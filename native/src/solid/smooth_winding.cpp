@@ -2,6 +2,7 @@
 #include "solid/smooth_winding.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -33,9 +34,9 @@ using Int3 = std::array<std::int32_t, 3>;
 class Brick {
 public:
     // The voxels [lo, top] (top at most lo + 8).
-    Brick(const FastWinding& winding, const RayCrossings& rays, SmoothWinding::LatticeSamples& lattice,
+    Brick(const FastWinding& winding, const RayCrossings& rays, std::uint64_t run, SmoothWinding::LatticeSamples& lattice,
           const Int3& lo, const Int3& top, SmoothWinding::Counters& counters)
-        : winding_(winding), rays_(rays), lattice_(lattice), lo_(lo), top_(top), counters_(counters) {
+        : winding_(winding), rays_(rays), run_(run), lattice_(lattice), lo_(lo), top_(top), counters_(counters) {
         std::fill(std::begin(samples_), std::end(samples_), NAN);
     }
 
@@ -127,7 +128,7 @@ private:
     const Column& columnOf(const Int3& p) {
         if (!columns_filled_) {
             const int ni = top_[0] - lo_[0] + 1, nj = top_[1] - lo_[1] + 1, nz = top_[2] - lo_[2] + 1;
-            columns_ = columnsOf(rays_, lo_[0], lo_[1], ni, nj);
+            columns_ = columnsOf(rays_, run_, lo_[0], lo_[1], ni, nj);
             for (int n = 0; n < ni * nj; ++n) {
                 int step[10] = {};  // step[k]: crossings below centre k but not below centre k - 1
                 total_[n] = 0;
@@ -150,6 +151,7 @@ private:
 
     const FastWinding& winding_;
     const RayCrossings& rays_;
+    std::uint64_t run_;
     SmoothWinding::LatticeSamples& lattice_;
     Int3 lo_, top_;
     SmoothWinding::Counters& counters_;
@@ -162,8 +164,9 @@ private:
     // along z. Each thread keeps the blocks of the last few bricks it decided (its next bricks
     // are mostly their neighbours: the octree's order), and finds a block there before it
     // asks the rays (the blocks are the same whichever thread finds them).
-    static const Column* columnsOf(const RayCrossings& rays, int i0, int j0, int ni, int nj) {
+    static const Column* columnsOf(const RayCrossings& rays, std::uint64_t run, int i0, int j0, int ni, int nj) {
         struct Block {
+            std::uint64_t run = 0;  // none: runs count from 1
             std::array<int, 4> key{-1, -1, -1, -1};
             std::uint64_t last_used = 0;
             Column columns[9 * 9];  // no allocation per brick once grown
@@ -174,13 +177,14 @@ private:
         const std::array<int, 4> key{i0, j0, ni, nj};
         Block* oldest = &blocks[0];
         for (Block& block : blocks) {
-            if (block.key == key) {
+            if (block.run == run && block.key == key) {
                 block.last_used = ++clock;
                 return block.columns;
             }
             if (block.last_used < oldest->last_used) oldest = &block;
         }
         rays.columns(i0, j0, ni, nj, oldest->columns);
+        oldest->run = run;
         oldest->key = key;
         oldest->last_used = ++clock;
         return oldest->columns;
@@ -191,13 +195,18 @@ private:
 
 }  // namespace
 
+std::uint64_t SmoothWinding::newRun() {
+    static std::atomic<std::uint64_t> runs{0};
+    return ++runs;
+}
+
 void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std::array<std::int32_t, 3>& hi,
                                 const std::uint64_t wanted[8], std::uint64_t inside[8], Counters& counters) const {
     // The brick and, where the grid goes on, the first voxels of the next bricks: the corners
     // are then lattice points, each sampled once for the eight bricks around it.
     Int3 top;
     for (int d = 0; d < 3; ++d) top[d] = hi[d] == lo[d] + 8 && hi[d] < dims_[d] ? hi[d] : hi[d] - 1;
-    Brick brick(winding_, rays_, lattice_, lo, top, counters);
+    Brick brick(winding_, rays_, run_, lattice_, lo, top, counters);
     std::uint64_t done[8] = {};
     auto bit = [](const Int3& p) { return BitGrid::bitInBrick(p[0], p[1], p[2]); };
     auto pending = [&](const Int3& p) {
