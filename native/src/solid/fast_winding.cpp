@@ -181,13 +181,18 @@ void FastWinding::build(std::int32_t id, std::uint32_t first, std::uint32_t coun
 
 double FastWinding::at(const Vec3& q) const {
     if (visits_.empty()) return 0.0;
-    TriangleArrays arrays;
-    for (std::size_t n = 0; n < 9; ++n) arrays.corners[n] = corner_arrays_[n].data();
     double sum = 0;  // solid angle over 4π, exact parts
     double far = 0;  // expansions, times 4π
+    walk(0, q, sum, far);
+    return sum + far / kFourPi;
+}
+
+void FastWinding::walk(std::int32_t root, const Vec3& q, double& sum, double& far) const {
+    TriangleArrays arrays;
+    for (std::size_t n = 0; n < 9; ++n) arrays.corners[n] = corner_arrays_[n].data();
     std::int32_t stack[128];
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = root;
     while (top > 0) {
         const std::size_t id = std::size_t(stack[--top]);
         const Visit& node = visits_[id];
@@ -212,7 +217,6 @@ double FastWinding::at(const Vec3& q) const {
             }
         }
     }
-    return sum + far / kFourPi;
 }
 
 void FastWinding::atMany(const Vec3* points, std::size_t count, double* out) const {

@@ -58,6 +58,17 @@ struct InsideField {
         if (winding) return bound->windingSlope(box, limit);
         return bound->parityMayChange(box) ? HUGE_VAL : 0.0;
     }
+    // Whether a value found at one point could hold over the box at all (holds() below) unless
+    // it lay at least kSureMargin from 0.5 (a winding number of 2 or more, or -1 or less: inside
+    // nested or duplicated shells). Asked before the value is evaluated: near an open mesh's
+    // open edges the bound fails for most regions, and one fast winding number costs far more
+    // than the bound. Where it fails, the region is decided by its parts, as when holds()
+    // fails; it never fails where holds() would hold with a value nearer 0.5 than kSureMargin
+    // (the same bound, asked with a higher limit).
+    static constexpr double kSureMargin = 1.5;
+    bool mayHold(const Box& box, double path) const {
+        return path <= 0 || slope(box, kSureMargin / path) * path < kSureMargin;
+    }
     // Whether a value `v` found at one point holds for every point reachable from it by a path
     // of length `path` inside `box` that never meets the surface.
     bool holds(double v, const Box& box, double path) const {
@@ -172,6 +183,7 @@ private:
             const double far = std::max(c - (box.lo[a] + 0.5), (box.hi[a] - 0.5) - c);
             path2 += far * far;
         }
+        if (!field_.mayHold(box, std::sqrt(path2))) return false;
         const double v = field_.value(centre[0], centre[1], centre[2]);
         ++out.point_evaluations;
         if (!field_.holds(v, box, std::sqrt(path2))) return false;

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solid/float_arctangent.h"
+
 namespace hyvox::solid {
 namespace {
 
@@ -14,27 +16,6 @@ constexpr std::size_t kLanes = 8;  // the sheets are padded to a multiple of thi
 constexpr double kTwoPi = 2.0 * M_PI;
 // The column through a point passing this close to an edge in xy (voxels): see at().
 constexpr float kTie = 1e-3f;
-
-// atan2(y, x) in (-π, π], from atan on [0, 1] by Abramowitz & Stegun 4.4.49 (|error| <= 2e-8).
-// Written with selects, not branches, so that it vectorises.
-inline float arctangent2(float y, float x) {
-    const float abs_x = std::fabs(x), abs_y = std::fabs(y);
-    const float low = std::min(abs_x, abs_y), high = std::max(abs_x, abs_y);
-    const float r = low / std::max(high, 1e-30f);  // (0, 0) gives 0, as std::atan2 does
-    const float s = r * r;
-    float p = 0.0028662257f;
-    p = p * s - 0.0161657367f;
-    p = p * s + 0.0429096138f;
-    p = p * s - 0.0752896400f;
-    p = p * s + 0.1065626393f;
-    p = p * s - 0.1420889944f;
-    p = p * s + 0.1999355085f;
-    p = p * s - 0.3333314528f;
-    float angle = r + r * s * p;
-    angle = abs_y > abs_x ? float(M_PI / 2) - angle : angle;
-    angle = x < 0 ? float(M_PI) - angle : angle;
-    return y < 0 ? -angle : angle;
-}
 
 }  // namespace
 
@@ -98,7 +79,7 @@ double SheetSum::at(const std::array<double, 3>& point) const {
         const float t = std::min(std::max(-(vx * ex[i] + vy * ey[i]) * inverse_length2[i], 0.0f), 1.0f);
         const float dx = vx + t * ex[i], dy = vy + t * ey[i];
         const float poison = dx * dx + dy * dy < kTie * kTie ? NAN : 0.0f;
-        terms[i] = weight[i] * arctangent2(det, denominator) + poison;
+        terms[i] = weight[i] * floats::arctangent2(det, denominator) + poison;
     }
     float lanes[kLanes] = {};
     for (std::size_t i = 0; i < n; i += kLanes)

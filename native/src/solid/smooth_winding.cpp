@@ -2,6 +2,7 @@
 #include "solid/smooth_winding.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -18,6 +19,10 @@ constexpr double kAgree = 0.02;
 constexpr double kMargin = 0.06;
 // The sheets of open edges this many box sides from a box are taken out of its smooth part.
 constexpr double kNearSides = 0.5;
+// A brick's voxels evaluated outright share the clusters far from all of them (one walk of the
+// tree for the box, FastWinding::atBox) when there are at least this many: below, the walk
+// for the box costs more than it saves.
+constexpr std::size_t kSharedFarField = 32;
 // Samples are taken this far above a voxel centre, off any horizontal face through the centre
 // (g is continuous: its value holds at the centre).
 constexpr double kLift = 0.00390625;
@@ -29,9 +34,9 @@ using Int3 = std::array<std::int32_t, 3>;
 class Brick {
 public:
     // The voxels [lo, top] (top at most lo + 8).
-    Brick(const FastWinding& winding, const RayCrossings& rays, SmoothWinding::LatticeSamples& lattice,
+    Brick(const FastWinding& winding, const RayCrossings& rays, std::uint64_t run, SmoothWinding::LatticeSamples& lattice,
           const Int3& lo, const Int3& top, SmoothWinding::Counters& counters)
-        : winding_(winding), rays_(rays), lattice_(lattice), lo_(lo), top_(top), counters_(counters) {
+        : winding_(winding), rays_(rays), run_(run), lattice_(lattice), lo_(lo), top_(top), counters_(counters) {
         std::fill(std::begin(samples_), std::end(samples_), NAN);
     }
 
@@ -98,7 +103,10 @@ public:
         for (std::size_t n = 0; n < voxels.size(); ++n)
             centres_[n] = {voxels[n][0] + 0.5, voxels[n][1] + 0.5, voxels[n][2] + 0.5};
         out.resize(voxels.size());
-        winding_.atMany(centres_.data(), centres_.size(), out.data());
+        // Enough of them, and one walk of the tree for the box pays (FastWinding::atBox);
+        // the choice depends on the brick alone, never on the threads.
+        if (voxels.size() >= kSharedFarField) winding_.atBox(centres_.data(), centres_.size(), out.data());
+        else winding_.atMany(centres_.data(), centres_.size(), out.data());
     }
 
 private:
@@ -120,7 +128,7 @@ private:
     const Column& columnOf(const Int3& p) {
         if (!columns_filled_) {
             const int ni = top_[0] - lo_[0] + 1, nj = top_[1] - lo_[1] + 1, nz = top_[2] - lo_[2] + 1;
-            rays_.columns(lo_[0], lo_[1], ni, nj, columns_);
+            columns_ = columnsOf(rays_, run_, lo_[0], lo_[1], ni, nj);
             for (int n = 0; n < ni * nj; ++n) {
                 int step[10] = {};  // step[k]: crossings below centre k but not below centre k - 1
                 total_[n] = 0;
@@ -143,18 +151,43 @@ private:
 
     const FastWinding& winding_;
     const RayCrossings& rays_;
+    std::uint64_t run_;
     SmoothWinding::LatticeSamples& lattice_;
     Int3 lo_, top_;
     SmoothWinding::Counters& counters_;
     bool columns_filled_ = false;
-    // The columns' crossings, in storage each thread keeps from brick to brick (no allocation
-    // per brick once it has grown).
-    Column* columns_ = columnStore();
+    // The columns' crossings, in storage each thread keeps from brick to brick.
+    const Column* columns_ = nullptr;
     int below_[9 * 9][9];  // per column, the signed crossings below each of the brick's centres
     int total_[9 * 9];     // per column, C
-    static Column* columnStore() {
-        thread_local Column store[9 * 9];
-        return store;
+    // The crossings of a block of columns are whole lines: the same for every brick of a stack
+    // along z. Each thread keeps the blocks of the last few bricks it decided (its next bricks
+    // are mostly their neighbours: the octree's order), and finds a block there before it
+    // asks the rays (the blocks are the same whichever thread finds them).
+    static const Column* columnsOf(const RayCrossings& rays, std::uint64_t run, int i0, int j0, int ni, int nj) {
+        struct Block {
+            std::uint64_t run = 0;  // none: runs count from 1
+            std::array<int, 4> key{-1, -1, -1, -1};
+            std::uint64_t last_used = 0;
+            Column columns[9 * 9];  // no allocation per brick once grown
+        };
+        constexpr int kBlocks = 8;
+        thread_local Block blocks[kBlocks];
+        thread_local std::uint64_t clock = 0;
+        const std::array<int, 4> key{i0, j0, ni, nj};
+        Block* oldest = &blocks[0];
+        for (Block& block : blocks) {
+            if (block.run == run && block.key == key) {
+                block.last_used = ++clock;
+                return block.columns;
+            }
+            if (block.last_used < oldest->last_used) oldest = &block;
+        }
+        rays.columns(i0, j0, ni, nj, oldest->columns);
+        oldest->run = run;
+        oldest->key = key;
+        oldest->last_used = ++clock;
+        return oldest->columns;
     }
     std::vector<Vec3> centres_;
     double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
@@ -162,13 +195,18 @@ private:
 
 }  // namespace
 
+std::uint64_t SmoothWinding::newRun() {
+    static std::atomic<std::uint64_t> runs{0};
+    return ++runs;
+}
+
 void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std::array<std::int32_t, 3>& hi,
                                 const std::uint64_t wanted[8], std::uint64_t inside[8], Counters& counters) const {
     // The brick and, where the grid goes on, the first voxels of the next bricks: the corners
     // are then lattice points, each sampled once for the eight bricks around it.
     Int3 top;
     for (int d = 0; d < 3; ++d) top[d] = hi[d] == lo[d] + 8 && hi[d] < dims_[d] ? hi[d] : hi[d] - 1;
-    Brick brick(winding_, rays_, lattice_, lo, top, counters);
+    Brick brick(winding_, rays_, run_, lattice_, lo, top, counters);
     std::uint64_t done[8] = {};
     auto bit = [](const Int3& p) { return BitGrid::bitInBrick(p[0], p[1], p[2]); };
     auto pending = [&](const Int3& p) {

@@ -19,7 +19,8 @@
 // reaches the first voxels of the next bricks, so that its corners lie on the lattice of
 // brick corners, each sampled once for the (up to) eight bricks around it. c comes exactly
 // from the rays at every voxel, and a voxel whose interpolated w lies near 0.5 is evaluated
-// outright. This is a checked interpolation, not a bound: the tests compare it with the
+// outright (a brick's many such voxels together, the clusters far from all of them as one
+// local expansion: FastWinding::atBox, solid/box_winding.cpp). This is a checked interpolation, not a bound: the tests compare it with the
 // brute-force winding number on open meshes.
 #include <array>
 #include <cstdint>
@@ -53,7 +54,7 @@ public:
     using LatticeSamples = tbb::concurrent_unordered_map<std::uint64_t, double, LatticeHash>;
     SmoothWinding(const FastWinding& winding, const RayCrossings& rays, const GradientBound& bound,
                   const std::array<std::int32_t, 3>& dims)
-        : winding_(winding), rays_(rays), bound_(bound), dims_(dims) {}
+        : winding_(winding), rays_(rays), bound_(bound), dims_(dims), run_(newRun()) {}
     // Sets in `inside` the voxels of `wanted` (a brick's bits) whose winding number is at least
     // 0.5; the brick's voxels inside the grid are [lo, hi).
     void decideBrick(const std::array<std::int32_t, 3>& lo, const std::array<std::int32_t, 3>& hi,
@@ -65,6 +66,10 @@ private:
     const GradientBound& bound_;
     std::array<std::int32_t, 3> dims_;       // the grid's
     mutable LatticeSamples lattice_;         // shared by the threads deciding bricks
+    // Tells this object's rays from another's (an earlier call's) in what the threads keep
+    // from brick to brick: unique in the process, unlike an address.
+    std::uint64_t run_;
+    static std::uint64_t newRun();
 };
 
 }  // namespace hyvox::solid

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solid/float_arctangent.h"
+
 namespace hyvox::solid {
 namespace {
 
@@ -63,6 +65,39 @@ double solidAngleSum(const TriangleArrays& triangles, std::size_t first, std::si
             terms[k] = arctangent2(det, denominator);
         }
         for (std::size_t k = 0; k < n; ++k) sum += terms[k];
+    }
+    return sum / (2.0 * M_PI);  // Ω = 2 atan2(...), over 4π
+}
+
+#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+double solidAngleSum(const FloatTriangleArrays& triangles, std::size_t count, const std::array<float, 3>& q) {
+    const float *ax = triangles.corners[0], *ay = triangles.corners[1], *az = triangles.corners[2], *bx = triangles.corners[3],
+                *by = triangles.corners[4], *bz = triangles.corners[5], *cx = triangles.corners[6], *cy = triangles.corners[7],
+                *cz = triangles.corners[8];
+    const float qx = q[0], qy = q[1], qz = q[2];
+    constexpr std::size_t kChunk = 32;
+    double sum = 0;
+    for (std::size_t start = 0; start < count; start += kChunk) {
+        const std::size_t n = std::min(kChunk, count - start);
+        float terms[kChunk];
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::size_t i = start + k;
+            const float ux = ax[i] - qx, uy = ay[i] - qy, uz = az[i] - qz;
+            const float vx = bx[i] - qx, vy = by[i] - qy, vz = bz[i] - qz;
+            const float wx = cx[i] - qx, wy = cy[i] - qy, wz = cz[i] - qz;
+            const float lu = std::sqrt(ux * ux + uy * uy + uz * uz);
+            const float lv = std::sqrt(vx * vx + vy * vy + vz * vz);
+            const float lw = std::sqrt(wx * wx + wy * wy + wz * wz);
+            const float det = ux * (vy * wz - vz * wy) + uy * (vz * wx - vx * wz) + uz * (vx * wy - vy * wx);
+            const float denominator = lu * lv * lw + (ux * vx + uy * vy + uz * vz) * lw + (vx * wx + vy * wy + vz * wz) * lu +
+                                      (wx * ux + wy * uy + wz * uz) * lv;
+            terms[k] = floats::arctangent2(det, denominator);
+        }
+        float chunk = 0;
+        for (std::size_t k = 0; k < n; ++k) chunk += terms[k];
+        sum += chunk;
     }
     return sum / (2.0 * M_PI);  // Ω = 2 atan2(...), over 4π
 }

@@ -20,4 +20,14 @@ struct TriangleArrays {
 // Σ solid angle / 4π of triangles [first, first + count) seen from q.
 double solidAngleSum(const TriangleArrays& triangles, std::size_t first, std::size_t count, const std::array<double, 3>& q);
 
+// The same in float, twice the lanes, for a box's near triangles (solid/box_winding.cpp):
+// corners and q relative to a point near them all (the box's centre, so that the coordinates
+// are tens of voxels, not thousands), and q at least half a voxel from every triangle (an
+// outright voxel's centre: its box meets no triangle). Each term is then within about 1e-6 of
+// the double one (tests/native/test_solid.cpp compares them); summed in double.
+struct FloatTriangleArrays {
+    std::array<const float*, 9> corners;
+};
+double solidAngleSum(const FloatTriangleArrays& triangles, std::size_t count, const std::array<float, 3>& q);
+
 }  // namespace hyvox::solid
