@@ -24,6 +24,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -98,21 +99,26 @@ Run run(const hyvox::MeshView& mesh, const hyvox::VoxelizeOptions& options) {
     return out;
 }
 
-void require(bool ok) {
-    if (!ok) std::abort();
-}
+// A violated invariant: names it (line and condition) and aborts, which libFuzzer reports.
+#define REQUIRE(condition)                                                                \
+    do {                                                                                  \
+        if (!(condition)) {                                                               \
+            std::fprintf(stderr, "fuzz_solid.cpp:%d: violated: %s\n", __LINE__, #condition); \
+            std::abort();                                                                 \
+        }                                                                                 \
+    } while (false)
 
 // Every tile region covers only tile bricks of the occupancy that have no values one by one,
 // and the values fill every voxel of coords() once.
 void checkAttributeLayout(const Run& r) {
     const hyvox::AttributeGrid& a = r.result.attributes;
     const std::size_t channels = std::size_t(a.channels());
-    require(r.values.size() == r.coords.size() * channels);
+    REQUIRE(r.values.size() == r.coords.size() * channels);
     std::size_t valued_voxels = 0;
     for (const auto& leaf : r.result.occupancy.leaves())
         for (std::uint64_t w : leaf.words) valued_voxels += std::size_t(__builtin_popcountll(w));
     valued_voxels += 512 * a.valued_tile_bricks.size();
-    require(a.values.size() == valued_voxels * channels);
+    REQUIRE(a.values.size() == valued_voxels * channels);
     const hyvox::BrickLayout& bricks = r.result.occupancy.bricks();
     std::vector<std::uint64_t> tile_bricks;
     for (const auto& run : r.result.occupancy.tileRuns())
@@ -126,7 +132,7 @@ void checkAttributeLayout(const Run& r) {
                     covered.push_back(bricks.index(x, y, z));
     }
     std::sort(covered.begin(), covered.end());
-    require(covered == tile_bricks);  // each tile brick once: valued, or in exactly one region
+    REQUIRE(covered == tile_bricks);  // each tile brick once: valued, or in exactly one region
 }
 
 void checkValues(const Run& r, const std::vector<float>& color_lo, const std::vector<float>& color_hi) {
@@ -134,16 +140,16 @@ void checkValues(const Run& r, const std::vector<float>& color_lo, const std::ve
     const std::size_t channels = std::size_t(a.channels());
     for (std::size_t v = 0; v < r.coords.size(); ++v) {
         const float* value = r.values.data() + v * channels;
-        for (std::size_t c = 0; c < channels; ++c) require(std::isfinite(value[c]));
+        for (std::size_t c = 0; c < channels; ++c) REQUIRE(std::isfinite(value[c]));
         if (a.color)
             for (int c = 0; c < (a.alpha ? 4 : 3); ++c) {
                 const double slack = 1e-5 * std::max({1.0, std::fabs(double(color_lo[c])), std::fabs(double(color_hi[c]))});
-                require(value[c] >= color_lo[std::size_t(c)] - slack && value[c] <= color_hi[std::size_t(c)] + slack);
+                REQUIRE(value[c] >= color_lo[std::size_t(c)] - slack && value[c] <= color_hi[std::size_t(c)] + slack);
             }
         if (a.normal) {
             const float* n = value + a.normalOffset();
             const double length = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
-            require(length == 0 || std::fabs(length - 1) < 1e-4);
+            REQUIRE(length == 0 || std::fabs(length - 1) < 1e-4);
         }
     }
 }
@@ -266,15 +272,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // The inside pass may refuse what the surface takes (a vertex beyond the rays' 2^40
     // voxels); the surface pass must not refuse what solid mode takes.
     if (!surface.error.empty()) {
-        require(solid.error == surface.error);
+        REQUIRE(solid.error == surface.error);
         return 0;
     }
     if (!solid.error.empty()) {
-        require(solid.error == "InvalidInput");
+        REQUIRE(solid.error == "InvalidInput");
         return 0;
     }
     const hyvox::GridSpec& grid = solid.result.grid;
-    require(grid.origin == surface.result.grid.origin && grid.voxel_size == surface.result.grid.voxel_size &&
+    REQUIRE(grid.origin == surface.result.grid.origin && grid.voxel_size == surface.result.grid.voxel_size &&
             grid.dims == surface.result.grid.dims);
 
     // The surface is part of the solid, and keeps its values.
@@ -283,9 +289,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::size_t attribute_channels = std::size_t(solid.result.attributes.channels());
     for (std::size_t v = 0; v < surface.coords.size(); ++v) {
         const auto at = solid_index.find(surface.coords[v]);
-        require(at != solid_index.end());
+        REQUIRE(at != solid_index.end());
         for (std::size_t c = 0; c < attribute_channels; ++c)
-            require(solid.values[at->second * attribute_channels + c] == surface.values[v * attribute_channels + c]);
+            REQUIRE(solid.values[at->second * attribute_channels + c] == surface.values[v * attribute_channels + c]);
     }
 
     // Attributes: layout, ranges, finiteness; threads do not change them.
@@ -304,7 +310,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             hyvox::VoxelizeOptions two = options;
             two.threads = 2;
             const Run parallel = run(mesh, two);
-            require(parallel.error.empty() && parallel.coords == solid.coords && parallel.values == solid.values);
+            REQUIRE(parallel.error.empty() && parallel.coords == solid.coords && parallel.values == solid.values);
         }
     }
 
@@ -325,9 +331,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const bool by_rays = stats.evaluation == "ray crossings";
     const hyvox::InsideRule rule = options.solid.inside;
     // auto is the winding rule; rays count it exactly only where every edge's uses cancel.
-    require((rule == hyvox::InsideRule::Parity) == (stats.inside_rule == "parity"));
-    require(!by_rays || rule == hyvox::InsideRule::Parity || rule == hyvox::InsideRule::Auto);
-    if (rule == hyvox::InsideRule::Auto && closed) require(by_rays);
+    REQUIRE((rule == hyvox::InsideRule::Parity) == (stats.inside_rule == "parity"));
+    REQUIRE(!by_rays || rule == hyvox::InsideRule::Parity || rule == hyvox::InsideRule::Auto);
+    if (rule == hyvox::InsideRule::Auto && closed) REQUIRE(by_rays);
     if (rule != hyvox::InsideRule::Parity || closed) {
         std::uint32_t state = 0x9e3779b9u * (sample_seed + 1u);
         auto next = [&](std::int32_t n) {
@@ -342,9 +348,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             if (rule == hyvox::InsideRule::Parity) {
                 const double rounded = std::round(w);
                 if (std::fabs(w - rounded) > 0.05) continue;  // not an integer: rounding lost it
-                require(inside == (std::fmod(std::fabs(rounded), 2.0) == 1.0));
+                REQUIRE(inside == (std::fmod(std::fabs(rounded), 2.0) == 1.0));
             } else if (std::fabs(w - 0.5) >= 0.05) {
-                require(inside == (w >= 0.5));
+                REQUIRE(inside == (w >= 0.5));
             }
         }
     }
@@ -353,8 +359,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         hyvox::VoxelizeOptions automatic = options;
         automatic.solid.inside = hyvox::InsideRule::Auto;
         const Run other = run(mesh, automatic);
-        require(other.error.empty());
-        if (other.result.stats.solid->evaluation != "ray crossings") require(other.coords == solid.coords);
+        REQUIRE(other.error.empty());
+        if (other.result.stats.solid->evaluation != "ray crossings") REQUIRE(other.coords == solid.coords);
     }
     return 0;
 }
