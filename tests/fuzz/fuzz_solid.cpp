@@ -13,8 +13,9 @@
 //  - the solid voxels contain every voxel of the conservative surface of the same grid;
 //  - a few voxel centres outside the surface (so at least half a voxel from every triangle)
 //    against a brute-force double winding number w (|w - 0.5| < 0.05 skipped): auto and
-//    winding say inside iff w >= 0.5 (auto exactly so on a mesh whose edges' uses cancel,
-//    where w is an integer); parity on a closed, consistently oriented mesh says inside iff
+//    winding (by fast winding numbers with beta >= 2, or by ray crossings) say inside iff
+//    w >= 0.5 (exactly so by ray crossings: auto on a mesh whose edges' uses cancel, where w
+//    is an integer); parity on a closed, consistently oriented mesh says inside iff
 //    the integer w is odd (solid/ray_crossings.h);
 //  - auto runs the winding rule on a mesh whose edges do not cancel: the same voxels;
 //  - attributes: one value per voxel of coords(), every value finite, colour channels within
@@ -354,7 +355,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 const double rounded = std::round(w);
                 if (std::fabs(w - rounded) > 0.05) continue;  // not an integer: rounding lost it
                 REQUIRE(inside == (std::fmod(std::fabs(rounded), 2.0) == 1.0));
-            } else if (std::fabs(w - 0.5) >= 0.05) {
+            } else if (std::fabs(w - 0.5) >= 0.05 && (by_rays || options.solid.winding_beta >= 2)) {
+                // Fast winding numbers promise nothing below Barill et al.'s beta = 2 (at the
+                // schema's least, 1, a cluster is expanded from one radius away: 0.07 off
+                // seen, seeds/solid/winding_beta_1_off_by_0.07.bin).
                 REQUIRE(inside == (w >= 0.5));
             }
         }
