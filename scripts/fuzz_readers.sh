@@ -4,9 +4,9 @@
 # (tests/fuzz/: libFuzzer + ASan + UBSan, clang) for a fixed time each and fails on any
 # finding: a crash, a sanitizer report, an exception other than InvalidInput, an
 # out-of-range index, cpu voxels the reference does not explain, solid voxels or attribute
-# values against their oracle (tests/fuzz/fuzz_solid.cpp), a 10 s input or 2 GiB of memory. A finding's input is left in
-# build-fuzz/findings/<target>/; make it a regression case (readers:
-# tests/native/test_io_mesh_strict.cpp) before fixing it.
+# values against their oracle (tests/fuzz/fuzz_solid.cpp), a 10 s input or 2 GiB of memory.
+# A finding's input is left in build-fuzz/findings/<target>/; make it a regression case
+# (readers: tests/native/test_io_mesh_strict.cpp) before fixing it.
 #   FUZZ_SECONDS=600 bash scripts/fuzz_readers.sh   (default: 60 s per reader, 30 s for gzip
 #                                                     and voxelize, 45 s for solid; FUZZ_SECONDS
 #                                                     sets all)
