@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Fuzzes the strict mesh readers, the gzip input and voxelize() (tests/fuzz/: libFuzzer +
-# ASan + UBSan, clang) for a fixed time each and fails on any finding: a crash, a sanitizer
-# report, an exception other than InvalidInput, an out-of-range index, cpu voxels the
-# reference does not explain, a 10 s input or 2 GiB of memory. A finding's input is left in
-# build-fuzz/findings/<target>/; make it a regression case (readers:
-# tests/native/test_io_mesh_strict.cpp) before fixing it.
+# Fuzzes the strict mesh readers, the gzip input, voxelize() and solid mode with attributes
+# (tests/fuzz/: libFuzzer + ASan + UBSan, clang) for a fixed time each and fails on any
+# finding: a crash, a sanitizer report, an exception other than InvalidInput, an
+# out-of-range index, cpu voxels the reference does not explain, solid voxels or attribute
+# values against their oracle (tests/fuzz/fuzz_solid.cpp), a 10 s input or 2 GiB of memory.
+# A finding's input is left in build-fuzz/findings/<target>/; make it a regression case
+# (readers: tests/native/test_io_mesh_strict.cpp) before fixing it.
 #   FUZZ_SECONDS=600 bash scripts/fuzz_readers.sh   (default: 60 s per reader, 30 s for gzip
-#                                                     and voxelize; FUZZ_SECONDS sets all)
+#                                                     and voxelize, 45 s for solid; FUZZ_SECONDS
+#                                                     sets all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="/usr/bin:/bin:$PATH"
@@ -64,10 +66,11 @@ PY
   fi
   fuzz "${format}_reader" "$seconds"
 done
-# The gzip input (with the PLY reader behind it), seeded with the PLY seeds compressed, and
-# voxelize() on random small meshes, cpu against the reference (its own bytes, seeded with
-# the decided findings).
-for target in gzip_input voxelize; do
+# The gzip input (with the PLY reader behind it), seeded with the PLY seeds compressed,
+# voxelize() on random small meshes, cpu against the reference, and solid mode with
+# attributes against a brute-force winding number (their own bytes, seeded with hand-made
+# shapes and the decided findings).
+for target in gzip_input voxelize solid; do
   fresh "$target"
   if [ "$target" = gzip_input ]; then
     python3 - "build-fuzz/corpus/$target" tests/fuzz/seeds/ply/* "$meshes/teapot_utah.ply" <<'PY'
@@ -79,6 +82,8 @@ PY
   fi
   # Decided findings replay first (tests/fuzz/findings/README.md).
   if [ -d "tests/fuzz/seeds/$target" ]; then cp "tests/fuzz/seeds/$target"/* "build-fuzz/corpus/$target/"; fi
-  fuzz "$target" "${FUZZ_SECONDS:-30}"
+  default_seconds=30
+  if [ "$target" = solid ]; then default_seconds=45; fi
+  fuzz "$target" "${FUZZ_SECONDS:-$default_seconds}"
 done
 echo "fuzz_readers: no findings"

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "hyvox/sparse_grid.h"
@@ -157,6 +158,53 @@ TEST(SolidRays, SharedEdgesAndVerticesOnRaysCountOnce) {
                     checked_on_corner_rays += (i == 8 || j == 8);
                 }
         EXPECT_GT(checked_on_corner_rays, 50);  // voxels whose ray runs through an edge or corner
+    }
+}
+
+// fuzz_solid's first finding (tests/fuzz/seeds/solid/degenerate_needle_past_the_rays.bin): a
+// degenerate triangle (no area: validate() skips it) may reach far past the grid, which only
+// the usable triangles bound. The rays refused the whole mesh for its far vertex ("more than
+// 2^40 voxels from the grid") under parity and auto, while winding took it. Every rule now
+// fills the octahedron as without the needle, whether the needle is open (three boundary
+// edges) or doubled back on itself (every edge used once each way: auto counts crossings).
+TEST(SolidRays, DegenerateNeedleFarPastTheGridIsNoReasonToRefuse) {
+    for (const bool doubled : {false, true}) {
+        Octahedron oct;
+        const std::uint32_t near = std::uint32_t(oct.positions.size() / 3);
+        const float y = float(oct.c), z = float(oct.c);
+        oct.positions.insert(oct.positions.end(), {float(oct.c + oct.r + 1), y, z, 1e30f, y, z});
+        oct.triangles.insert(oct.triangles.end(), {0, near, near + 1});  // collinear along x
+        if (doubled) oct.triangles.insert(oct.triangles.end(), {0, near + 1, near});
+        for (const InsideRule rule : {InsideRule::Parity, InsideRule::Auto, InsideRule::Winding}) {
+            SCOPED_TRACE(std::string(toString(rule)) + (doubled ? ", doubled needle" : ", open needle"));
+            VoxelizeOptions solid;
+            solid.mode = Mode::Solid;
+            solid.solid.inside = rule;
+            solid.grid.resolution = 12;
+            solid.grid.padding = 1;
+            VoxelizeOptions surface = solid;
+            surface.mode = Mode::Conservative;
+            const auto view = test::viewOf(oct.positions, oct.triangles);
+            const VoxelizeResult filled = voxelize(view, solid);
+            const VoxelizeResult shell = voxelize(view, surface);
+            ASSERT_EQ(filled.stats.triangles_degenerate, doubled ? 2u : 1u);
+            ASSERT_EQ(filled.stats.solid->boundary_edges, doubled ? 0u : 3u);
+            const GridSpec& grid = filled.grid;
+            int inside = 0;
+            for (int i = 0; i < grid.dims[0]; ++i)
+                for (int j = 0; j < grid.dims[1]; ++j)
+                    for (int k = 0; k < grid.dims[2]; ++k) {
+                        if (shell.occupancy.test(i, j, k)) {
+                            ASSERT_TRUE(filled.occupancy.test(i, j, k));
+                            continue;
+                        }
+                        const auto p = grid.voxelCentre(i, j, k);
+                        const bool expected = std::fabs(p[0] - oct.c) + std::fabs(p[1] - oct.c) + std::fabs(p[2] - oct.c) < oct.r;
+                        ASSERT_EQ(filled.occupancy.test(i, j, k), expected) << i << "," << j << "," << k;
+                        inside += expected;
+                    }
+            EXPECT_GT(inside, 50);
+        }
     }
 }
 

@@ -21,6 +21,15 @@ std::int64_t snap(double voxel) {
     return std::llround(voxel * kScale);
 }
 
+// Whether snap() takes every corner of triangle t.
+bool snappable(const ValidatedMesh& mesh, std::uint32_t t, const GridSpec& grid) {
+    for (int c = 0; c < 3; ++c) {
+        const std::array<double, 3> p = grid.toVoxel(mesh.vertex(t, c));
+        if (!(std::fabs(p[0]) < kLimit && std::fabs(p[1]) < kLimit)) return false;
+    }
+    return true;
+}
+
 // Twice the signed area of (u, v, p) in xy, exactly.
 Wide orient(std::int64_t ux, std::int64_t uy, std::int64_t vx, std::int64_t vy, std::int64_t px, std::int64_t py) {
     return Wide(vx - ux) * Wide(py - uy) - Wide(vy - uy) * Wide(px - ux);
@@ -59,7 +68,14 @@ RayCrossings::RayCrossings(const ValidatedMesh& mesh, const GridSpec& grid) {
     const std::int64_t grid_y = std::int64_t(grid.dims[1]) << kFractionBits;
     // Every triangle, the zero-area ones included: the closure check counts their edges, and
     // snapped they may cover a sliver of the plane that closes the count.
+    std::size_t next_usable = 0;  // mesh.usable is ascending
     for (std::size_t t = 0; t < mesh.view.triangle_count; ++t) {
+        const bool usable = next_usable < mesh.usable.size() && mesh.usable[next_usable] == t;
+        next_usable += usable ? 1 : 0;
+        // The grid bounds only the usable triangles' vertices: a degenerate one may reach far
+        // past it (a needle to 1e30). Past the snapping's range it is left out rather than the
+        // mesh refused: it has no area (a usable triangle at that vertex is refused in its turn).
+        if (!usable && !snappable(mesh, std::uint32_t(t), grid)) continue;
         Triangle tri{};
         const std::uint32_t* corners = mesh.view.triangles + 3 * t;
         for (int c = 0; c < 3; ++c) {
