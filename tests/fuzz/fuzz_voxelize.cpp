@@ -22,28 +22,14 @@
 #include <string>
 #include <vector>
 
+#include "fuzz_bytes.h"
 #include "hyvox/errors.h"
 #include "hyvox/voxelize.h"
 #include "reference/reference_overlap.h"
 
 namespace {
 
-class Bytes {
-public:
-    Bytes(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
-    template <typename T>
-    T take() {
-        T value{};
-        const std::size_t n = std::min(sizeof(T), size_ - std::min(size_, at_));
-        if (n) std::memcpy(&value, data_ + at_, n);
-        at_ += sizeof(T);
-        return value;
-    }
-
-private:
-    const std::uint8_t* data_;
-    std::size_t size_, at_ = 0;
-};
+using hyvox::fuzz::Bytes;
 
 // "" when the run succeeded (its voxels in `coords`), else the kind of error.
 using Coords = std::vector<std::array<std::int32_t, 3>>;

@@ -32,6 +32,19 @@ inline double arctangent2(double y, double x) {
     return y < 0 ? -r : r;
 }
 
+// tan(Ω/2) of the triangle (a, b, c) seen from q as the pair (y, x) whose atan2 is Ω/2 (Van
+// Oosterom & Strackee), from the corners relative to q: u = a - q, v = b - q, w = c - q. One
+// formula for both precisions; inline, so each loop below still vectorises.
+template <typename Real>
+inline void halfSolidAngle(Real ux, Real uy, Real uz, Real vx, Real vy, Real vz, Real wx, Real wy, Real wz, Real& y,
+                           Real& x) {
+    const Real lu = std::sqrt(ux * ux + uy * uy + uz * uz);
+    const Real lv = std::sqrt(vx * vx + vy * vy + vz * vz);
+    const Real lw = std::sqrt(wx * wx + wy * wy + wz * wz);
+    y = ux * (vy * wz - vz * wy) + uy * (vz * wx - vx * wz) + uz * (vx * wy - vy * wx);
+    x = lu * lv * lw + (ux * vx + uy * vy + uz * vz) * lw + (vx * wx + vy * wy + vz * wz) * lu + (wx * ux + wy * uy + wz * uz) * lv;
+}
+
 }  // namespace
 
 // An AVX2 copy where the platform dispatches by processor (GCC; see sheet_sum.cpp); no FMA,
@@ -53,16 +66,10 @@ double solidAngleSum(const TriangleArrays& triangles, std::size_t first, std::si
         double terms[kChunk];
         for (std::size_t k = 0; k < n; ++k) {
             const std::size_t i = start + k;
-            const double ux = ax[i] - qx, uy = ay[i] - qy, uz = az[i] - qz;
-            const double vx = bx[i] - qx, vy = by[i] - qy, vz = bz[i] - qz;
-            const double wx = cx[i] - qx, wy = cy[i] - qy, wz = cz[i] - qz;
-            const double lu = std::sqrt(ux * ux + uy * uy + uz * uz);
-            const double lv = std::sqrt(vx * vx + vy * vy + vz * vz);
-            const double lw = std::sqrt(wx * wx + wy * wy + wz * wz);
-            const double det = ux * (vy * wz - vz * wy) + uy * (vz * wx - vx * wz) + uz * (vx * wy - vy * wx);
-            const double denominator = lu * lv * lw + (ux * vx + uy * vy + uz * vz) * lw + (vx * wx + vy * wy + vz * wz) * lu +
-                                       (wx * ux + wy * uy + wz * uz) * lv;
-            terms[k] = arctangent2(det, denominator);
+            double y, x;
+            halfSolidAngle(ax[i] - qx, ay[i] - qy, az[i] - qz, bx[i] - qx, by[i] - qy, bz[i] - qz, cx[i] - qx, cy[i] - qy,
+                           cz[i] - qz, y, x);
+            terms[k] = arctangent2(y, x);
         }
         for (std::size_t k = 0; k < n; ++k) sum += terms[k];
     }
@@ -84,16 +91,10 @@ double solidAngleSum(const FloatTriangleArrays& triangles, std::size_t count, co
         float terms[kChunk];
         for (std::size_t k = 0; k < n; ++k) {
             const std::size_t i = start + k;
-            const float ux = ax[i] - qx, uy = ay[i] - qy, uz = az[i] - qz;
-            const float vx = bx[i] - qx, vy = by[i] - qy, vz = bz[i] - qz;
-            const float wx = cx[i] - qx, wy = cy[i] - qy, wz = cz[i] - qz;
-            const float lu = std::sqrt(ux * ux + uy * uy + uz * uz);
-            const float lv = std::sqrt(vx * vx + vy * vy + vz * vz);
-            const float lw = std::sqrt(wx * wx + wy * wy + wz * wz);
-            const float det = ux * (vy * wz - vz * wy) + uy * (vz * wx - vx * wz) + uz * (vx * wy - vy * wx);
-            const float denominator = lu * lv * lw + (ux * vx + uy * vy + uz * vz) * lw + (vx * wx + vy * wy + vz * wz) * lu +
-                                      (wx * ux + wy * uy + wz * uz) * lv;
-            terms[k] = floats::arctangent2(det, denominator);
+            float y, x;
+            halfSolidAngle(ax[i] - qx, ay[i] - qy, az[i] - qz, bx[i] - qx, by[i] - qy, bz[i] - qz, cx[i] - qx, cy[i] - qy,
+                           cz[i] - qz, y, x);
+            terms[k] = floats::arctangent2(y, x);
         }
         float chunk = 0;
         for (std::size_t k = 0; k < n; ++k) chunk += terms[k];
