@@ -20,6 +20,8 @@ namespace hyvox {
 class BitGrid {
 public:
     static constexpr int kWordsPerBrick = 8;  // 512 bits
+    // The words of a brick whose 512 voxels are all set (a tile brick written as a leaf).
+    static constexpr std::uint64_t kFullBrick[kWordsPerBrick] = {~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull};
 
     BitGrid() = default;
     explicit BitGrid(std::array<std::int32_t, 3> dims);

@@ -63,6 +63,8 @@ public:
     void finish();
     // Whether brick (bx,by,bz) lies wholly inside the grid (only those may be tiles).
     bool brickWhole(std::uint64_t brick) const;
+    // Whether the (finished) grid holds `brick` as part of a tile.
+    bool inTile(std::uint64_t brick) const;
 
     bool inside(int i, int j, int k) const {
         return i >= 0 && j >= 0 && k >= 0 && i < dims_[0] && j < dims_[1] && k < dims_[2];
@@ -81,7 +83,6 @@ public:
 
 private:
     const Leaf* find(std::uint64_t brick) const;
-    bool inTile(std::uint64_t brick) const;
     void requireFinished() const;
 
     std::array<std::int32_t, 3> dims_{0, 0, 0};

@@ -348,14 +348,8 @@ AttributeGrid valueInside(const SparseGrid& surface, const AttributeGrid& surfac
     const std::vector<ValuedBrick> from = surfaceBricks(surface, surface_values);
 
     // Whole bricks of the solid that hold surface voxels keep their voxels' values.
-    auto isSolidTile = [&](std::uint64_t b) {
-        const auto& runs = solid.tileRuns();
-        const auto it = std::upper_bound(runs.begin(), runs.end(), b,
-                                         [](std::uint64_t x, const SparseGrid::TileRun& run) { return x < run.begin; });
-        return it != runs.begin() && b < std::prev(it)->end;
-    };
     for (const ValuedBrick& b : from)
-        if (isSolidTile(b.brick)) out.valued_tile_bricks.push_back(b.brick);
+        if (solid.inTile(b.brick)) out.valued_tile_bricks.push_back(b.brick);
 
     LeafVoxels leaf;
     leaf.layout = solid.bricks();

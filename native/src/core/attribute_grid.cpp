@@ -8,8 +8,6 @@
 namespace hyvox {
 namespace {
 
-constexpr std::uint64_t kFullMask[BitGrid::kWordsPerBrick] = {~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull};
-
 std::size_t popcount(const std::uint64_t* mask) {
     std::size_t n = 0;
     for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) n += std::size_t(__builtin_popcountll(mask[w]));
@@ -27,7 +25,7 @@ std::vector<ValuedBrick> valuedBricks(const SparseGrid& occupancy, const Attribu
     while (l < leaves.size() || t < tiles.size()) {
         const bool leaf = t == tiles.size() || (l < leaves.size() && leaves[l].brick < tiles[t]);
         const ValuedBrick brick = leaf ? ValuedBrick{leaves[l].brick, leaves[l].words, first}
-                                       : ValuedBrick{tiles[t], kFullMask, first};
+                                       : ValuedBrick{tiles[t], BitGrid::kFullBrick, first};
         leaf ? ++l : ++t;
         first += popcount(brick.mask);
         out.push_back(brick);

@@ -523,8 +523,6 @@ VdbGrid resultDensityGrid(const VoxelizeResult& result) {
     VdbGrid grid = densityGrid(result.occupancy);
     const std::vector<std::uint64_t>& valued = result.attributes.valued_tile_bricks;
     if (valued.empty()) return grid;
-    static constexpr std::uint64_t kFullMask[BitGrid::kWordsPerBrick] = {~0ull, ~0ull, ~0ull, ~0ull,
-                                                                          ~0ull, ~0ull, ~0ull, ~0ull};
     const BrickLayout& bricks = result.occupancy.bricks();
     auto brickOf = [&](const std::array<std::int32_t, 3>& origin) {
         return bricks.index(origin[0] / BrickLayout::kSide, origin[1] / BrickLayout::kSide, origin[2] / BrickLayout::kSide);
@@ -532,7 +530,7 @@ VdbGrid resultDensityGrid(const VoxelizeResult& result) {
     std::vector<VdbTile> tiles;
     for (const VdbTile& tile : grid.tiles) {
         if (std::binary_search(valued.begin(), valued.end(), std::uint64_t(brickOf(tile.origin)))) {
-            grid.leaves.push_back({tile.origin, kFullMask});
+            grid.leaves.push_back({tile.origin, BitGrid::kFullBrick});
         } else {
             tiles.push_back(tile);
         }

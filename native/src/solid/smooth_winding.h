@@ -20,8 +20,9 @@
 // brick corners, each sampled once for the (up to) eight bricks around it. c comes exactly
 // from the rays at every voxel, and a voxel whose interpolated w lies near 0.5 is evaluated
 // outright (a brick's many such voxels together, the clusters far from all of them as one
-// local expansion: FastWinding::atBox, solid/box_winding.cpp). This is a checked interpolation, not a bound: the tests compare it with the
-// brute-force winding number on open meshes.
+// local expansion: FastWinding::atBox, solid/box_winding.cpp). This is a checked
+// interpolation, not a bound: the tests compare it with the brute-force winding number on
+// open meshes.
 #include <array>
 #include <cstdint>
 
