@@ -32,21 +32,33 @@ constexpr int kRowsPerTask = 8;
 constexpr std::size_t kTrianglesPerChunk = 4096;
 constexpr std::size_t kPrefetchAhead = 8;
 
-// Every vertex's cells (vertex_cells.h), computed once each in parallel, or null when the
-// tile's triangles are too few for that to pay (a closed mesh has about two triangles per
-// vertex; a tile of a large grid holds a few of the mesh's triangles).
-std::unique_ptr<cpu::VertexCell[]> vertexCells(const ValidatedMesh& mesh, const GridSpec& spec) {
+// Every vertex's cells (vertex_cells.h) and voxel-space position, computed once each in
+// parallel, or none when the tile's triangles are too few for that to pay (a closed mesh has
+// about two triangles per vertex; a tile of a large grid holds a few of the mesh's triangles).
+// The positions are the very values spec.toVoxel gives per corner (three divisions each, and
+// most triangles would repeat them for vertices their neighbours share).
+struct VertexCache {
+    std::unique_ptr<cpu::VertexCell[]> cells;
+    std::unique_ptr<std::array<double, 3>[]> voxel;
+    explicit operator bool() const { return bool(cells); }
+};
+
+VertexCache vertexCache(const ValidatedMesh& mesh, const GridSpec& spec) {
     const std::size_t n = mesh.view.vertex_count;
-    if (2 * n > 3 * mesh.usable.size()) return nullptr;
-    std::unique_ptr<cpu::VertexCell[]> cells(new cpu::VertexCell[n]);
-    adviseHugePages(cells.get(), n * sizeof(cells[0]));
+    VertexCache cache;
+    if (2 * n > 3 * mesh.usable.size()) return cache;
+    cache.cells.reset(new cpu::VertexCell[n]);
+    cache.voxel.reset(new std::array<double, 3>[n]);
+    adviseHugePages(cache.cells.get(), n * sizeof(cache.cells[0]));
+    adviseHugePages(cache.voxel.get(), n * sizeof(cache.voxel[0]));
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t v = r.begin(); v != r.end(); ++v) {
             const float* p = mesh.view.positions + 3 * v;
-            cells[v] = cpu::vertexCell(spec.toVoxel(std::array<float, 3>{p[0], p[1], p[2]}));
+            cache.voxel[v] = spec.toVoxel(std::array<float, 3>{p[0], p[1], p[2]});
+            cache.cells[v] = cpu::vertexCell(cache.voxel[v]);
         }
     });
-    return cells;
+    return cache;
 }
 
 // At most 3 candidates along each axis (the small triangles of rasterize_small.h): those are
@@ -82,7 +94,9 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     const int threads = job.options.threads > 0 ? job.options.threads : tbb::task_arena::automatic;
     tbb::task_arena arena(threads);
     arena.execute([&] {
-        const std::unique_ptr<cpu::VertexCell[]> cells = vertexCells(mesh, spec);
+        const VertexCache cache = vertexCache(mesh, spec);
+        const cpu::VertexCell* cells = cache.cells.get();
+        const std::array<double, 3>* voxel = cache.voxel.get();
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, usable.size(), kTrianglesPerChunk),
             [&](const tbb::blocked_range<std::size_t>& chunk) {
@@ -100,17 +114,17 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                             for (int k = lo[2]; k <= hi[2]; ++k) marker.mark(i, j, k);
                 };
                 // The factored test of one triangle whose candidate range is not outside.
-                auto rasterize = [&](const std::array<std::array<double, 3>, 3>& voxel_corners,
-                                     const cpu::CandidateRange& range) {
+                auto rasterize = [&](const std::array<double, 3>& c0, const std::array<double, 3>& c1,
+                                     const std::array<double, 3>& c2, const cpu::CandidateRange& range) {
                     cpu::TriangleSetup t;
-                    const cpu::SetupKind kind = cpu::setupTriangle(voxel_corners, mode, range, t);
+                    const cpu::SetupKind kind = cpu::setupTriangle(c0, c1, c2, mode, range, t);
                     if (kind == cpu::SetupKind::Outside) return;
                     if (kind == cpu::SetupKind::AllCandidates) {
                         markAll(t.lo, t.hi);
                         return;
                     }
                     if (kind == cpu::SetupKind::Planeless) {
-                        cpu::rasterizePlaneless(voxel_corners, mode, t.lo, t.hi, marker);
+                        cpu::rasterizePlaneless({c0, c1, c2}, mode, t.lo, t.hi, marker);
                         return;
                     }
                     if (cpu::fitsSmallPath(t)) {
@@ -144,14 +158,14 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                     ++skipped[kind];
                     return true;
                 };
-                if (!cells) {
+                if (!cache) {
                     for (std::size_t n = chunk.begin(); n != chunk.end(); ++n) {
                         const auto voxel_corners = corners(usable[n]);
                         const cpu::CandidateRange range = cpu::candidateRange(voxel_corners, offset, last);
                         if (range.outside()) continue;
                         // Every candidate set already: nothing to add (mark_voxels.h).
                         if (coveredAlready(range)) continue;
-                        rasterize(voxel_corners, range);
+                        rasterize(voxel_corners[0], voxel_corners[1], voxel_corners[2], range);
                     }
                     already_covered.fetch_add(skipped[0] + skipped[1], std::memory_order_relaxed);
                     done.fetch_add(chunk.size(), std::memory_order_relaxed);
@@ -194,13 +208,14 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
                         // Their corners' coordinates are not cached yet: requested a few ahead.
                         if (d + kPrefetchAhead < deferred_count) {
                             const std::uint32_t* ahead = mesh.view.triangles + 3 * std::size_t(usable[block + deferred[d + kPrefetchAhead]]);
-                            for (int c = 0; c < 3; ++c) __builtin_prefetch(mesh.view.positions + 3 * std::size_t(ahead[c]));
+                            for (int c = 0; c < 3; ++c) __builtin_prefetch(&voxel[ahead[c]]);
                         }
                         const std::size_t n = block + deferred[d];
                         const cpu::CandidateRange range = cellRangeOf(n);
                         // Every candidate set already: nothing to add (mark_voxels.h).
                         if (coveredAlready(range)) continue;
-                        rasterize(corners(usable[n]), range);
+                        const std::uint32_t* idx = mesh.view.triangles + 3 * std::size_t(usable[n]);
+                        rasterize(voxel[idx[0]], voxel[idx[1]], voxel[idx[2]], range);
                     }
                 }
                 already_covered.fetch_add(skipped[0] + skipped[1], std::memory_order_relaxed);
