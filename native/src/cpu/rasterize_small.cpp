@@ -40,10 +40,11 @@ __attribute__((always_inline)) inline Ints ceilToInts(Doubles x) {
 // The NU x NV x NW candidates from t.lo; lane l of step k holds the column (du, dv) with
 // du * NV + dv = 4k + l of the dominant plane, and the depth loop runs over its NW voxels.
 template <int NU, int NV, int NW>
-__attribute__((always_inline)) inline std::uint32_t acceptedFixed(const TriangleSetup& t) {
+__attribute__((always_inline)) inline std::uint64_t acceptedFixed(const TriangleSetup& t) {
     constexpr int kColumns = NU * NV;
     const double nu = t.normal[0], nv = t.normal[1], inv_nw = 1.0 / t.normal[2];
     const double ou = t.origin[0], ov = t.origin[1], ow = t.origin[2];
+    static_assert(NU <= kSmallSide && NV <= kSmallSide && NW <= kSmallSide, "bits of a small triangle");
     Masks accepted{0, 0, 0, 0};
     for (int k = 0; 4 * k < kColumns; ++k) {
         auto du = [&](int l) { return 4 * k + l < kColumns ? (4 * k + l) / NV : 0; };
@@ -76,11 +77,11 @@ __attribute__((always_inline)) inline std::uint32_t acceptedFixed(const Triangle
                 inside &= splat(t.vw[i].nb * (pwd - t.vw[i].vb)) + vw_row[i] >= splat(0.0);
                 inside &= splat(t.wu[i].na * (pwd - t.wu[i].va)) + wu_col[i] >= splat(0.0);
             }
-            auto bit = [&](int l) { return std::int64_t(1) << ((du(l) * 3 + dv(l)) * 3 + dw); };
+            auto bit = [&](int l) { return std::int64_t(1) << smallCandidateBit(du(l), dv(l), dw); };
             accepted |= inside & Masks{bit(0), bit(1), bit(2), bit(3)};
         }
     }
-    return std::uint32_t(accepted[0] | accepted[1] | accepted[2] | accepted[3]);
+    return std::uint64_t(accepted[0] | accepted[1] | accepted[2] | accepted[3]);
 }
 
 }  // namespace
@@ -91,17 +92,19 @@ __attribute__((always_inline)) inline std::uint32_t acceptedFixed(const Triangle
 #if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("avx2", "default")))
 #endif
-std::uint32_t acceptedSmallCandidates(const TriangleSetup& t) {
-    // One instance per candidate count along each axis (1 to 3): a triangle that lies within
+std::uint64_t acceptedSmallCandidates(const TriangleSetup& t) {
+    // One instance per candidate count along each axis (1 to 4): a triangle that lies within
     // one voxel's range along one axis tests half the voxels a 2 x 2 x 2 one does.
 #define HYVOX_SIZE(NU, NV, NW) \
-    case ((NU) - 1) * 9 + ((NV) - 1) * 3 + (NW) - 1: return acceptedFixed<NU, NV, NW>(t);
-#define HYVOX_SIZES_W(NU, NV) HYVOX_SIZE(NU, NV, 1) HYVOX_SIZE(NU, NV, 2) HYVOX_SIZE(NU, NV, 3)
-#define HYVOX_SIZES_VW(NU) HYVOX_SIZES_W(NU, 1) HYVOX_SIZES_W(NU, 2) HYVOX_SIZES_W(NU, 3)
-    switch ((t.hi[0] - t.lo[0]) * 9 + (t.hi[1] - t.lo[1]) * 3 + (t.hi[2] - t.lo[2])) {
+    case smallCandidateBit((NU) - 1, (NV) - 1, (NW) - 1): return acceptedFixed<NU, NV, NW>(t);
+#define HYVOX_SIZES_W(NU, NV) HYVOX_SIZE(NU, NV, 1) HYVOX_SIZE(NU, NV, 2) HYVOX_SIZE(NU, NV, 3) HYVOX_SIZE(NU, NV, 4)
+#define HYVOX_SIZES_VW(NU) HYVOX_SIZES_W(NU, 1) HYVOX_SIZES_W(NU, 2) HYVOX_SIZES_W(NU, 3) HYVOX_SIZES_W(NU, 4)
+    static_assert(kSmallSide == 4, "one case per size below");
+    switch (smallCandidateBit(t.hi[0] - t.lo[0], t.hi[1] - t.lo[1], t.hi[2] - t.lo[2])) {
         HYVOX_SIZES_VW(1)
         HYVOX_SIZES_VW(2)
         HYVOX_SIZES_VW(3)
+        HYVOX_SIZES_VW(4)
         default: return 0;  // not a small triangle (fitsSmallPath)
     }
 #undef HYVOX_SIZES_VW
