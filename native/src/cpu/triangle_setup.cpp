@@ -53,7 +53,7 @@ inline void setupProjection(const Corner3* const p[3], double winding, int a, in
 // read at a constant offset (a swizzle by a run-time index went through the stack, and the
 // reloads stalled on the stores they overlapped).
 template <bool Thin, int W>
-SetupKind setupAlong(const Corner3* const c[3], const Corner3& n, const CandidateRange& range, TriangleSetup& out) {
+__attribute__((always_inline)) inline SetupKind setupAlong(const Corner3* const c[3], const Corner3& n, const CandidateRange& range, TriangleSetup& out) {
     constexpr int u = (W + 1) % 3, v = (W + 2) % 3, w = W;
     const std::array<int, 3>& lo = range.lo;
     const std::array<int, 3>& hi = range.hi;
@@ -96,7 +96,7 @@ SetupKind setupAlong(const Corner3* const c[3], const Corner3& n, const Candidat
 }
 
 template <bool Thin>
-SetupKind setup(const Corner3& c0, const Corner3& c1, const Corner3& c2, const CandidateRange& range,
+__attribute__((always_inline)) inline SetupKind setup(const Corner3& c0, const Corner3& c1, const Corner3& c2, const CandidateRange& range,
                 TriangleSetup& out) {
     // Within one voxel's range along two axes, the triangle lies in one column of voxels;
     // its extent along the third axis is an interval meeting every candidate's range, so
@@ -170,6 +170,9 @@ SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mod
     return setupTriangle(corners[0], corners[1], corners[2], mode, range, out);
 }
 
+#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 SetupKind setupTriangle(const Corner3& c0, const Corner3& c1, const Corner3& c2, Mode mode, const CandidateRange& range,
                         TriangleSetup& out) {
     return mode == Mode::Thin ? setup<true>(c0, c1, c2, range, out) : setup<false>(c0, c1, c2, range, out);
