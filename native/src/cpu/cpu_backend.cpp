@@ -84,7 +84,7 @@ struct TileWork {
     BitGrid& grid;
     std::array<std::int32_t, 3> offset, last;
     Mode mode;
-    const cpu::VertexCell* cells;          // null: no vertex cache (see vertexCache)
+    const cpu::VertexCell* cells;  // null: no vertex cache (see vertexCache)
     const std::array<double, 3>* voxel;
     std::atomic<std::size_t>& done;
     std::atomic<std::uint64_t>& split_triangles;
@@ -218,7 +218,8 @@ void voxelizeChunk(const TileWork& work, std::size_t begin, std::size_t end) {
         for (std::size_t d = 0; d != deferred_count; ++d) {
             // Their corners' coordinates are not cached yet: requested a few ahead.
             if (d + kPrefetchAhead < deferred_count) {
-                const std::uint32_t* ahead = mesh.view.triangles + 3 * std::size_t(usable[block + deferred[d + kPrefetchAhead]]);
+                const std::uint32_t* ahead =
+                    mesh.view.triangles + 3 * std::size_t(usable[block + deferred[d + kPrefetchAhead]]);
                 for (int c = 0; c < 3; ++c) __builtin_prefetch(&voxel[ahead[c]]);
             }
             const std::size_t n = block + deferred[d];
@@ -252,8 +253,8 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     tbb::task_arena arena(threads);
     arena.execute([&] {
         const VertexCache cache = vertexCache(mesh, spec);
-        const TileWork work{job,   mesh, spec, grid, offset, last, mode, cache.cells.get(), cache.voxel.get(),
-                            done,  split_triangles, already_covered};
+        const TileWork work{job, mesh, spec, grid, offset, last, mode, cache.cells.get(), cache.voxel.get(),
+                            done, split_triangles, already_covered};
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, usable.size(), kTrianglesPerChunk),
             [&](const tbb::blocked_range<std::size_t>& chunk) { voxelizeChunk(work, chunk.begin(), chunk.end()); });

@@ -21,7 +21,9 @@ typedef std::int32_t Ints __attribute__((vector_size(16)));
 
 __attribute__((always_inline)) inline Doubles splat(double x) { return Doubles{x, x, x, x}; }
 __attribute__((always_inline)) inline Ints splatInt(int x) { return Ints{x, x, x, x}; }
-__attribute__((always_inline)) inline Doubles select(Masks m, Doubles yes, Doubles no) { return Doubles((m & Masks(yes)) | (~m & Masks(no))); }
+__attribute__((always_inline)) inline Doubles select(Masks m, Doubles yes, Doubles no) {
+    return Doubles((m & Masks(yes)) | (~m & Masks(no)));
+}
 
 // clampCoord, floorToInt and ceilToInt (clamp_coord.h, triangle_setup.h) per lane: the same
 // truncation to int and the same comparison against it.

@@ -3,22 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 
 #include "core/triangle_normal.h"
 
 namespace hyvox::cpu {
 namespace {
-
-// x, or +0.0 where keep is zero (keep: all ones or zero), without a branch.
-inline double keepBits(double x, std::uint64_t keep) {
-    std::uint64_t bits;
-    std::memcpy(&bits, &x, sizeof bits);
-    bits &= keep;
-    std::memcpy(&x, &bits, sizeof x);
-    return x;
-}
 
 // Branch-free: normal signs are random per triangle, so branches would mispredict.
 inline double signOf(double x) { return double(x > 0.0) - double(x < 0.0); }
@@ -53,7 +42,8 @@ inline void setupProjection(const Corner3* const p[3], double winding, int a, in
 // read at a constant offset (a swizzle by a run-time index went through the stack, and the
 // reloads stalled on the stores they overlapped).
 template <bool Thin, int W>
-__attribute__((always_inline)) inline SetupKind setupAlong(const Corner3* const c[3], const Corner3& n, const CandidateRange& range, TriangleSetup& out) {
+__attribute__((always_inline)) inline SetupKind setupAlong(const Corner3* const c[3], const Corner3& n,
+                                                           const CandidateRange& range, TriangleSetup& out) {
     constexpr int u = (W + 1) % 3, v = (W + 2) % 3, w = W;
     const std::array<int, 3>& lo = range.lo;
     const std::array<int, 3>& hi = range.hi;
@@ -68,8 +58,6 @@ __attribute__((always_inline)) inline SetupKind setupAlong(const Corner3* const 
     // it then has a point inside every candidate voxel's square (its other coordinate
     // ranges over an interval meeting the square's), and the edge tests would all pass.
     // Those tests are set to pass trivially; small triangles skip most of the work.
-    // Which projections are redundant varies from one triangle to the next at random, so they
-    // are computed anyway and then cleared without a branch.
     auto project = [&](double winding, int a, int b, EdgeTest* tests, bool redundant) {
         if (!Thin && redundant)
             for (int i = 0; i < 3; ++i) tests[i] = EdgeTest{0, 0, 0, 0, 0};
@@ -96,8 +84,8 @@ __attribute__((always_inline)) inline SetupKind setupAlong(const Corner3* const 
 }
 
 template <bool Thin>
-__attribute__((always_inline)) inline SetupKind setup(const Corner3& c0, const Corner3& c1, const Corner3& c2, const CandidateRange& range,
-                TriangleSetup& out) {
+__attribute__((always_inline)) inline SetupKind setup(const Corner3& c0, const Corner3& c1, const Corner3& c2,
+                                                      const CandidateRange& range, TriangleSetup& out) {
     // Within one voxel's range along two axes, the triangle lies in one column of voxels;
     // its extent along the third axis is an interval meeting every candidate's range, so
     // each candidate's closed box holds a point of it. (Most triangles of a fine mesh.)
