@@ -5,7 +5,7 @@
 
 // The helpers below pass 32-byte vectors by value; they are internal and inlined, so the
 // calling convention GCC warns about (AVX registers or memory) never applies.
-#if defined(__GNUC__) && !defined(__clang__)
+#if defined(__GNUC__)  // GCC and clang
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
 
