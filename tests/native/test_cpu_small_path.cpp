@@ -63,7 +63,7 @@ TEST(CpuSmallPath, EqualsTheRowLoops) {
     const std::array<int, 3> dims{29, 30, 31}, offset{8, 16, 24};
     const std::array<int, 3> clip_hi{offset[0] + dims[0] - 1, offset[1] + dims[1] - 1, offset[2] + dims[2] - 1};
     std::mt19937 random(23);
-    std::set<int> sizes_seen;  // smallCandidateBit of (sizes - 1)
+    std::set<int> sizes_seen;  // smallBoxBit of (sizes - 1)
     int tested = 0, with_voxels = 0, across_bricks = 0;
     for (Mode mode : {Mode::Conservative, Mode::Thin})
         for (int n = 0; n < 40000; ++n) {
@@ -87,7 +87,7 @@ TEST(CpuSmallPath, EqualsTheRowLoops) {
                                        << c[2][0] << ", " << c[2][1] << ", " << c[2][2] << ")";
             ++tested;
             with_voxels += rows.count() > 0;
-            sizes_seen.insert(cpu::smallCandidateBit(t.hi[0] - t.lo[0], t.hi[1] - t.lo[1], t.hi[2] - t.lo[2]));
+            sizes_seen.insert(cpu::smallBoxBit(t.hi[0] - t.lo[0], t.hi[1] - t.lo[1], t.hi[2] - t.lo[2]));
             bool crosses = false;
             for (int a = 0; a < 3; ++a) crosses |= (t.lo[a] >> 3) != (t.hi[a] >> 3);
             across_bricks += crosses;
@@ -102,7 +102,7 @@ TEST(CpuSmallPath, EqualsTheRowLoops) {
         for (int nv = 1; nv <= 4; ++nv)
             for (int nw = 1; nw <= 4; ++nw)
                 if (nw <= 2 || nw <= std::min(nu, nv)) {
-                    EXPECT_EQ(sizes_seen.count(cpu::smallCandidateBit(nu - 1, nv - 1, nw - 1)), 1u)
+                    EXPECT_EQ(sizes_seen.count(cpu::smallBoxBit(nu - 1, nv - 1, nw - 1)), 1u)
                         << nu << " x " << nv << " x " << nw;
                 }
     EXPECT_GT(with_voxels, 10000);

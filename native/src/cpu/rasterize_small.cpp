@@ -47,6 +47,10 @@ __attribute__((always_inline)) inline std::uint64_t acceptedFixed(const Triangle
     const double nu = t.normal[0], nv = t.normal[1], inv_nw = 1.0 / t.normal[2];
     const double ou = t.origin[0], ov = t.origin[1], ow = t.origin[2];
     static_assert(NU <= kSmallSide && NV <= kSmallSide && NW <= kSmallSide, "bits of a small triangle");
+    // The answer is in grid order: a step along u, v or w moves smallBoxBit by that of its axis.
+    const int axis_step[3] = {smallBoxBit(1, 0, 0), smallBoxBit(0, 1, 0), smallBoxBit(0, 0, 1)};
+    const int u_step = axis_step[t.w == 2 ? 0 : t.w + 1], v_step = axis_step[t.w == 0 ? 2 : t.w - 1],
+              w_step = axis_step[t.w];
     Masks accepted{0, 0, 0, 0};
     for (int k = 0; 4 * k < kColumns; ++k) {
         auto du = [&](int l) { return 4 * k + l < kColumns ? (4 * k + l) / NV : 0; };
@@ -66,6 +70,9 @@ __attribute__((always_inline)) inline std::uint64_t acceptedFixed(const Triangle
         const Doubles d = splat(nu) * (pu - splat(ou)) + splat(nv) * (pv - splat(ov));
         const Ints w0 = ceilToInts(clampCoords(splat(ow) - (d + splat(t.depth_lo_offset)) * splat(inv_nw))) - 1;
         const Ints w1 = floorToInts(clampCoords(splat(ow) - (d + splat(t.depth_hi_offset)) * splat(inv_nw)));
+        // Each lane's bit of the answer (smallBoxBit in grid order) at dw = 0.
+        const Masks lane_bits = Masks{1, 1, 1, 1} << (Masks{du(0), du(1), du(2), du(3)} * u_step +
+                                                       Masks{dv(0), dv(1), dv(2), dv(3)} * v_step);
         Doubles vw_row[3], wu_col[3];
         for (int i = 0; i < 3; ++i) {
             vw_row[i] = splat(t.vw[i].na) * (pv - splat(t.vw[i].va)) + splat(t.vw[i].offset);
@@ -79,8 +86,7 @@ __attribute__((always_inline)) inline std::uint64_t acceptedFixed(const Triangle
                 inside &= splat(t.vw[i].nb * (pwd - t.vw[i].vb)) + vw_row[i] >= splat(0.0);
                 inside &= splat(t.wu[i].na * (pwd - t.wu[i].va)) + wu_col[i] >= splat(0.0);
             }
-            auto bit = [&](int l) { return std::int64_t(1) << smallCandidateBit(du(l), dv(l), dw); };
-            accepted |= inside & Masks{bit(0), bit(1), bit(2), bit(3)};
+            accepted |= inside & (lane_bits << (dw * w_step));
         }
     }
     return std::uint64_t(accepted[0] | accepted[1] | accepted[2] | accepted[3]);
@@ -98,11 +104,11 @@ std::uint64_t acceptedSmallCandidates(const TriangleSetup& t) {
     // One instance per candidate count along each axis (1 to 4): a triangle that lies within
     // one voxel's range along one axis tests half the voxels a 2 x 2 x 2 one does.
 #define HYVOX_SIZE(NU, NV, NW) \
-    case smallCandidateBit((NU) - 1, (NV) - 1, (NW) - 1): return acceptedFixed<NU, NV, NW>(t);
+    case smallBoxBit((NU) - 1, (NV) - 1, (NW) - 1): return acceptedFixed<NU, NV, NW>(t);
 #define HYVOX_SIZES_W(NU, NV) HYVOX_SIZE(NU, NV, 1) HYVOX_SIZE(NU, NV, 2) HYVOX_SIZE(NU, NV, 3) HYVOX_SIZE(NU, NV, 4)
 #define HYVOX_SIZES_VW(NU) HYVOX_SIZES_W(NU, 1) HYVOX_SIZES_W(NU, 2) HYVOX_SIZES_W(NU, 3) HYVOX_SIZES_W(NU, 4)
     static_assert(kSmallSide == 4, "one case per size below");
-    switch (smallCandidateBit(t.hi[0] - t.lo[0], t.hi[1] - t.lo[1], t.hi[2] - t.lo[2])) {
+    switch (smallBoxBit(t.hi[0] - t.lo[0], t.hi[1] - t.lo[1], t.hi[2] - t.lo[2])) {
         HYVOX_SIZES_VW(1)
         HYVOX_SIZES_VW(2)
         HYVOX_SIZES_VW(3)

@@ -21,10 +21,11 @@ inline bool fitsSmallPath(const TriangleSetup& t) {
     return t.hi[0] - t.lo[0] < kSmallSide && t.hi[1] - t.lo[1] < kSmallSide && t.hi[2] - t.lo[2] < kSmallSide;
 }
 
-// The bit of candidate t.lo + (du, dv, dw) (swizzled order) in acceptedSmallCandidates' answer.
-constexpr int smallCandidateBit(int du, int dv, int dw) { return (du * kSmallSide + dv) * kSmallSide + dw; }
+// The bit of offset (a, b, c) in a box of kSmallSide voxels a side.
+constexpr int smallBoxBit(int a, int b, int c) { return (a * kSmallSide + b) * kSmallSide + c; }
 
-// The accepted candidates of a small triangle (fitsSmallPath), as smallCandidateBit bits.
+// The accepted candidates of a small triangle (fitsSmallPath): bit smallBoxBit(x, y, z) for
+// voxel lo + (x, y, z), lo its lowest candidate in grid order (t.lo unswizzled).
 std::uint64_t acceptedSmallCandidates(const TriangleSetup& t);
 
 inline void rasterizeSmall(const TriangleSetup& t, WordMarker& marker) {
@@ -34,30 +35,25 @@ inline void rasterizeSmall(const TriangleSetup& t, WordMarker& marker) {
     int lo[3], hi[3];
     lo[u_axis] = t.lo[0], lo[v_axis] = t.lo[1], lo[t.w] = t.lo[2];
     hi[u_axis] = t.hi[0], hi[v_axis] = t.hi[1], hi[t.w] = t.hi[2];
-    auto voxelOf = [&](int bit, int p[3]) {
-        p[u_axis] = t.lo[0] + bit / (kSmallSide * kSmallSide);
-        p[v_axis] = t.lo[1] + bit / kSmallSide % kSmallSide;
-        p[t.w] = t.lo[2] + bit % kSmallSide;
-    };
     // Where the candidates stay within one brick along j and k (mostly), the accepted voxels
-    // of each i share one word of the grid: one mark per word instead of one per voxel.
+    // of each i share one word of the grid (bit (j & 7) * 8 + (k & 7)): the box's 4 x 4 (y, z)
+    // bits of row x are spread out to it, one mark per word.
     if ((lo[1] >> 3) == (hi[1] >> 3) && (lo[2] >> 3) == (hi[2] >> 3)) {
-        std::uint64_t rows[kSmallSide] = {};
-        while (accepted) {
-            int p[3];
-            voxelOf(__builtin_ctzll(accepted), p);
-            accepted &= accepted - 1;
-            rows[p[0] - lo[0]] |= BitGrid::bitMask(p[1], p[2]);
+        const int first_bit = (lo[1] & 7) * 8 + (lo[2] & 7);
+        for (int x = 0; x <= hi[0] - lo[0]; ++x) {
+            const std::uint64_t row = accepted >> smallBoxBit(x, 0, 0);
+            std::uint64_t word = 0;
+            for (int y = 0; y < kSmallSide; ++y)
+                word |= (row >> smallBoxBit(0, y, 0) & ((1u << kSmallSide) - 1)) << (8 * y);
+            if (word) marker.markWord(lo[0] + x, lo[1], lo[2], word << first_bit);
         }
-        for (int di = 0; di < kSmallSide; ++di)
-            if (rows[di]) marker.markWord(lo[0] + di, lo[1], lo[2], rows[di]);
         return;
     }
     while (accepted) {
-        int p[3];
-        voxelOf(__builtin_ctzll(accepted), p);
+        const int bit = __builtin_ctzll(accepted);
         accepted &= accepted - 1;
-        marker.mark(p[0], p[1], p[2]);
+        marker.mark(lo[0] + bit / (kSmallSide * kSmallSide), lo[1] + bit / kSmallSide % kSmallSide,
+                    lo[2] + bit % kSmallSide);
     }
 }
 
