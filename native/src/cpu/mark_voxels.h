@@ -25,13 +25,15 @@ public:
     WordMarker(const WordMarker&) = delete;
     WordMarker& operator=(const WordMarker&) = delete;
 
-    void mark(int i, int j, int k) {
+    void mark(int i, int j, int k) { markWord(i, j, k, BitGrid::bitMask(j, k)); }
+    // Marks the voxels of `mask` (BitGrid::bitMask bits) in the word that holds voxel (i, j, k).
+    void markWord(int i, int j, int k, std::uint64_t mask) {
         std::uint64_t* word = grid_.data() + grid_.wordIndex(i - offset_[0], j - offset_[1], k - offset_[2]);
         if (word != word_) {
             flush();
             word_ = word;
         }
-        mask_ |= BitGrid::bitMask(j, k);
+        mask_ |= mask;
     }
     void flush() {
         if (word_ && (__atomic_load_n(word_, __ATOMIC_RELAXED) & mask_) != mask_)

@@ -1,86 +1,60 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The same factored test as rasterize_triangle.h, for triangles whose candidate range is at
-// most 3 voxels along every axis (most triangles of a finely tessellated mesh). The general
+// most 4 voxels along every axis (most triangles of a finely tessellated mesh). The general
 // loops spend their time on unpredictable branches (row, column and depth loops of one to
-// three steps, early-outs); here the candidates are decided in loops of fixed length
-// without branches into a bit mask, with the very same arithmetic as the general loops (so
-// both paths decide every voxel alike), and only the accepted voxels are marked.
-#include <algorithm>
-#include <array>
-#include <cstddef>
+// three steps, early-outs); here the candidates are decided without branches into a bit
+// mask, four columns of the dominant plane at a time in vector lanes (rasterize_small.cpp),
+// with the very same arithmetic per voxel as the general loops (so both paths decide every
+// voxel alike), and only the accepted voxels are marked.
 #include <cstdint>
-#include <utility>
 
 #include "cpu/mark_voxels.h"
 #include "cpu/triangle_setup.h"
 
 namespace hyvox::cpu {
 
+// At most this many candidates along each axis.
+constexpr int kSmallSide = 4;
+
 inline bool fitsSmallPath(const TriangleSetup& t) {
-    return t.hi[0] - t.lo[0] <= 2 && t.hi[1] - t.lo[1] <= 2 && t.hi[2] - t.lo[2] <= 2;
+    return t.hi[0] - t.lo[0] < kSmallSide && t.hi[1] - t.lo[1] < kSmallSide && t.hi[2] - t.lo[2] < kSmallSide;
 }
 
-// The NU x NV x NW candidates from t.lo (each 1 to 3: t.hi - t.lo + 1).
-template <int NU, int NV, int NW>
-inline void rasterizeFixed(const TriangleSetup& t, WordMarker& marker) {
-    const double nu = t.normal[0], nv = t.normal[1], inv_nw = 1.0 / t.normal[2];
-    const double ou = t.origin[0], ov = t.origin[1], ow = t.origin[2];
-    std::uint32_t accepted = 0;  // bit (du * NV + dv) * NW + dw for voxel lo + (du, dv, dw)
-    for (int dv = 0; dv < NV; ++dv) {
-        const double pvd = t.lo[1] + dv;
-        double uv_row[3], vw_row[3];
-        for (int i = 0; i < 3; ++i) {
-            uv_row[i] = t.uv[i].nb * (pvd - t.uv[i].vb) + t.uv[i].offset;
-            vw_row[i] = t.vw[i].na * (pvd - t.vw[i].va) + t.vw[i].offset;
-        }
-        const double plane_v = nv * (pvd - ov);
-        for (int du = 0; du < NU; ++du) {
-            const int pu = t.lo[0] + du;
-            const double pud = pu;
-            bool column = (pu <= t.hi[0]) & (t.lo[1] + dv <= t.hi[1]);
-            for (int i = 0; i < 3; ++i) column &= t.uv[i].na * (pud - t.uv[i].va) + uv_row[i] >= 0.0;
-            const double d = nu * (pud - ou) + plane_v;
-            const int w0 = ceilToInt(clampCoord(ow - (d + t.depth_lo_offset) * inv_nw)) - 1;
-            const int w1 = std::min(t.hi[2], floorToInt(clampCoord(ow - (d + t.depth_hi_offset) * inv_nw)));
-            double wu_col[3];
-            for (int i = 0; i < 3; ++i) wu_col[i] = t.wu[i].nb * (pud - t.wu[i].vb) + t.wu[i].offset;
-            for (int dw = 0; dw < NW; ++dw) {
-                const int pw = t.lo[2] + dw;
-                const double pwd = pw;
-                bool inside = column & (pw >= w0) & (pw <= w1);
-                for (int i = 0; i < 3; ++i) {
-                    inside &= t.vw[i].nb * (pwd - t.vw[i].vb) + vw_row[i] >= 0.0;
-                    inside &= t.wu[i].na * (pwd - t.wu[i].va) + wu_col[i] >= 0.0;
-                }
-                accepted |= std::uint32_t(inside) << ((du * NV + dv) * NW + dw);
-            }
-        }
-    }
-    // Unswizzle: (u, v, w) is the cyclic triple starting after the dominant axis w.
-    const int u_axis = t.w == 2 ? 0 : t.w + 1, v_axis = t.w == 0 ? 2 : t.w - 1;
-    while (accepted) {
-        const int bit = __builtin_ctz(accepted);
-        accepted &= accepted - 1;
-        int p[3];
-        p[u_axis] = t.lo[0] + bit / (NV * NW);
-        p[v_axis] = t.lo[1] + (bit / NW) % NV;
-        p[t.w] = t.lo[2] + bit % NW;
-        marker.mark(p[0], p[1], p[2]);
-    }
-}
+// The bit of offset (a, b, c) in a box of kSmallSide voxels a side.
+constexpr int smallBoxBit(int a, int b, int c) { return (a * kSmallSide + b) * kSmallSide + c; }
 
-// One instance per candidate count along each axis (1 to 3): a triangle that lies within
-// one voxel's range along one axis tests half the voxels a 2 x 2 x 2 loop would.
-using SmallRasterizer = void (*)(const TriangleSetup&, WordMarker&);
-template <std::size_t... Code>
-constexpr std::array<SmallRasterizer, sizeof...(Code)> smallRasterizers(std::index_sequence<Code...>) {
-    return {&rasterizeFixed<int(Code / 9) + 1, int(Code / 3 % 3) + 1, int(Code % 3) + 1>...};
-}
+// The accepted candidates of a small triangle (fitsSmallPath): bit smallBoxBit(x, y, z) for
+// voxel lo + (x, y, z), lo its lowest candidate in grid order (t.lo unswizzled).
+std::uint64_t acceptedSmallCandidates(const TriangleSetup& t);
 
 inline void rasterizeSmall(const TriangleSetup& t, WordMarker& marker) {
-    static constexpr std::array<SmallRasterizer, 27> kBySize = smallRasterizers(std::make_index_sequence<27>{});
-    kBySize[std::size_t((t.hi[0] - t.lo[0]) * 9 + (t.hi[1] - t.lo[1]) * 3 + (t.hi[2] - t.lo[2]))](t, marker);
+    std::uint64_t accepted = acceptedSmallCandidates(t);
+    // Unswizzle: (u, v, w) is the cyclic triple starting after the dominant axis w.
+    const int u_axis = t.w == 2 ? 0 : t.w + 1, v_axis = t.w == 0 ? 2 : t.w - 1;
+    int lo[3], hi[3];
+    lo[u_axis] = t.lo[0], lo[v_axis] = t.lo[1], lo[t.w] = t.lo[2];
+    hi[u_axis] = t.hi[0], hi[v_axis] = t.hi[1], hi[t.w] = t.hi[2];
+    // Where the candidates stay within one brick along j and k (mostly), the accepted voxels
+    // of each i share one word of the grid (bit (j & 7) * 8 + (k & 7)): the box's 4 x 4 (y, z)
+    // bits of row x are spread out to it, one mark per word.
+    if ((lo[1] >> 3) == (hi[1] >> 3) && (lo[2] >> 3) == (hi[2] >> 3)) {
+        const int first_bit = (lo[1] & 7) * 8 + (lo[2] & 7);
+        for (int x = 0; x <= hi[0] - lo[0]; ++x) {
+            const std::uint64_t row = accepted >> smallBoxBit(x, 0, 0);
+            std::uint64_t word = 0;
+            for (int y = 0; y < kSmallSide; ++y)
+                word |= (row >> smallBoxBit(0, y, 0) & ((1u << kSmallSide) - 1)) << (8 * y);
+            if (word) marker.markWord(lo[0] + x, lo[1], lo[2], word << first_bit);
+        }
+        return;
+    }
+    while (accepted) {
+        const int bit = __builtin_ctzll(accepted);
+        accepted &= accepted - 1;
+        marker.mark(lo[0] + bit / (kSmallSide * kSmallSide), lo[1] + bit / kSmallSide % kSmallSide,
+                    lo[2] + bit % kSmallSide);
+    }
 }
 
 }  // namespace hyvox::cpu

@@ -83,6 +83,10 @@ CandidateRange candidateRange(const std::array<std::array<double, 3>, 3>& corner
 // not outside().
 SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode, const CandidateRange& range,
                         TriangleSetup& out);
+// The same from the three corners wherever they are stored (the vertex cache's entries: no
+// copy of them is made).
+SetupKind setupTriangle(const std::array<double, 3>& c0, const std::array<double, 3>& c1,
+                        const std::array<double, 3>& c2, Mode mode, const CandidateRange& range, TriangleSetup& out);
 
 // floor / ceil of values already clamped to a safe int range by clampCoord (the baseline
 // x86-64 target has no inline rounding instruction, and libm calls dominate a small
