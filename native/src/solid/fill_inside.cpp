@@ -452,6 +452,7 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
         stats.interpolated_voxels += out.smooth.interpolated_voxels;
         out = Output{};
     }
+    if (smooth) stats.point_evaluations += smooth->sampleEvaluations();
     inside.finish();
     stats.inside_voxels = inside.count();
     return inside;

@@ -23,9 +23,6 @@ constexpr double kNearSides = 0.5;
 // tree for the box, FastWinding::atBox) when there are at least this many: below, the walk
 // for the box costs more than it saves.
 constexpr std::size_t kSharedFarField = 32;
-// Samples are taken this far above a voxel centre, off any horizontal face through the centre
-// (g is continuous: its value holds at the centre).
-constexpr double kLift = 0.00390625;
 
 using Int3 = std::array<std::int32_t, 3>;
 
@@ -34,14 +31,14 @@ using Int3 = std::array<std::int32_t, 3>;
 class Brick {
 public:
     // The voxels [lo, top] (top at most lo + 8).
-    Brick(const FastWinding& winding, const RayCrossings& rays, std::uint64_t run, SmoothWinding::LatticeSamples& lattice,
+    Brick(const FastWinding& winding, const RayCrossings& rays, std::uint64_t run, const BrickSamples& shared,
           const Int3& lo, const Int3& top, SmoothWinding::Counters& counters)
-        : winding_(winding), rays_(rays), run_(run), lattice_(lattice), lo_(lo), top_(top), counters_(counters) {
+        : winding_(winding), rays_(rays), run_(run), shared_(shared), lo_(lo), top_(top), counters_(counters) {
         std::fill(std::begin(samples_), std::end(samples_), NAN);
     }
 
-    // w - c at voxel p's centre (sampled just above it). Points of the lattice of brick
-    // corners (every coordinate a multiple of 8) are kept for the neighbouring bricks.
+    // w - c at voxel p's centre (sampled just above it). The corners and middles of the
+    // bricks' boxes come from the shared samples (BrickSamples), the same for every brick.
     double minusCrossings(const Int3& p) {
         sample(&p, 1);
         return samples_[local(p)];
@@ -56,22 +53,8 @@ public:
             const Int3& p = points[q];
             double& cached = samples_[local(p)];
             if (!std::isnan(cached) || std::find(wanted, wanted + n, local(p)) != wanted + n) continue;
-            if (onLattice(p)) {
-                const auto found = lattice_.find(latticeKey(p));
-                if (found != lattice_.end()) {
-                    cached = found->second;
-                    continue;
-                }
-            }
-            const Column& column = columnOf(p);
-            double h = p[2] + 0.5 + kLift;
-            // Off every crossing by more than the rounding of its height.
-            for (bool moved = true; moved;) {
-                moved = false;
-                for (const auto& c : column)
-                    if (std::fabs(c.z - h) < 1e-6) h += kLift, moved = true;
-            }
-            lifted[n] = {p[0] + 0.5, p[1] + 0.5, h};
+            if (shared_.find(p, cached)) continue;
+            lifted[n] = {p[0] + 0.5, p[1] + 0.5, sampleHeight(columnOf(p), p[2] + 0.5)};
             wanted[n++] = local(p);
         }
         if (n == 0) return;
@@ -80,9 +63,7 @@ public:
         winding_.atMany(lifted, std::size_t(n), w);
         for (int q = 0; q < n; ++q) {
             const Int3 p{lo_[0] + wanted[q] / 81, lo_[1] + wanted[q] / 9 % 9, lo_[2] + wanted[q] % 9};
-            const double value = w[q] - below(columnOf(p), lifted[q][2]);
-            samples_[wanted[q]] = value;
-            if (onLattice(p)) lattice_.emplace(latticeKey(p), value);  // another thread's equal value may win
+            samples_[wanted[q]] = w[q] - crossingsBelow(columnOf(p), lifted[q][2]);
         }
     }
     bool sampled(const Int3& p) const { return !std::isnan(samples_[local(p)]); }
@@ -111,20 +92,10 @@ public:
 
 private:
     using Column = std::vector<RayCrossings::Crossing>;
-    static int below(const Column& column, double h) {
-        int count = 0;
-        for (const auto& c : column)
-            if (c.z < h) count += c.sign;
-        return count;
-    }
-    static bool onLattice(const Int3& p) { return (p[0] & 7) == 0 && (p[1] & 7) == 0 && (p[2] & 7) == 0; }
     int local(const Int3& p) const { return ((p[0] - lo_[0]) * 9 + (p[1] - lo_[1])) * 9 + (p[2] - lo_[2]); }
-    static std::uint64_t latticeKey(const Int3& p) {
-        return (std::uint64_t(p[0] >> 3) << 42) | (std::uint64_t(p[1] >> 3) << 21) | std::uint64_t(p[2] >> 3);
-    }
     int column(const Int3& p) const { return (p[0] - lo_[0]) * (top_[1] - lo_[1] + 1) + (p[1] - lo_[1]); }
     // The rays of all the brick's columns are found together, on first use, with each
-    // column's crossings below the brick's voxel centres (the same comparisons as below()).
+    // column's crossings below the brick's voxel centres (the same comparisons as crossingsBelow()).
     const Column& columnOf(const Int3& p) {
         if (!columns_filled_) {
             const int ni = top_[0] - lo_[0] + 1, nj = top_[1] - lo_[1] + 1, nz = top_[2] - lo_[2] + 1;
@@ -134,7 +105,7 @@ private:
                 total_[n] = 0;
                 for (const auto& c : columns_[n]) {
                     total_[n] += c.sign;
-                    if (std::isnan(c.z)) continue;  // below no centre, as in below()
+                    if (std::isnan(c.z)) continue;  // below no centre, as in crossingsBelow()
                     // The first centre above c.z (nz: none is), a guess from the difference, then
                     // the comparisons; the guess stays within 0..nz, as step[] does.
                     int k = int(std::clamp(std::floor(c.z - (lo_[2] + 0.5)), -1.0, double(nz - 1))) + 1;
@@ -152,7 +123,7 @@ private:
     const FastWinding& winding_;
     const RayCrossings& rays_;
     std::uint64_t run_;
-    SmoothWinding::LatticeSamples& lattice_;
+    const BrickSamples& shared_;
     Int3 lo_, top_;
     SmoothWinding::Counters& counters_;
     bool columns_filled_ = false;
@@ -206,7 +177,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
     // are then lattice points, each sampled once for the eight bricks around it.
     Int3 top;
     for (int d = 0; d < 3; ++d) top[d] = hi[d] == lo[d] + 8 && hi[d] < dims_[d] ? hi[d] : hi[d] - 1;
-    Brick brick(winding_, rays_, run_, lattice_, lo, top, counters);
+    Brick brick(winding_, rays_, run_, samples_, lo, top, counters);
     std::uint64_t done[8] = {};
     auto bit = [](const Int3& p) { return BitGrid::bitInBrick(p[0], p[1], p[2]); };
     auto pending = [&](const Int3& p) {
