@@ -208,9 +208,19 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
     SheetSum sheet_sum;
 
     // Boxes of voxels [a, b] (corners included), halved where interpolation does not hold.
+    // The pending voxels of column (i, j) of box [a, b] (inside the brick: the next bricks'
+    // voxels are never pending), one bit per z from a[2].
+    auto pendingColumn = [&](int i, int j, const Int3& a, const Int3& b) {
+        const int z_end = std::min(b[2], hi[2] - 1);
+        if (i >= hi[0] || j >= hi[1] || z_end < a[2]) return 0u;
+        const int x = i & 7;
+        const unsigned row = unsigned((wanted[x] & ~done[x]) >> ((j & 7) * 8)) & 0xffu;
+        return (row >> (a[2] & 7)) & ((2u << (z_end - a[2])) - 1u);
+    };
     auto visit = [&](auto&& self, const Int3& a, const Int3& b) -> void {
         bool any = false;
-        forEach(a, b, [&](const Int3& p) { any = any || pending(p); });
+        for (int i = a[0]; i <= b[0] && !any; ++i)
+            for (int j = a[1]; j <= b[1] && !any; ++j) any = pendingColumn(i, j, a, b) != 0;
         if (!any) return;
         if (b[0] - a[0] <= 1 && b[1] - a[1] <= 1 && b[2] - a[2] <= 1) {
             // Every voxel is a corner: each evaluated.
@@ -244,23 +254,44 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
         brick.sample(points, 9);  // the corners and the middle the next lines read, in one walk
         double corner[8];
         for (int c = 0; c < 8; ++c) corner[c] = smooth(points[c]);
-        auto interpolate = [&](const Int3& p) {
-            double t[3];
-            for (int d = 0; d < 3; ++d) t[d] = b[d] > a[d] ? double(p[d] - a[d]) / (b[d] - a[d]) : 0.0;
-            double value = 0;
-            for (int c = 0; c < 8; ++c)
-                value += corner[c] * (c & 4 ? t[0] : 1 - t[0]) * (c & 2 ? t[1] : 1 - t[1]) * (c & 1 ? t[2] : 1 - t[2]);
-            return value;
+        // The trilinear interpolation of the corners, along z from each column's ends.
+        double t[3][9];  // per axis, (p - a) / (b - a) at p = a .. b
+        for (int d = 0; d < 3; ++d)
+            for (int n = 0; n <= b[d] - a[d]; ++n) t[d][n] = b[d] > a[d] ? double(n) / (b[d] - a[d]) : 0.0;
+        auto columnEnds = [&](int i, int j, double& bottom, double& upper) {
+            const double x = t[0][i - a[0]], y = t[1][j - a[1]];
+            const double w00 = (1 - x) * (1 - y), w01 = (1 - x) * y, w10 = x * (1 - y), w11 = x * y;
+            bottom = corner[0] * w00 + corner[2] * w01 + corner[4] * w10 + corner[6] * w11;
+            upper = corner[1] * w00 + corner[3] * w01 + corner[5] * w10 + corner[7] * w11;
         };
-        if (std::fabs(smooth(m) - interpolate(m)) <= kAgree) {  // false for NaN
-            forEach(a, b, [&](const Int3& p) {
-                if (!pending(p)) return;
-                if (brick.sampled(p)) return decide(p, brick.crossings(p) + brick.minusCrossings(p));
-                const double w = brick.crossings(p) - shift(p) + interpolate(p) - sheetSum(p);
-                if (!(std::fabs(w - 0.5) >= kMargin)) return defer(p);  // NaN too
-                ++counters.interpolated_voxels;
-                decide(p, w);
-            });
+        double m_bottom, m_top;
+        columnEnds(m[0], m[1], m_bottom, m_top);
+        const double m_interpolated = m_bottom + (m_top - m_bottom) * t[2][m[2] - a[2]];
+        if (std::fabs(smooth(m) - m_interpolated) <= kAgree) {  // false for NaN
+            for (int i = a[0]; i <= b[0]; ++i)
+                for (int j = a[1]; j <= b[1]; ++j) {
+                    unsigned bits = pendingColumn(i, j, a, b);
+                    if (bits == 0) continue;
+                    double bottom, top_value;
+                    columnEnds(i, j, bottom, top_value);
+                    const double shifted = double(upward ? brick.columnCrossings({i, j, a[2]}) : 0);
+                    for (; bits != 0; bits &= bits - 1) {
+                        const int dz = __builtin_ctz(bits);
+                        const Int3 p{i, j, a[2] + dz};
+                        if (brick.sampled(p)) {
+                            decide(p, brick.crossings(p) + brick.minusCrossings(p));
+                            continue;
+                        }
+                        const double interpolated = bottom + (top_value - bottom) * t[2][dz];
+                        const double w = brick.crossings(p) - shifted + interpolated - sheetSum(p);
+                        if (!(std::fabs(w - 0.5) >= kMargin)) {  // NaN too
+                            defer(p);
+                            continue;
+                        }
+                        ++counters.interpolated_voxels;
+                        decide(p, w);
+                    }
+                }
             return;
         }
         // Halve every side of two or more voxels; the halves share the middle plane.
