@@ -132,33 +132,26 @@ private:
     int below_[9 * 9][9];  // per column, the signed crossings below each of the brick's centres
     int total_[9 * 9];     // per column, C
     // The crossings of a block of columns are whole lines: the same for every brick of a stack
-    // along z. Each thread keeps the blocks of the last few bricks it decided (its next bricks
-    // are mostly their neighbours: the octree's order), and finds a block there before it
-    // asks the rays (the blocks are the same whichever thread finds them).
+    // along z. Each thread keeps the blocks of its recent bricks, one slot per brick column
+    // (x and y modulo 8): the octree's order visits the bricks of an 8×8 window of columns
+    // before it moves on, and comes back to each for the next bricks along z. A block is
+    // found there before the rays are asked (the blocks are the same whichever thread finds
+    // them).
     static const Column* columnsOf(const RayCrossings& rays, std::uint64_t run, int i0, int j0, int ni, int nj) {
         struct Block {
             std::uint64_t run = 0;  // none: runs count from 1
             std::array<int, 4> key{-1, -1, -1, -1};
-            std::uint64_t last_used = 0;
             Column columns[9 * 9];  // no allocation per brick once grown
         };
-        constexpr int kBlocks = 8;
-        thread_local Block blocks[kBlocks];
-        thread_local std::uint64_t clock = 0;
+        constexpr int kWindow = 8;
+        thread_local std::vector<Block> blocks(kWindow * kWindow);
         const std::array<int, 4> key{i0, j0, ni, nj};
-        Block* oldest = &blocks[0];
-        for (Block& block : blocks) {
-            if (block.run == run && block.key == key) {
-                block.last_used = ++clock;
-                return block.columns;
-            }
-            if (block.last_used < oldest->last_used) oldest = &block;
-        }
-        rays.columns(i0, j0, ni, nj, oldest->columns);
-        oldest->run = run;
-        oldest->key = key;
-        oldest->last_used = ++clock;
-        return oldest->columns;
+        Block& block = blocks[std::size_t(((i0 >> 3) % kWindow) * kWindow + (j0 >> 3) % kWindow)];
+        if (block.run == run && block.key == key) return block.columns;
+        rays.columns(i0, j0, ni, nj, block.columns);
+        block.run = run;
+        block.key = key;
+        return block.columns;
     }
     std::vector<Vec3> centres_;
     double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
