@@ -75,7 +75,7 @@ public:
     }
     int columnCrossings(const Int3& p) {
         columnOf(p);
-        return total_[column(p)];
+        return block_->total[column(p)];
     }
     // The winding numbers at the centres of `voxels`, into `out`, in one walk of the tree.
     void exactWindings(const std::vector<Int3>& voxels, std::vector<double>& out) {
@@ -95,29 +95,23 @@ private:
     int local(const Int3& p) const { return ((p[0] - lo_[0]) * 9 + (p[1] - lo_[1])) * 9 + (p[2] - lo_[2]); }
     int column(const Int3& p) const { return (p[0] - lo_[0]) * (top_[1] - lo_[1] + 1) + (p[1] - lo_[1]); }
     // The rays of all the brick's columns are found together, on first use, with each
-    // column's crossings below the brick's voxel centres (the same comparisons as crossingsBelow()).
+    // column's crossings below the brick's voxel centres (the same comparisons as
+    // crossingsBelow(), on the block's sorted heights).
     const Column& columnOf(const Int3& p) {
-        if (!columns_filled_) {
+        if (!block_) {
             const int ni = top_[0] - lo_[0] + 1, nj = top_[1] - lo_[1] + 1, nz = top_[2] - lo_[2] + 1;
-            columns_ = columnsOf(rays_, run_, lo_[0], lo_[1], ni, nj);
+            block_ = &columnsOf(rays_, run_, lo_[0], lo_[1], ni, nj);
             for (int n = 0; n < ni * nj; ++n) {
-                int step[10] = {};  // step[k]: crossings below centre k but not below centre k - 1
-                total_[n] = 0;
-                for (const auto& c : columns_[n]) {
-                    total_[n] += c.sign;
-                    if (std::isnan(c.z)) continue;  // below no centre, as in crossingsBelow()
-                    // The first centre above c.z (nz: none is), a guess from the difference, then
-                    // the comparisons; the guess stays within 0..nz, as step[] does.
-                    int k = int(std::clamp(std::floor(c.z - (lo_[2] + 0.5)), -1.0, double(nz - 1))) + 1;
-                    while (k > 0 && c.z < lo_[2] + (k - 1) + 0.5) --k;
-                    while (k < nz && !(c.z < lo_[2] + k + 0.5)) ++k;
-                    step[k] += c.sign;
+                const std::vector<double>& heights = block_->heights[n];
+                const std::vector<int>& prefix = block_->prefix[n];
+                std::size_t m = std::size_t(std::lower_bound(heights.begin(), heights.end(), lo_[2] + 0.5) - heights.begin());
+                for (int k = 0; k < nz; ++k) {
+                    while (m < heights.size() && heights[m] < lo_[2] + k + 0.5) ++m;
+                    below_[n][k] = prefix[m];
                 }
-                for (int k = 0, sum = 0; k < nz; ++k) below_[n][k] = sum += step[k];
             }
-            columns_filled_ = true;
         }
-        return columns_[column(p)];
+        return block_->columns[column(p)];
     }
 
     const FastWinding& winding_;
@@ -126,11 +120,18 @@ private:
     const BrickSamples& shared_;
     Int3 lo_, top_;
     SmoothWinding::Counters& counters_;
-    bool columns_filled_ = false;
-    // The columns' crossings, in storage each thread keeps from brick to brick.
-    const Column* columns_ = nullptr;
+    // The columns' crossings, in storage each thread keeps from brick to brick: as the rays
+    // give them, and their heights sorted, with the signed counts below each.
+    struct ColumnBlock {
+        std::uint64_t run = 0;  // none: runs count from 1
+        std::array<int, 4> key{-1, -1, -1, -1};
+        Column columns[9 * 9];  // no allocation per brick once grown
+        std::vector<double> heights[9 * 9];  // the crossings' heights (NaN left out: below no centre), ascending
+        std::vector<int> prefix[9 * 9];      // prefix[m]: the signed crossings of the lowest m
+        int total[9 * 9];                    // C, NaN heights included
+    };
+    const ColumnBlock* block_ = nullptr;
     int below_[9 * 9][9];  // per column, the signed crossings below each of the brick's centres
-    int total_[9 * 9];     // per column, C
     // The crossings of a block of columns are whole lines: the same for every brick of a stack
     // along z. Each thread keeps the blocks of its recent bricks, one slot per brick column
     // (x and y modulo 16): the octree's order visits the bricks of a 16×16 window of columns
@@ -138,21 +139,33 @@ private:
     // the columns' share of the time 12% with the last eight kept, 3% now). A block is
     // found there before the rays are asked (the blocks are the same whichever thread finds
     // them).
-    static const Column* columnsOf(const RayCrossings& rays, std::uint64_t run, int i0, int j0, int ni, int nj) {
-        struct Block {
-            std::uint64_t run = 0;  // none: runs count from 1
-            std::array<int, 4> key{-1, -1, -1, -1};
-            Column columns[9 * 9];  // no allocation per brick once grown
-        };
+    static const ColumnBlock& columnsOf(const RayCrossings& rays, std::uint64_t run, int i0, int j0, int ni, int nj) {
         constexpr int kWindow = 16;
-        thread_local std::vector<Block> blocks(kWindow * kWindow);
+        thread_local std::vector<ColumnBlock> blocks(kWindow * kWindow);
+        thread_local std::vector<RayCrossings::Crossing> sorted;
         const std::array<int, 4> key{i0, j0, ni, nj};
-        Block& block = blocks[std::size_t(((i0 >> 3) % kWindow) * kWindow + (j0 >> 3) % kWindow)];
-        if (block.run == run && block.key == key) return block.columns;
+        ColumnBlock& block = blocks[std::size_t(((i0 >> 3) % kWindow) * kWindow + (j0 >> 3) % kWindow)];
+        if (block.run == run && block.key == key) return block;
         rays.columns(i0, j0, ni, nj, block.columns);
+        for (int n = 0; n < ni * nj; ++n) {
+            block.total[n] = 0;
+            sorted.clear();
+            for (const auto& c : block.columns[n]) {
+                block.total[n] += c.sign;
+                if (!std::isnan(c.z)) sorted.push_back(c);
+            }
+            std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.z < b.z; });
+            block.heights[n].resize(sorted.size());
+            block.prefix[n].resize(sorted.size() + 1);
+            block.prefix[n][0] = 0;
+            for (std::size_t m = 0; m < sorted.size(); ++m) {
+                block.heights[n][m] = sorted[m].z;
+                block.prefix[n][m + 1] = block.prefix[n][m] + sorted[m].sign;
+            }
+        }
         block.run = run;
         block.key = key;
-        return block.columns;
+        return block;
     }
     std::vector<Vec3> centres_;
     double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
@@ -269,6 +282,9 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
                     double bottom, top_value;
                     columnEnds(i, j, bottom, top_value);
                     const double shifted = double(upward ? brick.columnCrossings({i, j, a[2]}) : 0);
+                    // The sampled voxels from their samples; the others' sheet sums together.
+                    int steps[9], count = 0;
+                    double heights[9], sheet_sums[9];
                     for (; bits != 0; bits &= bits - 1) {
                         const int dz = __builtin_ctz(bits);
                         const Int3 p{i, j, a[2] + dz};
@@ -276,8 +292,14 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
                             decide(p, brick.crossings(p) + brick.minusCrossings(p));
                             continue;
                         }
-                        const double interpolated = bottom + (top_value - bottom) * t[2][dz];
-                        const double w = brick.crossings(p) - shifted + interpolated - sheetSum(p);
+                        steps[count] = dz;
+                        heights[count++] = p[2] + 0.5;
+                    }
+                    sheet_sum.atColumn(i + 0.5, j + 0.5, heights, count, sheet_sums);
+                    for (int q = 0; q < count; ++q) {
+                        const Int3 p{i, j, a[2] + steps[q]};
+                        const double interpolated = bottom + (top_value - bottom) * t[2][steps[q]];
+                        const double w = brick.crossings(p) - shifted + interpolated - sheet_sums[q];
                         if (!(std::fabs(w - 0.5) >= kMargin)) {  // NaN too
                             defer(p);
                             continue;
