@@ -334,6 +334,51 @@ TEST(SolidWinding, FloatSheetSumMatchesTallTriangles) {
     std::printf("float sheet sums: %d points, worst error %.3g, %d columns on an edge\n", tested, worst, poisoned);
 }
 
+// A column's sheet sums together (SheetSum::atColumn) against at() point by point: the same
+// bits, rays down and up, with a column that passes an edge (NaN both ways) and one point.
+TEST(SolidWinding, ColumnOfSheetSumsEqualsPointByPoint) {
+    std::mt19937 rng(13);
+    const solid::Vec3 origin{200, 300, 400};
+    std::uniform_real_distribution<double> near(-10.0, 18.0), inside(0.0, 9.0);
+    for (const bool upward : {false, true}) {
+        std::vector<solid::GradientBound::Sheet> sheets;
+        for (int n = 0; n < 37; ++n) {  // not a multiple of the lanes
+            solid::GradientBound::Sheet s;
+            for (int k = 0; k < 3; ++k) {
+                s.a[k] = origin[k] + near(rng);
+                s.b[k] = s.a[k] + near(rng) / 3;
+            }
+            s.excess = 1 + n % 2;
+            sheets.push_back(s);
+        }
+        // An edge through the column (x, y) = origin + (4.5, 4.5): that column has no value.
+        sheets[5].a = {origin[0] + 3.5, origin[1] + 3.5, origin[2] + 1.0};
+        sheets[5].b = {origin[0] + 5.5, origin[1] + 5.5, origin[2] + 2.0};
+        solid::SheetSum sum;
+        sum.assign(sheets, upward, origin);
+        int columns = 0, poisoned = 0;
+        for (int n = 0; n < 40; ++n) {
+            const double x = origin[0] + (n == 0 ? 4.5 : inside(rng)), y = origin[1] + (n == 0 ? 4.5 : inside(rng));
+            const int count = n % 9 + 1;
+            double heights[9], values[9];
+            for (int k = 0; k < count; ++k) heights[k] = origin[2] + inside(rng);
+            sum.atColumn(x, y, heights, count, values);
+            for (int k = 0; k < count; ++k) {
+                const double one = sum.at({x, y, heights[k]});
+                if (std::isnan(one)) {
+                    EXPECT_TRUE(std::isnan(values[k]));
+                    ++poisoned;
+                } else {
+                    EXPECT_EQ(values[k], one) << n << " " << k;
+                }
+            }
+            ++columns;
+        }
+        EXPECT_GT(poisoned, 0);
+        EXPECT_EQ(columns, 40);
+    }
+}
+
 // A brick's columns found together (RayCrossings::columns) against one column at a time.
 TEST(SolidRays, BlockOfColumnsEqualsColumnByColumn) {
     const test::TestMesh mesh = test::loadTestMesh(test::meshPath("bunny_stanford_69k.ply"));
