@@ -215,7 +215,6 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
     std::vector<GradientBound::Sheet> sheets, sheets_up;
     SheetSum sheet_sum;
 
-    // Boxes of voxels [a, b] (corners included), halved where interpolation does not hold.
     // The pending voxels of column (i, j) of box [a, b] (inside the brick: the next bricks'
     // voxels are never pending), one bit per z from a[2].
     auto pendingColumn = [&](int i, int j, const Int3& a, const Int3& b) {
@@ -225,6 +224,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
         const unsigned row = unsigned((wanted[x] & ~done[x]) >> ((j & 7) * 8)) & 0xffu;
         return (row >> (a[2] & 7)) & ((2u << (z_end - a[2])) - 1u);
     };
+    // Boxes of voxels [a, b] (corners included), halved where interpolation does not hold.
     auto visit = [&](auto&& self, const Int3& a, const Int3& b) -> void {
         bool any = false;
         for (int i = a[0]; i <= b[0] && !any; ++i)
