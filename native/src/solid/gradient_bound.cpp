@@ -142,23 +142,31 @@ bool GradientBound::parityMayChange(const Box& box) const {
     return false;
 }
 
-void GradientBound::sheetsMeeting(const Box& box, bool upward, std::vector<Sheet>& out) const {
-    out.clear();
+void GradientBound::sheetsMeeting(const Box& box, std::vector<Sheet>& down, std::vector<Sheet>& up) const {
+    down.clear();
+    up.clear();
     if (nodes_.empty()) return;
-    auto wanted = [&](const Box& edge) { return reachesShadow(box, edge, upward); };
+    // A cluster whose xy range meets the box's reaches it from below or from above (or both):
+    // one walk for both lists, each in the order its own walk would give.
+    auto meetsInXy = [&](const Box& edge) {
+        return box.lo[0] <= edge.hi[0] && box.hi[0] >= edge.lo[0] && box.lo[1] <= edge.hi[1] && box.hi[1] >= edge.lo[1];
+    };
     std::int32_t stack[128];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
         const Node& node = nodes_[std::size_t(stack[--top])];
-        if (!wanted(node.box)) continue;
+        if (!meetsInXy(node.box)) continue;
         if (node.left >= 0) {
             stack[top++] = node.left;
             stack[top++] = node.right;
             continue;
         }
-        for (std::uint32_t e = node.first; e < node.first + node.count; ++e)
-            if (wanted(edges_[e].box)) out.push_back({edges_[e].a, edges_[e].b, double(edges_[e].excess)});
+        for (std::uint32_t e = node.first; e < node.first + node.count; ++e) {
+            const Edge& edge = edges_[e];
+            if (reachesShadow(box, edge.box, false)) down.push_back({edge.a, edge.b, double(edge.excess)});
+            if (reachesShadow(box, edge.box, true)) up.push_back({edge.a, edge.b, double(edge.excess)});
+        }
     }
 }
 

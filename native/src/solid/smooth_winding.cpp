@@ -246,8 +246,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
         // the other sign).
         const double reach = kNearSides * side;
         const Box near{{a[0] - reach, a[1] - reach, a[2] - reach}, {b[0] + 1.0 + reach, b[1] + 1.0 + reach, b[2] + 1.0 + reach}};
-        bound_.sheetsMeeting(near, false, sheets);
-        bound_.sheetsMeeting(near, true, sheets_up);
+        bound_.sheetsMeeting(near, sheets, sheets_up);
         const bool upward = sheets_up.size() < sheets.size();
         if (upward) std::swap(sheets, sheets_up);
         sheet_sum.assign(sheets, upward, {double(a[0]), double(a[1]), double(a[2])});
@@ -296,7 +295,8 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
                         steps[count] = dz;
                         heights[count++] = p[2] + 0.5;
                     }
-                    sheet_sum.atColumn(i + 0.5, j + 0.5, heights, count, sheet_sums);
+                    if (sheet_sum.size() > 0) sheet_sum.atColumn(i + 0.5, j + 0.5, heights, count, sheet_sums);
+                    else std::fill(sheet_sums, sheet_sums + count, 0.0);  // at()'s sum of no sheets
                     for (int q = 0; q < count; ++q) {
                         const Int3 p{i, j, a[2] + steps[q]};
                         const double interpolated = bottom + (top_value - bottom) * t[2][steps[q]];
