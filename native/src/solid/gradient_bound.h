@@ -40,13 +40,13 @@ public:
     double windingSlope(const Box& box, double limit) const;
     // Whether the parity of -z rays may differ between two points of `box`.
     bool parityMayChange(const Box& box) const;
-    // The open edges whose sheet above (where -z rays pass them; `upward`: below, where +z
-    // rays do) meets `box`.
+    // The open edges whose sheet above (where -z rays pass them: `down`) and below (where +z
+    // rays do: `up`) meets `box`.
     struct Sheet {
         std::array<double, 3> a, b;  // the edge, in the direction of its surplus uses
         double excess;
     };
-    void sheetsMeeting(const Box& box, bool upward, std::vector<Sheet>& out) const;
+    void sheetsMeeting(const Box& box, std::vector<Sheet>& down, std::vector<Sheet>& up) const;
 
 private:
     struct Node {

@@ -41,6 +41,7 @@ void SheetSum::assign(const std::vector<GradientBound::Sheet>& sheets, bool upwa
     // Padding: an edge of length 0 far away (finite terms, never near), weight 0.
     for (std::size_t i = count_; i < padded; ++i) ax_[i] = ay_[i] = 1e6f;
     terms_.resize(padded);
+    for (auto* array : {&vx_, &vy_, &ux_, &uy_, &vxy2_, &uxy2_, &uv_, &eu_, &ev_, &poison_}) array->resize(padded);
 }
 
 // Where the platform dispatches a function by the processor it runs on (GNU ifunc), an AVX2
@@ -87,6 +88,53 @@ double SheetSum::at(const std::array<double, 3>& point) const {
     double sum = 0;
     for (const float lane : lanes) sum += lane;
     return sum;
+}
+
+#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void SheetSum::atColumn(double x, double y, const double* z, int count, double* out) const {
+    const float qx = float(x - origin_[0]), qy = float(y - origin_[1]);
+    const float up = up_;
+    const std::size_t n = ax_.size();
+    const float *ax = ax_.data(), *ay = ay_.data(), *az = az_.data(), *ex = ex_.data(), *ey = ey_.data(),
+                *ez = ez_.data(), *inverse_length2 = inverse_length2_.data(), *weight = weight_.data();
+    float *vx = vx_.data(), *vy = vy_.data(), *ux = ux_.data(), *uy = uy_.data(), *vxy2 = vxy2_.data(),
+          *uxy2 = uxy2_.data(), *uv = uv_.data(), *eu = eu_.data(), *ev = ev_.data(), *poison = poison_.data();
+    // The line's terms: the same operations as at()'s on x and y.
+    for (std::size_t i = 0; i < n; ++i) {
+        vx[i] = ax[i] - qx;
+        vy[i] = ay[i] - qy;
+        ux[i] = vx[i] + ex[i];
+        uy[i] = vy[i] + ey[i];
+        uxy2[i] = ux[i] * ux[i] + uy[i] * uy[i];
+        vxy2[i] = vx[i] * vx[i] + vy[i] * vy[i];
+        uv[i] = ux[i] * vx[i] + uy[i] * vy[i];
+        eu[i] = up * (ex[i] * uy[i] - ey[i] * ux[i]);
+        ev[i] = up * (ex[i] * vy[i] - ey[i] * vx[i]);
+        const float t = std::min(std::max(-(vx[i] * ex[i] + vy[i] * ey[i]) * inverse_length2[i], 0.0f), 1.0f);
+        const float dx = vx[i] + t * ex[i], dy = vy[i] + t * ey[i];
+        poison[i] = dx * dx + dy * dy < kTie * kTie ? NAN : 0.0f;
+    }
+    float* terms = terms_.data();
+    for (int k = 0; k < count; ++k) {
+        const float qz = float(z[k] - origin_[2]);
+        for (std::size_t i = 0; i < n; ++i) {
+            const float vz = az[i] - qz, uz = vz + ez[i];
+            const float lu = std::sqrt(uxy2[i] + uz * uz), lv = std::sqrt(vxy2[i] + vz * vz);
+            const float su = up * uz >= 0 ? lu + up * uz : uxy2[i] / (lu - up * uz);
+            const float sv = up * vz >= 0 ? lv + up * vz : vxy2[i] / (lv - up * vz);
+            const float det = lu < lv ? eu[i] : ev[i];
+            const float denominator = su * sv + uv[i];
+            terms[i] = weight[i] * floats::arctangent2(det, denominator) + poison[i];
+        }
+        float lanes[kLanes] = {};
+        for (std::size_t i = 0; i < n; i += kLanes)
+            for (std::size_t j = 0; j < kLanes; ++j) lanes[j] += terms[i + j];
+        double sum = 0;
+        for (const float lane : lanes) sum += lane;
+        out[k] = sum;
+    }
 }
 
 }  // namespace hyvox::solid

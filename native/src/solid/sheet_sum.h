@@ -26,6 +26,9 @@ public:
     // within 1e-3 voxel of a sheet's edge in xy, where the solid angle jumps and the rays'
     // tie-breaking decides instead.
     double at(const std::array<double, 3>& q) const;
+    // at() at the points (x, y, z[n]) of one vertical line, n < count, into out[n]: the terms
+    // that depend on x and y alone computed once for the line. Equal to at() bit for bit.
+    void atColumn(double x, double y, const double* z, int count, double* out) const;
     std::size_t size() const { return count_; }
 
 private:
@@ -37,6 +40,9 @@ private:
     // edge), and excess / 2π.
     std::vector<float> ax_, ay_, az_, ex_, ey_, ez_, inverse_length2_, weight_;
     mutable std::vector<float> terms_;  // at()'s per-sheet terms (one SheetSum per thread)
+    // atColumn()'s per-sheet terms of the line: v and u = v + e in xy, |v_xy|², |u_xy|²,
+    // u_xy · v_xy, (e × u)_z, (e × v)_z, and NaN where the line passes an edge (else 0).
+    mutable std::vector<float> vx_, vy_, ux_, uy_, vxy2_, uxy2_, uv_, eu_, ev_, poison_;
 };
 
 }  // namespace hyvox::solid

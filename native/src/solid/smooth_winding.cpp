@@ -20,12 +20,10 @@ constexpr double kMargin = 0.06;
 // The sheets of open edges this many box sides from a box are taken out of its smooth part.
 constexpr double kNearSides = 0.5;
 // A brick's voxels evaluated outright share the clusters far from all of them (one walk of the
-// tree for the box, FastWinding::atBox) when there are at least this many: below, the walk
-// for the box costs more than it saves.
-constexpr std::size_t kSharedFarField = 32;
-// Samples are taken this far above a voxel centre, off any horizontal face through the centre
-// (g is continuous: its value holds at the centre).
-constexpr double kLift = 0.00390625;
+// tree for the box, FastWinding::atBox) when there are at least this many. Even two pay on
+// Sponza (CPU seconds at 1024, one thread: 21.6 with 32 here, 20.1 with 8, 19.7 with 2; at
+// 256 and 512 the same within the noise).
+constexpr std::size_t kSharedFarField = 2;
 
 using Int3 = std::array<std::int32_t, 3>;
 
@@ -34,14 +32,14 @@ using Int3 = std::array<std::int32_t, 3>;
 class Brick {
 public:
     // The voxels [lo, top] (top at most lo + 8).
-    Brick(const FastWinding& winding, const RayCrossings& rays, std::uint64_t run, SmoothWinding::LatticeSamples& lattice,
+    Brick(const FastWinding& winding, const RayCrossings& rays, std::uint64_t run, const BrickSamples& shared,
           const Int3& lo, const Int3& top, SmoothWinding::Counters& counters)
-        : winding_(winding), rays_(rays), run_(run), lattice_(lattice), lo_(lo), top_(top), counters_(counters) {
+        : winding_(winding), rays_(rays), run_(run), shared_(shared), lo_(lo), top_(top), counters_(counters) {
         std::fill(std::begin(samples_), std::end(samples_), NAN);
     }
 
-    // w - c at voxel p's centre (sampled just above it). Points of the lattice of brick
-    // corners (every coordinate a multiple of 8) are kept for the neighbouring bricks.
+    // w - c at voxel p's centre (sampled just above it). The corners and middles of the
+    // bricks' boxes come from the shared samples (BrickSamples), the same for every brick.
     double minusCrossings(const Int3& p) {
         sample(&p, 1);
         return samples_[local(p)];
@@ -56,22 +54,8 @@ public:
             const Int3& p = points[q];
             double& cached = samples_[local(p)];
             if (!std::isnan(cached) || std::find(wanted, wanted + n, local(p)) != wanted + n) continue;
-            if (onLattice(p)) {
-                const auto found = lattice_.find(latticeKey(p));
-                if (found != lattice_.end()) {
-                    cached = found->second;
-                    continue;
-                }
-            }
-            const Column& column = columnOf(p);
-            double h = p[2] + 0.5 + kLift;
-            // Off every crossing by more than the rounding of its height.
-            for (bool moved = true; moved;) {
-                moved = false;
-                for (const auto& c : column)
-                    if (std::fabs(c.z - h) < 1e-6) h += kLift, moved = true;
-            }
-            lifted[n] = {p[0] + 0.5, p[1] + 0.5, h};
+            if (shared_.find(p, cached)) continue;
+            lifted[n] = {p[0] + 0.5, p[1] + 0.5, sampleHeight(columnOf(p), p[2] + 0.5)};
             wanted[n++] = local(p);
         }
         if (n == 0) return;
@@ -80,9 +64,7 @@ public:
         winding_.atMany(lifted, std::size_t(n), w);
         for (int q = 0; q < n; ++q) {
             const Int3 p{lo_[0] + wanted[q] / 81, lo_[1] + wanted[q] / 9 % 9, lo_[2] + wanted[q] % 9};
-            const double value = w[q] - below(columnOf(p), lifted[q][2]);
-            samples_[wanted[q]] = value;
-            if (onLattice(p)) lattice_.emplace(latticeKey(p), value);  // another thread's equal value may win
+            samples_[wanted[q]] = w[q] - crossingsBelow(columnOf(p), lifted[q][2]);
         }
     }
     bool sampled(const Int3& p) const { return !std::isnan(samples_[local(p)]); }
@@ -94,7 +76,7 @@ public:
     }
     int columnCrossings(const Int3& p) {
         columnOf(p);
-        return total_[column(p)];
+        return block_->total[column(p)];
     }
     // The winding numbers at the centres of `voxels`, into `out`, in one walk of the tree.
     void exactWindings(const std::vector<Int3>& voxels, std::vector<double>& out) {
@@ -111,83 +93,80 @@ public:
 
 private:
     using Column = std::vector<RayCrossings::Crossing>;
-    static int below(const Column& column, double h) {
-        int count = 0;
-        for (const auto& c : column)
-            if (c.z < h) count += c.sign;
-        return count;
-    }
-    static bool onLattice(const Int3& p) { return (p[0] & 7) == 0 && (p[1] & 7) == 0 && (p[2] & 7) == 0; }
     int local(const Int3& p) const { return ((p[0] - lo_[0]) * 9 + (p[1] - lo_[1])) * 9 + (p[2] - lo_[2]); }
-    static std::uint64_t latticeKey(const Int3& p) {
-        return (std::uint64_t(p[0] >> 3) << 42) | (std::uint64_t(p[1] >> 3) << 21) | std::uint64_t(p[2] >> 3);
-    }
     int column(const Int3& p) const { return (p[0] - lo_[0]) * (top_[1] - lo_[1] + 1) + (p[1] - lo_[1]); }
     // The rays of all the brick's columns are found together, on first use, with each
-    // column's crossings below the brick's voxel centres (the same comparisons as below()).
+    // column's crossings below the brick's voxel centres (the same comparisons as
+    // crossingsBelow(), on the block's sorted heights).
     const Column& columnOf(const Int3& p) {
-        if (!columns_filled_) {
+        if (!block_) {
             const int ni = top_[0] - lo_[0] + 1, nj = top_[1] - lo_[1] + 1, nz = top_[2] - lo_[2] + 1;
-            columns_ = columnsOf(rays_, run_, lo_[0], lo_[1], ni, nj);
+            block_ = &columnsOf(rays_, run_, lo_[0], lo_[1], ni, nj);
             for (int n = 0; n < ni * nj; ++n) {
-                int step[10] = {};  // step[k]: crossings below centre k but not below centre k - 1
-                total_[n] = 0;
-                for (const auto& c : columns_[n]) {
-                    total_[n] += c.sign;
-                    if (std::isnan(c.z)) continue;  // below no centre, as in below()
-                    // The first centre above c.z (nz: none is), a guess from the difference, then
-                    // the comparisons; the guess stays within 0..nz, as step[] does.
-                    int k = int(std::clamp(std::floor(c.z - (lo_[2] + 0.5)), -1.0, double(nz - 1))) + 1;
-                    while (k > 0 && c.z < lo_[2] + (k - 1) + 0.5) --k;
-                    while (k < nz && !(c.z < lo_[2] + k + 0.5)) ++k;
-                    step[k] += c.sign;
+                const std::vector<double>& heights = block_->heights[n];
+                const std::vector<int>& prefix = block_->prefix[n];
+                std::size_t m = std::size_t(std::lower_bound(heights.begin(), heights.end(), lo_[2] + 0.5) - heights.begin());
+                for (int k = 0; k < nz; ++k) {
+                    while (m < heights.size() && heights[m] < lo_[2] + k + 0.5) ++m;
+                    below_[n][k] = prefix[m];
                 }
-                for (int k = 0, sum = 0; k < nz; ++k) below_[n][k] = sum += step[k];
             }
-            columns_filled_ = true;
         }
-        return columns_[column(p)];
+        return block_->columns[column(p)];
     }
 
     const FastWinding& winding_;
     const RayCrossings& rays_;
     std::uint64_t run_;
-    SmoothWinding::LatticeSamples& lattice_;
+    const BrickSamples& shared_;
     Int3 lo_, top_;
     SmoothWinding::Counters& counters_;
-    bool columns_filled_ = false;
-    // The columns' crossings, in storage each thread keeps from brick to brick.
-    const Column* columns_ = nullptr;
+    // The columns' crossings, in storage each thread keeps from brick to brick: as the rays
+    // give them, and their heights sorted, with the signed counts below each.
+    struct ColumnBlock {
+        std::uint64_t run = 0;  // none: runs count from 1
+        std::array<int, 4> key{-1, -1, -1, -1};
+        Column columns[9 * 9];  // no allocation per brick once grown
+        std::vector<double> heights[9 * 9];  // the crossings' heights (NaN left out: below no centre), ascending
+        std::vector<int> prefix[9 * 9];      // prefix[m]: the signed crossings of the lowest m
+        int total[9 * 9];                    // C, NaN heights included
+    };
+    const ColumnBlock* block_ = nullptr;
     int below_[9 * 9][9];  // per column, the signed crossings below each of the brick's centres
-    int total_[9 * 9];     // per column, C
     // The crossings of a block of columns are whole lines: the same for every brick of a stack
-    // along z. Each thread keeps the blocks of the last few bricks it decided (its next bricks
-    // are mostly their neighbours: the octree's order), and finds a block there before it
-    // asks the rays (the blocks are the same whichever thread finds them).
-    static const Column* columnsOf(const RayCrossings& rays, std::uint64_t run, int i0, int j0, int ni, int nj) {
-        struct Block {
-            std::uint64_t run = 0;  // none: runs count from 1
-            std::array<int, 4> key{-1, -1, -1, -1};
-            std::uint64_t last_used = 0;
-            Column columns[9 * 9];  // no allocation per brick once grown
-        };
-        constexpr int kBlocks = 8;
-        thread_local Block blocks[kBlocks];
-        thread_local std::uint64_t clock = 0;
+    // along z. Each thread keeps the blocks of its recent bricks, one slot per brick column
+    // (x and y modulo 16): the octree's order visits the bricks of a 16×16 window of columns
+    // before it moves on, and comes back to each for the next bricks along z (Sponza at 1024:
+    // the columns' share of the time 12% with the last eight kept, 3% now). A block is
+    // found there before the rays are asked (the blocks are the same whichever thread finds
+    // them).
+    static const ColumnBlock& columnsOf(const RayCrossings& rays, std::uint64_t run, int i0, int j0, int ni, int nj) {
+        constexpr int kWindow = 16;
+        thread_local std::vector<ColumnBlock> blocks(kWindow * kWindow);
+        thread_local std::vector<RayCrossings::Crossing> sorted;
         const std::array<int, 4> key{i0, j0, ni, nj};
-        Block* oldest = &blocks[0];
-        for (Block& block : blocks) {
-            if (block.run == run && block.key == key) {
-                block.last_used = ++clock;
-                return block.columns;
+        ColumnBlock& block = blocks[std::size_t(((i0 >> 3) % kWindow) * kWindow + (j0 >> 3) % kWindow)];
+        if (block.run == run && block.key == key) return block;
+        rays.columns(i0, j0, ni, nj, block.columns);
+        for (int n = 0; n < ni * nj; ++n) {
+            block.total[n] = 0;
+            sorted.clear();
+            for (const auto& c : block.columns[n]) {
+                block.total[n] += c.sign;
+                if (!std::isnan(c.z)) sorted.push_back(c);
             }
-            if (block.last_used < oldest->last_used) oldest = &block;
+            std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.z < b.z; });
+            block.heights[n].resize(sorted.size());
+            block.prefix[n].resize(sorted.size() + 1);
+            block.prefix[n][0] = 0;
+            for (std::size_t m = 0; m < sorted.size(); ++m) {
+                block.heights[n][m] = sorted[m].z;
+                block.prefix[n][m + 1] = block.prefix[n][m] + sorted[m].sign;
+            }
         }
-        rays.columns(i0, j0, ni, nj, oldest->columns);
-        oldest->run = run;
-        oldest->key = key;
-        oldest->last_used = ++clock;
-        return oldest->columns;
+        block.run = run;
+        block.key = key;
+        return block;
     }
     std::vector<Vec3> centres_;
     double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
@@ -206,7 +185,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
     // are then lattice points, each sampled once for the eight bricks around it.
     Int3 top;
     for (int d = 0; d < 3; ++d) top[d] = hi[d] == lo[d] + 8 && hi[d] < dims_[d] ? hi[d] : hi[d] - 1;
-    Brick brick(winding_, rays_, run_, lattice_, lo, top, counters);
+    Brick brick(winding_, rays_, run_, samples_, lo, top, counters);
     std::uint64_t done[8] = {};
     auto bit = [](const Int3& p) { return BitGrid::bitInBrick(p[0], p[1], p[2]); };
     auto pending = [&](const Int3& p) {
@@ -236,10 +215,20 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
     std::vector<GradientBound::Sheet> sheets, sheets_up;
     SheetSum sheet_sum;
 
+    // The pending voxels of column (i, j) of box [a, b] (inside the brick: the next bricks'
+    // voxels are never pending), one bit per z from a[2].
+    auto pendingColumn = [&](int i, int j, const Int3& a, const Int3& b) {
+        const int z_end = std::min(b[2], hi[2] - 1);
+        if (i >= hi[0] || j >= hi[1] || z_end < a[2]) return 0u;
+        const int x = i & 7;
+        const unsigned row = unsigned((wanted[x] & ~done[x]) >> ((j & 7) * 8)) & 0xffu;
+        return (row >> (a[2] & 7)) & ((2u << (z_end - a[2])) - 1u);
+    };
     // Boxes of voxels [a, b] (corners included), halved where interpolation does not hold.
     auto visit = [&](auto&& self, const Int3& a, const Int3& b) -> void {
         bool any = false;
-        forEach(a, b, [&](const Int3& p) { any = any || pending(p); });
+        for (int i = a[0]; i <= b[0] && !any; ++i)
+            for (int j = a[1]; j <= b[1] && !any; ++j) any = pendingColumn(i, j, a, b) != 0;
         if (!any) return;
         if (b[0] - a[0] <= 1 && b[1] - a[1] <= 1 && b[2] - a[2] <= 1) {
             // Every voxel is a corner: each evaluated.
@@ -257,8 +246,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
         // the other sign).
         const double reach = kNearSides * side;
         const Box near{{a[0] - reach, a[1] - reach, a[2] - reach}, {b[0] + 1.0 + reach, b[1] + 1.0 + reach, b[2] + 1.0 + reach}};
-        bound_.sheetsMeeting(near, false, sheets);
-        bound_.sheetsMeeting(near, true, sheets_up);
+        bound_.sheetsMeeting(near, sheets, sheets_up);
         const bool upward = sheets_up.size() < sheets.size();
         if (upward) std::swap(sheets, sheets_up);
         sheet_sum.assign(sheets, upward, {double(a[0]), double(a[1]), double(a[2])});
@@ -273,23 +261,54 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
         brick.sample(points, 9);  // the corners and the middle the next lines read, in one walk
         double corner[8];
         for (int c = 0; c < 8; ++c) corner[c] = smooth(points[c]);
-        auto interpolate = [&](const Int3& p) {
-            double t[3];
-            for (int d = 0; d < 3; ++d) t[d] = b[d] > a[d] ? double(p[d] - a[d]) / (b[d] - a[d]) : 0.0;
-            double value = 0;
-            for (int c = 0; c < 8; ++c)
-                value += corner[c] * (c & 4 ? t[0] : 1 - t[0]) * (c & 2 ? t[1] : 1 - t[1]) * (c & 1 ? t[2] : 1 - t[2]);
-            return value;
+        // The trilinear interpolation of the corners, along z from each column's ends.
+        double t[3][9];  // per axis, (p - a) / (b - a) at p = a .. b
+        for (int d = 0; d < 3; ++d)
+            for (int n = 0; n <= b[d] - a[d]; ++n) t[d][n] = b[d] > a[d] ? double(n) / (b[d] - a[d]) : 0.0;
+        auto columnEnds = [&](int i, int j, double& bottom, double& upper) {
+            const double x = t[0][i - a[0]], y = t[1][j - a[1]];
+            const double w00 = (1 - x) * (1 - y), w01 = (1 - x) * y, w10 = x * (1 - y), w11 = x * y;
+            bottom = corner[0] * w00 + corner[2] * w01 + corner[4] * w10 + corner[6] * w11;
+            upper = corner[1] * w00 + corner[3] * w01 + corner[5] * w10 + corner[7] * w11;
         };
-        if (std::fabs(smooth(m) - interpolate(m)) <= kAgree) {  // false for NaN
-            forEach(a, b, [&](const Int3& p) {
-                if (!pending(p)) return;
-                if (brick.sampled(p)) return decide(p, brick.crossings(p) + brick.minusCrossings(p));
-                const double w = brick.crossings(p) - shift(p) + interpolate(p) - sheetSum(p);
-                if (!(std::fabs(w - 0.5) >= kMargin)) return defer(p);  // NaN too
-                ++counters.interpolated_voxels;
-                decide(p, w);
-            });
+        double m_bottom, m_top;
+        columnEnds(m[0], m[1], m_bottom, m_top);
+        const double m_interpolated = m_bottom + (m_top - m_bottom) * t[2][m[2] - a[2]];
+        if (std::fabs(smooth(m) - m_interpolated) <= kAgree) {  // false for NaN
+            for (int i = a[0]; i <= b[0]; ++i)
+                for (int j = a[1]; j <= b[1]; ++j) {
+                    unsigned bits = pendingColumn(i, j, a, b);
+                    if (bits == 0) continue;
+                    double bottom, top_value;
+                    columnEnds(i, j, bottom, top_value);
+                    const double shifted = double(upward ? brick.columnCrossings({i, j, a[2]}) : 0);
+                    // The sampled voxels from their samples; the others' sheet sums together.
+                    int steps[9], count = 0;
+                    double heights[9], sheet_sums[9];
+                    for (; bits != 0; bits &= bits - 1) {
+                        const int dz = __builtin_ctz(bits);
+                        const Int3 p{i, j, a[2] + dz};
+                        if (brick.sampled(p)) {
+                            decide(p, brick.crossings(p) + brick.minusCrossings(p));
+                            continue;
+                        }
+                        steps[count] = dz;
+                        heights[count++] = p[2] + 0.5;
+                    }
+                    if (sheet_sum.size() > 0) sheet_sum.atColumn(i + 0.5, j + 0.5, heights, count, sheet_sums);
+                    else std::fill(sheet_sums, sheet_sums + count, 0.0);  // at()'s sum of no sheets
+                    for (int q = 0; q < count; ++q) {
+                        const Int3 p{i, j, a[2] + steps[q]};
+                        const double interpolated = bottom + (top_value - bottom) * t[2][steps[q]];
+                        const double w = brick.crossings(p) - shifted + interpolated - sheet_sums[q];
+                        if (!(std::fabs(w - 0.5) >= kMargin)) {  // NaN too
+                            defer(p);
+                            continue;
+                        }
+                        ++counters.interpolated_voxels;
+                        decide(p, w);
+                    }
+                }
             return;
         }
         // Halve every side of two or more voxels; the halves share the middle plane.

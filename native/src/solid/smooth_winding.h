@@ -17,7 +17,8 @@
 // A box is decided from g at its corners when g at its middle matches the corners'
 // interpolation; otherwise it is halved, down to voxels evaluated one by one. A brick's box
 // reaches the first voxels of the next bricks, so that its corners lie on the lattice of
-// brick corners, each sampled once for the (up to) eight bricks around it. c comes exactly
+// brick corners, each sampled once for the (up to) eight bricks around it: the bricks' boxes'
+// corners and middles are evaluated a block of bricks at a time (solid/brick_samples.h). c comes exactly
 // from the rays at every voxel, and a voxel whose interpolated w lies near 0.5 is evaluated
 // outright (a brick's many such voxels together, the clusters far from all of them as one
 // local expansion: FastWinding::atBox, solid/box_winding.cpp). This is a checked
@@ -26,8 +27,7 @@
 #include <array>
 #include <cstdint>
 
-#include <tbb/concurrent_unordered_map.h>
-
+#include "solid/brick_samples.h"
 #include "solid/fast_winding.h"
 #include "solid/gradient_bound.h"
 #include "solid/ray_crossings.h"
@@ -40,33 +40,22 @@ public:
         std::uint64_t point_evaluations = 0;   // fast winding numbers evaluated
         std::uint64_t interpolated_voxels = 0; // voxels decided from the interpolated smooth part
     };
-    // The brick-corner index mixed over all 64 bits: the map's buckets are picked by the low
-    // bits, which in the index itself are z alone (with std::hash, the identity, every corner
-    // of one z plane fell in one bucket, and finding one walked a list of thousands).
-    struct LatticeHash {
-        std::size_t operator()(std::uint64_t key) const {
-            key ^= key >> 33;
-            key *= 0xff51afd7ed558ccdULL;  // the finaliser of MurmurHash3
-            key ^= key >> 33;
-            return std::size_t(key);
-        }
-    };
-    // w - c at the lattice points sampled so far, by brick-corner index.
-    using LatticeSamples = tbb::concurrent_unordered_map<std::uint64_t, double, LatticeHash>;
     SmoothWinding(const FastWinding& winding, const RayCrossings& rays, const GradientBound& bound,
                   const std::array<std::int32_t, 3>& dims)
-        : winding_(winding), rays_(rays), bound_(bound), dims_(dims), run_(newRun()) {}
+        : winding_(winding), rays_(rays), bound_(bound), dims_(dims), samples_(winding, rays, dims), run_(newRun()) {}
     // Sets in `inside` the voxels of `wanted` (a brick's bits) whose winding number is at least
     // 0.5; the brick's voxels inside the grid are [lo, hi).
     void decideBrick(const std::array<std::int32_t, 3>& lo, const std::array<std::int32_t, 3>& hi,
                      const std::uint64_t wanted[8], std::uint64_t inside[8], Counters& counters) const;
+    // The fast winding numbers the bricks' shared samples took (BrickSamples), all threads'.
+    std::uint64_t sampleEvaluations() const { return samples_.evaluations(); }
 
 private:
     const FastWinding& winding_;
     const RayCrossings& rays_;
     const GradientBound& bound_;
     std::array<std::int32_t, 3> dims_;       // the grid's
-    mutable LatticeSamples lattice_;         // shared by the threads deciding bricks
+    BrickSamples samples_;                   // the bricks' boxes' corners and middles, shared by the threads
     // Tells this object's rays from another's (an earlier call's) in what the threads keep
     // from brick to brick: unique in the process, unlike an address.
     std::uint64_t run_;
