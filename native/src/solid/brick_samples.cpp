@@ -48,20 +48,24 @@ std::int32_t BrickSamples::Axis::middleIndex(std::int32_t c) const {
 
 BrickSamples::BrickSamples(const FastWinding& winding, const RayCrossings& rays, const Int3& dims)
     : winding_(winding), rays_(rays) {
-    std::size_t count = 1;
     for (int d = 0; d < 3; ++d) {
         axes_[std::size_t(d)].dims = dims[std::size_t(d)];
         axes_[std::size_t(d)].bricks = (dims[std::size_t(d)] + 7) / 8;
         blocks_[std::size_t(d)] = axes_[std::size_t(d)].bricks / kBlock + 1;  // corner index `bricks` included
-        count *= std::size_t(blocks_[std::size_t(d)]);
     }
-    table_ = std::make_unique<std::atomic<Block*>[]>(count);
-    for (std::size_t n = 0; n < count; ++n) table_[n].store(nullptr, std::memory_order_relaxed);
+    const std::size_t rows = std::size_t(blocks_[0]) * std::size_t(blocks_[1]);
+    rows_ = std::make_unique<std::atomic<std::atomic<Block*>*>[]>(rows);
+    for (std::size_t r = 0; r < rows; ++r) rows_[r].store(nullptr, std::memory_order_relaxed);
 }
 
 BrickSamples::~BrickSamples() {
-    const std::size_t count = std::size_t(blocks_[0]) * std::size_t(blocks_[1]) * std::size_t(blocks_[2]);
-    for (std::size_t n = 0; n < count; ++n) delete table_[n].load(std::memory_order_relaxed);
+    const std::size_t rows = std::size_t(blocks_[0]) * std::size_t(blocks_[1]);
+    for (std::size_t r = 0; r < rows; ++r) {
+        std::atomic<Block*>* row = rows_[r].load(std::memory_order_relaxed);
+        if (!row) continue;
+        for (std::int32_t z = 0; z < blocks_[2]; ++z) delete row[z].load(std::memory_order_relaxed);
+        delete[] row;
+    }
 }
 
 bool BrickSamples::find(const Int3& p, double& value) const {
@@ -84,8 +88,21 @@ bool BrickSamples::find(const Int3& p, double& value) const {
     return true;
 }
 
+std::atomic<BrickSamples::Block*>& BrickSamples::entry(const Int3& b) const {
+    std::atomic<std::atomic<Block*>*>& slot = rows_[std::size_t(b[0]) * std::size_t(blocks_[1]) + std::size_t(b[1])];
+    std::atomic<Block*>* row = slot.load(std::memory_order_acquire);
+    if (!row) {
+        auto mine = std::make_unique<std::atomic<Block*>[]>(std::size_t(blocks_[2]));
+        for (std::int32_t z = 0; z < blocks_[2]; ++z) mine[std::size_t(z)].store(nullptr, std::memory_order_relaxed);
+        // Another thread may have stored a row meanwhile: then that one is used.
+        if (slot.compare_exchange_strong(row, mine.get(), std::memory_order_acq_rel, std::memory_order_acquire))
+            row = mine.release();
+    }
+    return row[b[2]];
+}
+
 const BrickSamples::Block& BrickSamples::block(const Int3& b) const {
-    std::atomic<Block*>& entry = table_[(std::size_t(b[0]) * std::size_t(blocks_[1]) + std::size_t(b[1])) * std::size_t(blocks_[2]) + std::size_t(b[2])];
+    std::atomic<Block*>& entry = this->entry(b);
     Block* found = entry.load(std::memory_order_acquire);
     if (found) return *found;
     auto mine = std::make_unique<Block>();

@@ -76,6 +76,8 @@ private:
         // Brick whose middle is coordinate c, or -1.
         std::int32_t middleIndex(std::int32_t c) const;
     };
+    // Block b's entry; its row of blocks along z is allocated when first asked for.
+    std::atomic<Block*>& entry(const Int3& b) const;
     const Block& block(const Int3& b) const;
     void evaluate(const Int3& b, Block& out) const;
 
@@ -83,7 +85,10 @@ private:
     const RayCrossings& rays_;
     std::array<Axis, 3> axes_;
     Int3 blocks_{};  // blocks along each axis
-    std::unique_ptr<std::atomic<Block*>[]> table_;
+    // The blocks by (x, y) row, each row an array along z made when one of its blocks is
+    // first asked for: the table grows with the blocks an open mesh's surface reaches, not with
+    // the grid (a dense table of 16384³'s blocks would be a gigabyte of pointers).
+    std::unique_ptr<std::atomic<std::atomic<Block*>*>[]> rows_;
     mutable std::atomic<std::uint64_t> evaluations_{0};
 };
 
