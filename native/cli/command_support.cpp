@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "command_support.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <filesystem>
 
 #include "cli_args.h"
@@ -40,6 +43,12 @@ void checkOutputPaths(const std::string& mesh, const std::string& output, const 
                          "' are the same file; the stats would replace the .vdb");
     if (!output.empty()) checkOutputPath(output);
     if (!stats_json.empty()) checkOutputPath(stats_json);
+}
+
+void startWorkerThreads(int threads) {
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    // One task per thread: spawning them asks for the workers, which the pool then creates.
+    arena.execute([&] { tbb::parallel_for(0, arena.max_concurrency(), [](int) {}, tbb::simple_partitioner()); });
 }
 
 double msSince(std::chrono::steady_clock::time_point start) {
