@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "command_support.h"
 
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <filesystem>
@@ -45,10 +44,10 @@ void checkOutputPaths(const std::string& mesh, const std::string& output, const 
     if (!stats_json.empty()) checkOutputPath(stats_json);
 }
 
-void startWorkerThreads(int threads) {
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-    // One task per thread: spawning them asks for the workers, which the pool then creates.
-    arena.execute([&] { tbb::parallel_for(0, arena.max_concurrency(), [](int) {}, tbb::simple_partitioner()); });
+void initializeThreadPool() {
+    // The arena goes, the pool's set-up stays for the process. No work is spawned: a worker
+    // started now would spin looking for some beside the thread that reads.
+    tbb::task_arena(tbb::task_arena::automatic).initialize();
 }
 
 double msSince(std::chrono::steady_clock::time_point start) {

@@ -41,7 +41,7 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     const auto thread_limit = limitThreads(args.options.threads);
     checkOutputPaths(args.mesh_path, args.output_path, args.stats_json_path);
     ProgressLine interrupter = progressFor(args, stop);  // Ctrl-C stops the reading too
-    // The mesh is read on a thread of its own while this one starts TBB's workers
+    // The mesh is read on a thread of its own while this one sets up TBB's thread pool
     // (command_support.h); an error in the file is rethrown here by get().
     double read_ms = 0;
     std::future<Mesh> reading = std::async(std::launch::async, [&] {
@@ -50,7 +50,7 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
         read_ms = msSince(start);
         return read;
     });
-    startWorkerThreads(args.options.threads);
+    initializeThreadPool();
     const Mesh mesh = reading.get();
     for (const std::string& warning : mesh.warnings) std::fprintf(stderr, "hyvox: warning: %s\n", warning.c_str());
 
