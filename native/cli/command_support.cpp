@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "command_support.h"
 
+#include <tbb/task_arena.h>
+
 #include <filesystem>
 
 #include "cli_args.h"
@@ -40,6 +42,12 @@ void checkOutputPaths(const std::string& mesh, const std::string& output, const 
                          "' are the same file; the stats would replace the .vdb");
     if (!output.empty()) checkOutputPath(output);
     if (!stats_json.empty()) checkOutputPath(stats_json);
+}
+
+void initializeThreadPool() {
+    // The arena goes, the pool's set-up stays for the process. No work is spawned: a worker
+    // started now would spin looking for some beside the thread that reads.
+    tbb::task_arena(tbb::task_arena::automatic).initialize();
 }
 
 double msSince(std::chrono::steady_clock::time_point start) {

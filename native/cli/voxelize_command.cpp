@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <future>
 #include <string>
 
 #include "command_support.h"
@@ -40,9 +41,17 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     const auto thread_limit = limitThreads(args.options.threads);
     checkOutputPaths(args.mesh_path, args.output_path, args.stats_json_path);
     ProgressLine interrupter = progressFor(args, stop);  // Ctrl-C stops the reading too
-    auto start = std::chrono::steady_clock::now();
-    const Mesh mesh = readMesh(args.mesh_path, &interrupter);
-    const double read_ms = msSince(start);
+    // The mesh is read on a thread of its own while this one sets up TBB's thread pool
+    // (command_support.h); an error in the file is rethrown here by get().
+    double read_ms = 0;
+    std::future<Mesh> reading = std::async(std::launch::async, [&] {
+        const auto start = std::chrono::steady_clock::now();
+        Mesh read = readMesh(args.mesh_path, &interrupter);
+        read_ms = msSince(start);
+        return read;
+    });
+    initializeThreadPool();
+    const Mesh mesh = reading.get();
     for (const std::string& warning : mesh.warnings) std::fprintf(stderr, "hyvox: warning: %s\n", warning.c_str());
 
     MeshView view = mesh.view();
@@ -58,7 +67,7 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
         view.material_textures = material_textures.of_material.data();
     }
     // The output is always a .vdb: a voxel size it cannot hold is refused before the work.
-    start = std::chrono::steady_clock::now();
+    const auto start = std::chrono::steady_clock::now();
     const ValidatedMesh validated = validate(view, args.options, &interrupter);
     const double validate_ms = msSince(start);
     checkVdbVoxelSize(makeGrid(validated.bounds, args.options.grid).voxel_size);
