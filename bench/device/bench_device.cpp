@@ -7,7 +7,9 @@
 // voxels of the same mode: the exact methods must give the same voxel set ("equal"), or
 // differ only by a few touches within 1e-5 voxel, as the tests accept ("touches"), else
 // "DIFF"; tessellation gets its bias against the conservative and thin cpu voxels and its
-// false voxels (voxels the conservative set lacks, which must be 0).
+// false voxels (voxels the conservative set lacks, which must be 0). An `attributes@RES` step
+// times each exact method's binary run and its attribute run (colour where the scene has
+// colours, and normals; conservative) and checks the values against cpu's.
 //
 //   bench_device --mesh-dir DIR --csv FILE [--info FILE] [--order thin@256,thin@512,...]
 //                [--scenes bunny_stanford_69k.ply,...,dragon_stanford_871k.ply.gz:x16,triangle]
@@ -32,12 +34,14 @@
 #include <set>
 #include <string>
 #include <thread>
+#include <unordered_map>
 #include <vector>
 
 #include "bench_args.h"
 #include "core/stopwatch.h"
 #include "gl/gl_worker.h"
 #include "hyvox/accuracy.h"
+#include "hyvox/attribute_grid.h"
 #include "hyvox/errors.h"
 #include "hyvox/gl_devices.h"
 #include "hyvox/mesh_io.h"
@@ -53,7 +57,8 @@ using hyvox::bench::splitList;
 struct Step {
     hyvox::Mode mode = hyvox::Mode::Conservative;
     int resolution = 0;
-    bool threads = false;  // "threads@RES": the cpu method's thread scaling
+    bool threads = false;     // "threads@RES": the cpu method's thread scaling
+    bool attributes = false;  // "attributes@RES": the price of colour and normal voxels
 };
 
 // "thin@256" -> {Thin, 256}; "threads@512"; a bad step ends the program (a usage error).
@@ -61,12 +66,14 @@ Step parseStep(const std::string& text) {
     const auto at = text.find('@');
     const int res = at == std::string::npos ? 0 : std::atoi(text.c_str() + at + 1);
     if (res <= 0) {
-        std::fprintf(stderr, "bad --order step '%s' (want MODE@RES or threads@RES, e.g. thin@256)\n", text.c_str());
+        std::fprintf(stderr, "bad --order step '%s' (want MODE@RES, threads@RES or attributes@RES, e.g. thin@256)\n",
+                     text.c_str());
         std::exit(2);
     }
     Step step;
     step.resolution = res;
     if (text.substr(0, at) == "threads") step.threads = true;
+    else if (text.substr(0, at) == "attributes") step.attributes = true;
     else step.mode = hyvox::parseMode(text.substr(0, at));
     return step;
 }
@@ -207,7 +214,73 @@ struct Checked {
     std::string check = "-";  // equal | touches | DIFF | bias | - (not checked)
     std::uint64_t ref_voxels = 0, missed = 0, false_voxels = 0, touches = 0, unexplained = 0;
     double bias = -1, bias_thin = -1;  // -1: not measured
+    // Attribute rows: the same method's binary run, and the largest difference of a colour
+    // channel from cpu's values on the voxels both hold (-1: not measured).
+    double binary_wall_ms = -1, attr_max_diff = -1;
 };
+
+// A GL method's voxels against cpu's of the same mode: the same set ("equal"), or differing
+// only by touches within 1e-5 voxel, and few of them, as the tests accept ("touches").
+Checked againstCpu(const hyvox::Mesh& mesh, hyvox::Mode mode, const hyvox::VoxelizeResult& result,
+                   const hyvox::VoxelizeResult& cpu) {
+    Checked c;
+    c.ref_voxels = cpu.stats.voxel_count;
+    if (result.occupancy == cpu.occupancy) {
+        c.check = "equal";
+        return c;
+    }
+    const hyvox::test::Comparison cmp = hyvox::test::compareResults(mesh.view(), mode, result, cpu);
+    c.missed = cmp.oracle_only;
+    c.false_voxels = cmp.result_only;
+    c.touches = cmp.touches;
+    c.unexplained = cmp.unexplained.size();
+    const bool rare = cmp.touches <= std::max<std::uint64_t>(10, cmp.oracle_voxels / 10000);
+    c.check = cmp.unexplained.empty() && rare ? "touches" : "DIFF";
+    return c;
+}
+
+// The largest difference of a colour or alpha channel between two runs' values on the voxels
+// both hold; infinity when they hold different channels, -1 without colour. Normals are not
+// compared: where opposite faces cancel in a voxel (Sponza's two-sided walls: 668 of 26,342
+// voxels at 64), the mean's direction is rounding, as tests/python/test_attributes.py notes.
+double maxColourDifference(const hyvox::VoxelizeResult& a, const hyvox::VoxelizeResult& b) {
+    const int n = a.attributes.channels();
+    if (n != b.attributes.channels() || a.attributes.color != b.attributes.color) return HUGE_VAL;
+    if (!a.attributes.color) return -1;
+    const int colour_channels = a.attributes.normalOffset();  // colour, then alpha if any
+    auto key = [](const std::array<std::int32_t, 3>& p) {
+        return (std::uint64_t(p[0]) << 42) | (std::uint64_t(p[1]) << 21) | std::uint64_t(p[2]);
+    };
+    const auto coords_b = b.occupancy.coords();
+    std::unordered_map<std::uint64_t, std::size_t> index_b(coords_b.size());
+    for (std::size_t v = 0; v < coords_b.size(); ++v) index_b.emplace(key(coords_b[v]), v);
+    const std::vector<float> values_a = hyvox::valuesInCoordsOrder(a.occupancy, a.attributes);
+    const std::vector<float> values_b = hyvox::valuesInCoordsOrder(b.occupancy, b.attributes);
+    const auto coords_a = a.occupancy.coords();
+    double worst = 0;
+    for (std::size_t v = 0; v < coords_a.size(); ++v) {
+        const auto found = index_b.find(key(coords_a[v]));
+        if (found == index_b.end()) continue;
+        for (int ch = 0; ch < colour_channels; ++ch)
+            worst = std::max(worst, double(std::fabs(values_a[v * std::size_t(n) + std::size_t(ch)] -
+                                                     values_b[found->second * std::size_t(n) + std::size_t(ch)])));
+    }
+    return worst;
+}
+
+// The GL methods' pieces are clipped in double like cpu's (the tests hold the means to 2e-5);
+// a piece lost or counted twice moves a colour mean by more than this.
+constexpr double kAttributeTolerance = 1e-3;
+
+// An attribute row's binary time, the price of the attributes (wall ratio) and the value
+// difference, for the log line ("" elsewhere).
+std::string attributeText(const Checked& c, double wall_ms) {
+    if (c.binary_wall_ms <= 0) return "";
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " binary wall %.2f (x%.2f) max diff %.2g", c.binary_wall_ms,
+                  wall_ms / c.binary_wall_ms, c.attr_max_diff);
+    return buf;
+}
 
 // GL_RENDERER and friends of the GL worker's context, after the EGL devices it chose from;
 // `hardware` says whether that context is on a hardware device.
@@ -244,7 +317,7 @@ std::string deviceInfo(const std::string& selection, bool& hardware) {
 const char* kHeader =
     "step,scene,triangles,mode,res,method,threads,runs,gpu_ms,pass0_ms,pass1_ms,pass2_ms,stage_ms,wall_ms,first_ms,"
     "cutoff,large_triangles,cutoff_search_runs,tiles,voxels,ref_voxels,check,missed,false_voxels,touches,unexplained,"
-    "bias,bias_thin,points,elapsed_s,stages\n";
+    "bias,bias_thin,points,elapsed_s,stages,binary_wall_ms,attr_max_diff\n";
 
 // One step ("thin@256", or "threads@512": cpu alone at 1, 2, 4, ... threads) on one scene.
 class Bench {
@@ -262,30 +335,13 @@ public:
         o.mode = mode;
         o.method = hyvox::Method::Cpu;
         const Row cpu = timeMethod(mesh, o, repeat_, row_budget_ms_);
-        emit(step, spec, mesh, mode, res, "cpu", cpu, Checked{});
+        emit(step, spec, mesh, hyvox::toString(mode), res, "cpu", cpu, Checked{});
         if (!cpu.error.empty()) return;
         for (hyvox::Method method : {hyvox::Method::Hybrid, hyvox::Method::Triangle, hyvox::Method::Fragment}) {
             o.method = method;
             const Row row = timeMethod(mesh, o, repeat_, row_budget_ms_);
-            Checked c;
-            c.ref_voxels = cpu.last.stats.voxel_count;
-            if (row.error.empty()) {
-                if (row.last.occupancy == cpu.last.occupancy) {
-                    c.check = "equal";
-                } else {
-                    // The tests' rule: every disagreement a touch within 1e-5 voxel (either
-                    // answer is right), and touches rare.
-                    const hyvox::test::Comparison cmp =
-                        hyvox::test::compareResults(mesh.view(), mode, row.last, cpu.last);
-                    c.missed = cmp.oracle_only;
-                    c.false_voxels = cmp.result_only;
-                    c.touches = cmp.touches;
-                    c.unexplained = cmp.unexplained.size();
-                    const bool rare = cmp.touches <= std::max<std::uint64_t>(10, cmp.oracle_voxels / 10000);
-                    c.check = cmp.unexplained.empty() && rare ? "touches" : "DIFF";
-                }
-            }
-            emit(step, spec, mesh, mode, res, hyvox::toString(method), row, c);
+            const Checked c = row.error.empty() ? againstCpu(mesh, mode, row.last, cpu.last) : Checked{};
+            emit(step, spec, mesh, hyvox::toString(mode), res, hyvox::toString(method), row, c);
         }
         if (!tessellated_.insert(spec + "@" + std::to_string(res)).second) return;
         o.method = hyvox::Method::Tessellation;
@@ -308,7 +364,36 @@ public:
             c.bias_thin = compareToReference(row.last.occupancy, thin.occupancy).bias;
         }
         // Tessellation has no mode: its row sits in the step's (bias is against conservative).
-        emit(step, spec, mesh, mode, res, "tessellation", row, c);
+        emit(step, spec, mesh, hyvox::toString(mode), res, "tessellation", row, c);
+    }
+
+    // Each exact method's binary run, then its attribute run (colour where the scene has
+    // colours, and normals; conservative), the latter's voxels and values against cpu's.
+    void attributeStep(std::size_t step, const std::string& spec, const hyvox::Mesh& mesh, int res) {
+        hyvox::VoxelizeOptions o = options(res);
+        o.mode = hyvox::Mode::Conservative;
+        const std::string attributes = mesh.view().colors ? "color,normal" : "normal";
+        Row cpu;
+        for (hyvox::Method method :
+             {hyvox::Method::Cpu, hyvox::Method::Hybrid, hyvox::Method::Triangle, hyvox::Method::Fragment}) {
+            o.method = method;
+            o.attributes.clear();
+            const Row binary = timeMethod(mesh, o, repeat_, row_budget_ms_);
+            o.attributes = attributes;
+            Row row = timeMethod(mesh, o, repeat_, row_budget_ms_);
+            Checked c;
+            if (method != hyvox::Method::Cpu && row.error.empty() && cpu.error.empty()) {
+                c = againstCpu(mesh, o.mode, row.last, cpu.last);
+                c.attr_max_diff = maxColourDifference(row.last, cpu.last);
+                if (c.attr_max_diff > kAttributeTolerance) c.check = "DIFF";
+            }
+            c.binary_wall_ms = binary.error.empty() ? binary.wall_ms : -1;
+            emit(step, spec, mesh, "attributes", res, hyvox::toString(method), row, c);
+            if (method == hyvox::Method::Cpu) {
+                if (!row.error.empty()) return;
+                cpu = std::move(row);
+            }
+        }
     }
 
     // The cpu method (conservative) at 1, 2, 4, ... threads up to the machine's, then all
@@ -318,7 +403,7 @@ public:
         o.method = hyvox::Method::Cpu;
         o.threads = 0;
         const Row all = timeMethod(mesh, o, repeat_, row_budget_ms_);
-        emit(step, spec, mesh, o.mode, res, "cpu", all, Checked{});
+        emit(step, spec, mesh, hyvox::toString(o.mode), res, "cpu", all, Checked{});
         if (!all.error.empty()) return;
         const int cores = int(std::thread::hardware_concurrency());
         for (int threads = 1; threads <= cores; threads *= 2) {
@@ -327,7 +412,7 @@ public:
             Checked c;
             c.ref_voxels = all.last.stats.voxel_count;
             if (row.error.empty()) c.check = row.last.occupancy == all.last.occupancy ? "equal" : "DIFF";
-            emit(step, spec, mesh, o.mode, res, "cpu", row, c);
+            emit(step, spec, mesh, hyvox::toString(o.mode), res, "cpu", row, c);
         }
     }
 
@@ -339,7 +424,7 @@ private:
         return o;
     }
 
-    void emit(std::size_t step, const std::string& spec, const hyvox::Mesh& mesh, hyvox::Mode mode, int res,
+    void emit(std::size_t step, const std::string& spec, const hyvox::Mesh& mesh, const char* mode, int res,
               const char* method, const Row& row, const Checked& c) {
         const hyvox::Stats& s = row.last.stats;
         const hyvox::HybridStats h = s.hybrid.value_or(hyvox::HybridStats{});
@@ -347,8 +432,8 @@ private:
         const std::string name = sceneName(spec);
         std::fprintf(csv_,
                      "%zu,%s,%zu,%s,%d,%s,%d,%d,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.3f,%llu,%llu,%llu,%llu,%llu,%s,"
-                     "%llu,%llu,%llu,%llu,%.6f,%.6f,%llu,%.1f,%s\n",
-                     step, name.c_str(), mesh.triangleCount(), hyvox::toString(mode), res, method, row.threads,
+                     "%llu,%llu,%llu,%llu,%.6f,%.6f,%llu,%.1f,%s,%.3f,%.3g\n",
+                     step, name.c_str(), mesh.triangleCount(), mode, res, method, row.threads,
                      row.runs, row.gpu_ms, row.pass0_ms, row.pass1_ms, row.pass2_ms, row.stage_ms, row.wall_ms,
                      row.first_ms, s.hybrid ? h.cutoff : 0.0, (unsigned long long)h.large_triangles,
                      (unsigned long long)h.cutoff_search_runs, (unsigned long long)s.tiles,
@@ -356,13 +441,13 @@ private:
                      (unsigned long long)c.missed, (unsigned long long)c.false_voxels, (unsigned long long)c.touches,
                      (unsigned long long)c.unexplained, c.bias, c.bias_thin,
                      (unsigned long long)(s.tessellation ? s.tessellation->points : 0), elapsedS(),
-                     stageText(s).c_str());
+                     stageText(s).c_str(), c.binary_wall_ms, c.attr_max_diff);
         std::fflush(csv_);
         std::printf("%-26s %9zu %-12s %4d %-12s t%-2d runs %d gpu %9.3f (p0 %.3f p1 %.3f p2 %.3f) stage %9.2f wall "
-                    "%9.2f first %9.2f voxels %llu %s\n",
-                    name.c_str(), mesh.triangleCount(), hyvox::toString(mode), res, method, row.threads, row.runs,
+                    "%9.2f first %9.2f voxels %llu %s%s\n",
+                    name.c_str(), mesh.triangleCount(), mode, res, method, row.threads, row.runs,
                     row.gpu_ms, row.pass0_ms, row.pass1_ms, row.pass2_ms, row.stage_ms, row.wall_ms, row.first_ms,
-                    (unsigned long long)s.voxel_count, check.c_str());
+                    (unsigned long long)s.voxel_count, check.c_str(), attributeText(c, row.wall_ms).c_str());
         std::fflush(stdout);
         if (!row.error.empty() || c.check == "DIFF" || (c.check == "bias" && c.false_voxels)) ++failures_;
     }
@@ -409,7 +494,8 @@ int main(int argc, char** argv) {
                          "usage: bench_device --mesh-dir DIR --csv FILE [--info FILE] [--order STEP,...] "
                          "[--scenes S,...] [--repeat N] [--row-budget-s S] [--budget-s S] [--device D] "
                          "[--require-hardware]\n"
-                         "  STEP: MODE@RES (thin@256) or threads@RES (cpu alone at 1, 2, 4, ... threads)\n");
+                         "  STEP: MODE@RES (thin@256), threads@RES (cpu alone at 1, 2, 4, ... threads) or\n"
+                         "        attributes@RES (each exact method binary, then with colour and normals)\n");
             return 2;
         }
     }
@@ -457,6 +543,7 @@ int main(int argc, char** argv) {
             try {
                 const hyvox::Mesh& mesh = meshes.get(spec);
                 if (step.threads) bench.threadsStep(si, spec, mesh, step.resolution);
+                else if (step.attributes) bench.attributeStep(si, spec, mesh, step.resolution);
                 else bench.exactStep(si, spec, mesh, step.mode, step.resolution);
             } catch (const std::exception& e) {
                 std::printf("# %s (step %s): %s\n", spec.c_str(), order[si].c_str(), e.what());

@@ -196,6 +196,19 @@ def main():
               f"| {split} | {tess_text} | {fmt(cpu['stage_ms']) if cpu else ''} | {checks} "
               f"| {paper_scene or ''} | {paper_text} | {ratio} |")
 
+    attribute_rows = [r for r in rows if r["mode"] == "attributes" and not r["check"].startswith("ERROR")]
+    if attribute_rows:
+        print("\nThe price of colour and normal voxels (conservative; wall ms of the whole call, medians): "
+              "each method's binary run, then with attributes; colour checked against cpu's:\n")
+        print("| scene | res | method | binary | with attributes | ratio | max colour diff vs cpu | check |")
+        print("|---|---:|---|---:|---:|---:|---:|---|")
+        for r in sorted(attribute_rows, key=lambda r: (order((r["scene"], int(r["res"]))), r["method"])):
+            binary, attributed = float(r["binary_wall_ms"]), float(r["wall_ms"])
+            ratio = f"{attributed / binary:.1f}x" if binary > 0 else ""
+            diff = "" if float(r["attr_max_diff"]) < 0 else f"{float(r['attr_max_diff']):.1e}"
+            print(f"| {r['scene']} | {r['res']} | {r['method']} | {fmt(binary)} | {fmt(attributed)} | {ratio} "
+                  f"| {diff} | {check_text(r)} |")
+
     threads = [r for r in rows if r["method"] == "cpu" and r["step"] and r["threads"] != "0"]
     if threads:
         print("\ncpu method, conservative, its voxelize stage (ms) by threads (speed-up vs 1 thread):\n")
