@@ -241,8 +241,8 @@ Checked againstCpu(const hyvox::Mesh& mesh, hyvox::Mode mode, const hyvox::Voxel
 
 // The largest difference of a colour or alpha channel between two runs' values on the voxels
 // both hold; infinity when they hold different channels, -1 without colour. Normals are not
-// compared: where opposite faces cancel in a voxel (Sponza's two-sided walls: 668 of 26,342
-// voxels at 64), the mean's direction is rounding, as tests/python/test_attributes.py notes.
+// compared: a mean normal that rounding puts near the cancelled-normal line (opposite faces in
+// one voxel: attributes/surface_values.h) is zero in one run and a unit vector in the other.
 double maxColourDifference(const hyvox::VoxelizeResult& a, const hyvox::VoxelizeResult& b) {
     const int n = a.attributes.channels();
     if (n != b.attributes.channels() || a.attributes.color != b.attributes.color) return HUGE_VAL;

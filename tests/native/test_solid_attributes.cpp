@@ -92,7 +92,8 @@ struct Dense {
 void meanInto(const double* sums, int count, double* out) {
     for (int c = 0; c < 6; ++c) out[c] = sums[c] / count;
     const double length = std::sqrt(out[3] * out[3] + out[4] * out[4] + out[5] * out[5]);
-    for (int c = 3; c < 6; ++c) out[c] = length > 0 ? out[c] / length : 0.0;
+    // Shorter than 1e-5: opposite normals cancelled, no direction (attributes/surface_values.h).
+    for (int c = 3; c < 6; ++c) out[c] = length > 1e-5 ? out[c] / length : 0.0;
     for (int c = 0; c < 6; ++c) out[c] = double(float(out[c]));  // stored as float before the next layer
 }
 

@@ -7,7 +7,8 @@ with w_t = area of t clipped to v's closed box (voxel units) + 1e-6 and c_t the 
 clipped polygon; a touch without area (clipped area below TOUCH_AREA) uses the midpoint of the
 two clipped points farthest apart (a point: the point). a_t(c) is t's attribute interpolated
 with its barycentrics at c (clamped to [0, 1] and renormalised), a texture sampled at the
-interpolated UV. Normals: the same mean, then normalised (zero stays zero).
+interpolated UV. Normals: the same mean, then normalised; a mean shorter than
+CANCELLED_NORMAL_LENGTH (opposite faces cancelling in a voxel) is zero.
 
 All clipping is Sutherland-Hodgman in double, vectorised over every (triangle, voxel) pair.
 """
@@ -18,6 +19,7 @@ import numpy as np
 AREA_EPSILON = 1e-6  # the weight of a touch
 TOUCH_AREA = 1e-14   # clipped areas below this count as a touch (voxel units²)
 MAX_VERTICES = 9     # a triangle clipped by 6 half-spaces has at most 3 + 6 corners
+CANCELLED_NORMAL_LENGTH = 1e-5  # a shorter mean normal has no direction: zero
 TOUCH_MARGIN = 1e-9  # box growth that finds touches the exact clip loses to rounding
 
 
@@ -236,10 +238,12 @@ def voxel_attributes(
             mean = mean[:, :3]
         if name == "normal":
             length = np.linalg.norm(mean, axis=1, keepdims=True)
-            # How well the direction is defined: where opposite faces cancel (a two-sided
-            # wall), it is left to rounding, which differs between any two area formulas.
+            # Where opposite faces cancel (a two-sided wall) the mean is zero but for rounding,
+            # which differs between any two area formulas: zero below the line. The length is
+            # kept so that a comparison can leave out the few means rounding puts near the line.
             out["normal_length"] = length[:, 0]
-            mean = np.where(length > 0, mean / np.where(length > 0, length, 1), 0)
+            direction = length > CANCELLED_NORMAL_LENGTH
+            mean = np.where(direction, mean / np.where(direction, length, 1), 0)
         out[name] = mean
     ijk = np.stack(
         [unique_keys // (dims[1] * dims[2]), (unique_keys // dims[2]) % dims[1], unique_keys % dims[2]], axis=1

@@ -11,6 +11,7 @@ import pyopenvdb as vdb
 import pytest
 
 import hyvox
+from attribute_oracle import CANCELLED_NORMAL_LENGTH
 from shapes import icosphere
 
 NAMES = ("color", "alpha", "normal")
@@ -46,7 +47,8 @@ def mean_of(sums, count, normal):
     if normal is not None:
         n = value[..., normal]
         length = np.linalg.norm(n, axis=-1, keepdims=True)
-        value[..., normal] = np.where(length > 0, n / np.where(length > 0, length, 1), 0)
+        direction = length > CANCELLED_NORMAL_LENGTH  # shorter: opposite normals cancelled, zero
+        value[..., normal] = np.where(direction, n / np.where(direction, length, 1), 0)
     return value
 
 

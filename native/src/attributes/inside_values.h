@@ -9,8 +9,8 @@
 //    leaves, and of whole bricks that hold surface voxels) are valued by layers from the
 //    surface inward. Layer 0 = the surface voxels. Layer k = the leaf voxels not yet valued
 //    that have at least one 26-neighbour valued in a layer < k; the value = the plain mean of
-//    those neighbours' values (normal: the mean, then normalised, zero stays zero; alpha like
-//    colour).
+//    those neighbours' values (normal: the mean, then normalised, zero when it cancels:
+//    meanOfSums; alpha like colour).
 //  - Every other inside brick is a tile. Tiles are grouped into regions as OpenVDB's prune()
 //    groups the density's tiles (an 8³ brick, a 128³ node wholly tiles, a 4096³ node wholly
 //    such nodes), and each region holds one value, so memory follows the surface. Region

@@ -166,8 +166,9 @@ void meanOfSums(const AttributeGrid& layout, const double* sums, double weight, 
     if (!layout.normal) return;
     const double* n = sums + layout.normalOffset();
     const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    const double inverse_length = length > 0 ? 1.0 / length : 0.0;  // one division, as for the weight
-    for (int a = 0; a < 3; ++a) mean[layout.normalOffset() + a] = length > 0 ? float(n[a] * inverse_length) : 0.0f;
+    const bool direction = length > kCancelledNormalLength * weight;  // the mean's length over the line
+    const double inverse_length = direction ? 1.0 / length : 0.0;  // one division, as for the weight
+    for (int a = 0; a < 3; ++a) mean[layout.normalOffset() + a] = direction ? float(n[a] * inverse_length) : 0.0f;
 }
 
 }  // namespace hyvox::attributes

@@ -58,7 +58,7 @@ inline std::uint64_t tileBitBytesForSums(std::uint64_t storage_block, std::uint6
 
 // The means of every set voxel of the tile, one leaf per non-empty brick (bit order), from
 // the blocks' counts and sums: colours are sum / count, normals the direction of the sum
-// (zero stays zero). Returns the set voxels that had no count (given zeros; none expected).
+// (zero when it cancels: attributes::meanOfSums). Returns the set voxels that had no count (given zeros; none expected).
 std::uint64_t meansFromSums(const std::vector<std::uint32_t>& brick_blocks, const std::vector<std::uint32_t>& count_pool,
                             const std::vector<std::uint32_t>& value_pool, const BitGrid& bits,
                             const std::array<std::int32_t, 3>& tile_offset, const GridSpec& grid,
