@@ -634,36 +634,40 @@ TEST(SolidWinding, BrickSamplesAreTheBoxesPointsAndMatchTheExactSum) {
 }
 
 // Calls one after another on one thread (what a thread keeps from brick to brick, the rays'
-// columns of its last bricks, is keyed by the call): open boxes on the same grid, open at the
-// top, at the bottom, at the top again (the same columns, other crossings). Each against the
-// exact winding number, and the repeated call equal to the first in its voxels and its counts.
-// (This does not catch every stale column: w - c is sampled and interpolated with the same c,
-// so a wrong c mostly costs more evaluations; with the key left out these boxes still passed.)
+// columns of its recent bricks, is keyed by the call): two cups open at the top on the same
+// grid, whose bottoms cross the same columns at two heights inside one layer of bricks, and
+// the first again. Each against the exact winding number, and the repeated call equal to the
+// first in its voxels and its counts. Both bottoms lie between the bricks' lattice planes and
+// their middles, where no sample of a brick box reads the rays: a call that counted the other
+// cup's crossings would interpolate w - c smoothly across the band between the bottoms and
+// decide its voxels off by one (with the call left out of the key, hundreds are wrong).
 TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
-    auto openBox = [](bool open_top) {
+    // In voxels of 1/16: the cup spans 3.2 .. 28.8 in x and y, its rim at z 56, its bottom at
+    // `bottom` (17.2 or 19.6, between the planes 16 and 20); specks stretch the bounds to 32 ×
+    // 32 × 64 voxels.
+    auto cup = [](float bottom) {
         std::vector<float> positions;
         std::vector<std::uint32_t> triangles;
         auto polygon = [&](const std::vector<std::array<float, 3>>& corners) {
             const auto base = std::uint32_t(positions.size() / 3);
-            for (const auto& c : corners) positions.insert(positions.end(), c.begin(), c.end());
+            for (const auto& c : corners)
+                for (const float x : c) positions.push_back(x / 16);
             for (std::uint32_t k = 1; k + 1 < corners.size(); ++k) triangles.insert(triangles.end(), {base, base + k, base + k + 1});
         };
-        // [0.2, 0.8] x [0.2, 0.8] x [0.5, 3.5], faces outward, one end left open; two specks
-        // stretch the bounds to [0, 1] x [0, 1] x [0, 4].
-        const float a = 0.2f, b = 0.8f, lo = 0.5f, hi = 3.5f;
-        if (open_top) polygon({{a, a, lo}, {a, b, lo}, {b, b, lo}, {b, a, lo}});
-        else polygon({{a, a, hi}, {b, a, hi}, {b, b, hi}, {a, b, hi}});
+        const float a = 3.2f, b = 28.8f, lo = bottom, hi = 56;  // faces outward
+        polygon({{a, a, lo}, {a, b, lo}, {b, b, lo}, {b, a, lo}});
         polygon({{a, a, lo}, {b, a, lo}, {b, a, hi}, {a, a, hi}});
         polygon({{a, b, lo}, {a, b, hi}, {b, b, hi}, {b, b, lo}});
         polygon({{a, a, lo}, {a, a, hi}, {a, b, hi}, {a, b, lo}});
         polygon({{b, a, lo}, {b, b, lo}, {b, b, hi}, {b, a, hi}});
-        polygon({{0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}});
-        polygon({{1, 1, 4}, {0.99f, 1, 4}, {1, 0.99f, 4}});
+        polygon({{0, 0, 0}, {0.16f, 0, 0}, {0, 0.16f, 0}});
+        polygon({{32, 32, 64}, {31.84f, 32, 64}, {32, 31.84f, 64}});
         return std::make_pair(positions, triangles);
     };
+    const float low = 17.2f, high = 19.6f;
     std::vector<VoxelizeResult> results;
-    for (const bool open_top : {true, false, true}) {
-        const auto [positions, triangles] = openBox(open_top);
+    for (const float bottom : {low, high, low}) {
+        const auto [positions, triangles] = cup(bottom);
         VoxelizeOptions options;
         options.mode = Mode::Solid;
         options.threads = 1;
@@ -673,8 +677,7 @@ TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
         const VoxelizeResult solid = voxelize(test::viewOf(positions, triangles), options);
         const VoxelizeResult surface = voxelize(test::viewOf(positions, triangles), surface_options);
         ASSERT_EQ(solid.stats.solid->evaluation, "fast winding numbers");
-        ASSERT_LE(solid.grid.dims[0], 16);
-        ASSERT_LE(solid.grid.dims[1], 16);
+        ASSERT_EQ(solid.grid.dims, (std::array<std::int32_t, 3>{32, 32, 64}));
         std::vector<std::array<solid::Vec3, 3>> corners;
         for (std::size_t t = 0; t < triangles.size(); t += 3) {
             std::array<solid::Vec3, 3> c;
@@ -684,7 +687,9 @@ TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
             }
             corners.push_back(c);
         }
-        int inside = 0, outside = 0, wrong = 0;
+        // `band`: the voxels checked whose centre lies between the two bottoms, inside the
+        // cup's walls (those a call reading the other cup's crossings would miscount).
+        int inside = 0, outside = 0, wrong = 0, band = 0;
         for (int i = 0; i < solid.grid.dims[0]; ++i)
             for (int j = 0; j < solid.grid.dims[1]; ++j)
                 for (int k = 0; k < solid.grid.dims[2]; ++k) {
@@ -694,11 +699,13 @@ TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
                     for (const auto& c : corners) w += solid::triangleWinding(c[0], c[1], c[2], q);
                     if (std::fabs(w - 0.5) < 0.05) continue;
                     ++(w >= 0.5 ? inside : outside);
+                    band += q[0] > 3.2 && q[0] < 28.8 && q[1] > 3.2 && q[1] < 28.8 && q[2] > low && q[2] < high;
                     wrong += solid.occupancy.test(i, j, k) != (w >= 0.5);
                 }
-        EXPECT_GT(inside, 1000) << open_top;
-        EXPECT_GT(outside, 1000) << open_top;
-        EXPECT_EQ(wrong, 0) << open_top;
+        EXPECT_GT(inside, 10000) << bottom;
+        EXPECT_GT(outside, 10000) << bottom;
+        EXPECT_GT(band, 500) << bottom;
+        EXPECT_EQ(wrong, 0) << bottom;
         results.push_back(solid);
     }
     const SolidStats &first = *results[0].stats.solid, &again = *results[2].stats.solid;
