@@ -147,6 +147,9 @@ private:
         const std::array<int, 4> key{i0, j0, ni, nj};
         ColumnBlock& block = blocks[std::size_t(((i0 >> 3) % kWindow) * kWindow + (j0 >> 3) % kWindow)];
         if (block.run == run && block.key == key) return block;
+        // Marked as no run's while it is refilled: an exception half way (no memory) must not
+        // leave another block's key on these columns.
+        block.run = 0;
         rays.columns(i0, j0, ni, nj, block.columns);
         for (int n = 0; n < ni * nj; ++n) {
             block.total[n] = 0;
