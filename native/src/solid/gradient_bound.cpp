@@ -118,7 +118,9 @@ double GradientBound::windingSlope(const Box& box, double limit) const {
             stack[top++] = left_nearer ? node.right : node.left;
             stack[top++] = left_nearer ? node.left : node.right;
         }
-        if (sum > scaled_limit) break;
+        // Past the limit: a partial sum, below the whole bound, must not pass for it (the
+        // caller's own comparison, rounded, could find it just under the limit).
+        if (sum > scaled_limit) return HUGE_VAL;
     }
     return sum / (4.0 * M_PI);
 }
