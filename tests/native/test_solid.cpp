@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "hyvox/sparse_grid.h"
@@ -631,6 +632,77 @@ TEST(SolidWinding, BrickSamplesAreTheBoxesPointsAndMatchTheExactSum) {
     EXPECT_GT(checked, 100);
     EXPECT_LT(worst_exact, 0.05);
     EXPECT_LT(worst_at, 0.05);
+}
+
+// The bricks' shared samples asked by four threads at once, each in its own order, against a
+// store asked by one thread: the same points found, the same values bit for bit, the same
+// evaluations (a block two threads evaluated at once is kept once). Sponza at 192: a hundred
+// blocks and more, so that threads meet on blocks and rows being made (run under the
+// sanitizers, the lazily made table's races).
+TEST(SolidWinding, BrickSamplesAskedByManyThreadsEqualOneThreads) {
+    const test::TestMesh mesh = test::loadTestMesh(test::meshPath("sponza_crytek_262k_vcolor.ply.gz"));
+    const ValidatedMesh validated = validate(mesh.view());
+    GridOptions options;
+    options.resolution = 192;
+    const GridSpec grid = makeGrid(validated.bounds, options);
+    const solid::FastWinding fast(validated, grid, 2.0);
+    const solid::RayCrossings rays(validated, grid);
+    using Int3 = std::array<std::int32_t, 3>;
+    // Every corner and middle coordinate is a multiple of 4 or among the last 8 voxels.
+    std::array<std::vector<std::int32_t>, 3> axis;
+    for (int d = 0; d < 3; ++d)
+        for (std::int32_t c = 0; c < grid.dims[std::size_t(d)]; ++c)
+            if (c % 4 == 0 || c >= grid.dims[std::size_t(d)] - 8) axis[std::size_t(d)].push_back(c);
+    std::vector<Int3> candidates;
+    for (const std::int32_t x : axis[0])
+        for (const std::int32_t y : axis[1])
+            for (const std::int32_t z : axis[2]) candidates.push_back({x, y, z});
+    const solid::BrickSamples alone(fast, rays, grid.dims), shared(fast, rays, grid.dims);
+    std::vector<double> expected(candidates.size(), NAN);
+    std::vector<char> expected_found(candidates.size());
+    for (std::size_t n = 0; n < candidates.size(); ++n) expected_found[n] = alone.find(candidates[n], expected[n]);
+    constexpr int kThreads = 4;
+    std::vector<std::vector<double>> values(kThreads, std::vector<double>(candidates.size(), NAN));
+    std::vector<std::vector<char>> found(kThreads, std::vector<char>(candidates.size()));
+    std::vector<std::thread> threads;
+    for (int t = 0; t < kThreads; ++t)
+        threads.emplace_back([&, t] {
+            std::vector<std::size_t> order(candidates.size());
+            for (std::size_t n = 0; n < order.size(); ++n) order[n] = n;
+            std::shuffle(order.begin(), order.end(), std::mt19937(unsigned(t)));
+            for (const std::size_t n : order) found[std::size_t(t)][n] = shared.find(candidates[n], values[std::size_t(t)][n]);
+        });
+    for (std::thread& t : threads) t.join();
+    std::size_t points = 0;
+    for (std::size_t n = 0; n < candidates.size(); ++n) {
+        points += expected_found[n] != 0;
+        for (int t = 0; t < kThreads; ++t) {
+            ASSERT_EQ(found[std::size_t(t)][n], expected_found[n]) << n;
+            if (expected_found[n]) {
+                ASSERT_EQ(values[std::size_t(t)][n], expected[n]) << n << " thread " << t;  // NaN fails too
+            }
+        }
+    }
+    EXPECT_GT(points, 5000u);
+    EXPECT_EQ(shared.evaluations(), alone.evaluations());
+}
+
+// An open mesh's solid voxels and counts on one thread and on two (the bricks' shared
+// samples made by whichever thread comes first, the kept ray columns per thread).
+TEST(SolidWinding, OpenMeshVoxelsDoNotDependOnTheThreads) {
+    const test::TestMesh mesh = test::loadTestMesh(test::meshPath("sponza_crytek_262k_vcolor.ply.gz"));
+    VoxelizeOptions one;
+    one.mode = Mode::Solid;
+    one.grid.resolution = 96;
+    one.threads = 1;
+    VoxelizeOptions two = one;
+    two.threads = 2;
+    const VoxelizeResult a = voxelize(mesh.view(), one), b = voxelize(mesh.view(), two);
+    ASSERT_EQ(a.stats.solid->evaluation, "fast winding numbers");
+    EXPECT_GT(a.stats.solid->interpolated_voxels, 0u);
+    EXPECT_EQ(a.occupancy, b.occupancy);
+    EXPECT_EQ(a.stats.solid->point_evaluations, b.stats.solid->point_evaluations);
+    EXPECT_EQ(a.stats.solid->interpolated_voxels, b.stats.solid->interpolated_voxels);
 }
 
 // Calls one after another on one thread (what a thread keeps from brick to brick, the rays'
