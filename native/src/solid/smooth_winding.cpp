@@ -284,7 +284,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
                     if (bits == 0) continue;
                     double bottom, top_value;
                     columnEnds(i, j, bottom, top_value);
-                    const double shifted = double(upward ? brick.columnCrossings({i, j, a[2]}) : 0);
+                    const double shifted = shift({i, j, a[2]});
                     // The sampled voxels from their samples; the others' sheet sums together.
                     int steps[9], count = 0;
                     double heights[9], sheet_sums[9];
