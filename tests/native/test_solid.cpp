@@ -706,13 +706,14 @@ TEST(SolidWinding, OpenMeshVoxelsDoNotDependOnTheThreads) {
 }
 
 // Calls one after another on one thread (what a thread keeps from brick to brick, the rays'
-// columns of its recent bricks, is keyed by the call): two cups open at the top on the same
+// columns of its recent bricks, belongs to the call): two cups open at the top on the same
 // grid, whose bottoms cross the same columns at two heights inside one layer of bricks, and
 // the first again. Each against the exact winding number, and the repeated call equal to the
 // first in its voxels and its counts. Both bottoms lie between the bricks' lattice planes and
 // their middles, where no sample of a brick box reads the rays: a call that counted the other
 // cup's crossings would interpolate w - c smoothly across the band between the bottoms and
-// decide its voxels off by one (with the call left out of the key, hundreds are wrong).
+// decide its voxels off by one (with the windows kept per thread across calls and the call
+// left out of their key, 1352 voxels of the second call were wrong).
 TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
     // In voxels of 1/16: the cup spans 3.2 .. 28.8 in x and y, its rim at z 56, its bottom at
     // `bottom` (17.2 or 19.6, between the planes 16 and 20); specks stretch the bounds to 32 ×
