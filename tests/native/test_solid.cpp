@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "hyvox/sparse_grid.h"
@@ -633,37 +634,113 @@ TEST(SolidWinding, BrickSamplesAreTheBoxesPointsAndMatchTheExactSum) {
     EXPECT_LT(worst_at, 0.05);
 }
 
+// The bricks' shared samples asked by four threads at once, each in its own order, against a
+// store asked by one thread: the same points found, the same values bit for bit, the same
+// evaluations (a block two threads evaluated at once is kept once). Sponza at 192: a hundred
+// blocks and more, so that threads meet on blocks and rows being made (run under the
+// sanitizers, the lazily made table's races).
+TEST(SolidWinding, BrickSamplesAskedByManyThreadsEqualOneThreads) {
+    const test::TestMesh mesh = test::loadTestMesh(test::meshPath("sponza_crytek_262k_vcolor.ply.gz"));
+    const ValidatedMesh validated = validate(mesh.view());
+    GridOptions options;
+    options.resolution = 192;
+    const GridSpec grid = makeGrid(validated.bounds, options);
+    const solid::FastWinding fast(validated, grid, 2.0);
+    const solid::RayCrossings rays(validated, grid);
+    using Int3 = std::array<std::int32_t, 3>;
+    // Every corner and middle coordinate is a multiple of 4 or among the last 8 voxels.
+    std::array<std::vector<std::int32_t>, 3> axis;
+    for (int d = 0; d < 3; ++d)
+        for (std::int32_t c = 0; c < grid.dims[std::size_t(d)]; ++c)
+            if (c % 4 == 0 || c >= grid.dims[std::size_t(d)] - 8) axis[std::size_t(d)].push_back(c);
+    std::vector<Int3> candidates;
+    for (const std::int32_t x : axis[0])
+        for (const std::int32_t y : axis[1])
+            for (const std::int32_t z : axis[2]) candidates.push_back({x, y, z});
+    const solid::BrickSamples alone(fast, rays, grid.dims), shared(fast, rays, grid.dims);
+    std::vector<double> expected(candidates.size(), NAN);
+    std::vector<char> expected_found(candidates.size());
+    for (std::size_t n = 0; n < candidates.size(); ++n) expected_found[n] = alone.find(candidates[n], expected[n]);
+    constexpr int kThreads = 4;
+    std::vector<std::vector<double>> values(kThreads, std::vector<double>(candidates.size(), NAN));
+    std::vector<std::vector<char>> found(kThreads, std::vector<char>(candidates.size()));
+    std::vector<std::thread> threads;
+    for (int t = 0; t < kThreads; ++t)
+        threads.emplace_back([&, t] {
+            std::vector<std::size_t> order(candidates.size());
+            for (std::size_t n = 0; n < order.size(); ++n) order[n] = n;
+            std::shuffle(order.begin(), order.end(), std::mt19937(unsigned(t)));
+            for (const std::size_t n : order) found[std::size_t(t)][n] = shared.find(candidates[n], values[std::size_t(t)][n]);
+        });
+    for (std::thread& t : threads) t.join();
+    std::size_t points = 0;
+    for (std::size_t n = 0; n < candidates.size(); ++n) {
+        points += expected_found[n] != 0;
+        for (int t = 0; t < kThreads; ++t) {
+            ASSERT_EQ(found[std::size_t(t)][n], expected_found[n]) << n;
+            if (expected_found[n]) {
+                ASSERT_EQ(values[std::size_t(t)][n], expected[n]) << n << " thread " << t;  // NaN fails too
+            }
+        }
+    }
+    EXPECT_GT(points, 5000u);
+    EXPECT_EQ(shared.evaluations(), alone.evaluations());
+}
+
+// An open mesh's solid voxels and counts on one thread and on two (the bricks' shared
+// samples made by whichever thread comes first, the kept ray columns per thread).
+TEST(SolidWinding, OpenMeshVoxelsDoNotDependOnTheThreads) {
+    const test::TestMesh mesh = test::loadTestMesh(test::meshPath("sponza_crytek_262k_vcolor.ply.gz"));
+    VoxelizeOptions one;
+    one.mode = Mode::Solid;
+    one.grid.resolution = 96;
+    one.threads = 1;
+    VoxelizeOptions two = one;
+    two.threads = 2;
+    const VoxelizeResult a = voxelize(mesh.view(), one), b = voxelize(mesh.view(), two);
+    ASSERT_EQ(a.stats.solid->evaluation, "fast winding numbers");
+    EXPECT_GT(a.stats.solid->interpolated_voxels, 0u);
+    EXPECT_EQ(a.occupancy, b.occupancy);
+    EXPECT_EQ(a.stats.solid->point_evaluations, b.stats.solid->point_evaluations);
+    EXPECT_EQ(a.stats.solid->interpolated_voxels, b.stats.solid->interpolated_voxels);
+}
+
 // Calls one after another on one thread (what a thread keeps from brick to brick, the rays'
-// columns of its last bricks, is keyed by the call): open boxes on the same grid, open at the
-// top, at the bottom, at the top again (the same columns, other crossings). Each against the
-// exact winding number, and the repeated call equal to the first in its voxels and its counts.
-// (This does not catch every stale column: w - c is sampled and interpolated with the same c,
-// so a wrong c mostly costs more evaluations; with the key left out these boxes still passed.)
+// columns of its recent bricks, belongs to the call): two cups open at the top on the same
+// grid, whose bottoms cross the same columns at two heights inside one layer of bricks, and
+// the first again. Each against the exact winding number, and the repeated call equal to the
+// first in its voxels and its counts. Both bottoms lie between the bricks' lattice planes and
+// their middles, where no sample of a brick box reads the rays: a call that counted the other
+// cup's crossings would interpolate w - c smoothly across the band between the bottoms and
+// decide its voxels off by one (with the windows kept per thread across calls and the call
+// left out of their key, 1352 voxels of the second call were wrong).
 TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
-    auto openBox = [](bool open_top) {
+    // In voxels of 1/16: the cup spans 3.2 .. 28.8 in x and y, its rim at z 56, its bottom at
+    // `bottom` (17.2 or 19.6, between the planes 16 and 20); specks stretch the bounds to 32 ×
+    // 32 × 64 voxels.
+    auto cup = [](float bottom) {
         std::vector<float> positions;
         std::vector<std::uint32_t> triangles;
         auto polygon = [&](const std::vector<std::array<float, 3>>& corners) {
             const auto base = std::uint32_t(positions.size() / 3);
-            for (const auto& c : corners) positions.insert(positions.end(), c.begin(), c.end());
+            for (const auto& c : corners)
+                for (const float x : c) positions.push_back(x / 16);
             for (std::uint32_t k = 1; k + 1 < corners.size(); ++k) triangles.insert(triangles.end(), {base, base + k, base + k + 1});
         };
-        // [0.2, 0.8] x [0.2, 0.8] x [0.5, 3.5], faces outward, one end left open; two specks
-        // stretch the bounds to [0, 1] x [0, 1] x [0, 4].
-        const float a = 0.2f, b = 0.8f, lo = 0.5f, hi = 3.5f;
-        if (open_top) polygon({{a, a, lo}, {a, b, lo}, {b, b, lo}, {b, a, lo}});
-        else polygon({{a, a, hi}, {b, a, hi}, {b, b, hi}, {a, b, hi}});
+        const float a = 3.2f, b = 28.8f, lo = bottom, hi = 56;  // faces outward
+        polygon({{a, a, lo}, {a, b, lo}, {b, b, lo}, {b, a, lo}});
         polygon({{a, a, lo}, {b, a, lo}, {b, a, hi}, {a, a, hi}});
         polygon({{a, b, lo}, {a, b, hi}, {b, b, hi}, {b, b, lo}});
         polygon({{a, a, lo}, {a, a, hi}, {a, b, hi}, {a, b, lo}});
         polygon({{b, a, lo}, {b, b, lo}, {b, b, hi}, {b, a, hi}});
-        polygon({{0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}});
-        polygon({{1, 1, 4}, {0.99f, 1, 4}, {1, 0.99f, 4}});
+        polygon({{0, 0, 0}, {0.16f, 0, 0}, {0, 0.16f, 0}});
+        polygon({{32, 32, 64}, {31.84f, 32, 64}, {32, 31.84f, 64}});
         return std::make_pair(positions, triangles);
     };
+    const float low = 17.2f, high = 19.6f;
     std::vector<VoxelizeResult> results;
-    for (const bool open_top : {true, false, true}) {
-        const auto [positions, triangles] = openBox(open_top);
+    for (const float bottom : {low, high, low}) {
+        const auto [positions, triangles] = cup(bottom);
         VoxelizeOptions options;
         options.mode = Mode::Solid;
         options.threads = 1;
@@ -673,8 +750,7 @@ TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
         const VoxelizeResult solid = voxelize(test::viewOf(positions, triangles), options);
         const VoxelizeResult surface = voxelize(test::viewOf(positions, triangles), surface_options);
         ASSERT_EQ(solid.stats.solid->evaluation, "fast winding numbers");
-        ASSERT_LE(solid.grid.dims[0], 16);
-        ASSERT_LE(solid.grid.dims[1], 16);
+        ASSERT_EQ(solid.grid.dims, (std::array<std::int32_t, 3>{32, 32, 64}));
         std::vector<std::array<solid::Vec3, 3>> corners;
         for (std::size_t t = 0; t < triangles.size(); t += 3) {
             std::array<solid::Vec3, 3> c;
@@ -684,7 +760,9 @@ TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
             }
             corners.push_back(c);
         }
-        int inside = 0, outside = 0, wrong = 0;
+        // `band`: the voxels checked whose centre lies between the two bottoms, inside the
+        // cup's walls (those a call reading the other cup's crossings would miscount).
+        int inside = 0, outside = 0, wrong = 0, band = 0;
         for (int i = 0; i < solid.grid.dims[0]; ++i)
             for (int j = 0; j < solid.grid.dims[1]; ++j)
                 for (int k = 0; k < solid.grid.dims[2]; ++k) {
@@ -694,11 +772,13 @@ TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
                     for (const auto& c : corners) w += solid::triangleWinding(c[0], c[1], c[2], q);
                     if (std::fabs(w - 0.5) < 0.05) continue;
                     ++(w >= 0.5 ? inside : outside);
+                    band += q[0] > 3.2 && q[0] < 28.8 && q[1] > 3.2 && q[1] < 28.8 && q[2] > low && q[2] < high;
                     wrong += solid.occupancy.test(i, j, k) != (w >= 0.5);
                 }
-        EXPECT_GT(inside, 1000) << open_top;
-        EXPECT_GT(outside, 1000) << open_top;
-        EXPECT_EQ(wrong, 0) << open_top;
+        EXPECT_GT(inside, 10000) << bottom;
+        EXPECT_GT(outside, 10000) << bottom;
+        EXPECT_GT(band, 500) << bottom;
+        EXPECT_EQ(wrong, 0) << bottom;
         results.push_back(solid);
     }
     const SolidStats &first = *results[0].stats.solid, &again = *results[2].stats.solid;

@@ -27,11 +27,15 @@ Box unite(const Box& a, const Box& b) {
     return out;
 }
 
+// Whether the box's xy range meets that of an edge's (or a cluster's) box `edge`.
+bool meetsInXy(const Box& box, const Box& edge) {
+    return box.lo[0] <= edge.hi[0] && box.hi[0] >= edge.lo[0] && box.lo[1] <= edge.hi[1] && box.hi[1] >= edge.lo[1];
+}
+
 // Whether the box reaches the region above (`upward`: below) an edge whose own box is `edge`,
 // where rays down (up) pass the edge.
 bool reachesShadow(const Box& box, const Box& edge, bool upward) {
-    return box.lo[0] <= edge.hi[0] && box.hi[0] >= edge.lo[0] && box.lo[1] <= edge.hi[1] && box.hi[1] >= edge.lo[1] &&
-           (upward ? box.lo[2] <= edge.hi[2] : box.hi[2] >= edge.lo[2]);
+    return meetsInXy(box, edge) && (upward ? box.lo[2] <= edge.hi[2] : box.hi[2] >= edge.lo[2]);
 }
 
 }  // namespace
@@ -118,7 +122,9 @@ double GradientBound::windingSlope(const Box& box, double limit) const {
             stack[top++] = left_nearer ? node.right : node.left;
             stack[top++] = left_nearer ? node.left : node.right;
         }
-        if (sum > scaled_limit) break;
+        // Past the limit: a partial sum, below the whole bound, must not pass for it (the
+        // caller's own comparison, rounded, could find it just under the limit).
+        if (sum > scaled_limit) return HUGE_VAL;
     }
     return sum / (4.0 * M_PI);
 }
@@ -148,15 +154,12 @@ void GradientBound::sheetsMeeting(const Box& box, std::vector<Sheet>& down, std:
     if (nodes_.empty()) return;
     // A cluster whose xy range meets the box's reaches it from below or from above (or both):
     // one walk for both lists, each in the order its own walk would give.
-    auto meetsInXy = [&](const Box& edge) {
-        return box.lo[0] <= edge.hi[0] && box.hi[0] >= edge.lo[0] && box.lo[1] <= edge.hi[1] && box.hi[1] >= edge.lo[1];
-    };
     std::int32_t stack[128];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
         const Node& node = nodes_[std::size_t(stack[--top])];
-        if (!meetsInXy(node.box)) continue;
+        if (!meetsInXy(box, node.box)) continue;
         if (node.left >= 0) {
             stack[top++] = node.left;
             stack[top++] = node.right;

@@ -35,8 +35,8 @@ class GradientBound {
 public:
     explicit GradientBound(const std::vector<OpenEdge>& edges);
     bool empty() const { return nodes_.empty(); }
-    // An upper bound of |∇w| over `box`; stops adding (and returns a value above `limit`)
-    // as soon as the bound passes `limit`. Infinite when an open edge meets the box.
+    // An upper bound of |∇w| over `box`; stops adding (and returns infinity) as soon as the
+    // bound passes `limit`. Infinite when an open edge meets the box.
     double windingSlope(const Box& box, double limit) const;
     // Whether the parity of -z rays may differ between two points of `box`.
     bool parityMayChange(const Box& box) const;

@@ -2,9 +2,10 @@
 #include "solid/smooth_winding.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
 
 #include "hyvox/bit_grid.h"
 #include "solid/sheet_sum.h"
@@ -27,14 +28,67 @@ constexpr std::size_t kSharedFarField = 2;
 
 using Int3 = std::array<std::int32_t, 3>;
 
+// A brick's columns' crossings (the rays' columns [i0, i0 + ni) × [j0, j0 + nj)), as the rays
+// give them, and their heights sorted, with the signed counts below each.
+struct ColumnBlock {
+    std::array<int, 4> key{-1, -1, -1, -1};  // {i0, j0, ni, nj}; none yet
+    std::vector<RayCrossings::Crossing> columns[9 * 9];  // no allocation per brick once grown
+    std::vector<double> heights[9 * 9];  // the crossings' heights (NaN left out: below no centre), ascending
+    std::vector<int> prefix[9 * 9];      // prefix[m]: the signed crossings of the lowest m
+    int total[9 * 9];                    // C, NaN heights included
+};
+
+// The crossings of a block of columns are whole lines: the same for every brick of a stack
+// along z. Each thread keeps the blocks of its recent bricks, one slot per brick column (x
+// and y modulo 16): the octree's order visits the bricks of a 16×16 window of columns before
+// it moves on, and comes back to each for the next bricks along z (Sponza at 1024: the
+// columns' share of the time 12% with the last eight kept, 3% now). A block is found there
+// before the rays are asked (the blocks are the same whichever thread finds them). One
+// window per thread and per SmoothWinding: released with the call, never another call's.
+class ColumnWindow {
+public:
+    const ColumnBlock& columnsOf(const RayCrossings& rays, int i0, int j0, int ni, int nj) {
+        const std::array<int, 4> key{i0, j0, ni, nj};
+        ColumnBlock& block = blocks_[std::size_t(((i0 >> 3) % kWindow) * kWindow + (j0 >> 3) % kWindow)];
+        if (block.key == key) return block;
+        // Marked as no block's while it is refilled: an exception half way (no memory) must
+        // not leave the previous key on half-new columns.
+        block.key = {-1, -1, -1, -1};
+        rays.columns(i0, j0, ni, nj, block.columns);
+        for (int n = 0; n < ni * nj; ++n) {
+            block.total[n] = 0;
+            sorted_.clear();
+            for (const auto& c : block.columns[n]) {
+                block.total[n] += c.sign;
+                if (!std::isnan(c.z)) sorted_.push_back(c);
+            }
+            std::sort(sorted_.begin(), sorted_.end(), [](const auto& a, const auto& b) { return a.z < b.z; });
+            block.heights[n].resize(sorted_.size());
+            block.prefix[n].resize(sorted_.size() + 1);
+            block.prefix[n][0] = 0;
+            for (std::size_t m = 0; m < sorted_.size(); ++m) {
+                block.heights[n][m] = sorted_[m].z;
+                block.prefix[n][m + 1] = block.prefix[n][m] + sorted_[m].sign;
+            }
+        }
+        block.key = key;
+        return block;
+    }
+
+private:
+    static constexpr int kWindow = 16;
+    std::vector<ColumnBlock> blocks_ = std::vector<ColumnBlock>(kWindow * kWindow);
+    std::vector<RayCrossings::Crossing> sorted_;
+};
+
 // One brick's rays and samples, over the brick's voxels and the next voxel along each axis
 // (the corners the brick shares with its neighbours).
 class Brick {
 public:
     // The voxels [lo, top] (top at most lo + 8).
-    Brick(const FastWinding& winding, const RayCrossings& rays, std::uint64_t run, const BrickSamples& shared,
+    Brick(const FastWinding& winding, const RayCrossings& rays, ColumnWindow& window, const BrickSamples& shared,
           const Int3& lo, const Int3& top, SmoothWinding::Counters& counters)
-        : winding_(winding), rays_(rays), run_(run), shared_(shared), lo_(lo), top_(top), counters_(counters) {
+        : winding_(winding), rays_(rays), window_(window), shared_(shared), lo_(lo), top_(top), counters_(counters) {
         std::fill(std::begin(samples_), std::end(samples_), NAN);
     }
 
@@ -101,7 +155,7 @@ private:
     const Column& columnOf(const Int3& p) {
         if (!block_) {
             const int ni = top_[0] - lo_[0] + 1, nj = top_[1] - lo_[1] + 1, nz = top_[2] - lo_[2] + 1;
-            block_ = &columnsOf(rays_, run_, lo_[0], lo_[1], ni, nj);
+            block_ = &window_.columnsOf(rays_, lo_[0], lo_[1], ni, nj);
             for (int n = 0; n < ni * nj; ++n) {
                 const std::vector<double>& heights = block_->heights[n];
                 const std::vector<int>& prefix = block_->prefix[n];
@@ -117,67 +171,28 @@ private:
 
     const FastWinding& winding_;
     const RayCrossings& rays_;
-    std::uint64_t run_;
+    ColumnWindow& window_;  // this thread's
     const BrickSamples& shared_;
     Int3 lo_, top_;
     SmoothWinding::Counters& counters_;
-    // The columns' crossings, in storage each thread keeps from brick to brick: as the rays
-    // give them, and their heights sorted, with the signed counts below each.
-    struct ColumnBlock {
-        std::uint64_t run = 0;  // none: runs count from 1
-        std::array<int, 4> key{-1, -1, -1, -1};
-        Column columns[9 * 9];  // no allocation per brick once grown
-        std::vector<double> heights[9 * 9];  // the crossings' heights (NaN left out: below no centre), ascending
-        std::vector<int> prefix[9 * 9];      // prefix[m]: the signed crossings of the lowest m
-        int total[9 * 9];                    // C, NaN heights included
-    };
-    const ColumnBlock* block_ = nullptr;
+    const ColumnBlock* block_ = nullptr;  // the brick's columns, in the window
     int below_[9 * 9][9];  // per column, the signed crossings below each of the brick's centres
-    // The crossings of a block of columns are whole lines: the same for every brick of a stack
-    // along z. Each thread keeps the blocks of its recent bricks, one slot per brick column
-    // (x and y modulo 16): the octree's order visits the bricks of a 16×16 window of columns
-    // before it moves on, and comes back to each for the next bricks along z (Sponza at 1024:
-    // the columns' share of the time 12% with the last eight kept, 3% now). A block is
-    // found there before the rays are asked (the blocks are the same whichever thread finds
-    // them).
-    static const ColumnBlock& columnsOf(const RayCrossings& rays, std::uint64_t run, int i0, int j0, int ni, int nj) {
-        constexpr int kWindow = 16;
-        thread_local std::vector<ColumnBlock> blocks(kWindow * kWindow);
-        thread_local std::vector<RayCrossings::Crossing> sorted;
-        const std::array<int, 4> key{i0, j0, ni, nj};
-        ColumnBlock& block = blocks[std::size_t(((i0 >> 3) % kWindow) * kWindow + (j0 >> 3) % kWindow)];
-        if (block.run == run && block.key == key) return block;
-        rays.columns(i0, j0, ni, nj, block.columns);
-        for (int n = 0; n < ni * nj; ++n) {
-            block.total[n] = 0;
-            sorted.clear();
-            for (const auto& c : block.columns[n]) {
-                block.total[n] += c.sign;
-                if (!std::isnan(c.z)) sorted.push_back(c);
-            }
-            std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.z < b.z; });
-            block.heights[n].resize(sorted.size());
-            block.prefix[n].resize(sorted.size() + 1);
-            block.prefix[n][0] = 0;
-            for (std::size_t m = 0; m < sorted.size(); ++m) {
-                block.heights[n][m] = sorted[m].z;
-                block.prefix[n][m + 1] = block.prefix[n][m] + sorted[m].sign;
-            }
-        }
-        block.run = run;
-        block.key = key;
-        return block;
-    }
     std::vector<Vec3> centres_;
     double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
 };
 
 }  // namespace
 
-std::uint64_t SmoothWinding::newRun() {
-    static std::atomic<std::uint64_t> runs{0};
-    return ++runs;
-}
+struct SmoothWinding::ColumnWindows {
+    tbb::enumerable_thread_specific<ColumnWindow> per_thread;  // made on a thread's first brick
+};
+
+SmoothWinding::SmoothWinding(const FastWinding& winding, const RayCrossings& rays, const GradientBound& bound,
+                             const std::array<std::int32_t, 3>& dims)
+    : winding_(winding), rays_(rays), bound_(bound), dims_(dims), samples_(winding, rays, dims),
+      windows_(std::make_unique<ColumnWindows>()) {}
+
+SmoothWinding::~SmoothWinding() = default;
 
 void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std::array<std::int32_t, 3>& hi,
                                 const std::uint64_t wanted[8], std::uint64_t inside[8], Counters& counters) const {
@@ -185,7 +200,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
     // are then lattice points, each sampled once for the eight bricks around it.
     Int3 top;
     for (int d = 0; d < 3; ++d) top[d] = hi[d] == lo[d] + 8 && hi[d] < dims_[d] ? hi[d] : hi[d] - 1;
-    Brick brick(winding_, rays_, run_, samples_, lo, top, counters);
+    Brick brick(winding_, rays_, windows_->per_thread.local(), samples_, lo, top, counters);
     std::uint64_t done[8] = {};
     auto bit = [](const Int3& p) { return BitGrid::bitInBrick(p[0], p[1], p[2]); };
     auto pending = [&](const Int3& p) {
@@ -281,7 +296,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
                     if (bits == 0) continue;
                     double bottom, top_value;
                     columnEnds(i, j, bottom, top_value);
-                    const double shifted = double(upward ? brick.columnCrossings({i, j, a[2]}) : 0);
+                    const double shifted = shift({i, j, a[2]});
                     // The sampled voxels from their samples; the others' sheet sums together.
                     int steps[9], count = 0;
                     double heights[9], sheet_sums[9];

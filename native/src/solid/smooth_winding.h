@@ -26,6 +26,7 @@
 // open meshes.
 #include <array>
 #include <cstdint>
+#include <memory>
 
 #include "solid/brick_samples.h"
 #include "solid/fast_winding.h"
@@ -41,8 +42,8 @@ public:
         std::uint64_t interpolated_voxels = 0; // voxels decided from the interpolated smooth part
     };
     SmoothWinding(const FastWinding& winding, const RayCrossings& rays, const GradientBound& bound,
-                  const std::array<std::int32_t, 3>& dims)
-        : winding_(winding), rays_(rays), bound_(bound), dims_(dims), samples_(winding, rays, dims), run_(newRun()) {}
+                  const std::array<std::int32_t, 3>& dims);
+    ~SmoothWinding();
     // Sets in `inside` the voxels of `wanted` (a brick's bits) whose winding number is at least
     // 0.5; the brick's voxels inside the grid are [lo, hi).
     void decideBrick(const std::array<std::int32_t, 3>& lo, const std::array<std::int32_t, 3>& hi,
@@ -56,10 +57,10 @@ private:
     const GradientBound& bound_;
     std::array<std::int32_t, 3> dims_;       // the grid's
     BrickSamples samples_;                   // the bricks' boxes' corners and middles, shared by the threads
-    // Tells this object's rays from another's (an earlier call's) in what the threads keep
-    // from brick to brick: unique in the process, unlike an address.
-    std::uint64_t run_;
-    static std::uint64_t newRun();
+    // The ray columns each thread keeps from brick to brick (smooth_winding.cpp): this
+    // object's alone, made per thread on first use and released with it.
+    struct ColumnWindows;
+    std::unique_ptr<ColumnWindows> windows_;
 };
 
 }  // namespace hyvox::solid
