@@ -136,7 +136,8 @@ def main():
         sys.path.insert(0, os.path.join(os.path.abspath(args.build), "python"))
         import hyvox as hyvox_module  # noqa: E402 (the build's module)
     columns = ["mesh", "res", "voxels", "hyvox read", "hyvox vox", "hyvox vdb", "hyvox stages", "hyvox proc",
-               "peer vox", "peer proc", "x proc", "x vox", "py read", "py vox", "py vdb", "py sum", "py/cli"]
+               "peer vox", "peer proc", "x proc", "x vox", "py read", "py vox", "py vdb", "py sum", "py/cli",
+               "py first"]
     if args.baseline:
         columns += ["base stages", "base proc", "x base"]
     columns.append("load")
@@ -150,6 +151,16 @@ def main():
                 run_python(hyvox_module, mesh, 64, args.threads, work)
             for res in [int(r) for r in args.res.split(",")]:
                 ours, peers, pys, bases = [], [], [], []
+                # A session's first call at a new size is slower: glibc maps each large block
+                # afresh (every page faulted in) until freeing blocks of that size has raised its
+                # mmap threshold above them, about three calls (the bunny at 256: 21.9, 19.9,
+                # 18.3, then 10.3-10.9 ms). The first is reported on its own ("py first"); "py
+                # sum" is the calls after three, as a script or Blender session makes them.
+                first_py = None
+                if hyvox_module is not None:
+                    first_py = run_python(hyvox_module, mesh, res, args.threads, work)
+                    for _ in range(2):
+                        run_python(hyvox_module, mesh, res, args.threads, work)
                 contenders = [lambda: ours.append(run_hyvox(hyvox, mesh, res, args.threads, work, env)),
                               lambda: peers.append(run_peer(args.peer, mesh, res, env))]
                 if args.baseline:
@@ -173,6 +184,7 @@ def main():
                 for key in ("read", "vox", "vdb", "sum"):
                     row["py " + key] = median_of(pys, key) if pys else float("nan")
                 row["py/cli"] = row["py sum"] / row["hyvox stages"]
+                row["py first"] = first_py["sum"] if first_py else float("nan")
                 if bases:
                     row["base stages"] = median_of(bases, "stages")
                     row["base proc"] = median_of(bases, "proc")
