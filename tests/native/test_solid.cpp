@@ -495,6 +495,32 @@ TEST(SolidWinding, LocalExpansionMatchesTheClustersFieldsPointByPoint) {
     }
 }
 
+// Sponza (open, large triangles cut into pieces) validated on a grid of `resolution`, with
+// its triangles in voxel space for the exact double-precision winding number (the oracle).
+struct SponzaOnGrid {
+    explicit SponzaOnGrid(int resolution)
+        : mesh(test::loadTestMesh(test::meshPath("sponza_crytek_262k_vcolor.ply.gz"))),
+          validated(validate(mesh.view())),
+          grid(makeGrid(validated.bounds, [&] {
+              GridOptions options;
+              options.resolution = resolution;
+              return options;
+          }())) {
+        for (const std::uint32_t t : validated.usable)
+            triangles.push_back({grid.toVoxel(validated.vertex(t, 0)), grid.toVoxel(validated.vertex(t, 1)),
+                                 grid.toVoxel(validated.vertex(t, 2))});
+    }
+    double exactWinding(const solid::Vec3& q) const {
+        double sum = 0;
+        for (const auto& t : triangles) sum += solid::triangleWinding(t[0], t[1], t[2], q);
+        return sum;
+    }
+    test::TestMesh mesh;
+    ValidatedMesh validated;  // views mesh's arrays
+    GridSpec grid;
+    std::vector<std::array<solid::Vec3, 3>> triangles;
+};
+
 // FastWinding::atBox, a box of points at once (solid/box_winding.cpp), on Sponza (open, large
 // triangles cut into pieces) at 128: against at() point by point and against the exact sum of
 // the triangles' solid angles, in boxes the size of a brick all over the grid. With every
@@ -502,19 +528,10 @@ TEST(SolidWinding, LocalExpansionMatchesTheClustersFieldsPointByPoint) {
 // winding numbers themselves (within the margin the decisions are tested with) and no larger
 // than at()'s on average.
 TEST(SolidWinding, BoxOfPointsMatchesOneAtATimeAndTheExactSum) {
-    const test::TestMesh mesh = test::loadTestMesh(test::meshPath("sponza_crytek_262k_vcolor.ply.gz"));
-    const ValidatedMesh validated = validate(mesh.view());
-    GridOptions options;
-    options.resolution = 128;
-    const GridSpec grid = makeGrid(validated.bounds, options);
-    std::vector<std::array<solid::Vec3, 3>> triangles;
-    for (const std::uint32_t t : validated.usable)
-        triangles.push_back({grid.toVoxel(validated.vertex(t, 0)), grid.toVoxel(validated.vertex(t, 1)), grid.toVoxel(validated.vertex(t, 2))});
-    auto exact = [&](const solid::Vec3& q) {
-        double sum = 0;
-        for (const auto& t : triangles) sum += solid::triangleWinding(t[0], t[1], t[2], q);
-        return sum;
-    };
+    const SponzaOnGrid sponza(128);
+    const ValidatedMesh& validated = sponza.validated;
+    const GridSpec& grid = sponza.grid;
+    auto exact = [&](const solid::Vec3& q) { return sponza.exactWinding(q); };
     std::mt19937 rng(5);
     auto boxOfPoints = [&](int count) {
         std::array<int, 3> brick;
@@ -569,11 +586,9 @@ TEST(SolidWinding, BoxOfPointsMatchesOneAtATimeAndTheExactSum) {
 // agree bit for bit); each is w - c at its lifted point within the fast winding numbers'
 // accuracy of the exact double sum (and of at()).
 TEST(SolidWinding, BrickSamplesAreTheBoxesPointsAndMatchTheExactSum) {
-    const test::TestMesh mesh = test::loadTestMesh(test::meshPath("sponza_crytek_262k_vcolor.ply.gz"));
-    const ValidatedMesh validated = validate(mesh.view());
-    GridOptions options;
-    options.resolution = 100;
-    const GridSpec grid = makeGrid(validated.bounds, options);
+    const SponzaOnGrid sponza(100);
+    const ValidatedMesh& validated = sponza.validated;
+    const GridSpec& grid = sponza.grid;
     ASSERT_TRUE(grid.dims[1] % 8 != 0 && grid.dims[2] % 8 != 0) << "the test wants bricks cut by the grid's end";
     const solid::FastWinding fast(validated, grid, 2.0);
     const solid::RayCrossings rays(validated, grid);
@@ -606,9 +621,6 @@ TEST(SolidWinding, BrickSamplesAreTheBoxesPointsAndMatchTheExactSum) {
     }
     EXPECT_EQ(forward.evaluations(), backward.evaluations());
 
-    std::vector<std::array<solid::Vec3, 3>> triangles;
-    for (const std::uint32_t t : validated.usable)
-        triangles.push_back({grid.toVoxel(validated.vertex(t, 0)), grid.toVoxel(validated.vertex(t, 1)), grid.toVoxel(validated.vertex(t, 2))});
     double worst_exact = 0, worst_at = 0, sum_exact = 0;
     int checked = 0;
     std::vector<solid::RayCrossings::Crossing> column;
@@ -617,8 +629,7 @@ TEST(SolidWinding, BrickSamplesAreTheBoxesPointsAndMatchTheExactSum) {
         rays.column(p[0], p[1], column);
         const double h = solid::sampleHeight(column, p[2] + 0.5);
         const solid::Vec3 q{p[0] + 0.5, p[1] + 0.5, h};
-        double exact = 0;
-        for (const auto& t : triangles) exact += solid::triangleWinding(t[0], t[1], t[2], q);
+        const double exact = sponza.exactWinding(q);
         const int below = solid::crossingsBelow(column, h);
         worst_exact = std::max(worst_exact, std::fabs(first[n] - (exact - below)));
         worst_at = std::max(worst_at, std::fabs(first[n] - (fast.at(q) - below)));
@@ -640,11 +651,9 @@ TEST(SolidWinding, BrickSamplesAreTheBoxesPointsAndMatchTheExactSum) {
 // blocks and more, so that threads meet on blocks and rows being made (run under the
 // sanitizers, the lazily made table's races).
 TEST(SolidWinding, BrickSamplesAskedByManyThreadsEqualOneThreads) {
-    const test::TestMesh mesh = test::loadTestMesh(test::meshPath("sponza_crytek_262k_vcolor.ply.gz"));
-    const ValidatedMesh validated = validate(mesh.view());
-    GridOptions options;
-    options.resolution = 192;
-    const GridSpec grid = makeGrid(validated.bounds, options);
+    const SponzaOnGrid sponza(192);
+    const ValidatedMesh& validated = sponza.validated;
+    const GridSpec& grid = sponza.grid;
     const solid::FastWinding fast(validated, grid, 2.0);
     const solid::RayCrossings rays(validated, grid);
     using Int3 = std::array<std::int32_t, 3>;
