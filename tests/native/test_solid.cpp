@@ -235,6 +235,33 @@ TEST(SolidWinding, TriangleSolidAnglesSumToTheOctahedronsInside) {
     EXPECT_GT(outside, 10);
 }
 
+// A mesh's triangles in a grid's voxel space, and the exact double-precision winding number
+// at a point there (every triangle's solid angle summed: the oracle of the tests below).
+struct VoxelTriangles {
+    VoxelTriangles(const std::vector<float>& positions, const std::vector<std::uint32_t>& triangles,
+                   const GridSpec& grid) {
+        for (std::size_t t = 0; t < triangles.size(); t += 3) {
+            std::array<solid::Vec3, 3> c;
+            for (std::size_t k = 0; k < 3; ++k) {
+                const float* p = &positions[3 * std::size_t(triangles[t + k])];
+                c[k] = grid.toVoxel(std::array<double, 3>{p[0], p[1], p[2]});
+            }
+            corners.push_back(c);
+        }
+    }
+    // The usable triangles of a validated mesh.
+    VoxelTriangles(const ValidatedMesh& mesh, const GridSpec& grid) {
+        for (const std::uint32_t t : mesh.usable)
+            corners.push_back({grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)), grid.toVoxel(mesh.vertex(t, 2))});
+    }
+    double winding(const solid::Vec3& q) const {
+        double sum = 0;
+        for (const auto& c : corners) sum += solid::triangleWinding(c[0], c[1], c[2], q);
+        return sum;
+    }
+    std::vector<std::array<solid::Vec3, 3>> corners;
+};
+
 TEST(SolidWinding, FastWindingNumbersMatchTheExactSum) {
     const test::TestMesh mesh = test::loadTestMesh(test::meshPath("bunny_stanford_69k.ply"));
     const ValidatedMesh validated = validate(test::viewOf(mesh.positions, mesh.triangles));
@@ -248,13 +275,11 @@ TEST(SolidWinding, FastWindingNumbersMatchTheExactSum) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-4.0, 36.0);
     std::vector<solid::Vec3> points;
+    const VoxelTriangles triangles(validated, grid);
     std::vector<double> exact;
     for (int n = 0; n < 40; ++n) {
         points.push_back({u(rng), u(rng), u(rng)});
-        double sum = 0;
-        for (const std::uint32_t t : validated.usable)
-            sum += solid::triangleWinding(grid.toVoxel(validated.vertex(t, 0)), grid.toVoxel(validated.vertex(t, 1)),
-                                          grid.toVoxel(validated.vertex(t, 2)), points.back());
+        const double sum = triangles.winding(points.back());
         exact.push_back(sum);
         EXPECT_NEAR(sharp.at(points.back()), sum, 1e-9);
     }
@@ -496,7 +521,7 @@ TEST(SolidWinding, LocalExpansionMatchesTheClustersFieldsPointByPoint) {
 }
 
 // Sponza (open, large triangles cut into pieces) validated on a grid of `resolution`, with
-// its triangles in voxel space for the exact double-precision winding number (the oracle).
+// its triangles in voxel space for the exact winding number.
 struct SponzaOnGrid {
     explicit SponzaOnGrid(int resolution)
         : mesh(test::loadTestMesh(test::meshPath("sponza_crytek_262k_vcolor.ply.gz"))),
@@ -505,20 +530,13 @@ struct SponzaOnGrid {
               GridOptions options;
               options.resolution = resolution;
               return options;
-          }())) {
-        for (const std::uint32_t t : validated.usable)
-            triangles.push_back({grid.toVoxel(validated.vertex(t, 0)), grid.toVoxel(validated.vertex(t, 1)),
-                                 grid.toVoxel(validated.vertex(t, 2))});
-    }
-    double exactWinding(const solid::Vec3& q) const {
-        double sum = 0;
-        for (const auto& t : triangles) sum += solid::triangleWinding(t[0], t[1], t[2], q);
-        return sum;
-    }
+          }())),
+          triangles(validated, grid) {}
+    double exactWinding(const solid::Vec3& q) const { return triangles.winding(q); }
     test::TestMesh mesh;
     ValidatedMesh validated;  // views mesh's arrays
     GridSpec grid;
-    std::vector<std::array<solid::Vec3, 3>> triangles;
+    VoxelTriangles triangles;
 };
 
 // FastWinding::atBox, a box of points at once (solid/box_winding.cpp), on Sponza (open, large
@@ -760,15 +778,7 @@ TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
         const VoxelizeResult surface = voxelize(test::viewOf(positions, triangles), surface_options);
         ASSERT_EQ(solid.stats.solid->evaluation, "fast winding numbers");
         ASSERT_EQ(solid.grid.dims, (std::array<std::int32_t, 3>{32, 32, 64}));
-        std::vector<std::array<solid::Vec3, 3>> corners;
-        for (std::size_t t = 0; t < triangles.size(); t += 3) {
-            std::array<solid::Vec3, 3> c;
-            for (int k = 0; k < 3; ++k) {
-                const float* p = &positions[3 * triangles[t + std::size_t(k)]];
-                c[std::size_t(k)] = solid.grid.toVoxel(std::array<double, 3>{p[0], p[1], p[2]});
-            }
-            corners.push_back(c);
-        }
+        const VoxelTriangles exact(positions, triangles, solid.grid);
         // `band`: the voxels checked whose centre lies between the two bottoms, inside the
         // cup's walls (those a call reading the other cup's crossings would miscount).
         int inside = 0, outside = 0, wrong = 0, band = 0;
@@ -777,8 +787,7 @@ TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
                 for (int k = 0; k < solid.grid.dims[2]; ++k) {
                     if (surface.occupancy.test(i, j, k)) continue;
                     const solid::Vec3 q{i + 0.5, j + 0.5, k + 0.5};
-                    double w = 0;
-                    for (const auto& c : corners) w += solid::triangleWinding(c[0], c[1], c[2], q);
+                    const double w = exact.winding(q);
                     if (std::fabs(w - 0.5) < 0.05) continue;
                     ++(w >= 0.5 ? inside : outside);
                     band += q[0] > 3.2 && q[0] < 28.8 && q[1] > 3.2 && q[1] < 28.8 && q[2] > low && q[2] < high;
@@ -837,15 +846,7 @@ TEST(SolidWinding, OpenRoomMatchesTheExactWindingNumber) {
     const VoxelizeResult surface = voxelize(view, surface_options);
     ASSERT_EQ(solid.stats.solid->evaluation, "fast winding numbers");
     EXPECT_GT(solid.stats.solid->interpolated_voxels, 10000u);  // the smooth part decided most
-    std::vector<std::array<solid::Vec3, 3>> voxel_triangles;
-    for (std::size_t t = 0; t < triangles.size(); t += 3) {
-        std::array<solid::Vec3, 3> corners;
-        for (int c = 0; c < 3; ++c) {
-            const float* p = &positions[3 * triangles[t + std::size_t(c)]];
-            corners[std::size_t(c)] = solid.grid.toVoxel(std::array<double, 3>{p[0], p[1], p[2]});
-        }
-        voxel_triangles.push_back(corners);
-    }
+    const VoxelTriangles exact(positions, triangles, solid.grid);
     int inside = 0, outside = 0;
     const auto dims = solid.grid.dims;
     for (int i = 0; i < dims[0]; ++i)
@@ -853,8 +854,7 @@ TEST(SolidWinding, OpenRoomMatchesTheExactWindingNumber) {
             for (int k = 0; k < dims[2]; ++k) {
                 if (surface.occupancy.test(i, j, k)) continue;
                 const solid::Vec3 q{i + 0.5, j + 0.5, k + 0.5};
-                double w = 0;
-                for (const auto& t : voxel_triangles) w += solid::triangleWinding(t[0], t[1], t[2], q);
+                const double w = exact.winding(q);
                 if (std::fabs(w - 0.5) < 0.05) continue;
                 ASSERT_EQ(solid.occupancy.test(i, j, k), w >= 0.5) << i << "," << j << "," << k << " w " << w;
                 ++(w >= 0.5 ? inside : outside);

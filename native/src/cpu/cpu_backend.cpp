@@ -61,9 +61,8 @@ VertexCache vertexCache(const ValidatedMesh& mesh, const GridSpec& spec) {
     return cache;
 }
 
-// At most 3 candidates along each axis (the small triangles of rasterize_small.h): those are
-// checked against the voxels already set before any setup; a larger triangle rarely finds
-// all of its candidates set.
+// At most 3 candidates along each axis: those are checked against the voxels already set
+// before any setup; a larger triangle rarely finds all of its candidates set.
 bool fewCandidates(const cpu::CandidateRange& r) {
     return r.hi[0] - r.lo[0] <= 2 && r.hi[1] - r.lo[1] <= 2 && r.hi[2] - r.lo[2] <= 2;
 }

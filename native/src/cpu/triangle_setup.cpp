@@ -150,11 +150,6 @@ SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mod
                         TriangleSetup& out) {
     const CandidateRange range = candidateRange(corners, clip_lo, clip_hi);
     if (range.outside()) return SetupKind::Outside;
-    return setupTriangle(corners, mode, range, out);
-}
-
-SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode, const CandidateRange& range,
-                        TriangleSetup& out) {
     return setupTriangle(corners[0], corners[1], corners[2], mode, range, out);
 }
 

@@ -80,10 +80,7 @@ CandidateRange candidateRange(const std::array<std::array<double, 3>, 3>& corner
                               const std::array<std::int32_t, 3>& clip_lo, const std::array<std::int32_t, 3>& clip_hi);
 
 // The rest of the setup, for a range found by candidateRange or cellRange (vertex_cells.h);
-// not outside().
-SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode, const CandidateRange& range,
-                        TriangleSetup& out);
-// The same from the three corners wherever they are stored (the vertex cache's entries: no
+// not outside(). The corners are read where they are stored (the vertex cache's entries: no
 // copy of them is made).
 SetupKind setupTriangle(const std::array<double, 3>& c0, const std::array<double, 3>& c1,
                         const std::array<double, 3>& c2, Mode mode, const CandidateRange& range, TriangleSetup& out);

@@ -80,9 +80,7 @@ struct InsideField {
     // Whether a value `v` found at one point holds for every point reachable from it by a path
     // of length `path` inside `box` that never meets the surface.
     bool holds(double v, const Box& box, double path) const {
-        const double margin = std::fabs(v - 0.5);
-        if (path <= 0) return margin > 0;
-        return margin > slope(box, margin / path) * path;
+        return holdsWithin(v, path <= 0 ? 0.0 : slope(box, std::fabs(v - 0.5) / path), path);
     }
 };
 

@@ -17,6 +17,50 @@ constexpr double kTwoPi = 2.0 * M_PI;
 // The column through a point passing this close to an edge in xy (voxels): see at().
 constexpr float kTie = 1e-3f;
 
+// The sheet (b, a, a + ∞z, b + ∞z) (up -1: to -∞z) subtends the solid angle of the spherical
+// triangle of the directions to b, to a and up (down): by van Oosterom & Strackee,
+// Ω/2 = atan2(up (u × v)_z, |u||v| + u·v + up (|u| v_z + |v| u_z)) with u = b - q, v = a - q.
+// Written for float: (u × v)_z = (e × w)_z with w the shorter of u and v, and the second
+// argument = s_u s_v + u_xy · v_xy with s = |u| + up u_z, which is (u_x² + u_y²) / (|u| - up u_z)
+// where up u_z < 0 (no cancellation, however far above the edge q lies).
+//
+// What of a sheet's term depends on q's x and y alone (at() computes it per point, atColumn()
+// once per vertical line): |u_xy|², |v_xy|², u_xy · v_xy, up (e × u)_z, up (e × v)_z, and NaN
+// where the column passes within kTie of the edge in xy (the rays' tie-breaking decides there).
+struct LineParts {
+    float uxy2, vxy2, uv, eu, ev, poison;
+};
+
+inline LineParts lineParts(float up, float vx, float vy, float ex, float ey, float inverse_length2) {
+    const float ux = vx + ex, uy = vy + ey;
+    // The nearest point of the edge to q in xy, a + t e.
+    const float t = std::min(std::max(-(vx * ex + vy * ey) * inverse_length2, 0.0f), 1.0f);
+    const float dx = vx + t * ex, dy = vy + t * ey;
+    return {ux * ux + uy * uy, vx * vx + vy * vy, ux * vx + uy * vy, up * (ex * uy - ey * ux), up * (ex * vy - ey * vx),
+            dx * dx + dy * dy < kTie * kTie ? NAN : 0.0f};
+}
+
+// The sheet's term, weight · Ω / 4π (+ the poison), at v_z = a_z - q_z, from its line parts.
+inline float sheetTerm(float up, float weight, float uxy2, float vxy2, float uv, float eu, float ev, float poison,
+                       float vz, float ez) {
+    const float uz = vz + ez;
+    const float lu = std::sqrt(uxy2 + uz * uz), lv = std::sqrt(vxy2 + vz * vz);
+    const float su = up * uz >= 0 ? lu + up * uz : uxy2 / (lu - up * uz);
+    const float sv = up * vz >= 0 ? lv + up * vz : vxy2 / (lv - up * vz);
+    const float det = lu < lv ? eu : ev;
+    return weight * floats::arctangent2(det, su * sv + uv) + poison;
+}
+
+// The terms summed in kLanes float lanes, then the lanes in double (n a multiple of kLanes).
+inline double laneSum(const float* terms, std::size_t n) {
+    float lanes[kLanes] = {};
+    for (std::size_t i = 0; i < n; i += kLanes)
+        for (std::size_t j = 0; j < kLanes; ++j) lanes[j] += terms[i + j];
+    double sum = 0;
+    for (const float lane : lanes) sum += lane;
+    return sum;
+}
+
 }  // namespace
 
 void SheetSum::assign(const std::vector<GradientBound::Sheet>& sheets, bool upward, const std::array<double, 3>& origin) {
@@ -41,7 +85,7 @@ void SheetSum::assign(const std::vector<GradientBound::Sheet>& sheets, bool upwa
     // Padding: an edge of length 0 far away (finite terms, never near), weight 0.
     for (std::size_t i = count_; i < padded; ++i) ax_[i] = ay_[i] = 1e6f;
     terms_.resize(padded);
-    for (auto* array : {&vx_, &vy_, &ux_, &uy_, &vxy2_, &uxy2_, &uv_, &eu_, &ev_, &poison_}) array->resize(padded);
+    for (auto* array : {&uxy2_, &vxy2_, &uv_, &eu_, &ev_, &poison_}) array->resize(padded);
 }
 
 // Where the platform dispatches a function by the processor it runs on (GNU ifunc), an AVX2
@@ -59,35 +103,10 @@ double SheetSum::at(const std::array<double, 3>& point) const {
                 *ez = ez_.data(), *inverse_length2 = inverse_length2_.data(), *weight = weight_.data();
     float* terms = terms_.data();
     for (std::size_t i = 0; i < n; ++i) {
-        // The sheet (b, a, a + ∞z, b + ∞z) (up -1: to -∞z) subtends the solid angle of the
-        // spherical triangle of the directions to b, to a and up (down): by van Oosterom &
-        // Strackee, Ω/2 = atan2(up (u × v)_z, |u||v| + u·v + up (|u| v_z + |v| u_z)) with
-        // u = b - q, v = a - q. Written for float: (u × v)_z = (e × w)_z with w the shorter
-        // of u and v, and the second argument = s_u s_v + u_xy · v_xy with s = |u| + up u_z,
-        // which is (u_x² + u_y²) / (|u| - up u_z) where up u_z < 0 (no cancellation, however
-        // far above the edge q lies).
-        const float vx = ax[i] - qx, vy = ay[i] - qy, vz = az[i] - qz;
-        const float ux = vx + ex[i], uy = vy + ey[i], uz = vz + ez[i];
-        const float uxy2 = ux * ux + uy * uy, vxy2 = vx * vx + vy * vy;
-        const float lu = std::sqrt(uxy2 + uz * uz), lv = std::sqrt(vxy2 + vz * vz);
-        const float su = up * uz >= 0 ? lu + up * uz : uxy2 / (lu - up * uz);
-        const float sv = up * vz >= 0 ? lv + up * vz : vxy2 / (lv - up * vz);
-        const bool u_shorter = lu < lv;
-        const float wx = u_shorter ? ux : vx, wy = u_shorter ? uy : vy;
-        const float det = up * (ex[i] * wy - ey[i] * wx);
-        const float denominator = su * sv + (ux * vx + uy * vy);
-        // The nearest point of the edge to q in xy, a + t e.
-        const float t = std::min(std::max(-(vx * ex[i] + vy * ey[i]) * inverse_length2[i], 0.0f), 1.0f);
-        const float dx = vx + t * ex[i], dy = vy + t * ey[i];
-        const float poison = dx * dx + dy * dy < kTie * kTie ? NAN : 0.0f;
-        terms[i] = weight[i] * floats::arctangent2(det, denominator) + poison;
+        const LineParts l = lineParts(up, ax[i] - qx, ay[i] - qy, ex[i], ey[i], inverse_length2[i]);
+        terms[i] = sheetTerm(up, weight[i], l.uxy2, l.vxy2, l.uv, l.eu, l.ev, l.poison, az[i] - qz, ez[i]);
     }
-    float lanes[kLanes] = {};
-    for (std::size_t i = 0; i < n; i += kLanes)
-        for (std::size_t j = 0; j < kLanes; ++j) lanes[j] += terms[i + j];
-    double sum = 0;
-    for (const float lane : lanes) sum += lane;
-    return sum;
+    return laneSum(terms, n);
 }
 
 #if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
@@ -99,41 +118,18 @@ void SheetSum::atColumn(double x, double y, const double* z, int count, double* 
     const std::size_t n = ax_.size();
     const float *ax = ax_.data(), *ay = ay_.data(), *az = az_.data(), *ex = ex_.data(), *ey = ey_.data(),
                 *ez = ez_.data(), *inverse_length2 = inverse_length2_.data(), *weight = weight_.data();
-    float *vx = vx_.data(), *vy = vy_.data(), *ux = ux_.data(), *uy = uy_.data(), *vxy2 = vxy2_.data(),
-          *uxy2 = uxy2_.data(), *uv = uv_.data(), *eu = eu_.data(), *ev = ev_.data(), *poison = poison_.data();
-    // The line's terms: the same operations as at()'s on x and y.
+    float *uxy2 = uxy2_.data(), *vxy2 = vxy2_.data(), *uv = uv_.data(), *eu = eu_.data(), *ev = ev_.data(),
+          *poison = poison_.data();
     for (std::size_t i = 0; i < n; ++i) {
-        vx[i] = ax[i] - qx;
-        vy[i] = ay[i] - qy;
-        ux[i] = vx[i] + ex[i];
-        uy[i] = vy[i] + ey[i];
-        uxy2[i] = ux[i] * ux[i] + uy[i] * uy[i];
-        vxy2[i] = vx[i] * vx[i] + vy[i] * vy[i];
-        uv[i] = ux[i] * vx[i] + uy[i] * vy[i];
-        eu[i] = up * (ex[i] * uy[i] - ey[i] * ux[i]);
-        ev[i] = up * (ex[i] * vy[i] - ey[i] * vx[i]);
-        const float t = std::min(std::max(-(vx[i] * ex[i] + vy[i] * ey[i]) * inverse_length2[i], 0.0f), 1.0f);
-        const float dx = vx[i] + t * ex[i], dy = vy[i] + t * ey[i];
-        poison[i] = dx * dx + dy * dy < kTie * kTie ? NAN : 0.0f;
+        const LineParts l = lineParts(up, ax[i] - qx, ay[i] - qy, ex[i], ey[i], inverse_length2[i]);
+        uxy2[i] = l.uxy2, vxy2[i] = l.vxy2, uv[i] = l.uv, eu[i] = l.eu, ev[i] = l.ev, poison[i] = l.poison;
     }
     float* terms = terms_.data();
     for (int k = 0; k < count; ++k) {
         const float qz = float(z[k] - origin_[2]);
-        for (std::size_t i = 0; i < n; ++i) {
-            const float vz = az[i] - qz, uz = vz + ez[i];
-            const float lu = std::sqrt(uxy2[i] + uz * uz), lv = std::sqrt(vxy2[i] + vz * vz);
-            const float su = up * uz >= 0 ? lu + up * uz : uxy2[i] / (lu - up * uz);
-            const float sv = up * vz >= 0 ? lv + up * vz : vxy2[i] / (lv - up * vz);
-            const float det = lu < lv ? eu[i] : ev[i];
-            const float denominator = su * sv + uv[i];
-            terms[i] = weight[i] * floats::arctangent2(det, denominator) + poison[i];
-        }
-        float lanes[kLanes] = {};
-        for (std::size_t i = 0; i < n; i += kLanes)
-            for (std::size_t j = 0; j < kLanes; ++j) lanes[j] += terms[i + j];
-        double sum = 0;
-        for (const float lane : lanes) sum += lane;
-        out[k] = sum;
+        for (std::size_t i = 0; i < n; ++i)
+            terms[i] = sheetTerm(up, weight[i], uxy2[i], vxy2[i], uv[i], eu[i], ev[i], poison[i], az[i] - qz, ez[i]);
+        out[k] = laneSum(terms, n);
     }
 }
 

@@ -40,9 +40,9 @@ private:
     // edge), and excess / 2π.
     std::vector<float> ax_, ay_, az_, ex_, ey_, ez_, inverse_length2_, weight_;
     mutable std::vector<float> terms_;  // at()'s per-sheet terms (one SheetSum per thread)
-    // atColumn()'s per-sheet terms of the line: v and u = v + e in xy, |v_xy|², |u_xy|²,
-    // u_xy · v_xy, (e × u)_z, (e × v)_z, and NaN where the line passes an edge (else 0).
-    mutable std::vector<float> vx_, vy_, ux_, uy_, vxy2_, uxy2_, uv_, eu_, ev_, poison_;
+    // atColumn()'s per-sheet parts of the line, those that depend on x and y alone
+    // (sheet_sum.cpp, LineParts).
+    mutable std::vector<float> uxy2_, vxy2_, uv_, eu_, ev_, poison_;
 };
 
 }  // namespace hyvox::solid

@@ -340,8 +340,7 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
     };
     visit(visit, lo, top);
     brick.exactWindings(outright, outright_values);
-    for (std::size_t n = 0; n < outright.size(); ++n)
-        if (outright_values[n] >= 0.5) inside[bit(outright[n]) >> 6] |= std::uint64_t(1) << (bit(outright[n]) & 63);
+    for (std::size_t n = 0; n < outright.size(); ++n) decide(outright[n], outright_values[n]);
 }
 
 }  // namespace hyvox::solid
