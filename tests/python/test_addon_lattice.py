@@ -126,3 +126,10 @@ def test_a_static_part_keeps_its_voxels_across_a_sequence(hyvox, tmp_path, mode)
     corners = [{tuple(np.round(np.array(g.origin) + ijk * g.voxel_size, 6)) for ijk in g.coords()
                 if g.origin[0] + ijk[0] * g.voxel_size >= 0.0} for g in free]
     assert not corners[0] == corners[1] == corners[2]
+
+
+def test_a_non_finite_vertex_is_refused_in_plain_words():
+    v, t = icosphere(1)
+    v[5, 1] = np.nan
+    with pytest.raises(ValueError, match="non-finite"):
+        lattice.fixed_lattice(v, t, 16, None)

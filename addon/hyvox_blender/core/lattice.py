@@ -26,7 +26,10 @@ def used_bounds(vertices: np.ndarray, triangles: np.ndarray) -> Tuple[np.ndarray
     used = np.zeros(len(vertices), bool)
     used[triangles.ravel()] = True
     points = vertices if used.all() else vertices[used]
-    return points.min(axis=0).astype(np.float64), points.max(axis=0).astype(np.float64)
+    low, high = points.min(axis=0).astype(np.float64), points.max(axis=0).astype(np.float64)
+    if not (np.isfinite(low).all() and np.isfinite(high).all()):  # min and max carry a NaN through
+        raise ValueError("a vertex has a non-finite coordinate (NaN or Inf)")
+    return low, high
 
 
 def voxel_size_for_resolution(low: np.ndarray, high: np.ndarray, resolution: int) -> float:
