@@ -307,7 +307,7 @@ def _on_undo_redo(*_args):
 
 @persistent
 def _on_load_pre(*_args):
-    shutdown()
+    shutdown(session_ends=True)
 
 
 @persistent
@@ -328,17 +328,23 @@ def _on_save_post(*_args):
     _Live.kept_by_saves |= _Live.shown
 
 
-def shutdown():
-    """Cancel every run and wait for them, then delete the cache's files that nothing shows
-    and no saved .blend keeps (load_pre, disabling the add-on, quitting)."""
+def shutdown(session_ends=False):
+    """Cancel every run and wait for them, then delete the files the cache wrote except those
+    a saved .blend refers to and, while the session goes on (the add-on disabled), those
+    the volumes show. When the file is closed (load_pre) or Blender quits, what only the
+    unsaved session showed goes too."""
     for outcome in _Live.scheduler.shutdown():
         _discard(outcome)
-    try:
+    protected = set(_Live.kept_by_saves)
+    if not session_ends:
         _refresh_shown()
-    except (AttributeError, ReferenceError):  # Blender's data is gone already at exit
-        pass
-    _Live.cache.clear(protected=_Live.shown | _Live.kept_by_saves)
+        protected |= _Live.shown
+    _Live.cache.clear(protected=protected)
     _Live.status.clear()
+
+
+def _at_exit():
+    shutdown(session_ends=True)
 
 
 def _forget(ident):
@@ -433,11 +439,11 @@ def register():
                     "materials, frames); off: they stay as they are")
     for name, handler in HANDLERS:
         getattr(bpy.app.handlers, name).append(handler)
-    atexit.register(shutdown)
+    atexit.register(_at_exit)
 
 
 def unregister():
-    atexit.unregister(shutdown)
+    atexit.unregister(_at_exit)
     shutdown()
     if bpy.app.timers.is_registered(_tick):
         bpy.app.timers.unregister(_tick)
