@@ -261,7 +261,7 @@ def render_live_animation(args, output):
     source.modifiers.new("Subdivision", "SUBSURF").levels = 2
     twist = source.modifiers.new("Twist", "SIMPLE_DEFORM")
     twist.deform_method, twist.deform_axis = "TWIST", "Z"
-    for frame, angle in zip(LIVE_FRAMES, (0.0, 1.2, 2.4)):
+    for frame, angle in zip(LIVE_FRAMES, (0.0, 1.6, 3.2)):
         twist.angle = angle
         twist.keyframe_insert("angle", frame=frame)
     bpy.context.view_layer.update()
@@ -277,8 +277,9 @@ def render_live_animation(args, output):
     shader = volume.active_material.node_tree.nodes["Principled Volume"]
     shader.inputs["Color"].default_value = (0.25, 0.55, 0.9, 1)
     shader.inputs["Density"].default_value *= 4.0
-    saved = scene.frame_start, scene.frame_end, scene.render.resolution_x, scene.render.filepath
+    saved = scene.frame_start, scene.frame_end, scene.render.resolution_x, scene.render.filepath, scene.camera
     scene.frame_start, scene.frame_end = LIVE_FRAMES[0], LIVE_FRAMES[-1]
+    scene.camera = add_camera("Camera live", (0.0, -5.2, 1.5), 1.42)
     scene.render.resolution_x = 320
     frames = os.path.join(output, "live_frame_")
     scene.render.filepath = frames
@@ -297,7 +298,7 @@ def render_live_animation(args, output):
     combined.filepath_raw, combined.file_format = png, "PNG"
     combined.save()
     bpy.data.images.remove(combined)
-    scene.frame_start, scene.frame_end, scene.render.resolution_x, scene.render.filepath = saved
+    scene.frame_start, scene.frame_end, scene.render.resolution_x, scene.render.filepath, scene.camera = saved
     scene.frame_set(LIVE_FRAMES[0])
     volume.hyvox_live = False  # the .blend keeps frame 1's voxels as a baked result
     source.hide_render = volume.hide_render = True
