@@ -119,6 +119,25 @@ class LiveEditsTest(LiveTestCase):
                 # Nothing left half-written.
                 self.assertFalse([n for n in os.listdir(self.out) if n.endswith(".partial")])
 
+    def test_edit_mode_changes_are_followed(self):
+        import bmesh
+        bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2, radius=1.0)
+        sphere = bpy.context.active_object
+        volume = self.make_live(sphere)
+        bpy.context.view_layer.objects.active = sphere
+        bpy.ops.object.mode_set(mode="EDIT")
+        try:
+            edit = bmesh.from_edit_mesh(sphere.data)
+            top = max(edit.verts, key=lambda v: v.co.z)
+            top.co.z += 0.7  # the top from 1 to 1.7
+            bmesh.update_edit_mesh(sphere.data)
+            bpy.context.view_layer.update()
+            self.assert_holds_the_state(volume, sphere)  # the oracle reads the edit-mode evaluation too
+            self.assertGreater(max(p[2] for p in file_voxels(self.shown_file(volume))) * volume["hyvox_voxel_size"],
+                               1.5)
+        finally:
+            bpy.ops.object.mode_set(mode="OBJECT")
+
     def test_a_burst_of_edits_gives_one_run_with_the_last_state(self):
         bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2, radius=1.0)
         sphere = bpy.context.active_object

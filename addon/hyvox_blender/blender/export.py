@@ -24,8 +24,9 @@ def _mesh_arrays(evaluated: bpy.types.Object, matrix: np.ndarray, images=None):
     None) of an evaluated object (or instance); the colour only when images (the run's
     colour_export.ImageCache) is given."""
     colour = None
-    owned = evaluated.type != "MESH"
-    # A mesh object's evaluated data already is the evaluated mesh: no copy needed.
+    # A mesh object's evaluated data already is the evaluated mesh: no copy needed. In Edit
+    # Mode (Live follows edits there) it wraps the edit mesh and has no faces of its own.
+    owned = evaluated.type != "MESH" or getattr(evaluated.data, "is_editmode", False)
     mesh = evaluated.to_mesh() if owned else evaluated.data
     try:
         if mesh is None:
