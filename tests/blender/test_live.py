@@ -274,6 +274,38 @@ class LiveErrorsTest(LiveTestCase):
         self.assert_holds_the_state(volume, cube)
 
 
+class LiveColourTest(LiveTestCase):
+    def test_a_texture_is_read_once_and_again_when_the_image_changes(self):
+        colour_export = helpers.addon("blender.colour_export")
+        bpy.ops.mesh.primitive_cube_add(size=1.0)  # with UVs
+        cube = bpy.context.active_object
+        image = bpy.data.images.new("Paint", 4, 4)
+        image.pixels.foreach_set(np.tile(np.float32([0.9, 0.1, 0.1, 1.0]), 16))
+        material = bpy.data.materials.new("Painted")
+        material.use_nodes = True
+        texture = material.node_tree.nodes.new("ShaderNodeTexImage")
+        texture.image = image
+        material.node_tree.links.new(texture.outputs["Color"], material.node_tree.nodes["Principled BSDF"].inputs[0])
+        cube.data.materials.append(material)
+        reads = []
+        real = colour_export._image_pixels
+        colour_export._image_pixels = lambda img: reads.append(img.name) or real(img)
+        try:
+            volume = self.make_live(cube, color=True, resolution=8)
+            for x in (0.2, 0.4, 0.6):  # three edits: the pixels are read by the first only
+                cube.location.x = x
+                bpy.context.view_layer.update()
+            self.assertEqual(len(reads) - 1, 1, reads)  # the operator's own export, then Live's first
+            before = self.shown_file(volume)
+            image.pixels.foreach_set(np.tile(np.float32([0.1, 0.1, 0.9, 1.0]), 16))
+            image.update_tag()  # Blender reports the image changed
+            bpy.context.view_layer.update()
+            self.assertEqual(len(reads) - 1, 2, reads)
+            self.assertNotEqual(self.shown_file(volume), before)  # new colours, new voxels' file
+        finally:
+            colour_export._image_pixels = real
+
+
 class LiveOutputsTest(LiveTestCase):
     def test_blocks_and_vox_follow(self):
         bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2, radius=1.0)

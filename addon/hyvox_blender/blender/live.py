@@ -235,6 +235,8 @@ def _changes(depsgraph):
             objects.add(update.id.name)
         elif kind in SHADING_TYPES:
             shading = True
+            if kind == "Image":  # its pixels are read again at the next export
+                live_volumes.ImagePixels.forget(update.id.name)
         elif kind == "Collection":
             collections = True
     return objects, shading, collections
@@ -320,6 +322,7 @@ def _on_undo_redo(*_args):
 @persistent
 def _on_load_pre(*_args):
     shutdown(session_ends=True)
+    live_volumes.ImagePixels.forget()
 
 
 @persistent

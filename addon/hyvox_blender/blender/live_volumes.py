@@ -161,6 +161,44 @@ def fingerprint(settings) -> str:
 
 
 # -- main thread: export and swap -------------------------------------------------------
+class ImagePixels:
+    """The textures' pixels kept across Live's exports (reading a 1024x1024 image costs more
+    than exporting 100k triangles). An image's pixels are read again when Blender reports it
+    changed (forget(), from a depsgraph update of the Image) or when what they were read
+    with changes (its file, size, colour space, float or not, unsaved edits)."""
+    pixels: dict = {}       # image name -> (key, pixels), colour_export.ImageCache
+    signatures: dict = {}   # image name -> what the pixels were read with
+
+    @staticmethod
+    def _signature(image):
+        return (image.filepath_raw, tuple(image.size), image.is_float, image.colorspace_settings.name,
+                image.source, image.is_dirty, image.channels)
+
+    @classmethod
+    def current(cls) -> dict:
+        for name in list(cls.pixels):
+            image = bpy.data.images.get(name)
+            if image is None or cls.signatures.get(name) != cls._signature(image):
+                cls.forget(name)
+        return cls.pixels
+
+    @classmethod
+    def record(cls) -> None:
+        for name in cls.pixels:
+            image = bpy.data.images.get(name)
+            if image is not None and name not in cls.signatures:
+                cls.signatures[name] = cls._signature(image)
+
+    @classmethod
+    def forget(cls, name=None) -> None:
+        if name is None:
+            cls.pixels.clear()
+            cls.signatures.clear()
+        else:
+            cls.pixels.pop(name, None)
+            cls.signatures.pop(name, None)
+
+
 def export_meshes(obj, group: Group, depsgraph, colour: bool, warn) -> List[GroupMesh]:
     """The sources as the depsgraph evaluates them (viewport while editing, render
     while rendering)."""
@@ -168,7 +206,10 @@ def export_meshes(obj, group: Group, depsgraph, colour: bool, warn) -> List[Grou
         evaluated = source.evaluated_get(depsgraph)
         if not evaluated.is_evaluated:
             raise SourcesUnavailable(f"{source.name} is not evaluated here (disabled in viewports?)")
-    return export.export_groups([group], depsgraph, warn=warn, colour=colour)
+    meshes = export.export_groups([group], depsgraph, warn=warn, colour=colour,
+                                  images=ImagePixels.current() if colour else None)
+    ImagePixels.record()
+    return meshes
 
 
 def shown_files(obj) -> List[str]:
