@@ -32,7 +32,8 @@ import time
 import bpy
 import numpy as np
 
-import addon_utils
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "demo"))
+from run_demo import enable_addon, mesh_from_arrays  # noqa: E402  (the demo's scene helpers)
 
 MESHES = {
     "suzanne4": "Suzanne, subdivision level 4",
@@ -61,12 +62,6 @@ def parse_args():
     return parser.parse_args(argv)
 
 
-def enable_addon(build):
-    sys.path.insert(0, os.path.join(os.path.abspath(build), "addon"))
-    if addon_utils.enable("hyvox_blender", default_set=True, handle_error=None) is None:
-        raise SystemExit(f"could not enable hyvox_blender from {build}/addon")
-
-
 def addon(name):
     import importlib
     return importlib.import_module("hyvox_blender." + name)
@@ -82,20 +77,6 @@ def clear():
             collection.remove(block)
 
 
-def mesh_object(name, vertices, triangles):
-    mesh = bpy.data.meshes.new(name)
-    mesh.vertices.add(len(vertices))
-    mesh.vertices.foreach_set("co", np.asarray(vertices, np.float32).ravel())
-    mesh.loops.add(triangles.size)
-    mesh.loops.foreach_set("vertex_index", triangles.astype(np.int32).ravel())
-    mesh.polygons.add(len(triangles))
-    mesh.polygons.foreach_set("loop_start", np.arange(0, triangles.size, 3, dtype=np.int32))
-    mesh.update()
-    obj = bpy.data.objects.new(name, mesh)
-    bpy.context.scene.collection.objects.link(obj)
-    return obj
-
-
 def suzanne(level):
     bpy.ops.mesh.primitive_monkey_add(size=2.0)
     obj = bpy.context.active_object
@@ -109,7 +90,7 @@ def spot(mesh_dir, hyvox):
     """Spot welded where its UV seams split it (closed), the texture as the Base Color."""
     vertices, triangles, attributes = hyvox.read_mesh(os.path.join(mesh_dir, "spot_uv.ply"), attributes=True)
     unique, index = np.unique(vertices, axis=0, return_inverse=True)
-    obj = mesh_object("Spot", unique, index.reshape(-1)[triangles].astype(np.uint32))
+    obj = mesh_from_arrays("Spot", unique, index.reshape(-1)[triangles].astype(np.uint32))
     uv_layer = obj.data.uv_layers.new(name="UVMap")
     uv_layer.data.foreach_set("uv", attributes["uvs"][triangles.reshape(-1)].ravel())
     material = bpy.data.materials.new("Spot")
@@ -128,7 +109,7 @@ def make_source(name, mesh_dir, hyvox):
     if name == "spot":
         return spot(mesh_dir, hyvox)
     vertices, triangles = hyvox.read_mesh(os.path.join(mesh_dir, MESHES[name]))
-    return mesh_object(name, vertices, triangles)
+    return mesh_from_arrays(name, vertices, triangles)
 
 
 def triangle_count(obj):
@@ -383,7 +364,7 @@ def main():
         # The main thread's share for 100k triangles: the Buddha (exactly 100,000).
         clear()
         vertices, triangles = hyvox.read_mesh(os.path.join(args.mesh_dir, "happy_buddha_100k.ply"))
-        buddha = mesh_object("Buddha", vertices, triangles)
+        buddha = mesh_from_arrays("Buddha", vertices, triangles)
         result = hyvox_live(buddha, max(buddha.dimensions) / 256, "surface", False, args.edits, out)
         main_thread = {"mesh": "happy_buddha_100k", "triangles": len(triangles), "resolution": 256,
                        "ms": result["main_thread_ms"], "cpu_ms": result["main_thread_cpu_ms"],

@@ -24,7 +24,6 @@ import sys
 import tempfile
 import threading
 import time
-import traceback
 
 import bpy
 import numpy as np
@@ -83,22 +82,9 @@ def live():
     return module
 
 
-def hide_viewports():
-    """Info editors instead of 3D Views: a software-GL redraw would hide what is measured."""
-    for area in bpy.context.window_manager.windows[0].screen.areas:
-        if area.type == "VIEW_3D":
-            area.type = "INFO"
-
-
 def window_override():
     window = bpy.context.window_manager.windows[0]
     return dict(window=window, screen=window.screen, area=window.screen.areas[0])
-
-
-def press_esc():
-    window = bpy.context.window_manager.windows[0]
-    window.event_simulate("ESC", "PRESS")
-    window.event_simulate("ESC", "RELEASE")
 
 
 def volume():
@@ -142,6 +128,23 @@ def arm():
     Hold.arm()
 
 
+def held_edit(next_step):
+    """An edit whose run will be held, then next_step (which waits for the run to start)."""
+    arm()
+    sculpt(source(), 0.05)
+    go(next_step)
+
+
+def check_burst(what):
+    """After a burst (edits or frames) during a held run: at most two runs, the last state's voxels."""
+    made = runs() - state["runs_before"]
+    print(f"{what} gave {made} runs", flush=True)
+    if made > 2:
+        fail(f"{made} runs for {what} (at most 2)")
+    if file_voxels(shown_file()) != oracle_voxels(source()):
+        fail(f"after {what} the volume does not hold the last state's voxels")
+
+
 def sculpt(obj, amount):
     """Push a few vertices outward, as a brush stroke's step does."""
     mesh = obj.data
@@ -152,14 +155,6 @@ def sculpt(obj, amount):
     co[near] *= np.float32(1.0 + amount)
     mesh.vertices.foreach_set("co", co.ravel())
     mesh.update()
-
-
-def tick():
-    try:
-        return step()
-    except Exception:
-        traceback.print_exc()
-        fail("exception in the test")
 
 
 def wait(condition, what, seconds=30):
@@ -182,11 +177,8 @@ def step():
     state["ticks"].append(now)
     s = state["step"]
     if s == "start":
-        # Close the splash screen with a click beside it (it would take the keyboard's events).
-        window = bpy.context.window_manager.windows[0]
-        window.event_simulate("LEFTMOUSE", "PRESS", x=20, y=window.height // 2)
-        window.event_simulate("LEFTMOUSE", "RELEASE", x=20, y=window.height // 2)
-        hide_viewports()
+        helpers.close_splash()  # it would take the keyboard's events
+        helpers.hide_viewports()
         helpers.clear_scene()
         bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=3, radius=1.0)
         helpers.select_only(source())
@@ -219,21 +211,14 @@ def step():
         return 0.02
     elif s == "sculpt_done":
         if wait(idle, "the runs after the stroke end"):
-            made = runs() - state["runs_before"]
-            print(f"a stroke of {state['edits']} edits gave {made} runs", flush=True)
-            if made > 2:
-                fail(f"{made} runs for one burst of edits (at most 2)")
-            if file_voxels(shown_file()) != oracle_voxels(source()):
-                fail("after the stroke the volume does not hold the last edit's voxels")
+            check_burst(f"a stroke of {state['edits']} edits")
             # 2. Esc during a held run.
             state["before_esc"] = shown_file()
-            arm()
-            sculpt(source(), 0.05)
-            go("esc_wait")
+            held_edit("esc_wait")
     elif s == "esc_wait":
         if wait(Hold.entered.is_set, "a run starts after the edit"):
             state["pressed"] = time.perf_counter()
-            press_esc()
+            helpers.press_key("ESC")
             go("esc_check")
     elif s == "esc_check":
         if wait(lambda: Hold.cancel_seen is not None and idle(), "Esc cancels the run"):
@@ -246,9 +231,7 @@ def step():
             if "Cancelled" not in live().status_line(volume()):
                 fail(f"the panel says {live().status_line(volume())!r} after Esc")
             # 3. Live switched off during a held run.
-            arm()
-            sculpt(source(), 0.05)
-            go("off_wait")
+            held_edit("off_wait")
     elif s == "off_wait":
         if wait(Hold.entered.is_set, "a run starts after the edit"):
             state["pressed"] = time.perf_counter()
@@ -319,16 +302,9 @@ def step():
         go("frames_check")
     elif s == "frames_check":
         if wait(idle, "the frames' runs end"):
-            made = runs() - state["runs_before"]
-            print(f"frames 2-9 while a run was held gave {made} runs", flush=True)
-            if made > 2:
-                fail(f"{made} runs for frames changed during one run (at most 2)")
-            if file_voxels(shown_file()) != oracle_voxels(source()):
-                fail("the newest frame's voxels are not shown")
+            check_burst("frames 2-9 while a run was held")
             # 6. The source deleted during a held run.
-            arm()
-            sculpt(source(), 0.05)
-            go("delete_wait")
+            held_edit("delete_wait")
     elif s == "delete_wait":
         if wait(Hold.entered.is_set, "a run starts after the edit"):
             state["before_delete"] = shown_file()
@@ -345,11 +321,4 @@ def step():
     return 0.02
 
 
-def main():
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    helpers.enable_addon(argv[0] if argv else "build")
-    bpy.app.timers.register(tick, first_interval=1.0)
-    bpy.app.timers.register(lambda: fail("timed out") or None, first_interval=150.0)
-
-
-main()
+helpers.run_in_window(step, fail, seconds=150)

@@ -178,9 +178,7 @@ def step():
     state["step"] += 1
     window, area, region = sidebar()
     if s == 0:
-        # Close the splash screen with a click beside it, as an artist would.
-        window.event_simulate("LEFTMOUSE", "PRESS", x=20, y=window.height // 2)
-        window.event_simulate("LEFTMOUSE", "RELEASE", x=20, y=window.height // 2)
+        helpers.close_splash()
         helpers.clear_scene()
         bunny = helpers.bunny()
         helpers.select_only(bunny)

@@ -10,6 +10,8 @@ relation Blender evaluates it for every rendered frame, at render settings, and 
 render-time run (live.py) exports it from the render's own evaluation."""
 import bpy
 
+from .node_groups import geometry_group
+
 GROUP_NAME = "hyvox Live Source"
 MODIFIER_NAME = "hyvox Live Source"
 SOURCE_INPUT = "Source"
@@ -35,10 +37,7 @@ def _new_group() -> bpy.types.NodeTree:
 
 
 def _group() -> bpy.types.NodeTree:
-    tree = bpy.data.node_groups.get(GROUP_NAME)
-    if tree is None or tree.bl_idname != "GeometryNodeTree":
-        tree = _new_group()
-    return tree
+    return geometry_group(GROUP_NAME, _new_group)
 
 
 def _source_identifier(tree) -> str:
