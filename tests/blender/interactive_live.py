@@ -17,7 +17,9 @@ or its token is cancelled (then the wrapper records when it saw the cancel).
 4. Undo and redo: the volume shows the voxels of the state returned to.
 5. Frames changed while a run is held (playback that voxelizing cannot keep up with): the
    newest frame wins, in at most two runs.
-6. The source deleted during a held run: cancelled, no error, no stray file.
+6. Render Animation from the window (a job: Live runs on the render thread): each frame
+   renders with its own voxels, against the reference voxelizer.
+7. The source deleted during a held run: cancelled, no error, no stray file.
 Exits 0 on success, 1 on failure (CTest runs it under xvfb-run)."""
 import os
 import sys
@@ -126,6 +128,15 @@ def new_files():
 def arm():
     state["files_before"] = set(os.listdir(OUT))
     Hold.arm()
+
+
+def record_rendered(*_args):
+    state["rendered"].append(shown_file())
+
+
+def render_setup(scene, path):
+    from test_live import render_setup as setup
+    setup(scene, path)
 
 
 def held_edit(next_step):
@@ -303,7 +314,29 @@ def step():
     elif s == "frames_check":
         if wait(idle, "the frames' runs end"):
             check_burst("frames 2-9 while a run was held")
-            # 6. The source deleted during a held run.
+            # 6. Render Animation in the UI (a job on the render thread): each frame its voxels.
+            scene = bpy.context.scene
+            render_setup(scene, os.path.join(OUT, "renders", "frame_"))
+            scene.frame_start, scene.frame_end = 1, 3
+            state["rendered"] = []
+            bpy.app.handlers.render_post.append(record_rendered)
+            with bpy.context.temp_override(**window_override()):
+                result = bpy.ops.render.render("INVOKE_DEFAULT", animation=True)
+            if result != {"RUNNING_MODAL"}:
+                fail(f"Render Animation returned {result}")
+            go("render_wait")
+    elif s == "render_wait":
+        if wait(lambda: len(state["rendered"]) == 3 and not bpy.app.is_job_running("RENDER") and idle(),
+                "Render Animation ends", seconds=60):
+            bpy.app.handlers.render_post.remove(record_rendered)
+            for frame, path in enumerate(state["rendered"], start=1):
+                bpy.context.scene.frame_set(frame)
+                if file_voxels(path) != oracle_voxels(source()):
+                    fail(f"frame {frame} rendered with voxels that are not its own ({path})")
+            if len(set(state["rendered"])) != 3:
+                fail(f"the three frames rendered with {len(set(state['rendered']))} files")
+            print("Render Animation in the window gave each frame its own voxels", flush=True)
+            # 7. The source deleted during a held run.
             held_edit("delete_wait")
     elif s == "delete_wait":
         if wait(Hold.entered.is_set, "a run starts after the edit"):
