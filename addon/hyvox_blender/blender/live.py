@@ -19,6 +19,7 @@ handler is evaluated by Blender's second pass over what handlers changed, so whe
 view_layer.update() or frame_set() returns the volume shows the voxels of the new state."""
 import atexit
 import os
+import sys
 import time
 
 import bpy
@@ -46,6 +47,7 @@ class _Live:
     status = {}              # live id -> the line the panel shows
     timings = {}             # live id -> the last run's stage timings (ms), swap and main thread included
     started = {}             # live id -> the main thread's (wall, CPU) ms of starting the run
+    warnings = {}            # live id -> the running run's export warnings
     runs_started = {}        # live id -> runs started (tests and the bench read it)
 
 
@@ -81,7 +83,7 @@ def _status_bar(text):
 
 
 # -- driving the state machines -------------------------------------------------------
-def _refresh_shown(scene=None):
+def _refresh_shown():
     files = set()
     for volume in bpy.data.volumes:
         if volume.filepath:
@@ -109,6 +111,9 @@ def _apply(obj, ident, outcome):
         timings = dict(outcome.output.timings_ms, swap=swap_ms)
         _Live.status[ident] = ("Up to date (from the cache)" if outcome.output.cached
                                else f"Up to date ({sum(timings.get(s, 0.0) for s in STAGES):.0f} ms)")
+        warnings = _Live.warnings.pop(ident, [])
+        if warnings:  # what the export had to say (objects without faces, colour sources)
+            _Live.status[ident] += f"; {warnings[0]}"
         if was_error:
             _status_bar(None)
         # The main thread's share (in the UI the rest runs on the worker): the start (export,
@@ -125,9 +130,10 @@ def _apply(obj, ident, outcome):
 
 def _discard(outcome):
     """A dropped run (cancelled: its volume switched off or gone, a source deleted, an undo
-    step, Esc): what it wrote goes, unless something shows it."""
-    if outcome.output is not None and outcome.run.key is not None:
-        _Live.cache.remove(outcome.run.key, protected=_Live.shown | _Live.kept_by_saves)
+    step, Esc) that finished all the same: what it wrote goes, unless something shows it
+    (a state it found in the cache stays there)."""
+    if outcome.output is not None and not outcome.output.cached:
+        _Live.cache.remove(outcome.output.key, protected=_Live.shown | _Live.kept_by_saves)
 
 
 def _start(obj, ident, depsgraph, synchronous):
@@ -151,6 +157,7 @@ def _start(obj, ident, depsgraph, synchronous):
         _report_error(obj, ident, str(exc))
         return
     _Live.runs_started[ident] = _Live.runs_started.get(ident, 0) + 1
+    _Live.warnings[ident] = warnings
     _Live.started[ident] = ((time.perf_counter() - wall) * 1000.0, (time.thread_time() - cpu) * 1000.0)
     _Live.scheduler.start(ident, run, synchronous=synchronous)
 
@@ -287,17 +294,17 @@ def _on_frame_change(scene, depsgraph=None):
 
 
 @persistent
-def _on_render_init(*_args):
-    _Live.rendering = True
+def _on_render_init(scene, *_args):
+    if not _evaluating_for_the_operator(scene):
+        _Live.rendering = True
 
 
 @persistent
-def _on_render_end(*_args):
+def _on_render_end(scene, *_args):
     """After a render the viewport's own voxels come back (from the cache when unchanged)."""
-    _Live.rendering = False
-    scene = bpy.context.scene
-    if scene is None:
+    if _evaluating_for_the_operator(scene):
         return
+    _Live.rendering = False
     for ident in live_volumes.live_objects(scene):
         _Live.scheduler.mark_dirty(ident)
     if not bpy.app.background:
@@ -360,6 +367,17 @@ def shutdown(session_ends=False):
 
 def _at_exit():
     shutdown(session_ends=True)
+
+
+def _quitting() -> bool:
+    """Whether Blender is quitting: it disables every add-on then (addon_utils.disable_all),
+    while an artist disabling this one calls addon_utils.disable."""
+    frame = sys._getframe(1)
+    while frame is not None:
+        if frame.f_code.co_name == "disable_all" and frame.f_globals.get("__name__") == "addon_utils":
+            return True
+        frame = frame.f_back
+    return False
 
 
 def _forget(ident):
@@ -459,7 +477,7 @@ def register():
 
 def unregister():
     atexit.unregister(_at_exit)
-    shutdown()
+    shutdown(session_ends=_quitting())
     if bpy.app.timers.is_registered(_tick):
         bpy.app.timers.unregister(_tick)
     for name, handler in HANDLERS:

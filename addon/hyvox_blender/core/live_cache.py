@@ -159,11 +159,10 @@ class LiveCache:
 
     def clear(self, protected: Iterable[str] = ()) -> List[str]:
         """Forget every entry and delete the files the cache wrote, except the protected ones
-        (a saved .blend's, the shown ones when the session goes on)."""
+        (a saved .blend's, the shown ones when the session goes on), which are the cache's no
+        more: from now on they are files like any run's."""
         keep = {_norm(p) for p in protected}
         with self._lock:
             self._entries.clear()
             written, self._written = self._written, set()
-        deleted = [p for p in sorted(written) if p not in keep and os.path.exists(p) and _delete(p)]
-        self._written.update(p for p in written if p in keep)
-        return deleted
+        return [p for p in sorted(written) if p not in keep and os.path.exists(p) and _delete(p)]
