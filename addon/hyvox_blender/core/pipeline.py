@@ -310,14 +310,15 @@ class Pipeline:
             result.has_color = bool(colour)
         self._group_index = len(meshes)
 
-
     def _fixed_lattice(self, mesh: GroupMesh, voxel_size: Optional[float]) -> lattice.Lattice:
         options = self.settings.voxelize_options()
+        resolution = options.get("resolution", backend.load_module().option("resolution").default)
         try:
-            return lattice.fixed_lattice(mesh.vertices, mesh.triangles, int(options.get("resolution", 0)),
+            return lattice.fixed_lattice(mesh.vertices, mesh.triangles, int(resolution),
                                          voxel_size or options.get("voxel_size"))
         except ValueError as exc:
             raise HyvoxError(f"{mesh.group.name}: {exc}") from exc
+
 
     def _blocks_and_vox(self, grid, result: GroupResult, final_vdb: str) -> None:
         """The other outputs of the same voxels: the blocks mesh (imported on the main
