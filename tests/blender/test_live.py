@@ -192,6 +192,19 @@ class LiveEditsTest(LiveTestCase):
         volume.hyvox_live = True  # back on: the current state at once
         self.assert_holds_the_state(volume, sphere)
 
+    def test_a_result_made_without_live_can_be_switched_on(self):
+        cube = helpers.cube(size=1.0)
+        helpers.select_only(cube)
+        self.assertEqual(self.voxelize(resolution=16), {"FINISHED"})
+        (volume,) = self.volumes()
+        self.assertIs(volume.parent, cube)  # a plain run parents the volume
+        cube.location.x = 0.9
+        bpy.context.view_layer.update()
+        volume.hyvox_live = True  # the current state at once, unparented: no double move
+        self.assertIsNone(volume.parent)
+        self.assert_holds_the_state(volume, cube)
+        self.assertEqual(len([m for m in volume.modifiers if m.name.startswith("hyvox Live Source")]), 1)
+
     def test_a_frame_range_is_refused_with_live(self):
         helpers.select_only(helpers.cube())
         with self.assertRaises(RuntimeError) as caught:

@@ -427,14 +427,19 @@ def recording(export_frame, digests):
     return export
 
 
-def make_live(objects, results, used, digests) -> None:
+def remember_results(objects, results, used) -> None:
+    """Every result records the settings and sources its Live switch will use."""
+    for obj, result in zip(objects, results.values()):
+        live_volumes.remember(obj, used, result.group, files=list(result.files) + list(result.vox_files))
+
+
+def make_live(objects, results, digests) -> None:
     """Turn Live on for the volumes a run just made (operator, live=True). Their voxels are
     those of the current state: they go into the cache under its key, so no run follows
     until something changes."""
     from ..core import live_key
     from ..core.live_cache import CacheEntry
     for obj, result in zip(objects, results.values()):
-        live_volumes.remember(obj, used, result.group, files=list(result.files) + list(result.vox_files))
         settings, _, fingerprint = live_volumes.settings_of(bpy.context, obj)
         digest = digests.get(result.group.key)
         _quiet.append(obj)

@@ -21,12 +21,12 @@ from typing import Dict, List, Optional
 
 import bpy
 
-from ..core import live_key
+from ..core import live_key, naming
 from ..core.errors import HyvoxError
 from ..core.pipeline import Group, GroupMesh
 from . import blocks_object, export, live_dependencies
 from .export import RESULT_KEY
-from .gather import settings_from_used
+from .gather import settings_from_used, used_values
 
 LIVE_ID = "hyvox_live_id"
 LIVE_SETTINGS = "hyvox_live_settings"
@@ -65,14 +65,13 @@ def live_objects(scene) -> Dict[str, bpy.types.Object]:
 
 
 # -- what a live volume was made from -------------------------------------------------
-def remember(obj, used: dict, group: Group, key: Optional[str] = None, files: List[str] = ()) -> None:
+def remember(obj, used: dict, group: Group, files: List[str] = ()) -> None:
     """Record on a new result what Live needs (the operator calls this for live=True)."""
     obj[LIVE_SETTINGS] = json.dumps(dict(used, use_frame_range=False, live=True), sort_keys=True)
-    obj[LIVE_GROUP] = json.dumps({"name": group.name, "lead": group.lead})
+    # The lead by its place among the sources: a rename keeps it.
+    obj[LIVE_GROUP] = json.dumps({"name": group.name, "lead": group.sources.index(group.lead)})
     obj[LIVE_SOURCES] = {str(i): bpy.data.objects.get(name) for i, name in enumerate(group.sources)
                          if bpy.data.objects.get(name) is not None}
-    if key:
-        obj[LIVE_KEY] = key
     obj[LIVE_FILES] = list(files)
     obj[LIVE_ID] = obj.get(LIVE_ID) or uuid.uuid4().hex
 
@@ -82,9 +81,10 @@ def prepare_for_live(obj, context) -> None:
     without Live takes the scene's settings), and it is unparented: its voxels follow the
     sources by themselves, so the parent would move them twice."""
     if LIVE_SETTINGS not in obj:
-        from .gather import used_values
         names = [n for n in str(obj[RESULT_KEY]).split("\n") if n]
-        name = obj.name[:-len("_voxels")] if obj.name.endswith("_voxels") else obj.name
+        name = obj.name
+        for suffix in (naming.VOXELS_SUFFIX, blocks_object.BLOCKS_SUFFIX):
+            name = name[:-len(suffix)] if name.endswith(suffix) else name
         remember(obj, used_values(context), Group(name, names))
     obj[LIVE_ID] = obj.get(LIVE_ID) or uuid.uuid4().hex
     if obj.parent is not None:
@@ -95,7 +95,6 @@ def prepare_for_live(obj, context) -> None:
 
 def stored_used(obj, context) -> dict:
     """The settings a live volume keeps; a result made before Live takes the scene's."""
-    from .gather import used_values
     used = used_values(context)
     if LIVE_SETTINGS in obj:
         used.update(json.loads(obj[LIVE_SETTINGS]))
@@ -119,14 +118,12 @@ def group_of(obj) -> Group:
     if missing or not objects:
         raise SourcesUnavailable("a source of this volume was deleted")
     names = [o.name for o in objects]
-    from ..core import naming
     key = naming.group_key(names)
     if obj[RESULT_KEY] != key:
         obj[RESULT_KEY] = key
     info = json.loads(obj[LIVE_GROUP]) if LIVE_GROUP in obj else {}
-    lead = info.get("lead")
-    lead = lead if lead in names else names[0]
-    return Group(info.get("name") or names[0], names, lead)
+    lead = info.get("lead", 0)
+    return Group(info.get("name") or names[0], names, names[lead] if 0 <= lead < len(names) else names[0])
 
 
 def watched_names(obj) -> set:

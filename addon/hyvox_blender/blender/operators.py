@@ -107,8 +107,9 @@ class _Run:
                                           warn=self.warn)
         pipeline.timings.import_ms += (time.perf_counter() - start) * 1000.0
         self.show_results(context, objects)
+        live.remember_results(objects, pipeline.results, self.used)  # for its Live switch, now or later
         if self.live_digests is not None:
-            live.make_live(objects, pipeline.results, self.used, self.live_digests)
+            live.make_live(objects, pipeline.results, self.live_digests)
         lines = summary.long_report(pipeline.results, pipeline.timings)
         last_summary[:] = lines
         last_run_record.clear()
