@@ -186,13 +186,16 @@ class AddonTestCase(unittest.TestCase):
 
 
 # -- tests in a real window (xvfb-run blender --enable-event-simulate --python TEST -- BUILD) --
-def run_in_window(step, fail, seconds):
-    """Enable the add-on from the build named after `--`, then call step() from a timer until
-    it ends the process (its return value is the next interval); an exception in it, or
-    `seconds` without an end, is fail(message)."""
+def run_in_window(step, fail, seconds, prepare=None):
+    """Enable the add-on from the build named after `--` (prepare(build) first, when given),
+    then call step() from a timer until it ends the process (its return value is the next
+    interval); an exception in it, or `seconds` without an end, is fail(message)."""
     import traceback
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    enable_addon(argv[0] if argv else "build")
+    build = argv[0] if argv else "build"
+    if prepare is not None:
+        prepare(build)
+    enable_addon(build)
 
     def tick():
         try:

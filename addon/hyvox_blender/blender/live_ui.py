@@ -25,7 +25,7 @@ class VIEW3D_PT_hyvox_live(_HyvoxSubPanel, bpy.types.Panel):
             layout.prop(context.scene.hyvox, "live", text="New Volumes")
             return
         if not obj.hyvox_live:
-            layout.label(text="Off: the voxels stay as they are")
+            layout.label(text="Off: the voxels are kept")
             return
         line = live.status_line(obj)
         row = layout.row()
