@@ -191,6 +191,9 @@ def scene_and_operator_properties(operator=False):
                                    default="RENDER", **skip),
         "hide_source": BoolProperty(name="Hide Source", description="Hide the objects a run voxelized, so the "
                                     "result is seen on its own", default=False, **skip),
+        "live": BoolProperty(name="Live", description="Keep the new volumes up to date by themselves: they follow "
+                             "edits, modifiers, transforms, materials and the animation (no frame range needed)",
+                             default=False, **skip),
         "use_frame_range": BoolProperty(name="Frame Range", description="Voxelize every frame of a range "
                                         "into a .vdb sequence (the scene's range unless you set one)",
                                         default=False, update=None if operator else _scene_range_on_first_use,

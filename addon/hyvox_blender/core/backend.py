@@ -5,7 +5,7 @@ import importlib
 import importlib.util
 import os
 import threading
-from typing import TYPE_CHECKING, List, Optional
+from typing import TYPE_CHECKING, List, Optional, Tuple
 
 import numpy as np
 
@@ -123,9 +123,11 @@ def token_progress(token) -> float:
 
 
 def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "VoxelizeSettings",
-             method: str, voxel_size: Optional[float] = None, token=None, colour: Optional[dict] = None):
+             method: str, voxel_size: Optional[float] = None, token=None, colour: Optional[dict] = None,
+             origin: Optional[Tuple[float, float, float]] = None):
     """hyvox.voxelize with the run's settings; voxel_size (when given) wins over the
-    settings, so every frame of a sequence shares the first frame's voxel size. colour:
+    settings, so every frame of a sequence shares the first frame's voxel size, and origin
+    (when given) puts voxel (0,0,0) there (core/lattice.py). colour:
     the colour source's keyword arguments (colour.combine); given, a `color` grid is made."""
     kwargs = settings.voxelize_options()
     kwargs["method"] = method
@@ -139,6 +141,8 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "Vox
     if voxel_size:
         kwargs.pop("resolution", None)
         kwargs["voxel_size"] = float(voxel_size)
+    if origin is not None:
+        kwargs["origin"] = tuple(float(x) for x in origin)
     if token is not None:
         kwargs["cancel"] = token
     try:
