@@ -110,6 +110,13 @@ def ignored_message(names: List[str], method: str) -> str:
     return f"{', '.join(names)} {'does' if len(names) == 1 else 'do'} not apply to the {method} method: ignored"
 
 
+def write_options(module, settings: "VoxelizeSettings") -> dict:
+    """The settings that are options of VoxelGrid.write_vdb (module.WRITE_OPTIONS: threads,
+    the memory budget), by name."""
+    names = {spec.name for spec in module.WRITE_OPTIONS}
+    return {name: value for name, value in settings.options.items() if name in names}
+
+
 def make_token(module):
     """A fresh cancel/progress token."""
     return module.CancelToken()

@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// The one declaration of every voxelize option: name, type, default, limits or choices,
-// unit, one line of help, and the environment variable a front door reads for it.
+// The one declaration of every option of a voxelization (VoxelizeOptions) and of its write
+// (WriteOptions): name, type, default, limits or choices, unit, one line of help, and the
+// environment variable a front door reads for it.
 //
 // Everything else is derived from this table: the CLI's parser and --help, the Python
-// keywords, the generated .pyi and docstring, the Blender add-on's properties, the stats'
-// "options" section, and voxelize()'s own checks. Adding an option = one entry in
-// option_schema.cpp plus its field in options.h and the code that uses it.
+// keywords (voxelize()'s and write_vdb()'s), the generated .pyi and docstring, the Blender
+// add-on's properties, the stats' "options" section, and voxelize()'s and writeVdb()'s own
+// checks. Adding an option = one entry in option_schema.cpp plus its field in options.h and
+// the code that uses it.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -46,11 +48,18 @@ struct OptionSpec {
     std::vector<const char*> choices;      // Choice
     std::vector<const char*> cli_aliases;  // further CLI spellings ("--gamma")
     const char* env = nullptr;             // environment variable the front doors read, or null
-    // The field behind the option (no checks: setOption checks first).
+    // The field behind the option (no checks: setOption checks first): in VoxelizeOptions,
+    // in WriteOptions, or in both (threads, memory_budget_mib); null where a struct has none.
     OptionValue (*get)(const VoxelizeOptions&) = nullptr;
     void (*put)(VoxelizeOptions&, const OptionValue&) = nullptr;
+    OptionValue (*get_write)(const WriteOptions&) = nullptr;
+    void (*put_write)(WriteOptions&, const OptionValue&) = nullptr;
 
     std::string cliFlag() const;  // "--voxel-size"
+    bool isVoxelizeOption() const { return get != nullptr; }   // a field of VoxelizeOptions
+    bool isWriteOption() const { return get_write != nullptr; }  // a field of WriteOptions
+    // The default: the field of a default-constructed struct (monostate for nullable options).
+    OptionValue defaultValue() const;
 };
 
 // Every option, in the order front doors list them.
@@ -64,8 +73,10 @@ const OptionSpec& findOption(const std::string& name);
 // a valid value.
 void checkOption(const OptionSpec& spec, const OptionValue& value);
 
-// checkOption, then stores it (unset: the default for non-nullable options).
+// checkOption, then stores it (unset: the default for non-nullable options). InvalidInput for
+// an option of the other struct ("durable_write is an option of the write, ...").
 void setOption(VoxelizeOptions& options, const std::string& name, const OptionValue& value);
+void setOption(WriteOptions& options, const std::string& name, const OptionValue& value);
 
 // Text as typed on a command line or in an environment variable, in the spec's type:
 // "256", "0.5", "true"/"false"/"1"/"0"/"yes"/"no", "x,y,z", "x0,y0,z0,x1,y1,z1".
@@ -82,8 +93,8 @@ std::string formatOptionValue(const OptionValue& value);
 // What a valid value is, for messages: "a whole number between 1 and 16384".
 std::string describeOption(const OptionSpec& spec);
 
-// For the front doors (the library itself reads no environment): sets every option whose
-// OptionSpec::env variable `lookup` finds (std::getenv, or a test's table). InvalidInput
+// For the front doors (the library itself reads no environment): sets every voxelize option
+// whose OptionSpec::env variable `lookup` finds (std::getenv, or a test's table). InvalidInput
 // names the variable.
 void applyEnvironment(VoxelizeOptions& options, const char* (*lookup)(const char* variable));
 
@@ -91,8 +102,9 @@ void applyEnvironment(VoxelizeOptions& options, const char* (*lookup)(const char
 // hybrid's, "tessellation" the tessellation's; grid and run options every method.
 bool optionAppliesTo(const OptionSpec& spec, Method method);
 
-// checkOption on every field of a filled options struct: voxelize() calls it, so options set
-// from C++ get the same messages as those from the front doors.
+// checkOption on every field of a filled options struct: voxelize() and writeVdb() call it,
+// so options set from C++ get the same messages as those from the front doors.
 void checkOptions(const VoxelizeOptions& options);
+void checkOptions(const WriteOptions& options);
 
 }  // namespace hyvox

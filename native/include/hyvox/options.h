@@ -114,27 +114,43 @@ struct SolidOptions {
     double winding_beta = 2.0;
 };
 
+// The memory budget both a voxelization and its write start from, in MiB.
+constexpr std::uint64_t kDefaultMemoryBudgetMib = 4096;
+
+// What decides a voxelization's voxels, and the resources it may use (threads, memory).
+// How its result is written is WriteOptions' business.
 struct VoxelizeOptions {
     GridOptions grid;
     Mode mode = Mode::Conservative;
     Method method = Method::Cpu;
     int threads = 0;                        // CPU threads; 0 = all cores
-    std::uint64_t memory_budget_mib = 4096;  // what the run may hold for voxels: tile buffers + leaves
+    std::uint64_t memory_budget_mib = kDefaultMemoryBudgetMib;  // what the run may hold for voxels: tile buffers + leaves
     // Side of the boxes the grid is voxelized in, one after the other (rounded up to a
     // multiple of 8); 0 = from the memory budget (the whole grid when it fits).
     int tile_size = 0;
     // Attribute voxels to compute beside the occupancy: a comma list of "color" and "normal"
     // (hyvox/attribute_grid.h); "" = none.
     std::string attributes;
-    // Output files (.vdb, stats JSON) synced to disk before their write returns (fsync of the
-    // file and its folder): they then survive a power loss too. Off: the atomic rename alone
-    // (no half-written file whatever happens to hyvox), as OpenVDB and Blender write
-    // (src/io/atomic_file.h says why).
-    bool durable_write = false;
     GlOptions gl;
     HybridOptions hybrid;
     TessellationOptions tessellation;
     SolidOptions solid;
+
+    std::uint64_t memoryBudgetBytes() const { return memory_budget_mib << 20; }
+};
+
+// How writeVdb (hyvox/vdb.h) writes a result: output policy, which never changes the voxels.
+// Schema options too: "threads" and "memory_budget_mib" are a voxelization's and a write's,
+// "durable_write" a write's alone.
+struct WriteOptions {
+    int threads = 0;  // CPU threads building and serializing the grids; 0 = all cores
+    // Output files (.vdb, stats JSON) synced to disk before their write returns (fsync of the
+    // file and its folder): they then survive a power loss too. Off: the atomic rename alone
+    // (no half-written file whatever happens to hyvox), as OpenVDB and Blender write
+    // (src/io/atomic_file.h says why).
+    bool durable = false;
+    // What the grids being built may hold beside the result they are made from.
+    std::uint64_t memory_budget_mib = kDefaultMemoryBudgetMib;
 
     std::uint64_t memoryBudgetBytes() const { return memory_budget_mib << 20; }
 };

@@ -3,7 +3,7 @@
 // The stats of a voxelization as JSON, for scripts and the benchmark:
 // {"hyvox_version", "method", "mode", "origin": [x,y,z], "voxel_size", "dims": [x,y,z],
 //  "voxel_count", "triangles": {"input","used","degenerate"}, "timings_ms": {stage: ms},
-//  "total_ms", "options": {schema name: value used}, and the backend's section
+//  "total_ms", "options": {schema name: value the voxelization used}, and the backend's section
 //  "cpu" | "reference" | "hybrid" | "tessellation": {figure: value}}.
 #include <string>
 
@@ -14,7 +14,7 @@ namespace hyvox {
 std::string statsToJson(const VoxelizeResult& result);
 
 // Writes text to a file atomically (temporary file in the same folder + rename; `durable`:
-// synced to disk as the durable_write option says).
+// synced to disk, as WriteOptions::durable says).
 // Throws InvalidInput (bad path) or ResourceError (I/O failure); never leaves a partial file.
 void writeTextFileAtomic(const std::string& path, const std::string& text, bool durable = false);
 

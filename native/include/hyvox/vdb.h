@@ -18,6 +18,7 @@
 #include <string>
 
 #include "hyvox/interrupter.h"
+#include "hyvox/options.h"
 #include "hyvox/result.h"
 
 namespace hyvox {
@@ -25,13 +26,13 @@ namespace hyvox {
 // Writes atomically: a temporary file in the same folder, renamed over `path` only after
 // everything was written. On any failure the temporary file is removed, an existing file
 // at `path` is left as it was, and InvalidInput (bad path) or ResourceError (I/O failure)
-// is thrown. Synced to disk (file and folder) only when the result's options say
-// durable_write (stats.options; src/io/atomic_file.h: why not by default). A grid that would not fit the run's memory budget (the result's options), with
-// the result it is made from, is refused before it is built (ResourceError). The file is
-// serialized leaf by leaf on up to `threads` cores (0 = all; src/io/vdb_direct_writer.h), like
-// VoxelizeOptions. `interrupter` (may be null) sees the progress (building the grids 0-90,
-// writing 90-100) and can cancel until the file is being written (hyvox::Cancelled, nothing
-// written).
+// is thrown. Synced to disk (file and folder) only when options.durable says so
+// (src/io/atomic_file.h: why not by default). A grid that would not fit options' memory budget,
+// with the result it is made from, is refused before it is built (ResourceError). The file is
+// serialized leaf by leaf on up to options.threads cores (0 = all; src/io/vdb_direct_writer.h).
+// Options out of their limits: InvalidInput with the schema's message. `interrupter` (may be
+// null) sees the progress (building the grids 0-90, writing 90-100) and can cancel until the
+// file is being written (hyvox::Cancelled, nothing written).
 struct VdbWriteReport {
     std::uint64_t grid_bytes = 0;  // the OpenVDB grids' own memory (Grid::memUsage)
     double build_ms = 0, write_ms = 0;
@@ -42,7 +43,7 @@ struct VdbWriteReport {
 // before the voxelization so the work is not done for nothing.
 void checkVdbVoxelSize(double voxel_size);
 
-VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, int threads = 0,
+VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, const WriteOptions& options = {},
                         Interrupter* interrupter = nullptr);
 
 }  // namespace hyvox

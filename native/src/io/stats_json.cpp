@@ -105,6 +105,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     out << "  \"options\": {";
     bool first = true;
     for (const OptionSpec& spec : optionSchema()) {
+        if (!spec.isVoxelizeOption()) continue;
         const OptionValue value = spec.get(s.options);
         if (std::holds_alternative<std::monostate>(value)) continue;
         out << (first ? "" : ", ") << quote(spec.name) << ": " << json(value);
