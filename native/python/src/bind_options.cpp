@@ -193,7 +193,7 @@ void bindOptions(py::module_& m) {
     m.attr("ATTRIBUTE_METHODS") = py::tuple(attribute_methods);
 
     py::class_<VoxelizeOptions>(m, "Options", "The options of one voxelization, by schema name.")
-        .def(py::init([](py::kwargs kwargs) {
+        .def(py::init([](const py::kwargs& kwargs) {
                  VoxelizeOptions options;
                  for (const auto& [name, value] : kwargs) setFromPython(options, py::str(name), value);
                  return options;

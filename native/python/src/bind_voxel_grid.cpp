@@ -145,9 +145,8 @@ The voxels of one voxelization. Voxel (i, j, k) covers the closed box
                std::shared_ptr<CancelToken> cancel, py::object progress, const py::kwargs& options) {
                 if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
                     throw py::type_error("progress must be callable or None");
-                py::dict given(options);
-                if (!threads.is_none()) given["threads"] = threads;
-                const WriteOptions write = writeOptions(g->stats.options, given);
+                if (!threads.is_none()) options["threads"] = threads;  // a dict of this call's own
+                const WriteOptions write = writeOptions(g->stats.options, options);
                 PythonInterrupter interrupter(std::move(cancel), std::move(progress));
                 VdbWriteReport report;
                 try {

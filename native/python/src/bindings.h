@@ -31,7 +31,7 @@ WriteOptions writeOptions(const VoxelizeOptions& voxelized, const py::dict& give
 // A numpy array that takes over a vector's storage (no copy): the vector lives in a
 // capsule that numpy frees with the array.
 template <typename T>
-py::array_t<T> arrayFromVector(std::vector<T>&& data, std::vector<py::ssize_t> shape) {
+py::array_t<T> arrayFromVector(std::vector<T>&& data, const std::vector<py::ssize_t>& shape) {
     auto* owned = new std::vector<T>(std::move(data));
     py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
     return py::array_t<T>(shape, owned->data(), free_when_done);

@@ -116,7 +116,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     s.visitSections([&](const char* section, const auto& figures) {
         out << ",\n  " << quote(section) << ": {";
         bool first_field = true;
-        figures.visit([&](const char* name, auto value) {
+        figures.visit([&](const char* name, const auto& value) {
             out << (first_field ? "" : ", ") << quote(name) << ": " << number(value);
             first_field = false;
         });
