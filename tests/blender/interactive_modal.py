@@ -85,11 +85,11 @@ def hold_the_write():
         def __getattr__(self, name):
             return getattr(self._grid, name)
 
-        def write_vdb(self, path, threads=0, cancel=None):
+        def write_vdb(self, path, cancel=None, **options):
             WRITE["thread"] = threading.current_thread()
             WRITE["entered"].set()
             WRITE["release"].wait(60)
-            return self._grid.write_vdb(path, threads=threads)  # no token: it cannot be cancelled
+            return self._grid.write_vdb(path, **options)  # no token: it cannot be cancelled
 
     def voxelize_then_hold(*args, **kwargs):
         backend.voxelize = real

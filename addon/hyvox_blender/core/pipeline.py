@@ -284,7 +284,7 @@ class Pipeline:
             if self._cancelled:
                 raise CancelledError("voxelization cancelled")
             try:
-                grid.write_vdb(staging, threads=int(self.settings.options.get("threads", 0)), cancel=self._token)
+                grid.write_vdb(staging, cancel=self._token, **backend.write_options(self.module, self.settings))
             except self.module.Cancelled as exc:
                 raise CancelledError("voxelization cancelled") from exc
             except (OSError, RuntimeError, ValueError) as exc:
