@@ -28,7 +28,7 @@ from bpy.app.handlers import persistent
 from ..core.errors import HyvoxError
 from ..core.live_cache import LiveCache
 from ..core.live_run import LiveInput, LiveRun
-from ..core.live_scheduler import DROPPED, FAILED, SHOWN, LiveScheduler
+from ..core.live_scheduler import FAILED, SHOWN, LiveScheduler
 from . import live_dependencies, live_volumes, render_depsgraph
 from .live_volumes import LIVE_ID, SourcesUnavailable
 
