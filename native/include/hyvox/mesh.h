@@ -67,8 +67,8 @@ struct ValidatedMesh {
 };
 
 // Checks the view and throws InvalidInput with a clear message for: null pointers with
-// non-zero counts, an empty mesh, NaN/Inf coordinates, indices out of range, or a mesh whose
-// triangles are all degenerate.
+// non-zero counts, an empty mesh, NaN/Inf coordinates (and |x| >= 3.4e38, Inf as Blender
+// stores it), indices out of range, or a mesh whose triangles are all degenerate.
 // `interrupter` (may be null) is asked every 65,536 triangles: a million-triangle mesh takes
 // a noticeable time to check, and Esc / Ctrl-C must not wait for it.
 ValidatedMesh validate(const MeshView& mesh, Interrupter* interrupter = nullptr);
