@@ -60,8 +60,8 @@ def clear_scene():
             coll.remove(block)
     scene = bpy.context.scene
     scene.frame_set(1)
-    for prop in ("resolution", "voxel_size", "method", "mode", "fill_interior", "inside", "separate", "output_dir",
-                 "use_frame_range", "size_mode"):
+    for prop in ("resolution", "voxel_size", "method", "mode", "inside", "separate", "output_dir",
+                 "use_frame_range", "size_mode", "color"):
         scene.hyvox.property_unset(prop)
 
 
@@ -172,8 +172,8 @@ class AddonTestCase(unittest.TestCase):
     def voxelize(self, **kw):
         kw.setdefault("output_dir", self.out)
         kw.setdefault("method", "cpu")
-        # The tests written for surfaces ask for one; Fill Interior (on by default) is tested apart.
-        kw.setdefault("fill_interior", False)
+        # The tests written for surfaces ask for one; Solid (the default) is tested apart.
+        kw.setdefault("mode", "conservative")
         return bpy.ops.object.hyvox_voxelize(**kw)
 
     def volumes(self):

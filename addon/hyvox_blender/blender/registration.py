@@ -2,7 +2,7 @@
 """Register every class and hook of the bpy layer, in dependency order."""
 import bpy
 
-from . import clean_files, file_handlers, operators, properties, ui
+from . import clean_files, file_handlers, file_history, legacy_settings, operators, properties, ui
 
 _CLASSES = properties.CLASSES + operators.CLASSES + clean_files.CLASSES + ui.CLASSES
 
@@ -12,11 +12,15 @@ def register():
         bpy.utils.register_class(cls)
     properties.register()
     operators.register()
+    legacy_settings.register()
+    file_history.register()
     file_handlers.register()
 
 
 def unregister():
     file_handlers.unregister()
+    file_history.unregister()
+    legacy_settings.unregister()
     operators.unregister()
     properties.unregister()
     for cls in reversed(_CLASSES):
