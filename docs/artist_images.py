@@ -72,7 +72,7 @@ def spot(helpers):
     return obj
 
 
-def stage(target, distance=3.4):
+def stage(helpers, target, distance=3.4):
     """A camera looking at the target's bounds centre from the front left, a sun, a dim world."""
     scene = bpy.context.scene
     corners = np.array([target.matrix_world @ Vector(c) for c in target.bound_box])
@@ -89,15 +89,9 @@ def stage(target, distance=3.4):
     scene.world = bpy.data.worlds.new("World")
     scene.world.use_nodes = True
     scene.world.node_tree.nodes["Background"].inputs["Color"].default_value = (BACKGROUND,) * 3 + (1.0,)
-    scene.render.resolution_x = scene.render.resolution_y = PANEL
-    scene.render.resolution_percentage = 100
-    scene.render.film_transparent = True  # the mesh's outline (alpha) is where brightness is measured
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
-    scene.view_settings.view_transform = "Standard"
-    scene.cycles.device = "CPU"
+    # The mesh's outline (alpha) is where brightness is measured.
+    helpers.measured_render(scene, PANEL, film_transparent=True)
     scene.cycles.samples = 64
-    scene.cycles.use_denoising = False
     scene.eevee.taa_render_samples = 16
 
 
@@ -134,33 +128,13 @@ def compare(name, pixels, mesh, mask):
     print(f"| {name} | {volume_rgb.mean():.3f} | {volume_rgb.mean() / mesh_rgb.mean():.2f} | {chroma:.3f} |")
 
 
-def legacy_material(voxel_size):
-    """The material earlier versions made: density 1 / voxel size, the `color` grid as Color."""
-    material = bpy.data.materials.new("Earlier")
-    material.use_nodes = True
-    nodes = material.node_tree.nodes
-    nodes.clear()
-    output = nodes.new("ShaderNodeOutputMaterial")
-    shader = nodes.new("ShaderNodeVolumePrincipled")
-    shader.inputs["Density"].default_value = 1.0 / voxel_size
-    if "Density Attribute" in shader.inputs:
-        shader.inputs["Density Attribute"].default_value = "density"
-    else:
-        shader.density_attribute = "density"
-    attribute = nodes.new("ShaderNodeAttribute")
-    attribute.attribute_name = "color"
-    material.node_tree.links.new(attribute.outputs["Color"], shader.inputs["Color"])
-    material.node_tree.links.new(shader.outputs["Volume"], output.inputs["Volume"])
-    return material
-
-
 def colour_images(helpers, out, work):
     scene = bpy.context.scene
     source = spot(helpers)
     helpers.select_only(source)
     bpy.ops.object.hyvox_voxelize(resolution=128, method="cpu", output_dir=work)  # the defaults: Solid, Color
     volume = next(o for o in bpy.data.objects if o.type == "VOLUME")
-    stage(source)
+    stage(helpers, source)
     kept = volume.data.materials[0]
 
     def show(mesh_shown):
@@ -177,7 +151,8 @@ def colour_images(helpers, out, work):
     mesh = render(os.path.join(work, "mesh.exr"))
     mask = mesh[..., 3] > 0.5  # Spot's outline
     panels = [mesh]
-    volume.data.materials[0] = legacy_material(volume["hyvox_voxel_size"])
+    from test_looks_density import legacy_material  # the material earlier versions made
+    volume.data.materials[0] = legacy_material(volume["hyvox_voxel_size"], has_color=True)
     show(False)
     panels.append(render(os.path.join(work, "earlier.exr")))
     compare("Cycles, earlier material", panels[-1], mesh, mask)
@@ -270,7 +245,7 @@ def blocks_image(helpers, out, work):
     bpy.ops.object.hyvox_voxelize(resolution=16, method="cpu", output_dir=work, output="BLOCKS")
     blocks = bpy.data.objects["Sphere_blocks"]
     source.hide_render = True
-    stage(blocks, distance=4.2)
+    stage(helpers, blocks, distance=4.2)
     scene = bpy.context.scene
     scene.render.engine = "CYCLES"
     faces = len(blocks.data.polygons)

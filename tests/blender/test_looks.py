@@ -61,18 +61,9 @@ def setup(engine, backdrop=False):
     scene.camera = camera
     scene.world.node_tree.nodes["Seen"].inputs["Color2"].default_value = (1, 1, 1, 1) if backdrop else (0, 0, 0, 1)
     scene.render.engine = engine
-    scene.render.resolution_x = scene.render.resolution_y = PIXELS
-    scene.render.resolution_percentage = 100
-    scene.render.film_transparent = False
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
-    scene.view_settings.view_transform = "Standard"
-    scene.cycles.device = "CPU"
+    helpers.measured_render(scene, PIXELS)
     scene.cycles.samples = 8
-    scene.cycles.use_denoising = False
     scene.eevee.taa_render_samples = 4
-    scene.render.threads_mode = "FIXED"
-    scene.render.threads = 2
 
 
 def disc(radius=1.0 - 2.6 / PIXELS):

@@ -14,6 +14,7 @@ import numpy as np
 
 from ..core import naming
 from ..core.pipeline import GroupResult
+from . import volume_material
 
 BLOCKS_SUFFIX = "_blocks"
 COLOR_ATTRIBUTE = "Col"
@@ -21,22 +22,11 @@ COLOR_NODE = "hyvox Color"
 DEFAULT_BASE_COLOR = (0.8, 0.8, 0.8, 1.0)  # a new Principled BSDF's
 
 
-def _surface_shader(material):
-    """The Principled BSDF feeding the material output's Surface, or None (the artist's own)."""
-    if material is None or not material.use_nodes or material.node_tree is None:
-        return None
-    for node in material.node_tree.nodes:
-        if node.type == "OUTPUT_MATERIAL" and node.inputs["Surface"].links:
-            source = node.inputs["Surface"].links[0].from_node
-            return source if source.type == "BSDF_PRINCIPLED" else None
-    return None
-
-
 def sync_material(material, colored: bool) -> None:
     """The add-on's colour node linked to Base Color when the blocks have colours (and the
     Base Color is still the default grey), taken out when they have none; a Base Color the
     artist set or linked to something else stays."""
-    shader = _surface_shader(material)
+    shader = volume_material.output_shader(material, "Surface", "BSDF_PRINCIPLED")
     if shader is None:
         return
     tree = material.node_tree

@@ -45,16 +45,20 @@ def _attribute(tree, name: str, label: str, attribute: str, kind: str, location)
     return node
 
 
-def _volume_shader(material) -> Optional[bpy.types.Node]:
-    """The Principled Volume feeding the material output's Volume, or None (then the whole
-    material is the artist's own)."""
+def output_shader(material, socket: str, node_type: str) -> Optional[bpy.types.Node]:
+    """The node of `node_type` feeding the material output's `socket`, or None (then that
+    part of the material is the artist's own)."""
     if material is None or not material.use_nodes or material.node_tree is None:
         return None
     for node in material.node_tree.nodes:
-        if node.type == "OUTPUT_MATERIAL" and node.inputs["Volume"].links:
-            source = node.inputs["Volume"].links[0].from_node
-            return source if source.type == "PRINCIPLED_VOLUME" else None
+        if node.type == "OUTPUT_MATERIAL" and node.inputs[socket].links:
+            source = node.inputs[socket].links[0].from_node
+            return source if source.type == node_type else None
     return None
+
+
+def _volume_shader(material) -> Optional[bpy.types.Node]:
+    return output_shader(material, "Volume", "PRINCIPLED_VOLUME")
 
 
 def _link_density(tree, shader) -> None:
