@@ -15,14 +15,13 @@ class DensityTest(LooksCase):
     def transmittance(self, volume, scale):
         """Mean transmittance when the material is a pure absorber: its Color black, its
         density scaled by `scale`."""
-        volume_material = helpers.addon("blender.volume_material")
         tree, shader = self.shader(volume)
-        grey = tuple(shader.inputs["Color"].default_value)
-        scale_input = tree.nodes[volume_material.DENSITY_SCALE].inputs[1]
-        shader.inputs["Color"].default_value, scale_input.default_value = (0, 0, 0, 1), scale
+        grey, density = tuple(shader.inputs["Color"].default_value), shader.inputs["Density"].default_value
+        shader.inputs["Color"].default_value = (0, 0, 0, 1)
+        shader.inputs["Density"].default_value = density * scale
         setup("CYCLES", backdrop=True)
         transmitted = self.mean("transmitted")
-        shader.inputs["Color"].default_value, scale_input.default_value = grey, 1.0
+        shader.inputs["Color"].default_value, shader.inputs["Density"].default_value = grey, density
         return transmitted
 
     def fresh(self, mode, resolution):
@@ -48,7 +47,8 @@ class DensityTest(LooksCase):
                     setup("CYCLES")
                     scattered = self.mean("scattered", INNER)
                 seen[mode, resolution] = scattered, transmitted
-                print(f"{mode} at {resolution}: density {volume['hyvox_density']:.4g}, mean brightness "
+                density = self.shader(volume)[1].inputs["Density"].default_value
+                print(f"{mode} at {resolution}: density {density:.4g}, mean brightness "
                       f"{scattered}, mean transmittance {transmitted:.4f}")
             with self.subTest(mode=mode):
                 self.assertAlmostEqual(seen[mode, 48][1], seen[mode, 256][1], delta=0.05)
@@ -58,19 +58,27 @@ class DensityTest(LooksCase):
         self.assertAlmostEqual(seen["solid", 48][0], seen["solid", 256][0], delta=0.08 * seen["solid", 256][0])
 
         # A re-run at 48 of the shell at 256 (its material kept) looks as the fresh run at 48,
-        # and so does one whose material an earlier version made.
+        # and a Solid re-run whose material an earlier version made (density 1 / voxel size)
+        # as a fresh Solid run.
         helpers.select_only(source)
         self.assertEqual(self.voxelize(resolution=48, mode="conservative", color=False), {"FINISHED"})
         rerun = self.transmittance(self.volume(), scales["conservative"])
         volume = self.volume()
         volume.data.materials[0] = legacy_material(volume["hyvox_voxel_size"], has_color=False)
-        self.assertEqual(self.voxelize(resolution=48, mode="conservative", color=False), {"FINISHED"})
+        self.assertEqual(self.voxelize(resolution=48, mode="solid", color=False), {"FINISHED"})
         tree, shader = self.shader()
-        self.assertEqual(shader.inputs["Density"].links[0].from_node.name, volume_material.DENSITY_SCALE)
-        upgraded = self.transmittance(self.volume(), scales["conservative"])
-        print(f"conservative at 48: re-run from 256 {rerun:.4f}, from an earlier version's material {upgraded:.4f}")
+        density = shader.inputs["Density"].default_value
+        self.assertAlmostEqual(density, helpers.addon("core.volume_look").SOLID_MEAN_FREE_PATHS / 2.0, places=3)
+        self.assertAlmostEqual(self.volume().data.materials[0][volume_material.DENSITY_KEY], density, places=5)
+        upgraded = self.transmittance(self.volume(), scales["solid"])
+        print(f"at 48: a shell re-run from 256 {rerun:.4f}, Solid from an earlier version's material {upgraded:.4f}")
         self.assertAlmostEqual(rerun, seen["conservative", 48][1], delta=0.02)
-        self.assertAlmostEqual(upgraded, seen["conservative", 48][1], delta=0.02)
+        self.assertAlmostEqual(upgraded, seen["solid", 48][1], delta=0.02)
+
+        # A Density the artist set stays, at any resolution.
+        shader.inputs["Density"].default_value = 5.0
+        self.assertEqual(self.voxelize(resolution=64, mode="conservative", color=False), {"FINISHED"})
+        self.assertEqual(self.shader()[1].inputs["Density"].default_value, 5.0)
 
 
 def legacy_material(voxel_size, has_color):

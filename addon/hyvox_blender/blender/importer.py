@@ -3,8 +3,7 @@
 sequence), an object named "<source>_voxels" carrying the half-voxel correction (and in
 Blender 4.2-4.5 the bounds EEVEE Next needs: eevee_bounds.py), a
 Principled Volume material reading `density`, and its Color from the `color` grid when the
-run made one (volume_material.py; the density the material gives the voxels is stored on the
-object: core/volume_look.py).
+run made one (volume_material.py; its density: core/volume_look.py).
 
 What a re-run replaces: every earlier volume made from any of the objects it voxelizes (so
 changing the grouping, or the selection, never leaves two volumes of one object). From the
@@ -69,8 +68,8 @@ class _Kept:
         if "hyvox_offset" in old:
             self.offset = Vector(old["hyvox_offset"])
         else:
-            size = float(old.get("hyvox_voxel_size", 0.0))
-            self.offset = Vector(alignment.object_offset(size, bpy.app.version) if old.type == "VOLUME" else (0, 0, 0))
+            self.offset = Vector(alignment.object_offset(self.voxel_size, bpy.app.version)
+                                 if old.type == "VOLUME" else (0, 0, 0))
         self.location = Vector(old.location)
         self.rotation_mode = old.rotation_mode
         self.rotation = (tuple(old.rotation_euler), tuple(old.rotation_quaternion), tuple(old.rotation_axis_angle))
@@ -127,11 +126,10 @@ def import_results(context, results: Dict[str, GroupResult], alignment_override:
             volume = bpy.data.volumes.new(name)
             _configure_volume(volume, result)
             material = donor.material if donor is not None and donor.kind == "VOLUME" else None
-            volume.materials.append(volume_material.for_result(material, name, result.has_color,
+            density = volume_look.result_density(result.stats, result.voxel_size, result.dims)
+            volume.materials.append(volume_material.for_result(material, name, result.has_color, density,
                                                                donor.voxel_size if material is not None else 0.0))
             obj = bpy.data.objects.new(name, volume)
-            obj[volume_look.DENSITY_PROPERTY] = volume_look.result_density(result.stats, result.voxel_size,
-                                                                           result.dims)
             offset = alignment.object_offset(result.voxel_size, bpy.app.version, alignment_override)
             if alignment.eevee_clips_last_voxel_layer(bpy.app.version):
                 try:

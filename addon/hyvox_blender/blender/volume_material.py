@@ -1,8 +1,13 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The material of a hyvox volume: a Principled Volume whose density is the `density` grid
-times the density the run stored on the Volume object, and whose Color is the albedo that
-makes the `color` grid's surface colour look right, when the run made colour
-(core/volume_look.py says why).
+times the density of the run (core/volume_look.py), and whose Color is the albedo that makes
+the `color` grid's surface colour look right, when the run made colour.
+
+The Density is a plain value, set by each run: Cycles 5.0 takes seconds longer per render to
+prepare a volume whose density comes through a node it cannot fold into a constant (such as
+an Attribute node reading the object). The material remembers the value it was given
+(DENSITY_KEY), so a re-run tells its own value from one the artist set, and keeps the
+artist's.
 
 The nodes the add-on makes carry names starting with NODE_PREFIX, so a re-run that keeps
 the volume's material can tell its own nodes from the artist's: sync() adds the colour
@@ -20,8 +25,7 @@ NODE_PREFIX = "hyvox "
 # The Principled Volume's Color without a `color` grid: the albedo of Blender's grey surface.
 GREY = (volume_look.surface_albedo(volume_look.SURFACE_GREY),) * 3 + (1.0,)
 LEGACY_GREY = (0.8, 0.8, 0.8, 1.0)  # what earlier versions set
-OBJECT_DENSITY = NODE_PREFIX + "Object Density"
-DENSITY_SCALE = NODE_PREFIX + "Density Scale"
+DENSITY_KEY = "hyvox_density"  # on the material: the Density the add-on last set
 COLOR = NODE_PREFIX + "Color"
 GRID_DENSITY = NODE_PREFIX + "Grid Density"
 COLOR_SUM = NODE_PREFIX + "Color Sum"
@@ -61,17 +65,13 @@ def _volume_shader(material) -> Optional[bpy.types.Node]:
     return output_shader(material, "Volume", "PRINCIPLED_VOLUME")
 
 
-def _link_density(tree, shader) -> None:
-    """Density = the object's density (set by each run) x a scale for the artist (1)."""
-    x, y = shader.location
-    density = _attribute(tree, OBJECT_DENSITY, "Density (set by each run)", volume_look.DENSITY_PROPERTY,
-                         "OBJECT", (x - 500, y - 260))
-    scale = _node(tree, "ShaderNodeMath", DENSITY_SCALE, "Density Scale", (x - 250, y - 260))
-    scale.operation = "MULTIPLY"
-    scale.inputs[1].default_value = 1.0
-    tree.links.new(density.outputs["Fac"], scale.inputs[0])
-    tree.links.new(scale.outputs["Value"], shader.inputs["Density"])
-    shader.inputs["Density"].default_value = 1.0
+def _set_density(material, shader, density: float) -> None:
+    shader.inputs["Density"].default_value = density
+    material[DENSITY_KEY] = density
+
+
+def _close(value: float, other: float) -> bool:
+    return abs(value - other) <= 1e-5 * max(abs(other), 1e-30)
 
 
 def _link_color(tree, shader) -> None:
@@ -112,7 +112,7 @@ def _set_density_attribute(shader) -> None:
         shader.density_attribute = "density"
 
 
-def make(name: str, has_color: bool) -> bpy.types.Material:
+def make(name: str, has_color: bool, density: float) -> bpy.types.Material:
     material = bpy.data.materials.new(name)
     material.use_nodes = True
     tree = material.node_tree
@@ -123,7 +123,7 @@ def make(name: str, has_color: bool) -> bpy.types.Material:
     shader.location = (0, 0)
     shader.inputs["Color"].default_value = GREY
     _set_density_attribute(shader)
-    _link_density(tree, shader)
+    _set_density(material, shader, density)
     if has_color:
         _link_color(tree, shader)
     tree.links.new(shader.outputs["Volume"], output.inputs["Volume"])
@@ -157,19 +157,19 @@ def _remove_color_nodes(tree) -> None:
             tree.nodes.remove(node)
 
 
-def sync(material, has_color: bool, legacy_voxel_size: float = 0.0) -> None:
-    """Bring a kept material in line with the new grids (see the module's docstring).
-    legacy_voxel_size: the replaced volume's voxel size, whose 1 / size an earlier version
-    set as the Density."""
+def sync(material, has_color: bool, density: float, legacy_voxel_size: float = 0.0) -> None:
+    """Bring a kept material in line with the new grids and density (see the module's
+    docstring). legacy_voxel_size: the replaced volume's voxel size, whose 1 / size an
+    earlier version set as the Density."""
     shader = _volume_shader(material)
     if shader is None:
         return
     tree = material.node_tree
-    density = shader.inputs["Density"]
-    if not density.links and legacy_voxel_size > 0:
-        legacy = 1.0 / legacy_voxel_size
-        if abs(density.default_value - legacy) <= 1e-4 * legacy:  # the value the add-on set
-            _link_density(tree, shader)
+    socket = shader.inputs["Density"]
+    ours = material.get(DENSITY_KEY)
+    if not socket.links and ((ours is not None and _close(socket.default_value, float(ours))) or (
+            ours is None and legacy_voxel_size > 0 and _close(socket.default_value, 1.0 / legacy_voxel_size))):
+        _set_density(material, shader, density)
 
     source = _color_source(shader)
     ours = source is not None and source.name == ALBEDO
@@ -192,10 +192,11 @@ def sync(material, has_color: bool, legacy_voxel_size: float = 0.0) -> None:
         shader.inputs["Color"].default_value = GREY
 
 
-def for_result(kept, name: str, has_color: bool, legacy_voxel_size: float = 0.0) -> bpy.types.Material:
+def for_result(kept, name: str, has_color: bool, density: float,
+               legacy_voxel_size: float = 0.0) -> bpy.types.Material:
     """The material a new volume gets: the replaced volume's (kept, brought in line by
     sync), or a new one."""
     if kept is None:
-        return make(name, has_color)
-    sync(kept, has_color, legacy_voxel_size)
+        return make(name, has_color, density)
+    sync(kept, has_color, density, legacy_voxel_size)
     return kept

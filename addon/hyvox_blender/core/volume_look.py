@@ -2,10 +2,8 @@
 """How dense a hyvox volume renders, decided without bpy, so that its look does not depend
 on the resolution it was made at.
 
-The `density` grid is 1 in every occupied voxel. The volume's material multiplies it by a
-density the run stores on the Volume object (custom property DENSITY_PROPERTY, read by the
-material's Attribute node of type Object), so a re-run sets the density of its own voxels
-whatever material the volume keeps, and the artist's Density in the material scales it.
+The `density` grid is 1 in every occupied voxel. The volume's material (its Density, set by
+each run unless the artist changed it: blender/volume_material.py) multiplies it by:
 
 - A filled (solid) volume gets a density in world units: SOLID_MEAN_FREE_PATHS mean free
   paths across the longest side of what was voxelized, the same at every resolution (and for
@@ -28,7 +26,6 @@ The material's Color (the volume's scattering albedo) comes from the surface col
   in docs/artist.md).
 """
 
-DENSITY_PROPERTY = "hyvox_density"
 SURFACE_GREY = 0.8  # what Blender renders an object without material as (core/colour.DEFAULT_GREY)
 SOLID_MEAN_FREE_PATHS = 32.0
 SHELL_DEPTH_PER_LAYER = 1.0
