@@ -102,8 +102,9 @@ class SaveMovesResultsTest(AddonTestCase):
             unsaved = blender("--python", script, "--", os.path.dirname(helpers.ADDON_DIR), "unsaved", env=env)
             saved = blender("--python", script, "--", os.path.dirname(helpers.ADDON_DIR),
                             os.path.join(tmp, "saved.blend"), env=env)
+            failed = blender("--python", script, "--", os.path.dirname(helpers.ADDON_DIR), "failed", env=env)
             folders = {}
-            for done in (unsaved, saved):
+            for done in (unsaved, saved, failed):
                 line = next((l for l in done.stdout.splitlines() if l.startswith("SESSION ")), None)
                 self.assertIsNotNone(line, done.stdout[-2000:] + done.stderr[-2000:])
                 folders[line.split()[1]] = line.split()[2]
@@ -111,3 +112,4 @@ class SaveMovesResultsTest(AddonTestCase):
             self.assertTrue(os.path.isdir(running), "a running session's folder stays, however old")
             self.assertTrue(os.path.isdir(folders["unsaved"]), "an unsaved file's results stay for File > Recover")
             self.assertFalse(os.path.exists(folders["saved"]), "a saved session leaves no folder")
+            self.assertFalse(os.path.exists(folders["failed"]), "an empty folder goes on quit")

@@ -74,16 +74,22 @@ def keep_results_with_the_blend(*_args):
 
 def _remove_own_folder_if_empty():
     """At quit: the session's folder, when nothing is left in it."""
-    session_folder.remove_if_empty(naming.unsaved_output_dir(create=False))
+    if session_folder.remove_if_empty(naming.unsaved_output_dir(create=False)):
+        naming.forget_unsaved_output_dir()
+
+
+_at_exit = []  # registered once per process, however often the add-on is enabled
 
 
 def register():
     bpy.app.handlers.save_post.append(keep_results_with_the_blend)
-    atexit.register(_remove_own_folder_if_empty)
+    if not _at_exit:  # the bpy module's exit; Blender's own quit disables the add-on first
+        atexit.register(_remove_own_folder_if_empty)
+        _at_exit.append(True)
     session_folder.sweep(naming.is_voxel_file, own=naming.unsaved_output_dir(create=False))
 
 
 def unregister():
-    atexit.unregister(_remove_own_folder_if_empty)
+    _remove_own_folder_if_empty()  # Blender disables every add-on when it quits
     if keep_results_with_the_blend in bpy.app.handlers.save_post:
         bpy.app.handlers.save_post.remove(keep_results_with_the_blend)
