@@ -30,9 +30,8 @@ def candidate_folders(context):
 
 
 def unused_voxel_files(context, keep_undo_reachable=True):
-    singles, sequences = file_history.used_files()
-    keep = file_history.reachable() if keep_undo_reachable else ()
-    return cleanup.unused_files(candidate_folders(context), singles, sequences, naming.is_voxel_file, keep)
+    keep = file_history.kept_keys() if keep_undo_reachable else cleanup.used_keys(*file_history.used_files())
+    return cleanup.unused_files(candidate_folders(context), (), (), naming.is_voxel_file, keep)
 
 
 class WM_OT_hyvox_clean_voxel_files(bpy.types.Operator):

@@ -1,10 +1,10 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Results made before the first save live in this session's own temporary folder
 (naming.unsaved_output_dir). When the file is saved, they move next to the .blend
-(hyvox_cache/<blend name>/): every file hyvox wrote there (the .vdb and .vox files of the
-volumes and Blocks, and those of replaced results that undo can bring back: file_history.py
-points an undone volume at its moved file), the volumes and results point there by relative
-paths, and the emptied folder is removed. So the saved file does not depend on a temporary
+(hyvox_cache/<blend name>/): the .vdb and .vox files of the volumes and Blocks, and those of
+replaced results that undo can bring back (file_history.py points an undone volume at its
+moved file); the volumes and results point there by relative paths, and the folder is
+removed once empty. So the saved file does not depend on a temporary
 folder that is gone after a reboot.
 
 Blender 3.4 tells a save_pre handler neither the new path nor whether it saves a copy, so
@@ -21,7 +21,7 @@ import shutil
 import bpy
 from bpy.app.handlers import persistent
 
-from ..core import naming, session_folder
+from ..core import cleanup, naming, session_folder
 from . import file_history
 
 _saving_again = False
@@ -33,14 +33,18 @@ def _inside(path: str, folder: str) -> bool:
 
 
 def move_unsaved_results() -> int:
-    """Move every voxel file of the unsaved folder next to the saved .blend, point the
-    volumes and results there (relative paths) and remove the emptied folder. Returns how
-    many volumes and results now point elsewhere."""
+    """Move the voxel files of the unsaved folder that the open file uses or the undo history
+    may reach (file_history.kept_keys) next to the saved .blend, point the volumes and results
+    there (relative paths) and remove the folder if that emptied it (Live's cache keeps its
+    other files there until it deletes them). Returns how many volumes and results now point
+    elsewhere."""
     unsaved = naming.unsaved_output_dir(create=False)
     if not unsaved or not bpy.data.filepath or not os.path.isdir(unsaved):
         return 0
     target = naming.default_output_dir(bpy.data.filepath)
-    names = sorted(n for n in os.listdir(unsaved) if naming.is_voxel_file(n))
+    kept = file_history.kept_keys()
+    names = sorted(n for n in os.listdir(unsaved)
+                   if naming.is_voxel_file(n) and cleanup.file_key(os.path.join(unsaved, n)) in kept)
     if names:
         os.makedirs(target, exist_ok=True)
     for name in names:

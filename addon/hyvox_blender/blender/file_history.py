@@ -23,11 +23,6 @@ _reachable: Set[str] = set()
 _moved: Dict[str, str] = {}
 
 
-def reachable() -> Set[str]:
-    """The keys (cleanup.file_key) of the files the undo history may reach."""
-    return set(_reachable)
-
-
 def remember(paths: Iterable[str]) -> None:
     _reachable.update(cleanup.file_key(p) for p in paths if p)
 
@@ -50,6 +45,12 @@ def used_files():
         if vox:
             singles.append(bpy.path.abspath(str(vox)))
     return singles, sequences
+
+
+def kept_keys():
+    """The keys (cleanup.file_key) of the files the open file uses (cleanup.used_keys) or the
+    undo history may reach: what Clean Unused Files keeps and a save moves."""
+    return cleanup.used_keys(*used_files()) | _reachable
 
 
 def _remember_used() -> None:

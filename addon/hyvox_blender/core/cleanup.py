@@ -36,17 +36,22 @@ def _with_exports(path: str) -> List[str]:
     return [path] + [stem + ext for ext in RESULT_EXTENSIONS]
 
 
-def unused_files(folders: Iterable[str], used_files: Iterable[str], used_sequences: Iterable[str],
-                 is_voxel_file, keep: Iterable[str] = ()) -> List[str]:
-    """The files in `folders` (not below them) that is_voxel_file(name) accepts and nothing
-    uses: neither one of used_files, nor a frame of a sequence starting at one of
-    used_sequences, nor another file of the same result (the .vox beside a used .vdb, the
-    .vdb beside a used .vox), nor one of `keep` (keys as file_key makes them: what the undo
-    history may reach). Sorted."""
+def used_keys(used_files: Iterable[str], used_sequences: Iterable[str]) -> Set[str]:
+    """The keys (file_key) of the files in use: used_files, the frames of the sequences
+    starting at used_sequences, and the other file of each one's result (the .vox beside a
+    used .vdb, the .vdb beside a used .vox)."""
     used: Set[str] = {file_key(e) for p in used_files for e in _with_exports(p)}
     for first in used_sequences:
         used.update(file_key(e) for p in sequence_files(first) for e in _with_exports(p))
-    used.update(keep)
+    return used
+
+
+def unused_files(folders: Iterable[str], used_files: Iterable[str], used_sequences: Iterable[str],
+                 is_voxel_file, keep: Iterable[str] = ()) -> List[str]:
+    """The files in `folders` (not below them) that is_voxel_file(name) accepts and nothing
+    uses (used_keys) and that are not among `keep` (keys: what the undo history may reach).
+    Sorted."""
+    used = used_keys(used_files, used_sequences) | set(keep)
     unused = set()
     for folder in {file_key(f) for f in folders}:
         if not os.path.isdir(folder):
