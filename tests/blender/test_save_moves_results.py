@@ -105,7 +105,7 @@ class SaveMovesResultsTest(AddonTestCase):
             failed = blender("--python", script, "--", os.path.dirname(helpers.ADDON_DIR), "failed", env=env)
             folders = {}
             for done in (unsaved, saved, failed):
-                line = next((l for l in done.stdout.splitlines() if l.startswith("SESSION ")), None)
+                line = next((text for text in done.stdout.splitlines() if text.startswith("SESSION ")), None)
                 self.assertIsNotNone(line, done.stdout[-2000:] + done.stderr[-2000:])
                 folders[line.split()[1]] = line.split()[2]
             self.assertFalse(os.path.exists(ended), "the ended session's stale folder is swept at start")
