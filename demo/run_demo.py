@@ -201,49 +201,14 @@ def add_vertex_coloured_sponza(args):
     return sponza
 
 
-def voxelize_with_colour(obj, args, output, fill_interior):
+def voxelize_with_colour(obj, args, output, mode):
     """obj alone through the operator with the Colour option; returns its new Volume object."""
     for other in bpy.context.view_layer.objects:
         other.select_set(other is obj)
     bpy.context.view_layer.objects.active = obj
     bpy.ops.object.hyvox_voxelize(resolution=args.resolution, method=args.method, separate=True, color=True,
-                                  fill_interior=fill_interior, output_dir=os.path.join(output, "vdb"))
+                                  mode=mode, output_dir=os.path.join(output, "vdb"))
     return bpy.data.objects[obj.name + "_voxels"]
-
-
-def vector_math(tree, operation, a, b):
-    """A Vector Math node computing `a operation b` (each a socket or a constant triple)."""
-    node = tree.nodes.new("ShaderNodeVectorMath")
-    node.operation = operation
-    for socket, value in zip(node.inputs, (a, b)):
-        if isinstance(value, tuple):
-            socket.default_value = value
-        else:
-            tree.links.new(value, socket)
-    return node.outputs[0]
-
-
-def show_surface_colour(volume):
-    """Make the colour volume reflect about as much light as the mesh it came from.
-
-    The add-on's material uses the `color` grid (the surface's albedo c) as the volume's
-    single-scattering albedo; a shell a voxel or two thick then renders at a third of the mesh's
-    brightness (measured on this scene), since light scatters isotropically and part of it
-    leaves through the shell. Two-flux (Kubelka-Munk) theory gives a thick medium of albedo a
-    the diffuse reflectance (1 - sqrt(1 - a)) / (1 + sqrt(1 - a)); feeding
-    a = 1 - ((1 - c) / (1 + c))^2 makes that c. With 4x the density (nearly opaque in one
-    voxel) and 16 volume bounces (set by the caller for this render) the volume reaches about
-    0.78 of the mesh's brightness.
-    """
-    tree = volume.active_material.node_tree
-    shader = tree.nodes["Principled Volume"]
-    shader.inputs["Density"].default_value *= 4.0
-    colour = next(node for node in tree.nodes if node.type == "ATTRIBUTE").outputs["Color"]
-    one = (1.0, 1.0, 1.0)
-    ratio = vector_math(tree, "DIVIDE", vector_math(tree, "SUBTRACT", one, colour),
-                        vector_math(tree, "ADD", one, colour))
-    albedo = vector_math(tree, "SUBTRACT", one, vector_math(tree, "MULTIPLY", ratio, ratio))
-    tree.links.new(albedo, shader.inputs["Color"])
 
 
 LIVE_FRAMES = (1, 2, 3)
@@ -338,16 +303,15 @@ def main():
     render_s = time.perf_counter() - start
     summary = list(operators.last_summary)
 
-    # Colour: Spot's texture into a `color` grid, filled (the add-on's default Fill Interior:
+    # Colour: Spot's texture into a `color` grid, filled (the add-on's default Mode, Solid:
     # the inside takes its colours from the surface inward); its volume shows it through the
-    # add-on's material (no flat colour set), brightened as show_surface_colour explains.
+    # add-on's material, with the volume bounces docs/artist.md asks for.
     shown = [bpy.data.objects[name] for name in ("Bunny", "Suzanne", "Bunny_voxels", "Suzanne_voxels")]
     for obj in shown:
         obj.hide_render = True
     spot = add_textured_spot(args)
-    volume = voxelize_with_colour(spot, args, output, fill_interior=True)
+    volume = voxelize_with_colour(spot, args, output, mode="solid")
     volume.location.x += 2.6
-    show_surface_colour(volume)
     cycles = bpy.context.scene.cycles
     bounces = cycles.max_bounces, cycles.volume_bounces
     cycles.max_bounces = cycles.volume_bounces = 16
@@ -361,10 +325,9 @@ def main():
     # Sponza's vertex colours the same way, as a surface seen from above (its roof is open).
     spot.hide_render = volume.hide_render = True
     sponza = add_vertex_coloured_sponza(args)
-    sponza_volume = voxelize_with_colour(sponza, args, output, fill_interior=False)
+    sponza_volume = voxelize_with_colour(sponza, args, output, mode="conservative")
     summary += operators.last_summary
     sponza_volume.location.x += 3.2
-    show_surface_colour(sponza_volume)
     scene = bpy.context.scene
     camera = scene.camera
     scene.camera = add_camera("Camera above", (0.0, -4.2, 4.6), 0.75)

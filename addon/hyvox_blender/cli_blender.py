@@ -115,10 +115,6 @@ def main(argv):
         kwargs["output_dir"] = os.path.abspath(args.output)
     if args.separate:
         kwargs["separate"] = True
-    if args.mode is not None:
-        # The operator fills the interior by its Fill Interior setting (the scene's unless
-        # given): an explicit --mode decides it, so --mode thin is not turned into solid.
-        kwargs["fill_interior"] = args.mode == "solid"
     kwargs["evaluation"] = "VIEWPORT" if args.viewport else "RENDER"
     kwargs["color"] = args.color
     kwargs["unique_file_names"] = False  # chunks of one sequence must share their file names

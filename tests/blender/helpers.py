@@ -60,8 +60,8 @@ def clear_scene():
             coll.remove(block)
     scene = bpy.context.scene
     scene.frame_set(1)
-    for prop in ("resolution", "voxel_size", "method", "mode", "fill_interior", "inside", "separate", "output_dir",
-                 "use_frame_range", "size_mode"):
+    for prop in ("resolution", "voxel_size", "method", "mode", "inside", "separate", "output_dir",
+                 "use_frame_range", "size_mode", "color"):
         scene.hyvox.property_unset(prop)
 
 
@@ -145,6 +145,22 @@ def run_suite(names):
     return 0 if result.wasSuccessful() else 1
 
 
+def measured_render(scene, pixels, film_transparent=False):
+    """The render settings the render tests measure by: a square image `pixels` wide, 32-bit
+    float EXR of the scene's linear values (view transform Standard), Cycles on the CPU without
+    denoising (Debian's Blender has no OpenImageDenoise), two threads."""
+    scene.render.resolution_x = scene.render.resolution_y = pixels
+    scene.render.resolution_percentage = 100
+    scene.render.film_transparent = film_transparent
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.view_settings.view_transform = "Standard"
+    scene.cycles.device = "CPU"
+    scene.cycles.use_denoising = False
+    scene.render.threads_mode = "FIXED"
+    scene.render.threads = 2
+
+
 def render_pixels(path):
     """Render the scene's camera to `path` (its format as set in the scene) and read it back:
     (height, width, 4) float64 RGBA, bottom row first as Blender stores it."""
@@ -172,8 +188,8 @@ class AddonTestCase(unittest.TestCase):
     def voxelize(self, **kw):
         kw.setdefault("output_dir", self.out)
         kw.setdefault("method", "cpu")
-        # The tests written for surfaces ask for one; Fill Interior (on by default) is tested apart.
-        kw.setdefault("fill_interior", False)
+        # The tests written for surfaces ask for one; Solid (the default) is tested apart.
+        kw.setdefault("mode", "conservative")
         return bpy.ops.object.hyvox_voxelize(**kw)
 
     def volumes(self):

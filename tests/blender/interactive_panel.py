@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The sidebar panel in a real window: no label, value or summary line is wider than the
-room the sidebar gives it at its default width.
+room the sidebar gives it at its default width, and no label is drawn twice in a panel
+(in either size mode).
 
     xvfb-run -a blender --factory-startup --enable-event-simulate \\
         --python tests/blender/interactive_panel.py -- BUILD_DIR [SCREENSHOT_DIR]
@@ -127,7 +128,9 @@ def check_widths(context, region):
     content = region.width - unit - unit
     print(f"sidebar region {region.width} px, panel content {content:.0f} px, ui scale {scale:.3f}", flush=True)
     too_wide = []
-    for panel in panels():
+    settings = context.scene.hyvox
+    for panel, size_mode in [(panel, "RESOLUTION") for panel in panels()] + [(panels()[0], "VOXEL_SIZE")]:
+        settings.size_mode = size_mode
         out = []
         recorder = Recorder(out)
 
@@ -139,6 +142,10 @@ def check_widths(context, region):
         if hasattr(panel, "draw_header"):
             panel.draw_header(fake, context)
         panel.draw(fake, context)
+        labels = [text for where, text, _ in out if where == "label"]
+        twice = sorted({text for text in labels if labels.count(text) > 1})
+        if twice:
+            too_wide.append(f"{panel.bl_label} ({size_mode}): the label {twice} twice")
         for where, text, icon in out:
             width = blf.dimensions(0, text)[0] + (unit if icon else 0)
             limit = room(where, content, unit)

@@ -54,13 +54,34 @@ class PanelBehaviourTest(AddonTestCase):
 
     def test_tooltips_start_in_plain_words(self):
         from hyvox_blender.blender import properties
-        rna = bpy.context.scene.hyvox.bl_rna.properties
+        scene = bpy.context.scene.hyvox.bl_rna.properties
+        prefs = helpers.addon_preferences().bl_rna.properties
         for name, plain in properties.PLAIN_WORDS.items():
-            description = rna[name].description
+            description = (scene[name] if name in scene else prefs[name]).description
             self.assertTrue(description.startswith(plain), description)
             help_text = properties.option_spec(name).help
             self.assertIn(help_text[1:], description)  # the schema's words (and term) follow
             self.assertGreater(description.index(help_text[1:]), len(plain))
+
+    def test_labels_and_tooltips_in_blenders_words(self):
+        """Blender's spelling ("Color"), no Markdown in tooltips, and every setting of the
+        Scene, the operator and the preferences described (its choices too)."""
+        texts = []
+        for rna in (bpy.context.scene.hyvox.bl_rna, bpy.ops.object.hyvox_voxelize.get_rna_type(),
+                    helpers.addon_preferences().bl_rna):
+            for prop in rna.properties:
+                if prop.identifier in ("rna_type", "name", "bl_idname"):
+                    continue
+                self.assertTrue(prop.description, prop.identifier)
+                texts += [prop.name, prop.description]
+                if prop.type == "ENUM":
+                    texts += [text for item in prop.enum_items for text in (item.name, item.description)]
+        for text in texts:
+            self.assertNotIn("`", text)
+            self.assertNotIn("olour", text)  # Colour, colour
+            self.assertNotIn("γ", text.split("(")[0])  # a term only after the plain words
+        labels = bpy.context.scene.hyvox.bl_rna.properties
+        self.assertEqual((labels["color"].name, labels["tess_gamma"].name), ("Color", "Tessellation Density"))
 
     def test_frame_range_defaults_to_the_scenes(self):
         scene = bpy.context.scene

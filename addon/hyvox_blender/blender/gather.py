@@ -46,8 +46,6 @@ def settings_from_used(context, used: dict):
     (a Live volume keeps those it was made with)."""
     options = {name: used[name] for name in SCENE_OPTIONS}
     options.pop("resolution" if used["size_mode"] == "VOXEL_SIZE" else "voxel_size")
-    if used["fill_interior"]:
-        options["mode"] = "solid"
     frames = list(range(used["frame_start"], used["frame_end"] + 1)) if used["use_frame_range"] else None
 
     prefs = preferences(context)

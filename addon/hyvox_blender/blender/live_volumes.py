@@ -24,7 +24,7 @@ import bpy
 from ..core import live_key, naming
 from ..core.errors import HyvoxError
 from ..core.pipeline import Group, GroupMesh
-from . import blocks_object, export, live_dependencies
+from . import blocks_object, export, file_history, live_dependencies
 from .export import RESULT_KEY
 from .gather import settings_from_used, used_values
 
@@ -216,15 +216,6 @@ def shown_files(obj) -> List[str]:
     return files
 
 
-def _file_path(path: str) -> str:
-    if bpy.data.filepath:
-        try:
-            return bpy.path.relpath(path)
-        except ValueError:
-            pass
-    return path
-
-
 def swap(obj, output) -> float:
     """Show a run's voxels on the volume (main thread); returns the milliseconds it took.
     Nothing is done when they are shown already (an undo step back, a static frame)."""
@@ -236,10 +227,10 @@ def swap(obj, output) -> float:
         volume = obj.data
         if volume.is_sequence:
             volume.is_sequence = False
-        volume.filepath = _file_path(result.files[0])
+        volume.filepath = file_history.blend_relative(result.files[0])
     elif result.blocks is not None:
         blocks_object.fill_mesh(obj.data, result.blocks)
         obj["hyvox_faces"] = len(result.blocks.faces)
     obj[LIVE_KEY] = output.key
-    obj[LIVE_FILES] = [_file_path(p) for p in output.files]
+    obj[LIVE_FILES] = [file_history.blend_relative(p) for p in output.files]
     return (time.perf_counter() - start) * 1000.0

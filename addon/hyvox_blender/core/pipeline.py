@@ -224,7 +224,7 @@ class Pipeline:
         return meshes
 
     def _final_path(self, group: Group, frame: Optional[int]) -> str:
-        stem = naming.result_stem(group.name, group.key, len(group.sources))
+        stem = naming.result_stem(group.name, group.key, len(group.sources), fixed_names=self.run_tag is None)
         return os.path.join(self.output_dir, naming.volume_file_name(stem, frame, self.run_tag))
 
     def _work_guarded(self, meshes: List[GroupMesh]) -> None:

@@ -79,8 +79,8 @@ struct ValidatedMesh {
 /// @param interrupter may be null; asked every 65,536 triangles: a million-triangle mesh takes
 ///        a noticeable time to check, and Esc / Ctrl-C must not wait for it
 /// @throws InvalidInput with a clear message for: null pointers with non-zero counts, an empty
-///         mesh, NaN/Inf coordinates, indices out of range, or a mesh whose triangles are all
-///         degenerate
+///         mesh, NaN/Inf coordinates (and |x| >= 3.4e38, Inf as Blender stores it), indices out
+///         of range, or a mesh whose triangles are all degenerate
 /// @throws Cancelled the interrupter asked to stop
 ValidatedMesh validate(const MeshView& mesh, Interrupter* interrupter = nullptr);
 

@@ -141,7 +141,7 @@ std::vector<OptionSpec> buildSchema() {
          "hybrid: projected triangle area above which a triangle is rasterized; negative = automatic", false, -1, kInf,
          false, {}, {}, nullptr, HYVOX_FIELD(asNumber, hybrid.cutoff)});
     // --- tessellation ---
-    add({"tess_gamma", T::Number, "tessellation", "Tessellation γ", "",
+    add({"tess_gamma", T::Number, "tessellation", "Tessellation Density", "",
          "tessellation: safety factor γ of Eq. 1 (higher misses fewer voxels, costs more points; below 2 a "
          "closed mesh may leak)",
          false, 0, 1024, true, {}, {"--gamma"}, nullptr, HYVOX_FIELD(asNumber, tessellation.gamma)});
