@@ -16,8 +16,6 @@ if TYPE_CHECKING:
     from .settings import VoxelizeSettings
 
 AUTO_METHOD = "auto"  # the add-on's own method: hybrid when a GPU runs GL here, else cpu
-# The module's ATTRIBUTE_METHODS compute attribute voxels (colour); were auto's choice not
-# among them, a group with colour would run by cpu (every method computes them today).
 
 _module = None
 _gl_probe = {}  # gl_device -> bool, probed once per session: creating an EGL context is slow
@@ -88,15 +86,6 @@ def resolve_method(module, settings: "VoxelizeSettings") -> str:
     return "hybrid" if gl_available(module, settings.options.get("gl_device", "")) else "cpu"
 
 
-def method_for_group(module, settings: "VoxelizeSettings", resolved: str, with_colour: bool) -> str:
-    """The method a group runs with: auto's choice, unless the group asks for colour and
-    that method cannot make it (then cpu); an explicit method is kept (and refuses colour
-    with its own message)."""
-    if with_colour and settings.method == AUTO_METHOD and resolved not in module.ATTRIBUTE_METHODS:
-        return "cpu"
-    return resolved
-
-
 def ignored_settings(module, settings: "VoxelizeSettings", method: str) -> List[str]:
     """The options set away from the schema's default that `method` does not use, by the
     module's one rule (hyvox.ignored_options). The add-on passes every setting it has, so an
@@ -133,7 +122,7 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "Vox
     # operator, see ignored_settings), so hyvox.voxelize has nothing to warn about.
     for name in module.ignored_options(method, list(kwargs)):
         del kwargs[name]
-    if colour:  # after the filter: a method without colour refuses it rather than drop it
+    if colour:
         kwargs.update(colour)
         kwargs["attributes"] = "color"
     if voxel_size:
@@ -149,8 +138,7 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "Vox
         if isinstance(exc, MemoryError):
             raise HyvoxError("out of memory: lower the resolution or raise the memory budget") from exc
         if isinstance(exc, (ValueError, RuntimeError, TypeError, OSError)):
-            hint = " (turn Colour off, or use the CPU method)" if colour and method not in module.ATTRIBUTE_METHODS else ""
-            raise HyvoxError(f"{method}: {exc}{hint}") from exc
+            raise HyvoxError(f"{method}: {exc}") from exc
         raise
 
 

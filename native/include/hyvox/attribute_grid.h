@@ -8,22 +8,11 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include "hyvox/sparse_grid.h"
 
 namespace hyvox {
-
-// Which attributes a run computes: the option `attributes`, a comma list of "color" and
-// "normal" ("" = none).
-struct AttributeSet {
-    bool color = false;
-    bool normal = false;
-    bool any() const { return color || normal; }
-};
-// Throws InvalidInput naming the accepted names for anything else.
-AttributeSet parseAttributeSet(const std::string& text);
 
 // A region of a solid's interior that OpenVDB holds as one active tile (a level-1 tile is one
 // 8³ brick, level 2 a 128³ node, level 3 a 4096³ node: as Tree::prune() merges the density's

@@ -24,6 +24,7 @@ enum class OptionType {
     Flag,     // true / false
     Text,     // free text (a path, a device name)
     Choice,   // one of `choices`
+    Choices,  // a comma list of `choices` (text; "" = none)
     Vector3,  // three finite reals (a position)
     Box,      // two corners, min <= max per axis
 };
@@ -43,7 +44,7 @@ struct OptionSpec {
     bool nullable = false;        // may be unset (then a derived value is used; see help)
     double min = 0, max = 0;      // Integer, Number
     bool min_exclusive = false;   // Number: value must be > min
-    std::vector<const char*> choices;      // Choice
+    std::vector<const char*> choices;      // Choice, Choices
     std::vector<const char*> cli_aliases;  // further CLI spellings ("--gamma")
     const char* env = nullptr;             // environment variable the front doors read, or null
     // The field behind the option (no checks: setOption checks first).

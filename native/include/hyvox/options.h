@@ -47,10 +47,23 @@ std::vector<const char*> modeNames();    // in enum order
 std::vector<const char*> methodNames();
 std::vector<const char*> insideRuleNames();
 
-// Whether a method computes attribute voxels (colour, normal): the exact methods (cpu and
-// reference clip on the CPU, triangle/fragment/hybrid on the GPU), and the tessellation by
-// averaging its points' values. Every method does now; front doors ask this, not a list.
-bool computesAttributes(Method method);
+// What a run computes beside the occupancy: the option `attributes`, written as a comma list
+// of its names ("color,normal"; "" = none) at the front doors.
+//   color:  per occupied voxel, the surface's linear RGB (and alpha where the colour source
+//           has it), area-weighted inside the voxel (hyvox/attribute_grid.h);
+//   normal: per occupied voxel, the surface's unit normal, weighted alike.
+struct AttributeSet {
+    bool color = false;
+    bool normal = false;
+    bool any() const { return color || normal; }
+    bool surfaceValues() const { return color || normal; }  // the per-voxel values of the surface
+    bool operator==(const AttributeSet& other) const { return color == other.color && normal == other.normal; }
+};
+// The names, in the order toString writes them; parseAttributeSet throws InvalidInput naming
+// them for anything else (a name given twice counts once).
+std::vector<const char*> attributeNames();
+std::string toString(const AttributeSet& set);
+AttributeSet parseAttributeSet(const std::string& text);
 
 struct GlOptions {
     std::string device;      // "" = auto (hardware first, then software); "software"; or an index "0", "1"...
@@ -123,9 +136,7 @@ struct VoxelizeOptions {
     // Side of the boxes the grid is voxelized in, one after the other (rounded up to a
     // multiple of 8); 0 = from the memory budget (the whole grid when it fits).
     int tile_size = 0;
-    // Attribute voxels to compute beside the occupancy: a comma list of "color" and "normal"
-    // (hyvox/attribute_grid.h); "" = none.
-    std::string attributes;
+    AttributeSet attributes;  // what to compute beside the occupancy
     // Output files (.vdb, stats JSON) synced to disk before their write returns (fsync of the
     // file and its folder): they then survive a power loss too. Off: the atomic rename alone
     // (no half-written file whatever happens to hyvox), as OpenVDB and Blender write

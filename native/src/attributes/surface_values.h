@@ -10,6 +10,7 @@
 
 #include "hyvox/attribute_grid.h"
 #include "hyvox/mesh.h"
+#include "hyvox/options.h"
 #include "hyvox/texture.h"
 
 namespace hyvox::attributes {

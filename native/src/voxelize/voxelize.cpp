@@ -103,14 +103,11 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     }
 }
 
-// The attribute evaluator when options.attributes asks for any (every method: the exact
-// definition, or the tessellation's average of its points' values).
+// The attribute evaluator when options.attributes asks for colour or normals (every method:
+// the exact definition, or the tessellation's average of its points' values).
 std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, const VoxelizeOptions& options) {
-    const AttributeSet wanted = parseAttributeSet(options.attributes);
-    if (!wanted.any()) return std::nullopt;
-    if (!computesAttributes(options.method))
-        throw InvalidInput(std::string("method ") + toString(options.method) + " does not compute attributes");
-    return std::optional<attributes::SurfaceValues>(std::in_place, mesh, wanted);
+    if (!options.attributes.surfaceValues()) return std::nullopt;
+    return std::optional<attributes::SurfaceValues>(std::in_place, mesh, options.attributes);
 }
 
 // Refuse before allocating: the inside values hold every leaf voxel's channels (whole bricks
