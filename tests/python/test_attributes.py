@@ -234,7 +234,7 @@ def test_attributes_in_either_spelling(tetrahedron):
     assert as_text.stats["options"]["attributes"] == as_names.stats["options"]["attributes"] == "color,normal"
     for name in ("color", "normal"):
         np.testing.assert_array_equal(as_text.attributes()[name], as_names.attributes()[name])
-    with pytest.raises(TypeError, match="attributes must be a comma list of color, normal"):
+    with pytest.raises(TypeError, match="attributes must be a comma list of color, normal, sdf"):
         hyvox.voxelize(v, t, resolution=8, attributes=("color", 3))
 
 

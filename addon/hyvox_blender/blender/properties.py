@@ -178,6 +178,10 @@ def scene_and_operator_properties(operator=False):
                               "show (the render colour attribute, else the Base Color's image or value) in a "
                               "`color` grid, which the volume's material and Blocks use (with Fill Interior, the inside "
                               "takes the colour of the surface around it)", default=False, **skip),
+        "signed_distance": BoolProperty(name="Signed Distance", description="Also store the distance to "
+                                        "the surface near it, negative inside, as a grid named sdf (a level set) for "
+                                        "Blender's SDF grid nodes and a smooth Grid to Mesh. Meshes with holes keep "
+                                        "their inside (the winding number decides it)", default=False, **skip),
         "export_vox": BoolProperty(name="MagicaVoxel File", description="Also write the voxels as a MagicaVoxel "
                                    ".vox file next to the .vdb (split into models of at most 256 per side; at "
                                    "most 255 colours)", default=False, **skip),

@@ -115,16 +115,19 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "Vox
              method: str, voxel_size: Optional[float] = None, token=None, colour: Optional[dict] = None):
     """hyvox.voxelize with the run's settings; voxel_size (when given) wins over the
     settings, so every frame of a sequence shares the first frame's voxel size. colour:
-    the colour source's keyword arguments (colour.combine); given, a `color` grid is made."""
+    the colour source's keyword arguments (colour.combine); given, a `color` grid is made.
+    With settings.sdf, an `sdf` level set too."""
     kwargs = settings.voxelize_options()
     kwargs["method"] = method
     # Settings another method would use are dropped here (reported once per run by the
     # operator, see ignored_settings), so hyvox.voxelize has nothing to warn about.
     for name in module.ignored_options(method, list(kwargs)):
         del kwargs[name]
+    attributes = (["color"] if colour else []) + (["sdf"] if settings.sdf else [])
     if colour:
         kwargs.update(colour)
-        kwargs["attributes"] = "color"
+    if attributes:
+        kwargs["attributes"] = attributes
     if voxel_size:
         kwargs.pop("resolution", None)
         kwargs["voxel_size"] = float(voxel_size)

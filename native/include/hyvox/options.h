@@ -48,16 +48,21 @@ std::vector<const char*> methodNames();
 std::vector<const char*> insideRuleNames();
 
 // What a run computes beside the occupancy: the option `attributes`, written as a comma list
-// of its names ("color,normal"; "" = none) at the front doors.
+// of its names ("color,sdf"; "" = none) at the front doors.
 //   color:  per occupied voxel, the surface's linear RGB (and alpha where the colour source
 //           has it), area-weighted inside the voxel (hyvox/attribute_grid.h);
-//   normal: per occupied voxel, the surface's unit normal, weighted alike.
+//   normal: per occupied voxel, the surface's unit normal, weighted alike;
+//   sdf:    a narrow-band signed distance level set (hyvox/level_set.h), signed by the
+//           inside test of solid mode in every mode.
 struct AttributeSet {
     bool color = false;
     bool normal = false;
-    bool any() const { return color || normal; }
+    bool sdf = false;
+    bool any() const { return color || normal || sdf; }
     bool surfaceValues() const { return color || normal; }  // the per-voxel values of the surface
-    bool operator==(const AttributeSet& other) const { return color == other.color && normal == other.normal; }
+    bool operator==(const AttributeSet& other) const {
+        return color == other.color && normal == other.normal && sdf == other.sdf;
+    }
 };
 // The names, in the order toString writes them; parseAttributeSet throws InvalidInput naming
 // them for anything else (a name given twice counts once).
@@ -119,6 +124,15 @@ struct TessellationOptions {
     bool counts = true;  // also fill VoxelizeResult::counts (points per voxel)
 };
 
+// The `sdf` attribute (src/sdf/).
+struct SdfOptions {
+    // The narrow band's half-width in voxels: voxels whose centre lies closer than this to the
+    // surface hold their signed distance, the others (inactive) ±band × voxel size, as
+    // OpenVDB's level sets do. The grid is padded by at least this many voxels so that the
+    // band around the mesh fits.
+    int band = 3;
+};
+
 struct SolidOptions {
     InsideRule inside = InsideRule::Auto;
     // Fast winding numbers (Barill et al. 2018): a cluster of triangles is replaced by its
@@ -146,6 +160,7 @@ struct VoxelizeOptions {
     HybridOptions hybrid;
     TessellationOptions tessellation;
     SolidOptions solid;
+    SdfOptions sdf;
 
     std::uint64_t memoryBudgetBytes() const { return memory_budget_mib << 20; }
 };

@@ -70,6 +70,8 @@ public:
         return i >= 0 && j >= 0 && k >= 0 && i < dims_[0] && j < dims_[1] && k < dims_[2];
     }
     bool test(int i, int j, int k) const;
+    // The words of `brick` (finished): its leaf's, all set for a tile, none for an empty brick.
+    void brickWords(std::uint64_t brick, std::uint64_t out[BitGrid::kWordsPerBrick]) const;
     void set(int i, int j, int k);  // one voxel (tests, small edits): inserts its leaf if needed
 
     std::uint64_t count() const;

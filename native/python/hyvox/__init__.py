@@ -157,7 +157,8 @@ def voxelize(
     Attribute voxels (option attributes, e.g. attributes=("color", "normal") or "color,normal";
     the grid's attributes() returns them aligned with coords(); mode="solid": the inside takes
     the surface's values layer by layer inward, a whole-brick tile region one value for all its
-    voxels). Colour comes from the first source given:
+    voxels). attributes=("sdf",) adds a narrow-band signed distance grid (the grid's sdf(),
+    the .vdb's level set "sdf"; docs/sdf.md). Colour comes from the first source given:
     texture: a PNG path, or (height, width, 3|4) pixels (uint8/uint16: sRGB-encoded, float:
         linear; row 0 = top), sampled bilinearly with repeat wrap at uvs (v = 0: bottom row);
     colors: (N, 3|4) per vertex or (3M, 3|4) per triangle corner; uint8 = sRGB-encoded bytes

@@ -92,8 +92,12 @@ std::vector<OptionSpec> buildSchema() {
     add({"attributes", T::Choices, "run", "Attributes", "",
          "what to compute beside the voxels, a comma list: color (linear RGB, alpha when the source has "
          "it) and normal per voxel (solid mode: the inside takes the surface's values, layer by layer "
-         "inward); '' = none", false, 0, 0, false, attributeNames(), {}, nullptr,
+         "inward); sdf, a narrow-band signed distance grid (negative inside by the inside rule, in "
+         "every mode); '' = none", false, 0, 0, false, attributeNames(), {}, nullptr,
          HYVOX_FIELD(asAttributes, attributes)});
+    add({"sdf_band", T::Integer, "run", "SDF Band", "voxels",
+         "sdf: half-width of the narrow band (the grid is padded by at least this much)", false, 1, 64, false,
+         {}, {}, nullptr, HYVOX_FIELD(asInteger, sdf.band)});
     // --- output files ---
     add({"durable_write", T::Flag, "output", "Durable Write", "",
          "sync each output file (.vdb, stats JSON) and its folder to disk before the write returns, so it "

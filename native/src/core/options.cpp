@@ -68,9 +68,10 @@ const char* toString(InsideRule rule) { return nameOf(kInsideRules, rule); }
 InsideRule parseInsideRule(const std::string& text) { return parseName(kInsideRules, text, "inside rule"); }
 
 namespace {
-constexpr std::array<std::pair<bool AttributeSet::*, const char*>, 2> kAttributes{{
+constexpr std::array<std::pair<bool AttributeSet::*, const char*>, 3> kAttributes{{
     {&AttributeSet::color, "color"},
     {&AttributeSet::normal, "normal"},
+    {&AttributeSet::sdf, "sdf"},
 }};
 }  // namespace
 
