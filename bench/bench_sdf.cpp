@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "bench_args.h"
+#include "openvdb_arrays.h"
 #include "core/stopwatch.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
@@ -94,16 +95,11 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
 
     // OpenVDB on the same voxels: index (i,j,k) is voxel (i,j,k)'s centre.
     const auto transform = hyvox::io::makeTransform(result.grid);
-    std::vector<openvdb::Vec3s> points(mesh.vertexCount());
-    for (std::size_t v = 0; v < points.size(); ++v)
-        points[v] = openvdb::Vec3s(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
-    std::vector<openvdb::Vec3I> triangles(mesh.triangleCount());
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-        triangles[t] = openvdb::Vec3I(mesh.triangles[3 * t], mesh.triangles[3 * t + 1], mesh.triangles[3 * t + 2]);
+    const hyvox::bench::OpenVdbArrays arrays = hyvox::bench::openvdbArrays(mesh);
     openvdb::FloatGrid::Ptr level_set;
     for (int r = 0; r < runs; ++r) {
         hyvox::Stopwatch watch;
-        level_set = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*transform, points, triangles, 3.0f);
+        level_set = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*transform, arrays.points, arrays.triangles, 3.0f);
         theirs.push_back(watch.elapsedMs());
     }
     row.hyvox_ms = median(ours);
@@ -158,16 +154,6 @@ constexpr const char* kUsage =
     "                 project's meshes)\n"
     "  --out-dir DIR  where sdf.json and sdf.md go (default bench/results)\n"
     "  MESH           default: Spot, the Buddha, the 871k dragon, the bunny and Sponza\n";
-
-int positive(const char* option, const std::string& text) {
-    char* end = nullptr;
-    const long value = std::strtol(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || value < 1 || value > 1 << 20) {
-        std::fprintf(stderr, "%s needs a positive whole number, not '%s'\n%s", option, text.c_str(), kUsage);
-        std::exit(2);
-    }
-    return int(value);
-}
 
 std::string jsonString(const std::string& text) {
     std::string out = "\"";
@@ -224,41 +210,29 @@ void writeResults(const std::string& dir, const std::vector<Row>& rows, int runs
 }  // namespace
 
 int main(int argc, char** argv) try {
-    int runs = 3;
-    std::vector<int> resolutions;
-    std::string mesh_dir = std::getenv("HYVOX_MESH_DIR") ? std::getenv("HYVOX_MESH_DIR") : HYVOX_BENCH_MESH_DIR;
     std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
-    std::vector<std::string> files;
+    hyvox::bench::MeshBenchArgs args = hyvox::bench::parseMeshBenchArgs(
+        argc, argv, kUsage, HYVOX_BENCH_MESH_DIR, [&](const std::string& arg, int& a) {
+            if (arg != "--out-dir") return false;
+            out_dir = hyvox::bench::optionValue(argc, argv, a);
+            return true;
+        });
     std::string command = "build/bench/bench_sdf";
     for (int a = 1; a < argc; ++a) command += std::string(" ") + argv[a];
-    for (int a = 1; a < argc; ++a) {
-        const std::string arg = argv[a];
-        if (arg == "--help" || arg == "-h") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        }
-        if (arg == "--runs") runs = positive("--runs", hyvox::bench::optionValue(argc, argv, a));
-        else if (arg == "--res") resolutions.push_back(positive("--res", hyvox::bench::optionValue(argc, argv, a)));
-        else if (arg == "--mesh-dir") mesh_dir = hyvox::bench::optionValue(argc, argv, a);
-        else if (arg == "--out-dir") out_dir = hyvox::bench::optionValue(argc, argv, a);
-        else if (arg.size() > 1 && arg[0] == '-') {
-            std::fprintf(stderr, "unknown option '%s'\n%s", arg.c_str(), kUsage);
-            return 2;
-        } else files.push_back(arg);
-    }
-    if (resolutions.empty()) resolutions = {128, 256, 512, 1024};
-    if (files.empty())
-        files = {"spot_vcolor.ply", "happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz", "bunny_stanford_69k.ply",
-                 "sponza_crytek_262k_vcolor.ply.gz"};
+    if (args.resolutions.empty()) args.resolutions = {128, 256, 512, 1024};
+    if (args.files.empty())
+        args.files = {"spot_vcolor.ply", "happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz", "bunny_stanford_69k.ply",
+                      "sponza_crytek_262k_vcolor.ply.gz"};
+    const int runs = args.runs;
     hyvox::io::initializeOpenVdb();
     std::printf("%-30s %5s %-30s %10s %10s %6s %10s %10s %9s %9s %s\n", "mesh", "res", "hyvox inside", "hyvox ms",
                 "openvdb ms", "x", "hyvox act", "vdb act", "|d| diff", "signs", "hyvox/vdb/unclear");
     std::vector<Row> rows;
-    for (const std::string& file : files) {
-        const std::string path = file.find('/') == std::string::npos ? mesh_dir + "/" + file : file;
+    for (const std::string& file : args.files) {
+        const std::string path = file.find('/') == std::string::npos ? args.mesh_dir + "/" + file : file;
         const hyvox::Mesh mesh = hyvox::readMesh(path);
         const std::string label = std::filesystem::path(path).filename().string();
-        for (const int res : resolutions) {
+        for (const int res : args.resolutions) {
             const Row r = runCase(label, mesh, res, runs);
             rows.push_back(r);
             std::printf("%-30s %5d %-30s %10.1f %10.1f %6.2f %10llu %10llu %9.3f %9llu %d/%d/%d\n", r.mesh.c_str(),

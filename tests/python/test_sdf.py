@@ -73,16 +73,6 @@ def centres(grid, ijk):
     return np.asarray(grid.origin) + (np.asarray(ijk, np.float64) + 0.5) * grid.voxel_size
 
 
-@pytest.fixture(scope="module")
-def spot(mesh_dir):
-    return hyvox.read_mesh(mesh_dir / "spot_vcolor.ply")
-
-
-@pytest.fixture(scope="module")
-def elephant(mesh_dir):
-    return hyvox.read_mesh(mesh_dir / "elephant_holes.ply")
-
-
 @pytest.mark.parametrize("name", ["spot", "elephant"])
 def test_band_distances_match_numpy_brute_force(name, spot, elephant):
     vertices, triangles = {"spot": spot, "elephant": elephant}[name]
