@@ -105,12 +105,12 @@ std::vector<OptionSpec> buildSchema() {
          false, 0, 0, false, {}, {}, nullptr, HYVOX_FIELD(asFlag, durable_write)});
     // --- solid mode ---
     add({"inside", T::Choice, "solid", "Inside Rule", "",
-         "solid: parity = odd ray crossings (closed meshes); winding = winding number >= 0.5 (holes, "
+         "solid and sdf: parity = odd ray crossings (closed meshes); winding = winding number >= 0.5 (holes, "
          "flipped faces); auto = the winding number, by ray crossings when the mesh is closed and "
          "consistently oriented, else by fast winding numbers",
          false, 0, 0, false, insideRuleNames(), {}, nullptr, HYVOX_FIELD(asInsideRule, solid.inside)});
     add({"winding_beta", T::Number, "solid", "Winding Accuracy", "",
-         "solid, winding: fast winding number accuracy beta (a cluster is expanded when the point is "
+         "solid and sdf, winding: fast winding number accuracy beta (a cluster is expanded when the point is "
          "farther than beta times its radius); larger = more exact, slower: at 2 within 0.03 of the exact "
          "winding number on Sponza's samples, at 1 up to 0.07 off (a fuzzed box), at 100 nearly every "
          "triangle piece is summed at every point (seconds even for a small mesh)",
