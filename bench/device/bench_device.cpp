@@ -381,12 +381,12 @@ public:
     void attributeStep(std::size_t step, const std::string& spec, const hyvox::Mesh& mesh, int res) {
         hyvox::VoxelizeOptions o = options(res);
         o.mode = hyvox::Mode::Conservative;
-        const std::string attributes = mesh.view().colors ? "color,normal" : "normal";
+        const hyvox::AttributeSet attributes = hyvox::parseAttributeSet(mesh.view().colors ? "color,normal" : "normal");
         Row cpu;
         for (hyvox::Method method :
              {hyvox::Method::Cpu, hyvox::Method::Hybrid, hyvox::Method::Triangle, hyvox::Method::Fragment}) {
             o.method = method;
-            o.attributes.clear();
+            o.attributes = {};
             const Row binary = timeMethod(mesh, o, repeat_, row_budget_ms_);
             o.attributes = attributes;
             Row row = timeMethod(mesh, o, repeat_, row_budget_ms_);

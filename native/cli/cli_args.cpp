@@ -54,9 +54,11 @@ std::string placeholder(const OptionSpec& spec) {
         case OptionType::Number: return " X";
         case OptionType::Flag: return "";
         case OptionType::Text: return " TEXT";
-        case OptionType::Choice: {
+        case OptionType::Choice:
+        case OptionType::Choices: {
+            const char* between = spec.type == OptionType::Choice ? "|" : ",";
             std::string choices;
-            for (const char* c : spec.choices) choices += (choices.empty() ? " " : "|") + std::string(c);
+            for (const char* c : spec.choices) choices += (choices.empty() ? " " : between) + std::string(c);
             return choices;
         }
         case OptionType::Vector3: return " X,Y,Z";

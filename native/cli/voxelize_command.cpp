@@ -8,7 +8,6 @@
 
 #include "command_support.h"
 #include "progress_line.h"
-#include "hyvox/attribute_grid.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/stats_json.h"
@@ -62,7 +61,7 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     }
     // The materials' images (OBJ map_Kd), decoded only when colour is asked for.
     MaterialTextures material_textures;
-    if (mesh.hasMaterials() && parseAttributeSet(args.options.attributes).color) {
+    if (mesh.hasMaterials() && args.options.attributes.color) {
         material_textures = readMaterialTextures(mesh.material_textures);
         view.material_textures = material_textures.of_material.data();
     }

@@ -24,6 +24,8 @@ TYPES = {
 def annotation(spec) -> str:
     if spec.type == "choice":
         return "Literal[" + ", ".join(repr(c) for c in spec.choices) + "]"
+    if spec.type == "choices":  # the comma list as text, or the names
+        return "Union[str, Sequence[Literal[" + ", ".join(repr(c) for c in spec.choices) + "]]]"
     return TYPES[spec.type]
 
 

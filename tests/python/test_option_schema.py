@@ -32,6 +32,7 @@ def bad_values(spec):
         return [(float(v), repr(float(v))) for v in cases] + [(float("nan"), "nan")]
     return {
         "choice": [("bogus", "bogus")],
+        "choices": [("bogus", "bogus"), ("color,bogus", "color,bogus")],
         "bool": [("maybe", "maybe")],
         "vector3": [("1,2", "1,2")],
         "box": [("1,2,3", "1,2,3")],
@@ -188,8 +189,8 @@ def test_generated_stubs_list_every_option():
     voxelize = next(node for node in tree.body if isinstance(node, ast.FunctionDef) and node.name == "voxelize")
     keywords = {arg.arg: ast.unparse(arg.annotation) for arg in voxelize.args.kwonlyargs}
     for spec in hyvox.OPTIONS:
-        inner = ("Literal[" + ", ".join(repr(c) for c in spec.choices) + "]" if spec.type == "choice"
-                 else STUB_TYPES[spec.type])
+        names = "Literal[" + ", ".join(repr(c) for c in spec.choices) + "]"
+        inner = {"choice": names, "choices": f"Union[str, Sequence[{names}]]"}.get(spec.type) or STUB_TYPES[spec.type]
         assert keywords.pop(spec.name) == f"Optional[{inner}]", spec.name
     assert set(keywords) == {"uvs", "normals", "displacement_pixels", "colors", "texture", "material_ids", "palette",
                              "textures", "face_normals", "progress", "cancel"}

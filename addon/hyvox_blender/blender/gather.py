@@ -54,7 +54,7 @@ def settings_from_used(context, used: dict):
         options.update({name: getattr(prefs, name) for name in PREFERENCE_OPTIONS})
     settings = VoxelizeSettings(method=used["method"], separate=used["separate"], frames=frames,
                                 blocks=used["output"] == "BLOCKS", export_vox=used["export_vox"],
-                                color=used["color"], **options)
+                                color=used["color"], sdf=used["signed_distance"], **options)
     folder = used["output_dir"]
     folder = bpy.path.abspath(folder) if folder else naming.default_output_dir(bpy.data.filepath)
     override = prefs.alignment_fix if prefs is not None else "AUTO"

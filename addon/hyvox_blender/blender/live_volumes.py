@@ -153,7 +153,7 @@ def settings_of(context, obj):
 
 def fingerprint(settings) -> str:
     return live_key.options_fingerprint(dict(settings.voxelize_options(), method=settings.method,
-                                             color=settings.color, blocks=settings.blocks,
+                                             color=settings.color, sdf=settings.sdf, blocks=settings.blocks,
                                              export_vox=settings.export_vox))
 
 

@@ -16,8 +16,6 @@ from . import module_diagnosis
 from .errors import CancelledError, HyvoxError, ModuleMissingError
 
 AUTO_METHOD = "auto"  # the add-on's own method: hybrid when a GPU runs GL here, else cpu
-# The module's ATTRIBUTE_METHODS compute attribute voxels (colour); were auto's choice not
-# among them, a group with colour would run by cpu (every method computes them today).
 
 _module = None
 _gl_probe = {}  # gl_device -> bool, probed once per session: creating an EGL context is slow
@@ -88,16 +86,7 @@ def resolve_method(module, settings) -> str:
     return "hybrid" if gl_available(module, settings.options.get("gl_device", "")) else "cpu"
 
 
-def method_for_group(module, settings, resolved: str, with_colour: bool) -> str:
-    """The method a group runs with: auto's choice, unless the group asks for colour and
-    that method cannot make it (then cpu); an explicit method is kept (and refuses colour
-    with its own message)."""
-    if with_colour and settings.method == AUTO_METHOD and resolved not in module.ATTRIBUTE_METHODS:
-        return "cpu"
-    return resolved
-
-
-def ignored_settings(module, settings, method: str) -> List[str]:
+def ignored_settings(module, settings: "VoxelizeSettings", method: str) -> List[str]:
     """The options set away from the schema's default that `method` does not use, by the
     module's one rule (hyvox.ignored_options). The add-on passes every setting it has, so an
     option still at its default is no news and is not listed."""
@@ -135,16 +124,19 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings,
     """hyvox.voxelize with the run's settings; voxel_size (when given) wins over the
     settings, so every frame of a sequence shares the first frame's voxel size, and origin
     (when given) puts voxel (0,0,0) there (core/lattice.py). colour:
-    the colour source's keyword arguments (colour.combine); given, a `color` grid is made."""
+    the colour source's keyword arguments (colour.combine); given, a `color` grid is made.
+    With settings.sdf, an `sdf` level set too."""
     kwargs = settings.voxelize_options()
     kwargs["method"] = method
     # Settings another method would use are dropped here (reported once per run by the
     # operator, see ignored_settings), so hyvox.voxelize has nothing to warn about.
     for name in module.ignored_options(method, list(kwargs)):
         del kwargs[name]
-    if colour:  # after the filter: a method without colour refuses it rather than drop it
+    attributes = (["color"] if colour else []) + (["sdf"] if settings.sdf else [])
+    if colour:
         kwargs.update(colour)
-        kwargs["attributes"] = "color"
+    if attributes:
+        kwargs["attributes"] = attributes
     if voxel_size:
         kwargs.pop("resolution", None)
         kwargs["voxel_size"] = float(voxel_size)
@@ -160,8 +152,7 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings,
         if isinstance(exc, MemoryError):
             raise HyvoxError("out of memory: lower the resolution or raise the memory budget") from exc
         if isinstance(exc, (ValueError, RuntimeError, TypeError, OSError)):
-            hint = " (turn Colour off, or use the CPU method)" if colour and method not in module.ATTRIBUTE_METHODS else ""
-            raise HyvoxError(f"{method}: {exc}{hint}") from exc
+            raise HyvoxError(f"{method}: {exc}") from exc
         raise
 
 

@@ -265,10 +265,8 @@ class Pipeline:
             # Solid runs too: the inside voxels take their colour from the surface inward
             # (the module's solid-mode attributes).
             colour = mesh.colour if self.settings.color else None
-            method = backend.method_for_group(self.module, self.settings, self.method, bool(colour))
-            result.method = method
             grid = backend.voxelize(self.module, mesh.vertices, mesh.triangles, self.settings,
-                                    method, voxel_size=fixed_size, token=self._token, colour=colour,
+                                    self.method, voxel_size=fixed_size, token=self._token, colour=colour,
                                     origin=origin)
             self.timings.voxelize_ms += (time.perf_counter() - start) * 1000.0
             if self._cancelled:

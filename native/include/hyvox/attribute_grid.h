@@ -9,23 +9,11 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include "hyvox/sparse_grid.h"
 
 namespace hyvox {
-
-/// Which attributes a run computes: the option `attributes`, a comma list of "color" and
-/// "normal" ("" = none).
-struct AttributeSet {
-    bool color = false;   ///< colour (linear RGB, and alpha where the source has it)
-    bool normal = false;  ///< the area-weighted mean normal
-    bool any() const { return color || normal; }  ///< whether any attribute is asked for
-};
-/// The set a comma list names ("color", "normal", "color,normal", "" = none).
-/// @throws InvalidInput naming the accepted names for anything else
-AttributeSet parseAttributeSet(const std::string& text);
 
 /// A region of a solid's interior that OpenVDB holds as one active tile (a level-1 tile is one
 /// 8³ brick, level 2 a 128³ node, level 3 a 4096³ node: as Tree::prune() merges the density's

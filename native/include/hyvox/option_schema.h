@@ -28,6 +28,7 @@ enum class OptionType {
     Flag,     ///< true / false
     Text,     ///< free text (a path, a device name)
     Choice,   ///< one of `choices`
+    Choices,  ///< a comma list of `choices` (text; "" = none)
     Vector3,  ///< three finite reals (a position)
     Box,      ///< two corners, min <= max per axis
 };
@@ -50,7 +51,7 @@ struct OptionSpec {
     double min = 0;               ///< Integer, Number: the least value (see min_exclusive)
     double max = 0;               ///< Integer, Number: the largest value
     bool min_exclusive = false;   ///< Number: value must be > min
-    std::vector<const char*> choices;      ///< Choice
+    std::vector<const char*> choices;      ///< Choice, Choices
     std::vector<const char*> cli_aliases;  ///< further CLI spellings ("--gamma")
     const char* env = nullptr;             ///< environment variable the front doors read, or null
     // The field behind the option (no checks: setOption checks first): in VoxelizeOptions,

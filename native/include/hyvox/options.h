@@ -63,10 +63,29 @@ std::vector<const char*> methodNames();
 std::vector<const char*> insideRuleNames();
 ///@}
 
-/// Whether a method computes attribute voxels (colour, normal): the exact methods (cpu and
-/// reference clip on the CPU, triangle/fragment/hybrid on the GPU), and the tessellation by
-/// averaging its points' values. Every method does now; front doors ask this, not a list.
-bool computesAttributes(Method method);
+/// What a run computes beside the occupancy: the option `attributes`, written as a comma list
+/// of its names ("color,sdf"; "" = none) at the front doors.
+struct AttributeSet {
+    /// Per occupied voxel, the surface's linear RGB (and alpha where the colour source has
+    /// it), area-weighted inside the voxel (hyvox/attribute_grid.h).
+    bool color = false;
+    bool normal = false;  ///< per occupied voxel, the surface's unit normal, weighted alike
+    /// A narrow-band signed distance level set (hyvox/level_set.h), signed by the inside test
+    /// of solid mode in every mode.
+    bool sdf = false;
+    bool any() const { return color || normal || sdf; }  ///< whether anything is asked for
+    bool surfaceValues() const { return color || normal; }  ///< the per-voxel values of the surface
+    bool operator==(const AttributeSet& other) const {  ///< the same names asked for
+        return color == other.color && normal == other.normal && sdf == other.sdf;
+    }
+};
+/// The attribute names, in the order toString writes them.
+std::vector<const char*> attributeNames();
+/// The comma list of the names a set asks for ("" = none).
+std::string toString(const AttributeSet& set);
+/// The set a comma list names (a name given twice counts once).
+/// @throws InvalidInput naming the accepted names for anything else
+AttributeSet parseAttributeSet(const std::string& text);
 
 /// Options of the GL methods (the schema's "gl" group).
 struct GlOptions {
@@ -125,6 +144,15 @@ struct TessellationOptions {
     bool counts = true;  ///< also fill VoxelizeResult::counts (points per voxel)
 };
 
+/// Options of the `sdf` attribute (src/sdf/).
+struct SdfOptions {
+    /// The narrow band's half-width in voxels: voxels whose centre lies closer than this to the
+    /// surface hold their signed distance, the others (inactive) ±band × voxel size, as
+    /// OpenVDB's level sets do. The grid is padded by at least this many voxels so that the
+    /// band around the mesh fits.
+    int band = 3;
+};
+
 /// Options of solid mode.
 struct SolidOptions {
     InsideRule inside = InsideRule::Auto;  ///< how a voxel centre is found inside
@@ -150,13 +178,12 @@ struct VoxelizeOptions {
     /// Side of the boxes the grid is voxelized in, one after the other (rounded up to a
     /// multiple of 8); 0 = from the memory budget (the whole grid when it fits).
     int tile_size = 0;
-    /// Attribute voxels to compute beside the occupancy: a comma list of "color" and "normal"
-    /// (hyvox/attribute_grid.h); "" = none.
-    std::string attributes;
+    AttributeSet attributes;  ///< what to compute beside the occupancy
     GlOptions gl;                      ///< the GL methods' options
     HybridOptions hybrid;              ///< the hybrid method's
     TessellationOptions tessellation;  ///< the tessellation's
     SolidOptions solid;                ///< solid mode's
+    SdfOptions sdf;                    ///< the sdf attribute's
 
     std::uint64_t memoryBudgetBytes() const { return memory_budget_mib << 20; }  ///< the budget in bytes
 };

@@ -12,6 +12,7 @@
 
 #include "hyvox/attribute_grid.h"
 #include "hyvox/grid.h"
+#include "hyvox/level_set.h"
 #include "hyvox/options.h"
 #include "hyvox/sparse_grid.h"
 
@@ -158,6 +159,26 @@ struct SolidStats {
     }
 };
 
+/// The sdf attribute (src/sdf/): its band and the work its distances took.
+struct SdfStats {
+    double background = 0;                   ///< the band's half-width, world units
+    std::uint64_t active_voxels = 0;         ///< voxels within the band
+    std::uint64_t leaves = 0;                ///< 8³ leaves of the level set
+    std::uint64_t inside_tile_bricks = 0;    ///< bricks held as inside tiles (inactive, -background)
+    std::uint64_t triangle_blocks = 0;       ///< (triangle, 32³ block) pairs measured
+    std::uint64_t distance_evaluations = 0;  ///< point-triangle distances computed
+    /// Calls f(name, value) for each field, as the stats JSON names them.
+    template <typename F>
+    void visit(F&& f) const {
+        f("background", background);
+        f("active_voxels", active_voxels);
+        f("leaves", leaves);
+        f("inside_tile_bricks", inside_tile_bricks);
+        f("triangle_blocks", triangle_blocks);
+        f("distance_evaluations", distance_evaluations);
+    }
+};
+
 /// The figures of one run: counts, stage timings (milliseconds), the options it used and the
 /// backend's own section.
 struct Stats {
@@ -186,7 +207,10 @@ struct Stats {
     std::optional<ReferenceStats> reference;        ///< the reference method
     std::optional<HybridStats> hybrid;              ///< triangle, fragment and hybrid
     std::optional<TessellationStats> tessellation;  ///< the tessellation method
-    std::optional<SolidStats> solid;  ///< solid mode only, beside the backend's section
+    /// Solid mode, and any mode with the sdf attribute (its sign is the inside test), beside
+    /// the backend's section.
+    std::optional<SolidStats> solid;
+    std::optional<SdfStats> sdf;  ///< with the sdf attribute
 
     /// Adds `ms` milliseconds to `stage` (a new stage goes last).
     void addTiming(const std::string& stage, double ms) {
@@ -217,6 +241,7 @@ struct Stats {
         if (hybrid) f("hybrid", *hybrid);
         if (tessellation) f("tessellation", *tessellation);
         if (solid) f("solid", *solid);
+        if (sdf) f("sdf", *sdf);
     }
 };
 
@@ -233,7 +258,8 @@ struct VoxelizeResult {
     GridSpec grid;                   ///< the grid laid out (world units)
     SparseGrid occupancy;            ///< the set voxels as OpenVDB-layout leaves
     std::vector<VoxelCount> counts;  ///< empty unless the method is multi-valued
-    AttributeGrid attributes;        ///< empty unless options.attributes asked for some
+    AttributeGrid attributes;        ///< empty unless options.attributes asked for color or normal
+    LevelSetGrid sdf;                ///< empty unless options.attributes asked for sdf
     Stats stats;                     ///< the run's figures
 };
 

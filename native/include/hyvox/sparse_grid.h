@@ -81,6 +81,8 @@ public:
     }
     /// Whether voxel (i,j,k) (inside dims) is set; the grid must be finished.
     bool test(int i, int j, int k) const;
+    /// The words of `brick` (finished): its leaf's, all set for a tile, none for an empty brick.
+    void brickWords(std::uint64_t brick, std::uint64_t out[BitGrid::kWordsPerBrick]) const;
     void set(int i, int j, int k);  ///< one voxel (tests, small edits): inserts its leaf if needed
 
     /// The number of set voxels, tiles included.

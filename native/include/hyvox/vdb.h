@@ -13,6 +13,9 @@
 ///    result.counts is non-empty), same transform.
 ///  - "color" (Vec3f, linear RGB), "alpha" (float, when the colour source has it), "normal"
 ///    (Vec3f): the attribute voxels (result.attributes), active exactly on the density's voxels.
+///  - "sdf": a FloatGrid of class level set (result.sdf, hyvox/level_set.h): the band's signed
+///    distances (world units, negative inside) active, ±background elsewhere, background the
+///    band's half-width; same transform.
 ///  Grid metadata: hyvox_version, hyvox_method, hyvox_mode, hyvox_voxel_size, hyvox_origin,
 ///  hyvox_dims.
 #include <cstdint>

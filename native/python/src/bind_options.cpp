@@ -23,6 +23,7 @@ const char* typeName(OptionType type) {
         case OptionType::Flag: return "bool";
         case OptionType::Text: return "str";
         case OptionType::Choice: return "choice";
+        case OptionType::Choices: return "choices";
         case OptionType::Vector3: return "vector3";
         case OptionType::Box: return "box";
     }
@@ -86,6 +87,17 @@ OptionValue fromPython(const OptionSpec& spec, const py::handle& value) {
         case OptionType::Choice:
             if (!py::isinstance<py::str>(value)) refuseType(spec, value);
             return value.cast<std::string>();
+        case OptionType::Choices: {
+            // The schema's text form ("color,sdf"), or a sequence of names joined into it.
+            if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+            if (!py::isinstance<py::sequence>(value)) refuseType(spec, value);
+            std::string text;
+            for (const py::handle item : py::reinterpret_borrow<py::sequence>(value)) {
+                if (!py::isinstance<py::str>(item)) refuseType(spec, value);
+                text += (text.empty() ? "" : ",") + item.cast<std::string>();
+            }
+            return text;
+        }
         case OptionType::Vector3: return vector3(spec, value, value);
         case OptionType::Box: {
             if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value)) refuseType(spec, value);
@@ -159,7 +171,7 @@ void bindOptions(py::module_& m) {
     py::class_<OptionSpec>(m, "OptionSpec", "One entry of the options schema (read-only).")
         .def_property_readonly("name", [](const OptionSpec& s) { return s.name; })
         .def_property_readonly("type", [](const OptionSpec& s) { return typeName(s.type); },
-                               "int, float, bool, str, choice, vector3 or box")
+                               "int, float, bool, str, choice, choices (a comma list), vector3 or box")
         .def_property_readonly("group", [](const OptionSpec& s) { return s.group; })
         .def_property_readonly("label", [](const OptionSpec& s) { return s.label; })
         .def_property_readonly("unit", [](const OptionSpec& s) { return s.unit; })
@@ -187,10 +199,6 @@ void bindOptions(py::module_& m) {
     // voxelize()'s keywords and write_vdb()'s: threads and memory_budget_mib are both.
     m.attr("OPTIONS") = specsWhere(&OptionSpec::isVoxelizeOption);
     m.attr("WRITE_OPTIONS") = specsWhere(&OptionSpec::isWriteOption);
-    py::list attribute_methods;
-    for (const char* name : methodNames())
-        if (computesAttributes(parseMethod(name))) attribute_methods.append(name);
-    m.attr("ATTRIBUTE_METHODS") = py::tuple(attribute_methods);
 
     py::class_<VoxelizeOptions>(m, "Options", "The options of one voxelization, by schema name.")
         .def(py::init([](const py::kwargs& kwargs) {

@@ -11,6 +11,7 @@
 #include "core/attribute_evaluator.h"
 #include "hyvox/attribute_grid.h"
 #include "hyvox/mesh.h"
+#include "hyvox/options.h"
 #include "hyvox/texture.h"
 
 namespace hyvox::attributes {

@@ -69,6 +69,8 @@ constexpr float kNotACoordinate = 3.4e38f;
 bool usableCoordinate(float x) { return std::fabs(x) < kNotACoordinate; }  // false for NaN
 
 std::string coordinateText(float x) {
+    if (std::isnan(x)) return "NaN";  // as the messages and the docs spell it ("%g" gives "nan")
+    if (std::isinf(x)) return x > 0 ? "Inf" : "-Inf";
     char text[32];
     std::snprintf(text, sizeof text, "%.6g", double(x));
     return text;

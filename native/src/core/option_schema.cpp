@@ -39,6 +39,7 @@ OptionValue asOptionalBox(const std::optional<Bounds>& v) { return v ? OptionVal
 OptionValue asMode(Mode v) { return std::string(toString(v)); }
 OptionValue asMethod(Method v) { return std::string(toString(v)); }
 OptionValue asInsideRule(InsideRule v) { return std::string(toString(v)); }
+OptionValue asAttributes(const AttributeSet& v) { return toString(v); }
 
 // The stored value converted to the field's type (checked before: the variant holds the
 // spec's type, or monostate for an unset nullable field).
@@ -50,6 +51,7 @@ std::string fieldValue(const OptionValue& v, const std::string&) { return std::g
 Mode fieldValue(const OptionValue& v, Mode) { return parseMode(std::get<std::string>(v)); }
 Method fieldValue(const OptionValue& v, Method) { return parseMethod(std::get<std::string>(v)); }
 InsideRule fieldValue(const OptionValue& v, InsideRule) { return parseInsideRule(std::get<std::string>(v)); }
+AttributeSet fieldValue(const OptionValue& v, const AttributeSet&) { return parseAttributeSet(std::get<std::string>(v)); }
 template <typename T>
 std::optional<T> fieldValue(const OptionValue& v, const std::optional<T>&) {
     if (std::holds_alternative<std::monostate>(v)) return std::nullopt;
@@ -95,10 +97,15 @@ std::vector<OptionSpec> buildSchema() {
          "side of the boxes voxelized one after the other (rounded up to a multiple of 8); 0 = from the "
          "memory budget", false, 0, kMaxResolution, false, {}, {}, nullptr, HYVOX_FIELD(asInteger, tile_size)});
     // --- attribute voxels ---
-    add({"attributes", T::Text, "run", "Attributes", "",
-         "attribute voxels to compute: a comma list of color (linear RGB, alpha when the source has it) and "
-         "normal; '' = none. Solid mode: the inside takes the surface's values, layer by layer inward", false, 0, 0,
-         false, {}, {}, nullptr, HYVOX_FIELD(asText, attributes)});
+    add({"attributes", T::Choices, "run", "Attributes", "",
+         "what to compute beside the voxels, a comma list: color (linear RGB, alpha when the source has "
+         "it) and normal per voxel (solid mode: the inside takes the surface's values, layer by layer "
+         "inward); sdf, a narrow-band signed distance grid (negative inside by the inside rule, in "
+         "every mode); '' = none", false, 0, 0, false, attributeNames(), {}, nullptr,
+         HYVOX_FIELD(asAttributes, attributes)});
+    add({"sdf_band", T::Integer, "run", "SDF Band", "voxels",
+         "sdf: half-width of the narrow band (the grid is padded by at least this much)", false, 1, 64, false,
+         {}, {}, nullptr, HYVOX_FIELD(asInteger, sdf.band)});
     // --- output files (WriteOptions alone) ---
     add({"durable_write", T::Flag, "output", "Durable Write", "",
          "sync each output file (.vdb, stats JSON) and its folder to disk before the write returns, so it "
@@ -106,12 +113,12 @@ std::vector<OptionSpec> buildSchema() {
          false, 0, 0, false, {}, {}, nullptr, NO_VOXELIZE_FIELD, HYVOX_WRITE_FIELD(asFlag, durable)});
     // --- solid mode ---
     add({"inside", T::Choice, "solid", "Inside Rule", "",
-         "solid: parity = odd ray crossings (closed meshes); winding = winding number >= 0.5 (holes, "
+         "solid and sdf: parity = odd ray crossings (closed meshes); winding = winding number >= 0.5 (holes, "
          "flipped faces); auto = the winding number, by ray crossings when the mesh is closed and "
          "consistently oriented, else by fast winding numbers",
          false, 0, 0, false, insideRuleNames(), {}, nullptr, HYVOX_FIELD(asInsideRule, solid.inside)});
     add({"winding_beta", T::Number, "solid", "Winding Accuracy", "",
-         "solid, winding: fast winding number accuracy beta (a cluster is expanded when the point is "
+         "solid and sdf, winding: fast winding number accuracy beta (a cluster is expanded when the point is "
          "farther than beta times its radius); larger = more exact, slower: at 2 within 0.03 of the exact "
          "winding number on Sponza's samples, at 1 up to 0.07 off (a fuzzed box), at 100 nearly every "
          "triangle piece is summed at every point (seconds even for a small mesh)",
@@ -173,6 +180,7 @@ const char* typeName(OptionType type) {
         case OptionType::Flag: return "true or false";
         case OptionType::Text: return "text";
         case OptionType::Choice: return "one of the choices";
+        case OptionType::Choices: return "a comma list of the choices";
         case OptionType::Vector3: return "three finite numbers x,y,z";
         case OptionType::Box: return "two corners x0,y0,z0,x1,y1,z1 with min <= max";
     }
@@ -214,8 +222,8 @@ std::string describeOption(const OptionSpec& spec) {
     std::string what = typeName(spec.type);
     const std::string range = rangeText(spec);
     if ((spec.type == OptionType::Integer || spec.type == OptionType::Number) && !range.empty()) what += " " + range;
-    if (spec.type == OptionType::Choice) {
-        what = "one of";
+    if (spec.type == OptionType::Choice || spec.type == OptionType::Choices) {
+        what = spec.type == OptionType::Choice ? "one of" : "a comma list of";
         for (std::size_t c = 0; c < spec.choices.size(); ++c) what += (c ? ", " : " ") + std::string(spec.choices[c]);
     }
     return what;
@@ -325,6 +333,21 @@ void checkOption(const OptionSpec& spec, const OptionValue& value) {
             }
             throw InvalidInput("unknown " + std::string(spec.name) + " " + got + " (choose one of: " + choices + ")");
         }
+        case OptionType::Choices: {
+            const auto* text = std::get_if<std::string>(&value);
+            if (!text) refuse(spec, got);
+            for (std::size_t begin = 0; begin < text->size();) {
+                const std::size_t comma = std::min(text->find(',', begin), text->size());
+                const std::string item = text->substr(begin, comma - begin);
+                bool known = false;
+                for (const char* choice : spec.choices) known = known || item == choice;
+                if (!known)
+                    throw InvalidInput("unknown " + std::string(spec.name) + " '" + item + "' in " + got + " (" +
+                                       describeOption(spec) + ")");
+                begin = comma + 1;
+            }
+            return;
+        }
         case OptionType::Vector3: {
             const auto* v = std::get_if<std::array<double, 3>>(&value);
             if (!v || !allFinite(*v)) refuse(spec, got);
@@ -398,7 +421,8 @@ OptionValue parseOptionText(const OptionSpec& spec, const std::string& text) {
             if (text == "" || text == "0" || text == "false" || text == "no" || text == "off") return false;
             refuse(spec, got);
         case OptionType::Text:
-        case OptionType::Choice: return text;
+        case OptionType::Choice:
+        case OptionType::Choices: return text;
         case OptionType::Vector3: {
             const std::vector<double> v = parseNumberList(text);
             if (v.size() != 3) refuse(spec, got);

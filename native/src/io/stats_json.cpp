@@ -88,7 +88,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     out << "  \"leaves\": " << number(s.leaves) << ",\n";
     out << "  \"tiles\": " << number(s.tiles) << ",\n";
     if (s.vdb_bytes) out << "  \"vdb_bytes\": " << number(s.vdb_bytes) << ",\n";
-    if (s.attribute_pieces || !s.options.attributes.empty()) {  // tessellation: no clipped pieces
+    if (s.attribute_pieces || s.options.attributes.surfaceValues()) {  // tessellation: no clipped pieces
         out << "  \"attribute_pieces\": " << number(s.attribute_pieces) << ",\n";
         out << "  \"attribute_leaves_rounded\": " << number(s.attribute_leaves_rounded) << ",\n";
         out << "  \"attribute_voxels_unreached\": " << number(s.attribute_voxels_unreached) << ",\n";

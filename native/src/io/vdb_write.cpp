@@ -30,7 +30,8 @@ static std::uint64_t attributeGridBytes(const VoxelizeResult& result) {
 }
 
 void checkGridBudget(const VoxelizeResult& result, const WriteOptions& options) {
-    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize() + attributeGridBytes(result);
+    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize() + attributeGridBytes(result) +
+                               fogGridMemUsageForLeaves(result.sdf.leaves.size());
     if (need > options.memoryBudgetBytes())
         throw ResourceError("the OpenVDB grid of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
                             std::to_string((need + (1u << 20) - 1) >> 20) + " MiB, more than the memory budget of " +
@@ -110,6 +111,7 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, c
         grids.push_back(std::move(count));
     }
     io::appendAttributeGrids(grids, result.occupancy, result.attributes);  // color, alpha, normal
+    if (!result.sdf.empty()) grids.push_back(io::levelSetGrid(result));
     throwIfInterrupted(interrupter, 10);
     const io::VdbBytes file = io::serializeVdbGrids(result, grids, options.threads);
     report.grid_bytes = file.mem_usage;
