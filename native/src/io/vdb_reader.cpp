@@ -74,7 +74,7 @@ public:
     }
     std::string text() {
         const auto n = pod<std::uint32_t>();
-        if (n > kMaxText) fail("a string of " + std::to_string(n) + " bytes");
+        if (n > kMaxText || n > size_ - at_) fail("a string of " + std::to_string(n) + " bytes");
         std::string out(n, '\0');
         bytes(out.data(), n);
         return out;
@@ -152,7 +152,8 @@ struct ValueCodec {
             in.bytes(out, want);
             return;
         }
-        if (std::uint64_t(stored) > want + (want >> 4) + 64 + BLOSC_MAX_OVERHEAD) in.fail("a compressed block larger than its data");
+        if (std::uint64_t(stored) > want + (want >> 4) + 64 + BLOSC_MAX_OVERHEAD)
+            in.fail("a compressed block larger than its data");
         std::unique_ptr<char[]> packed(new char[std::size_t(stored)]);
         in.bytes(packed.get(), std::uint64_t(stored));
         if (compression & kCompressBlosc) {
