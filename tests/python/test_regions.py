@@ -322,3 +322,22 @@ def test_merge_help_lists_its_options(cli):
     assert done.returncode == 2 and "unknown option '--resolution'" in done.stderr and "hyvox merge --help" in done.stderr
     sweep = run_cli(cli, "gamma-sweep", "--help")
     assert "--region" not in sweep.stdout
+
+
+def test_a_cancelled_merge_writes_nothing(bunny_parts, tmp_path):
+    parts = [bunny_parts[f"{k}of3"] for k in range(3)]
+    out = tmp_path / "merged.vdb"
+    seen = []
+
+    def stop(percent):
+        seen.append(percent)
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        hyvox.merge_vdb(parts, out, progress=stop)
+    token = hyvox.CancelToken()
+    token.cancel()
+    with pytest.raises(hyvox.Cancelled):
+        hyvox.merge_vdb(parts, out, cancel=token)
+    assert seen == [0] and os.listdir(tmp_path) == []
+    assert hyvox.merge_vdb(parts, out, durable_write=True, threads=1)["voxels"] > 0
