@@ -36,8 +36,8 @@ std::vector<double> parseGammaList(const std::string& option, const std::string&
     return gammas;
 }
 
-// The spec a command-line flag names ("--voxel-size", an alias, or "--no-pn-triangles" for a
-// flag's false), or null.
+}  // namespace
+
 const OptionSpec* specForFlag(const std::string& flag, bool& negated) {
     for (const OptionSpec& spec : optionSchema()) {
         const std::string own = spec.cliFlag();
@@ -49,6 +49,24 @@ const OptionSpec* specForFlag(const std::string& flag, bool& negated) {
     negated = false;
     return nullptr;
 }
+
+void setFromFlag(VoxelizeOptions& options, const OptionSpec& spec, const std::string& flag, bool negated,
+                 const std::optional<std::string>& inline_value, const std::function<std::string()>& value) {
+    try {
+        OptionValue parsed;
+        if (spec.type == OptionType::Flag && !inline_value)
+            parsed = !negated;
+        else if (negated)
+            throw UsageError(flag + " takes no value");
+        else
+            parsed = parseOptionText(spec, value());
+        setOption(options, spec.name, parsed);
+    } catch (const InvalidInput& e) {  // the schema's message, after the flag as typed
+        throw UsageError(flag + ": " + e.what());
+    }
+}
+
+namespace {
 
 std::string placeholder(const OptionSpec& spec) {
     switch (spec.type) {
@@ -240,18 +258,7 @@ Arguments parseCommand(const std::vector<std::string>& args) {
                 if (const char* why = sweepFixes(spec->name))
                     throw UsageError(option + " is not a gamma-sweep option: " + why);
             given.emplace_back(option, spec);
-            try {
-                OptionValue parsed;
-                if (spec->type == OptionType::Flag && !inline_value)
-                    parsed = !negated;
-                else if (negated)
-                    throw UsageError(option + " takes no value");
-                else
-                    parsed = parseOptionText(*spec, value());
-                setOption(out.options, spec->name, parsed);
-            } catch (const InvalidInput& e) {  // the schema's message, after the flag as typed
-                throw UsageError(option + ": " + e.what());
-            }
+            setFromFlag(out.options, *spec, option, negated, inline_value, value);
         } else if (!option.empty() && option[0] == '-' && option != "-") {
             throw UsageError("unknown option '" + option + "'");
         } else if (out.mesh_path.empty()) {

@@ -4,6 +4,7 @@
 // (merge_command.h parses its own arguments): the voxelize options
 // and their help come from the options schema (hyvox/option_schema.h); every mistake is a
 // UsageError with the schema's message.
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -49,5 +50,14 @@ std::string usageText(Command topic = Command::Help);
 // options every command takes (--progress, --quiet, --help).
 std::string optionHelp(const OptionSpec& spec);
 std::string commonOptionsHelp();
+
+// The schema option a command-line flag names ("--voxel-size", an alias, or
+// "--no-pn-triangles" for a flag's false; `negated` says which), or null.
+const OptionSpec* specForFlag(const std::string& flag, bool& negated);
+// Sets that option from the command line: a flag's true or false, else the text after '='
+// (`inline_value`) or `value()` (the next argument). UsageError with the schema's message
+// after the flag as typed.
+void setFromFlag(VoxelizeOptions& options, const OptionSpec& spec, const std::string& flag, bool negated,
+                 const std::optional<std::string>& inline_value, const std::function<std::string()>& value);
 
 }  // namespace hyvox::cli

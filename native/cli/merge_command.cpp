@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "merge_command.h"
 
+#include <algorithm>
 #include <cstdio>
-#include <cstdlib>
+#include <iterator>
+#include <optional>
 
 #include "command_support.h"
 #include "hyvox/errors.h"
@@ -41,67 +43,42 @@ Arguments parseMergeArguments(const std::vector<std::string>& args) {
     out.command = Command::Merge;
     for (std::size_t a = 1; a < args.size(); ++a) {
         std::string option = args[a];
-        std::string inline_value;
-        bool has_inline = false;
+        std::optional<std::string> inline_value;
         if (option.size() > 2 && option.compare(0, 2, "--") == 0 && option.find('=') != std::string::npos) {
             inline_value = option.substr(option.find('=') + 1);
             option = option.substr(0, option.find('='));
-            has_inline = true;
         }
         auto value = [&]() -> std::string {
-            if (has_inline) return inline_value;
+            if (inline_value) return *inline_value;
             if (a + 1 >= args.size()) throw UsageError(option + " needs a value");
             return args[++a];
         };
         auto noValue = [&] {
-            if (has_inline) throw UsageError(option + " takes no value");
+            if (inline_value) throw UsageError(option + " takes no value");
         };
+        bool negated = false;
         if (option == "-h" || option == "--help") {
             out.help_topic = Command::Merge;
             out.command = Command::Help;
             return out;
-        }
-        if (option == "-o" || option == "--output") {
+        } else if (option == "-o" || option == "--output") {
             out.output_path = value();
-            continue;
-        }
-        if (option == "-q" || option == "--quiet") {
+        } else if (option == "-q" || option == "--quiet") {
             noValue();
             out.quiet = true;
-            continue;
-        }
-        if (option == "--progress") {
+        } else if (option == "--progress") {
             noValue();
             out.progress = true;
-            continue;
+        } else if (const OptionSpec* spec = specForFlag(option, negated)) {
+            if (std::none_of(std::begin(kMergeOptions), std::end(kMergeOptions),
+                             [&](const char* name) { return std::string(name) == spec->name; }))
+                throw UsageError(option + " is not a merge option: the parts were voxelized with it");
+            setFromFlag(out.options, *spec, option, negated, inline_value, value);
+        } else if (!option.empty() && option[0] == '-' && option != "-") {
+            throw UsageError("unknown option '" + option + "'");
+        } else {
+            out.part_paths.push_back(option);
         }
-        const OptionSpec* spec = nullptr;
-        bool negated = false;
-        for (const char* name : kMergeOptions) {
-            const OptionSpec& candidate = findOption(name);
-            if (option == candidate.cliFlag()) spec = &candidate;
-            if (candidate.type == OptionType::Flag && option == "--no-" + candidate.cliFlag().substr(2)) {
-                spec = &candidate;
-                negated = true;
-            }
-        }
-        if (spec) {
-            try {
-                OptionValue parsed;
-                if (spec->type == OptionType::Flag && !has_inline)
-                    parsed = !negated;
-                else if (negated)
-                    throw UsageError(option + " takes no value");
-                else
-                    parsed = parseOptionText(*spec, value());
-                setOption(out.options, spec->name, parsed);
-            } catch (const InvalidInput& e) {
-                throw UsageError(option + ": " + e.what());
-            }
-            continue;
-        }
-        if (!option.empty() && option[0] == '-' && option != "-") throw UsageError("unknown option '" + option + "'");
-        out.part_paths.push_back(option);
     }
     if (out.quiet && out.progress) throw UsageError("--progress and --quiet contradict each other; give one");
     if (out.part_paths.empty()) throw UsageError("no .vdb file given to merge");
