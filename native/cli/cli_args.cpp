@@ -50,16 +50,45 @@ const OptionSpec* specForFlag(const std::string& flag, bool& negated) {
     return nullptr;
 }
 
-void setFromFlag(VoxelizeOptions& options, const OptionSpec& spec, const std::string& flag, bool negated,
-                 const std::optional<std::string>& inline_value, const std::function<std::string()>& value) {
+OptionArgument::OptionArgument(const std::vector<std::string>& args, std::size_t& at)
+    : args_(args), at_(at), option_(args[at]) {
+    if (option_.size() > 2 && option_.compare(0, 2, "--") == 0) {
+        const auto eq = option_.find('=');
+        if (eq != std::string::npos) {
+            inline_value_ = option_.substr(eq + 1);
+            option_ = option_.substr(0, eq);
+        }
+    }
+}
+
+std::string OptionArgument::value() {
+    if (inline_value_) return *inline_value_;
+    if (at_ + 1 >= args_.size()) throw UsageError(option_ + " needs a value");
+    return args_[++at_];
+}
+
+void OptionArgument::noValue() const {
+    if (inline_value_) throw UsageError(option_ + " takes no value");
+}
+
+bool takeOutputFlag(OptionArgument& argument, Arguments& out) {
+    const std::string& option = argument.option();
+    if (option != "-q" && option != "--quiet" && option != "--progress") return false;
+    argument.noValue();
+    (option == "--progress" ? out.progress : out.quiet) = true;
+    return true;
+}
+
+void setFromFlag(VoxelizeOptions& options, const OptionSpec& spec, OptionArgument& argument, bool negated) {
+    const std::string& flag = argument.option();
     try {
         OptionValue parsed;
-        if (spec.type == OptionType::Flag && !inline_value)
+        if (spec.type == OptionType::Flag && !argument.hasInlineValue())
             parsed = !negated;
         else if (negated)
             throw UsageError(flag + " takes no value");
         else
-            parsed = parseOptionText(spec, value());
+            parsed = parseOptionText(spec, argument.value());
         setOption(options, spec.name, parsed);
     } catch (const InvalidInput& e) {  // the schema's message, after the flag as typed
         throw UsageError(flag + ": " + e.what());
@@ -213,23 +242,9 @@ Arguments parseCommand(const std::vector<std::string>& args) {
     std::vector<std::pair<std::string, const OptionSpec*>> given;  // flag as typed, its option
 
     for (std::size_t a = 1; a < args.size(); ++a) {
-        std::string option = args[a];
-        std::optional<std::string> inline_value;
-        if (option.size() > 2 && option.compare(0, 2, "--") == 0) {
-            const auto eq = option.find('=');
-            if (eq != std::string::npos) {
-                inline_value = option.substr(eq + 1);
-                option = option.substr(0, eq);
-            }
-        }
-        auto value = [&]() -> std::string {
-            if (inline_value) return *inline_value;
-            if (a + 1 >= args.size()) throw UsageError(option + " needs a value");
-            return args[++a];
-        };
-        auto noValue = [&] {
-            if (inline_value) throw UsageError(option + " takes no value");
-        };
+        OptionArgument argument(args, a);
+        const std::string option = argument.option();
+        auto value = [&] { return argument.value(); };
         bool negated = false;
         if (option == "-h" || option == "--help") {
             out.help_topic = out.command;
@@ -247,18 +262,13 @@ Arguments parseCommand(const std::vector<std::string>& args) {
         } else if (option == "--gammas") {
             if (!sweep) throw UsageError("--gammas belongs to gamma-sweep; voxelize takes one --tess-gamma");
             out.gammas = parseGammaList(option, value());
-        } else if (option == "-q" || option == "--quiet") {
-            noValue();
-            out.quiet = true;
-        } else if (option == "--progress") {
-            noValue();
-            out.progress = true;
+        } else if (takeOutputFlag(argument, out)) {  // -q, --progress
         } else if (const OptionSpec* spec = specForFlag(option, negated)) {
             if (sweep)
                 if (const char* why = sweepFixes(spec->name))
                     throw UsageError(option + " is not a gamma-sweep option: " + why);
             given.emplace_back(option, spec);
-            setFromFlag(out.options, *spec, option, negated, inline_value, value);
+            setFromFlag(out.options, *spec, argument, negated);
         } else if (!option.empty() && option[0] == '-' && option != "-") {
             throw UsageError("unknown option '" + option + "'");
         } else if (out.mesh_path.empty()) {

@@ -4,7 +4,6 @@
 // (merge_command.h parses its own arguments): the voxelize options
 // and their help come from the options schema (hyvox/option_schema.h); every mistake is a
 // UsageError with the schema's message.
-#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -51,13 +50,32 @@ std::string usageText(Command topic = Command::Help);
 std::string optionHelp(const OptionSpec& spec);
 std::string commonOptionsHelp();
 
+// Argument `at` of a command line, "--name=value" split into the option and the value after '='.
+class OptionArgument {
+public:
+    OptionArgument(const std::vector<std::string>& args, std::size_t& at);
+    const std::string& option() const { return option_; }
+    bool hasInlineValue() const { return inline_value_.has_value(); }
+    // The value after '=', else the next argument (moving `at` past it); UsageError when none.
+    std::string value();
+    // UsageError when a value came after '='.
+    void noValue() const;
+
+private:
+    const std::vector<std::string>& args_;
+    std::size_t& at_;
+    std::string option_;
+    std::optional<std::string> inline_value_;
+};
+
+// -q/--quiet and --progress, which every command takes: sets it and returns true, else false.
+bool takeOutputFlag(OptionArgument& argument, Arguments& out);
+
 // The schema option a command-line flag names ("--voxel-size", an alias, or
 // "--no-pn-triangles" for a flag's false; `negated` says which), or null.
 const OptionSpec* specForFlag(const std::string& flag, bool& negated);
-// Sets that option from the command line: a flag's true or false, else the text after '='
-// (`inline_value`) or `value()` (the next argument). UsageError with the schema's message
-// after the flag as typed.
-void setFromFlag(VoxelizeOptions& options, const OptionSpec& spec, const std::string& flag, bool negated,
-                 const std::optional<std::string>& inline_value, const std::function<std::string()>& value);
+// Sets that option from the argument: a flag's true or false, else its value. UsageError with
+// the schema's message after the flag as typed.
+void setFromFlag(VoxelizeOptions& options, const OptionSpec& spec, OptionArgument& argument, bool negated);
 
 }  // namespace hyvox::cli

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
-#include <optional>
 
 #include "command_support.h"
 #include "hyvox/errors.h"
@@ -42,38 +41,21 @@ Arguments parseMergeArguments(const std::vector<std::string>& args) {
     Arguments out;
     out.command = Command::Merge;
     for (std::size_t a = 1; a < args.size(); ++a) {
-        std::string option = args[a];
-        std::optional<std::string> inline_value;
-        if (option.size() > 2 && option.compare(0, 2, "--") == 0 && option.find('=') != std::string::npos) {
-            inline_value = option.substr(option.find('=') + 1);
-            option = option.substr(0, option.find('='));
-        }
-        auto value = [&]() -> std::string {
-            if (inline_value) return *inline_value;
-            if (a + 1 >= args.size()) throw UsageError(option + " needs a value");
-            return args[++a];
-        };
-        auto noValue = [&] {
-            if (inline_value) throw UsageError(option + " takes no value");
-        };
+        OptionArgument argument(args, a);
+        const std::string option = argument.option();
         bool negated = false;
         if (option == "-h" || option == "--help") {
             out.help_topic = Command::Merge;
             out.command = Command::Help;
             return out;
         } else if (option == "-o" || option == "--output") {
-            out.output_path = value();
-        } else if (option == "-q" || option == "--quiet") {
-            noValue();
-            out.quiet = true;
-        } else if (option == "--progress") {
-            noValue();
-            out.progress = true;
+            out.output_path = argument.value();
+        } else if (takeOutputFlag(argument, out)) {  // -q, --progress
         } else if (const OptionSpec* spec = specForFlag(option, negated)) {
             if (std::none_of(std::begin(kMergeOptions), std::end(kMergeOptions),
                              [&](const char* name) { return std::string(name) == spec->name; }))
                 throw UsageError(option + " is not a merge option: the parts were voxelized with it");
-            setFromFlag(out.options, *spec, option, negated, inline_value, value);
+            setFromFlag(out.options, *spec, argument, negated);
         } else if (!option.empty() && option[0] == '-' && option != "-") {
             throw UsageError("unknown option '" + option + "'");
         } else {
