@@ -24,9 +24,6 @@ struct RegionBox {
     int axis = 0;
     std::array<std::int32_t, 3> lo{0, 0, 0};
     std::array<std::int32_t, 3> hi{0, 0, 0};
-    bool contains(int i, int j, int k) const {
-        return i >= lo[0] && j >= lo[1] && k >= lo[2] && i < hi[0] && j < hi[1] && k < hi[2];
-    }
     // The box in bricks: [lo / 8, ceil(hi / 8)).
     std::array<std::int32_t, 3> brickLo() const;
     std::array<std::int32_t, 3> brickHi() const;

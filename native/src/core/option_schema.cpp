@@ -77,8 +77,9 @@ std::vector<OptionSpec> buildSchema() {
     add({"region", T::Text, "grid", "Region", "",
          "voxelize only box K (from 0) of the N the grid is cut into along its longest side, at whole 8³ "
          "leaves: one farm task's part, on the whole grid's transform, for hyvox merge to join into the whole "
-         "grid's file; '' = the whole grid; not for solid mode with attributes", false, 0, 0, false, {}, {}, nullptr, HYVOX_FIELD(asRegion, region), "K/N",
-         "K/N with whole numbers 0 <= K < N <= 2048, or '' for the whole grid", isRegionText});
+         "grid's file; '' = the whole grid; not for solid mode with attributes", false, 0, 0, false, {}, {}, nullptr,
+         HYVOX_FIELD(asRegion, region), "K/N", "K/N with whole numbers 0 <= K < N <= 2048, or '' for the whole grid",
+         isRegionText});
     // --- the run ---
     add({"mode", T::Choice, "run", "Mode", "",
          "conservative: every voxel the surface touches (26-separating); thin: 6-separating; solid: "

@@ -44,8 +44,7 @@ TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options, std::ui
     plan.lo = box.lo;
     plan.hi = box.hi;
     plan.region = !options.region.whole();
-    std::array<std::int32_t, 3> dims{};
-    for (int a = 0; a < 3; ++a) dims[a] = box.hi[a] - box.lo[a];
+    const std::array<std::int32_t, 3> dims = plan.boxDims();
     std::int32_t side = 0;
     {
         if (options.tile_size > 0) {
@@ -142,9 +141,7 @@ std::uint64_t estimateLeaves(const ValidatedMesh& mesh, const GridSpec& grid, co
         area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     }
     const double leaves = std::max(2.0 * area / 64.0, double(triangles > 0));
-    std::array<std::int32_t, 3> dims{};
-    for (int a = 0; a < 3; ++a) dims[a] = plan.hi[a] - plan.lo[a];
-    return std::uint64_t(std::min(leaves, double(BrickLayout::over(dims).total())));
+    return std::uint64_t(std::min(leaves, double(BrickLayout::over(plan.boxDims()).total())));
 }
 
 }  // namespace hyvox::tiling

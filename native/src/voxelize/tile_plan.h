@@ -20,6 +20,7 @@ struct TilePlan {
     // multiple of 8), whose tiles start at lo.
     std::array<std::int32_t, 3> lo{0, 0, 0}, hi{0, 0, 0};
     bool region = false;  // the box is a region's, not the whole grid
+    std::array<std::int32_t, 3> boxDims() const { return {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}; }
     // One tile over the whole grid (every triangle reaches it).
     bool whole() const { return !region && counts[0] * counts[1] * counts[2] == 1; }
     std::size_t total() const { return std::size_t(counts[0]) * std::size_t(counts[1]) * std::size_t(counts[2]); }

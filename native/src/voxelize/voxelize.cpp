@@ -35,7 +35,7 @@ std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20)
 void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options, const tiling::TilePlan& plan,
                        const ValidatedMesh& mesh) {
     GridSpec box = grid;
-    for (int a = 0; a < 3; ++a) box.dims[a] = plan.hi[a] - plan.lo[a];
+    box.dims = plan.boxDims();
     const double most = double(plan.tileBytes()) + double(box.bricks().total()) * double(SparseGrid::kLeafBytes);
     if (most <= double(options.memoryBudgetBytes())) return;  // in doubles: huge grids overflow 64 bits
     const std::uint64_t estimated_leaves = tiling::estimateLeaves(mesh, grid, plan);
