@@ -79,7 +79,7 @@ bool takeOutputFlag(OptionArgument& argument, Arguments& out) {
     return true;
 }
 
-void setFromFlag(VoxelizeOptions& options, const OptionSpec& spec, OptionArgument& argument, bool negated) {
+void setFromFlag(Arguments& out, const OptionSpec& spec, OptionArgument& argument, bool negated) {
     const std::string& flag = argument.option();
     try {
         OptionValue parsed;
@@ -89,7 +89,9 @@ void setFromFlag(VoxelizeOptions& options, const OptionSpec& spec, OptionArgumen
             throw UsageError(flag + " takes no value");
         else
             parsed = parseOptionText(spec, argument.value());
-        setOption(options, spec.name, parsed);
+        // One flag, both structs where the option is both (threads, memory_budget_mib).
+        if (spec.isVoxelizeOption()) setOption(out.options, spec.name, parsed);
+        if (spec.isWriteOption()) setOption(out.write, spec.name, parsed);
     } catch (const InvalidInput& e) {  // the schema's message, after the flag as typed
         throw UsageError(flag + ": " + e.what());
     }
@@ -123,7 +125,7 @@ std::string optionHelp(const OptionSpec& spec) {
     std::string line = flag + "\n      " + spec.help;
     if (*spec.unit) line += std::string(" [") + spec.unit + "]";
     if (!spec.nullable) {
-        const std::string value = formatOptionValue(spec.get(VoxelizeOptions{}));
+        const std::string value = formatOptionValue(spec.defaultValue());
         line += " (default " + (value == "''" ? std::string("none") : value) + ")";
     }
     if (spec.env) line += std::string(" (env ") + spec.env + ")";
@@ -141,8 +143,9 @@ namespace {
 // The schema's options, less those the command sets itself (fixed(name) not null).
 std::string voxelizeOptionsHelp(const char* (*fixed)(const std::string&)) {
     std::string text =
-        "\nvoxelize options (the same names as hyvox.voxelize's keywords; a flag's value may also\n"
-        "be given as --name=true|false; environment variables apply unless the flag is given):\n";
+        "\nvoxelize options (the same names as the keywords of hyvox.voxelize and, for the output,\n"
+        "VoxelGrid.write_vdb; a flag's value may also be given as --name=true|false; environment\n"
+        "variables apply unless the flag is given):\n";
     for (const OptionSpec& spec : optionSchema())
         if (!fixed || !fixed(spec.name)) text += optionHelp(spec);
     return text;
@@ -268,7 +271,7 @@ Arguments parseCommand(const std::vector<std::string>& args) {
                 if (const char* why = sweepFixes(spec->name))
                     throw UsageError(option + " is not a gamma-sweep option: " + why);
             given.emplace_back(option, spec);
-            setFromFlag(out.options, *spec, argument, negated);
+            setFromFlag(out, *spec, argument, negated);
         } else if (!option.empty() && option[0] == '-' && option != "-") {
             throw UsageError("unknown option '" + option + "'");
         } else if (out.mesh_path.empty()) {

@@ -35,6 +35,7 @@ struct Arguments {
     Command help_topic = Command::Help;
     std::string texture_path;  // empty: none; a PNG sampled at the mesh's UVs for --attributes color
     VoxelizeOptions options;
+    WriteOptions write;  // the .vdb's and the stats JSON's
     std::vector<double> gammas;  // gamma-sweep: the safety factors to try, ascending
     std::vector<std::string> part_paths;  // merge: the .vdb files to join
     // Options given on the command line that the chosen method ignores (printed as warnings).
@@ -74,8 +75,9 @@ bool takeOutputFlag(OptionArgument& argument, Arguments& out);
 // The schema option a command-line flag names ("--voxel-size", an alias, or
 // "--no-pn-triangles" for a flag's false; `negated` says which), or null.
 const OptionSpec* specForFlag(const std::string& flag, bool& negated);
-// Sets that option from the argument: a flag's true or false, else its value. UsageError with
+// Sets that option from the argument (in out.options, out.write or both, as the option is the
+// voxelization's, the write's or both): a flag's true or false, else its value. UsageError with
 // the schema's message after the flag as typed.
-void setFromFlag(VoxelizeOptions& options, const OptionSpec& spec, OptionArgument& argument, bool negated);
+void setFromFlag(Arguments& out, const OptionSpec& spec, OptionArgument& argument, bool negated);
 
 }  // namespace hyvox::cli

@@ -15,7 +15,7 @@
 namespace hyvox::cli {
 namespace {
 
-// The voxelize options merge takes too, with the schema's names, limits and help.
+// The write options merge takes too, with the schema's names, limits and help.
 const char* const kMergeOptions[] = {"threads", "durable_write"};
 
 }  // namespace
@@ -55,7 +55,7 @@ Arguments parseMergeArguments(const std::vector<std::string>& args) {
             if (std::none_of(std::begin(kMergeOptions), std::end(kMergeOptions),
                              [&](const char* name) { return std::string(name) == spec->name; }))
                 throw UsageError(option + " is not a merge option: the parts were voxelized with it");
-            setFromFlag(out.options, *spec, argument, negated);
+            setFromFlag(out, *spec, argument, negated);
         } else if (!option.empty() && option[0] == '-' && option != "-") {
             throw UsageError("unknown option '" + option + "'");
         } else {
@@ -69,12 +69,12 @@ Arguments parseMergeArguments(const std::vector<std::string>& args) {
 }
 
 void runMerge(const Arguments& args, const std::atomic<bool>& stop) {
-    const auto thread_limit = limitThreads(args.options.threads);
+    const auto thread_limit = limitThreads(args.write.threads);
     checkOutputPath(args.output_path);  // before the parts are read
     ProgressLine interrupter = progressFor(args, stop);  // Ctrl-C and SIGTERM stop it, nothing written
     MergeOptions options;
-    options.threads = args.options.threads;
-    options.durable_write = args.options.durable_write;
+    options.threads = args.write.threads;
+    options.durable = args.write.durable;
     const MergeReport report = mergeVdbFiles(args.part_paths, args.output_path, options, &interrupter);
     if (args.quiet) return;
     const std::string job = report.regions ? " (the " + std::to_string(report.regions) + " regions of a job)" : "";

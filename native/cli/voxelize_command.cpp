@@ -75,12 +75,12 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     result.stats.timings_ms.insert(result.stats.timings_ms.begin(), {"read_mesh", read_ms});
 
     if (stop.load()) throw Cancelled();
-    const VdbWriteReport written = writeVdb(result, args.output_path, 0, &interrupter);
+    const VdbWriteReport written = writeVdb(result, args.output_path, args.write, &interrupter);
     result.stats.addTiming("build_vdb", written.build_ms);
     result.stats.addTiming("write_vdb", written.write_ms);
     result.stats.vdb_bytes = written.grid_bytes;
 
-    if (!args.stats_json_path.empty()) writeTextFileAtomic(args.stats_json_path, statsToJson(result), result.stats.options.durable_write);
+    if (!args.stats_json_path.empty()) writeTextFileAtomic(args.stats_json_path, statsToJson(result), args.write.durable);
     if (!args.quiet) printSummary(args, mesh, result);
 }
 

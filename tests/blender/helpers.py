@@ -183,3 +183,47 @@ class AddonTestCase(unittest.TestCase):
         """What 'scene unchanged' compares."""
         return (sorted(o.name for o in bpy.data.objects), len(bpy.data.volumes),
                 len(bpy.data.materials), bpy.context.scene.frame_current)
+
+
+# -- tests in a real window (xvfb-run blender --enable-event-simulate --python TEST -- BUILD) --
+def run_in_window(step, fail, seconds, prepare=None):
+    """Enable the add-on from the build named after `--` (prepare(build) first, when given),
+    then call step() from a timer until it ends the process (its return value is the next
+    interval); an exception in it, or `seconds` without an end, is fail(message)."""
+    import traceback
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    build = argv[0] if argv else "build"
+    if prepare is not None:
+        prepare(build)
+    enable_addon(build)
+
+    def tick():
+        try:
+            return step()
+        except Exception:
+            traceback.print_exc()
+            fail("exception in the test")
+
+    bpy.app.timers.register(tick, first_interval=1.0)
+    bpy.app.timers.register(lambda: fail("timed out") or None, first_interval=float(seconds))
+
+
+def close_splash():
+    """A click beside the splash screen, as an artist would: it takes the keyboard's events."""
+    window = bpy.context.window_manager.windows[0]
+    window.event_simulate("LEFTMOUSE", "PRESS", x=20, y=window.height // 2)
+    window.event_simulate("LEFTMOUSE", "RELEASE", x=20, y=window.height // 2)
+
+
+def press_key(key):
+    window = bpy.context.window_manager.windows[0]
+    window.event_simulate(key, "PRESS")
+    window.event_simulate(key, "RELEASE")
+
+
+def hide_viewports():
+    """Info editors instead of 3D Views: on Xvfb's software GL a viewport redraw (about a
+    second for the 69k-triangle bunny) would hide what a test measures."""
+    for area in bpy.context.window_manager.windows[0].screen.areas:
+        if area.type == "VIEW_3D":
+            area.type = "INFO"

@@ -4,7 +4,6 @@ Volume holds exactly the module's solid voxels, and renders as a filled body: se
 its middle a filled sphere absorbs far more light than its hollow shell. The render is kept
 as a PNG in $HYVOX_RENDER_DIR when that is set (to look at it). With Colour, the inside takes
 the colour of the surface around it: the `color` grid has the density's voxels and tiles."""
-import math
 import os
 
 import bpy

@@ -115,6 +115,8 @@ class SlowModule:
         def cancel(self):
             self.event.set()
 
+    WRITE_OPTIONS = ()
+
     def ignored_options(self, method, names):
         return []
 
@@ -153,7 +155,7 @@ class HeldWriteModule(SlowModule):
         class Grid:
             voxel_size, origin, dims, stats, voxel_count = 1.0, (0, 0, 0), (1, 1, 1), {}, 1
 
-            def write_vdb(self, path, threads=0, cancel=None):
+            def write_vdb(self, path, cancel=None, **options):
                 with open(path, "w") as f:
                     f.write("staged")
                 module.entered.set()

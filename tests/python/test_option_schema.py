@@ -198,10 +198,20 @@ def test_generated_stubs_list_every_option():
                              "textures", "face_normals", "progress", "cancel"}
 
 
+def test_generated_stubs_list_every_write_option():
+    stub = pathlib.Path(hyvox.__file__).with_name("_core.pyi")
+    tree = ast.parse(stub.read_text())
+    grid = next(node for node in tree.body if isinstance(node, ast.ClassDef) and node.name == "VoxelGrid")
+    write_vdb = next(node for node in grid.body if isinstance(node, ast.FunctionDef) and node.name == "write_vdb")
+    keywords = [arg.arg for arg in write_vdb.args.args[2:] + write_vdb.args.kwonlyargs]
+    assert sorted(keywords) == sorted([spec.name for spec in hyvox.WRITE_OPTIONS] + ["cancel", "progress"])
+
+
 def test_docstring_and_cli_help_list_every_option(cli):
     helptext = subprocess.run([str(cli), "voxelize", "--help"], capture_output=True, text=True, timeout=60).stdout
     for spec in hyvox.OPTIONS:
         assert f"    {spec.name} ({spec.type}" in hyvox.voxelize.__doc__
+    for spec in hyvox.OPTIONS + hyvox.WRITE_OPTIONS:
         assert f"  {spec.cli_flag}" in helptext and spec.help in helptext
 
 

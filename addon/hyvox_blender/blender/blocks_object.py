@@ -34,6 +34,17 @@ def make_blocks_object(group_name: str, result: GroupResult,
     blocks = result.blocks
     name = naming.object_name(group_name).replace(naming.VOXELS_SUFFIX, BLOCKS_SUFFIX)
     mesh = bpy.data.meshes.new(name)
+    fill_mesh(mesh, blocks)
+    mesh.materials.append(material or _material(name, blocks.face_colors is not None))
+    obj = bpy.data.objects.new(name, mesh)
+    obj["hyvox_faces"] = len(blocks.faces)
+    return obj, (0.0, 0.0, 0.0)
+
+
+def fill_mesh(mesh: bpy.types.Mesh, blocks) -> None:
+    """The mesh's geometry replaced by the blocks' faces and colours (a new mesh, or Live's
+    update of the one shown: its materials and the object stay)."""
+    mesh.clear_geometry()
     faces = len(blocks.faces)
     mesh.vertices.add(len(blocks.vertices))
     mesh.vertices.foreach_set("co", blocks.vertices.ravel())
@@ -42,6 +53,8 @@ def make_blocks_object(group_name: str, result: GroupResult,
     mesh.polygons.add(faces)
     mesh.polygons.foreach_set("loop_start", np.arange(0, faces * 4, 4, dtype=np.int32))
     mesh.polygons.foreach_set("loop_total", np.full(faces, 4, np.int32))
+    if COLOR_ATTRIBUTE in mesh.color_attributes:
+        mesh.color_attributes.remove(mesh.color_attributes[COLOR_ATTRIBUTE])
     if blocks.face_colors is not None:
         # Per face, stored on the face's four corners: Blender 3.4's colour attributes (the
         # ones the viewport shows and both renderers read) live on points or corners.
@@ -52,7 +65,3 @@ def make_blocks_object(group_name: str, result: GroupResult,
         mesh.color_attributes.active_color = attribute
     mesh.update()
     mesh.validate(clean_customdata=False)
-    mesh.materials.append(material or _material(name, blocks.face_colors is not None))
-    obj = bpy.data.objects.new(name, mesh)
-    obj["hyvox_faces"] = faces
-    return obj, (0.0, 0.0, 0.0)

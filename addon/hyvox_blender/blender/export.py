@@ -24,8 +24,9 @@ def _mesh_arrays(evaluated: bpy.types.Object, matrix: np.ndarray, images=None):
     None) of an evaluated object (or instance); the colour only when images (the run's
     colour_export.ImageCache) is given."""
     colour = None
-    owned = evaluated.type != "MESH"
-    # A mesh object's evaluated data already is the evaluated mesh: no copy needed.
+    # A mesh object's evaluated data already is the evaluated mesh: no copy needed. In Edit
+    # Mode (Live follows edits there) it wraps the edit mesh and has no faces of its own.
+    owned = evaluated.type != "MESH" or getattr(evaluated.data, "is_editmode", False)
     mesh = evaluated.to_mesh() if owned else evaluated.data
     try:
         if mesh is None:
@@ -129,15 +130,16 @@ def make_groups(sources, separate: bool, active: Optional[bpy.types.Object]) -> 
 
 
 def export_groups(groups: List[Group], depsgraph, warn=None, fallback_depsgraph=None,
-                  colour: bool = False) -> List[GroupMesh]:
+                  colour: bool = False, images: Optional[dict] = None) -> List[GroupMesh]:
     """One GroupMesh per group; objects without faces are skipped with a warning, and a
     group left without triangles is an error (the scene stays unchanged). An object the
     depsgraph leaves out (hidden in renders) is taken from fallback_depsgraph (the
     viewport's) with a warning, or without one when there is no fallback. colour: also
     export what the objects' materials show (colour_export.py), combined per group by
-    core/colour.combine."""
+    core/colour.combine. images: the textures' pixels already read (colour_export.ImageCache;
+    Live keeps one across its exports), else read afresh."""
     names = [name for group in groups for name in group.sources if name in bpy.data.objects]
-    images = {} if colour else None
+    images = (images if images is not None else {}) if colour else None
     parts = evaluated_parts(names, depsgraph, images)
     hidden = [name for name in names if name not in parts]
     if hidden and fallback_depsgraph is not None and warn is not None:

@@ -38,6 +38,12 @@ def used_values(context, op=None) -> dict:
 def gather(context, op=None):
     """(settings, output folder, half-voxel override, the values used) for this run."""
     used = used_values(context, op)
+    return settings_from_used(context, used) + (used,)
+
+
+def settings_from_used(context, used: dict):
+    """(settings, output folder, half-voxel override) from the values of used_values()
+    (a Live volume keeps those it was made with)."""
     options = {name: used[name] for name in SCENE_OPTIONS}
     options.pop("resolution" if used["size_mode"] == "VOXEL_SIZE" else "voxel_size")
     if used["fill_interior"]:
@@ -54,4 +60,4 @@ def gather(context, op=None):
     folder = used["output_dir"]
     folder = bpy.path.abspath(folder) if folder else naming.default_output_dir(bpy.data.filepath)
     override = prefs.alignment_fix if prefs is not None else "AUTO"
-    return settings, os.path.normpath(folder), override, used
+    return settings, os.path.normpath(folder), override

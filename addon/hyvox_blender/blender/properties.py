@@ -72,30 +72,18 @@ PLAIN_WORDS = {
 
 
 def method_items():
-    """Auto first, then the schema's methods; the GL ones say which device they would use
-    here and are marked when that device is software (slower than the CPU method)."""
+    """Auto first, then the schema's methods. The list is fixed: which GL device the GL methods
+    would run on here is asked only when the panel first draws (its note under Method,
+    ui.py), so enabling the add-on loads neither the GL plugin nor a device list."""
     from ..core import panel_rules
-    try:
-        device = panel_rules.gl_device_summary(backend.load_module().gl_devices())
-    except Exception:  # no EGL here at all
-        device = None
     labels = CHOICE_LABELS["method"]
     items = []
     for number, choice in enumerate([backend.AUTO_METHOD] + list(option_spec("method").choices)):
         name, description = labels.get(choice, (choice.title(), choice))
-        icon = "NONE"
         if choice in panel_rules.GL_METHODS:
             name = name.replace(" (GPU)", "")
-            if device is None:
-                description += ". No OpenGL 4.5 device here: it will fail"
-                icon = "ERROR"
-            elif device["software"]:
-                description += ". Here it runs on the software GL device (llvmpipe), slower than CPU"
-                icon = "ERROR"
-            else:
-                description += f". Runs on {device['name']}"
-                icon = "SHADING_SOLID"
-        items.append((choice, name, description, icon, number))
+            description += ". Needs OpenGL 4.5; the note under Method says where it runs here"
+        items.append((choice, name, description, "NONE", number))
     return items
 
 
@@ -191,6 +179,9 @@ def scene_and_operator_properties(operator=False):
                                    default="RENDER", **skip),
         "hide_source": BoolProperty(name="Hide Source", description="Hide the objects a run voxelized, so the "
                                     "result is seen on its own", default=False, **skip),
+        "live": BoolProperty(name="Live", description="Keep the new volumes up to date by themselves: they follow "
+                             "edits, modifiers, transforms, materials and the animation (no frame range needed)",
+                             default=False, **skip),
         "use_frame_range": BoolProperty(name="Frame Range", description="Voxelize every frame of a range "
                                         "into a .vdb sequence (the scene's range unless you set one)",
                                         default=False, update=None if operator else _scene_range_on_first_use,

@@ -26,6 +26,7 @@ from . import _core
 from ._core import (  # ATTRIBUTE_METHODS: the methods that compute colour/normal voxels
     ATTRIBUTE_METHODS,
     OPTIONS,
+    WRITE_OPTIONS,
     BackendError,
     Cancelled,
     CancelToken,
@@ -42,8 +43,9 @@ __version__: str = _core.__version__
 
 
 def option(name: str) -> OptionSpec:
-    """The schema entry of one option (KeyError for an unknown name)."""
-    for spec in OPTIONS:
+    """The schema entry of one option, of voxelize() (OPTIONS) or of VoxelGrid.write_vdb()
+    (WRITE_OPTIONS); KeyError for an unknown name."""
+    for spec in OPTIONS + WRITE_OPTIONS:
         if spec.name == name:
             return spec
     raise KeyError(name)
@@ -77,6 +79,7 @@ __all__ = [
     "Options",
     "ResourceError",
     "VoxelGrid",
+    "WRITE_OPTIONS",
     "__version__",
     "check_option",
     "gl_devices",

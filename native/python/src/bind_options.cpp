@@ -122,10 +122,38 @@ const OptionSpec& specNamed(const std::string& name) {
 
 void setFromPython(VoxelizeOptions& options, const std::string& name, const py::handle& value) {
     const OptionSpec& spec = specNamed(name);
+    if (!spec.isVoxelizeOption())
+        throw py::type_error(name + " is an option of VoxelGrid.write_vdb(), not of voxelize()");
     setOption(options, name, fromPython(spec, value));
 }
 
+// The schema's entries of one struct, as OptionSpec objects (references into the schema).
+py::tuple specsWhere(bool (OptionSpec::*belongs)() const) {
+    py::list specs;
+    for (const OptionSpec& spec : optionSchema())
+        if ((spec.*belongs)()) specs.append(py::cast(&spec, py::return_value_policy::reference));
+    return py::tuple(specs);
+}
+
 }  // namespace
+
+WriteOptions writeOptions(const VoxelizeOptions& voxelized, const py::dict& given) {
+    for (const auto& [name, value] : given) {
+        const OptionSpec& spec = specNamed(py::str(name));
+        if (!spec.isWriteOption())
+            throw py::type_error(std::string(spec.name) + " is an option of voxelize(), not of VoxelGrid.write_vdb()");
+    }
+    WriteOptions options;
+    for (const OptionSpec& spec : optionSchema()) {
+        if (!spec.isWriteOption()) continue;
+        const py::object value = given.contains(spec.name) ? py::object(given[spec.name]) : py::none();
+        if (!value.is_none())
+            setOption(options, spec.name, fromPython(spec, value));
+        else if (spec.isVoxelizeOption())
+            spec.put_write(options, spec.get(voxelized));
+    }
+    return options;
+}
 
 void bindOptions(py::module_& m) {
     py::class_<OptionSpec>(m, "OptionSpec", "One entry of the options schema (read-only).")
@@ -146,7 +174,7 @@ void bindOptions(py::module_& m) {
         .def_property_readonly(
             "cli_aliases", [](const OptionSpec& s) { return std::vector<std::string>(s.cli_aliases.begin(), s.cli_aliases.end()); })
         .def_property_readonly("env", [](const OptionSpec& s) { return s.env ? py::object(py::str(s.env)) : py::none(); })
-        .def_property_readonly("default", [](const OptionSpec& s) { return toPython(s.get(VoxelizeOptions{})); },
+        .def_property_readonly("default", [](const OptionSpec& s) { return toPython(s.defaultValue()); },
                                "The native default (None for nullable options: derived at run time).")
         .def_property_readonly("requirement", &describeOption, "What a valid value is, as error messages say it.")
         .def(
@@ -156,17 +184,16 @@ void bindOptions(py::module_& m) {
             "'does not apply' warnings); ValueError for an unknown method.")
         .def("__repr__", [](const OptionSpec& s) { return std::string("<hyvox.OptionSpec ") + s.name + ">"; });
 
-    py::tuple specs(optionSchema().size());
-    for (std::size_t i = 0; i < optionSchema().size(); ++i)
-        specs[i] = py::cast(&optionSchema()[i], py::return_value_policy::reference);
-    m.attr("OPTIONS") = specs;
+    // voxelize()'s keywords and write_vdb()'s: threads and memory_budget_mib are both.
+    m.attr("OPTIONS") = specsWhere(&OptionSpec::isVoxelizeOption);
+    m.attr("WRITE_OPTIONS") = specsWhere(&OptionSpec::isWriteOption);
     py::list attribute_methods;
     for (const char* name : methodNames())
         if (computesAttributes(parseMethod(name))) attribute_methods.append(name);
     m.attr("ATTRIBUTE_METHODS") = py::tuple(attribute_methods);
 
     py::class_<VoxelizeOptions>(m, "Options", "The options of one voxelization, by schema name.")
-        .def(py::init([](py::kwargs kwargs) {
+        .def(py::init([](const py::kwargs& kwargs) {
                  VoxelizeOptions options;
                  for (const auto& [name, value] : kwargs) setFromPython(options, py::str(name), value);
                  return options;
@@ -183,7 +210,8 @@ void bindOptions(py::module_& m) {
              "Set the options whose environment variable (OptionSpec.env) is set.")
         .def("to_dict", [](const VoxelizeOptions& o) {
             py::dict out;
-            for (const OptionSpec& spec : optionSchema()) out[spec.name] = toPython(spec.get(o));
+            for (const OptionSpec& spec : optionSchema())
+                if (spec.isVoxelizeOption()) out[spec.name] = toPython(spec.get(o));
             return out;
         });
     m.def(

@@ -11,6 +11,7 @@
 #include "cancel_token.h"
 #include "python_interrupter.h"
 #include "hyvox/errors.h"
+#include "hyvox/options.h"
 #include "hyvox/result.h"
 #include "hyvox/stats_json.h"
 #include "hyvox/vdb.h"
@@ -140,15 +141,17 @@ The voxels of one voxelization. Voxel (i, j, k) covers the closed box
              "box does not fit the run's memory budget.")
         .def(
             "write_vdb",
-            [](const Grid& g, const std::filesystem::path& path, int threads, std::shared_ptr<CancelToken> cancel,
-               py::object progress) {
+            [](const Grid& g, const std::filesystem::path& path, const py::object& threads,
+               std::shared_ptr<CancelToken> cancel, py::object progress, const py::kwargs& options) {
                 if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
                     throw py::type_error("progress must be callable or None");
+                if (!threads.is_none()) options["threads"] = threads;  // a dict of this call's own
+                const WriteOptions write = writeOptions(g->stats.options, options);
                 PythonInterrupter interrupter(std::move(cancel), std::move(progress));
                 VdbWriteReport report;
                 try {
                     py::gil_scoped_release release;
-                    report = writeVdb(*g, path.string(), threads, &interrupter);
+                    report = writeVdb(*g, path.string(), write, &interrupter);
                 } catch (const Cancelled&) {
                     interrupter.rethrowCallbackError();
                     throw;
@@ -160,11 +163,13 @@ The voxels of one voxelization. Voxel (i, j, k) covers the closed box
                 out["write_ms"] = report.write_ms;
                 return out;
             },
-            py::arg("path"), py::arg("threads") = 0, py::kw_only(), py::arg("cancel") = py::none(),
+            py::arg("path"), py::arg("threads") = py::none(), py::kw_only(), py::arg("cancel") = py::none(),
             py::arg("progress") = py::none(),
             "Write an OpenVDB file with a float grid 'density' (1 on occupied voxels; index space = "
             "voxel centres), plus 'count' for multi-valued results. Atomic: on failure nothing is "
-            "written and an existing file is kept. threads: cores used to build the grids, 0 = all. "
+            "written and an existing file is kept. Options: those of hyvox.WRITE_OPTIONS by name "
+            "(threads: cores used to build the grids, 0 = all; memory_budget_mib; durable_write); "
+            "threads and memory_budget_mib unset or None take the values the voxelization used. "
             "cancel (a CancelToken) stops it until the file is being written (hyvox.Cancelled); "
             "progress(percent) is called as in voxelize. Returns {grid_bytes, build_ms, write_ms}.")
         .def_property_readonly("origin", [](const Grid& g) { return py::make_tuple(g->grid.origin[0], g->grid.origin[1], g->grid.origin[2]); },

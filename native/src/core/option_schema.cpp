@@ -16,9 +16,17 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Accessors: one line per field, captureless so they fit the spec's function pointers.
+// HYVOX_FIELD: a field of VoxelizeOptions; HYVOX_WRITE_FIELD: one of WriteOptions (after
+// HYVOX_FIELD, or after NO_VOXELIZE_FIELD for an option of the write alone); NO_WRITE_FIELD
+// before the fields after them (text_form...) of an option of the voxelization alone.
 #define HYVOX_FIELD(type_get, expr)                                                      \
     [](const VoxelizeOptions& o) -> OptionValue { return type_get(o.expr); },            \
         [](VoxelizeOptions& o, const OptionValue& v) { o.expr = fieldValue(v, o.expr); }
+#define HYVOX_WRITE_FIELD(type_get, expr)                                                \
+    [](const WriteOptions& o) -> OptionValue { return type_get(o.expr); },               \
+        [](WriteOptions& o, const OptionValue& v) { o.expr = fieldValue(v, o.expr); }
+#define NO_VOXELIZE_FIELD nullptr, nullptr
+#define NO_WRITE_FIELD nullptr, nullptr
 
 OptionValue asInteger(std::int64_t v) { return v; }
 OptionValue asNumber(double v) { return v; }
@@ -78,8 +86,8 @@ std::vector<OptionSpec> buildSchema() {
          "voxelize only box K (from 0) of the N the grid is cut into along its longest side, at whole 8³ "
          "leaves: one farm task's part, on the whole grid's transform, for hyvox merge to join into the whole "
          "grid's file; '' = the whole grid; not for solid mode with attributes", false, 0, 0, false, {}, {}, nullptr,
-         HYVOX_FIELD(asRegion, region), "K/N", "K/N with whole numbers 0 <= K < N <= 2048, or '' for the whole grid",
-         isRegionText});
+         HYVOX_FIELD(asRegion, region), NO_WRITE_FIELD, "K/N",
+         "K/N with whole numbers 0 <= K < N <= 2048, or '' for the whole grid", isRegionText});
     // --- the run ---
     add({"mode", T::Choice, "run", "Mode", "",
          "conservative: every voxel the surface touches (26-separating); thin: 6-separating; solid: "
@@ -89,11 +97,13 @@ std::vector<OptionSpec> buildSchema() {
          "cpu and reference run anywhere; triangle, fragment, hybrid and tessellation need GL 4.5", false, 0, 0, false,
          methodNames(), {}, nullptr,
          HYVOX_FIELD(asMethod, method)});
-    add({"threads", T::Integer, "run", "Threads", "threads", "CPU threads; 0 = all cores", false, 0, 4096, false, {}, {},
-         nullptr, HYVOX_FIELD(asInteger, threads)});
+    add({"threads", T::Integer, "run", "Threads", "threads",
+         "CPU threads of the voxelization and of the write; 0 = all cores", false, 0, 4096, false, {}, {}, nullptr,
+         HYVOX_FIELD(asInteger, threads), HYVOX_WRITE_FIELD(asInteger, threads)});
     add({"memory_budget_mib", T::Integer, "run", "Memory Budget", "MiB",
-         "memory the voxels may take (tile buffers and the leaves of the result)", false, 1, double(1 << 30), false,
-         {}, {}, nullptr, HYVOX_FIELD(asInteger, memory_budget_mib)});
+         "memory the voxels may take (tile buffers and the leaves of the result), and the OpenVDB grids of the "
+         "write beside them", false, 1, double(1 << 30), false, {}, {}, nullptr,
+         HYVOX_FIELD(asInteger, memory_budget_mib), HYVOX_WRITE_FIELD(asInteger, memory_budget_mib)});
     add({"tile_size", T::Integer, "run", "Tile Size", "voxels",
          "side of the boxes voxelized one after the other (rounded up to a multiple of 8); 0 = from the "
          "memory budget", false, 0, kMaxResolution, false, {}, {}, nullptr, HYVOX_FIELD(asInteger, tile_size)});
@@ -102,11 +112,11 @@ std::vector<OptionSpec> buildSchema() {
          "attribute voxels to compute: a comma list of color (linear RGB, alpha when the source has it) and "
          "normal; '' = none. Solid mode: the inside takes the surface's values, layer by layer inward", false, 0, 0,
          false, {}, {}, nullptr, HYVOX_FIELD(asText, attributes)});
-    // --- output files ---
+    // --- output files (WriteOptions alone) ---
     add({"durable_write", T::Flag, "output", "Durable Write", "",
          "sync each output file (.vdb, stats JSON) and its folder to disk before the write returns, so it "
          "survives a power loss; off: written to a temporary and renamed (never half-written), not synced",
-         false, 0, 0, false, {}, {}, nullptr, HYVOX_FIELD(asFlag, durable_write)});
+         false, 0, 0, false, {}, {}, nullptr, NO_VOXELIZE_FIELD, HYVOX_WRITE_FIELD(asFlag, durable)});
     // --- solid mode ---
     add({"inside", T::Choice, "solid", "Inside Rule", "",
          "solid: parity = odd ray crossings (closed meshes); winding = winding number >= 0.5 (holes, "
@@ -166,6 +176,9 @@ std::vector<OptionSpec> buildSchema() {
 }
 
 #undef HYVOX_FIELD
+#undef HYVOX_WRITE_FIELD
+#undef NO_VOXELIZE_FIELD
+#undef NO_WRITE_FIELD
 
 const char* typeName(OptionType type) {
     switch (type) {
@@ -225,7 +238,7 @@ std::string describeOption(const OptionSpec& spec) {
 
 void applyEnvironment(VoxelizeOptions& options, const char* (*lookup)(const char* variable)) {
     for (const OptionSpec& spec : optionSchema()) {
-        if (!spec.env) continue;
+        if (!spec.env || !spec.isVoxelizeOption()) continue;
         const char* text = lookup(spec.env);
         if (!text) continue;
         try {
@@ -251,6 +264,8 @@ std::vector<double> parseNumberList(const std::string& text) {
     }
     return out;
 }
+
+OptionValue OptionSpec::defaultValue() const { return get ? get(VoxelizeOptions{}) : get_write(WriteOptions{}); }
 
 std::string OptionSpec::cliFlag() const {
     std::string flag = std::string("--") + name;
@@ -341,20 +356,40 @@ void checkOption(const OptionSpec& spec, const OptionValue& value) {
     }
 }
 
-void setOption(VoxelizeOptions& options, const std::string& name, const OptionValue& value) {
-    const OptionSpec& spec = findOption(name);
+namespace {
+
+// setOption for either struct: `put` is the spec's accessor of that struct.
+template <typename Options>
+void storeOption(Options& options, const OptionSpec& spec, void (*put)(Options&, const OptionValue&),
+                 const OptionValue& value) {
     checkOption(spec, value);
     if (std::holds_alternative<std::monostate>(value) && !spec.nullable) {
-        spec.put(options, spec.get(VoxelizeOptions{}));  // unset = the default
+        put(options, spec.defaultValue());  // unset = the default
         return;
     }
     // Whole numbers are fine where reals are expected.
     if (spec.type == OptionType::Number)
         if (const auto* i = std::get_if<std::int64_t>(&value)) {
-            spec.put(options, double(*i));
+            put(options, double(*i));
             return;
         }
-    spec.put(options, value);
+    put(options, value);
+}
+
+}  // namespace
+
+void setOption(VoxelizeOptions& options, const std::string& name, const OptionValue& value) {
+    const OptionSpec& spec = findOption(name);
+    if (!spec.isVoxelizeOption())
+        throw InvalidInput(name + " is an option of writing the result (WriteOptions), not of the voxelization");
+    storeOption(options, spec, spec.put, value);
+}
+
+void setOption(WriteOptions& options, const std::string& name, const OptionValue& value) {
+    const OptionSpec& spec = findOption(name);
+    if (!spec.isWriteOption())
+        throw InvalidInput(name + " is an option of the voxelization, not of writing the result (WriteOptions)");
+    storeOption(options, spec, spec.put_write, value);
 }
 
 OptionValue parseOptionText(const OptionSpec& spec, const std::string& text) {
@@ -403,7 +438,13 @@ bool optionAppliesTo(const OptionSpec& spec, Method method) {
 }
 
 void checkOptions(const VoxelizeOptions& options) {
-    for (const OptionSpec& spec : optionSchema()) checkOption(spec, spec.get(options));
+    for (const OptionSpec& spec : optionSchema())
+        if (spec.isVoxelizeOption()) checkOption(spec, spec.get(options));
+}
+
+void checkOptions(const WriteOptions& options) {
+    for (const OptionSpec& spec : optionSchema())
+        if (spec.isWriteOption()) checkOption(spec, spec.get_write(options));
 }
 
 }  // namespace hyvox

@@ -111,6 +111,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     out << "  \"options\": {";
     bool first = true;
     for (const OptionSpec& spec : optionSchema()) {
+        if (!spec.isVoxelizeOption()) continue;
         const OptionValue value = spec.get(s.options);
         if (std::holds_alternative<std::monostate>(value)) continue;
         out << (first ? "" : ", ") << quote(spec.name) << ": " << json(value);
@@ -121,7 +122,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     s.visitSections([&](const char* section, const auto& figures) {
         out << ",\n  " << quote(section) << ": {";
         bool first_field = true;
-        figures.visit([&](const char* name, auto value) {
+        figures.visit([&](const char* name, const auto& value) {
             out << (first_field ? "" : ", ") << quote(name) << ": " << number(value);
             first_field = false;
         });

@@ -138,8 +138,8 @@ std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves);
 // values): the measure of the memory budget, whichever writer runs.
 std::uint64_t densityGridBytes(const SparseGrid& occupancy);
 // ResourceError before anything is built when that grid and the result it is made from
-// would not fit the run's memory budget (result.stats.options).
-void checkGridBudget(const VoxelizeResult& result);
+// would not fit the write's memory budget.
+void checkGridBudget(const VoxelizeResult& result, const WriteOptions& options);
 
 // ---- densityGrid's template ----
 

@@ -311,7 +311,7 @@ MergeReport mergeVdbFiles(const std::vector<std::string>& paths, const std::stri
     for (std::size_t g = 0; g < first.grids.size(); ++g) grids.push_back(mergedGrid(parts, g, storage));
     const io::VdbBytes bytes = io::serializeVdbGrids(described, grids, options.threads);
     throwIfInterrupted(interrupter, 90);
-    io::writeVdbBytes(bytes, output, options.durable_write, interrupter);
+    io::writeVdbBytes(bytes, output, options.durable, interrupter);
     report.write_ms = msSince(start);
 
     std::size_t counted = 0;

@@ -18,7 +18,6 @@
 #include "solid/fill_inside.h"
 #include "hyvox/option_schema.h"
 #include "hyvox/region.h"
-#include "tessellation/point_values.h"
 #include "tile_plan.h"
 
 #include <tbb/task_arena.h>
@@ -163,7 +162,7 @@ struct Surface {
     Interrupter* interrupter;
     Stopwatch& watch;
     const attributes::SurfaceValues* values = nullptr;
-    std::vector<attributes::AttributeLeaf>* attribute_leaves = nullptr;
+    std::vector<AttributeLeaf>* attribute_leaves = nullptr;
 
     void run(const VoxelizeOptions& options, VoxelizeResult& result, Stats& stats) const {
         result.occupancy = SparseGrid(grid.dims);
@@ -197,7 +196,7 @@ struct Surface {
                 stats.attribute_voxels_unreached += out.attribute_voxels_unreached;
             } else if (gl_pieces) {
                 const auto counted = attributes::computePieceAttributes(job, out.bits, *values, out.pieces, *attribute_leaves);
-                std::vector<attributes::VoxelPiece>().swap(out.pieces);
+                std::vector<VoxelPiece>().swap(out.pieces);
                 stats.attribute_pieces += counted.pieces;
                 stats.attribute_voxels_unreached += counted.voxels_unreached;
                 stats.attribute_leaves_rounded += counted.leaves_rounded;
@@ -269,17 +268,17 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     Stopwatch watch;
     stats.addTiming("validate", validate_ms);
     const std::optional<attributes::SurfaceValues> surface = surfaceValues(mesh, options);
-    std::vector<attributes::AttributeLeaf> attribute_leaves;
+    std::vector<AttributeLeaf> attribute_leaves;
     result.grid = makeGrid(validated.bounds, options.grid);
     const GridSpec& grid = result.grid;
     // The tessellation holds a tile's bits in one storage buffer (the hybrid methods cut theirs
-    // into slabs themselves): its tiles also follow the device's limit.
-    std::uint64_t device_limit = options.method == Method::Tessellation
-                                    ? glMethods("the tessellation method").max_storage_block_bytes(options.gl.device)
-                                    : 0;
-    // Its attribute sums take a block per brick the points reach: tiles small enough for all.
-    if (surface && options.method == Method::Tessellation)
-        device_limit = tessellation::tileBitBytesForSums(device_limit, options.memoryBudgetBytes() / 2, surface->channels());
+    // into slabs themselves), and its attribute sums take a block per brick the points reach:
+    // its tiles also follow the device's limit.
+    const std::uint64_t device_limit =
+        options.method == Method::Tessellation
+            ? glMethods("the tessellation method")
+                  .tessellation_tile_bytes(options.gl.device, options.memoryBudgetBytes() / 2, surface ? surface->channels() : 0)
+            : 0;
     const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
     if (plan.region) stats.region = regionBox(grid, options.region);
     checkMemoryBudget(grid, options, plan, validated);
