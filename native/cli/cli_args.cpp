@@ -8,6 +8,7 @@
 
 #include "hyvox/errors.h"
 #include "hyvox/option_schema.h"
+#include "merge_command.h"
 
 namespace hyvox::cli {
 namespace {
@@ -17,6 +18,7 @@ const char* sweepFixes(const std::string& name) {
     if (name == "mode" || name == "method")
         return "the sweep always compares the tessellation method with the exact conservative voxels";
     if (name == "tess_gamma") return "it takes --gammas G1,G2,...";
+    if (name == "region") return "the sweep measures the whole grid";
     return nullptr;
 }
 
@@ -34,8 +36,8 @@ std::vector<double> parseGammaList(const std::string& option, const std::string&
     return gammas;
 }
 
-// The spec a command-line flag names ("--voxel-size", an alias, or "--no-pn-triangles" for a
-// flag's false), or null.
+}  // namespace
+
 const OptionSpec* specForFlag(const std::string& flag, bool& negated) {
     for (const OptionSpec& spec : optionSchema()) {
         const std::string own = spec.cliFlag();
@@ -48,12 +50,61 @@ const OptionSpec* specForFlag(const std::string& flag, bool& negated) {
     return nullptr;
 }
 
+OptionArgument::OptionArgument(const std::vector<std::string>& args, std::size_t& at)
+    : args_(args), at_(at), option_(args[at]) {
+    if (option_.size() > 2 && option_.compare(0, 2, "--") == 0) {
+        const auto eq = option_.find('=');
+        if (eq != std::string::npos) {
+            inline_value_ = option_.substr(eq + 1);
+            option_ = option_.substr(0, eq);
+        }
+    }
+}
+
+std::string OptionArgument::value() {
+    if (inline_value_) return *inline_value_;
+    if (at_ + 1 >= args_.size()) throw UsageError(option_ + " needs a value");
+    return args_[++at_];
+}
+
+void OptionArgument::noValue() const {
+    if (inline_value_) throw UsageError(option_ + " takes no value");
+}
+
+bool takeOutputFlag(OptionArgument& argument, Arguments& out) {
+    const std::string& option = argument.option();
+    if (option != "-q" && option != "--quiet" && option != "--progress") return false;
+    argument.noValue();
+    (option == "--progress" ? out.progress : out.quiet) = true;
+    return true;
+}
+
+void setFromFlag(Arguments& out, const OptionSpec& spec, OptionArgument& argument, bool negated) {
+    const std::string& flag = argument.option();
+    try {
+        OptionValue parsed;
+        if (spec.type == OptionType::Flag && !argument.hasInlineValue())
+            parsed = !negated;
+        else if (negated)
+            throw UsageError(flag + " takes no value");
+        else
+            parsed = parseOptionText(spec, argument.value());
+        // One flag, both structs where the option is both (threads, memory_budget_mib).
+        if (spec.isVoxelizeOption()) setOption(out.options, spec.name, parsed);
+        if (spec.isWriteOption()) setOption(out.write, spec.name, parsed);
+    } catch (const InvalidInput& e) {  // the schema's message, after the flag as typed
+        throw UsageError(flag + ": " + e.what());
+    }
+}
+
+namespace {
+
 std::string placeholder(const OptionSpec& spec) {
     switch (spec.type) {
         case OptionType::Integer: return " N";
         case OptionType::Number: return " X";
         case OptionType::Flag: return "";
-        case OptionType::Text: return " TEXT";
+        case OptionType::Text: return std::string(" ") + (spec.text_form ? spec.text_form : "TEXT");
         case OptionType::Choice:
         case OptionType::Choices: {
             const char* between = spec.type == OptionType::Choice ? "|" : ",";
@@ -66,6 +117,8 @@ std::string placeholder(const OptionSpec& spec) {
     }
     return "";
 }
+
+}  // namespace
 
 std::string optionHelp(const OptionSpec& spec) {
     std::string flag = "  " + spec.cliFlag() + placeholder(spec);
@@ -87,6 +140,8 @@ std::string commonOptionsHelp() {
            "  -h, --help\n      show this help\n";
 }
 
+namespace {
+
 // The schema's options, less those the command sets itself (fixed(name) not null).
 std::string voxelizeOptionsHelp(const char* (*fixed)(const std::string&)) {
     std::string text =
@@ -101,6 +156,7 @@ std::string voxelizeOptionsHelp(const char* (*fixed)(const std::string&)) {
 }  // namespace
 
 std::string usageText(Command topic) {
+    if (topic == Command::Merge) return mergeUsageText();
     if (topic == Command::Voxelize) {
         std::string text =
             "usage: hyvox voxelize MESH -o OUT.vdb [options]\n"
@@ -132,11 +188,13 @@ std::string usageText(Command topic) {
     }
     return "usage: hyvox voxelize MESH -o OUT.vdb [options]\n"
            "       hyvox gamma-sweep MESH [--gammas 1,1.5,2,3,4,6] [options]\n"
+           "       hyvox merge PART.vdb... -o OUT.vdb [options]\n"
            "       hyvox --help | --version\n"
            "\n"
            "commands:\n"
            "  voxelize      voxelize the surface of a triangle mesh into an OpenVDB file\n"
            "  gamma-sweep   measure how many voxels the tessellation method misses at each gamma\n"
+           "  merge         join the .vdb files of the regions of one grid into the grid's file\n"
            "\n"
            "'hyvox COMMAND --help' shows the options of a command.\n";
 }
@@ -153,7 +211,7 @@ Arguments parseArguments(const std::vector<std::string>& args) {
         return parseCommand(args);
     } catch (const UsageError& e) {
         // A mistake after a known command points at that command's own help.
-        if (args[0] == "voxelize" || args[0] == "gamma-sweep")
+        if (args[0] == "voxelize" || args[0] == "gamma-sweep" || args[0] == "merge")
             throw UsageError(e.what(), "hyvox " + args[0] + " --help lists its options");
         throw;
     }
@@ -169,6 +227,7 @@ Arguments parseCommand(const std::vector<std::string>& args) {
         out.command = Command::Version;
         return out;
     }
+    if (args[0] == "merge") return parseMergeArguments(args);
     if (args[0] == "voxelize") {
         out.command = Command::Voxelize;
     } else if (args[0] == "gamma-sweep") {
@@ -177,7 +236,7 @@ Arguments parseCommand(const std::vector<std::string>& args) {
         out.options.tessellation.counts = false;  // the sweep needs only the occupancy
         out.gammas = {1, 1.5, 2, 3, 4, 6};
     } else {
-        throw UsageError("unknown command '" + args[0] + "' (the commands are 'voxelize' and 'gamma-sweep')");
+        throw UsageError("unknown command '" + args[0] + "' (the commands are 'voxelize', 'gamma-sweep' and 'merge')");
     }
     try {
         applyEnvironment(out.options, [](const char* variable) -> const char* { return std::getenv(variable); });
@@ -188,23 +247,9 @@ Arguments parseCommand(const std::vector<std::string>& args) {
     std::vector<std::pair<std::string, const OptionSpec*>> given;  // flag as typed, its option
 
     for (std::size_t a = 1; a < args.size(); ++a) {
-        std::string option = args[a];
-        std::optional<std::string> inline_value;
-        if (option.size() > 2 && option.compare(0, 2, "--") == 0) {
-            const auto eq = option.find('=');
-            if (eq != std::string::npos) {
-                inline_value = option.substr(eq + 1);
-                option = option.substr(0, eq);
-            }
-        }
-        auto value = [&]() -> std::string {
-            if (inline_value) return *inline_value;
-            if (a + 1 >= args.size()) throw UsageError(option + " needs a value");
-            return args[++a];
-        };
-        auto noValue = [&] {
-            if (inline_value) throw UsageError(option + " takes no value");
-        };
+        OptionArgument argument(args, a);
+        const std::string option = argument.option();
+        auto value = [&] { return argument.value(); };
         bool negated = false;
         if (option == "-h" || option == "--help") {
             out.help_topic = out.command;
@@ -222,31 +267,13 @@ Arguments parseCommand(const std::vector<std::string>& args) {
         } else if (option == "--gammas") {
             if (!sweep) throw UsageError("--gammas belongs to gamma-sweep; voxelize takes one --tess-gamma");
             out.gammas = parseGammaList(option, value());
-        } else if (option == "-q" || option == "--quiet") {
-            noValue();
-            out.quiet = true;
-        } else if (option == "--progress") {
-            noValue();
-            out.progress = true;
+        } else if (takeOutputFlag(argument, out)) {  // -q, --progress
         } else if (const OptionSpec* spec = specForFlag(option, negated)) {
             if (sweep)
                 if (const char* why = sweepFixes(spec->name))
                     throw UsageError(option + " is not a gamma-sweep option: " + why);
             given.emplace_back(option, spec);
-            try {
-                OptionValue parsed;
-                if (spec->type == OptionType::Flag && !inline_value)
-                    parsed = !negated;
-                else if (negated)
-                    throw UsageError(option + " takes no value");
-                else
-                    parsed = parseOptionText(*spec, value());
-                // One flag, both structs where the option is both (threads, memory_budget_mib).
-                if (spec->isVoxelizeOption()) setOption(out.options, spec->name, parsed);
-                if (spec->isWriteOption()) setOption(out.write, spec->name, parsed);
-            } catch (const InvalidInput& e) {  // the schema's message, after the flag as typed
-                throw UsageError(option + ": " + e.what());
-            }
+            setFromFlag(out, *spec, argument, negated);
         } else if (!option.empty() && option[0] == '-' && option != "-") {
             throw UsageError("unknown option '" + option + "'");
         } else if (out.mesh_path.empty()) {

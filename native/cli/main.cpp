@@ -15,6 +15,7 @@
 #include "hyvox/errors.h"
 #include "hyvox/version.h"
 #include "gamma_sweep_command.h"
+#include "merge_command.h"
 #include "voxelize_command.h"
 
 namespace {
@@ -51,6 +52,7 @@ int main(int argc, char** argv) {
             case cli::Command::Version: std::printf("hyvox %s\n", version()); return 0;
             case cli::Command::Voxelize: cli::runVoxelize(args, g_stop); return 0;
             case cli::Command::GammaSweep: cli::runGammaSweep(args, g_stop); return 0;
+            case cli::Command::Merge: cli::runMerge(args, g_stop); return 0;
         }
         return 0;
     } catch (const cli::UsageError& e) {

@@ -60,6 +60,10 @@ struct OptionSpec {
     void (*put)(VoxelizeOptions&, const OptionValue&) = nullptr;   ///< stores it
     OptionValue (*get_write)(const WriteOptions&) = nullptr;         ///< reads the WriteOptions field
     void (*put_write)(WriteOptions&, const OptionValue&) = nullptr;  ///< stores it
+    // Text of a form of its own (the region's "K/N"); null = any text.
+    const char* text_form = nullptr;  ///< the form, for a usage line
+    const char* text_rule = nullptr;  ///< what a valid text is, for messages
+    bool (*text_valid)(const std::string& text) = nullptr;  ///< whether a text has the form
 
     std::string cliFlag() const;  ///< "--voxel-size"
     bool isVoxelizeOption() const { return get != nullptr; }     ///< a field of VoxelizeOptions
@@ -101,7 +105,8 @@ std::vector<double> parseNumberList(const std::string& text);
 /// The value as text (for --help defaults, reports and error messages); "" for unset.
 std::string formatOptionValue(const OptionValue& value);
 
-/// What a valid value is, for messages: "a whole number between 1 and 16384".
+/// What a valid value is, for messages: "a whole number between 1 and 16384" (a Text option
+/// with a form: its text_rule).
 std::string describeOption(const OptionSpec& spec);
 
 /// For the front doors (the library itself reads no environment): sets every voxelize option

@@ -162,6 +162,15 @@ struct SolidOptions {
     double winding_beta = 2.0;
 };
 
+/// One of `count` boxes the grid is cut into along its longest side (hyvox/region.h): a run
+/// voxelizes box `index` (from 0) of the whole grid only, for a farm's tasks whose .vdb files
+/// `hyvox merge` joins. count 1 = the whole grid.
+struct RegionOptions {
+    int index = 0;  ///< the box, from 0
+    int count = 1;  ///< the boxes the grid is cut into
+    bool whole() const { return count == 1; }  ///< the whole grid
+};
+
 /// The memory budget both a voxelization and its write start from, in MiB.
 constexpr std::uint64_t kDefaultMemoryBudgetMib = 4096;
 
@@ -171,6 +180,7 @@ constexpr std::uint64_t kDefaultMemoryBudgetMib = 4096;
 /// voxelize() refuses a field out of its limits with the schema's message.
 struct VoxelizeOptions {
     GridOptions grid;                ///< the grid's layout
+    RegionOptions region;            ///< the box of the grid a farm task voxelizes (all of it by default)
     Mode mode = Mode::Conservative;  ///< which voxels are set
     Method method = Method::Cpu;     ///< which backend sets them
     int threads = 0;                        ///< CPU threads; 0 = all cores

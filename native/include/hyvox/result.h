@@ -14,6 +14,7 @@
 #include "hyvox/grid.h"
 #include "hyvox/level_set.h"
 #include "hyvox/options.h"
+#include "hyvox/region.h"
 #include "hyvox/sparse_grid.h"
 
 namespace hyvox {
@@ -202,6 +203,8 @@ struct Stats {
     std::uint64_t attribute_voxels_unreached = 0;  ///< set voxels no piece reached (valued 0)
     /// The options the run used (after the front door read its environment variables).
     VoxelizeOptions options;
+    /// A region's run (options.region): the box of the grid it voxelized; the rest is empty.
+    std::optional<RegionBox> region;
     /// The section of the backend that ran; the others stay empty.
     std::optional<CpuStats> cpu;                    ///< the cpu method
     std::optional<ReferenceStats> reference;        ///< the reference method

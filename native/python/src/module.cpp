@@ -37,4 +37,5 @@ PYBIND11_MODULE(_core, m) {
     bindVoxelGrid(m);
     bindVoxelize(m);
     bindMeshIo(m);
+    bindMerge(m);
 }

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "hyvox/errors.h"
+#include "hyvox/region.h"
 
 namespace hyvox {
 namespace {
@@ -16,7 +17,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Accessors: one line per field, captureless so they fit the spec's function pointers.
 // HYVOX_FIELD: a field of VoxelizeOptions; HYVOX_WRITE_FIELD: one of WriteOptions (after
-// HYVOX_FIELD, or after NO_VOXELIZE_FIELD for an option of the write alone).
+// HYVOX_FIELD, or after NO_VOXELIZE_FIELD for an option of the write alone); NO_WRITE_FIELD
+// before the fields after them (text_form...) of an option of the voxelization alone.
 #define HYVOX_FIELD(type_get, expr)                                                      \
     [](const VoxelizeOptions& o) -> OptionValue { return type_get(o.expr); },            \
         [](VoxelizeOptions& o, const OptionValue& v) { o.expr = fieldValue(v, o.expr); }
@@ -24,6 +26,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
     [](const WriteOptions& o) -> OptionValue { return type_get(o.expr); },               \
         [](WriteOptions& o, const OptionValue& v) { o.expr = fieldValue(v, o.expr); }
 #define NO_VOXELIZE_FIELD nullptr, nullptr
+#define NO_WRITE_FIELD nullptr, nullptr
 
 OptionValue asInteger(std::int64_t v) { return v; }
 OptionValue asNumber(double v) { return v; }
@@ -40,6 +43,7 @@ OptionValue asMode(Mode v) { return std::string(toString(v)); }
 OptionValue asMethod(Method v) { return std::string(toString(v)); }
 OptionValue asInsideRule(InsideRule v) { return std::string(toString(v)); }
 OptionValue asAttributes(const AttributeSet& v) { return toString(v); }
+OptionValue asRegion(const RegionOptions& v) { return formatRegion(v); }
 
 // The stored value converted to the field's type (checked before: the variant holds the
 // spec's type, or monostate for an unset nullable field).
@@ -52,11 +56,14 @@ Mode fieldValue(const OptionValue& v, Mode) { return parseMode(std::get<std::str
 Method fieldValue(const OptionValue& v, Method) { return parseMethod(std::get<std::string>(v)); }
 InsideRule fieldValue(const OptionValue& v, InsideRule) { return parseInsideRule(std::get<std::string>(v)); }
 AttributeSet fieldValue(const OptionValue& v, const AttributeSet&) { return parseAttributeSet(std::get<std::string>(v)); }
+RegionOptions fieldValue(const OptionValue& v, const RegionOptions&) { return parseRegion(std::get<std::string>(v)); }
 template <typename T>
 std::optional<T> fieldValue(const OptionValue& v, const std::optional<T>&) {
     if (std::holds_alternative<std::monostate>(v)) return std::nullopt;
     return std::get<T>(v);
 }
+
+static_assert(kMaxRegions == 2048, "the region's text_rule below names its limit");
 
 std::vector<OptionSpec> buildSchema() {
     using T = OptionType;
@@ -77,6 +84,12 @@ std::vector<OptionSpec> buildSchema() {
          false, {}, {}, nullptr, HYVOX_FIELD(asOptionalBox, grid.bounds)});
     add({"padding", T::Integer, "grid", "Padding", "voxels", "empty voxels added on every side", false, 0, 1024, false,
          {}, {}, nullptr, HYVOX_FIELD(asInteger, grid.padding)});
+    add({"region", T::Text, "grid", "Region", "",
+         "voxelize only box K (from 0) of the N the grid is cut into along its longest side, at whole 8³ "
+         "leaves: one farm task's part, on the whole grid's transform, for hyvox merge to join into the whole "
+         "grid's file; '' = the whole grid; not for solid mode with attributes", false, 0, 0, false, {}, {}, nullptr,
+         HYVOX_FIELD(asRegion, region), NO_WRITE_FIELD, "K/N",
+         "K/N with whole numbers 0 <= K < N <= 2048, or '' for the whole grid", isRegionText});
     // --- the run ---
     add({"mode", T::Choice, "run", "Mode", "",
          "conservative: every voxel the surface touches (26-separating); thin: 6-separating; solid: "
@@ -172,6 +185,7 @@ std::vector<OptionSpec> buildSchema() {
 #undef HYVOX_FIELD
 #undef HYVOX_WRITE_FIELD
 #undef NO_VOXELIZE_FIELD
+#undef NO_WRITE_FIELD
 
 const char* typeName(OptionType type) {
     switch (type) {
@@ -222,6 +236,7 @@ std::string describeOption(const OptionSpec& spec) {
     std::string what = typeName(spec.type);
     const std::string range = rangeText(spec);
     if ((spec.type == OptionType::Integer || spec.type == OptionType::Number) && !range.empty()) what += " " + range;
+    if (spec.type == OptionType::Text && spec.text_rule) what = spec.text_rule;
     if (spec.type == OptionType::Choice || spec.type == OptionType::Choices) {
         what = spec.type == OptionType::Choice ? "one of" : "a comma list of";
         for (std::size_t c = 0; c < spec.choices.size(); ++c) what += (c ? ", " : " ") + std::string(spec.choices[c]);
@@ -323,6 +338,7 @@ void checkOption(const OptionSpec& spec, const OptionValue& value) {
             return;
         case OptionType::Text:
             if (!std::holds_alternative<std::string>(value)) refuse(spec, got);
+            if (spec.text_valid && !spec.text_valid(std::get<std::string>(value))) refuse(spec, got);
             return;
         case OptionType::Choice: {
             const auto* text = std::get_if<std::string>(&value);

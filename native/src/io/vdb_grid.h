@@ -38,8 +38,8 @@ openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<Vo
 openvdb::FloatGrid::Ptr makeLevelSetGrid(const VoxelizeResult& result);
 
 // The grids writeVdb() stores (it serializes them itself, vdb_direct_writer.h): density,
-// plus count when result.counts is non-empty, plus the attribute grids and the sdf, each
-// with the hyvox_* metadata.
+// plus count when the method keeps counts (writesCountGrid), plus the attribute grids and the
+// sdf, each with the hyvox_* metadata.
 openvdb::GridPtrVec makeGrids(const VoxelizeResult& result);
 
 // Writes grids with OpenVDB's own writer, atomically (hyvox::io::AtomicFile); throws

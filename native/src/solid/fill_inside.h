@@ -22,7 +22,8 @@
 
 namespace hyvox::solid {
 
-// `surface`: the conservative surface of the whole grid (finished). Returns the inside voxels
+// `surface`: the conservative surface of the whole grid, or of the box of options.region
+// (finished; the inside is then decided in that box only). Returns the inside voxels
 // (finished; disjoint from `surface` apart from tiles, which may cover surface voxels), and
 // fills `stats` (all but tile_bricks). With `surface_inside`, also decides the centres of the
 // surface's own voxels by the same rule (the sign of the sdf attribute, which the occupancy

@@ -18,6 +18,7 @@
 #include "sdf/level_set.h"
 #include "solid/fill_inside.h"
 #include "hyvox/option_schema.h"
+#include "hyvox/region.h"
 #include "tile_plan.h"
 
 #include <tbb/task_arena.h>
@@ -30,14 +31,20 @@ std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20)
 // Refuse before allocating: one tile's bits plus the leaves the surface is expected to need.
 // The estimate (a pass over every triangle) is skipped when even a leaf in every brick of the
 // grid would fit: the common case, where it cost more than voxelizing at low resolutions.
+// A region's run counts its box only: what it holds.
 void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options, const tiling::TilePlan& plan,
                        const ValidatedMesh& mesh) {
-    const double most = double(plan.tileBytes()) + double(grid.bricks().total()) * double(SparseGrid::kLeafBytes);
+    GridSpec box = grid;
+    box.dims = plan.boxDims();
+    const double most = double(plan.tileBytes()) + double(box.bricks().total()) * double(SparseGrid::kLeafBytes);
     if (most <= double(options.memoryBudgetBytes())) return;  // in doubles: huge grids overflow 64 bits
-    const std::uint64_t estimated_leaves = tiling::estimateLeaves(mesh, grid);
+    const std::uint64_t estimated_leaves = tiling::estimateLeaves(mesh, grid, plan);
     const std::uint64_t need = plan.tileBytes() + estimated_leaves * SparseGrid::kLeafBytes;
+    const std::string what = plan.region ? "region " + formatRegion(options.region) + " (" + box.dimsText() + ") of the " +
+                                               grid.dimsText() + " grid"
+                                         : "a " + grid.dimsText() + " grid";
     if (need > options.memoryBudgetBytes())
-        throw ResourceError("a " + grid.dimsText() + " grid needs about " + mib(need) + " (" +
+        throw ResourceError(what + " needs about " + mib(need) + " (" +
                             (plan.whole() ? std::string("its bits") : "a " + mib(plan.tileBytes()) + " tile") +
                             " and about " + std::to_string(estimated_leaves) +
                             " leaves of surface), more than the memory budget of " +
@@ -62,8 +69,9 @@ void checkDisplacementReach(const GridSpec& grid, const VoxelizeOptions& options
 
 // A displaced surface none of whose points landed in the grid is not an empty result but a
 // displacement that carried everything away: say so instead of returning 0 voxels.
+// (A region's box may hold none of the surface: not checked there.)
 void checkSomethingLanded(const Stats& stats, const tiling::PointReach& reach) {
-    if (reach.fixed <= 0 || !stats.tessellation) return;
+    if (reach.fixed <= 0 || !stats.tessellation || stats.region) return;
     const TessellationStats& t = *stats.tessellation;
     if (t.points == 0 || t.points_clipped < t.points) return;
     throw InvalidInput("every one of the " + std::to_string(t.points) +
@@ -108,6 +116,23 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
 std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, const VoxelizeOptions& options) {
     if (!options.attributes.surfaceValues()) return std::nullopt;
     return std::optional<attributes::SurfaceValues>(std::in_place, mesh, options.attributes);
+}
+
+// A region's tiles see the triangles that touch its voxels, which is all a surface voxel's
+// values need; a solid's inside takes them from the nearest surface, layer by layer inward, and
+// a whole tile region from its shell, across any cut of the grid (attributes/inside_values.h);
+// the sdf's band and sign reach across the cut alike.
+void checkRegionAttributes(const VoxelizeOptions& options) {
+    if (options.region.whole()) return;
+    if (options.attributes.sdf)
+        throw InvalidInput("region " + formatRegion(options.region) +
+                           ": the sdf needs the whole grid, since its band and its sign reach beyond any one region; "
+                           "voxelize the whole grid for it");
+    if (options.mode == Mode::Solid && options.attributes.surfaceValues())
+        throw InvalidInput("region " + formatRegion(options.region) + ": solid mode with attributes (" +
+                           toString(options.attributes) +
+                           ") needs the whole grid, since the inside's values come from the surface around it, "
+                           "beyond any one region; voxelize the regions without attributes, or in a surface mode");
 }
 
 // The grid's options: with the sdf, padded by at least its band, so that the band outside the
@@ -277,6 +302,7 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
                   .tessellation_tile_bytes(options.gl.device, options.memoryBudgetBytes() / 2, surface ? surface->channels() : 0)
             : 0;
     const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
+    if (plan.region) stats.region = regionBox(grid, options.region);
     checkMemoryBudget(grid, options, plan, validated);
     const tiling::PointReach reach = tiling::pointReach(grid, options);
     checkDisplacementReach(grid, options, reach);
@@ -350,6 +376,7 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
 
 VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, Interrupter* interrupter) {
     checkOptions(options);
+    checkRegionAttributes(options);
     const InterrupterRun run(interrupter, "hyvox voxelize");
     Stopwatch watch;
     const ValidatedMesh validated = validate(mesh, options, interrupter);
@@ -359,6 +386,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
 VoxelizeResult voxelize(const ValidatedMesh& validated, const VoxelizeOptions& options, Interrupter* interrupter,
                         double validate_ms) {
     checkOptions(options);
+    checkRegionAttributes(options);
     const InterrupterRun run(interrupter, "hyvox voxelize");
     return voxelizeValidated(validated, options, interrupter, validate_ms);
 }
