@@ -36,4 +36,5 @@ PYBIND11_MODULE(_core, m) {
     bindVoxelGrid(m);
     bindVoxelize(m);
     bindMeshIo(m);
+    bindPlanGrid(m);
 }
