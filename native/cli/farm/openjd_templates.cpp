@@ -259,8 +259,100 @@ std::string blenderJobTemplate() {
     return header("job template: voxelize a .blend's animation, a frame chunk per task") + job.render();
 }
 
+// Region.sh HYVOX MESH OUTPUT REGIONS REGION [--flag=VALUE UNSET]... -- OPTIONS...: region
+// REGION (1..REGIONS) of the grid. The pairs before "--" are options a farm parameter holds
+// their unset value for unless given: left out then (the CLI would refuse the value). The
+// part's name says which region it is, so a re-run rewrites only its own (atomically: the
+// CLI writes a temporary and renames it).
+std::string regionScript() {
+    return "#!/usr/bin/env bash\n"
+           "# One region of the grid (hyvox voxelize --region K/N), K from 0.\n"
+           "set -euo pipefail\n"
+           "hyvox=$1 mesh=$2 output=$3 regions=$4 region=$5\n"
+           "shift 5\n"
+           "given=()\n"
+           "while [ \"$1\" != -- ]; do\n"
+           "  awk -v v=\"${1#*=}\" -v u=\"$2\" 'BEGIN { exit !(v + 0 == u + 0) }' || given+=(\"$1\")\n"
+           "  shift 2\n"
+           "done\n"
+           "shift\n"
+           "mkdir -p \"$output.regions\"\n"
+           "k=$((region - 1))\n"
+           "exec \"$hyvox\" voxelize \"$mesh\" -o \"$output.regions/region_${k}_of_${regions}.vdb\" --region \"$k/$regions\" "
+           "--progress \"${given[@]}\" \"$@\"\n";
+}
+
+// Merge.sh HYVOX OUTPUT REGIONS: every part there, then one .vdb of them all.
+std::string mergeScript() {
+    return "#!/usr/bin/env bash\n"
+           "# The regions merged into one .vdb (hyvox merge), once every part is there.\n"
+           "set -euo pipefail\n"
+           "hyvox=$1 output=$2 regions=$3\n"
+           "parts=()\n"
+           "for ((k = 0; k < regions; k++)); do\n"
+           "  part=\"$output.regions/region_${k}_of_${regions}.vdb\"\n"
+           "  [ -f \"$part\" ] || { echo \"hyvox: error: region $k of $regions is missing ($part)\" >&2; exit 1; }\n"
+           "  parts+=(\"$part\")\n"
+           "done\n"
+           "exec \"$hyvox\" merge \"${parts[@]}\" -o \"$output\"\n";
+}
+
 std::string regionJobTemplate() {
-    return header("job template: one grid as regions") + "TODO\n";
+    Yaml params = Yaml::list();
+    params.push(pathParameter("MeshFile", "FILE", "IN", "The mesh to voxelize (PLY, PLY.GZ, OBJ, ...)"));
+    params.push(pathParameter("OutputFile", "FILE", "OUT",
+                              "The merged .vdb; the regions' parts go to OUTPUT.regions/region_K_of_N.vdb"));
+    params.push(intParameter("Regions", 4, 1, 4096, "Boxes the grid is split into along its longest axis, one task each"));
+    params.push(textParameter("HyvoxExecutable", "hyvox",
+                              "The worker's hyvox command (pip install hyvox); a name on PATH or a full path"));
+    std::vector<std::string> unset_pairs, options;
+    for (const OptionSpec* spec : regionJobOptions()) {
+        params.push(optionParameter(*spec));
+        const std::string arg = spec->cliFlag() + "=" + param(parameterName(*spec));
+        if (spec->nullable) {
+            unset_pairs.push_back(arg);
+            unset_pairs.push_back(shortestNumber(unsetValue(*spec)));
+        } else {
+            options.push_back(arg);
+        }
+    }
+    unset_pairs.push_back("--");
+    Yaml region_step =
+        Yaml::map()
+            .add("name", Yaml::text("VoxelizeRegions"))
+            .add("parameterSpace",
+                 Yaml::map().add("taskParameterDefinitions",
+                                 Yaml::list().push(Yaml::map()
+                                                       .add("name", Yaml::text("Region"))
+                                                       .add("type", Yaml::text("INT"))
+                                                       .add("range", Yaml::text("1-{{Param.Regions}}")))))
+            .add("script",
+                 Yaml::map()
+                     .add("actions",
+                          Yaml::map().add("onRun", action(concat({"{{Task.File.Region}}", param("HyvoxExecutable"),
+                                                                  param("MeshFile"), param("OutputFile"),
+                                                                  param("Regions"), "{{Task.Param.Region}}"},
+                                                                 concat(unset_pairs, options)),
+                                                          true)))
+                     .add("embeddedFiles", Yaml::list().push(embeddedFile("Region", regionScript()))));
+    Yaml merge_step =
+        Yaml::map()
+            .add("name", Yaml::text("Merge"))
+            .add("dependencies", Yaml::list().push(Yaml::map().add("dependsOn", Yaml::text("VoxelizeRegions"))))
+            .add("script",
+                 Yaml::map()
+                     .add("actions", Yaml::map().add("onRun", action({"{{Task.File.Merge}}", param("HyvoxExecutable"),
+                                                                      param("OutputFile"), param("Regions")},
+                                                                     true)))
+                     .add("embeddedFiles", Yaml::list().push(embeddedFile("Merge", mergeScript()))));
+    Yaml job = Yaml::map()
+                   .add("specificationVersion", Yaml::text("jobtemplate-2023-09"))
+                   .add("name", Yaml::text("hyvox: {{RawParam.MeshFile}} in {{Param.Regions}} regions"))
+                   .add("description", Yaml::text("Voxelizes one mesh's grid as regions of the same global grid, "
+                                                  "a task each, then merges them into one .vdb (hyvox CLI)."))
+                   .add("parameterDefinitions", params)
+                   .add("steps", Yaml::list().push(region_step).push(merge_step));
+    return header("job template: one grid as region tasks and a merge") + job.render();
 }
 
 }  // namespace hyvox::farm
