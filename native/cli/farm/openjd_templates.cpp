@@ -191,7 +191,9 @@ std::string blenderJobTemplate() {
                               "Comma-separated names of the objects to voxelize into one volume; empty: the "
                               "file's selection, or every visible mesh when nothing is selected"));
     params.push(intParameter("ChunkSize", 10, 1, 150, "Frames per task (the farm may size chunks by ChunkSeconds)"));
-    params.push(intParameter("ChunkSeconds", 300, 10, 86400, "The run time a task aims at, in seconds"));
+    params.push(intParameter("ChunkSeconds", 300, 0, 86400,
+                             "The run time a task aims at, in seconds (the farm sizes later chunks by the "
+                             "first ones); 0: every task ChunkSize frames"));
     params.push(textParameter("BlenderExecutable", "blender",
                               "The worker's Blender (4.2+ with the hyvox extension, or any Blender with the "
                               "hyvox add-on installed); a name on PATH or a full path"));
