@@ -106,7 +106,7 @@ def template(kind, tmp_path):
 
 
 def openjd_run(template_path, params, env, step=None, extra=()):
-    command = [OPENJD, "run", template_path, "--output", "json"]
+    command = [OPENJD, "run", template_path]
     command += ["--step", step] if step else ["--step", "Assemble", "--run-dependencies"]
     for key, value in params.items():
         command += ["-p", f"{key}={value}"]
