@@ -26,7 +26,7 @@ import time
 import bpy
 
 from ..core import backend, frame_ranges, naming
-from ..core.errors import HyvoxError
+from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import GroupResult
 from ..blender import export, frame_export, importer, properties
 
@@ -37,12 +37,16 @@ class FarmError(HyvoxError):
     """A task that cannot do its work (a frame missing, a file unreadable)."""
 
 
-class Cancelled(Exception):
-    """SIGTERM: the farm cancelled the task."""
+class Cancelled(CancelledError):
+    """SIGTERM: the farm cancelled the task (the operator reports it as a cancel)."""
+
+
+_cancelled = []  # set once SIGTERM came: the task's exit status says so
 
 
 def _cancel(signum, frame):
-    raise Cancelled("cancelled (SIGTERM); no partial file is left")
+    _cancelled.append(signum)
+    raise Cancelled("cancelled by the farm (SIGTERM); no partial file is left")
 
 
 @contextlib.contextmanager
@@ -200,6 +204,7 @@ def run_command(argv) -> int:
         print(f"hyvox: error: unknown farm command {command!r} (run, assemble, serve)", file=sys.stderr)
         return 2
     output = None
+    _cancelled.clear()
     try:
         with cancel_on_sigterm():
             known, rest = _parser(command).parse_known_args(args)
@@ -224,7 +229,7 @@ def run_command(argv) -> int:
         reason = str(exc)
         print(f"hyvox: error: {reason[len('hyvox: '):] if reason.startswith('hyvox: ') else reason}",
               file=sys.stderr, flush=True)
-        return 1
+        return 143 if _cancelled else 1
     finally:
         if output:
             _remove_partial_files(os.path.abspath(output))
