@@ -5,28 +5,11 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "hyvox/stats_json.h"
+
 namespace hyvox::farm {
 
-std::string quoted(const std::string& value) {
-    std::string out = "\"";
-    for (const char c : value) {
-        switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\t': out += "\\t"; break;
-            default:
-                if (static_cast<unsigned char>(c) < 0x20) {
-                    char buf[8];
-                    std::snprintf(buf, sizeof buf, "\\u%04x", c);
-                    out += buf;
-                } else {
-                    out += c;
-                }
-        }
-    }
-    return out + "\"";
-}
+std::string quoted(const std::string& value) { return jsonQuoted(value); }
 
 std::string shortestNumber(double value) {
     char buf[32];

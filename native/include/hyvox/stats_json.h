@@ -13,6 +13,10 @@ namespace hyvox {
 
 std::string statsToJson(const VoxelizeResult& result);
 
+// `text` as a JSON string literal, quotes included (also a YAML double-quoted scalar and a
+// JavaScript string: the farm job templates write theirs with it).
+std::string jsonQuoted(const std::string& text);
+
 // Writes text to a file atomically (temporary file in the same folder + rename; `durable`:
 // synced to disk as the durable_write option says).
 // Throws InvalidInput (bad path) or ResourceError (I/O failure); never leaves a partial file.
