@@ -8,6 +8,7 @@
 
 #include "hyvox/errors.h"
 #include "hyvox/option_schema.h"
+#include "merge_command.h"
 
 namespace hyvox::cli {
 namespace {
@@ -17,6 +18,7 @@ const char* sweepFixes(const std::string& name) {
     if (name == "mode" || name == "method")
         return "the sweep always compares the tessellation method with the exact conservative voxels";
     if (name == "tess_gamma") return "it takes --gammas G1,G2,...";
+    if (name == "region") return "the sweep measures the whole grid";
     return nullptr;
 }
 
@@ -53,7 +55,7 @@ std::string placeholder(const OptionSpec& spec) {
         case OptionType::Integer: return " N";
         case OptionType::Number: return " X";
         case OptionType::Flag: return "";
-        case OptionType::Text: return " TEXT";
+        case OptionType::Text: return std::string(" ") + (spec.text_form ? spec.text_form : "TEXT");
         case OptionType::Choice: {
             std::string choices;
             for (const char* c : spec.choices) choices += (choices.empty() ? " " : "|") + std::string(c);
@@ -64,6 +66,8 @@ std::string placeholder(const OptionSpec& spec) {
     }
     return "";
 }
+
+}  // namespace
 
 std::string optionHelp(const OptionSpec& spec) {
     std::string flag = "  " + spec.cliFlag() + placeholder(spec);
@@ -85,6 +89,8 @@ std::string commonOptionsHelp() {
            "  -h, --help\n      show this help\n";
 }
 
+namespace {
+
 // The schema's options, less those the command sets itself (fixed(name) not null).
 std::string voxelizeOptionsHelp(const char* (*fixed)(const std::string&)) {
     std::string text =
@@ -98,6 +104,7 @@ std::string voxelizeOptionsHelp(const char* (*fixed)(const std::string&)) {
 }  // namespace
 
 std::string usageText(Command topic) {
+    if (topic == Command::Merge) return mergeUsageText();
     if (topic == Command::Voxelize) {
         std::string text =
             "usage: hyvox voxelize MESH -o OUT.vdb [options]\n"
@@ -129,12 +136,14 @@ std::string usageText(Command topic) {
     }
     return "usage: hyvox voxelize MESH -o OUT.vdb [options]\n"
            "       hyvox gamma-sweep MESH [--gammas 1,1.5,2,3,4,6] [options]\n"
+           "       hyvox merge PART.vdb... -o OUT.vdb [options]\n"
            "       hyvox job-template openjd|openjd-regions|flamenco [-o FILE]\n"
            "       hyvox --help | --version\n"
            "\n"
            "commands:\n"
            "  voxelize      voxelize the surface of a triangle mesh into an OpenVDB file\n"
            "  gamma-sweep   measure how many voxels the tessellation method misses at each gamma\n"
+           "  merge         join the .vdb files of the regions of one grid into the grid's file\n"
            "  job-template  print a render-farm job (Open Job Description, Flamenco) for hyvox\n"
            "\n"
            "'hyvox COMMAND --help' shows the options of a command.\n";
@@ -152,7 +161,7 @@ Arguments parseArguments(const std::vector<std::string>& args) {
         return parseCommand(args);
     } catch (const UsageError& e) {
         // A mistake after a known command points at that command's own help.
-        if (args[0] == "voxelize" || args[0] == "gamma-sweep")
+        if (args[0] == "voxelize" || args[0] == "gamma-sweep" || args[0] == "merge")
             throw UsageError(e.what(), "hyvox " + args[0] + " --help lists its options");
         throw;
     }
@@ -168,6 +177,7 @@ Arguments parseCommand(const std::vector<std::string>& args) {
         out.command = Command::Version;
         return out;
     }
+    if (args[0] == "merge") return parseMergeArguments(args);
     if (args[0] == "voxelize") {
         out.command = Command::Voxelize;
     } else if (args[0] == "gamma-sweep") {
@@ -176,7 +186,7 @@ Arguments parseCommand(const std::vector<std::string>& args) {
         out.options.tessellation.counts = false;  // the sweep needs only the occupancy
         out.gammas = {1, 1.5, 2, 3, 4, 6};
     } else {
-        throw UsageError("unknown command '" + args[0] + "' (the commands are 'voxelize', 'gamma-sweep' and 'job-template')");
+        throw UsageError("unknown command '" + args[0] + "' (the commands are 'voxelize', 'gamma-sweep', 'merge' and 'job-template')");
     }
     try {
         applyEnvironment(out.options, [](const char* variable) -> const char* { return std::getenv(variable); });

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// Command-line parsing for `hyvox voxelize` and `hyvox gamma-sweep`: the voxelize options
+// Command-line parsing for `hyvox voxelize`, `hyvox gamma-sweep` and `hyvox merge`
+// (merge_command.h parses its own arguments): the voxelize options
 // and their help come from the options schema (hyvox/option_schema.h); every mistake is a
 // UsageError with the schema's message.
 #include <optional>
@@ -9,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "hyvox/option_schema.h"
 #include "hyvox/options.h"
 
 namespace hyvox::cli {
@@ -20,7 +22,7 @@ struct UsageError : std::runtime_error {
     std::string hint;
 };
 
-enum class Command { Help, Version, Voxelize, GammaSweep };
+enum class Command { Help, Version, Voxelize, GammaSweep, Merge };
 
 struct Arguments {
     Command command = Command::Help;
@@ -34,6 +36,7 @@ struct Arguments {
     std::string texture_path;  // empty: none; a PNG sampled at the mesh's UVs for --attributes color
     VoxelizeOptions options;
     std::vector<double> gammas;  // gamma-sweep: the safety factors to try, ascending
+    std::vector<std::string> part_paths;  // merge: the .vdb files to join
     // Options given on the command line that the chosen method ignores (printed as warnings).
     std::vector<std::string> warnings;
 };
@@ -42,5 +45,9 @@ struct Arguments {
 Arguments parseArguments(const std::vector<std::string>& args);
 // The help `hyvox --help` (topic Help: the commands) or `hyvox COMMAND --help` prints.
 std::string usageText(Command topic = Command::Help);
+// Pieces of that help the commands share: one option's entry (flag, help, default), and the
+// options every command takes (--progress, --quiet, --help).
+std::string optionHelp(const OptionSpec& spec);
+std::string commonOptionsHelp();
 
 }  // namespace hyvox::cli

@@ -16,6 +16,7 @@
 #include "hyvox/version.h"
 #include "gamma_sweep_command.h"
 #include "job_template_command.h"
+#include "merge_command.h"
 #include "voxelize_command.h"
 
 namespace {
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
             case cli::Command::Version: std::printf("hyvox %s\n", version()); return 0;
             case cli::Command::Voxelize: cli::runVoxelize(args, g_stop); return 0;
             case cli::Command::GammaSweep: cli::runGammaSweep(args, g_stop); return 0;
+            case cli::Command::Merge: cli::runMerge(args, g_stop); return 0;
         }
         return 0;
     } catch (const cli::UsageError& e) {

@@ -21,6 +21,8 @@ TETRA_T = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], np.uint32)
 
 def bad_values(spec):
     """(python value, command-line text) pairs the schema must refuse, from its own limits."""
+    if spec.name == "region":  # text of a form of its own, K/N with K < N
+        return [("2/2", "2/2"), ("1", "1"), ("1/2049", "1/2049")]
     if spec.type in ("int", "float"):
         below = spec.min if spec.min_exclusive else spec.min - 1
         cases = [below] if math.isfinite(spec.min) else []
@@ -78,6 +80,7 @@ def good_value(spec):
         "method": "reference", "voxel_size": 0.125, "origin": (-0.5, -0.25, 0.0),
         "bounds": ((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)), "gl_device": "software",
         "shader_dir": "/nonexistent/shaders", "displacement_image": "height.png", "attributes": "normal",
+        "region": "1/2",
     }
     if spec.name in special:
         return special[spec.name]

@@ -49,6 +49,11 @@ struct OptionSpec {
     // The field behind the option (no checks: setOption checks first).
     OptionValue (*get)(const VoxelizeOptions&) = nullptr;
     void (*put)(VoxelizeOptions&, const OptionValue&) = nullptr;
+    // Text of a form of its own (the region's "K/N"): the form for a usage line, what a valid
+    // text is (for messages), and the check; null = any text.
+    const char* text_form = nullptr;
+    const char* text_rule = nullptr;
+    bool (*text_valid)(const std::string& text) = nullptr;
 
     std::string cliFlag() const;  // "--voxel-size"
 };
@@ -79,7 +84,8 @@ std::vector<double> parseNumberList(const std::string& text);
 // The value as text (for --help defaults, reports and error messages); "" for unset.
 std::string formatOptionValue(const OptionValue& value);
 
-// What a valid value is, for messages: "a whole number between 1 and 16384".
+// What a valid value is, for messages: "a whole number between 1 and 16384" (a Text option
+// with a form: its text_rule).
 std::string describeOption(const OptionSpec& spec);
 
 // For the front doors (the library itself reads no environment): sets every option whose

@@ -114,8 +114,18 @@ struct SolidOptions {
     double winding_beta = 2.0;
 };
 
+// One of `count` boxes the grid is cut into along its longest side (hyvox/region.h): a run
+// voxelizes box `index` (from 0) of the whole grid only, for a farm's tasks whose .vdb files
+// `hyvox merge` joins. count 1 = the whole grid.
+struct RegionOptions {
+    int index = 0;
+    int count = 1;
+    bool whole() const { return count == 1; }
+};
+
 struct VoxelizeOptions {
     GridOptions grid;
+    RegionOptions region;
     Mode mode = Mode::Conservative;
     Method method = Method::Cpu;
     int threads = 0;                        // CPU threads; 0 = all cores

@@ -9,6 +9,7 @@
 #include "hyvox/attribute_grid.h"
 #include "hyvox/grid.h"
 #include "hyvox/options.h"
+#include "hyvox/region.h"
 #include "hyvox/sparse_grid.h"
 
 namespace hyvox {
@@ -167,6 +168,8 @@ struct Stats {
     std::uint64_t attribute_voxels_unreached = 0;
     // The options the run used (after the front door read its environment variables).
     VoxelizeOptions options;
+    // A region's run (options.region): the box of the grid it voxelized; the rest is empty.
+    std::optional<RegionBox> region;
     // The section of the backend that ran; the others stay empty.
     std::optional<CpuStats> cpu;
     std::optional<ReferenceStats> reference;

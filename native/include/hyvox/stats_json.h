@@ -2,6 +2,7 @@
 #pragma once
 // The stats of a voxelization as JSON, for scripts and the benchmark:
 // {"hyvox_version", "method", "mode", "origin": [x,y,z], "voxel_size", "dims": [x,y,z],
+//  a region's run: "region": {"index", "count", "axis": "x"|"y"|"z", "lo": [i,j,k], "hi": [i,j,k]},
 //  "voxel_count", "triangles": {"input","used","degenerate"}, "timings_ms": {stage: ms},
 //  "total_ms", "options": {schema name: value used}, and the backend's section
 //  "cpu" | "reference" | "hybrid" | "tessellation": {figure: value}}.

@@ -8,12 +8,12 @@
 //  - "density": a FloatGrid, class fog volume, value 1 on every occupied voxel (active),
 //    background 0. Transform: uniform scale voxel_size, translation origin + voxel_size/2,
 //    so index (i,j,k) is the centre of voxel (i,j,k) (DESIGN.md, "Coordinates").
-//  - "count": a FloatGrid with the per-voxel values of a multi-valued result (only when
-//    result.counts is non-empty), same transform.
+//  - "count": a FloatGrid with the per-voxel values of a multi-valued result (when the
+//    method keeps them: the tessellation with tess_counts), same transform.
 //  - "color" (Vec3f, linear RGB), "alpha" (float, when the colour source has it), "normal"
 //    (Vec3f): the attribute voxels (result.attributes), active exactly on the density's voxels.
 //  Grid metadata: hyvox_version, hyvox_method, hyvox_mode, hyvox_voxel_size, hyvox_origin,
-//  hyvox_dims.
+//  hyvox_dims, and for a region's run (the region option) hyvox_region "K/N".
 #include <cstdint>
 #include <string>
 

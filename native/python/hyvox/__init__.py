@@ -7,6 +7,10 @@
     grid.coords()            # int32 (K, 3) voxel indices
     grid.write_vdb("bunny.vdb")
 
+One grid over many machines (docs/regions.md): voxelize(..., region="K/N") for K = 0 .. N-1,
+each part written with write_vdb, then hyvox.merge_vdb(parts, "all.vdb") joins them into the
+file the whole grid gives.
+
 Voxel (i, j, k) covers the closed box [origin + (i, j, k) * s, origin + (i+1, j+1, k+1) * s]
 with s = grid.voxel_size; the .vdb's index space is voxel centres.
 """
@@ -31,6 +35,7 @@ from ._core import (  # ATTRIBUTE_METHODS: the methods that compute colour/norma
     VoxelGrid,
     check_option,
     gl_devices,
+    merge_vdb,
 )
 
 __version__: str = _core.__version__
@@ -76,6 +81,7 @@ __all__ = [
     "check_option",
     "gl_devices",
     "ignored_options",
+    "merge_vdb",
     "option",
     "plan_grid",
     "read_mesh",

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Stubs of the compiled module hyvox._core (private: use the hyvox package).
 import os
-from typing import Any, Callable, Dict, List, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -131,5 +131,14 @@ def read_mesh(
 def plan_grid(
     vertices: npt.NDArray[np.float32], triangles: npt.NDArray[np.uint32], options: Options
 ) -> Dict[str, Any]: ...
+def merge_vdb(
+    parts: Sequence[Union[str, os.PathLike[str]]],
+    output: Union[str, os.PathLike[str]],
+    *,
+    threads: int = 0,
+    durable_write: bool = False,
+    cancel: Optional[CancelToken] = None,
+    progress: Optional[Callable[[int], object]] = None,
+) -> Dict[str, Union[int, float, None]]: ...
 def gl_devices() -> list[Dict[str, Union[int, str, bool]]]: ...
 def gl_live_objects() -> Dict[str, int]: ...

@@ -18,6 +18,7 @@ void bindOptions(py::module_& m);
 void bindVoxelize(py::module_& m);
 void bindMeshIo(py::module_& m);
 void bindPlanGrid(py::module_& m);
+void bindMerge(py::module_& m);
 
 // A numpy array that takes over a vector's storage (no copy): the vector lives in a
 // capsule that numpy frees with the array.

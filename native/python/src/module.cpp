@@ -37,4 +37,5 @@ PYBIND11_MODULE(_core, m) {
     bindVoxelize(m);
     bindMeshIo(m);
     bindPlanGrid(m);
+    bindMerge(m);
 }

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "hyvox/errors.h"
+#include "hyvox/region.h"
 
 namespace hyvox {
 namespace {
@@ -33,6 +34,7 @@ OptionValue asOptionalBox(const std::optional<Bounds>& v) { return v ? OptionVal
 OptionValue asMode(Mode v) { return std::string(toString(v)); }
 OptionValue asMethod(Method v) { return std::string(toString(v)); }
 OptionValue asInsideRule(InsideRule v) { return std::string(toString(v)); }
+OptionValue asRegion(const RegionOptions& v) { return formatRegion(v); }
 
 // The stored value converted to the field's type (checked before: the variant holds the
 // spec's type, or monostate for an unset nullable field).
@@ -44,11 +46,14 @@ std::string fieldValue(const OptionValue& v, const std::string&) { return std::g
 Mode fieldValue(const OptionValue& v, Mode) { return parseMode(std::get<std::string>(v)); }
 Method fieldValue(const OptionValue& v, Method) { return parseMethod(std::get<std::string>(v)); }
 InsideRule fieldValue(const OptionValue& v, InsideRule) { return parseInsideRule(std::get<std::string>(v)); }
+RegionOptions fieldValue(const OptionValue& v, const RegionOptions&) { return parseRegion(std::get<std::string>(v)); }
 template <typename T>
 std::optional<T> fieldValue(const OptionValue& v, const std::optional<T>&) {
     if (std::holds_alternative<std::monostate>(v)) return std::nullopt;
     return std::get<T>(v);
 }
+
+static_assert(kMaxRegions == 2048, "the region's text_rule below names its limit");
 
 std::vector<OptionSpec> buildSchema() {
     using T = OptionType;
@@ -69,6 +74,11 @@ std::vector<OptionSpec> buildSchema() {
          false, {}, {}, nullptr, HYVOX_FIELD(asOptionalBox, grid.bounds)});
     add({"padding", T::Integer, "grid", "Padding", "voxels", "empty voxels added on every side", false, 0, 1024, false,
          {}, {}, nullptr, HYVOX_FIELD(asInteger, grid.padding)});
+    add({"region", T::Text, "grid", "Region", "",
+         "voxelize only box K (from 0) of the N the grid is cut into along its longest side, at whole 8³ "
+         "leaves: one farm task's part, on the whole grid's transform, for hyvox merge to join into the whole "
+         "grid's file; '' = the whole grid; not for solid mode with attributes", false, 0, 0, false, {}, {}, nullptr, HYVOX_FIELD(asRegion, region), "K/N",
+         "K/N with whole numbers 0 <= K < N <= 2048, or '' for the whole grid", isRegionText});
     // --- the run ---
     add({"mode", T::Choice, "run", "Mode", "",
          "conservative: every voxel the surface touches (26-separating); thin: 6-separating; solid: "
@@ -204,6 +214,7 @@ std::string describeOption(const OptionSpec& spec) {
     std::string what = typeName(spec.type);
     const std::string range = rangeText(spec);
     if ((spec.type == OptionType::Integer || spec.type == OptionType::Number) && !range.empty()) what += " " + range;
+    if (spec.type == OptionType::Text && spec.text_rule) what = spec.text_rule;
     if (spec.type == OptionType::Choice) {
         what = "one of";
         for (std::size_t c = 0; c < spec.choices.size(); ++c) what += (c ? ", " : " ") + std::string(spec.choices[c]);
@@ -303,6 +314,7 @@ void checkOption(const OptionSpec& spec, const OptionValue& value) {
             return;
         case OptionType::Text:
             if (!std::holds_alternative<std::string>(value)) refuse(spec, got);
+            if (spec.text_valid && !spec.text_valid(std::get<std::string>(value))) refuse(spec, got);
             return;
         case OptionType::Choice: {
             const auto* text = std::get_if<std::string>(&value);

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "hyvox/errors.h"
+#include "hyvox/region.h"
 #include "hyvox/version.h"
 
 namespace hyvox::io {
@@ -346,12 +347,14 @@ std::map<std::string, MetaValue> gridMetadata(const VoxelizeResult& result, cons
     meta["hyvox_voxel_size"] = metaDouble(grid.voxel_size);
     meta["hyvox_origin"] = metaOf("vec3d", grid.origin);
     meta["hyvox_dims"] = metaOf("vec3i", grid.dims);
+    if (!result.stats.options.region.whole()) meta["hyvox_region"] = metaString(formatRegion(result.stats.options.region));
     return meta;
 }
 
-// Transform::write of createLinearTransform(s) post-translated to the first voxel's centre:
-// the map's type name, then ScaleTranslateMap's six Vec3d, computed as OpenVDB computes them.
-void writeTransform(Bytes& out, const GridSpec& grid) {
+}  // namespace
+
+std::string vdbTransformBytes(const GridSpec& grid) {
+    Bytes out;
     out.string("UniformScaleTranslateMap");
     const double s = grid.voxel_size, h = 0.5 * grid.voxel_size;
     const double inverse = 1.0 / s;
@@ -359,7 +362,10 @@ void writeTransform(Bytes& out, const GridSpec& grid) {
     for (int a = 0; a < 3; ++a) out.pod(grid.origin[a] + h);
     for (const double v : {s, std::abs(s), inverse, inverse * inverse, inverse / 2})
         for (int a = 0; a < 3; ++a) out.pod(v);
+    return out.str();
 }
+
+namespace {
 
 // InternalNode::writeTopology's table: the child and value masks, the metadata byte (every
 // inactive value is the background) and the active tiles' values as one blosc block.
@@ -495,7 +501,8 @@ GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const VdbGrid& 
         head.string(value.type);
         head.string(value.bytes);  // Metadata::write: 32-bit size, then the value's bytes
     }
-    writeTransform(head, result.grid);
+    const std::string transform = vdbTransformBytes(result.grid);
+    head.raw(transform.data(), transform.size());
     writeTopology(head, grid, tree);
     const std::int64_t block_pos = std::int64_t(head.size());
     std::vector<std::size_t> leaves;

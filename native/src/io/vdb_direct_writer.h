@@ -26,6 +26,7 @@
 #include <utility>
 #include <vector>
 
+#include "hyvox/interrupter.h"
 #include "hyvox/result.h"
 
 namespace hyvox::io {
@@ -87,6 +88,16 @@ struct VdbBytes {
 // InvalidInput for a leaf or tile off its lattice, below 0, or overlapping another.
 VdbBytes serializeVdbGrids(const VoxelizeResult& result, const std::vector<VdbGrid>& grids, int threads);
 
+// Transform::write of the grid's transform (uniform scale voxel_size, translation to the first
+// voxel's centre, as createLinearTransform + postTranslate make it): the bytes every grid of
+// the file holds.
+std::string vdbTransformBytes(const GridSpec& grid);
+
+// Writes `file` to `path` atomically (io/atomic_file.h), in chunks between which
+// `interrupter` (may be null) is asked, with progress 91-98: a large file's write can be
+// followed and cancelled (hyvox::Cancelled; the temporary is removed, an earlier file stays).
+void writeVdbBytes(const VdbBytes& file, const std::string& path, bool durable, Interrupter* interrupter);
+
 // OpenVDB's Grid::memUsage() of the tree `grid` makes (its "file_mem_bytes" metadata).
 std::uint64_t vdbTreeMemUsage(const VdbGrid& grid);
 
@@ -114,6 +125,11 @@ VdbGrid attributeGrid(const SparseGrid& occupancy, const AttributeGrid& attribut
 // "color" (Vec3f, vector type invariant: a colour, which Blender reads as a colour through an
 // Attribute node), "alpha" (float), "normal" (Vec3f, covariant normalize); none when empty.
 void appendAttributeGrids(std::vector<VdbGrid>& grids, const SparseGrid& occupancy, const AttributeGrid& attributes);
+
+// Whether the file of `result` has a "count" grid: when the method keeps points per voxel
+// (the tessellation with tess_counts), even with none (an empty region of a farm job has one,
+// as the other regions do), or when counts were given.
+bool writesCountGrid(const VoxelizeResult& result);
 
 // An upper estimate of the memory OpenVDB would need for a float grid of `leaves` leaves.
 std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves);

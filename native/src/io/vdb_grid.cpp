@@ -14,6 +14,7 @@
 #include <ostream>
 
 #include "hyvox/errors.h"
+#include "hyvox/region.h"
 #include "hyvox/vdb.h"
 #include "hyvox/version.h"
 #include "io/atomic_file.h"
@@ -36,6 +37,8 @@ void addMetadata(openvdb::GridBase& target, const VoxelizeResult& result) {
     target.insertMeta("hyvox_origin", openvdb::Vec3DMetadata(openvdb::Vec3d(o[0], o[1], o[2])));
     const auto& d = result.grid.dims;
     target.insertMeta("hyvox_dims", openvdb::Vec3IMetadata(openvdb::Vec3i(d[0], d[1], d[2])));
+    const RegionOptions& region = result.stats.options.region;
+    if (!region.whole()) target.insertMeta("hyvox_region", openvdb::StringMetadata(formatRegion(region)));
 }
 
 // io::File::write() opens its own std::ofstream and never checks it after writing, so a full
@@ -133,7 +136,7 @@ openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<Vo
 openvdb::GridPtrVec makeGrids(const VoxelizeResult& result) {
     openvdb::GridPtrVec grids;
     grids.push_back(makeDensityGrid(result.grid, result.occupancy, result.attributes.valued_tile_bricks));
-    if (!result.counts.empty()) grids.push_back(makeCountGrid(result.grid, result.counts));
+    if (writesCountGrid(result)) grids.push_back(makeCountGrid(result.grid, result.counts));
     for (auto& grid : makeAttributeGrids(result)) grids.push_back(grid);
     for (auto& g : grids) addMetadata(*g, result);
     return grids;

@@ -33,7 +33,7 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& 
 openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<VoxelCount>& counts);
 
 // The grids writeVdb() stores (it serializes them itself, vdb_direct_writer.h): density,
-// plus count when result.counts is non-empty, plus the attribute grids, each with the
+// plus count when the method keeps counts (writesCountGrid), plus the attribute grids, each with the
 // hyvox_* metadata.
 openvdb::GridPtrVec makeGrids(const VoxelizeResult& result);
 

@@ -76,6 +76,24 @@ CountLeaves countLeaves(const std::vector<VoxelCount>& counts) {
 }
 
 }  // namespace
+
+void writeVdbBytes(const VdbBytes& file, const std::string& path, bool durable, Interrupter* interrupter) {
+    io::AtomicFile(path, durable ? io::Durability::Durable : io::Durability::Atomic).writeWith([&](std::ostream& out) {
+        constexpr std::size_t kChunk = 256 * 1024;
+        for (std::size_t at = 0; at < file.size;) {
+            const std::size_t n = std::min(kChunk, file.size - at);
+            out.write(file.data.get() + at, std::streamsize(n));
+            at += n;
+            if (at < file.size) throwIfInterrupted(interrupter, 91 + int(8 * at / file.size));
+        }
+    });
+}
+
+bool writesCountGrid(const VoxelizeResult& result) {
+    const VoxelizeOptions& options = result.stats.options;
+    return !result.counts.empty() || (options.method == Method::Tessellation && options.tessellation.counts);
+}
+
 }  // namespace hyvox::io
 
 namespace hyvox {
@@ -100,7 +118,7 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, i
     auto start = std::chrono::steady_clock::now();
     std::vector<io::VdbGrid> grids{io::resultDensityGrid(result)};
     io::CountLeaves counts;
-    if (!result.counts.empty()) {
+    if (io::writesCountGrid(result)) {
         counts = io::countLeaves(result.counts);
         io::VdbGrid count;
         count.name = "count";
@@ -115,18 +133,7 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, i
     throwIfInterrupted(interrupter, 90);
     auto now = std::chrono::steady_clock::now();
     report.build_ms = std::chrono::duration<double, std::milli>(now - start).count();
-    // Written in chunks, asking the interrupter between them (progress 91-98), so a large
-    // file's write can be followed and cancelled (the temporary is removed, an earlier file stays).
-    const auto durability = result.stats.options.durable_write ? io::Durability::Durable : io::Durability::Atomic;
-    io::AtomicFile(path, durability).writeWith([&](std::ostream& out) {
-        constexpr std::size_t kChunk = 256 * 1024;
-        for (std::size_t at = 0; at < file.size;) {
-            const std::size_t n = std::min(kChunk, file.size - at);
-            out.write(file.data.get() + at, std::streamsize(n));
-            at += n;
-            if (at < file.size) throwIfInterrupted(interrupter, 91 + int(8 * at / file.size));
-        }
-    });
+    io::writeVdbBytes(file, path, result.stats.options.durable_write, interrupter);
     report.write_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - now).count();
     if (interrupter) interrupter->wasInterrupted(100);  // progress only: the file is in place
     return report;

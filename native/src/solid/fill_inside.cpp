@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "hyvox/region.h"
 #include "solid/edge_closure.h"
 #include "solid/fast_winding.h"
 #include "solid/gradient_bound.h"
@@ -102,8 +103,9 @@ public:
     InsideFill(const GridSpec& grid, const InsideField& field, Interrupter* interrupter)
         : grid_(grid), bricks_(grid.bricks()), field_(field), interrupter_(interrupter) {}
 
-    void run(std::vector<SurfaceBrick>& surface) {
-        node({0, 0, 0}, bricks_.counts, surface.data(), surface.data() + surface.size());
+    // The bricks [lo, hi): the whole grid, or a region's box (whose surface bricks are all there).
+    void run(std::vector<SurfaceBrick>& surface, const Int3& lo, const Int3& hi) {
+        node(lo, hi, surface.data(), surface.data() + surface.size());
     }
     tbb::enumerable_thread_specific<Output>& outputs() { return outputs_; }
 
@@ -446,8 +448,10 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
     for (const SparseGrid::TileRun& run : surface.tileRuns())
         for (std::uint64_t b = run.begin; b < run.end; ++b) bricks.push_back({surface.bricks().at(b), kAllSet});
 
+    // A region's inside is decided over its box alone: the surface outside it is not known here.
+    const RegionBox box = regionBox(grid, options.region);
     InsideFill fill(grid, field, interrupter);
-    arena.execute([&] { fill.run(bricks); });
+    arena.execute([&] { fill.run(bricks, box.brickLo(), box.brickHi()); });
 
     SparseGrid inside(grid.dims);
     for (Output& out : fill.outputs()) {

@@ -22,7 +22,8 @@
 
 namespace hyvox::solid {
 
-// `surface`: the conservative surface of the whole grid (finished). Returns the inside voxels
+// `surface`: the conservative surface of the whole grid, or of the box of options.region
+// (finished; the inside is then decided in that box only). Returns the inside voxels
 // (finished; disjoint from `surface` apart from tiles, which may cover surface voxels), and
 // fills `stats` (all but tile_bricks).
 SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/clamp_coord.h"
+#include "hyvox/region.h"
 
 namespace hyvox::tiling {
 namespace {
@@ -29,8 +30,8 @@ Tile TilePlan::tile(std::size_t index, const GridSpec& grid) const {
     const std::size_t at[3] = {tx, ty, tz};
     Tile tile;
     for (int a = 0; a < 3; ++a) {
-        tile.offset[a] = std::int32_t(at[a]) * side[a];
-        tile.dims[a] = std::min(side[a], grid.dims[a] - tile.offset[a]);
+        tile.offset[a] = lo[a] + std::int32_t(at[a]) * side[a];
+        tile.dims[a] = std::min(side[a], hi[a] - tile.offset[a]);
     }
     return tile;
 }
@@ -39,6 +40,12 @@ std::uint64_t TilePlan::tileBytes() const { return denseBytes(side); }
 
 TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options, std::uint64_t device_limit) {
     TilePlan plan;
+    const RegionBox box = regionBox(grid, options.region);
+    plan.lo = box.lo;
+    plan.hi = box.hi;
+    plan.region = !options.region.whole();
+    std::array<std::int32_t, 3> dims{};
+    for (int a = 0; a < 3; ++a) dims[a] = box.hi[a] - box.lo[a];
     std::int32_t side = 0;
     {
         if (options.tile_size > 0) {
@@ -46,7 +53,7 @@ TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options, std::ui
         } else {
             std::uint64_t limit = std::min(kMaxAutoTileBytes, options.memoryBudgetBytes() / 4);
             if (device_limit > 0) limit = std::min(limit, device_limit);
-            if (denseBytes(grid.dims) > limit) {
+            if (denseBytes(dims) > limit) {
                 // The largest cube of whole bricks whose bits fit the limit (side³ / 8 bytes).
                 const double voxels = std::cbrt(double(limit) * 8.0);
                 side = std::max<std::int32_t>(BrickLayout::kSide, std::int32_t(voxels) / BrickLayout::kSide * BrickLayout::kSide);
@@ -54,8 +61,8 @@ TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options, std::ui
         }
     }
     for (int a = 0; a < 3; ++a) {
-        plan.side[a] = side > 0 && side < grid.dims[a] ? side : grid.dims[a];
-        plan.counts[a] = (grid.dims[a] + plan.side[a] - 1) / plan.side[a];
+        plan.side[a] = side > 0 && side < dims[a] ? side : dims[a];
+        plan.counts[a] = (dims[a] + plan.side[a] - 1) / plan.side[a];
     }
     return plan;
 }
@@ -98,13 +105,14 @@ std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, 
         bool outside = false;
         for (int a = 0; a < 3; ++a) {
             const double lo = lows[a] - grow, hi = highs[a] + grow;
-            const double v0 = std::max(0.0, std::ceil(lo) - 1), v1 = std::min(double(grid.dims[a] - 1), std::floor(hi));
+            const double v0 = std::max(double(plan.lo[a]), std::ceil(lo) - 1);
+            const double v1 = std::min(double(plan.hi[a] - 1), std::floor(hi));
             if (v0 > v1) {
                 outside = true;
                 break;
             }
-            first[a] = int(v0) / plan.side[a];
-            last[a] = int(v1) / plan.side[a];
+            first[a] = (int(v0) - plan.lo[a]) / plan.side[a];
+            last[a] = (int(v1) - plan.lo[a]) / plan.side[a];
         }
         if (outside) continue;
         for (int x = first[0]; x <= last[0]; ++x)
@@ -117,18 +125,26 @@ std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, 
     return bins;
 }
 
-std::uint64_t estimateLeaves(const ValidatedMesh& mesh, const GridSpec& grid) {
+std::uint64_t estimateLeaves(const ValidatedMesh& mesh, const GridSpec& grid, const TilePlan& plan) {
     double area = 0;
+    std::uint64_t triangles = 0;
     for (std::uint32_t t : mesh.usable) {
         const auto p0 = grid.toVoxel(mesh.vertex(t, 0)), p1 = grid.toVoxel(mesh.vertex(t, 1)),
                    p2 = grid.toVoxel(mesh.vertex(t, 2));
+        bool meets = true;  // the triangle's bounding box, one voxel wider, meets the plan's box
+        for (int a = 0; a < 3; ++a)
+            meets = meets && std::max({p0[a], p1[a], p2[a]}) >= plan.lo[a] - 1 && std::min({p0[a], p1[a], p2[a]}) <= plan.hi[a];
+        if (!meets) continue;
+        ++triangles;
         const double e0[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
         const double e1[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
         const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
         area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     }
-    const double leaves = std::max(2.0 * area / 64.0, double(mesh.usable.size() > 0));
-    return std::uint64_t(std::min(leaves, double(grid.bricks().total())));
+    const double leaves = std::max(2.0 * area / 64.0, double(triangles > 0));
+    std::array<std::int32_t, 3> dims{};
+    for (int a = 0; a < 3; ++a) dims[a] = plan.hi[a] - plan.lo[a];
+    return std::uint64_t(std::min(leaves, double(BrickLayout::over(dims).total())));
 }
 
 }  // namespace hyvox::tiling

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// How the dispatcher cuts the grid into tiles: brick-aligned cubes sized by the tile_size
-// option or the memory budget, and which triangles may reach each.
+// How the dispatcher cuts the grid, or the box of its region (hyvox/region.h), into tiles:
+// brick-aligned cubes sized by the tile_size option or the memory budget, and which
+// triangles may reach each.
 #include <cstdint>
 #include <vector>
 
@@ -15,16 +16,21 @@ namespace hyvox::tiling {
 struct TilePlan {
     std::array<std::int32_t, 3> side{0, 0, 0};    // voxels per tile along each axis (multiples of 8)
     std::array<std::int32_t, 3> counts{1, 1, 1};  // tiles per axis
-    bool whole() const { return counts[0] * counts[1] * counts[2] == 1; }
+    // The voxels the tiles cover, [lo, hi): the whole grid, or its region's box (lo a
+    // multiple of 8), whose tiles start at lo.
+    std::array<std::int32_t, 3> lo{0, 0, 0}, hi{0, 0, 0};
+    bool region = false;  // the box is a region's, not the whole grid
+    // One tile over the whole grid (every triangle reaches it).
+    bool whole() const { return !region && counts[0] * counts[1] * counts[2] == 1; }
     std::size_t total() const { return std::size_t(counts[0]) * std::size_t(counts[1]) * std::size_t(counts[2]); }
     Tile tile(std::size_t index, const GridSpec& grid) const;
     std::uint64_t tileBytes() const;  // the dense bits of one tile
 };
 
-// tile_size > 0: cubes of that side (rounded up to a multiple of 8). 0: the whole grid when
-// its bits fit a quarter of the memory budget (at most 256 MiB) and `device_limit` (bytes;
-// 0 = none: the device's largest storage buffer, for methods that hold a tile in one), else
-// the largest cubes that do.
+// Over the box of options.region (the whole grid by default). tile_size > 0: cubes of that
+// side (rounded up to a multiple of 8). 0: the whole box when its bits fit a quarter of the
+// memory budget (at most 256 MiB) and `device_limit` (bytes; 0 = none: the device's largest
+// storage buffer, for methods that hold a tile in one), else the largest cubes that do.
 TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options, std::uint64_t device_limit = 0);
 
 // How far (voxels) a triangle's points may lie outside its bounding box: 0 for every method
@@ -38,7 +44,7 @@ PointReach pointReach(const GridSpec& grid, const VoxelizeOptions& options);
 
 // For each tile, the usable triangles whose closed voxel range, grown by their reach, meets
 // it (the candidates of the conservative test: voxel i meets [lo, hi] iff lo - 1 <= i <= hi),
-// ascending.
+// ascending. Triangles that reach no tile (outside a region's box) are in none.
 // `interrupter` (may be null) is asked every kInterruptCheckTriangles triangles.
 std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, const GridSpec& grid,
                                                       const TilePlan& plan, const PointReach& reach,
@@ -46,7 +52,8 @@ std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, 
 
 // The surface's leaves, estimated before any work from the triangles' areas: a surface of
 // area A (voxel units²) crosses about 2·A/64 leaves of 8×8 faces, and every triangle at
-// least one. Bounded by the grid's bricks.
-std::uint64_t estimateLeaves(const ValidatedMesh& mesh, const GridSpec& grid);
+// least one. Only the triangles whose bounding box meets the plan's box count, each whole;
+// bounded by the box's bricks.
+std::uint64_t estimateLeaves(const ValidatedMesh& mesh, const GridSpec& grid, const TilePlan& plan);
 
 }  // namespace hyvox::tiling

@@ -17,6 +17,7 @@
 #include "core/stopwatch.h"
 #include "solid/fill_inside.h"
 #include "hyvox/option_schema.h"
+#include "hyvox/region.h"
 #include "tessellation/point_values.h"
 #include "tile_plan.h"
 
@@ -30,14 +31,20 @@ std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20)
 // Refuse before allocating: one tile's bits plus the leaves the surface is expected to need.
 // The estimate (a pass over every triangle) is skipped when even a leaf in every brick of the
 // grid would fit: the common case, where it cost more than voxelizing at low resolutions.
+// A region's run counts its box only: what it holds.
 void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options, const tiling::TilePlan& plan,
                        const ValidatedMesh& mesh) {
-    const double most = double(plan.tileBytes()) + double(grid.bricks().total()) * double(SparseGrid::kLeafBytes);
+    GridSpec box = grid;
+    for (int a = 0; a < 3; ++a) box.dims[a] = plan.hi[a] - plan.lo[a];
+    const double most = double(plan.tileBytes()) + double(box.bricks().total()) * double(SparseGrid::kLeafBytes);
     if (most <= double(options.memoryBudgetBytes())) return;  // in doubles: huge grids overflow 64 bits
-    const std::uint64_t estimated_leaves = tiling::estimateLeaves(mesh, grid);
+    const std::uint64_t estimated_leaves = tiling::estimateLeaves(mesh, grid, plan);
     const std::uint64_t need = plan.tileBytes() + estimated_leaves * SparseGrid::kLeafBytes;
+    const std::string what = plan.region ? "region " + formatRegion(options.region) + " (" + box.dimsText() + ") of the " +
+                                               grid.dimsText() + " grid"
+                                         : "a " + grid.dimsText() + " grid";
     if (need > options.memoryBudgetBytes())
-        throw ResourceError("a " + grid.dimsText() + " grid needs about " + mib(need) + " (" +
+        throw ResourceError(what + " needs about " + mib(need) + " (" +
                             (plan.whole() ? std::string("its bits") : "a " + mib(plan.tileBytes()) + " tile") +
                             " and about " + std::to_string(estimated_leaves) +
                             " leaves of surface), more than the memory budget of " +
@@ -62,8 +69,9 @@ void checkDisplacementReach(const GridSpec& grid, const VoxelizeOptions& options
 
 // A displaced surface none of whose points landed in the grid is not an empty result but a
 // displacement that carried everything away: say so instead of returning 0 voxels.
+// (A region's box may hold none of the surface: not checked there.)
 void checkSomethingLanded(const Stats& stats, const tiling::PointReach& reach) {
-    if (reach.fixed <= 0 || !stats.tessellation) return;
+    if (reach.fixed <= 0 || !stats.tessellation || stats.region) return;
     const TessellationStats& t = *stats.tessellation;
     if (t.points == 0 || t.points_clipped < t.points) return;
     throw InvalidInput("every one of the " + std::to_string(t.points) +
@@ -110,6 +118,14 @@ std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, con
     if (!wanted.any()) return std::nullopt;
     if (!computesAttributes(options.method))
         throw InvalidInput(std::string("method ") + toString(options.method) + " does not compute attributes");
+    // A surface voxel's values come from the triangles that touch it, which a region's tiles
+    // see; a solid's inside takes them from the nearest surface, layer by layer inward, and a
+    // whole tile region from its shell, across any cut of the grid (attributes/inside_values.h).
+    if (options.mode == Mode::Solid && !options.region.whole())
+        throw InvalidInput("region " + formatRegion(options.region) + ": solid mode with attributes (" +
+                           options.attributes +
+                           ") needs the whole grid, since the inside's values come from the surface around it, "
+                           "beyond any one region; voxelize the regions without attributes, or in a surface mode");
     return std::optional<attributes::SurfaceValues>(std::in_place, mesh, wanted);
 }
 
@@ -265,6 +281,7 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     if (surface && options.method == Method::Tessellation)
         device_limit = tessellation::tileBitBytesForSums(device_limit, options.memoryBudgetBytes() / 2, surface->channels());
     const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
+    if (plan.region) stats.region = regionBox(grid, options.region);
     checkMemoryBudget(grid, options, plan, validated);
     const tiling::PointReach reach = tiling::pointReach(grid, options);
     checkDisplacementReach(grid, options, reach);
