@@ -89,7 +89,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     if (s.region) {  // the box a region's run voxelized, voxels [lo, hi) of the grid
         const RegionBox& box = *s.region;
         out << "  \"region\": {\"index\": " << s.options.region.index << ", \"count\": " << s.options.region.count
-            << ", \"axis\": " << quote(std::string(1, "xyz"[box.axis])) << ", \"lo\": [" << box.lo[0] << ", " << box.lo[1]
+            << ", \"axis\": " << jsonQuoted(std::string(1, "xyz"[box.axis])) << ", \"lo\": [" << box.lo[0] << ", " << box.lo[1]
             << ", " << box.lo[2] << "], \"hi\": [" << box.hi[0] << ", " << box.hi[1] << ", " << box.hi[2] << "]},\n";
     }
     out << "  \"voxel_count\": " << number(s.voxel_count) << ",\n";
