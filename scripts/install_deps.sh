@@ -20,6 +20,7 @@ packages=(
   libblosc-dev                                                      # .vdb leaf compression (OpenVDB's own)
   libassimp-dev libpng-dev                                          # mesh and image reading
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri              # headless GL (Mesa llvmpipe)
+  # python3-dev: the module's build, and quickjs's from its sdist on 3.13 (requirements/py313/farm.txt)
   pybind11-dev python3-dev python3-numpy python3-pytest python3-openvdb python3-pil  # PIL: the attribute oracle reads textures
   python3-venv ccache                                               # wheel + bpy venvs; the wheel's build reuses objects
   strace                                                            # the durable_write test watches fsync/rename calls

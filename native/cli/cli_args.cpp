@@ -189,12 +189,14 @@ std::string usageText(Command topic) {
     return "usage: hyvox voxelize MESH -o OUT.vdb [options]\n"
            "       hyvox gamma-sweep MESH [--gammas 1,1.5,2,3,4,6] [options]\n"
            "       hyvox merge PART.vdb... -o OUT.vdb [options]\n"
+           "       hyvox job-template openjd|openjd-regions|flamenco [-o FILE]\n"
            "       hyvox --help | --version\n"
            "\n"
            "commands:\n"
            "  voxelize      voxelize the surface of a triangle mesh into an OpenVDB file\n"
            "  gamma-sweep   measure how many voxels the tessellation method misses at each gamma\n"
            "  merge         join the .vdb files of the regions of one grid into the grid's file\n"
+           "  job-template  print a render-farm job (Open Job Description, Flamenco) for hyvox\n"
            "\n"
            "'hyvox COMMAND --help' shows the options of a command.\n";
 }
@@ -236,7 +238,7 @@ Arguments parseCommand(const std::vector<std::string>& args) {
         out.options.tessellation.counts = false;  // the sweep needs only the occupancy
         out.gammas = {1, 1.5, 2, 3, 4, 6};
     } else {
-        throw UsageError("unknown command '" + args[0] + "' (the commands are 'voxelize', 'gamma-sweep' and 'merge')");
+        throw UsageError("unknown command '" + args[0] + "' (the commands are 'voxelize', 'gamma-sweep', 'merge' and 'job-template')");
     }
     try {
         applyEnvironment(out.options, [](const char* variable) -> const char* { return std::getenv(variable); });

@@ -15,6 +15,7 @@
 #include "hyvox/errors.h"
 #include "hyvox/version.h"
 #include "gamma_sweep_command.h"
+#include "job_template_command.h"
 #include "merge_command.h"
 #include "voxelize_command.h"
 
@@ -45,6 +46,10 @@ int main(int argc, char** argv) {
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
     try {
+        if (argc > 1 && std::string(argv[1]) == "job-template") {
+            cli::runJobTemplate(std::vector<std::string>(argv + 2, argv + argc));
+            return 0;
+        }
         const cli::Arguments args = cli::parseArguments(std::vector<std::string>(argv + 1, argv + argc));
         for (const std::string& warning : args.warnings) std::fprintf(stderr, "hyvox: warning: %s\n", warning.c_str());
         switch (args.command) {

@@ -11,7 +11,7 @@ import bpy
 from ..core import backend, naming, summary
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
-from . import export, importer, live, properties, render_depsgraph, render_equivalence
+from . import export, frame_export, importer, live, properties, render_depsgraph, render_equivalence
 from .gather import gather
 
 # The last run's summary lines (shown in the panel) and record (for scripts).
@@ -61,17 +61,7 @@ class _Run:
     def export_frame(self, frame):
         if frame is not None and frame != self.scene.frame_current:
             self.scene.frame_set(frame)
-        viewport = bpy.context.evaluated_depsgraph_get()
-        colour = bool(self.used["color"])
-        names = [name for group in self.groups for name in group.sources]
-        if self.used["evaluation"] == "VIEWPORT" or render_equivalence.same_in_renders(names, bpy.context.view_layer):
-            return export.export_groups(self.groups, viewport, warn=self.warn, colour=colour)
-        try:
-            return render_depsgraph.with_render_depsgraph(bpy.context, lambda depsgraph: export.export_groups(
-                self.groups, depsgraph, warn=self.warn, fallback_depsgraph=viewport, colour=colour))
-        except render_depsgraph.RenderEvaluationUnavailable as exc:
-            self.warn(f"Modifiers evaluated at viewport settings: no render evaluation ({exc})")
-            return export.export_groups(self.groups, viewport, warn=self.warn, colour=colour)
+        return frame_export.export_meshes(self.groups, self.used["evaluation"], bool(self.used["color"]), self.warn)
 
     def restore_frame(self):
         if self.scene.frame_current != self.original_frame:

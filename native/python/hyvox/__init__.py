@@ -84,6 +84,7 @@ __all__ = [
     "ignored_options",
     "merge_vdb",
     "option",
+    "plan_grid",
     "read_mesh",
     "voxelize",
 ]
@@ -266,6 +267,18 @@ def _options_doc() -> str:
 
 
 voxelize.__doc__ = (voxelize.__doc__ or "") + _options_doc()
+
+
+def plan_grid(vertices, triangles, **options) -> dict:
+    """The grid voxelize() would lay out for this mesh and these options, without
+    voxelizing: {"origin": (x, y, z), "voxel_size": s, "dims": (nx, ny, nz)}. The same
+    validation (degenerate triangles do not count towards the bounds) and the same rule, so
+    voxelize(..., voxel_size=plan_grid(...)["voxel_size"]) lays out the same grid."""
+    native_options = Options()
+    native_options.apply_environment()
+    for name, value in options.items():
+        native_options.set(name, value)
+    return _core.plan_grid(_as_vertices(vertices), _as_triangles(triangles), native_options)
 
 
 def read_mesh(path: Union[str, os.PathLike], attributes: bool = False, cancel: Optional[CancelToken] = None):

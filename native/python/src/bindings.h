@@ -22,6 +22,7 @@ void bindVoxelGrid(py::module_& m);
 void bindOptions(py::module_& m);
 void bindVoxelize(py::module_& m);
 void bindMeshIo(py::module_& m);
+void bindPlanGrid(py::module_& m);
 void bindMerge(py::module_& m);
 
 // write_vdb's options: the schema's write options by name from `given` (None = unset), checked

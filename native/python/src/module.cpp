@@ -37,5 +37,6 @@ PYBIND11_MODULE(_core, m) {
     bindVoxelGrid(m);
     bindVoxelize(m);
     bindMeshIo(m);
+    bindPlanGrid(m);
     bindMerge(m);
 }

@@ -15,9 +15,8 @@
 #include "io/atomic_file.h"
 
 namespace hyvox {
-namespace {
 
-std::string quote(const std::string& text) {
+std::string jsonQuoted(const std::string& text) {
     std::string out = "\"";
     for (const char ch : text) {
         const auto c = static_cast<unsigned char>(ch);
@@ -40,6 +39,9 @@ std::string quote(const std::string& text) {
     return out + "\"";
 }
 
+namespace {
+
+
 // Shortest text that reads back as the same double; JSON has no NaN/Inf, so those are null.
 std::string number(double value) {
     if (!std::isfinite(value)) return "null";
@@ -53,7 +55,7 @@ std::string number(double value) {
 
 std::string number(std::uint64_t value) { return std::to_string(value); }
 // Section fields are numbers, and a few are names (the solid section's rule and reason).
-std::string number(const std::string& text) { return quote(text); }
+std::string number(const std::string& text) { return jsonQuoted(text); }
 
 std::string json(const OptionValue& value) {
     struct Json {
@@ -61,7 +63,7 @@ std::string json(const OptionValue& value) {
         std::string operator()(std::int64_t v) const { return std::to_string(v); }
         std::string operator()(double v) const { return number(v); }
         std::string operator()(bool v) const { return v ? "true" : "false"; }
-        std::string operator()(const std::string& v) const { return quote(v); }
+        std::string operator()(const std::string& v) const { return jsonQuoted(v); }
         std::string operator()(const std::array<double, 3>& v) const {
             return "[" + number(v[0]) + ", " + number(v[1]) + ", " + number(v[2]) + "]";
         }
@@ -77,9 +79,9 @@ std::string statsToJson(const VoxelizeResult& result) {
     const GridSpec& g = result.grid;
     std::ostringstream out;
     out << "{\n";
-    out << "  \"hyvox_version\": " << quote(version()) << ",\n";
-    out << "  \"method\": " << quote(s.method) << ",\n";
-    out << "  \"mode\": " << quote(s.mode) << ",\n";
+    out << "  \"hyvox_version\": " << jsonQuoted(version()) << ",\n";
+    out << "  \"method\": " << jsonQuoted(s.method) << ",\n";
+    out << "  \"mode\": " << jsonQuoted(s.mode) << ",\n";
     out << "  \"origin\": [" << number(g.origin[0]) << ", " << number(g.origin[1]) << ", " << number(g.origin[2])
         << "],\n";
     out << "  \"voxel_size\": " << number(g.voxel_size) << ",\n";
@@ -87,7 +89,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     if (s.region) {  // the box a region's run voxelized, voxels [lo, hi) of the grid
         const RegionBox& box = *s.region;
         out << "  \"region\": {\"index\": " << s.options.region.index << ", \"count\": " << s.options.region.count
-            << ", \"axis\": " << quote(std::string(1, "xyz"[box.axis])) << ", \"lo\": [" << box.lo[0] << ", " << box.lo[1]
+            << ", \"axis\": " << jsonQuoted(std::string(1, "xyz"[box.axis])) << ", \"lo\": [" << box.lo[0] << ", " << box.lo[1]
             << ", " << box.lo[2] << "], \"hi\": [" << box.hi[0] << ", " << box.hi[1] << ", " << box.hi[2] << "]},\n";
     }
     out << "  \"voxel_count\": " << number(s.voxel_count) << ",\n";
@@ -104,7 +106,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     // Stage names are keys: Stats::addTiming sums a stage that ran again (once per tile).
     out << "  \"timings_ms\": {";
     for (std::size_t t = 0; t < s.timings_ms.size(); ++t)
-        out << (t ? ", " : "") << quote(s.timings_ms[t].first) << ": " << number(s.timings_ms[t].second);
+        out << (t ? ", " : "") << jsonQuoted(s.timings_ms[t].first) << ": " << number(s.timings_ms[t].second);
     out << "},\n";
     out << "  \"total_ms\": " << number(s.totalMs()) << ",\n";
     // The options the run used, by their schema names (unset ones are left out).
@@ -114,16 +116,16 @@ std::string statsToJson(const VoxelizeResult& result) {
         if (!spec.isVoxelizeOption()) continue;
         const OptionValue value = spec.get(s.options);
         if (std::holds_alternative<std::monostate>(value)) continue;
-        out << (first ? "" : ", ") << quote(spec.name) << ": " << json(value);
+        out << (first ? "" : ", ") << jsonQuoted(spec.name) << ": " << json(value);
         first = false;
     }
     out << "}";
     // The backend's own section: "cpu", "reference", "hybrid" or "tessellation".
     s.visitSections([&](const char* section, const auto& figures) {
-        out << ",\n  " << quote(section) << ": {";
+        out << ",\n  " << jsonQuoted(section) << ": {";
         bool first_field = true;
         figures.visit([&](const char* name, const auto& value) {
-            out << (first_field ? "" : ", ") << quote(name) << ": " << number(value);
+            out << (first_field ? "" : ", ") << jsonQuoted(name) << ": " << number(value);
             first_field = false;
         });
         out << "}";
