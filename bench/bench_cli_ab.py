@@ -39,7 +39,8 @@ def main():
     parser.add_argument("--mesh", required=True)
     parser.add_argument("--res", default="128")
     parser.add_argument("--runs", type=int, default=40)
-    parser.add_argument("--vdb-prefix", default="/tmp/hyvox_cli_ab", help="the runs' output prefix (one .vdb per binary)")
+    parser.add_argument("--vdb-prefix", default="/tmp/hyvox_cli_ab",
+                        help="the runs' output prefix (one .vdb per binary)")
     parser.add_argument("--idle-wait", type=float, default=60, help="seconds to wait for an idle machine per round")
     parser.add_argument("--extra", default="", help="more voxelize options, e.g. '--threads 1'")
     add_out_argument(parser)

@@ -89,7 +89,8 @@ double naiveMs(const hyvox::MeshView& view, const hyvox::VoxelizeOptions& option
     gl::GlWorker& worker = gl::GlWorker::get(options.gl.device);
     return worker.run([&] {
         const gl::Program program = gl::buildProgram(
-            {{GL_COMPUTE_SHADER, "naive.comp"}}, "#define HYVOX_THIN 0\n#define HYVOX_VOXEL_LIST 0\n#define HYVOX_ATTRIBUTE_PAIRS 0\n", dir.string());
+            {{GL_COMPUTE_SHADER, "naive.comp"}},
+            "#define HYVOX_THIN 0\n#define HYVOX_VOXEL_LIST 0\n#define HYVOX_ATTRIBUTE_PAIRS 0\n", dir.string());
         const gl::Buffer vertices(gpu.vertices.size() * sizeof(gl::GpuVertex), gpu.vertices.data(), 0);
         const gl::Buffer triangles(gpu.triangles.size() * 4, gpu.triangles.data(), 0);
         const gl::Buffer bits(grid.bricks().total() * BitGrid::kWordsPerBrick * sizeof(std::uint64_t), nullptr, 0);

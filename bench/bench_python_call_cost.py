@@ -80,9 +80,9 @@ def main():
     builds = [b for b in (args.baseline, args.build) if b]
     for _ in range(args.rounds):
         for build in builds:  # one process per build: the modules cannot share one
-            done = subprocess.run([sys.executable, __file__, "--one", build, "--mesh", args.mesh, "--res", str(args.res),
-                                   "--threads", str(args.threads), "--calls", str(args.calls)], check=True,
-                                  capture_output=True, text=True)
+            done = subprocess.run([sys.executable, __file__, "--one", build, "--mesh", args.mesh,
+                                   "--res", str(args.res), "--threads", str(args.threads), "--calls", str(args.calls)],
+                                  check=True, capture_output=True, text=True)
             for line in done.stdout.splitlines():
                 if line.startswith("FIGURES "):
                     table.add(json.loads(line[len("FIGURES "):]))

@@ -151,7 +151,8 @@ inline std::string shellQuote(const std::string& word) {
     if (word.empty()) return "''";
     bool safe = true;
     for (const char c : word)
-        safe = safe && (std::isalnum(static_cast<unsigned char>(c)) || std::string("@%+=:,./-_").find(c) != std::string::npos);
+        safe = safe && (std::isalnum(static_cast<unsigned char>(c)) ||
+                        std::string("@%+=:,./-_").find(c) != std::string::npos);
     if (safe) return word;
     std::string out = "'";
     for (const char c : word) out += c == '\'' ? std::string("'\"'\"'") : std::string(1, c);
@@ -308,7 +309,8 @@ private:
         out << "\n";
         for (const auto& row : rows_) {
             out << "|";
-            for (std::size_t c = 0; c < row.size(); ++c) out << " " << detail::markdownCell(row[c], columns_[c].digits) << " |";
+            for (std::size_t c = 0; c < row.size(); ++c)
+                out << " " << detail::markdownCell(row[c], columns_[c].digits) << " |";
             out << "\n";
         }
         if (!notes_.empty()) {

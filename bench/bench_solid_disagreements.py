@@ -45,13 +45,15 @@ def main():
     parser.add_argument("mesh")
     add_out_argument(parser)
     args = parser.parse_args()
-    table = Table("solid_disagreements", "Solid: where hyvox and OpenVDB's fog disagree, by the brute-force winding number",
+    table = Table("solid_disagreements",
+                  "Solid: where hyvox and OpenVDB's fog disagree, by the brute-force winding number",
                   [Column("mesh"), Column("res"), Column("voxels"), Column("count"), Column("sampled"),
                    Column("w >= 0.55"), Column("w <= 0.45"), Column("within 0.05 of 0.5")])
     print(f"load average at start: {os.getloadavg()}", flush=True)
     with tempfile.TemporaryDirectory() as fog_dir:
         row = subprocess.run([args.bench_solid, "--runs", "1", "--res", str(args.res), "--mesh-dir", args.mesh_dir,
-                              "--fog-dir", fog_dir, "--out", fog_dir, args.mesh], check=True, capture_output=True, text=True).stdout
+                              "--fog-dir", fog_dir, "--out", fog_dir, args.mesh],
+                             check=True, capture_output=True, text=True).stdout
         print(row, flush=True)
         fog = keys(np.fromfile(os.path.join(fog_dir, f"{args.mesh}_{args.res}.fog.ijk"), dtype=np.int32).reshape(-1, 3))
     vertices, triangles = hyvox.read_mesh(os.path.join(args.mesh_dir, args.mesh))

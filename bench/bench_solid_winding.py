@@ -3,7 +3,8 @@
 Barill et al. 2018 code, expansion order 2, beta 2) evaluated at the same voxel centres.
 
     python3 -m venv --system-site-packages bench/.venv && bench/.venv/bin/pip install libigl==2.6.3
-    PYTHONPATH=build/python bench/.venv/bin/python bench/bench_solid_winding.py [--res 256,512,1024] [--out DIR] [MESH...]
+    PYTHONPATH=build/python bench/.venv/bin/python bench/bench_solid_winding.py [--res 256,512,1024] \\
+        [--out DIR] [MESH...]
 
 libigl answers for points, not voxels, so it gets every voxel centre of the grid hyvox laid
 out. Where that is too many for this machine's memory and time, it gets the centres of every

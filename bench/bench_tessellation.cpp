@@ -94,7 +94,9 @@ int main(int argc, char** argv) {
         else meshes.push_back(arg);
     }
     if (meshes.empty()) {
-        std::fprintf(stderr, "usage: %s [--res 128,256] [--gammas 1,2] [--repeat 3] [--csv FILE] [--out DIR] MESH[:x4|:x16]...\n",
+        std::fprintf(stderr,
+                     "usage: %s [--res 128,256] [--gammas 1,2] [--repeat 3] [--csv FILE] [--out DIR] "
+                     "MESH[:x4|:x16]...\n",
                      argv[0]);
         return 2;
     }

@@ -38,6 +38,7 @@ for name, r in rows.items():
           f'sum {statistics.median(x[0] + x[1] for x in r):.1f} ms, {r[0][2]} bytes ({len(r)} runs)')
     table.add([name, statistics.median(x[0] for x in r), statistics.median(x[1] for x in r),
                statistics.median(x[0] + x[1] for x in r), r[0][2], len(r)])
-table.note('Medians of the stats JSON timings, the two builds alternating; base: ' + sys.argv[4] + ', new: ' + sys.argv[5] + '.')
+table.note('Medians of the stats JSON timings, the two builds alternating; base: ' + sys.argv[4] +
+           ', new: ' + sys.argv[5] + '.')
 table.write(sys.argv[2])
 " "$here" "$out" "$command" "$base" "$new"

@@ -57,6 +57,8 @@ run() {
 }
 
 B=$BUILD/bench
+MESHES_4=bunny_stanford_69k.ply,dragon_stanford_res2_203k.ply.gz,dragon_stanford_871k.ply.gz
+MESHES_4=$MESHES_4,sponza_crytek_262k_vcolor.ply.gz
 if [ "$QUICK" = 1 ]; then
   run mesh_to_volume "$B/bench_mesh_to_volume" --runs 1 --res 64 --out "$OUT" bunny_stanford_69k.ply
   run solid "$B/bench_solid" --runs 1 --res 64 --out "$OUT" happy_buddha_100k.ply sponza_crytek_262k_vcolor.ply.gz
@@ -92,7 +94,8 @@ else
   run mesh_read "$B/bench_mesh_read" --repeat 7 --out "$OUT" "$M/bunny_stanford_69k.ply" \
     "$M/dragon_stanford_871k.ply.gz" "$M/sponza_crytek_262k_vcolor.ply.gz"
   [ -n "${PEER:-}" ] && run vs_cuda_voxelizer $PY bench/bench_vs_cuda_voxelizer.py --peer "$PEER" \
-    --build "$BUILD" --meshes bunny_stanford_69k.ply,dragon_stanford_res2_203k.ply.gz,dragon_stanford_871k.ply.gz,sponza_crytek_262k_vcolor.ply.gz \
+    --build "$BUILD" \
+    --meshes "$MESHES_4" \
     --res 128,256,512,1024 --runs 6 --out "$OUT"
   [ -x bench/.venv/bin/python ] && run solid_three_way bench/.venv/bin/python bench/bench_solid_three_way.py \
     --bench-solid "$B/bench_solid" --res 128,256 --samples 100 --out "$OUT"

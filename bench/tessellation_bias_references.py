@@ -84,7 +84,8 @@ def main():
           ", ".join(f"{name} {len(keys)} voxels" for name, keys in references.items()))
     print("gamma  " + "  ".join(f"bias vs {name:>12}" for name in references))
     table = Table("tessellation_bias_references", "What the tessellation's points miss, against three references",
-                  [Column("mesh"), Column("res"), Column("γ")] + [Column(f"bias vs {name} %", 2) for name in references])
+                  [Column("mesh"), Column("res"), Column("γ")] +
+                  [Column(f"bias vs {name} %", 2) for name in references])
     table.note(", ".join(f"{name}: {len(keys):,} voxels" for name, keys in references.items()) +
                "; centre-line: voxels whose axis-parallel centre lines the surface crosses.")
     for gamma in gammas:

@@ -177,7 +177,8 @@ def main():
     renderer = info.get("GL_RENDERER", "?")
     machine = device_machine(args.device, renderer, info.get("GL_VERSION", "?"))
     tables = []
-    table1 = Table("device_table1" + ("" if args.mode == "thin" else "_" + args.mode), f"The GL methods on a GPU beside the paper's Table 1 ({args.mode})",
+    table1 = Table("device_table1" + ("" if args.mode == "thin" else "_" + args.mode),
+                   f"The GL methods on a GPU beside the paper's Table 1 ({args.mode})",
                    [Column(c) for c in ("scene", "tris", "res", "triangle", "fragment", "hybrid @cutoff", "pass 1/2",
                                         "tessellation (bias)", "cpu", "checks", "paper scene",
                                         "paper tri / frag / hybrid @cutoff", "x paper hybrid")],

@@ -13,7 +13,8 @@ export PATH=/usr/bin:/bin:$PATH
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-blender -b --factory-startup --python demo/run_demo.py -- --build "$BUILD" --output "$work/demo" >"$work/demo.log" 2>&1 ||
+blender -b --factory-startup --python demo/run_demo.py -- --build "$BUILD" --output "$work/demo" \
+  >"$work/demo.log" 2>&1 ||
   { tail -20 "$work/demo.log"; exit 1; }
 mkdir -p "$work/shots"
 xvfb-run -a -s "-screen 0 1400x1300x24" blender --factory-startup --enable-event-simulate -p 0 0 1400 1300 \

@@ -87,10 +87,10 @@ struct HeightImage {
 };
 
 struct TessellationOptions {
-    // Safety factor γ of Eq. 1 (edge factor = γ · the edge's largest per-axis extent in voxels).
+    // Safety factor γ of Eq. 1 (edge factor = γ · the edge's length in voxels).
     // 2, not the paper's 1: at γ = 1 one point per micro-triangle leaves pinholes that let a
     // flood from outside fill a closed mesh (the Buddha, armadillo and Spot at 256). From 2 on,
-    // every closed mesh measured is sealed with a margin; README, "Watertight by default".
+    // every closed mesh measured is sealed with a margin (docs/why/tessellation-gamma.md).
     double gamma = 2.0;
     bool pn_triangles = false;
     // Displacement (section 3.3), Blender Displace modifier semantics: each point moves along
