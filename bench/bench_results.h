@@ -229,8 +229,11 @@ private:
         m.load_end = detail::loadAverage();
         const std::string git = "git -C " + detail::shellQuote(HYVOX_SOURCE_DIR) + " ";
         m.commit = detail::commandOutput(git + "rev-parse --short=10 HEAD 2>/dev/null");
+        // Local changes to the code, not to the results being written or the page made of them.
         m.dirty = !m.commit.empty() &&
-                  !detail::commandOutput(git + "status --porcelain --untracked-files=no 2>/dev/null").empty();
+                  !detail::commandOutput(git + "status --porcelain --untracked-files=no -- . ':!bench/results' "
+                                               "':!docs/benchmarks.md' 2>/dev/null")
+                       .empty();
         m.version = hyvox::version();
         const char* quick = std::getenv("HYVOX_BENCH_QUICK");
         m.quick = quick && std::string(quick) == "1";
