@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "hyvox/version.h"
+#include "io/json_text.h"
 
 namespace hyvox::bench {
 
@@ -52,23 +53,6 @@ struct Cell {
 };
 
 namespace detail {
-
-inline std::string jsonString(const std::string& text) {
-    std::string out = "\"";
-    for (const char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", c);
-            out += buf;
-        } else {
-            out += c;
-        }
-    }
-    return out + "\"";
-}
 
 // The shortest text that reads back as the same double (what Python's json writes).
 inline std::string jsonNumber(double value) {
@@ -242,20 +226,20 @@ private:
 
     std::string json(const Machine& m) const {
         using detail::jsonNumber;
-        using detail::jsonString;
+        using io::jsonQuote;
         std::ostringstream out;
-        out << "{\n \"benchmark\": " << jsonString(name_) << ",\n \"title\": " << jsonString(title_)
-            << ",\n \"command\": " << jsonString(command_) << ",\n \"date\": " << jsonString(date_)
-            << ",\n \"machine\": {\n  \"cpu\": " << jsonString(m.cpu) << ",\n  \"cores\": " << m.cores
-            << ",\n  \"memory_gib\": " << jsonNumber(m.memory_gib) << ",\n  \"os\": " << jsonString(m.os)
-            << ",\n  \"kernel\": " << jsonString(m.kernel);
-        if (!gpu_.empty()) out << ",\n  \"gpu\": " << jsonString(gpu_);
+        out << "{\n \"benchmark\": " << jsonQuote(name_) << ",\n \"title\": " << jsonQuote(title_)
+            << ",\n \"command\": " << jsonQuote(command_) << ",\n \"date\": " << jsonQuote(date_)
+            << ",\n \"machine\": {\n  \"cpu\": " << jsonQuote(m.cpu) << ",\n  \"cores\": " << m.cores
+            << ",\n  \"memory_gib\": " << jsonNumber(m.memory_gib) << ",\n  \"os\": " << jsonQuote(m.os)
+            << ",\n  \"kernel\": " << jsonQuote(m.kernel);
+        if (!gpu_.empty()) out << ",\n  \"gpu\": " << jsonQuote(gpu_);
         out << ",\n  \"load_start\": " << jsonNumber(m.load_start) << ",\n  \"load_end\": " << jsonNumber(m.load_end)
-            << "\n },\n \"hyvox\": {\n  \"version\": " << jsonString(m.version) << ",\n  \"commit\": "
-            << jsonString(m.commit) << ",\n  \"dirty\": " << (m.dirty ? "true" : "false") << "\n },\n \"quick\": "
+            << "\n },\n \"hyvox\": {\n  \"version\": " << jsonQuote(m.version) << ",\n  \"commit\": "
+            << jsonQuote(m.commit) << ",\n  \"dirty\": " << (m.dirty ? "true" : "false") << "\n },\n \"quick\": "
             << (m.quick ? "true" : "false") << ",\n \"columns\": [";
         for (std::size_t c = 0; c < columns_.size(); ++c) {
-            out << (c ? ",\n  " : "\n  ") << "{\"name\": " << jsonString(columns_[c].name);
+            out << (c ? ",\n  " : "\n  ") << "{\"name\": " << jsonQuote(columns_[c].name);
             if (columns_[c].digits >= 0) out << ", \"digits\": " << columns_[c].digits;
             out << "}";
         }
@@ -265,7 +249,7 @@ private:
             for (std::size_t c = 0; c < rows_[r].size(); ++c) {
                 const auto& v = rows_[r][c].value;
                 out << (c ? ", " : "");
-                if (const auto* text = std::get_if<std::string>(&v)) out << jsonString(*text);
+                if (const auto* text = std::get_if<std::string>(&v)) out << jsonQuote(*text);
                 else if (const auto* whole = std::get_if<std::int64_t>(&v)) out << *whole;
                 else if (const auto* real = std::get_if<double>(&v)) out << jsonNumber(*real);
                 else out << "null";
@@ -273,7 +257,7 @@ private:
             out << "]";
         }
         out << "\n ],\n \"notes\": [";
-        for (std::size_t n = 0; n < notes_.size(); ++n) out << (n ? ",\n  " : "\n  ") << jsonString(notes_[n]);
+        for (std::size_t n = 0; n < notes_.size(); ++n) out << (n ? ",\n  " : "\n  ") << jsonQuote(notes_[n]);
         out << (notes_.empty() ? "]\n}\n" : "\n ]\n}\n");
         return out.str();
     }
