@@ -33,6 +33,49 @@ inline std::string optionValue(int argc, char** argv, int& a) {
     return argv[++a];
 }
 
+// A positive whole number (at most 2^20) for `option`, or the message, `usage` and exit status 2.
+inline int positiveValue(const char* option, const std::string& text, const char* usage) {
+    char* end = nullptr;
+    const long value = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || value < 1 || value > 1 << 20) {
+        std::fprintf(stderr, "%s needs a positive whole number, not '%s'\n%s", option, text.c_str(), usage);
+        std::exit(2);
+    }
+    return int(value);
+}
+
+// The command line the mesh benchmarks share: --runs R, --res N (repeatable), --mesh-dir DIR
+// (default $HYVOX_MESH_DIR, else `default_mesh_dir`), -h/--help (prints `usage`, exits 0) and the
+// mesh files; `more(arg, a)` takes a benchmark's own options (advancing `a` past a value) and
+// returns false for an unknown one (then the usage and exit status 2).
+struct MeshBenchArgs {
+    int runs = 3;
+    std::vector<int> resolutions;
+    std::string mesh_dir;
+    std::vector<std::string> files;
+};
+template <typename More>
+MeshBenchArgs parseMeshBenchArgs(int argc, char** argv, const char* usage, const char* default_mesh_dir, More more) {
+    MeshBenchArgs args;
+    args.mesh_dir = std::getenv("HYVOX_MESH_DIR") ? std::getenv("HYVOX_MESH_DIR") : default_mesh_dir;
+    for (int a = 1; a < argc; ++a) {
+        const std::string arg = argv[a];
+        if (arg == "--help" || arg == "-h") {
+            std::fputs(usage, stdout);
+            std::exit(0);
+        }
+        if (arg == "--runs") args.runs = positiveValue("--runs", optionValue(argc, argv, a), usage);
+        else if (arg == "--res") args.resolutions.push_back(positiveValue("--res", optionValue(argc, argv, a), usage));
+        else if (arg == "--mesh-dir") args.mesh_dir = optionValue(argc, argv, a);
+        else if (arg.size() > 1 && arg[0] == '-') {
+            if (more(arg, a)) continue;
+            std::fprintf(stderr, "unknown option '%s'\n%s", arg.c_str(), usage);
+            std::exit(2);
+        } else args.files.push_back(arg);
+    }
+    return args;
+}
+
 // "a,b,,c" -> {"a", "b", "c"}: a comma-separated command-line list, empty items dropped.
 inline std::vector<std::string> splitList(const std::string& text) {
     std::vector<std::string> out;

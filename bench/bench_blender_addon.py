@@ -82,8 +82,8 @@ def time_hyvox(obj, voxel_size, method, out):
     operators._Run.export_frame = timed_export
     try:
         start = time.perf_counter()
-        # A surface, like the Mesh to Volume band it is compared with (Fill Interior is on by default).
-        bpy.ops.object.hyvox_voxelize(voxel_size=voxel_size, method=method, output_dir=out, fill_interior=False)
+        # A surface, like the Mesh to Volume band it is compared with (the default Mode is Solid).
+        bpy.ops.object.hyvox_voxelize(voxel_size=voxel_size, method=method, output_dir=out, mode="conservative")
         total = (time.perf_counter() - start) * 1000.0
     finally:
         operators._Run.export_frame = export_frame

@@ -121,7 +121,7 @@ struct Sample {
     double gpu_ms = 0, pass1_ms = 0, pass2_ms = 0, wall_ms = 0, large = 0, cutoff = 0;
 };
 
-Sample runMedian(const hyvox::MeshView& mesh, hyvox::VoxelizeOptions options, int repeat) {
+Sample runMedian(const hyvox::MeshView& mesh, const hyvox::VoxelizeOptions& options, int repeat) {
     hyvox::voxelize(mesh, options);  // warm-up: shader compilation, auto-cutoff search (cached)
     std::vector<double> gpu, pass1, pass2, wall;
     Sample s;

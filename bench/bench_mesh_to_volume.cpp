@@ -33,6 +33,7 @@
 
 #include "bench_args.h"
 #include "bench_results.h"
+#include "openvdb_arrays.h"
 #include "core/stopwatch.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
@@ -147,12 +148,9 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
 
     const Measured theirs = inChild([&] {
         // OpenVDB's input: its own point/triangle arrays, made before timing.
-        std::vector<openvdb::Vec3s> points(mesh.vertexCount());
-        for (std::size_t v = 0; v < points.size(); ++v)
-            points[v] = openvdb::Vec3s(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
-        std::vector<openvdb::Vec3I> triangles(mesh.triangleCount());
-        for (std::size_t t = 0; t < triangles.size(); ++t)
-            triangles[t] = openvdb::Vec3I(mesh.triangles[3 * t], mesh.triangles[3 * t + 1], mesh.triangles[3 * t + 2]);
+        const hyvox::bench::OpenVdbArrays arrays = hyvox::bench::openvdbArrays(mesh);
+        const std::vector<openvdb::Vec3s>& points = arrays.points;
+        const std::vector<openvdb::Vec3I>& triangles = arrays.triangles;
         const std::vector<openvdb::Vec4I> quads;
         const auto transform = hyvox::io::makeTransform(grid);  // same voxels as hyvox's grid
         std::vector<double> times;

@@ -31,6 +31,7 @@
 
 #include "bench_args.h"
 #include "bench_results.h"
+#include "openvdb_arrays.h"
 #include "core/stopwatch.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
@@ -72,13 +73,9 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
     // OpenVDB on the same grid: index (i,j,k) is voxel (i,j,k)'s centre.
     // The adapter form of meshToVolume takes index-space points (as Blender passes them).
     const auto transform = hyvox::io::makeTransform(result.grid);
-    std::vector<openvdb::Vec3s> points(mesh.vertexCount());
-    for (std::size_t v = 0; v < points.size(); ++v)
-        points[v] = openvdb::Vec3s(transform->worldToIndex(
-            openvdb::Vec3d(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2])));
-    std::vector<openvdb::Vec3I> triangles(mesh.triangleCount());
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-        triangles[t] = openvdb::Vec3I(mesh.triangles[3 * t], mesh.triangles[3 * t + 1], mesh.triangles[3 * t + 2]);
+    const hyvox::bench::OpenVdbArrays arrays = hyvox::bench::openvdbArrays(mesh, transform.get());
+    const std::vector<openvdb::Vec3s>& points = arrays.points;
+    const std::vector<openvdb::Vec3I>& triangles = arrays.triangles;
     openvdb::FloatGrid::Ptr fog;
     for (int r = 0; r < runs; ++r) {
         hyvox::Stopwatch watch;
@@ -141,42 +138,22 @@ constexpr const char* kUsage =
     "  --out DIR      write the table to DIR/solid.json and .md (default bench/results/)\n"
     "  MESH           default: the Buddha, the 871k dragon and Sponza\n";
 
-// A positive whole number for `option`, or the usage and exit status 2.
-int positive(const char* option, const std::string& text) {
-    char* end = nullptr;
-    const long value = std::strtol(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || value < 1 || value > 1 << 20) {
-        std::fprintf(stderr, "%s needs a positive whole number, not '%s'\n%s", option, text.c_str(), kUsage);
-        std::exit(2);
-    }
-    return int(value);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) try {
-    int runs = 3;
-    std::vector<int> resolutions;
-    std::string mesh_dir = std::getenv("HYVOX_MESH_DIR") ? std::getenv("HYVOX_MESH_DIR") : HYVOX_BENCH_MESH_DIR;
-    std::vector<std::string> files;
     std::string fog_dir;
     std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
-    for (int a = 1; a < argc; ++a) {
-        const std::string arg = argv[a];
-        if (arg == "--help" || arg == "-h") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        }
-        if (arg == "--runs") runs = positive("--runs", hyvox::bench::optionValue(argc, argv, a));
-        else if (arg == "--res") resolutions.push_back(positive("--res", hyvox::bench::optionValue(argc, argv, a)));
-        else if (arg == "--mesh-dir") mesh_dir = hyvox::bench::optionValue(argc, argv, a);
-        else if (arg == "--fog-dir") fog_dir = hyvox::bench::optionValue(argc, argv, a);
-        else if (arg == "--out") out_dir = hyvox::bench::optionValue(argc, argv, a);
-        else if (arg.size() > 1 && arg[0] == '-') {
-            std::fprintf(stderr, "unknown option '%s'\n%s", arg.c_str(), kUsage);
-            return 2;
-        } else files.push_back(arg);
-    }
+    hyvox::bench::MeshBenchArgs args = hyvox::bench::parseMeshBenchArgs(
+        argc, argv, kUsage, HYVOX_BENCH_MESH_DIR, [&](const std::string& arg, int& a) {
+            if (arg == "--fog-dir") fog_dir = hyvox::bench::optionValue(argc, argv, a);
+            else if (arg == "--out") out_dir = hyvox::bench::optionValue(argc, argv, a);
+            else return false;
+            return true;
+        });
+    const int runs = args.runs;
+    std::vector<int>& resolutions = args.resolutions;
+    const std::string& mesh_dir = args.mesh_dir;
+    std::vector<std::string>& files = args.files;
     if (resolutions.empty()) resolutions = {256, 512, 1024};
     if (files.empty()) files = {"happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz", "sponza_crytek_262k_vcolor.ply.gz"};
     hyvox::io::initializeOpenVdb();

@@ -56,7 +56,7 @@ struct Timed {
     std::string error;
 };
 
-Timed timeMethod(const hyvox::Mesh& mesh, hyvox::VoxelizeOptions options, int repeat) {
+Timed timeMethod(const hyvox::Mesh& mesh, const hyvox::VoxelizeOptions& options, int repeat) {
     Timed t;
     try {
         t.result = hyvox::voxelize(mesh.view(), options);  // warm-up: context, shaders, caches

@@ -4,7 +4,9 @@ Blender, voxelize both with the add-on's operator, and save the .blend, the .vdb
 a Cycles CPU render of each volume beside its mesh; then the textured Spot cow voxelized
 with its colour (the add-on's Colour option: a `color` grid the volume's material shows),
 rendered beside its mesh into render_colour.png, and Crytek Sponza with its vertex colours
-into render_colour_sponza.png; print the stats.
+into render_colour_sponza.png; then a twisting Suzanne made live and rendered for three
+frames with no bake step (Live voxelizes each frame as it renders), the frames side by
+side in render_live.png; print the stats.
 
     blender -b --factory-startup --python demo/run_demo.py -- --build B --output out/demo
 
@@ -199,49 +201,73 @@ def add_vertex_coloured_sponza(args):
     return sponza
 
 
-def voxelize_with_colour(obj, args, output, fill_interior):
+def voxelize_with_colour(obj, args, output, mode):
     """obj alone through the operator with the Colour option; returns its new Volume object."""
     for other in bpy.context.view_layer.objects:
         other.select_set(other is obj)
     bpy.context.view_layer.objects.active = obj
     bpy.ops.object.hyvox_voxelize(resolution=args.resolution, method=args.method, separate=True, color=True,
-                                  fill_interior=fill_interior, output_dir=os.path.join(output, "vdb"))
+                                  mode=mode, output_dir=os.path.join(output, "vdb"))
     return bpy.data.objects[obj.name + "_voxels"]
 
 
-def vector_math(tree, operation, a, b):
-    """A Vector Math node computing `a operation b` (each a socket or a constant triple)."""
-    node = tree.nodes.new("ShaderNodeVectorMath")
-    node.operation = operation
-    for socket, value in zip(node.inputs, (a, b)):
-        if isinstance(value, tuple):
-            socket.default_value = value
-        else:
-            tree.links.new(value, socket)
-    return node.outputs[0]
+LIVE_FRAMES = (1, 2, 3)
 
 
-def show_surface_colour(volume):
-    """Make the colour volume reflect about as much light as the mesh it came from.
-
-    The add-on's material uses the `color` grid (the surface's albedo c) as the volume's
-    single-scattering albedo; a shell a voxel or two thick then renders at a third of the mesh's
-    brightness (measured on this scene), since light scatters isotropically and part of it
-    leaves through the shell. Two-flux (Kubelka-Munk) theory gives a thick medium of albedo a
-    the diffuse reflectance (1 - sqrt(1 - a)) / (1 + sqrt(1 - a)); feeding
-    a = 1 - ((1 - c) / (1 + c))^2 makes that c. With 4x the density (nearly opaque in one
-    voxel) and 16 volume bounces (set by the caller for this render) the volume reaches about
-    0.78 of the mesh's brightness.
-    """
-    tree = volume.active_material.node_tree
-    shader = tree.nodes["Principled Volume"]
+def render_live_animation(args, output):
+    """A deforming Suzanne (a twist animated over three frames) voxelized by Live, with no
+    frame range and no bake: the render voxelizes each frame as it renders it (the source is
+    hidden in renders); the frames side by side in render_live.png."""
+    import numpy as np
+    scene = bpy.context.scene
+    bpy.ops.mesh.primitive_monkey_add(size=2.0)
+    source = bpy.context.active_object
+    source.name = "Twisted"
+    source.modifiers.new("Subdivision", "SUBSURF").levels = 2
+    twist = source.modifiers.new("Twist", "SIMPLE_DEFORM")
+    twist.deform_method, twist.deform_axis = "TWIST", "Z"
+    for frame, angle in zip(LIVE_FRAMES, (0.0, 1.6, 3.2)):
+        twist.angle = angle
+        twist.keyframe_insert("angle", frame=frame)
+    bpy.context.view_layer.update()
+    fit(source, 1.6, 0.0)
+    source.hide_render = True  # only its voxels render
+    scene.frame_set(LIVE_FRAMES[0])
+    for other in bpy.context.view_layer.objects:
+        other.select_set(other is source)
+    bpy.context.view_layer.objects.active = source
+    bpy.ops.object.hyvox_voxelize(resolution=args.resolution, method=args.method, live=True,
+                                  output_dir=os.path.join(output, "vdb"))
+    volume = bpy.data.objects[source.name + "_voxels"]
+    shader = volume.active_material.node_tree.nodes["Principled Volume"]
+    shader.inputs["Color"].default_value = (0.25, 0.55, 0.9, 1)
     shader.inputs["Density"].default_value *= 4.0
-    colour = next(node for node in tree.nodes if node.type == "ATTRIBUTE").outputs["Color"]
-    one = (1.0, 1.0, 1.0)
-    ratio = vector_math(tree, "DIVIDE", vector_math(tree, "SUBTRACT", one, colour),
-                        vector_math(tree, "ADD", one, colour))
-    albedo = vector_math(tree, "SUBTRACT", one, vector_math(tree, "MULTIPLY", ratio, ratio))
-    tree.links.new(albedo, shader.inputs["Color"])
+    saved = scene.frame_start, scene.frame_end, scene.render.resolution_x, scene.render.filepath, scene.camera
+    scene.frame_start, scene.frame_end = LIVE_FRAMES[0], LIVE_FRAMES[-1]
+    scene.camera = add_camera("Camera live", (0.0, -5.2, 1.5), 1.42)
+    scene.render.resolution_x = 320
+    frames = os.path.join(output, "live_frame_")
+    scene.render.filepath = frames
+    bpy.ops.render.render(animation=True)  # each frame: Live voxelizes it first, synchronously
+    images = []
+    for frame in LIVE_FRAMES:
+        path = f"{frames}{frame:04d}.png"
+        image = bpy.data.images.load(path)
+        images.append(np.array(image.pixels[:], np.float32).reshape(image.size[1], image.size[0], 4))
+        bpy.data.images.remove(image)
+        os.remove(path)
+    strip = np.concatenate(images, axis=1)
+    combined = bpy.data.images.new("render_live", strip.shape[1], strip.shape[0], alpha=True)
+    combined.pixels.foreach_set(strip.ravel())
+    png = os.path.join(output, "render_live.png")
+    combined.filepath_raw, combined.file_format = png, "PNG"
+    combined.save()
+    bpy.data.images.remove(combined)
+    scene.frame_start, scene.frame_end, scene.render.resolution_x, scene.render.filepath, scene.camera = saved
+    scene.frame_set(LIVE_FRAMES[0])
+    volume.hyvox_live = False  # the .blend keeps frame 1's voxels as a baked result
+    source.hide_render = volume.hide_render = True
+    return png
 
 
 def main():
@@ -277,16 +303,15 @@ def main():
     render_s = time.perf_counter() - start
     summary = list(operators.last_summary)
 
-    # Colour: Spot's texture into a `color` grid, filled (the add-on's default Fill Interior:
+    # Colour: Spot's texture into a `color` grid, filled (the add-on's default Mode, Solid:
     # the inside takes its colours from the surface inward); its volume shows it through the
-    # add-on's material (no flat colour set), brightened as show_surface_colour explains.
+    # add-on's material, with the volume bounces docs/artist.md asks for.
     shown = [bpy.data.objects[name] for name in ("Bunny", "Suzanne", "Bunny_voxels", "Suzanne_voxels")]
     for obj in shown:
         obj.hide_render = True
     spot = add_textured_spot(args)
-    volume = voxelize_with_colour(spot, args, output, fill_interior=True)
+    volume = voxelize_with_colour(spot, args, output, mode="solid")
     volume.location.x += 2.6
-    show_surface_colour(volume)
     cycles = bpy.context.scene.cycles
     bounces = cycles.max_bounces, cycles.volume_bounces
     cycles.max_bounces = cycles.volume_bounces = 16
@@ -300,10 +325,9 @@ def main():
     # Sponza's vertex colours the same way, as a surface seen from above (its roof is open).
     spot.hide_render = volume.hide_render = True
     sponza = add_vertex_coloured_sponza(args)
-    sponza_volume = voxelize_with_colour(sponza, args, output, fill_interior=False)
+    sponza_volume = voxelize_with_colour(sponza, args, output, mode="conservative")
     summary += operators.last_summary
     sponza_volume.location.x += 3.2
-    show_surface_colour(sponza_volume)
     scene = bpy.context.scene
     camera = scene.camera
     scene.camera = add_camera("Camera above", (0.0, -4.2, 4.6), 0.75)
@@ -315,6 +339,11 @@ def main():
     scene.camera = camera
     sponza.hide_render = sponza_volume.hide_render = True
     cycles.max_bounces, cycles.volume_bounces = bounces
+
+    # Live: an animated, deforming source rendered for a few frames with no bake step.
+    start = time.perf_counter()
+    live_png = render_live_animation(args, output)
+    live_s = time.perf_counter() - start
     for obj in shown:
         obj.hide_render = False
     # the .blend opens on the first scene's look
@@ -323,9 +352,10 @@ def main():
     print("\n=== hyvox demo ===")
     for line in summary:
         print(line)
-    print(f"render {render_s:.1f} s")
+    print(f"render {render_s:.1f} s; Live, frames {LIVE_FRAMES[0]}-{LIVE_FRAMES[-1]} voxelized as they "
+          f"rendered: {live_s:.1f} s")
     print("blend :", blend)
-    print("render:", png, colour_png, sponza_png)
+    print("render:", png, colour_png, sponza_png, live_png)
 
 
 if __name__ == "__main__":

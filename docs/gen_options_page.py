@@ -28,6 +28,7 @@ GROUPS = [
 ]
 METAVAR = {"int": "N", "float": "X", "str": "TEXT", "vector3": "X,Y,Z", "box": "X0,Y0,Z0,X1,Y1,Z1"}
 PYTHON_TYPE = {"int": "int", "float": "float", "bool": "bool", "str": "str", "choice": "str",
+               "choices": "str (a comma list) or a sequence of the names",
                "vector3": "(x, y, z)", "box": "((x0, y0, z0), (x1, y1, z1))"}
 
 
@@ -69,7 +70,12 @@ def flags(spec, in_table=False):
     if spec.type == "bool":
         return ", ".join(f"`{n}`, `--no-{n[2:]}`" for n in names)
     bar = "\\|" if in_table else "|"  # a bare | would end the table's cell
-    metavar = bar.join(spec.choices) if spec.type == "choice" else METAVAR[spec.type]
+    if spec.type == "choice":
+        metavar = bar.join(spec.choices)
+    elif spec.type == "choices":  # any of them, comma-separated
+        metavar = ",".join(spec.choices)
+    else:
+        metavar = METAVAR[spec.type]
     return ", ".join(f"`{n} {metavar}`" for n in names)
 
 
@@ -79,7 +85,17 @@ def methods_text(spec, methods):
     return "every method" if used == methods else ", ".join(f"`{m}`" for m in used)
 
 
-def page(options):
+def python_text(spec, voxelize_names, write_names):
+    """Where the Python module takes the option: voxelize()'s keyword, write_vdb()'s, or both."""
+    kinds = (["`voxelize`"] if spec.name in voxelize_names else []) + \
+        (["`VoxelGrid.write_vdb`"] if spec.name in write_names else [])
+    return f"`{spec.name}=` ({PYTHON_TYPE[spec.type]}) of " + " and ".join(kinds)
+
+
+def page(voxelize_options, write_options):
+    voxelize_names = {s.name for s in voxelize_options}
+    write_names = {s.name for s in write_options}
+    options = list(voxelize_options) + [s for s in write_options if s.name not in voxelize_names]
     places = blender_places()
     methods = list(next(s for s in options if s.name == "method").choices)
     lines = [
@@ -94,8 +110,9 @@ def page(options):
         "([blender.md](blender.md)). An option a method does not use is ignored with a warning. A value out",
         "of its limits is refused, never clamped.",
         "",
-        "In Blender, *Fill Interior* sets `mode` to `solid` and *Colour* sets `attributes` to `color`",
-        "(Output sub-panel); the options not shown there are reached from a script",
+        "In Blender, *Mode* is `mode` (*Solid* there by default), *Color* (on by default) adds `color` to",
+        "`attributes` and *Signed Distance* (Output sub-panel) adds `sdf`; the options not shown there are",
+        "reached from a script",
         "(`bpy.ops.object.hyvox_voxelize(...)` takes the panel's settings, `hyvox.voxelize` all of them).",
         "",
         "| option | command line | type | default | applies to | in Blender |",
@@ -113,10 +130,11 @@ def page(options):
         if about:
             lines += [about, ""]
         for spec in members:
-            help_text = spec.help[:1].upper() + spec.help[1:]
+            # "sdf: ..." names the attribute, kept as written; "solid: ..." starts a sentence.
+            help_text = spec.help if spec.help.startswith("sdf") else spec.help[:1].upper() + spec.help[1:]
             lines += [f"### {spec.name}", "", help_text + ("." if not help_text.endswith(".") else ""), ""]
             lines.append(f"- Command line: {flags(spec)}")
-            lines.append(f"- Python: `{spec.name}=` ({PYTHON_TYPE[spec.type]})")
+            lines.append(f"- Python: {python_text(spec, voxelize_names, write_names)}")
             if spec.name in places:
                 lines.append(f"- Blender: *{spec.label}*, in {places[spec.name]}")
             lines.append(f"- Default: {default_text(spec)}")
@@ -146,7 +164,7 @@ def main(argv):
 
     out = pathlib.Path(argv[1])
     out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(page(_core.OPTIONS), encoding="utf-8")
+    out.write_text(page(_core.OPTIONS, _core.WRITE_OPTIONS), encoding="utf-8")
     return 0
 
 

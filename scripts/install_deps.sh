@@ -24,6 +24,7 @@ packages=(
   python3-venv ccache                                               # wheel + bpy venvs; the wheel's build reuses objects
   strace                                                            # the durable_write test watches fsync/rename calls
   libgtest-dev clang                                                 # clang: libFuzzer for the mesh-reader fuzzing
+  doxygen                                                           # the C++ API reference's check (docs/Doxyfile)
   blender xvfb xauth                                                # add-on tests (modal path in a window)
 )
 

@@ -12,10 +12,12 @@
 #   extra/bpyNN Blender releases tested on request only (HYVOX_BPY_EXTRA=1 here and
 #               -DHYVOX_BPY_EXTRA=ON in CMake; scripts/test_bpy_extra.sh does both):
 #               py311: bpy42, bpy43, bpy44 (the other EEVEE Next releases)
+#   lint        ruff, clang-format, clang-tidy, pre-commit: scripts/lint.sh
 # Each is made once per version of its list (a copy of the list inside marks it done), so
 # re-running is cheap.
 #   setup_venvs.sh --lists   prints the list folder for this machine's Python and exits
 #                            (CMake asks this, so the folder rule is written only here).
+#   setup_venvs.sh DIR NAME...   makes only the venvs of those lists (scripts/lint.sh: lint).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 python_tag=$(/usr/bin/python3 -c 'import sys; print("py%d%d" % sys.version_info[:2])')
@@ -30,6 +32,7 @@ if [ "${1:-}" = --lists ]; then
   exit 0
 fi
 dir=${1:-build/venv}
+only=("${@:2}")  # list names; none = every list
 mkdir -p "$dir"
 make_venv() {  # make_venv LIST VENV
   rm -rf "$2"
@@ -50,6 +53,9 @@ if [ "${HYVOX_BPY_EXTRA:-0}" = 1 ]; then
 fi
 for list in "$lists"/*.txt "${extra[@]}"; do
   name=$(basename "$list" .txt)
+  if [ ${#only[@]} -gt 0 ] && [[ " ${only[*]} " != *" $name "* ]]; then
+    continue
+  fi
   venv="$dir/$name"
   if cmp -s "$list" "$venv/requirements.txt"; then
     echo "setup_venvs: $venv up to date"

@@ -5,7 +5,8 @@
 #      plus the self-contained wheel and Blender extension, checked in a clean venv and in
 #      official Blender releases from PyPI for the machine's Python (pinned venvs under
 #      build/venv/: 4.5 LTS and 5.0 with Python 3.11 on Debian 12, 5.1 and 5.3 with 3.13 on 13);
-#   2. an AddressSanitizer + UndefinedBehaviorSanitizer build of the native code: the native tests.
+#   2. an AddressSanitizer + UndefinedBehaviorSanitizer build of the native code: the native tests;
+#   3. the linters (scripts/lint.sh: ruff, clang-tidy; the format checks behind HYVOX_LINT_FORMAT).
 # GL tests run on whatever EGL device is there (Mesa llvmpipe without a GPU); none skip.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -34,6 +35,11 @@ cmake --build build-asan -j "$jobs"
 # Mesa's drivers are not instrumented and keep process-lifetime allocations: leak checks off.
 ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$jobs"
+
+echo "== Linters: ruff check and clang-tidy (any finding fails)"
+# The format checks (ruff format, clang-format) stay off until the tree is formatted once;
+# then HYVOX_LINT_FORMAT=1 here turns them on.
+HYVOX_LINT_FORMAT=0 bash scripts/lint.sh build
 
 echo "== libFuzzer (clang, ASan + UBSan): the PLY and OBJ readers 60 s each, gzip input and voxelize 30 s each; any finding fails"
 bash scripts/fuzz_readers.sh

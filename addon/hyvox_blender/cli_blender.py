@@ -4,7 +4,7 @@
     blender -b scene.blend --python B/addon/hyvox_blender/cli_blender.py -- \\
         --frames 1-10 --output DIR --resolution 256 [--voxel-size S] [--method cpu] \\
         [--mode conservative|thin|solid] [--tess-gamma G] [--hybrid-cutoff C] [--padding P] \\
-        [--objects A,B] [--separate] [--no-color] [--viewport] [--save OUT.blend] [--stats-json FILE]
+        [--objects A,B] [--separate] [--no-color] [--viewport] [--live] [--save OUT.blend] [--stats-json FILE]
 
 The add-on runs as Blender knows it: the extension (Blender 4.2+) this file was installed
 with, bl_ext.<repository>.hyvox_blender, else the legacy add-on of this file's folder.
@@ -13,7 +13,9 @@ is selected) with the add-on's operator, so the result is the same as in the UI.
 chunk (--frames 11-20) writes its own files name_0011.vdb...; chunks assemble. Modifiers
 and Geometry Nodes are evaluated at render settings, as the render shows the scene
 (--viewport: at viewport settings); instances are included. Put Blender options such as
--a (render the animation) before the `--`. Exits 1 on failure."""
+-a (render the animation) before the `--`. --live makes live volumes (docs/live.md): with
+-a every rendered frame gets its own voxels, with no frame range and no bake step.
+Exits 1 on failure."""
 import argparse
 import importlib
 import json
@@ -44,6 +46,8 @@ def parse_args(argv, package):
                         help="no `color` grid (default: the colour the objects' materials show)")
     parser.add_argument("--viewport", action="store_true",
                         help="evaluate modifiers at viewport settings (default: render settings)")
+    parser.add_argument("--live", action="store_true",
+                        help="live volumes: they follow the sources, and a render (-a) voxelizes each frame")
     parser.add_argument("--save", help="save the .blend with the volumes to this path")
     parser.add_argument("--stats-json", help="write origin, voxel size, counts and timings here")
     args = parser.parse_args(argv)
@@ -111,13 +115,11 @@ def main(argv):
         kwargs["output_dir"] = os.path.abspath(args.output)
     if args.separate:
         kwargs["separate"] = True
-    if args.mode is not None:
-        # The operator fills the interior by its Fill Interior setting (the scene's unless
-        # given): an explicit --mode decides it, so --mode thin is not turned into solid.
-        kwargs["fill_interior"] = args.mode == "solid"
     kwargs["evaluation"] = "VIEWPORT" if args.viewport else "RENDER"
     kwargs["color"] = args.color
     kwargs["unique_file_names"] = False  # chunks of one sequence must share their file names
+    if args.live:
+        kwargs["live"] = True
     if args.frames:
         frames = parse_frame_range(args.frames)
         if frames != list(range(frames[0], frames[-1] + 1)):

@@ -9,7 +9,9 @@
 // "DIFF"; tessellation gets its bias against the conservative and thin cpu voxels and its
 // false voxels (voxels the conservative set lacks, which must be 0). An `attributes@RES` step
 // times each exact method's binary run and its attribute run (colour where the scene has
-// colours, and normals; conservative) and checks the values against cpu's.
+// colours, and normals; conservative) and checks the values against cpu's. A `live@RES` step
+// (issue 29) times what a live volume's worker does per edit, without Blender: a vertex moved,
+// the grid on the lattice fixed in world space, voxelize, write the .vdb that Blender loads.
 //
 //   bench_device --mesh-dir DIR --csv FILE [--info FILE] [--order thin@256,thin@512,...]
 //                [--scenes bunny_stanford_69k.ply,...,dragon_stanford_871k.ply.gz:x16,triangle]
@@ -29,6 +31,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <set>
@@ -45,6 +48,7 @@
 #include "hyvox/errors.h"
 #include "hyvox/gl_devices.h"
 #include "hyvox/mesh_io.h"
+#include "hyvox/vdb.h"
 #include "hyvox/voxelize.h"
 #include "support/subdivide.h"
 #include "support/voxel_checks.h"
@@ -59,6 +63,7 @@ struct Step {
     int resolution = 0;
     bool threads = false;     // "threads@RES": the cpu method's thread scaling
     bool attributes = false;  // "attributes@RES": the price of colour and normal voxels
+    bool live = false;        // "live@RES": Live's updates (edit, voxelize, write) per second
 };
 
 // "thin@256" -> {Thin, 256}; "threads@512"; a bad step ends the program (a usage error).
@@ -66,7 +71,7 @@ Step parseStep(const std::string& text) {
     const auto at = text.find('@');
     const int res = at == std::string::npos ? 0 : std::atoi(text.c_str() + at + 1);
     if (res <= 0) {
-        std::fprintf(stderr, "bad --order step '%s' (want MODE@RES, threads@RES or attributes@RES, e.g. thin@256)\n",
+        std::fprintf(stderr, "bad --order step '%s' (want MODE@RES, threads@RES, attributes@RES or live@RES, e.g. thin@256)\n",
                      text.c_str());
         std::exit(2);
     }
@@ -74,6 +79,7 @@ Step parseStep(const std::string& text) {
     step.resolution = res;
     if (text.substr(0, at) == "threads") step.threads = true;
     else if (text.substr(0, at) == "attributes") step.attributes = true;
+    else if (text.substr(0, at) == "live") step.live = true;
     else step.mode = hyvox::parseMode(text.substr(0, at));
     return step;
 }
@@ -268,6 +274,9 @@ double maxColourDifference(const hyvox::VoxelizeResult& a, const hyvox::Voxelize
     return worst;
 }
 
+// Live rows for the scenes an artist edits live (the 871k dragon at most).
+constexpr std::size_t kLiveMaxTriangles = 1000000;
+
 // The GL methods' pieces are clipped in double like cpu's (the tests hold the means to 2e-5);
 // a piece lost or counted twice moves a colour mean by more than this.
 constexpr double kAttributeTolerance = 1e-3;
@@ -372,12 +381,12 @@ public:
     void attributeStep(std::size_t step, const std::string& spec, const hyvox::Mesh& mesh, int res) {
         hyvox::VoxelizeOptions o = options(res);
         o.mode = hyvox::Mode::Conservative;
-        const std::string attributes = mesh.view().colors ? "color,normal" : "normal";
+        const hyvox::AttributeSet attributes = hyvox::parseAttributeSet(mesh.view().colors ? "color,normal" : "normal");
         Row cpu;
         for (hyvox::Method method :
              {hyvox::Method::Cpu, hyvox::Method::Hybrid, hyvox::Method::Triangle, hyvox::Method::Fragment}) {
             o.method = method;
-            o.attributes.clear();
+            o.attributes = {};
             const Row binary = timeMethod(mesh, o, repeat_, row_budget_ms_);
             o.attributes = attributes;
             Row row = timeMethod(mesh, o, repeat_, row_budget_ms_);
@@ -414,6 +423,84 @@ public:
             if (row.error.empty()) c.check = row.last.occupancy == all.last.occupancy ? "equal" : "DIFF";
             emit(step, spec, mesh, hyvox::toString(o.mode), res, "cpu", row, c);
         }
+    }
+
+    // Live's updates as its worker runs them (core/live_run.py), Blender's part aside: each
+    // update moves another vertex by a tenth of a voxel (a new state every time), puts the
+    // grid on the lattice fixed in world space (the voxel size of the first evaluation, the
+    // origin the whole multiple of it at or below the bounds: core/lattice.py) and voxelizes
+    // and writes the .vdb. Per mode (surface and solid, the add-on's default) cpu, then hybrid
+    // checked against cpu on the last state. wall_ms: the median update (voxelize + write);
+    // updates a second = 1000 / wall_ms; stage_ms: its voxelize part.
+    void liveStep(std::size_t step, const std::string& spec, const hyvox::Mesh& mesh, int res) {
+        if (mesh.triangleCount() > kLiveMaxTriangles) {  // the subdivided dragons: minutes of solid cpu
+            std::printf("# live: %s skipped (over %zu triangles)\n", sceneName(spec).c_str(), kLiveMaxTriangles);
+            return;
+        }
+        const hyvox::Bounds bounds = hyvox::validate(mesh.view()).bounds;
+        double longest = 0;
+        for (int a = 0; a < 3; ++a) longest = std::max(longest, bounds.max[a] - bounds.min[a]);
+        const double voxel_size = longest / res;
+        const std::string path = (std::filesystem::temp_directory_path() / "hyvox_bench_live.vdb").string();
+        for (hyvox::Mode mode : {hyvox::Mode::Conservative, hyvox::Mode::Solid}) {
+            for (hyvox::Method method : {hyvox::Method::Cpu, hyvox::Method::Hybrid}) {
+                hyvox::Mesh edited = mesh;
+                hyvox::VoxelizeOptions o = options(res);
+                o.mode = mode;
+                o.method = method;
+                o.grid.voxel_size = voxel_size;
+                Row row;
+                std::vector<double> update, voxelize, write;
+                try {
+                    for (int edit = 0; edit <= repeat_ * 4; ++edit) {  // edit 0: the warm-up
+                        hyvox::Stopwatch watch;
+                        edited.positions[3 * ((std::size_t(edit) * 7919) % edited.vertexCount()) + 2] +=
+                            float(0.1 * voxel_size);
+                        std::array<double, 3> low = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+                        for (std::size_t v = 0; v < edited.vertexCount(); ++v)
+                            for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], double(edited.positions[3 * v + a]));
+                        for (double& x : low) {
+                            double k = std::floor(x / voxel_size);
+                            if (k * voxel_size > x) k -= 1;
+                            x = k * voxel_size;
+                        }
+                        o.grid.origin = low;
+                        row.last = hyvox::voxelize(edited.view(), o);
+                        const double voxelized = watch.elapsedMs();
+                        hyvox::writeVdb(row.last, path);
+                        if (edit == 0) {
+                            row.first_ms = watch.elapsedMs();
+                            continue;
+                        }
+                        update.push_back(watch.elapsedMs());
+                        voxelize.push_back(voxelized);
+                        write.push_back(update.back() - voxelized);
+                        if (median(update) * double(update.size()) > row_budget_ms_ * 2) break;
+                    }
+                    row.runs = int(update.size());
+                    row.wall_ms = median(update);
+                    row.stage_ms = median(voxelize);
+                    double p0, p1, p2;
+                    row.gpu_ms = gpuPasses(row.last.stats, p0, p1, p2);  // of the last update
+                    row.pass2_ms = median(write);  // the write, in the CSV's pass2 column
+                } catch (const std::exception& e) {
+                    row.error = e.what();
+                }
+                Checked c;
+                if (method != hyvox::Method::Cpu && row.error.empty()) {
+                    o.method = hyvox::Method::Cpu;  // the oracle: cpu on the same last state and lattice
+                    c = againstCpu(edited, mode, row.last, hyvox::voxelize(edited.view(), o));
+                }
+                const std::string label = std::string("live-") + hyvox::toString(mode);
+                emit(step, spec, mesh, label.c_str(), res, hyvox::toString(method), row, c);
+                if (row.error.empty() && row.wall_ms > 0)
+                    std::printf("# live %s %s@%d %s: %.1f updates a second (voxelize %.2f + write %.2f ms)\n",
+                                sceneName(spec).c_str(), hyvox::toString(mode), res, hyvox::toString(method),
+                                1000.0 / row.wall_ms, row.stage_ms, row.pass2_ms);
+            }
+        }
+        std::error_code ignored;
+        std::filesystem::remove(path, ignored);
     }
 
 private:
@@ -495,7 +582,8 @@ int main(int argc, char** argv) {
                          "[--scenes S,...] [--repeat N] [--row-budget-s S] [--budget-s S] [--device D] "
                          "[--require-hardware]\n"
                          "  STEP: MODE@RES (thin@256), threads@RES (cpu alone at 1, 2, 4, ... threads) or\n"
-                         "        attributes@RES (each exact method binary, then with colour and normals)\n");
+                         "        attributes@RES (each exact method binary, then with colour and normals) or\n"
+                         "        live@RES (Live's updates: an edit, voxelize, write, cpu and hybrid)\n");
             return 2;
         }
     }
@@ -539,11 +627,12 @@ int main(int argc, char** argv) {
                 std::fclose(csv);
                 return bench.failures() + failures ? 1 : 0;
             }
-            if (step.threads && spec == "triangle") continue;  // nothing to spread over threads
+            if ((step.threads || step.live) && spec == "triangle") continue;  // nothing to spread or edit
             try {
                 const hyvox::Mesh& mesh = meshes.get(spec);
                 if (step.threads) bench.threadsStep(si, spec, mesh, step.resolution);
                 else if (step.attributes) bench.attributeStep(si, spec, mesh, step.resolution);
+                else if (step.live) bench.liveStep(si, spec, mesh, step.resolution);
                 else bench.exactStep(si, spec, mesh, step.mode, step.resolution);
             } catch (const std::exception& e) {
                 std::printf("# %s (step %s): %s\n", spec.c_str(), order[si].c_str(), e.what());

@@ -54,9 +54,11 @@ std::string placeholder(const OptionSpec& spec) {
         case OptionType::Number: return " X";
         case OptionType::Flag: return "";
         case OptionType::Text: return " TEXT";
-        case OptionType::Choice: {
+        case OptionType::Choice:
+        case OptionType::Choices: {
+            const char* between = spec.type == OptionType::Choice ? "|" : ",";
             std::string choices;
-            for (const char* c : spec.choices) choices += (choices.empty() ? " " : "|") + std::string(c);
+            for (const char* c : spec.choices) choices += (choices.empty() ? " " : between) + std::string(c);
             return choices;
         }
         case OptionType::Vector3: return " X,Y,Z";
@@ -72,7 +74,7 @@ std::string optionHelp(const OptionSpec& spec) {
     std::string line = flag + "\n      " + spec.help;
     if (*spec.unit) line += std::string(" [") + spec.unit + "]";
     if (!spec.nullable) {
-        const std::string value = formatOptionValue(spec.get(VoxelizeOptions{}));
+        const std::string value = formatOptionValue(spec.defaultValue());
         line += " (default " + (value == "''" ? std::string("none") : value) + ")";
     }
     if (spec.env) line += std::string(" (env ") + spec.env + ")";
@@ -88,8 +90,9 @@ std::string commonOptionsHelp() {
 // The schema's options, less those the command sets itself (fixed(name) not null).
 std::string voxelizeOptionsHelp(const char* (*fixed)(const std::string&)) {
     std::string text =
-        "\nvoxelize options (the same names as hyvox.voxelize's keywords; a flag's value may also\n"
-        "be given as --name=true|false; environment variables apply unless the flag is given):\n";
+        "\nvoxelize options (the same names as the keywords of hyvox.voxelize and, for the output,\n"
+        "VoxelGrid.write_vdb; a flag's value may also be given as --name=true|false; environment\n"
+        "variables apply unless the flag is given):\n";
     for (const OptionSpec& spec : optionSchema())
         if (!fixed || !fixed(spec.name)) text += optionHelp(spec);
     return text;
@@ -238,7 +241,9 @@ Arguments parseCommand(const std::vector<std::string>& args) {
                     throw UsageError(option + " takes no value");
                 else
                     parsed = parseOptionText(*spec, value());
-                setOption(out.options, spec->name, parsed);
+                // One flag, both structs where the option is both (threads, memory_budget_mib).
+                if (spec->isVoxelizeOption()) setOption(out.options, spec->name, parsed);
+                if (spec->isWriteOption()) setOption(out.write, spec->name, parsed);
             } catch (const InvalidInput& e) {  // the schema's message, after the flag as typed
                 throw UsageError(option + ": " + e.what());
             }

@@ -33,6 +33,7 @@ struct Arguments {
     Command help_topic = Command::Help;
     std::string texture_path;  // empty: none; a PNG sampled at the mesh's UVs for --attributes color
     VoxelizeOptions options;
+    WriteOptions write;  // the .vdb's and the stats JSON's
     std::vector<double> gammas;  // gamma-sweep: the safety factors to try, ascending
     // Options given on the command line that the chosen method ignores (printed as warnings).
     std::vector<std::string> warnings;

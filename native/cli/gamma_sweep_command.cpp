@@ -125,7 +125,8 @@ void runGammaSweep(const Arguments& args, const std::atomic<bool>& stop) {
     }
     if (!args.stats_json_path.empty())
         writeTextFileAtomic(args.stats_json_path, sweepJson(grid, exact.stats.voxel_count, thin.stats.voxel_count, rows,
-                                                            fit ? &*fit : nullptr));
+                                                            fit ? &*fit : nullptr),
+                            args.write.durable);
 }
 
 }  // namespace hyvox::cli

@@ -8,7 +8,6 @@
 
 #include "command_support.h"
 #include "progress_line.h"
-#include "hyvox/attribute_grid.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/stats_json.h"
@@ -62,7 +61,7 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     }
     // The materials' images (OBJ map_Kd), decoded only when colour is asked for.
     MaterialTextures material_textures;
-    if (mesh.hasMaterials() && parseAttributeSet(args.options.attributes).color) {
+    if (mesh.hasMaterials() && args.options.attributes.color) {
         material_textures = readMaterialTextures(mesh.material_textures);
         view.material_textures = material_textures.of_material.data();
     }
@@ -75,12 +74,12 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     result.stats.timings_ms.insert(result.stats.timings_ms.begin(), {"read_mesh", read_ms});
 
     if (stop.load()) throw Cancelled();
-    const VdbWriteReport written = writeVdb(result, args.output_path, 0, &interrupter);
+    const VdbWriteReport written = writeVdb(result, args.output_path, args.write, &interrupter);
     result.stats.addTiming("build_vdb", written.build_ms);
     result.stats.addTiming("write_vdb", written.write_ms);
     result.stats.vdb_bytes = written.grid_bytes;
 
-    if (!args.stats_json_path.empty()) writeTextFileAtomic(args.stats_json_path, statsToJson(result), result.stats.options.durable_write);
+    if (!args.stats_json_path.empty()) writeTextFileAtomic(args.stats_json_path, statsToJson(result), args.write.durable);
     if (!args.quiet) printSummary(args, mesh, result);
 }
 

@@ -21,7 +21,6 @@ import sys
 import threading
 import tempfile
 import time
-import traceback
 
 import bpy
 
@@ -46,14 +45,6 @@ def digest(path):
 def view3d_override():
     window = bpy.context.window_manager.windows[0]
     return dict(window=window, screen=window.screen)
-
-
-def hide_viewports():
-    """Turn the 3D Views into Info editors: on Xvfb's software GL a viewport redraw of the
-    69k-triangle bunny takes about a second and would hide what this test measures."""
-    for area in bpy.context.window_manager.windows[0].screen.areas:
-        if area.type == "VIEW_3D":
-            area.type = "INFO"
 
 
 def running():
@@ -94,11 +85,11 @@ def hold_the_write():
         def __getattr__(self, name):
             return getattr(self._grid, name)
 
-        def write_vdb(self, path, threads=0, cancel=None):
+        def write_vdb(self, path, cancel=None, **options):
             WRITE["thread"] = threading.current_thread()
             WRITE["entered"].set()
             WRITE["release"].wait(60)
-            return self._grid.write_vdb(path, threads=threads)  # no token: it cannot be cancelled
+            return self._grid.write_vdb(path, **options)  # no token: it cannot be cancelled
 
     def voxelize_then_hold(*args, **kwargs):
         backend.voxelize = real
@@ -112,20 +103,6 @@ def invoke(**kw):
         return bpy.ops.object.hyvox_voxelize("INVOKE_DEFAULT", output_dir=OUT, **kw)
 
 
-def press_esc():
-    window = bpy.context.window_manager.windows[0]
-    window.event_simulate("ESC", "PRESS")
-    window.event_simulate("ESC", "RELEASE")
-
-
-def tick():
-    try:
-        return step()
-    except Exception:
-        traceback.print_exc()
-        fail("exception in the test")
-
-
 def step():
     now = time.perf_counter()
     if state["ticks"]:
@@ -133,7 +110,7 @@ def step():
     state["ticks"].append(now)
     s = state["step"]
     if s == "start":
-        hide_viewports()
+        helpers.hide_viewports()
         helpers.clear_scene()
         cube = helpers.cube()
         helpers.select_only(cube)
@@ -216,7 +193,7 @@ def step():
             # leaves room for a loaded CI machine without hiding a real freeze.
             if state["max_gap"] > 0.9:
                 fail("the UI stalled while the worker ran")
-            press_esc()
+            helpers.press_key("ESC")
             state.update(step="cancelled", t0=now)
     elif s == "cancelled":
         if running() is not None:
@@ -240,7 +217,7 @@ def step():
             if now - state["t0"] > 30:
                 fail("the run never reached its write")
             return 0.05
-        press_esc()
+        helpers.press_key("ESC")
         state.update(step="write_cancelled", t0=now)
     elif s == "write_cancelled":
         if running() is not None:
@@ -265,11 +242,4 @@ def step():
     return 0.05
 
 
-def main():
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    helpers.enable_addon(argv[0] if argv else "build")
-    bpy.app.timers.register(tick, first_interval=1.0)
-    bpy.app.timers.register(lambda: fail("timed out") or None, first_interval=120.0)
-
-
-main()
+helpers.run_in_window(step, fail, seconds=120)

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The sidebar panel in a real window: no label, value or summary line is wider than the
-room the sidebar gives it at its default width.
+room the sidebar gives it at its default width, and no label is drawn twice in a panel
+(in either size mode).
 
     xvfb-run -a blender --factory-startup --enable-event-simulate \\
         --python tests/blender/interactive_panel.py -- BUILD_DIR [SCREENSHOT_DIR]
@@ -16,7 +17,6 @@ import json
 import os
 import sys
 import tempfile
-import traceback
 
 import blf
 import bpy
@@ -115,8 +115,12 @@ def room(where, content, unit):
     return (value if kind == "value_share" else content - unit) / int(count) - unit * 0.5
 
 
+def panels():
+    from hyvox_blender.blender import live_ui, ui
+    return ui.CLASSES + (live_ui.VIEW3D_PT_hyvox_live,)
+
+
 def check_widths(context, region):
-    from hyvox_blender.blender import ui
     scale = context.preferences.system.ui_scale
     unit = 20 * scale
     points = context.preferences.ui_styles[0].widget.points
@@ -125,7 +129,9 @@ def check_widths(context, region):
     content = region.width - unit - unit
     print(f"sidebar region {region.width} px, panel content {content:.0f} px, ui scale {scale:.3f}", flush=True)
     too_wide = []
-    for panel in ui.CLASSES:
+    settings = context.scene.hyvox
+    for panel, size_mode in [(panel, "RESOLUTION") for panel in panels()] + [(panels()[0], "VOXEL_SIZE")]:
+        settings.size_mode = size_mode
         out = []
         recorder = Recorder(out)
 
@@ -137,6 +143,10 @@ def check_widths(context, region):
         if hasattr(panel, "draw_header"):
             panel.draw_header(fake, context)
         panel.draw(fake, context)
+        labels = [text for where, text, _ in out if where == "label"]
+        twice = sorted({text for text in labels if labels.count(text) > 1})
+        if twice:
+            too_wide.append(f"{panel.bl_label} ({size_mode}): the label {twice} twice")
         for where, text, icon in out:
             width = blf.dimensions(0, text)[0] + (unit if icon else 0)
             limit = room(where, content, unit)
@@ -168,14 +178,6 @@ def screenshot(directory, name):
 state = {"step": 0}
 
 
-def tick():
-    try:
-        return step()
-    except Exception:
-        traceback.print_exc()
-        fail("exception in the test")
-
-
 def step():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     shots = argv[1] if len(argv) > 1 else None
@@ -183,9 +185,7 @@ def step():
     state["step"] += 1
     window, area, region = sidebar()
     if s == 0:
-        # Close the splash screen with a click beside it, as an artist would.
-        window.event_simulate("LEFTMOUSE", "PRESS", x=20, y=window.height // 2)
-        window.event_simulate("LEFTMOUSE", "RELEASE", x=20, y=window.height // 2)
+        helpers.close_splash()
         helpers.clear_scene()
         bunny = helpers.bunny()
         helpers.select_only(bunny)
@@ -223,20 +223,14 @@ def step():
     os._exit(0)
 
 
-def main():
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    build = argv[0] if argv else "build"
+def prepare(build):
     sys.path.insert(0, os.path.join(build, "addon"))
     # Show the panel in the sidebar's first tab and its sub-panels open, for the screenshots
     # (the widths do not depend on either).
-    from hyvox_blender.blender import ui
-    for panel in ui.CLASSES:
+    for panel in panels():
         panel.bl_category = "Item"
         panel.bl_options = set(getattr(panel, "bl_options", set())) - {"DEFAULT_CLOSED"}
-    helpers.enable_addon(build)
-    bpy.app.timers.register(tick, first_interval=1.0)
-    bpy.app.timers.register(lambda: fail("timed out") or None, first_interval=120.0)
 
 
 OUT = tempfile.mkdtemp(prefix="hyvox-panel-")
-main()
+helpers.run_in_window(step, fail, seconds=120, prepare=prepare)

@@ -42,7 +42,7 @@ class BlocksOutputTest(AddonTestCase):
         self.assertEqual(self.voxelize(resolution=40, output="BLOCKS", export_vox=True), {"FINISHED"})
         obj = bpy.data.objects["Bunny_blocks"]
         self.assertEqual(obj.type, "MESH")
-        from hyvox_blender.blender import operators
+        operators = helpers.addon("blender.operators")
         (record,) = operators.last_run_record["volumes"]
         vdb = record["files"][0]
         ijk, size, zero, _ = helpers.read_vdb(vdb)
@@ -69,7 +69,7 @@ class BlocksOutputTest(AddonTestCase):
         self.assertEqual([o.name for o in bpy.data.objects if "hyvox_key" in o], ["Bunny_voxels"])
 
     def test_face_colours_from_the_voxels(self):
-        from hyvox_blender.core import backend
+        backend = helpers.addon("core.backend")
         cube = helpers.cube()
         helpers.select_only(cube)
         real = backend.voxel_colors
@@ -90,13 +90,51 @@ class BlocksOutputTest(AddonTestCase):
         corners = corners.reshape(-1, 4, 4)  # (face, corner, rgba): quads, loops in face order
         self.assertTrue(np.all(corners == corners[:, :1]))  # one colour per face
         rgba = corners[:, 0]
-        from hyvox_blender.blender import operators
+        operators = helpers.addon("blender.operators")
         ijk, size, zero, _ = helpers.read_vdb(operators.last_run_record["volumes"][0]["files"][0])
         origin = zero - size / 2
         for polygon, color in zip(mesh.polygons, rgba.reshape(-1, 4)):
             # The voxel behind the face: half a voxel inwards from its centre.
             inside = np.floor((np.array(polygon.center) - np.array(polygon.normal) * size[0] / 2 - origin) / size)
             np.testing.assert_allclose(color[:3], inside.astype(int) % 7 / 6.0, atol=1e-6)
+
+    def test_blocks_are_flat_shaded(self):
+        """Every face flat (a new face is smooth from Blender 4.1 on), so a render shows one
+        shade per face direction: Workbench's studio light depends on the normal only, and
+        with anti-aliasing off the blocks of a sphere, seen along an axis, take at most the
+        six values of the six directions; smooth shading interpolates normals across faces
+        and makes many."""
+        bpy.ops.mesh.primitive_uv_sphere_add(radius=1.0, segments=16, ring_count=8)
+        source = bpy.context.active_object
+        helpers.select_only(source)
+        self.assertEqual(self.voxelize(resolution=10, output="BLOCKS"), {"FINISHED"})
+        blocks = bpy.data.objects["Sphere_blocks"]
+        smooth = np.empty(len(blocks.data.polygons), bool)
+        blocks.data.polygons.foreach_get("use_smooth", smooth)
+        self.assertFalse(smooth.any(), f"{smooth.sum()} of {len(smooth)} faces smooth")
+        source.hide_render = True
+        scene = bpy.context.scene
+        camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+        camera.data.type, camera.data.ortho_scale = "ORTHO", 2.6
+        camera.location, camera.rotation_euler = (4.0, -6.0, 3.0), (1.1, 0.0, 0.6)
+        scene.collection.objects.link(camera)
+        scene.camera = camera
+        scene.render.engine = "BLENDER_WORKBENCH"
+        scene.display.shading.light = "STUDIO"
+        scene.display.shading.color_type = "SINGLE"
+        scene.display.render_aa = "OFF"
+        scene.render.resolution_x = scene.render.resolution_y = 64
+        scene.render.resolution_percentage = 100
+        scene.render.film_transparent = True
+        scene.render.image_settings.file_format = "OPEN_EXR"
+        scene.render.image_settings.color_depth = "32"
+        scene.view_settings.view_transform = "Standard"
+        pixels = helpers.render_pixels(os.path.join(self.out, "blocks.exr"))
+        shown = pixels[..., 3] > 0.999
+        shades = np.unique(np.round(pixels[shown][:, :3], 3), axis=0)
+        print(f"blocks: {shown.sum()} pixels in {len(shades)} shades")
+        self.assertGreater(shown.sum(), 500)
+        self.assertLessEqual(len(shades), 6, shades)
 
     def test_blocks_refuse_a_frame_range(self):
         cube = helpers.cube()

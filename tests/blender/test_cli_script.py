@@ -82,3 +82,32 @@ class CliScriptTest(AddonTestCase):
         self.assertEqual(done.returncode, 1)
         self.assertIn("resolution must be a whole number between 1 and 16384, got 0", done.stderr)
         self.assertEqual([f for f in os.listdir(self.out) if f != "scene.blend"], [])
+
+    def test_live_renders_every_frame_with_its_own_voxels(self):
+        """`blender -b scene.blend --python cli_blender.py -a -- --live`: the animation renders
+        as voxels, each frame its own, with no frame range and nothing baked."""
+        from test_live import read_frames, render_setup
+        scene = bpy.context.scene
+        cube = helpers.cube(size=1.0)
+        for frame, x in ((1, -1.0), (2, 0.0), (3, 1.2)):
+            cube.location.x = x
+            cube.keyframe_insert("location", frame=frame)
+        cube.hide_render = True  # only the voxels render
+        scene.frame_start, scene.frame_end = 1, 3
+        scene.frame_set(1)
+        render_dir = os.path.join(self.out, "renders")
+        render_setup(scene, render_dir)
+        blend = os.path.join(self.out, "animated.blend")
+        bpy.ops.wm.save_as_mainfile(filepath=blend, copy=True)
+        vdb_dir = os.path.join(self.out, "vdb")
+        command = [bpy.app.binary_path, "-b", "--factory-startup", "-noaudio", blend, "--python", cli_path(),
+                   "-a", "--", "--live", "--output", vdb_dir, "--resolution", "12", "--objects", "Cube"]
+        done = subprocess.run(command, capture_output=True, text=True, timeout=300)
+        self.assertEqual(done.returncode, 0, done.stdout[-2000:] + done.stderr[-2000:])
+        images = read_frames(render_dir, (1, 2, 3))
+        # The cube's voxels darken the white background where the cube is in each frame.
+        columns = [np.argmin(image[..., 0].mean(axis=0)) for image in images]
+        self.assertLess(min(image[..., 0].min() for image in images), 0.5)
+        self.assertTrue(columns[0] < columns[1] < columns[2], columns)
+        # The session's Live files went with it: nothing was saved that refers to them.
+        self.assertEqual(os.listdir(vdb_dir), [])

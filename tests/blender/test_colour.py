@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Colour voxels from Blender (issue 12): the colour each object's material shows (render
 colour attribute, Base Color image, per-slot Base Color) reaches the .vdb's `color` grid
-(read back with pyopenvdb), the volume's material shows it, Blocks carry it, and a Cycles
-render of the volume has the mesh's colours."""
+(read back with pyopenvdb), the volume's material shows it, Blocks carry it, and a render
+of the volume has the mesh's colours."""
 import os
 
 import bpy
@@ -81,7 +81,7 @@ def principled_material(name, base_color):
 
 class _ColourCase(AddonTestCase):
     def voxelize(self, **kw):
-        kw.setdefault("color", True)  # Colour is off by default
+        kw.setdefault("color", True)  # (the default: see test_defaults_and_rerun_material)
         return super().voxelize(**kw)
 
 
@@ -124,11 +124,11 @@ class ColourTest(_ColourCase):
                 path, volume = self.volume_file()
                 # Bytes hold sRGB-encoded colours: a linear value comes back within rounding.
                 self.assert_halves(path, RED, GREEN, tol=0.01 if data_type == "BYTE_COLOR" else 1e-5)
+                volume_material = helpers.addon("blender.volume_material")
                 nodes = volume.data.materials[0].node_tree.nodes
-                attribute_node = next(n for n in nodes if n.type == "ATTRIBUTE")
-                self.assertEqual(attribute_node.attribute_name, "color")
+                self.assertEqual(nodes[volume_material.COLOR].attribute_name, "color")
                 shader = next(n for n in nodes if n.type == "PRINCIPLED_VOLUME")
-                self.assertEqual(shader.inputs["Color"].links[0].from_node.name, attribute_node.name)
+                self.assertEqual(shader.inputs["Color"].links[0].from_node.name, volume_material.ALBEDO)
 
     def test_per_slot_base_colours_and_combined_with_an_attribute(self):
         obj = split_cube()
@@ -237,12 +237,13 @@ RENDER_WIDTH = 4.5  # world units across the image
 
 
 class ColourRenderTest(_ColourCase):
-    """Cycles, lit by a white world only, no bounces, so a pixel's colour is the albedo times
+    """EEVEE, lit by a white world only, no bounces, so a pixel's colour is the albedo times
     a light factor that is the same for every channel: for the mesh a diffuse surface
     (Principled BSDF without specular), for the volume single scattering (Principled
-    Volume: extinction = density in every channel, scattering albedo = the `color` grid).
-    The two differ in brightness, not in hue, so the test compares chromaticity
-    (rgb / (r + g + b)) of each region's mean colour, within 0.03."""
+    Volume: extinction = density in every channel, scattering albedo = 4 c / (1 + c)^2 of
+    the `color` grid's colour c, which multiple scattering brings back to c). The test
+    compares chromaticity (rgb / (r + g + b)) of each region's mean colour with those albedos,
+    within 0.03."""
 
     def render(self, path):
         pixels = helpers.render_pixels(path)
@@ -262,7 +263,10 @@ class ColourRenderTest(_ColourCase):
         world.use_nodes = True
         world.node_tree.nodes["Background"].inputs["Color"].default_value = (1, 1, 1, 1)
         scene.world = world
-        scene.render.engine = "CYCLES"
+        # EEVEE: Cycles 3.4, the Blender this test runs in, biases the hue where the grids
+        # fade (test_looks.chroma_engines), Cycles 4.x and 5.x do not (tested there).
+        scene.render.engine = "BLENDER_EEVEE"
+        scene.eevee.taa_render_samples = 4
         scene.cycles.device = "CPU"
         scene.cycles.samples = 32
         scene.cycles.use_denoising = False
@@ -316,9 +320,14 @@ class ColourRenderTest(_ColourCase):
             mesh_rgb, volume_rgb = region(mesh_image, x), region(volume_image, x)
             mesh_chroma, volume_chroma = mesh_rgb / mesh_rgb.sum(), volume_rgb / volume_rgb.sum()
             albedo = np.array(expected[:3]) / sum(expected[:3])
+            # The volume's albedo for the surface colour c (core/volume_look.py); without
+            # bounces a pixel shows single scattering, in proportion to it.
+            volume_albedo = 4 * np.array(expected[:3]) / (1 + np.array(expected[:3])) ** 2
+            volume_albedo /= volume_albedo.sum()
             print(f"region x={x}: mesh {mesh_rgb.round(4)} volume {volume_rgb.round(4)} "
-                  f"chromaticity mesh {mesh_chroma.round(3)} volume {volume_chroma.round(3)} albedo {albedo.round(3)}")
-            self.assertGreater(volume_rgb.sum(), 0.05, "the volume is seen")
+                  f"chromaticity mesh {mesh_chroma.round(3)} volume {volume_chroma.round(3)} albedo {albedo.round(3)}"
+                  f" volume albedo {volume_albedo.round(3)}")
+            self.assertGreater(volume_rgb.sum(), 0.02, "the volume is seen")
             np.testing.assert_allclose(mesh_chroma, albedo, atol=0.03)  # the set-up shows albedo
-            np.testing.assert_allclose(volume_chroma, mesh_chroma, atol=0.03)
+            np.testing.assert_allclose(volume_chroma, volume_albedo, atol=0.03)
 

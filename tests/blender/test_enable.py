@@ -13,6 +13,16 @@ def inside(path, folder):
     return os.path.commonpath([os.path.realpath(path), os.path.realpath(folder)]) == os.path.realpath(folder)
 
 
+def mapped_libraries():
+    """The shared objects this process has mapped, by file name (the kernel's word)."""
+    with open("/proc/self/maps") as maps:
+        return {os.path.basename(f[5]) for f in (line.split() for line in maps) if len(f) >= 6}
+
+
+# Read as this file is imported: after the add-on was enabled, before any test here runs.
+MAPPED_AFTER_ENABLE = mapped_libraries()
+
+
 class EnableTest(AddonTestCase):
     def test_enabled_from_build(self):
         enabled, loaded = addon_utils.check(helpers.ADDON_PACKAGE)
@@ -26,6 +36,12 @@ class EnableTest(AddonTestCase):
         module = helpers.hyvox_module()
         self.assertTrue(inside(module.__file__, helpers.MODULE_DIR), (module.__file__, helpers.MODULE_DIR))
         self.assertTrue(inside(module._core.__file__, helpers.MODULE_DIR), module._core.__file__)
+
+    def test_enabling_loads_no_gl_plugin(self):
+        # Enabling builds the properties from the module's schema (the module is loaded) but
+        # asks for no GL device: the GL plugin comes with the first GL run or panel draw.
+        self.assertTrue(any(name.startswith("_core") for name in MAPPED_AFTER_ENABLE), sorted(MAPPED_AFTER_ENABLE))
+        self.assertFalse("libhyvox_gl_methods.so" in MAPPED_AFTER_ENABLE, "enabling loaded the GL plugin")
 
     def test_registered(self):
         self.assertTrue(hasattr(bpy.types, "OBJECT_OT_hyvox_voxelize"))

@@ -74,7 +74,46 @@ class ErrorTest(AddonTestCase):
         try:
             cube = helpers.cube()
             helpers.select_only(cube)
-            # 8192^3 bits = 64 GiB: refused before allocating, reported, nothing changes.
-            self.assert_reported("memory", resolution=8192)
+            # 8192^3 bits = 64 GiB: refused before allocating, reported, nothing changes; the
+            # setting named where the artist finds it (the preference's own name).
+            self.assertEqual(prefs.bl_rna.properties["memory_budget_mib"].name, "Memory Budget")
+            self.assert_reported("memory budget of 16 MiB (Preferences \u25b8 Memory Budget)", resolution=8192)
         finally:
             prefs.property_unset("memory_budget_mib")
+
+    def test_a_vertex_that_is_not_a_number_is_named_in_its_object(self):
+        # The second object of a group: its own name and index, not the merged mesh's.
+        first = helpers.cube("First")
+        second = helpers.cube("Second", 1.0, (3, 0, 0))
+        for value, fragment in ((float("nan"), "not a number or infinite"),
+                                (float("inf"), "infinite (Blender stores Inf as 3.4e+38)")):
+            with self.subTest(value=value):
+                second.data.vertices[5].co.z = value
+                helpers.select_only(first, second)
+                self.assert_reported("Second: vertex 5 is at ", resolution=8)
+                self.assert_reported(fragment, resolution=8)
+                second.data.vertices[5].co.z = 0.5
+
+    def test_a_few_far_vertices_are_warned_about(self):
+        operators = helpers.addon("blender.operators")
+        h = 1.0
+        corners = [(x, y, z) for x in (-h, h) for y in (-h, h) for z in (-h, h)]
+        quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+        cube = helpers.mesh_object("Cube", corners + [(500.0, 0.0, 0.0)], quads)
+        mesh = cube.data
+        mesh.polygons[0].vertices = (0, 1, 8, 2)  # one face reaches the stray vertex
+        helpers.select_only(cube)
+        warnings = []
+        original = operators._Run.warn
+        operators._Run.warn = lambda run, text: (warnings.append(text), original(run, text))
+        try:
+            self.assertEqual(self.voxelize(resolution=16), {"FINISHED"})  # still made
+            far = [w for w in warnings if "far from the rest" in w]
+            self.assertEqual(len(far), 1, warnings)
+            self.assertTrue(far[0].startswith("Cube: 1 vertex far from the rest"), far[0])
+            warnings.clear()
+            mesh.vertices[8].co = (-1.0, 0.0, 0.0)  # back near the rest: no warning
+            self.assertEqual(self.voxelize(resolution=16), {"FINISHED"})
+            self.assertFalse([w for w in warnings if "far from the rest" in w], warnings)
+        finally:
+            operators._Run.warn = original

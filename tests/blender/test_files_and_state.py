@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Files and state across runs: what a re-run replaces, the artist's transform kept
-relative to the source, parenting, new files per run (undo safety), cleaning unused files,
-and the session's own folder for unsaved results."""
+relative to the source, parenting, new files per run (undo safety), and the session's own
+folder for unsaved results. Cleaning unused files: test_clean_files.py."""
 import hashlib
 import math
 import os
@@ -99,21 +99,3 @@ class FilesAndStateTest(AddonTestCase):
         self.assertNotEqual(second_path, first_path)
         self.assertEqual(digest(first_path), first_digest)
         self.assertNotEqual(digest(second_path), first_digest)
-
-    def test_clean_unused_voxel_files(self):
-        cube, ball = helpers.cube("Cube"), helpers.cube("Ball", 1.0, (4, 0, 0))
-        helpers.select_only(cube)
-        self.voxelize(resolution=8)
-        replaced = file_of(self.volumes()[0])
-        self.voxelize(resolution=16)
-        used = file_of(bpy.data.objects["Cube_voxels"])
-        helpers.select_only(ball)
-        self.voxelize(resolution=8, frame_start=1, frame_end=3)
-        frames = sorted(f for f in os.listdir(self.out) if f.startswith("Ball_voxels"))
-        self.assertEqual(len(frames), 3)
-        strangers = ["notes.txt", "mine.vdb", "Cube_voxels.vdb.bak"]
-        for name in strangers:
-            open(os.path.join(self.out, name), "w").close()
-        self.assertEqual(bpy.ops.wm.hyvox_clean_voxel_files(), {"FINISHED"})
-        self.assertFalse(os.path.exists(replaced))
-        self.assertEqual(sorted(os.listdir(self.out)), sorted([os.path.basename(used)] + frames + strangers))

@@ -1,10 +1,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Fill Interior (on by default, like Mesh to Volume's Fill Volume) makes the run solid: the
+"""Mode Solid (the default, like Mesh to Volume's Fill Volume) fills the inside: the
 Volume holds exactly the module's solid voxels, and renders as a filled body: seen through
 its middle a filled sphere absorbs far more light than its hollow shell. The render is kept
 as a PNG in $HYVOX_RENDER_DIR when that is set (to look at it). With Colour, the inside takes
 the colour of the surface around it: the `color` grid has the density's voxels and tiles."""
-import math
 import os
 
 import bpy
@@ -39,7 +38,7 @@ class FillInteriorTest(AddonTestCase):
         return obj, volume
 
     def test_default_is_solid_and_equals_the_module(self):
-        self.assertTrue(bpy.context.scene.hyvox.fill_interior)
+        self.assertEqual(bpy.context.scene.hyvox.mode, "solid")
         obj, volume = self.voxelize_sphere()
         vertices, triangles = sphere_arrays(obj)
         solid = helpers.hyvox_module().voxelize(vertices, triangles, resolution=32, mode="solid")
@@ -70,14 +69,14 @@ class FillInteriorTest(AddonTestCase):
         _, filled = self.voxelize_sphere()
         solid = self.centre_transmittance(filled, "filled_sphere")
         helpers.clear_scene()
-        _, hollow = self.voxelize_sphere(fill_interior=False)
+        _, hollow = self.voxelize_sphere(mode="conservative")
         shell = self.centre_transmittance(hollow, "hollow_sphere")
         print("centre transmittance (sRGB): filled %.3f, hollow %.3f" % (solid, shell))
         self.assertLess(solid, 0.6)
         self.assertGreater(shell, 0.85)
         self.assertGreater(shell - solid, 0.3)
 
-    def test_colour_with_fill_interior_colours_every_voxel(self):
+    def test_colour_when_solid_colours_every_voxel(self):
         import pyopenvdb as vdb
         obj = split_cube()
         mesh = obj.data
@@ -85,7 +84,7 @@ class FillInteriorTest(AddonTestCase):
         per_loop = np.repeat(face_halves(mesh), [p.loop_total for p in mesh.polygons])
         attribute.data.foreach_set("color", np.where(per_loop[:, None], RED, GREEN).astype(np.float32).ravel())
         helpers.select_only(obj)
-        self.assertTrue(bpy.context.scene.hyvox.fill_interior)
+        self.assertEqual(bpy.context.scene.hyvox.mode, "solid")
         self.assertEqual(bpy.ops.object.hyvox_voxelize(output_dir=self.out, method="cpu", voxel_size=0.0625,
                                                        color=True), {"FINISHED"})
         (volume,) = self.volumes()
@@ -107,8 +106,8 @@ class FillInteriorTest(AddonTestCase):
             centre = np.add(item.min, item.max) / 2.0
             expected = RED if to_world(tuple(centre))[0] < 0 else GREEN
             np.testing.assert_allclose(item.value, expected[:3], atol=1e-5)
+        volume_material = helpers.addon("blender.volume_material")
         nodes = volume.data.materials[0].node_tree.nodes
-        attribute_node = next(n for n in nodes if n.type == "ATTRIBUTE")
-        self.assertEqual(attribute_node.attribute_name, "color")
+        self.assertEqual(nodes[volume_material.COLOR].attribute_name, "color")
         shader = next(n for n in nodes if n.type == "PRINCIPLED_VOLUME")
-        self.assertEqual(shader.inputs["Color"].links[0].from_node.name, attribute_node.name)
+        self.assertEqual(shader.inputs["Color"].links[0].from_node.name, volume_material.ALBEDO)

@@ -78,19 +78,10 @@ def setup_render(scene, volume_obj, engine="CYCLES"):
     scene.eevee.volumetric_samples = 128
     scene.eevee.volumetric_start, scene.eevee.volumetric_end = 5.0, 15.0
     scene.eevee.taa_render_samples = 8
-    scene.cycles.device = "CPU"
+    helpers.measured_render(scene, PIXELS)
     scene.cycles.samples = 64  # 16 left Cycles 5.3's walls 0.05 apart (noise)
-    scene.cycles.use_denoising = False  # Debian's Blender has no OpenImageDenoise
     scene.cycles.volume_step_rate = 0.25
     scene.cycles.max_bounces = 0
-    scene.render.resolution_x = scene.render.resolution_y = PIXELS
-    scene.render.resolution_percentage = 100
-    scene.render.film_transparent = False
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
-    scene.view_settings.view_transform = "Standard"
-    scene.render.threads_mode = "FIXED"
-    scene.render.threads = 2
 
 
 def eevee_engine():

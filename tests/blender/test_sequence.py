@@ -55,3 +55,32 @@ class SequenceTest(AddonTestCase):
             evaluated = self.volumes()[0].evaluated_get(bpy.context.evaluated_depsgraph_get()).data
             self.assertTrue(evaluated.grids.frame_filepath.endswith(f"_{frame:04d}.vdb"),
                             (frame, evaluated.grids.frame_filepath, volume.frame_offset))
+
+    def test_a_static_part_keeps_its_voxels_while_another_moves(self):
+        """The lattice is fixed in world space (voxels do not swim): a static cube grouped
+        with a sphere moving by fractions of a voxel on its left (so the bounds' minimum
+        follows the sphere) has the same voxels in every frame's file."""
+        cube = helpers.cube(size=0.8, location=(0.7, 0.0, 0.0))
+        bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2, radius=0.4, location=(-0.6, 0.0, 0.0))
+        sphere = bpy.context.active_object
+        for frame, x in ((1, -0.6), (2, -0.6 + 0.07), (3, -0.6 - 0.2)):
+            sphere.location.x = x
+            sphere.keyframe_insert("location", frame=frame)
+        helpers.select_only(cube, sphere)
+        bpy.context.scene.frame_set(1)
+        self.assertEqual(self.voxelize(voxel_size=0.15, frame_start=1, frame_end=3), {"FINISHED"})
+        path = bpy.path.abspath(self.volumes()[0].data.filepath)
+        files = sorted(os.path.join(self.out, n) for n in os.listdir(self.out))
+        self.assertEqual(len(files), 3, files)
+        cube_voxels, all_voxels = [], []
+        for file in files:
+            coords, size, zero, _ = helpers.read_vdb(file)
+            # World lattice index of each voxel: its min corner over the voxel size.
+            world = np.rint((zero - size / 2) / size).astype(np.int64) + coords
+            np.testing.assert_allclose((zero - size / 2) / size, np.rint((zero - size / 2) / size), atol=1e-6)
+            cube_voxels.append({tuple(p) for p in world if p[0] * 0.15 >= 0.2})  # the cube: x 0.3..1.1
+            all_voxels.append({tuple(p) for p in world})
+        self.assertTrue(all_voxels[0] != all_voxels[1] and all_voxels[0] != all_voxels[2], "the sphere moved")
+        self.assertTrue(cube_voxels[0])
+        self.assertTrue(cube_voxels[0] == cube_voxels[1] == cube_voxels[2], "the cube's voxels swam")
+        self.assertTrue(path.endswith("_0001.vdb"), path)

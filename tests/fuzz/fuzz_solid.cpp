@@ -169,7 +169,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const double betas[4] = {2.0, 1.0, 4.0, 100.0};
     options.solid.winding_beta = betas[(knobs >> 6) & 3];
     const char* attribute_lists[4] = {"", "color", "color,normal", "normal"};
-    options.attributes = attribute_lists[attribute_knobs & 3];
+    options.attributes = hyvox::parseAttributeSet(attribute_lists[attribute_knobs & 3]);
 
     // Vertices: raw float32 (NaN, Inf, 1e-37 beside 1e33) or 16-bit integers in 1/64 steps,
     // scaled by a power of two (exact, so alignments with voxel planes occur often).
@@ -287,7 +287,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
 
     // Attributes: layout, ranges, finiteness; threads do not change them.
-    if (!options.attributes.empty()) {
+    if (options.attributes.any()) {
         checkAttributeLayout(surface);
         checkAttributeLayout(solid);
         std::vector<float> lo(4, INFINITY), hi(4, -INFINITY);

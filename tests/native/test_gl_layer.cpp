@@ -85,7 +85,7 @@ TEST(GlLayer, ObjectsAreMoveOnlyOwners) {
             id = a.id();
             EXPECT_TRUE(glIsBuffer(id));
             Buffer b = std::move(a);
-            EXPECT_EQ(a.id(), 0u);
+            EXPECT_EQ(a.id(), 0u);  // NOLINT(bugprone-use-after-move): the moved-from owner is what is tested
             EXPECT_EQ(b.id(), id);
             EXPECT_TRUE(glIsBuffer(id));
         }

@@ -52,7 +52,7 @@ std::string errorOf(const fs::path& path) {
 // of the given parts.
 #define EXPECT_READ_ERROR(FILE, ...)                                                              \
     do {                                                                                          \
-        const fs::path file_ = (FILE);                                                            \
+        const fs::path& file_ = (FILE);                                                           \
         const std::string message_ = errorOf(file_);                                              \
         EXPECT_NE(message_.find(file_.filename().string()), std::string::npos) << message_;       \
         for (const char* part_ : {__VA_ARGS__}) EXPECT_NE(message_.find(part_), std::string::npos) << message_; \

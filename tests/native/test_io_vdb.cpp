@@ -240,13 +240,14 @@ TEST(IoVdb, FailedWriteKeepsTheExistingFile) {
 
 TEST(IoVdb, AGridOverTheMemoryBudgetIsRefusedBeforeItIsBuilt) {
     TempDir dir;
-    hyvox::VoxelizeResult r = sampleResult(5, 1.0);  // 37x20x9 all set: 5x3x2 = 30 leaves, ~66 KB as floats
-    r.stats.options.memory_budget_mib = 1;
+    const hyvox::VoxelizeResult r = sampleResult(5, 1.0);  // 37x20x9 all set: 5x3x2 = 30 leaves, ~66 KB as floats
+    hyvox::WriteOptions one_mib;
+    one_mib.memory_budget_mib = 1;
     const std::uint64_t need = hyvox::io::densityGridBytes(r.occupancy);
     EXPECT_GT(need, 30u * 512u * sizeof(float));  // at least the leaves' values
     EXPECT_LT(need, 1u << 20);
     const std::string path = (dir.path / "fits.vdb").string();
-    hyvox::writeVdb(r, path);  // fits in 1 MiB
+    hyvox::writeVdb(r, path, one_mib);  // fits in 1 MiB
     EXPECT_TRUE(fs::exists(path));
     // A result 64 times larger (1920 leaves, ~4 MiB of floats) does not.
     hyvox::VoxelizeResult big;
@@ -255,10 +256,13 @@ TEST(IoVdb, AGridOverTheMemoryBudgetIsRefusedBeforeItIsBuilt) {
     for (int bx = 0; bx < 16; ++bx)
         for (int by = 0; by < 12; ++by)
             for (int bz = 0; bz < 10; ++bz) big.occupancy.set(bx * 8, by * 8, bz * 8);
-    big.stats.options.memory_budget_mib = 1;
     const std::string refused = (dir.path / "refused.vdb").string();
-    EXPECT_THROW(hyvox::writeVdb(big, refused), hyvox::ResourceError);
+    EXPECT_THROW(hyvox::writeVdb(big, refused, one_mib), hyvox::ResourceError);
     EXPECT_FALSE(fs::exists(refused));
+    // The budget is the write's own: the voxelization's (in the result's stats) has no say.
+    big.stats.options.memory_budget_mib = 1;
+    hyvox::writeVdb(big, refused);
+    EXPECT_TRUE(fs::exists(refused));
 }
 
 namespace {
@@ -305,7 +309,7 @@ TEST(IoVdb, TheFileWriteReportsProgressAndCanBeCancelled) {
     TempDir dir;
     const fs::path path = dir.path / "big.vdb";
     ProgressRecorder follow(101);
-    hyvox::writeVdb(result, path.string(), 0, &follow);
+    hyvox::writeVdb(result, path.string(), {}, &follow);
     EXPECT_EQ(readGrid(path.string(), "density")->activeVoxelCount(), result.occupancy.count());
     // Past the grid build (90) the bytes going out are followed, and the end is 100.
     EXPECT_TRUE(std::any_of(follow.seen.begin(), follow.seen.end(), [](int p) { return p > 90 && p < 100; }));
@@ -314,7 +318,7 @@ TEST(IoVdb, TheFileWriteReportsProgressAndCanBeCancelled) {
     // Asked to stop while the bytes go out: Cancelled, and the earlier file stays as it was.
     const std::string before = slurp(path);
     ProgressRecorder stop(90);
-    EXPECT_THROW(hyvox::writeVdb(result, path.string(), 0, &stop), hyvox::Cancelled);
+    EXPECT_THROW(hyvox::writeVdb(result, path.string(), {}, &stop), hyvox::Cancelled);
     EXPECT_GT(stop.seen.back(), 90);
     EXPECT_LT(stop.seen.back(), 100);
     EXPECT_TRUE(slurp(path) == before);  // (not EXPECT_EQ: a mismatch would print megabytes)

@@ -70,7 +70,9 @@ std::string firstGridBuffers(const std::string& path) {
 void checkAgainstOpenVdb(const hyvox::VoxelizeResult& r, int threads) {
     TempDir dir;
     const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string();
-    hyvox::writeVdb(r, direct_path, threads);
+    hyvox::WriteOptions write;
+    write.threads = threads;
+    hyvox::writeVdb(r, direct_path, write);
     const openvdb::GridPtrVec grids = hyvox::io::makeGrids(r);
     hyvox::io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), reference_path);
     hyvox::io::initializeOpenVdb();

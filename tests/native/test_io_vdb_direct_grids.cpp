@@ -232,6 +232,97 @@ TEST(IoVdbDirectGrids, AttributeGridsEqualOpenVdbs) {
     }
 }
 
+TEST(IoVdbDirectGrids, LevelSetEqualsOpenVdbs) {
+    // A level set over several upper nodes: leaves with active distances and inactive voxels
+    // inside and outside (every metadata case: none inactive, outside only, inside only, both),
+    // leaves of inactive voxels only, inside tiles filling whole lower nodes (written as their
+    // upper node's tiles) and others beside empty slots (a node table selecting +background).
+    hyvox::VoxelizeResult r = makeResult({4600, 300, 140}, 0.0, 1, {0, 0, 0});
+    const hyvox::BrickLayout bricks = r.grid.bricks();
+    hyvox::LevelSetGrid& sdf = r.sdf;
+    sdf.background = 0.75f;
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> distance(-0.74f, 0.74f);
+    auto addLeaf = [&](std::array<int, 3> b, double active, double inside) {
+        hyvox::LevelSetGrid::Leaf leaf{};
+        leaf.brick = bricks.index(b[0], b[1], b[2]);
+        leaf.first = sdf.values.size();
+        std::bernoulli_distribution is_active(active), is_inside(inside);
+        for (int v = 0; v < 512; ++v) {
+            if (is_inside(rng)) leaf.inside[v >> 6] |= std::uint64_t(1) << (v & 63);
+            if (!is_active(rng)) continue;
+            leaf.active[v >> 6] |= std::uint64_t(1) << (v & 63);
+            sdf.values.push_back(distance(rng));
+        }
+        sdf.leaves.push_back(leaf);
+    };
+    addLeaf({0, 0, 0}, 1.0, 0.5);   // all active
+    addLeaf({0, 0, 1}, 0.3, 0.0);   // inactive outside only
+    addLeaf({0, 0, 2}, 0.3, 1.0);   // inactive inside only
+    addLeaf({0, 1, 0}, 0.3, 0.5);   // both
+    addLeaf({0, 1, 1}, 0.0, 0.5);   // no active voxel
+    addLeaf({560, 30, 17}, 0.5, 0.5);  // in another upper node
+    // Inside tiles: two whole lower nodes (16³ bricks each, from brick (16, 0, 0) and (16, 16,
+    // 0) on), and a few bricks of a third beside its empty slots.
+    auto addRun = [&](std::array<int, 3> b, int count) {
+        const std::uint64_t first = bricks.index(b[0], b[1], b[2]);
+        sdf.inside_runs.push_back({first, first + std::uint64_t(count)});
+    };
+    for (int bx = 16; bx < 32; ++bx)
+        for (int by = 0; by < 32; ++by) addRun({bx, by, 0}, 16);
+    addRun({40, 3, 5}, 4);
+    addRun({40, 4, 5}, 2);
+    std::sort(sdf.inside_runs.begin(), sdf.inside_runs.end(), [](const auto& a, const auto& b) { return a.begin < b.begin; });
+
+    // OpenVDB, voxel by voxel.
+    auto density = referenceShell(r);
+    auto reference = openvdb::FloatGrid::create(sdf.background);
+    for (auto it = density->beginMeta(); it != density->endMeta(); ++it)
+        if (it->first != "class") reference->insertMeta(it->first, *it->second);
+    reference->setName("sdf");
+    reference->setGridClass(openvdb::GRID_LEVEL_SET);
+    reference->setTransform(density->transform().copy());
+    {
+        openvdb::FloatGrid::Accessor accessor(reference->tree());
+        for (const auto& leaf : sdf.leaves) {
+            const auto b = bricks.at(leaf.brick);
+            std::size_t next = leaf.first;
+            for (int v = 0; v < 512; ++v) {
+                const openvdb::Coord c(8 * b[0] + (v >> 6), 8 * b[1] + ((v >> 3) & 7), 8 * b[2] + (v & 7));
+                if ((leaf.active[v >> 6] >> (v & 63)) & 1)
+                    accessor.setValueOn(c, sdf.values[next++]);
+                else
+                    accessor.setValueOff(c, (leaf.inside[v >> 6] >> (v & 63)) & 1 ? -sdf.background : sdf.background);
+            }
+        }
+        for (const auto& run : sdf.inside_runs)
+            for (std::uint64_t brick = run.begin; brick < run.end; ++brick) {
+                const auto b = bricks.at(brick);
+                accessor.addTile(1, openvdb::Coord(8 * b[0], 8 * b[1], 8 * b[2]), -sdf.background, false);
+            }
+        reference->tree().prune();
+    }
+    TempDir dir;
+    const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string(),
+                      made_path = (dir.path / "made.vdb").string();
+    hyvox::writeVdb(r, direct_path);
+    hyvox::io::writeGridsAtomic({density, reference}, reference_path);
+    const openvdb::GridPtrVec made = hyvox::io::makeGrids(r);
+    hyvox::io::writeGridsAtomic(openvdb::GridCPtrVec(made.begin(), made.end()), made_path);
+    for (const std::string& other : {reference_path, made_path}) {
+        SCOPED_TRACE(other);
+        const auto direct = hyvox::test::readVdbGrid<openvdb::FloatGrid>(direct_path, "sdf");
+        const auto read = hyvox::test::readVdbGrid<openvdb::FloatGrid>(other, "sdf");
+        ASSERT_TRUE(direct && read);
+        EXPECT_EQ(read->activeVoxelCount(), sdf.activeCount());
+        EXPECT_EQ(read->tree().getValueDepth(openvdb::Coord(130, 7, 9)), 1);  // a lower node's tile of the upper node
+        EXPECT_EQ(read->tree().getValue(openvdb::Coord(130, 7, 9)), -sdf.background);
+        EXPECT_EQ(read->tree().getValue(openvdb::Coord(321, 35, 47)), -sdf.background);  // brick (40, 4, 5)
+        EXPECT_EQ(read->tree().getValue(openvdb::Coord(321, 35, 60)), sdf.background);   // beside it: outside
+        expectSameGrids(*direct, *read);
+    }
+}
+
 TEST(IoVdbDirectGrids, OverlapsAndOffLatticeTilesAreRefused) {
     hyvox::VoxelizeResult r = makeResult({64, 64, 64}, 0.5, 2, {8, 8, 8});
     VdbGrid grid = hyvox::io::densityGrid(r.occupancy);

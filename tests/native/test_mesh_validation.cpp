@@ -46,6 +46,44 @@ TEST(MeshValidation, NonFiniteCoordinatesAreRejected) {
     }
 }
 
+// Blender stores an infinite coordinate as the largest float: refused like Inf, on either
+// sign; the largest coordinates below 3.4e38 are still numbers.
+TEST(MeshValidation, FloatMaxCoordinatesAreRejectedAsBlendersInf) {
+    const float largest = std::numeric_limits<float>::max();
+    for (float bad : {largest, -largest, 3.4e38f, -3.4e38f}) {
+        const std::vector<float> p{0, 0, 0, 1, 0, 0, 0, 0, bad};
+        const std::vector<std::uint32_t> t{0, 1, 2};
+        try {
+            hyvox::validate(view(p, t));
+            FAIL() << "expected InvalidInput for " << bad;
+        } catch (const hyvox::InvalidInput& e) {
+            EXPECT_NE(std::string(e.what()).find("vertex 2 has a non-finite coordinate"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("Inf as Blender stores it"), std::string::npos) << e.what();
+        }
+    }
+    const float below = std::nextafter(3.4e38f, 0.0f);
+    const std::vector<float> p{0, 0, 0, 1, 0, 0, 0, 0, below};
+    const std::vector<std::uint32_t> t{0, 1, 2};
+    EXPECT_NO_THROW(hyvox::validate(view(p, t)));
+}
+
+// Two bad vertices in one chunk of the parallel check: the message names the first.
+TEST(MeshValidation, TheFirstBadVertexOfAChunkIsNamed) {
+    std::vector<float> p(3 * 12, 0.0f);
+    for (int v = 0; v < 12; ++v) p[3 * v] = float(v);
+    p[3 * 1 + 1] = 1.0f;
+    p[3 * 5 + 2] = std::numeric_limits<float>::quiet_NaN();
+    p[3 * 9] = std::numeric_limits<float>::infinity();
+    const std::vector<std::uint32_t> t{0, 1, 2};
+    try {
+        hyvox::validate(view(p, t));
+        FAIL() << "expected InvalidInput";
+    } catch (const hyvox::InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("vertex 5 has a non-finite coordinate"), std::string::npos) << e.what();
+        EXPECT_EQ(std::string(e.what()).find("vertex 9"), std::string::npos) << e.what();
+    }
+}
+
 TEST(MeshValidation, OutOfRangeIndexIsRejected) {
     const std::vector<float> p{0, 0, 0, 1, 0, 0, 0, 1, 0};
     const std::vector<std::uint32_t> t{0, 1, 3};

@@ -65,7 +65,7 @@ VoxelizeOptions options(Mode mode, int resolution) {
     o.method = Method::Cpu;
     o.mode = mode;
     o.grid.resolution = resolution;
-    o.attributes = "color,normal";
+    o.attributes = hyvox::parseAttributeSet("color,normal");
     return o;
 }
 

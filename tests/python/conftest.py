@@ -30,14 +30,18 @@ def cli() -> pathlib.Path:
     return path
 
 
-@pytest.fixture(scope="session")
-def bunny(mesh_dir):
-    return hyvox.read_mesh(mesh_dir / "bunny_stanford_69k.ply")
+def shared_mesh(name, file):
+    """A session fixture `name`: (vertices, triangles) of the shared mesh `file`."""
+    @pytest.fixture(scope="session", name=name)
+    def read(mesh_dir):
+        return hyvox.read_mesh(mesh_dir / file)
+    return read
 
 
-@pytest.fixture(scope="session")
-def dragon(mesh_dir):
-    return hyvox.read_mesh(mesh_dir / "dragon_stanford_871k.ply.gz")
+bunny = shared_mesh("bunny", "bunny_stanford_69k.ply")
+dragon = shared_mesh("dragon", "dragon_stanford_871k.ply.gz")
+spot = shared_mesh("spot", "spot_vcolor.ply")  # closed
+elephant = shared_mesh("elephant", "elephant_holes.ply")  # open: 1353 boundary edges
 
 
 @pytest.fixture()

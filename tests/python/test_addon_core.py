@@ -11,7 +11,7 @@ import pytest
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "addon"))
 
-from hyvox_blender.core import alignment, naming  # noqa: E402
+from hyvox_blender.core import alignment, naming, session_folder  # noqa: E402
 from hyvox_blender.core.errors import SettingsError  # noqa: E402
 from hyvox_blender.core.pipeline import merge_meshes  # noqa: E402
 from hyvox_blender.core.settings import VoxelizeSettings, parse_frame_range  # noqa: E402
@@ -57,13 +57,16 @@ def test_file_names():
     assert naming.volume_file_name("Suzanne", 12345) == "Suzanne_voxels_12345.vdb"
     # Unsafe characters and trailing digits (Blender would read them as a frame number).
     assert naming.volume_file_name("a/b:c*") == "a_b_c_voxels.vdb"
-    # One plain object keeps its name; groups and names a file cannot hold get a hash of
-    # their sources, so two different results never share a file.
-    assert naming.result_stem("Cube.001", "Cube.001", 1) == "Cube.001"
-    ab = naming.result_stem("A_and_1_more", naming.group_key(["A", "B"]), 2)
-    ac = naming.result_stem("A_and_1_more", naming.group_key(["A", "C"]), 2)
+    # One plain object keeps its name; names a file cannot hold get a hash of their sources,
+    # and so do groups under fixed names, so two different results never share a file.
+    for fixed in (False, True):
+        assert naming.result_stem("Cube.001", "Cube.001", 1, fixed) == "Cube.001"
+        assert naming.result_stem("a/b", "a/b", 1, fixed) != naming.result_stem("a_b", "a_b", 1, fixed) == "a_b"
+    ab = naming.result_stem("A_and_1_more", naming.group_key(["A", "B"]), 2, fixed_names=True)
+    ac = naming.result_stem("A_and_1_more", naming.group_key(["A", "C"]), 2, fixed_names=True)
     assert ab.startswith("A_and_1_more_") and ac.startswith("A_and_1_more_") and ab != ac
-    assert naming.result_stem("a/b", "a/b", 1) != naming.result_stem("a_b", "a_b", 1) == "a_b"
+    # With new names per run (a run tag) a group's files are named as its volume is.
+    assert naming.result_stem("A_and_1_more", naming.group_key(["A", "B"]), 2) == "A_and_1_more"
     assert naming.object_name("Bunny") == "Bunny_voxels"
 
 
@@ -86,7 +89,8 @@ def test_default_output_dir(tmp_path):
     assert naming.default_output_dir(blend) == str(tmp_path / "hyvox_cache" / "shot")
     unsaved = naming.default_output_dir("")
     assert os.path.isdir(unsaved) and naming.default_output_dir("") == unsaved  # one per session
-    assert os.path.dirname(unsaved) == tempfile.gettempdir() and os.listdir(unsaved) == []
+    assert os.path.dirname(unsaved) == tempfile.gettempdir()
+    assert os.listdir(unsaved) == [session_folder.OWNER_FILE]  # which process made it
 
 
 def test_unsaved_folder_is_unique_per_session():
@@ -99,7 +103,7 @@ def test_unsaved_folder_is_unique_per_session():
     assert len(others) == 2 and naming.default_output_dir("") not in others
     for folder in others:
         assert os.path.isdir(folder)
-        os.rmdir(folder)
+        assert session_folder.remove_if_empty(folder)
 
 
 def test_run_tags_make_new_file_names_that_stay_sequences():

@@ -115,6 +115,8 @@ class SlowModule:
         def cancel(self):
             self.event.set()
 
+    WRITE_OPTIONS = ()
+
     def ignored_options(self, method, names):
         return []
 
@@ -153,7 +155,7 @@ class HeldWriteModule(SlowModule):
         class Grid:
             voxel_size, origin, dims, stats, voxel_count = 1.0, (0, 0, 0), (1, 1, 1), {}, 1
 
-            def write_vdb(self, path, threads=0, cancel=None):
+            def write_vdb(self, path, cancel=None, **options):
                 with open(path, "w") as f:
                     f.write("staged")
                 module.entered.set()
@@ -238,27 +240,6 @@ def colour_exporter(group, colour):
         v, t = cube_mesh()
         return [GroupMesh(group, v, t, colour)]
     return export
-
-
-def test_auto_runs_a_colour_group_with_a_method_that_makes_colour(hyvox, tmp_path, monkeypatch):
-    # As on a machine with a GPU: auto resolves to hybrid. Were hybrid not among the methods
-    # that compute colour, a group with colour would run by cpu.
-    monkeypatch.setattr(backend, "gl_available", lambda module, device="": True)
-    monkeypatch.setattr(hyvox, "ATTRIBUTE_METHODS", tuple(m for m in hyvox.ATTRIBUTE_METHODS if m != "hybrid"))
-    colour = {"colors": np.tile(np.float32([0.25, 0.5, 0.75, 1.0]), (36, 1))}
-    settings = VoxelizeSettings(voxel_size=0.25, color=True)
-    pipeline = Pipeline(settings, str(tmp_path), colour_exporter(Group("C", ["C"]), colour), module=hyvox)
-    assert pipeline.method == "hybrid"
-    (result,) = pipeline.run().values()
-    assert result.method == "cpu" and result.has_color
-    import pyopenvdb as vdb
-    grid = vdb.read(result.files[0], "color")
-    assert grid.activeVoxelCount() == result.voxel_counts[0]
-    np.testing.assert_allclose(next(grid.citerOnValues()).value, (0.25, 0.5, 0.75), atol=1e-6)
-    # Without colour auto keeps its choice.
-    plain = Pipeline(VoxelizeSettings(voxel_size=0.25, color=True, method="auto"), str(tmp_path / "p"),
-                     colour_exporter(Group("C", ["C"]), {}), module=hyvox)
-    assert backend.method_for_group(hyvox, plain.settings, plain.method, False) == "hybrid"
 
 
 def test_auto_keeps_hybrid_for_colour_now_that_it_makes_colour(hyvox, tmp_path, monkeypatch):

@@ -212,22 +212,30 @@ def test_bad_attribute_input_is_a_clear_error(tetrahedron, sources, message):
         hyvox.voxelize(v, t, resolution=8, attributes="color", **sources)
 
 
-def test_unknown_attribute_is_refused(tetrahedron):
+@pytest.mark.parametrize("value", ["colour", "color,colour", ("color", "colour")])
+def test_unknown_attribute_is_refused(tetrahedron, value):
     v, t = tetrahedron
-    with pytest.raises(ValueError, match="unknown attribute 'colour'"):
-        hyvox.voxelize(v, t, resolution=8, attributes="colour")
+    with pytest.raises(ValueError, match="unknown attributes 'colour' in 'color,colour'|unknown attributes 'colour' in 'colour'"):
+        hyvox.voxelize(v, t, resolution=8, attributes=value)
 
 
 @pytest.mark.parametrize("method", hyvox.METHODS)
-def test_attribute_methods_are_the_ones_that_compute_them(tetrahedron, method):
-    # hyvox.ATTRIBUTE_METHODS (what the add-on picks methods by) against what voxelize does.
+def test_every_method_computes_attributes(tetrahedron, method):
     v, t = tetrahedron
-    if method in hyvox.ATTRIBUTE_METHODS:
-        grid = hyvox.voxelize(v, t, resolution=8, attributes="normal", method=method)
-        assert len(grid.attributes()["normal"]) == grid.voxel_count > 0
-    else:
-        with pytest.raises(ValueError, match="does not compute attributes"):
-            hyvox.voxelize(v, t, resolution=8, attributes="normal", method=method)
+    grid = hyvox.voxelize(v, t, resolution=8, attributes="normal", method=method)
+    assert len(grid.attributes()["normal"]) == grid.voxel_count > 0
+
+
+def test_attributes_in_either_spelling(tetrahedron):
+    # The comma list and a sequence of names are one set: the same run, the schema's text back.
+    v, t = tetrahedron
+    as_text = hyvox.voxelize(v, t, resolution=8, attributes="normal,color", colors=np.ones((4, 3)))
+    as_names = hyvox.voxelize(v, t, resolution=8, attributes=["color", "normal"], colors=np.ones((4, 3)))
+    assert as_text.stats["options"]["attributes"] == as_names.stats["options"]["attributes"] == "color,normal"
+    for name in ("color", "normal"):
+        np.testing.assert_array_equal(as_text.attributes()[name], as_names.attributes()[name])
+    with pytest.raises(TypeError, match="attributes must be a comma list of color, normal, sdf"):
+        hyvox.voxelize(v, t, resolution=8, attributes=("color", 3))
 
 
 def test_a_texture_too_large_is_refused(tmp_path, tetrahedron):
@@ -268,7 +276,7 @@ def test_png_texture_kinds_decode_srgb(tmp_path, tetrahedron, mode, pixel, expec
 
 # The exact methods: tessellation's points land unevenly on the two sides of a voxel, so its
 # estimate of a cancelled normal is a short vector, not zero.
-@pytest.mark.parametrize("method", [m for m in hyvox.ATTRIBUTE_METHODS if m != "tessellation"])
+@pytest.mark.parametrize("method", [m for m in hyvox.METHODS if m != "tessellation"])
 def test_a_two_sided_wall_has_no_normal(method):
     # Opposite faces inside one voxel cancel: by the definition the mean normal is zero, not a
     # direction rounding picks (which differed between methods on Sponza's two-sided walls).

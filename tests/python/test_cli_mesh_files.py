@@ -5,7 +5,6 @@
 import gzip
 import os
 import stat
-import struct
 import subprocess
 
 import numpy as np
@@ -94,9 +93,9 @@ def test_read_mesh_matches_numpy_parse(mesh_dir, name):
         data = gzip.decompress(data)
     body = header_end(data)
     lines = data[:body].decode().splitlines()
-    vertex_count = int(next(l for l in lines if l.startswith("element vertex")).split()[2])
-    face_count = int(next(l for l in lines if l.startswith("element face")).split()[2])
-    props = [l.split()[1:] for l in lines if l.startswith("property") and "list" not in l]
+    vertex_count = int(next(line for line in lines if line.startswith("element vertex")).split()[2])
+    face_count = int(next(line for line in lines if line.startswith("element face")).split()[2])
+    props = [line.split()[1:] for line in lines if line.startswith("property") and "list" not in line]
     kinds = {"float": "<f4", "uchar": "u1"}
     vertex_type = np.dtype([(p[1], kinds[p[0]]) for p in props])
     vertices = np.frombuffer(data, vertex_type, vertex_count, body)

@@ -49,6 +49,30 @@ def test_bad_triangles(tetrahedron, triangles, message):
         hyvox.voxelize(np.asarray(vertices, dtype=np.float32), triangles, resolution=8)
 
 
+# Blender stores an infinite coordinate as the largest float; every front door refuses it as
+# it refuses Inf: the module, and the CLI on a mesh file that holds it.
+@pytest.mark.parametrize("value", [3.4028235e38, -3.4028235e38, 3.4e38, float("inf")])
+def test_float_max_is_refused_like_inf(tetrahedron, cli, tmp_path, value):
+    import subprocess
+    vertices, triangles = tetrahedron
+    bad = np.array(vertices, dtype=np.float32)
+    bad[2, 2] = value
+    with pytest.raises(ValueError, match="vertex 2 has a non-finite coordinate"):
+        hyvox.voxelize(bad, triangles, resolution=8)
+    mesh = tmp_path / "bad.obj"
+    mesh.write_text("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in bad.tolist()) +
+                    "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in np.asarray(triangles).tolist()))
+    out = tmp_path / "out.vdb"
+    done = subprocess.run([str(cli), "voxelize", str(mesh), "-o", str(out)], capture_output=True, text=True,
+                          timeout=60)
+    # (the reader numbers the vertices in the order the faces use them)
+    assert done.returncode == 1 and "has a non-finite coordinate" in done.stderr, done.stderr
+    assert not out.exists()
+    below = np.array(vertices, dtype=np.float32)
+    below[2, 2] = np.nextafter(np.float32(3.4e38), np.float32(0))  # still a number: accepted
+    hyvox.voxelize(below, triangles, resolution=8)
+
+
 def test_bad_values_and_options(tetrahedron):
     vertices, triangles = tetrahedron
     nan = np.array(vertices, dtype=np.float32)

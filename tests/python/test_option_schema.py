@@ -32,6 +32,7 @@ def bad_values(spec):
         return [(float(v), repr(float(v))) for v in cases] + [(float("nan"), "nan")]
     return {
         "choice": [("bogus", "bogus")],
+        "choices": [("bogus", "bogus"), ("color,bogus", "color,bogus")],
         "bool": [("maybe", "maybe")],
         "vector3": [("1,2", "1,2")],
         "box": [("1,2,3", "1,2,3")],
@@ -188,17 +189,27 @@ def test_generated_stubs_list_every_option():
     voxelize = next(node for node in tree.body if isinstance(node, ast.FunctionDef) and node.name == "voxelize")
     keywords = {arg.arg: ast.unparse(arg.annotation) for arg in voxelize.args.kwonlyargs}
     for spec in hyvox.OPTIONS:
-        inner = ("Literal[" + ", ".join(repr(c) for c in spec.choices) + "]" if spec.type == "choice"
-                 else STUB_TYPES[spec.type])
+        names = "Literal[" + ", ".join(repr(c) for c in spec.choices) + "]"
+        inner = {"choice": names, "choices": f"Union[str, Sequence[{names}]]"}.get(spec.type) or STUB_TYPES[spec.type]
         assert keywords.pop(spec.name) == f"Optional[{inner}]", spec.name
     assert set(keywords) == {"uvs", "normals", "displacement_pixels", "colors", "texture", "material_ids", "palette",
                              "textures", "face_normals", "progress", "cancel"}
+
+
+def test_generated_stubs_list_every_write_option():
+    stub = pathlib.Path(hyvox.__file__).with_name("_core.pyi")
+    tree = ast.parse(stub.read_text())
+    grid = next(node for node in tree.body if isinstance(node, ast.ClassDef) and node.name == "VoxelGrid")
+    write_vdb = next(node for node in grid.body if isinstance(node, ast.FunctionDef) and node.name == "write_vdb")
+    keywords = [arg.arg for arg in write_vdb.args.args[2:] + write_vdb.args.kwonlyargs]
+    assert sorted(keywords) == sorted([spec.name for spec in hyvox.WRITE_OPTIONS] + ["cancel", "progress"])
 
 
 def test_docstring_and_cli_help_list_every_option(cli):
     helptext = subprocess.run([str(cli), "voxelize", "--help"], capture_output=True, text=True, timeout=60).stdout
     for spec in hyvox.OPTIONS:
         assert f"    {spec.name} ({spec.type}" in hyvox.voxelize.__doc__
+    for spec in hyvox.OPTIONS + hyvox.WRITE_OPTIONS:
         assert f"  {spec.cli_flag}" in helptext and spec.help in helptext
 
 

@@ -69,7 +69,7 @@ def test_module_write_vdb_follows_the_option(durable, tmp_path):
     script = (
         "import sys, hyvox\n"
         "v = [[0.,0,0],[1.,0,0],[0.,1,0],[0.,0,1]]; t = [[0,2,1],[0,1,3],[0,3,2],[1,2,3]]\n"
-        f"hyvox.voxelize(v, t, resolution=8, durable_write={durable}).write_vdb(sys.argv[1])\n")
+        f"hyvox.voxelize(v, t, resolution=8).write_vdb(sys.argv[1], durable_write={durable})\n")
     calls = traced([sys.executable, "-c", script, str(tmp_path / "m.vdb")], tmp_path,
                    env={**os.environ, "PYTHONPATH": os.path.dirname(os.path.dirname(hyvox.__file__))})
     temporary, before, after = writes_of(calls, "m.vdb")
@@ -80,7 +80,22 @@ def test_module_write_vdb_follows_the_option(durable, tmp_path):
         assert not before and not after, calls
 
 
-def test_durable_write_is_off_unless_asked(tetrahedron):
+def test_durable_write_is_an_option_of_the_write_not_of_the_voxelization(tetrahedron, tmp_path):
     vertices, triangles = tetrahedron
-    assert hyvox.voxelize(vertices, triangles, resolution=8).stats["options"]["durable_write"] is False
-    assert hyvox.voxelize(vertices, triangles, resolution=8, durable_write=True).stats["options"]["durable_write"] is True
+    assert [spec.name for spec in hyvox.WRITE_OPTIONS] == ["threads", "memory_budget_mib", "durable_write"]
+    assert "durable_write" not in [spec.name for spec in hyvox.OPTIONS]
+    assert hyvox.option("durable_write").default is False
+    grid = hyvox.voxelize(vertices, triangles, resolution=8)
+    assert "durable_write" not in grid.stats["options"]  # what decided the voxels only
+    with pytest.raises(TypeError, match=r"^durable_write is an option of VoxelGrid.write_vdb\(\), not of voxelize\(\)$"):
+        hyvox.voxelize(vertices, triangles, resolution=8, durable_write=True)
+    with pytest.raises(TypeError, match=r"^resolution is an option of voxelize\(\), not of VoxelGrid.write_vdb\(\)$"):
+        grid.write_vdb(tmp_path / "r.vdb", resolution=8)
+    # The schema's checks and messages, as for voxelize's options.
+    with pytest.raises(TypeError) as error:
+        grid.write_vdb(tmp_path / "m.vdb", durable_write="maybe")
+    assert str(error.value) == "durable_write must be true or false, got 'maybe'"
+    with pytest.raises(ValueError) as error:
+        grid.write_vdb(tmp_path / "m.vdb", memory_budget_mib=0)
+    assert str(error.value) == "memory_budget_mib must be a whole number between 1 and 1073741824, got 0"
+    assert not (tmp_path / "m.vdb").exists() and not (tmp_path / "r.vdb").exists()

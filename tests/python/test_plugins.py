@@ -11,7 +11,6 @@ import subprocess
 import sys
 
 import numpy as np
-import pytest
 
 import hyvox
 
@@ -161,3 +160,47 @@ def test_a_plugin_that_does_not_load_says_why(cli, tetrahedron, tmp_path):
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
     assert f"needs {folder}/libhyvox_assimp.so, which cannot be loaded: " in done.stderr, done.stderr
     assert "invalid ELF header" in done.stderr, done.stderr
+
+
+def plugin_copy(folder, data):
+    folder.mkdir()
+    (folder / "libhyvox_gl_methods.so").write_bytes(data)
+    return folder
+
+
+def test_a_plugin_from_another_build_is_refused(cli, tetra_obj, tmp_path):
+    # The real plugin with one digit of its build id changed: the same code, but another
+    # build's id. The unchanged copy beside it shows that the copy itself loads.
+    data = (pathlib.Path(hyvox.__file__).parent / "libhyvox_gl_methods.so").read_bytes()
+    prefix = b"hyvox-plugin-build-id="
+    assert data.count(prefix) == 1
+    at = data.index(prefix) + len(prefix)
+    own = data[at:at + 32].decode()
+    assert len(own) == 32 and all(c in "0123456789abcdef" for c in own), own
+    other = ("1" if own[0] != "1" else "2") + own[1:]
+    run = lambda folder: subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q",
+                                         "--resolution=8", "--method=hybrid"], capture_output=True, text=True,
+                                        timeout=120, env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)})
+    done = run(plugin_copy(tmp_path / "same", data))
+    assert done.returncode == 0 and (tmp_path / "o.vdb").exists(), done.stderr
+    (tmp_path / "o.vdb").unlink()
+
+    folder = plugin_copy(tmp_path / "other", data[:at] + other.encode() + data[at + 32:])
+    done = run(folder)
+    assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
+    assert (f"the hybrid method needs {folder}/libhyvox_gl_methods.so, which is from another hyvox build "
+            f"(hyvox-plugin-build-id={other}; this hyvox is hyvox-plugin-build-id={own}): install hyvox and its "
+            "plugins from one build") in done.stderr, done.stderr
+
+
+def test_a_shared_library_without_a_build_id_is_no_plugin(cli, tetra_obj, tmp_path):
+    # libtbb (loaded with the module here): a shared object that loads, but no hyvox plugin.
+    with open("/proc/self/maps") as maps:
+        tbb = next(line.split()[5] for line in maps if len(line.split()) >= 6 and "/libtbb.so" in line.split()[5])
+    folder = plugin_copy(tmp_path / "tbb", pathlib.Path(tbb).read_bytes())
+    done = subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=8",
+                           "--method=hybrid"], capture_output=True, text=True, timeout=120,
+                          env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)})
+    assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
+    assert (f"the hybrid method needs {folder}/libhyvox_gl_methods.so, which has no hyvox build id "
+            "(not a hyvox plugin)") in done.stderr, done.stderr

@@ -1,15 +1,16 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""WM_OT_hyvox_clean_voxel_files: delete the voxel files no volume of this file uses (runs
-write new files each time, so replaced results leave theirs behind). It looks in the
-folders hyvox writes to (the cache next to the .blend, this session's unsaved folder, the
-scene's output folder, the folders of hyvox volumes) and only at files named as hyvox names
-them. Undo cannot bring a deleted file back."""
+"""WM_OT_hyvox_clean_voxel_files: delete the voxel files nothing uses (runs write new files
+each time, so replaced results leave theirs behind). It looks in the folders hyvox writes to
+(the cache next to the .blend, this session's unsaved folder, the scene's output folder, the
+folders of hyvox volumes) and only at files named as hyvox names them. It keeps the files of
+the open file's volumes and results (a result's .vox with its .vdb) and those an undo or redo
+could bring back (file_history.py); those go once the file is opened again."""
 import os
 
 import bpy
 
 from ..core import cleanup, naming
-from . import importer
+from . import file_history, importer
 
 
 def candidate_folders(context):
@@ -28,17 +29,14 @@ def candidate_folders(context):
     return folders
 
 
-def unused_voxel_files(context):
-    singles, sequences = [], []
-    for volume in bpy.data.volumes:
-        if volume.filepath:
-            (sequences if volume.is_sequence else singles).append(bpy.path.abspath(volume.filepath))
-    return cleanup.unused_files(candidate_folders(context), singles, sequences, naming.is_voxel_file)
+def unused_voxel_files(context, keep_undo_reachable=True):
+    keep = file_history.kept_keys() if keep_undo_reachable else cleanup.used_keys(*file_history.used_files())
+    return cleanup.unused_files(candidate_folders(context), (), (), naming.is_voxel_file, keep)
 
 
 class WM_OT_hyvox_clean_voxel_files(bpy.types.Operator):
-    """Delete the voxel files (.vdb, .vox) that no volume uses any more: those of replaced or
-    deleted results. Undo cannot bring them back"""
+    """Delete the voxel files (.vdb, .vox) nothing uses any more: those of replaced or deleted
+    results that undo cannot bring back either"""
     bl_idname = "wm.hyvox_clean_voxel_files"
     bl_label = "Clean Unused Voxel Files"
 
@@ -55,8 +53,10 @@ class WM_OT_hyvox_clean_voxel_files(bpy.types.Operator):
             size += file_size
         if failed:
             self.report({"WARNING"}, "Could not delete " + ", ".join(failed[:3]))
+        kept = len(unused_voxel_files(context, keep_undo_reachable=False))
+        more = f"; kept {kept} that undo could bring back (they go once the file is opened again)" if kept else ""
         self.report({"INFO"}, f"Deleted {removed} unused voxel file{'s' * (removed != 1)} "
-                              f"({size / 2**20:.1f} MiB)")
+                              f"({size / 2**20:.1f} MiB){more}")
         return {"FINISHED"}
 
 

@@ -12,6 +12,8 @@ bounds change from frame to frame is covered on every frame.
 One node group serves every volume; each modifier passes its voxel size."""
 import bpy
 
+from .node_groups import geometry_group
+
 GROUP_NAME = "hyvox EEVEE Bounds"
 MODIFIER_NAME = "hyvox EEVEE Bounds"
 GRID_NAME = "hyvox_bounds"
@@ -71,10 +73,7 @@ def _new_group() -> bpy.types.NodeTree:
 
 
 def _group() -> bpy.types.NodeTree:
-    tree = bpy.data.node_groups.get(GROUP_NAME)
-    if tree is None or tree.bl_idname != "GeometryNodeTree":
-        tree = _new_group()
-    return tree
+    return geometry_group(GROUP_NAME, _new_group)
 
 
 # The nodes the group needs (all in 4.2-4.5; a Blender without them keeps its own bounds).

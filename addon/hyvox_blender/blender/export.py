@@ -8,7 +8,8 @@ from typing import Dict, List, Optional, Tuple
 import bpy
 import numpy as np
 
-from ..core.errors import SelectionError
+from ..core import mesh_checks
+from ..core.errors import HyvoxError, SelectionError
 from ..core.colour import combine as combine_colours
 from ..core.pipeline import Group, GroupMesh
 from . import colour_export, mesh_triangles
@@ -24,8 +25,9 @@ def _mesh_arrays(evaluated: bpy.types.Object, matrix: np.ndarray, images=None):
     None) of an evaluated object (or instance); the colour only when images (the run's
     colour_export.ImageCache) is given."""
     colour = None
-    owned = evaluated.type != "MESH"
-    # A mesh object's evaluated data already is the evaluated mesh: no copy needed.
+    # A mesh object's evaluated data already is the evaluated mesh: no copy needed. In Edit
+    # Mode (Live follows edits there) it wraps the edit mesh and has no faces of its own.
+    owned = evaluated.type != "MESH" or getattr(evaluated.data, "is_editmode", False)
     mesh = evaluated.to_mesh() if owned else evaluated.data
     try:
         if mesh is None:
@@ -87,6 +89,7 @@ def voxelizable(obj: bpy.types.Object) -> bool:
 
 
 RESULT_KEY = "hyvox_key"  # importer.KEY: a result names its sources
+RESULT_LEAD_KEY = "hyvox_lead"  # ... and the one it is named after and parented to
 
 
 def sources_of_results(objects) -> List[bpy.types.Object]:
@@ -124,20 +127,39 @@ def make_groups(sources, separate: bool, active: Optional[bpy.types.Object]) -> 
     if separate or len(names) == 1:
         return [Group(name, [name]) for name in names]
     active_name = active.name if active is not None else None
+    if active is not None and RESULT_KEY in active:  # re-run from the result: the same name
+        active_name = str(active.get(RESULT_LEAD_KEY, ""))
     lead = active_name if active_name in names else sorted(names)[0]
     return [Group(naming.group_name(names, active_name), names, lead)]
 
 
+def check_parts(parts: Dict[str, List[tuple]], warn=None) -> None:
+    """Refuse a vertex that is not a finite coordinate, naming its object and its index in
+    that object's mesh; warn when a few far vertices make an object's grid mostly empty
+    (core/mesh_checks.py)."""
+    for name, found in parts.items():
+        for vertices, _triangles, _colour in found:
+            index = mesh_checks.first_bad_vertex(vertices)
+            if index is not None:
+                raise HyvoxError(mesh_checks.bad_vertex_message(name, index, vertices[index]))
+        if warn is not None and found:
+            used = np.concatenate([mesh_checks.used_vertices(v, t) for v, t, _ in found])
+            warning = mesh_checks.far_vertices_warning(name, used)
+            if warning:
+                warn(warning)
+
+
 def export_groups(groups: List[Group], depsgraph, warn=None, fallback_depsgraph=None,
-                  colour: bool = False) -> List[GroupMesh]:
+                  colour: bool = False, images: Optional[dict] = None) -> List[GroupMesh]:
     """One GroupMesh per group; objects without faces are skipped with a warning, and a
     group left without triangles is an error (the scene stays unchanged). An object the
     depsgraph leaves out (hidden in renders) is taken from fallback_depsgraph (the
     viewport's) with a warning, or without one when there is no fallback. colour: also
     export what the objects' materials show (colour_export.py), combined per group by
-    core/colour.combine."""
+    core/colour.combine. images: the textures' pixels already read (colour_export.ImageCache;
+    Live keeps one across its exports), else read afresh."""
     names = [name for group in groups for name in group.sources if name in bpy.data.objects]
-    images = {} if colour else None
+    images = (images if images is not None else {}) if colour else None
     parts = evaluated_parts(names, depsgraph, images)
     hidden = [name for name in names if name not in parts]
     if hidden and fallback_depsgraph is not None and warn is not None:
@@ -147,6 +169,7 @@ def export_groups(groups: List[Group], depsgraph, warn=None, fallback_depsgraph=
         evaluated = obj.evaluated_get(fallback_depsgraph or depsgraph)
         part = _mesh_arrays(evaluated, np.array(evaluated.matrix_world, dtype=np.float32), images)
         parts[name] = [part] if len(part[1]) else []
+    check_parts(parts, warn)
     meshes = []
     empty = []
     for group in groups:

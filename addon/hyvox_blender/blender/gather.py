@@ -38,10 +38,14 @@ def used_values(context, op=None) -> dict:
 def gather(context, op=None):
     """(settings, output folder, half-voxel override, the values used) for this run."""
     used = used_values(context, op)
+    return settings_from_used(context, used) + (used,)
+
+
+def settings_from_used(context, used: dict):
+    """(settings, output folder, half-voxel override) from the values of used_values()
+    (a Live volume keeps those it was made with)."""
     options = {name: used[name] for name in SCENE_OPTIONS}
     options.pop("resolution" if used["size_mode"] == "VOXEL_SIZE" else "voxel_size")
-    if used["fill_interior"]:
-        options["mode"] = "solid"
     frames = list(range(used["frame_start"], used["frame_end"] + 1)) if used["use_frame_range"] else None
 
     prefs = preferences(context)
@@ -50,8 +54,8 @@ def gather(context, op=None):
         options.update({name: getattr(prefs, name) for name in PREFERENCE_OPTIONS})
     settings = VoxelizeSettings(method=used["method"], separate=used["separate"], frames=frames,
                                 blocks=used["output"] == "BLOCKS", export_vox=used["export_vox"],
-                                color=used["color"], **options)
+                                color=used["color"], sdf=used["signed_distance"], **options)
     folder = used["output_dir"]
     folder = bpy.path.abspath(folder) if folder else naming.default_output_dir(bpy.data.filepath)
     override = prefs.alignment_fix if prefs is not None else "AUTO"
-    return settings, os.path.normpath(folder), override, used
+    return settings, os.path.normpath(folder), override

@@ -3,7 +3,7 @@
 sequence), an object named "<source>_voxels" carrying the half-voxel correction (and in
 Blender 4.2-4.5 the bounds EEVEE Next needs: eevee_bounds.py), a
 Principled Volume material reading `density`, and its Color from the `color` grid when the
-run made one.
+run made one (volume_material.py; its density: core/volume_look.py).
 
 What a re-run replaces: every earlier volume made from any of the objects it voxelizes (so
 changing the grouping, or the selection, never leaves two volumes of one object). From the
@@ -17,53 +17,16 @@ from typing import Callable, Dict, List, Optional
 import bpy
 from mathutils import Vector
 
-from ..core import alignment, naming
+from ..core import alignment, naming, volume_look
 from ..core.pipeline import GroupResult
-from . import blocks_object, eevee_bounds
+from . import blocks_object, eevee_bounds, file_history, volume_material
 
 from .export import RESULT_KEY as KEY  # custom property: which sources a result came from
-
-
-def _file_path(path: str) -> str:
-    """Relative to the .blend when it is saved (the project folder can move)."""
-    if bpy.data.filepath:
-        try:
-            return bpy.path.relpath(path)
-        except ValueError:  # another drive on Windows
-            pass
-    return path
-
-
-def _make_material(name: str, voxel_size: float, has_color: bool) -> bpy.types.Material:
-    material = bpy.data.materials.new(name)
-    material.use_nodes = True
-    nodes = material.node_tree.nodes
-    nodes.clear()
-    output = nodes.new("ShaderNodeOutputMaterial")
-    output.location = (300, 0)
-    shader = nodes.new("ShaderNodeVolumePrincipled")
-    shader.location = (0, 0)
-    # density is 1 in occupied voxels; scale so light crossing one voxel is about 60%
-    # absorbed whatever the scene's units are.
-    shader.inputs["Density"].default_value = 1.0 / max(voxel_size, 1e-9)
-    shader.inputs["Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-    if "Density Attribute" in shader.inputs:  # a socket in Blender 4.x
-        shader.inputs["Density Attribute"].default_value = "density"
-    elif hasattr(shader, "density_attribute"):
-        shader.density_attribute = "density"
-    if has_color:
-        # The `color` grid (Vec3f, linear), which Blender loads as a colour attribute.
-        attribute = nodes.new("ShaderNodeAttribute")
-        attribute.location = (-250, 0)
-        attribute.attribute_type = "GEOMETRY"
-        attribute.attribute_name = "color"
-        material.node_tree.links.new(attribute.outputs["Color"], shader.inputs["Color"])
-    material.node_tree.links.new(shader.outputs["Volume"], output.inputs["Volume"])
-    return material
+from .export import RESULT_LEAD_KEY as LEAD_KEY
 
 
 def _configure_volume(volume: bpy.types.Volume, result: GroupResult) -> None:
-    volume.filepath = _file_path(result.files[0])
+    volume.filepath = file_history.blend_relative(result.files[0])
     if result.frames:
         first = result.frames[0]
         volume.is_sequence = True
@@ -98,14 +61,15 @@ class _Kept:
         self.sources = _sources(old)
         self.kind = old.type
         self.material = old.data.materials[0] if old.data is not None and old.data.materials else None
+        self.voxel_size = float(old.get("hyvox_voxel_size", 0.0))
         self.collections = list(old.users_collection)
         # The offset the add-on set (not the artist); volumes of earlier versions did not
         # record it: theirs was the half-voxel fix of their voxel size.
         if "hyvox_offset" in old:
             self.offset = Vector(old["hyvox_offset"])
         else:
-            size = float(old.get("hyvox_voxel_size", 0.0))
-            self.offset = Vector(alignment.object_offset(size, bpy.app.version) if old.type == "VOLUME" else (0, 0, 0))
+            self.offset = Vector(alignment.object_offset(self.voxel_size, bpy.app.version)
+                                 if old.type == "VOLUME" else (0, 0, 0))
         self.location = Vector(old.location)
         self.rotation_mode = old.rotation_mode
         self.rotation = (tuple(old.rotation_euler), tuple(old.rotation_quaternion), tuple(old.rotation_axis_angle))
@@ -162,7 +126,9 @@ def import_results(context, results: Dict[str, GroupResult], alignment_override:
             volume = bpy.data.volumes.new(name)
             _configure_volume(volume, result)
             material = donor.material if donor is not None and donor.kind == "VOLUME" else None
-            volume.materials.append(material or _make_material(name, result.voxel_size, result.has_color))
+            density = volume_look.result_density(result.stats, result.voxel_size, result.dims)
+            volume.materials.append(volume_material.for_result(material, name, result.has_color, density,
+                                                               donor.voxel_size if material is not None else 0.0))
             obj = bpy.data.objects.new(name, volume)
             offset = alignment.object_offset(result.voxel_size, bpy.app.version, alignment_override)
             if alignment.eevee_clips_last_voxel_layer(bpy.app.version):
@@ -175,6 +141,9 @@ def import_results(context, results: Dict[str, GroupResult], alignment_override:
         if exact is not None:
             exact.apply_transform(obj, offset)
         obj[KEY] = group.key
+        obj[LEAD_KEY] = group.lead  # a re-run from this result keeps its name (export.make_groups)
+        if result.vox_files:
+            obj[file_history.RESULT_VOX_PROPERTY] = file_history.blend_relative(result.vox_files[0])
         obj["hyvox_voxel_size"] = result.voxel_size
         obj["hyvox_method"] = result.method
         source = bpy.data.objects.get(group.lead)
@@ -186,4 +155,5 @@ def import_results(context, results: Dict[str, GroupResult], alignment_override:
         if parent_to_source and not result.frames:
             _parent_to(obj, source)
         created.append(obj)
+    file_history.remember_results(results.values())  # undo may bring them back: Clean keeps them
     return created

@@ -11,7 +11,7 @@ import bpy
 from ..core import backend, naming, summary
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
-from . import export, importer, properties, render_depsgraph, render_equivalence
+from . import export, importer, live, properties, render_depsgraph, render_equivalence
 from .gather import gather
 
 # The last run's summary lines (shown in the panel) and record (for scripts).
@@ -34,6 +34,9 @@ class _Run:
 
     def __init__(self, context, op):
         settings, folder, self.override, used = gather(context, op)
+        self.live_digests = {} if used["live"] else None  # the sources' evaluated state, for Live
+        if used["live"]:
+            used = live.prepare_run(settings, used)
         self.scene = context.scene
         self.original_frame = context.scene.frame_current
         self.op = op
@@ -42,7 +45,9 @@ class _Run:
         # New file names per run, so that undo never brings back a volume whose file a later
         # run overwrote (farm chunks ask for fixed names to assemble one sequence).
         run_tag = naming.new_run_tag() if op.unique_file_names else None
-        self.pipeline = Pipeline(settings, folder, self.export_frame, run_tag=run_tag)  # validates the settings
+        export_frame = self.export_frame if self.live_digests is None else live.recording(self.export_frame,
+                                                                                           self.live_digests)
+        self.pipeline = Pipeline(settings, folder, export_frame, run_tag=run_tag)  # validates the settings
         if self.pipeline.ignored_options:
             op.report({"INFO"}, backend.ignored_message(self.pipeline.ignored_options, self.pipeline.method))
         # The redo panel shows, and a redo repeats, exactly what this run used.
@@ -102,6 +107,9 @@ class _Run:
                                           warn=self.warn)
         pipeline.timings.import_ms += (time.perf_counter() - start) * 1000.0
         self.show_results(context, objects)
+        live.remember_results(objects, pipeline.results, self.used)  # for its Live switch, now or later
+        if self.live_digests is not None:
+            live.make_live(objects, pipeline.results, self.live_digests)
         lines = summary.long_report(pipeline.results, pipeline.timings)
         last_summary[:] = lines
         last_run_record.clear()

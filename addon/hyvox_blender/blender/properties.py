@@ -28,14 +28,17 @@ CHOICE_LABELS = {
         "reference": ("Reference", "Brute-force exact oracle (slow; for checking results)"),
     },
     "mode": {
-        "conservative": ("Conservative", "Every voxel the surface touches (26-separating)"),
-        "thin": ("Thin", "The thinnest surface that still separates inside from outside (6-separating)"),
-        "solid": ("Solid", "The surface and every voxel whose centre is inside"),
+        "conservative": ("Surface", "Every voxel the surface touches (conservative, 26-separating)"),
+        "thin": ("Thin Surface", "Fewer voxels: the thinnest surface that still keeps the inside and the outside "
+                                 "apart (thin, 6-separating)"),
+        "solid": ("Solid", "The surface and everything inside it, like Mesh to Volume's Fill Volume (solid)"),
     },
     "inside": {
-        "auto": ("Auto", "The winding number: exact by rays for closed meshes, fast winding numbers for open ones"),
-        "parity": ("Parity", "Inside where a ray crosses the surface an odd number of times (closed meshes)"),
-        "winding": ("Winding Number", "Inside where the winding number is at least 0.5 (holes, flipped faces)"),
+        "auto": ("Auto", "Right for closed meshes and for meshes with holes or flipped faces (the winding "
+                         "number: exact by rays when closed, fast winding numbers when open)"),
+        "parity": ("Parity", "Inside where a ray crosses the surface an odd number of times: closed meshes only"),
+        "winding": ("Winding Number", "Bridges holes and flipped faces (inside where the winding number is at "
+                                      "least 0.5)"),
     },
 }
 SIZE_ITEMS = [
@@ -62,40 +65,33 @@ def _description(spec):
 
 # Tooltips start in plain words; the schema's help (with the term) follows.
 PLAIN_WORDS = {
-    "resolution": "How many voxels fit along the longest side",
+    "resolution": "How many voxels fit along the longest side of the objects",
     "voxel_size": "How big one voxel is",
-    "mode": "Which voxels count as touched by the surface",
-    "tess_gamma": "How hard the tessellation tries not to miss voxels: higher misses fewer, costs more",
-    "hybrid_cutoff": "Triangles larger than this on screen are rasterized, smaller ones get a thread each",
-    "padding": "Empty voxels around the object",
+    "mode": "What the voxels hold: the surface, or the surface and everything inside it",
+    "inside": "How Solid tells the inside from the outside",
+    "tess_gamma": "How many points the tessellation method puts on each triangle: more misses fewer voxels "
+                  "and takes longer",
+    "hybrid_cutoff": "The hybrid method rasterizes the triangles larger than this and gives each smaller one a "
+                     "thread of its own; -1 picks the size by itself",
+    "padding": "Empty voxels around the objects",
+    "memory_budget_mib": "How much memory a run may take for its voxels; a grid that needs more is refused",
+    "threads": "How many CPU threads a run uses; 0 uses every core",
 }
 
 
 def method_items():
-    """Auto first, then the schema's methods; the GL ones say which device they would use
-    here and are marked when that device is software (slower than the CPU method)."""
+    """Auto first, then the schema's methods. The list is fixed: which GL device the GL methods
+    would run on here is asked only when the panel first draws (its note under Method,
+    ui.py), so enabling the add-on loads neither the GL plugin nor a device list."""
     from ..core import panel_rules
-    try:
-        device = panel_rules.gl_device_summary(backend.load_module().gl_devices())
-    except Exception:  # no EGL here at all
-        device = None
     labels = CHOICE_LABELS["method"]
     items = []
     for number, choice in enumerate([backend.AUTO_METHOD] + list(option_spec("method").choices)):
         name, description = labels.get(choice, (choice.title(), choice))
-        icon = "NONE"
         if choice in panel_rules.GL_METHODS:
             name = name.replace(" (GPU)", "")
-            if device is None:
-                description += ". No OpenGL 4.5 device here: it will fail"
-                icon = "ERROR"
-            elif device["software"]:
-                description += ". Here it runs on the software GL device (llvmpipe), slower than CPU"
-                icon = "ERROR"
-            else:
-                description += f". Runs on {device['name']}"
-                icon = "SHADING_SOLID"
-        items.append((choice, name, description, icon, number))
+            description += ". Needs OpenGL 4.5; the note under Method says where it runs here"
+        items.append((choice, name, description, "NONE", number))
     return items
 
 
@@ -148,18 +144,17 @@ def _scene_range_on_first_use(settings, context):
 def scene_and_operator_properties(operator=False):
     skip = {"options": {"SKIP_SAVE"}} if operator else {}
     return {
-        "size_mode": EnumProperty(name="Size", description="Set the grid by resolution or by voxel size",
+        "size_mode": EnumProperty(name="Size", description="Set the grid by a number of voxels "
+                                  "(Resolution) or by the size of one voxel (Voxel Size)",
                                   items=SIZE_ITEMS, default="RESOLUTION", **skip),
         "resolution": schema_property("resolution", operator, soft=(8, 2048), **skip),
         "voxel_size": schema_property("voxel_size", operator, default=0.05, soft=(1e-4, 10.0), **skip),
         "method": EnumProperty(name="Method", items=method_items(), default=backend.AUTO_METHOD,
                                description="Which voxelizer runs (" + _description(option_spec("method"))[:1].lower()
                                + _description(option_spec("method"))[1:] + ")", **skip),
-        "mode": schema_property("mode", operator, **skip),
-        # Like Mesh to Volume's Fill Volume: on, the run is solid whatever the mode says.
-        "fill_interior": BoolProperty(name="Fill Interior", description="Fill the inside of the mesh too "
-                                      "(solid mode); holes and flipped faces are bridged by the winding number",
-                                      default=True, **skip),
+        # Solid by default, like Mesh to Volume's Fill Volume (legacy_settings.py maps the
+        # Fill Interior switch of earlier versions onto it).
+        "mode": schema_property("mode", operator, default="solid", **skip),
         "inside": schema_property("inside", operator, **skip),
         "tess_gamma": schema_property("tess_gamma", operator, soft=(0.5, 4.0), **skip),
         "hybrid_cutoff": schema_property("hybrid_cutoff", operator, soft=(-1.0, 4096.0), **skip),
@@ -174,13 +169,17 @@ def scene_and_operator_properties(operator=False):
                                       ("BLOCKS", "Blocks", "A mesh of one cube per voxel with only the outer faces "
                                                  "(one frame)")],
                                default="VOLUME", **skip),
-        "color": BoolProperty(name="Colour", description="Also store the colour the objects' materials "
-                              "show (the render colour attribute, else the Base Color's image or value) in a "
-                              "`color` grid, which the volume's material and Blocks use (with Fill Interior, the inside "
-                              "takes the colour of the surface around it)", default=False, **skip),
+        "color": BoolProperty(name="Color", description="Give the voxels the color the objects' materials show "
+                              "(the render color attribute, else the Base Color's image or value): the volume's "
+                              "material, Blocks and .vox files show it; objects without a material add none. "
+                              "Solid: the inside takes the color of the surface around it", default=True, **skip),
+        "signed_distance": BoolProperty(name="Signed Distance", description="Also store the distance to "
+                                        "the surface near it, negative inside, as a grid named sdf (a level set) for "
+                                        "Blender's SDF grid nodes and a smooth Grid to Mesh. Meshes with holes keep "
+                                        "their inside (the winding number decides it)", default=False, **skip),
         "export_vox": BoolProperty(name="MagicaVoxel File", description="Also write the voxels as a MagicaVoxel "
                                    ".vox file next to the .vdb (split into models of at most 256 per side; at "
-                                   "most 255 colours)", default=False, **skip),
+                                   "most 255 colors)", default=False, **skip),
         "parent_to_source": BoolProperty(name="Parent to Source", description="Parent the volume to the "
                                          "object it was made from, so moving that object moves it (not for frame "
                                          "ranges: their voxels already follow the animation)", default=True, **skip),
@@ -191,6 +190,9 @@ def scene_and_operator_properties(operator=False):
                                    default="RENDER", **skip),
         "hide_source": BoolProperty(name="Hide Source", description="Hide the objects a run voxelized, so the "
                                     "result is seen on its own", default=False, **skip),
+        "live": BoolProperty(name="Live", description="Keep the new volumes up to date by themselves: they follow "
+                             "edits, modifiers, transforms, materials and the animation (no frame range needed)",
+                             default=False, **skip),
         "use_frame_range": BoolProperty(name="Frame Range", description="Voxelize every frame of a range "
                                         "into a .vdb sequence (the scene's range unless you set one)",
                                         default=False, update=None if operator else _scene_range_on_first_use,

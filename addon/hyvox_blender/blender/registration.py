@@ -2,9 +2,9 @@
 """Register every class and hook of the bpy layer, in dependency order."""
 import bpy
 
-from . import clean_files, file_handlers, operators, properties, ui
+from . import clean_files, file_handlers, file_history, legacy_settings, live, live_ui, operators, properties, ui
 
-_CLASSES = properties.CLASSES + operators.CLASSES + clean_files.CLASSES + ui.CLASSES
+_CLASSES = properties.CLASSES + operators.CLASSES + clean_files.CLASSES + ui.CLASSES + live_ui.CLASSES
 
 
 def register():
@@ -12,11 +12,19 @@ def register():
         bpy.utils.register_class(cls)
     properties.register()
     operators.register()
+    legacy_settings.register()
+    file_history.register()
     file_handlers.register()
+    live.register()  # after file_handlers: its save_post sees the files moved next to the .blend
+    live_ui.register()
 
 
 def unregister():
+    live_ui.unregister()
+    live.unregister()
     file_handlers.unregister()
+    file_history.unregister()
+    legacy_settings.unregister()
     operators.unregister()
     properties.unregister()
     for cls in reversed(_CLASSES):

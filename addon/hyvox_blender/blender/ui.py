@@ -64,11 +64,8 @@ class VIEW3D_PT_hyvox_voxelize(_HyvoxPanel, bpy.types.Panel):
         layout = self.layout_split()
         settings = context.scene.hyvox
         col = layout.column()
-        col.prop(settings, "size_mode")
-        if settings.size_mode == "RESOLUTION":
-            col.prop(settings, "resolution")
-        else:
-            col.prop(settings, "voxel_size", text="Size")
+        col.prop(settings, "size_mode", expand=True)
+        col.prop(settings, "resolution" if settings.size_mode == "RESOLUTION" else "voxel_size")
         col.prop(settings, "method")
         method = _resolved_method(settings)
         note = panel_rules.method_note(settings.method, method, _gl_device())
@@ -77,14 +74,13 @@ class VIEW3D_PT_hyvox_voxelize(_HyvoxPanel, bpy.types.Panel):
             row = col.row()
             row.alignment = "RIGHT"
             row.label(text=note, icon="ERROR" if software else "INFO")
-        col.prop(settings, "fill_interior", text="Fill Interior")
-        if settings.fill_interior:
+        col.prop(settings, "mode")
+        if settings.mode == "solid":
             col.prop(settings, "inside", text="Inside")
-        else:
-            col.prop(settings, "mode")
         if _applies("tess_gamma", method):
-            col.prop(settings, "tess_gamma", text="Gamma")
+            col.prop(settings, "tess_gamma")
         col.prop(settings, "output", text="Output")
+        col.prop(settings, "color")
 
         layout.operator(operators.OBJECT_OT_hyvox_voxelize.bl_idname, icon="VOLUME_DATA")
         record = operators.last_run_record
@@ -106,7 +102,7 @@ class VIEW3D_PT_hyvox_output(_HyvoxSubPanel, bpy.types.Panel):
         col.prop(settings, "parent_to_source", text="Parent")
         col.prop(settings, "hide_source", text="Hide Source")
         col = layout.column(heading="Write")
-        col.prop(settings, "color", text="Colour")
+        col.prop(settings, "signed_distance", text="Signed Distance")
         col.prop(settings, "export_vox", text=".vox File")
         layout.prop(settings, "output_dir", text="Folder")
         layout.operator("wm.hyvox_clean_voxel_files", text="Clean Unused Files", icon="TRASH")

@@ -1,23 +1,21 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The one place that talks to the compiled hyvox module: finding it, choosing the
-method, calling voxelize with a cancel token, turning its errors into HyvoxError."""
+method, calling voxelize with a cancel token, turning its errors into HyvoxError.
+
+`settings` below is a run's core.settings.VoxelizeSettings; this module does not import
+that one (settings imports this), so the add-on's imports have no cycle."""
 import importlib
 import importlib.util
 import os
 import threading
-from typing import TYPE_CHECKING, List, Optional
+from typing import List, Optional, Tuple
 
 import numpy as np
 
 from . import module_diagnosis
 from .errors import CancelledError, HyvoxError, ModuleMissingError
 
-if TYPE_CHECKING:
-    from .settings import VoxelizeSettings
-
 AUTO_METHOD = "auto"  # the add-on's own method: hybrid when a GPU runs GL here, else cpu
-# The module's ATTRIBUTE_METHODS compute attribute voxels (colour); were auto's choice not
-# among them, a group with colour would run by cpu (every method computes them today).
 
 _module = None
 _gl_probe = {}  # gl_device -> bool, probed once per session: creating an EGL context is slow
@@ -82,19 +80,10 @@ def gl_available(module, gl_device: str = "") -> bool:
         return ok
 
 
-def resolve_method(module, settings: "VoxelizeSettings") -> str:
+def resolve_method(module, settings) -> str:
     if settings.method != AUTO_METHOD:
         return settings.method
     return "hybrid" if gl_available(module, settings.options.get("gl_device", "")) else "cpu"
-
-
-def method_for_group(module, settings: "VoxelizeSettings", resolved: str, with_colour: bool) -> str:
-    """The method a group runs with: auto's choice, unless the group asks for colour and
-    that method cannot make it (then cpu); an explicit method is kept (and refuses colour
-    with its own message)."""
-    if with_colour and settings.method == AUTO_METHOD and resolved not in module.ATTRIBUTE_METHODS:
-        return "cpu"
-    return resolved
 
 
 def ignored_settings(module, settings: "VoxelizeSettings", method: str) -> List[str]:
@@ -110,6 +99,13 @@ def ignored_message(names: List[str], method: str) -> str:
     return f"{', '.join(names)} {'does' if len(names) == 1 else 'do'} not apply to the {method} method: ignored"
 
 
+def write_options(module, settings) -> dict:
+    """The settings that are options of VoxelGrid.write_vdb (module.WRITE_OPTIONS: threads,
+    the memory budget), by name."""
+    names = {spec.name for spec in module.WRITE_OPTIONS}
+    return {name: value for name, value in settings.options.items() if name in names}
+
+
 def make_token(module):
     """A fresh cancel/progress token."""
     return module.CancelToken()
@@ -122,23 +118,30 @@ def token_progress(token) -> float:
     return min(max(float(token.progress), 0.0) / 100.0, 1.0)
 
 
-def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "VoxelizeSettings",
-             method: str, voxel_size: Optional[float] = None, token=None, colour: Optional[dict] = None):
+def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings,
+             method: str, voxel_size: Optional[float] = None, token=None, colour: Optional[dict] = None,
+             origin: Optional[Tuple[float, float, float]] = None):
     """hyvox.voxelize with the run's settings; voxel_size (when given) wins over the
-    settings, so every frame of a sequence shares the first frame's voxel size. colour:
-    the colour source's keyword arguments (colour.combine); given, a `color` grid is made."""
+    settings, so every frame of a sequence shares the first frame's voxel size, and origin
+    (when given) puts voxel (0,0,0) there (core/lattice.py). colour:
+    the colour source's keyword arguments (colour.combine); given, a `color` grid is made.
+    With settings.sdf, an `sdf` level set too."""
     kwargs = settings.voxelize_options()
     kwargs["method"] = method
     # Settings another method would use are dropped here (reported once per run by the
     # operator, see ignored_settings), so hyvox.voxelize has nothing to warn about.
     for name in module.ignored_options(method, list(kwargs)):
         del kwargs[name]
-    if colour:  # after the filter: a method without colour refuses it rather than drop it
+    attributes = (["color"] if colour else []) + (["sdf"] if settings.sdf else [])
+    if colour:
         kwargs.update(colour)
-        kwargs["attributes"] = "color"
+    if attributes:
+        kwargs["attributes"] = attributes
     if voxel_size:
         kwargs.pop("resolution", None)
         kwargs["voxel_size"] = float(voxel_size)
+    if origin is not None:
+        kwargs["origin"] = tuple(float(x) for x in origin)
     if token is not None:
         kwargs["cancel"] = token
     try:
@@ -149,8 +152,7 @@ def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings: "Vox
         if isinstance(exc, MemoryError):
             raise HyvoxError("out of memory: lower the resolution or raise the memory budget") from exc
         if isinstance(exc, (ValueError, RuntimeError, TypeError, OSError)):
-            hint = " (turn Colour off, or use the CPU method)" if colour and method not in module.ATTRIBUTE_METHODS else ""
-            raise HyvoxError(f"{method}: {exc}{hint}") from exc
+            raise HyvoxError(f"{method}: {exc}") from exc
         raise
 
 

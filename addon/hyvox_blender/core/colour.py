@@ -101,7 +101,7 @@ def combine(parts: Sequence[Tuple[np.ndarray, np.ndarray, Optional[PartColour]]]
         _as_corner_colors(c if c is not None else PartColour(), len(t)) for _, t, c in parts])
     warning = ""
     if keys:
-        warning = ("Colour: textures sampled at the triangle corners (objects with different colour "
+        warning = ("Color: textures sampled at the triangle corners (objects with different color "
                    "sources or images voxelized together); one object at a time keeps the texture's detail")
     if np.all(corner_colors[:, 3] == 1.0):
         corner_colors = np.ascontiguousarray(corner_colors[:, :3])  # opaque: no `alpha` grid

@@ -4,9 +4,10 @@ and replaces its previous result instead of piling up copies."""
 import os
 import re
 import secrets
-import tempfile
 import zlib
 from typing import Optional, Sequence
+
+from . import session_folder
 
 CACHE_FOLDER = "hyvox_cache"
 VOXELS_SUFFIX = "_voxels"
@@ -43,12 +44,14 @@ def is_voxel_file(name: str) -> bool:
     return VOXEL_FILE.fullmatch(name) is not None
 
 
-def result_stem(group_name: str, key: str, sources: int) -> str:
-    """The stem of a result's files. One object's name is unique in Blender and kept as it
-    is; a group of several objects ("A_and_1_more") or a name a file cannot hold ("a/b" and
-    "a_b" both clean to "a_b") gets a hash of its sources, so no two results share a file,
-    in one run or across runs."""
-    if sources == 1 and _clean(group_name) == group_name:
+def result_stem(group_name: str, key: str, sources: int, fixed_names: bool = False) -> str:
+    """The stem of a result's files: the result's name, as a file can hold it. A run with new
+    file names (a run tag) makes at most one group, so its group's name is unique in the run
+    and the tag makes it unique across runs. A hash of the sources is added where that is not
+    enough: to a name a file cannot hold as it is ("a/b" and "a_b" both clean to "a_b", and
+    two objects can be voxelized apart in one run), and to a group's name under fixed names
+    (another selection led by the same object makes the same "A_and_1_more")."""
+    if _clean(group_name) == group_name and (sources == 1 or not fixed_names):
         return group_name
     return f"{group_name}_{zlib.crc32(key.encode()):08x}"
 
@@ -82,14 +85,20 @@ _unsaved_dir: Optional[str] = None
 
 
 def unsaved_output_dir(create: bool = True) -> Optional[str]:
-    """This session's own folder for the results of a file not saved yet, made once per
-    session with mkdtemp: two Blender sessions never write into each other's folder. On the
-    first save the add-on moves its files next to the .blend. None if not made yet and
-    create is False."""
+    """This session's own folder for the results of a file not saved yet, made with mkdtemp
+    when first needed (session_folder.py): two Blender sessions never write into each other's
+    folder. On a save the add-on moves its files next to the .blend and removes the folder
+    (forget_unsaved_output_dir). None if not made yet and create is False."""
     global _unsaved_dir
     if (_unsaved_dir is None or not os.path.isdir(_unsaved_dir)) and create:
-        _unsaved_dir = tempfile.mkdtemp(prefix=CACHE_FOLDER + "_unsaved_")
+        _unsaved_dir = session_folder.make()
     return _unsaved_dir
+
+
+def forget_unsaved_output_dir() -> None:
+    """The folder is gone (removed after a save): the next unsaved result makes a new one."""
+    global _unsaved_dir
+    _unsaved_dir = None
 
 
 def default_output_dir(blend_path: str) -> str:

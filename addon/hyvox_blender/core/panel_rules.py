@@ -2,6 +2,7 @@
 """What the sidebar panel shows, decided without bpy: how the GL methods are marked with the
 device they would run on, and the result summary in short lines that fit the sidebar. (Which
 options apply to a method is the schema's rule: OptionSpec.applies_to.)"""
+import os
 from typing import Dict, List, Optional, Sequence
 
 GL_METHODS = ("hybrid", "triangle", "fragment", "tessellation")
@@ -50,6 +51,8 @@ def summary_lines(record: dict) -> List[str]:
             lines.append(f"  blocks: {_count(volume['blocks_faces'])} faces")
         if volume.get("frames"):
             lines.append(f"  frames {volume['frames'][0]}-{volume['frames'][-1]}")
+        if volume.get("vox_files"):
+            lines.append(f"  {os.path.basename(volume['vox_files'][0])}")
     timings = record.get("timings_ms")
     if timings:
         lines.append(f"Took {timings['total'] / 1000.0:.2f} s")

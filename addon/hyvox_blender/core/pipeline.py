@@ -11,7 +11,7 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import backend, naming, vox
+from . import backend, lattice, naming, vox
 from .blocks import BlocksMesh, blocks_mesh
 from .errors import CancelledError, HyvoxError
 from .settings import VoxelizeSettings
@@ -224,7 +224,7 @@ class Pipeline:
         return meshes
 
     def _final_path(self, group: Group, frame: Optional[int]) -> str:
-        stem = naming.result_stem(group.name, group.key, len(group.sources))
+        stem = naming.result_stem(group.name, group.key, len(group.sources), fixed_names=self.run_tag is None)
         return os.path.join(self.output_dir, naming.volume_file_name(stem, frame, self.run_tag))
 
     def _work_guarded(self, meshes: List[GroupMesh]) -> None:
@@ -256,15 +256,18 @@ class Pipeline:
             # Every frame of a sequence uses the first frame's voxel size: the Volume
             # object's half-voxel correction and the look must not change per frame.
             fixed_size = result.voxel_size if result.voxel_size else None
+            origin = None
+            if self.settings.fixed_lattice:
+                fixed = self._fixed_lattice(mesh, fixed_size)
+                fixed_size, origin = fixed.voxel_size, fixed.origin
             self._token = backend.make_token(self.module)
             start = time.perf_counter()
             # Solid runs too: the inside voxels take their colour from the surface inward
             # (the module's solid-mode attributes).
             colour = mesh.colour if self.settings.color else None
-            method = backend.method_for_group(self.module, self.settings, self.method, bool(colour))
-            result.method = method
             grid = backend.voxelize(self.module, mesh.vertices, mesh.triangles, self.settings,
-                                    method, voxel_size=fixed_size, token=self._token, colour=colour)
+                                    self.method, voxel_size=fixed_size, token=self._token, colour=colour,
+                                    origin=origin)
             self.timings.voxelize_ms += (time.perf_counter() - start) * 1000.0
             if self._cancelled:
                 raise CancelledError("voxelization cancelled")
@@ -279,7 +282,7 @@ class Pipeline:
             if self._cancelled:
                 raise CancelledError("voxelization cancelled")
             try:
-                grid.write_vdb(staging, threads=int(self.settings.options.get("threads", 0)), cancel=self._token)
+                grid.write_vdb(staging, cancel=self._token, **backend.write_options(self.module, self.settings))
             except self.module.Cancelled as exc:
                 raise CancelledError("voxelization cancelled") from exc
             except (OSError, RuntimeError, ValueError) as exc:
@@ -304,6 +307,15 @@ class Pipeline:
             result.triangles = int(len(mesh.triangles))
             result.has_color = bool(colour)
         self._group_index = len(meshes)
+
+    def _fixed_lattice(self, mesh: GroupMesh, voxel_size: Optional[float]) -> lattice.Lattice:
+        options = self.settings.voxelize_options()
+        resolution = options.get("resolution", backend.load_module().option("resolution").default)
+        try:
+            return lattice.fixed_lattice(mesh.vertices, mesh.triangles, int(resolution),
+                                         voxel_size or options.get("voxel_size"))
+        except ValueError as exc:
+            raise HyvoxError(f"{mesh.group.name}: {exc}") from exc
 
 
     def _blocks_and_vox(self, grid, result: GroupResult, final_vdb: str) -> None:

@@ -15,13 +15,17 @@ class VoxelizeSettings:
 
     def __init__(self, method: str = AUTO_METHOD, separate: bool = False,
                  frames: Optional[List[int]] = None, blocks: bool = False, export_vox: bool = False,
-                 color: bool = False, **options: Any):
+                 color: bool = False, sdf: bool = False, fixed_lattice: bool = False, **options: Any):
         self.method = method
         self.separate = separate          # one volume per object instead of one for the selection
         self.frames = frames              # None: the current frame only, no sequence
         self.blocks = blocks              # also build the blocks mesh (core/blocks.py)
         self.export_vox = export_vox      # also write a MagicaVoxel .vox beside each .vdb
         self.color = color                # also a `color` grid, from what the materials show
+        # The grid on a lattice fixed in world space (core/lattice.py): always for sequences;
+        # for Live, whose every run must land on the voxels of the one before.
+        self.fixed_lattice = fixed_lattice or frames is not None
+        self.sdf = sdf                    # also an `sdf` level set, for Blender 5's SDF nodes
         self.options: Dict[str, Any] = options
 
     @property

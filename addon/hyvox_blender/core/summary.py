@@ -34,9 +34,10 @@ def short_report(results: Dict[str, GroupResult], timings: Timings) -> str:
 def long_report(results: Dict[str, GroupResult], timings: Timings) -> List[str]:
     lines = [describe_result(r) for r in results.values()]
     for r in results.values():
-        for path in r.files[:1]:
-            more = f" (+{len(r.files) - 1} more)" if len(r.files) > 1 else ""
-            lines.append(f"  {path}{more}")
+        for files in (r.files, r.vox_files):
+            for path in files[:1]:
+                more = f" (+{len(files) - 1} more)" if len(files) > 1 else ""
+                lines.append(f"  {path}{more}")
     lines.append(describe_timings(timings))
     return lines
 

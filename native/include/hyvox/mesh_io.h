@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// Reading triangle meshes from files into an owning mesh. PLY (binary/ascii, also .ply.gz)
-// and OBJ are read by hyvox's own strict readers (src/io/ply_reader.h, obj_reader.h): every
-// declared count is checked against the bytes present before allocating, and a damaged file
-// is an InvalidInput naming the file and the place. Other formats go through assimp (which
-// never sees PLY or OBJ). Triangles are kept exactly as the file lists them: degenerate and
-// duplicate triangles stay (validate() skips and counts them), so triangle counts match the
-// file.
+/// @file
+/// Reading triangle meshes from files into an owning mesh. PLY (binary/ascii, also .ply.gz)
+/// and OBJ are read by hyvox's own strict readers (src/io/ply_reader.h, obj_reader.h): every
+/// declared count is checked against the bytes present before allocating, and a damaged file
+/// is an InvalidInput naming the file and the place. Other formats go through assimp (which
+/// never sees PLY or OBJ). Triangles are kept exactly as the file lists them: degenerate and
+/// duplicate triangles stay (validate() skips and counts them), so triangle counts match the
+/// file.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -17,30 +18,31 @@
 
 namespace hyvox {
 
+/// A mesh read from a file, owning its arrays (view() gives the MeshView voxelize() takes).
 struct Mesh {
-    std::vector<float> positions;           // vertex_count × 3, world units
-    std::vector<std::uint32_t> triangles;   // triangle_count × 3 vertex indices
-    std::vector<float> colors;              // empty, or vertex_count × 4 (RGBA, 0..1, colour sRGB-encoded)
-    bool colors_alpha = false;              // the file gave alpha (else alpha is 1)
-    std::vector<float> uvs;                 // empty, or vertex_count × 2
-    // Materials (OBJ "usemtl", with its MTL files): empty, or one id per triangle into the
-    // material lists. Their colours are the mesh's colour source when it has no vertex
-    // colours (and no other texture is given).
+    std::vector<float> positions;           ///< vertex_count × 3, world units
+    std::vector<std::uint32_t> triangles;   ///< triangle_count × 3 vertex indices
+    std::vector<float> colors;              ///< empty, or vertex_count × 4 (RGBA, 0..1, colour sRGB-encoded)
+    bool colors_alpha = false;              ///< the file gave alpha (else alpha is 1)
+    std::vector<float> uvs;                 ///< empty, or vertex_count × 2
+    /// Materials (OBJ "usemtl", with its MTL files): empty, or one id per triangle into the
+    /// material lists. Their colours are the mesh's colour source when it has no vertex
+    /// colours (and no other texture is given).
     std::vector<std::uint32_t> material_ids;
-    std::vector<std::string> material_names;     // in order of first use; "" = faces before any usemtl
-    std::vector<float> material_colors;          // 3 per material, linear RGB (MTL Kd; 0.8 grey without)
-    std::vector<std::string> material_textures;  // per material: its image file (MTL map_Kd), or ""
-    std::vector<std::string> material_libraries;  // OBJ "mtllib" files as written (readMesh reads them)
-    // What the reader could not use and left out (a missing .mtl or image, an unknown
-    // material): the front doors show these as warnings.
+    std::vector<std::string> material_names;     ///< in order of first use; "" = faces before any usemtl
+    std::vector<float> material_colors;          ///< 3 per material, linear RGB (MTL Kd; 0.8 grey without)
+    std::vector<std::string> material_textures;  ///< per material: its image file (MTL map_Kd), or ""
+    std::vector<std::string> material_libraries;  ///< OBJ "mtllib" files as written (readMesh reads them)
+    /// What the reader could not use and left out (a missing .mtl or image, an unknown
+    /// material): the front doors show these as warnings.
     std::vector<std::string> warnings;
 
-    std::size_t vertexCount() const { return positions.size() / 3; }
-    std::size_t triangleCount() const { return triangles.size() / 3; }
-    bool hasColors() const { return !colors.empty(); }
-    bool hasUvs() const { return !uvs.empty(); }
-    bool hasMaterials() const { return !material_ids.empty(); }
-    // A view for voxelize(); valid while this mesh lives and is not modified.
+    std::size_t vertexCount() const { return positions.size() / 3; }      ///< rows of positions
+    std::size_t triangleCount() const { return triangles.size() / 3; }    ///< rows of triangles
+    bool hasColors() const { return !colors.empty(); }                    ///< the file gave vertex colours
+    bool hasUvs() const { return !uvs.empty(); }                          ///< the file gave UVs
+    bool hasMaterials() const { return !material_ids.empty(); }           ///< the file named materials
+    /// A view for voxelize(); valid while this mesh lives and is not modified.
     MeshView view() const {
         MeshView v{positions.data(), vertexCount(), triangles.data(), triangleCount()};
         v.uvs = hasUvs() ? uvs.data() : nullptr;  // the tessellation method's displacement reads them
@@ -60,16 +62,21 @@ struct Mesh {
     }
 };
 
-// Reads a mesh file. A name ending in ".gz" is decompressed first (bounded: see
-// io/gzip_input.h; a stream cut short is an error) and parsed by the extension before ".gz"
-// (e.g. "x.ply.gz" as PLY); a file whose first line is "ply" is read as PLY whatever its
-// name. Points and lines in the file are ignored (a PLY face or OBJ "f" with fewer than 3
-// corners is an error); polygons are fan-triangulated. Several meshes in one file are
-// merged, with their node transforms applied. Throws InvalidInput for a missing, unreadable,
-// non-regular, damaged or unparsable file, or one without triangles.
-// `interrupter` (may be null) is asked at milestones (every MiB decompressed, every 64k
-// records or lines parsed, assimp's progress steps): when it says stop, hyvox::Cancelled is
-// thrown and nothing is returned (the partly read mesh is freed).
+/// Reads a mesh file. A name ending in ".gz" is decompressed first (bounded: see
+/// io/gzip_input.h; a stream cut short is an error) and parsed by the extension before ".gz"
+/// (e.g. "x.ply.gz" as PLY); a file whose first line is "ply" is read as PLY whatever its
+/// name. Points and lines in the file are ignored (a PLY face or OBJ "f" with fewer than 3
+/// corners is an error); polygons are fan-triangulated. Several meshes in one file are
+/// merged, with their node transforms applied. Formats other than PLY and OBJ load the assimp
+/// plugin (libhyvox_assimp.so). Reentrant: files may be read from several threads at once.
+/// @param path the file; positions are taken in the file's units as world units
+/// @param interrupter may be null; asked at milestones (every MiB decompressed, every 64k
+///        records or lines parsed, assimp's progress steps)
+/// @return the mesh, its triangles exactly as the file lists them
+/// @throws InvalidInput a missing, unreadable, non-regular, damaged or unparsable file, or one
+///         without triangles (naming the file and the place)
+/// @throws BackendError a format that needs the assimp plugin, which cannot be loaded
+/// @throws Cancelled the interrupter asked to stop (the partly read mesh is freed)
 Mesh readMesh(const std::string& path, Interrupter* interrupter = nullptr);
 
 }  // namespace hyvox

@@ -19,9 +19,9 @@ from typing import Callable, Iterable, List, Optional, Tuple, Union
 import numpy as np
 
 from . import _core
-from ._core import (  # ATTRIBUTE_METHODS: the methods that compute colour/normal voxels
-    ATTRIBUTE_METHODS,
+from ._core import (
     OPTIONS,
+    WRITE_OPTIONS,
     BackendError,
     Cancelled,
     CancelToken,
@@ -37,8 +37,9 @@ __version__: str = _core.__version__
 
 
 def option(name: str) -> OptionSpec:
-    """The schema entry of one option (KeyError for an unknown name)."""
-    for spec in OPTIONS:
+    """The schema entry of one option, of voxelize() (OPTIONS) or of VoxelGrid.write_vdb()
+    (WRITE_OPTIONS); KeyError for an unknown name."""
+    for spec in OPTIONS + WRITE_OPTIONS:
         if spec.name == name:
             return spec
     raise KeyError(name)
@@ -60,7 +61,6 @@ def ignored_options(method: str, names: Iterable[str]) -> List[str]:
 
 
 __all__ = [
-    "ATTRIBUTE_METHODS",
     "BackendError",
     "CancelToken",
     "Cancelled",
@@ -72,6 +72,7 @@ __all__ = [
     "Options",
     "ResourceError",
     "VoxelGrid",
+    "WRITE_OPTIONS",
     "__version__",
     "check_option",
     "gl_devices",
@@ -156,10 +157,11 @@ def voxelize(
         lookup, PN-triangles; absent normals are area-weighted vertex normals).
     displacement_pixels: a (height, width) float height image (row 0 = top), used by the
         tessellation method instead of displacement_image.
-    Attribute voxels (option attributes, e.g. attributes=("color", "normal"); the grid's
-    attributes() returns them aligned with coords(); mode="solid": the inside takes the
-    surface's values layer by layer inward, a whole-brick tile region one value for all its
-    voxels). Colour comes from the first source given:
+    Attribute voxels (option attributes, e.g. attributes=("color", "normal") or "color,normal";
+    the grid's attributes() returns them aligned with coords(); mode="solid": the inside takes
+    the surface's values layer by layer inward, a whole-brick tile region one value for all its
+    voxels). attributes=("sdf",) adds a narrow-band signed distance grid (the grid's sdf(),
+    the .vdb's level set "sdf"; docs/sdf.md). Colour comes from the first source given:
     texture: a PNG path, or (height, width, 3|4) pixels (uint8/uint16: sRGB-encoded, float:
         linear; row 0 = top), sampled bilinearly with repeat wrap at uvs (v = 0: bottom row);
     colors: (N, 3|4) per vertex or (3M, 3|4) per triangle corner; uint8 = sRGB-encoded bytes
@@ -186,8 +188,6 @@ def voxelize(
     native_options = Options()
     native_options.apply_environment()
     for name, value in options.items():
-        if name == "attributes" and isinstance(value, (list, tuple)):
-            value = ",".join(value)  # the schema's text form: a comma list
         native_options.set(name, value)
     method = native_options.get("method")
     given = [name for name, value in options.items() if value is not None]

@@ -23,6 +23,7 @@ const char* typeName(OptionType type) {
         case OptionType::Flag: return "bool";
         case OptionType::Text: return "str";
         case OptionType::Choice: return "choice";
+        case OptionType::Choices: return "choices";
         case OptionType::Vector3: return "vector3";
         case OptionType::Box: return "box";
     }
@@ -86,6 +87,17 @@ OptionValue fromPython(const OptionSpec& spec, const py::handle& value) {
         case OptionType::Choice:
             if (!py::isinstance<py::str>(value)) refuseType(spec, value);
             return value.cast<std::string>();
+        case OptionType::Choices: {
+            // The schema's text form ("color,sdf"), or a sequence of names joined into it.
+            if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+            if (!py::isinstance<py::sequence>(value)) refuseType(spec, value);
+            std::string text;
+            for (const py::handle item : py::reinterpret_borrow<py::sequence>(value)) {
+                if (!py::isinstance<py::str>(item)) refuseType(spec, value);
+                text += (text.empty() ? "" : ",") + item.cast<std::string>();
+            }
+            return text;
+        }
         case OptionType::Vector3: return vector3(spec, value, value);
         case OptionType::Box: {
             if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value)) refuseType(spec, value);
@@ -122,16 +134,44 @@ const OptionSpec& specNamed(const std::string& name) {
 
 void setFromPython(VoxelizeOptions& options, const std::string& name, const py::handle& value) {
     const OptionSpec& spec = specNamed(name);
+    if (!spec.isVoxelizeOption())
+        throw py::type_error(name + " is an option of VoxelGrid.write_vdb(), not of voxelize()");
     setOption(options, name, fromPython(spec, value));
 }
 
+// The schema's entries of one struct, as OptionSpec objects (references into the schema).
+py::tuple specsWhere(bool (OptionSpec::*belongs)() const) {
+    py::list specs;
+    for (const OptionSpec& spec : optionSchema())
+        if ((spec.*belongs)()) specs.append(py::cast(&spec, py::return_value_policy::reference));
+    return py::tuple(specs);
+}
+
 }  // namespace
+
+WriteOptions writeOptions(const VoxelizeOptions& voxelized, const py::dict& given) {
+    for (const auto& [name, value] : given) {
+        const OptionSpec& spec = specNamed(py::str(name));
+        if (!spec.isWriteOption())
+            throw py::type_error(std::string(spec.name) + " is an option of voxelize(), not of VoxelGrid.write_vdb()");
+    }
+    WriteOptions options;
+    for (const OptionSpec& spec : optionSchema()) {
+        if (!spec.isWriteOption()) continue;
+        const py::object value = given.contains(spec.name) ? py::object(given[spec.name]) : py::none();
+        if (!value.is_none())
+            setOption(options, spec.name, fromPython(spec, value));
+        else if (spec.isVoxelizeOption())
+            spec.put_write(options, spec.get(voxelized));
+    }
+    return options;
+}
 
 void bindOptions(py::module_& m) {
     py::class_<OptionSpec>(m, "OptionSpec", "One entry of the options schema (read-only).")
         .def_property_readonly("name", [](const OptionSpec& s) { return s.name; })
         .def_property_readonly("type", [](const OptionSpec& s) { return typeName(s.type); },
-                               "int, float, bool, str, choice, vector3 or box")
+                               "int, float, bool, str, choice, choices (a comma list), vector3 or box")
         .def_property_readonly("group", [](const OptionSpec& s) { return s.group; })
         .def_property_readonly("label", [](const OptionSpec& s) { return s.label; })
         .def_property_readonly("unit", [](const OptionSpec& s) { return s.unit; })
@@ -146,7 +186,7 @@ void bindOptions(py::module_& m) {
         .def_property_readonly(
             "cli_aliases", [](const OptionSpec& s) { return std::vector<std::string>(s.cli_aliases.begin(), s.cli_aliases.end()); })
         .def_property_readonly("env", [](const OptionSpec& s) { return s.env ? py::object(py::str(s.env)) : py::none(); })
-        .def_property_readonly("default", [](const OptionSpec& s) { return toPython(s.get(VoxelizeOptions{})); },
+        .def_property_readonly("default", [](const OptionSpec& s) { return toPython(s.defaultValue()); },
                                "The native default (None for nullable options: derived at run time).")
         .def_property_readonly("requirement", &describeOption, "What a valid value is, as error messages say it.")
         .def(
@@ -156,17 +196,12 @@ void bindOptions(py::module_& m) {
             "'does not apply' warnings); ValueError for an unknown method.")
         .def("__repr__", [](const OptionSpec& s) { return std::string("<hyvox.OptionSpec ") + s.name + ">"; });
 
-    py::tuple specs(optionSchema().size());
-    for (std::size_t i = 0; i < optionSchema().size(); ++i)
-        specs[i] = py::cast(&optionSchema()[i], py::return_value_policy::reference);
-    m.attr("OPTIONS") = specs;
-    py::list attribute_methods;
-    for (const char* name : methodNames())
-        if (computesAttributes(parseMethod(name))) attribute_methods.append(name);
-    m.attr("ATTRIBUTE_METHODS") = py::tuple(attribute_methods);
+    // voxelize()'s keywords and write_vdb()'s: threads and memory_budget_mib are both.
+    m.attr("OPTIONS") = specsWhere(&OptionSpec::isVoxelizeOption);
+    m.attr("WRITE_OPTIONS") = specsWhere(&OptionSpec::isWriteOption);
 
     py::class_<VoxelizeOptions>(m, "Options", "The options of one voxelization, by schema name.")
-        .def(py::init([](py::kwargs kwargs) {
+        .def(py::init([](const py::kwargs& kwargs) {
                  VoxelizeOptions options;
                  for (const auto& [name, value] : kwargs) setFromPython(options, py::str(name), value);
                  return options;
@@ -183,7 +218,8 @@ void bindOptions(py::module_& m) {
              "Set the options whose environment variable (OptionSpec.env) is set.")
         .def("to_dict", [](const VoxelizeOptions& o) {
             py::dict out;
-            for (const OptionSpec& spec : optionSchema()) out[spec.name] = toPython(spec.get(o));
+            for (const OptionSpec& spec : optionSchema())
+                if (spec.isVoxelizeOption()) out[spec.name] = toPython(spec.get(o));
             return out;
         });
     m.def(

@@ -11,6 +11,7 @@
 #include "cancel_token.h"
 #include "python_interrupter.h"
 #include "hyvox/errors.h"
+#include "hyvox/options.h"
 #include "hyvox/result.h"
 #include "hyvox/stats_json.h"
 #include "hyvox/vdb.h"
@@ -115,6 +116,32 @@ py::dict attributeArrays(const Grid& g) {
     return out;
 }
 
+// The sdf's band voxels (option attributes with sdf): (ijk int32 (K, 3), signed distance
+// float32 (K,)), leaf by leaf; None without an sdf.
+py::object levelSetArrays(const Grid& g) {
+    const LevelSetGrid& sdf = g->sdf;
+    if (sdf.empty()) return py::none();
+    std::vector<std::int32_t> ijk(3 * sdf.values.size());
+    {
+        py::gil_scoped_release release;
+        const BrickLayout bricks = g->grid.bricks();
+        for (const LevelSetGrid::Leaf& leaf : sdf.leaves) {
+            const std::array<std::int32_t, 3> b = bricks.at(leaf.brick);
+            std::size_t at = leaf.first;
+            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w)
+                for (std::uint64_t bits = leaf.active[w]; bits; bits &= bits - 1, ++at) {
+                    const int v = w * 64 + __builtin_ctzll(bits);
+                    ijk[3 * at] = 8 * b[0] + (v >> 6);
+                    ijk[3 * at + 1] = 8 * b[1] + ((v >> 3) & 7);
+                    ijk[3 * at + 2] = 8 * b[2] + (v & 7);
+                }
+        }
+    }
+    const auto k = py::ssize_t(sdf.values.size());
+    std::vector<float> values = sdf.values;
+    return py::make_tuple(arrayFromVector(std::move(ijk), {k, 3}), arrayFromVector(std::move(values), {k}));
+}
+
 }  // namespace
 
 void bindVoxelGrid(py::module_& m) {
@@ -135,20 +162,26 @@ The voxels of one voxelization. Voxel (i, j, k) covers the closed box
              "{'color': float32 (K, 3) linear RGB, 'alpha': float32 (K,), 'normal': float32 (K, 3) unit or zero}; "
              "an empty dict when none were asked for. Solid mode: the voxels of a whole-brick tile region "
              "(listed one by one in coords()) each carry the region's one value.")
+        .def("sdf", &levelSetArrays,
+             "The signed distance grid the run computed (option attributes with sdf): its narrow band's voxels "
+             "as (ijk int32 (K, 3), distance float32 (K,)), world units, negative inside; None without one. "
+             "The band's half-width (the grid's background) is stats['sdf']['background'].")
         .def("to_dense", &toDense,
              "The occupancy as a dense bool array of shape dims, indexed [i, j, k]; ResourceError when that "
              "box does not fit the run's memory budget.")
         .def(
             "write_vdb",
-            [](const Grid& g, const std::filesystem::path& path, int threads, std::shared_ptr<CancelToken> cancel,
-               py::object progress) {
+            [](const Grid& g, const std::filesystem::path& path, const py::object& threads,
+               std::shared_ptr<CancelToken> cancel, py::object progress, const py::kwargs& options) {
                 if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
                     throw py::type_error("progress must be callable or None");
+                if (!threads.is_none()) options["threads"] = threads;  // a dict of this call's own
+                const WriteOptions write = writeOptions(g->stats.options, options);
                 PythonInterrupter interrupter(std::move(cancel), std::move(progress));
                 VdbWriteReport report;
                 try {
                     py::gil_scoped_release release;
-                    report = writeVdb(*g, path.string(), threads, &interrupter);
+                    report = writeVdb(*g, path.string(), write, &interrupter);
                 } catch (const Cancelled&) {
                     interrupter.rethrowCallbackError();
                     throw;
@@ -160,11 +193,14 @@ The voxels of one voxelization. Voxel (i, j, k) covers the closed box
                 out["write_ms"] = report.write_ms;
                 return out;
             },
-            py::arg("path"), py::arg("threads") = 0, py::kw_only(), py::arg("cancel") = py::none(),
+            py::arg("path"), py::arg("threads") = py::none(), py::kw_only(), py::arg("cancel") = py::none(),
             py::arg("progress") = py::none(),
             "Write an OpenVDB file with a float grid 'density' (1 on occupied voxels; index space = "
-            "voxel centres), plus 'count' for multi-valued results. Atomic: on failure nothing is "
-            "written and an existing file is kept. threads: cores used to build the grids, 0 = all. "
+            "voxel centres), plus 'count' for multi-valued results, the attribute grids ('color', 'alpha', "
+            "'normal') and the level set 'sdf' the run computed. Atomic: on failure nothing is "
+            "written and an existing file is kept. Options: those of hyvox.WRITE_OPTIONS by name "
+            "(threads: cores used to build the grids, 0 = all; memory_budget_mib; durable_write); "
+            "threads and memory_budget_mib unset or None take the values the voxelization used. "
             "cancel (a CancelToken) stops it until the file is being written (hyvox.Cancelled); "
             "progress(percent) is called as in voxelize. Returns {grid_bytes, build_ms, write_ms}.")
         .def_property_readonly("origin", [](const Grid& g) { return py::make_tuple(g->grid.origin[0], g->grid.origin[1], g->grid.origin[2]); },

@@ -136,13 +136,13 @@ ColorRows colorRows(const std::optional<py::array>& array, std::size_t vertex_co
 }
 
 std::shared_ptr<VoxelizeResult> voxelizeArrays(const py::array& vertices, const py::array& triangles,
-                                               VoxelizeOptions options, std::optional<py::array> uvs,
-                                               std::optional<py::array> normals,
-                                               std::optional<py::array> displacement_pixels,
-                                               std::optional<py::array> colors, bool colors_srgb,
-                                               std::optional<py::array> texture, std::optional<std::string> texture_path,
+                                               VoxelizeOptions options, const std::optional<py::array>& uvs,
+                                               const std::optional<py::array>& normals,
+                                               const std::optional<py::array>& displacement_pixels,
+                                               const std::optional<py::array>& colors, bool colors_srgb,
+                                               const std::optional<py::array>& texture, std::optional<std::string> texture_path,
                                                std::optional<py::array> material_ids, std::optional<py::array> palette,
-                                               std::optional<py::list> textures, std::optional<py::array> face_normals,
+                                               const std::optional<py::list>& textures, std::optional<py::array> face_normals,
                                                std::shared_ptr<CancelToken> cancel, py::object progress) {
     options.tessellation.displacement_pixels = heightImage(displacement_pixels);
     if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw py::type_error("progress must be callable or None");

@@ -15,6 +15,7 @@ void bindErrors(py::module_& m) {
     py::register_exception<BackendError>(m, "BackendError", PyExc_RuntimeError);
     // InvalidInput derives from std::invalid_argument, which pybind11 already maps to
     // ValueError; said explicitly so a reader need not know that.
+    // NOLINTNEXTLINE(performance-unnecessary-value-param): pybind11's translator type takes it by value
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);

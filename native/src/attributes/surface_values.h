@@ -8,8 +8,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/attribute_evaluator.h"
 #include "hyvox/attribute_grid.h"
 #include "hyvox/mesh.h"
+#include "hyvox/options.h"
 #include "hyvox/texture.h"
 
 namespace hyvox::attributes {
@@ -25,20 +27,22 @@ struct CornerValues {
 
 };
 
-class SurfaceValues {
+// Final: the exact methods' calls through a SurfaceValues are direct; the tessellation's go
+// through AttributeEvaluator.
+class SurfaceValues final : public AttributeEvaluator {
 public:
     // Throws InvalidInput when colour is asked for and the mesh has no colour source, or a
     // source is malformed (channels, material ids past the palette, non-finite values).
     SurfaceValues(const MeshView& mesh, const AttributeSet& wanted);
 
     // The grid's layout (values empty).
-    const AttributeGrid& layout() const { return layout_; }
+    const AttributeGrid& layout() const override { return layout_; }
     int channels() const { return layout_.channels(); }
 
     // The attributes of `triangle` at barycentrics `bary`; `unit_normal` is its geometric
     // normal (used without per-vertex or per-face normals). Writes channels() values.
     void evaluate(std::uint32_t triangle, const std::array<double, 3>& bary, const std::array<double, 3>& unit_normal,
-                  double* out) const;
+                  double* out) const override;
 
     // evaluate() in two steps: prepare() once per triangle, interpolate() at each point.
     void prepare(std::uint32_t triangle, const std::array<double, 3>& unit_normal, CornerValues& out) const;

@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-namespace hyvox::attributes {
+namespace hyvox {
 
 // The values of one leaf's set voxels (ascending bit order), channels() each: in `values`, or
 // `count` floats from `offset` of a `block` that a tile's leaves share (the cpu method writes
@@ -23,4 +23,4 @@ struct AttributeLeaf {
     const float* data() const { return block ? block->data() + offset : values.data(); }
 };
 
-}  // namespace hyvox::attributes
+}  // namespace hyvox

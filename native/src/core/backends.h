@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/attribute_evaluator.h"
 #include "core/attribute_leaf.h"
 #include "core/voxel_piece.h"
 #include "hyvox/bit_grid.h"
@@ -23,9 +24,6 @@
 #include "hyvox/result.h"
 
 namespace hyvox {
-namespace attributes {
-class SurfaceValues;  // attributes/surface_values.h
-}
 
 // A brick-aligned box of the grid: voxels offset .. offset + dims - 1.
 struct Tile {
@@ -45,7 +43,7 @@ struct BackendJob {
     Interrupter* interrupter;  // may be null; percent is the tile's own 0..100
     // The attributes asked for, for a method that computes them itself (tessellation);
     // null = none (the dispatcher computes the exact methods' afterwards).
-    const attributes::SurfaceValues* attributes = nullptr;
+    const AttributeEvaluator* attributes = nullptr;
     // The GL methods clip the triangle/voxel pairs they find into out.pieces.
     bool clip_pieces = false;
 };
@@ -53,9 +51,9 @@ struct BackendJob {
 struct TileOutput {
     BitGrid bits;                    // dims = tile.dims
     std::vector<VoxelCount> counts;  // multi-valued methods, grid coordinates
-    std::vector<attributes::AttributeLeaf> attributes;  // with job.attributes: every set voxel's values
+    std::vector<AttributeLeaf> attributes;  // with job.attributes: every set voxel's values
     std::uint64_t attribute_voxels_unreached = 0;        // set voxels given no value (0)
-    std::vector<attributes::VoxelPiece> pieces;          // with job.clip_pieces: every pair's piece
+    std::vector<VoxelPiece> pieces;          // with job.clip_pieces: every pair's piece
 };
 
 void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats);           // src/cpu/

@@ -18,7 +18,11 @@ namespace hyvox {
 struct GlMethods {
     void (*run_hybrid)(const BackendJob& job, TileOutput& out, Stats& stats);        // triangle|fragment|hybrid
     void (*run_tessellation)(const BackendJob& job, TileOutput& out, Stats& stats);  // tessellation
-    std::uint64_t (*max_storage_block_bytes)(const std::string& device);  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+    // The tessellation's largest tile, in bytes of its bits, on `device`: one shader storage
+    // block (GL_MAX_SHADER_STORAGE_BLOCK_SIZE: it holds a tile's bits in one); with `channels`
+    // attribute channels, small enough that every brick's count block and sums fit a storage
+    // block and `budget` bytes.
+    std::uint64_t (*tessellation_tile_bytes)(const std::string& device, std::uint64_t budget, int channels);
     std::vector<GlDevice> (*list_devices)();
     GlObjectCounts (*live_objects)();
 };

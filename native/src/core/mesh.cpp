@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <optional>
@@ -60,20 +61,38 @@ void throwFirstProblem(const std::vector<std::string>& problems) {
         if (!problem.empty()) throw InvalidInput(problem);
 }
 
+// A coordinate is usable when its magnitude is below this: NaN, Inf and the largest floats
+// are not. Blender stores an infinite coordinate as the largest float (3.4028235e38), and a
+// grid over such a vertex is nonsense (a voxel of 1e36 units), so those count as Inf.
+constexpr float kNotACoordinate = 3.4e38f;
+
+bool usableCoordinate(float x) { return std::fabs(x) < kNotACoordinate; }  // false for NaN
+
+std::string coordinateText(float x) {
+    if (std::isnan(x)) return "NaN";  // as the messages and the docs spell it ("%g" gives "nan")
+    if (std::isinf(x)) return x > 0 ? "Inf" : "-Inf";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", double(x));
+    return text;
+}
+
 void checkVerticesFinite(const MeshView& mesh) {
     std::vector<std::string> problems(chunkCount(mesh.vertex_count));
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, problems.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
             const std::size_t end = std::min(mesh.vertex_count, (chunk + 1) * kChunk);
-            // All finite: a sum of finite products stays finite except on overflow, so the
-            // per-value test runs only on chunks where the cheap test fails.
-            bool all_finite = true;
-            for (std::size_t i = 3 * chunk * kChunk; i < 3 * end; ++i) all_finite &= std::isfinite(mesh.positions[i]);
-            if (all_finite) continue;
-            for (std::size_t v = chunk * kChunk; v < end; ++v)
+            // The cheap test over the whole chunk first; the per-vertex search runs only on
+            // chunks where it fails.
+            bool all_usable = true;
+            for (std::size_t i = 3 * chunk * kChunk; i < 3 * end; ++i) all_usable &= usableCoordinate(mesh.positions[i]);
+            if (all_usable) continue;
+            for (std::size_t v = chunk * kChunk; v < end && problems[chunk].empty(); ++v)
                 for (int a = 0; a < 3; ++a)
-                    if (!std::isfinite(mesh.positions[3 * v + a])) {
-                        problems[chunk] = "vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or Inf)";
+                    if (!usableCoordinate(mesh.positions[3 * v + a])) {
+                        const float x = mesh.positions[3 * v + a];
+                        problems[chunk] = "vertex " + std::to_string(v) + " has a non-finite coordinate (" +
+                                          coordinateText(x) +
+                                          (std::isfinite(x) ? ", the largest float: Inf as Blender stores it)" : ")");
                         break;
                     }
         }

@@ -15,9 +15,15 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Accessors: one line per field, captureless so they fit the spec's function pointers.
+// HYVOX_FIELD: a field of VoxelizeOptions; HYVOX_WRITE_FIELD: one of WriteOptions (after
+// HYVOX_FIELD, or after NO_VOXELIZE_FIELD for an option of the write alone).
 #define HYVOX_FIELD(type_get, expr)                                                      \
     [](const VoxelizeOptions& o) -> OptionValue { return type_get(o.expr); },            \
         [](VoxelizeOptions& o, const OptionValue& v) { o.expr = fieldValue(v, o.expr); }
+#define HYVOX_WRITE_FIELD(type_get, expr)                                                \
+    [](const WriteOptions& o) -> OptionValue { return type_get(o.expr); },               \
+        [](WriteOptions& o, const OptionValue& v) { o.expr = fieldValue(v, o.expr); }
+#define NO_VOXELIZE_FIELD nullptr, nullptr
 
 OptionValue asInteger(std::int64_t v) { return v; }
 OptionValue asNumber(double v) { return v; }
@@ -33,6 +39,7 @@ OptionValue asOptionalBox(const std::optional<Bounds>& v) { return v ? OptionVal
 OptionValue asMode(Mode v) { return std::string(toString(v)); }
 OptionValue asMethod(Method v) { return std::string(toString(v)); }
 OptionValue asInsideRule(InsideRule v) { return std::string(toString(v)); }
+OptionValue asAttributes(const AttributeSet& v) { return toString(v); }
 
 // The stored value converted to the field's type (checked before: the variant holds the
 // spec's type, or monostate for an unset nullable field).
@@ -44,6 +51,7 @@ std::string fieldValue(const OptionValue& v, const std::string&) { return std::g
 Mode fieldValue(const OptionValue& v, Mode) { return parseMode(std::get<std::string>(v)); }
 Method fieldValue(const OptionValue& v, Method) { return parseMethod(std::get<std::string>(v)); }
 InsideRule fieldValue(const OptionValue& v, InsideRule) { return parseInsideRule(std::get<std::string>(v)); }
+AttributeSet fieldValue(const OptionValue& v, const AttributeSet&) { return parseAttributeSet(std::get<std::string>(v)); }
 template <typename T>
 std::optional<T> fieldValue(const OptionValue& v, const std::optional<T>&) {
     if (std::holds_alternative<std::monostate>(v)) return std::nullopt;
@@ -78,32 +86,39 @@ std::vector<OptionSpec> buildSchema() {
          "cpu and reference run anywhere; triangle, fragment, hybrid and tessellation need GL 4.5", false, 0, 0, false,
          methodNames(), {}, nullptr,
          HYVOX_FIELD(asMethod, method)});
-    add({"threads", T::Integer, "run", "Threads", "threads", "CPU threads; 0 = all cores", false, 0, 4096, false, {}, {},
-         nullptr, HYVOX_FIELD(asInteger, threads)});
+    add({"threads", T::Integer, "run", "Threads", "threads",
+         "CPU threads of the voxelization and of the write; 0 = all cores", false, 0, 4096, false, {}, {}, nullptr,
+         HYVOX_FIELD(asInteger, threads), HYVOX_WRITE_FIELD(asInteger, threads)});
     add({"memory_budget_mib", T::Integer, "run", "Memory Budget", "MiB",
-         "memory the voxels may take (tile buffers and the leaves of the result)", false, 1, double(1 << 30), false,
-         {}, {}, nullptr, HYVOX_FIELD(asInteger, memory_budget_mib)});
+         "memory the voxels may take (tile buffers and the leaves of the result), and the OpenVDB grids of the "
+         "write beside them", false, 1, double(1 << 30), false, {}, {}, nullptr,
+         HYVOX_FIELD(asInteger, memory_budget_mib), HYVOX_WRITE_FIELD(asInteger, memory_budget_mib)});
     add({"tile_size", T::Integer, "run", "Tile Size", "voxels",
          "side of the boxes voxelized one after the other (rounded up to a multiple of 8); 0 = from the "
          "memory budget", false, 0, kMaxResolution, false, {}, {}, nullptr, HYVOX_FIELD(asInteger, tile_size)});
     // --- attribute voxels ---
-    add({"attributes", T::Text, "run", "Attributes", "",
-         "attribute voxels to compute: a comma list of color (linear RGB, alpha when the source has it) and "
-         "normal; '' = none. Solid mode: the inside takes the surface's values, layer by layer inward", false, 0, 0,
-         false, {}, {}, nullptr, HYVOX_FIELD(asText, attributes)});
-    // --- output files ---
+    add({"attributes", T::Choices, "run", "Attributes", "",
+         "what to compute beside the voxels, a comma list: color (linear RGB, alpha when the source has "
+         "it) and normal per voxel (solid mode: the inside takes the surface's values, layer by layer "
+         "inward); sdf, a narrow-band signed distance grid (negative inside by the inside rule, in "
+         "every mode); '' = none", false, 0, 0, false, attributeNames(), {}, nullptr,
+         HYVOX_FIELD(asAttributes, attributes)});
+    add({"sdf_band", T::Integer, "run", "SDF Band", "voxels",
+         "sdf: half-width of the narrow band (the grid is padded by at least this much)", false, 1, 64, false,
+         {}, {}, nullptr, HYVOX_FIELD(asInteger, sdf.band)});
+    // --- output files (WriteOptions alone) ---
     add({"durable_write", T::Flag, "output", "Durable Write", "",
          "sync each output file (.vdb, stats JSON) and its folder to disk before the write returns, so it "
          "survives a power loss; off: written to a temporary and renamed (never half-written), not synced",
-         false, 0, 0, false, {}, {}, nullptr, HYVOX_FIELD(asFlag, durable_write)});
+         false, 0, 0, false, {}, {}, nullptr, NO_VOXELIZE_FIELD, HYVOX_WRITE_FIELD(asFlag, durable)});
     // --- solid mode ---
     add({"inside", T::Choice, "solid", "Inside Rule", "",
-         "solid: parity = odd ray crossings (closed meshes); winding = winding number >= 0.5 (holes, "
+         "solid and sdf: parity = odd ray crossings (closed meshes); winding = winding number >= 0.5 (holes, "
          "flipped faces); auto = the winding number, by ray crossings when the mesh is closed and "
          "consistently oriented, else by fast winding numbers",
          false, 0, 0, false, insideRuleNames(), {}, nullptr, HYVOX_FIELD(asInsideRule, solid.inside)});
     add({"winding_beta", T::Number, "solid", "Winding Accuracy", "",
-         "solid, winding: accuracy of the fast winding numbers (a cluster of triangles counts as one "
+         "solid and sdf, winding: accuracy of the fast winding numbers (a cluster of triangles counts as one "
          "expansion where the point is farther than beta times the cluster's radius); larger is more exact "
          "and slower",
          false, 1, 100, false, {}, {}, nullptr, HYVOX_FIELD(asNumber, solid.winding_beta)});
@@ -132,7 +147,7 @@ std::vector<OptionSpec> buildSchema() {
          "hybrid: projected triangle area above which a triangle is rasterized; negative = automatic", false, -1, kInf,
          false, {}, {}, nullptr, HYVOX_FIELD(asNumber, hybrid.cutoff)});
     // --- tessellation ---
-    add({"tess_gamma", T::Number, "tessellation", "Tessellation γ", "",
+    add({"tess_gamma", T::Number, "tessellation", "Tessellation Density", "",
          "tessellation: safety factor γ of Eq. 1 (higher misses fewer voxels, costs more points; below 2 a "
          "closed mesh may leak)",
          false, 0, 1024, true, {}, {"--gamma"}, nullptr, HYVOX_FIELD(asNumber, tessellation.gamma)});
@@ -154,6 +169,8 @@ std::vector<OptionSpec> buildSchema() {
 }
 
 #undef HYVOX_FIELD
+#undef HYVOX_WRITE_FIELD
+#undef NO_VOXELIZE_FIELD
 
 const char* typeName(OptionType type) {
     switch (type) {
@@ -162,6 +179,7 @@ const char* typeName(OptionType type) {
         case OptionType::Flag: return "true or false";
         case OptionType::Text: return "text";
         case OptionType::Choice: return "one of the choices";
+        case OptionType::Choices: return "a comma list of the choices";
         case OptionType::Vector3: return "three finite numbers x,y,z";
         case OptionType::Box: return "two corners x0,y0,z0,x1,y1,z1 with min <= max";
     }
@@ -203,8 +221,8 @@ std::string describeOption(const OptionSpec& spec) {
     std::string what = typeName(spec.type);
     const std::string range = rangeText(spec);
     if ((spec.type == OptionType::Integer || spec.type == OptionType::Number) && !range.empty()) what += " " + range;
-    if (spec.type == OptionType::Choice) {
-        what = "one of";
+    if (spec.type == OptionType::Choice || spec.type == OptionType::Choices) {
+        what = spec.type == OptionType::Choice ? "one of" : "a comma list of";
         for (std::size_t c = 0; c < spec.choices.size(); ++c) what += (c ? ", " : " ") + std::string(spec.choices[c]);
     }
     return what;
@@ -212,7 +230,7 @@ std::string describeOption(const OptionSpec& spec) {
 
 void applyEnvironment(VoxelizeOptions& options, const char* (*lookup)(const char* variable)) {
     for (const OptionSpec& spec : optionSchema()) {
-        if (!spec.env) continue;
+        if (!spec.env || !spec.isVoxelizeOption()) continue;
         const char* text = lookup(spec.env);
         if (!text) continue;
         try {
@@ -238,6 +256,8 @@ std::vector<double> parseNumberList(const std::string& text) {
     }
     return out;
 }
+
+OptionValue OptionSpec::defaultValue() const { return get ? get(VoxelizeOptions{}) : get_write(WriteOptions{}); }
 
 std::string OptionSpec::cliFlag() const {
     std::string flag = std::string("--") + name;
@@ -312,6 +332,21 @@ void checkOption(const OptionSpec& spec, const OptionValue& value) {
             }
             throw InvalidInput("unknown " + std::string(spec.name) + " " + got + " (choose one of: " + choices + ")");
         }
+        case OptionType::Choices: {
+            const auto* text = std::get_if<std::string>(&value);
+            if (!text) refuse(spec, got);
+            for (std::size_t begin = 0; begin < text->size();) {
+                const std::size_t comma = std::min(text->find(',', begin), text->size());
+                const std::string item = text->substr(begin, comma - begin);
+                bool known = false;
+                for (const char* choice : spec.choices) known = known || item == choice;
+                if (!known)
+                    throw InvalidInput("unknown " + std::string(spec.name) + " '" + item + "' in " + got + " (" +
+                                       describeOption(spec) + ")");
+                begin = comma + 1;
+            }
+            return;
+        }
         case OptionType::Vector3: {
             const auto* v = std::get_if<std::array<double, 3>>(&value);
             if (!v || !allFinite(*v)) refuse(spec, got);
@@ -327,20 +362,40 @@ void checkOption(const OptionSpec& spec, const OptionValue& value) {
     }
 }
 
-void setOption(VoxelizeOptions& options, const std::string& name, const OptionValue& value) {
-    const OptionSpec& spec = findOption(name);
+namespace {
+
+// setOption for either struct: `put` is the spec's accessor of that struct.
+template <typename Options>
+void storeOption(Options& options, const OptionSpec& spec, void (*put)(Options&, const OptionValue&),
+                 const OptionValue& value) {
     checkOption(spec, value);
     if (std::holds_alternative<std::monostate>(value) && !spec.nullable) {
-        spec.put(options, spec.get(VoxelizeOptions{}));  // unset = the default
+        put(options, spec.defaultValue());  // unset = the default
         return;
     }
     // Whole numbers are fine where reals are expected.
     if (spec.type == OptionType::Number)
         if (const auto* i = std::get_if<std::int64_t>(&value)) {
-            spec.put(options, double(*i));
+            put(options, double(*i));
             return;
         }
-    spec.put(options, value);
+    put(options, value);
+}
+
+}  // namespace
+
+void setOption(VoxelizeOptions& options, const std::string& name, const OptionValue& value) {
+    const OptionSpec& spec = findOption(name);
+    if (!spec.isVoxelizeOption())
+        throw InvalidInput(name + " is an option of writing the result (WriteOptions), not of the voxelization");
+    storeOption(options, spec, spec.put, value);
+}
+
+void setOption(WriteOptions& options, const std::string& name, const OptionValue& value) {
+    const OptionSpec& spec = findOption(name);
+    if (!spec.isWriteOption())
+        throw InvalidInput(name + " is an option of the voxelization, not of writing the result (WriteOptions)");
+    storeOption(options, spec, spec.put_write, value);
 }
 
 OptionValue parseOptionText(const OptionSpec& spec, const std::string& text) {
@@ -365,7 +420,8 @@ OptionValue parseOptionText(const OptionSpec& spec, const std::string& text) {
             if (text == "" || text == "0" || text == "false" || text == "no" || text == "off") return false;
             refuse(spec, got);
         case OptionType::Text:
-        case OptionType::Choice: return text;
+        case OptionType::Choice:
+        case OptionType::Choices: return text;
         case OptionType::Vector3: {
             const std::vector<double> v = parseNumberList(text);
             if (v.size() != 3) refuse(spec, got);
@@ -389,7 +445,13 @@ bool optionAppliesTo(const OptionSpec& spec, Method method) {
 }
 
 void checkOptions(const VoxelizeOptions& options) {
-    for (const OptionSpec& spec : optionSchema()) checkOption(spec, spec.get(options));
+    for (const OptionSpec& spec : optionSchema())
+        if (spec.isVoxelizeOption()) checkOption(spec, spec.get(options));
+}
+
+void checkOptions(const WriteOptions& options) {
+    for (const OptionSpec& spec : optionSchema())
+        if (spec.isWriteOption()) checkOption(spec, spec.get_write(options));
 }
 
 }  // namespace hyvox

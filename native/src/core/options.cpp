@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hyvox/options.h"
 
+#include <algorithm>
 #include <array>
 #include <utility>
 #include <vector>
@@ -60,21 +61,49 @@ std::vector<const char*> methodNames() { return namesOf(kMethods); }
 const char* toString(Mode mode) { return nameOf(kModes, mode); }
 const char* toString(Method method) { return nameOf(kMethods, method); }
 
-bool computesAttributes(Method method) {
-    switch (method) {
-        case Method::Cpu:
-        case Method::Reference:
-        case Method::Triangle:
-        case Method::Fragment:
-        case Method::Hybrid:
-        case Method::Tessellation: return true;
-    }
-    return false;
-}
 Mode parseMode(const std::string& text) { return parseName(kModes, text, "mode"); }
 Method parseMethod(const std::string& text) { return parseName(kMethods, text, "method"); }
 std::vector<const char*> insideRuleNames() { return namesOf(kInsideRules); }
 const char* toString(InsideRule rule) { return nameOf(kInsideRules, rule); }
 InsideRule parseInsideRule(const std::string& text) { return parseName(kInsideRules, text, "inside rule"); }
+
+namespace {
+constexpr std::array<std::pair<bool AttributeSet::*, const char*>, 3> kAttributes{{
+    {&AttributeSet::color, "color"},
+    {&AttributeSet::normal, "normal"},
+    {&AttributeSet::sdf, "sdf"},
+}};
+}  // namespace
+
+std::vector<const char*> attributeNames() { return namesOf(kAttributes); }
+
+std::string toString(const AttributeSet& set) {
+    std::string text;
+    for (const auto& [member, name] : kAttributes)
+        if (set.*member) text += (text.empty() ? "" : ",") + std::string(name);
+    return text;
+}
+
+AttributeSet parseAttributeSet(const std::string& text) {
+    AttributeSet set;
+    std::size_t begin = 0;
+    while (begin < text.size()) {
+        const std::size_t comma = std::min(text.find(',', begin), text.size());
+        const std::string name = text.substr(begin, comma - begin);
+        bool known = false;
+        std::string names;
+        for (const auto& [member, known_name] : kAttributes) {
+            if (name == known_name) {
+                set.*member = true;
+                known = true;
+            }
+            names += (names.empty() ? "" : ", ") + std::string(known_name);
+        }
+        if (!known)  // the schema's message (option_schema.cpp checks the option first)
+            throw InvalidInput("unknown attributes '" + name + "' in '" + text + "' (a comma list of " + names + ")");
+        begin = comma + 1;
+    }
+    return set;
+}
 
 }  // namespace hyvox

@@ -5,11 +5,13 @@
 #include <sys/stat.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <vector>
 
 #include "hyvox/errors.h"
+#include "hyvox_build_id.h"
 
 namespace hyvox {
 namespace {
@@ -41,6 +43,18 @@ std::vector<std::string> searchFolders() {
     return folders;
 }
 
+// Refuses (and unloads) a plugin that is not of this build: nothing of it has been called yet
+// but its static initializers, which see none of the host's types.
+void checkBuildId(void* handle, const std::string& path, const std::string& purpose) {
+    const auto* id = static_cast<const char*>(::dlsym(handle, "hyvox_plugin_build_id"));
+    if (id && std::strcmp(id, HYVOX_BUILD_ID) == 0) return;
+    const std::string what = id ? std::string("is from another hyvox build (") + id + "; this hyvox is " + HYVOX_BUILD_ID + ")"
+                                : std::string("has no hyvox build id (not a hyvox plugin)");
+    ::dlclose(handle);
+    throw BackendError(purpose + " needs " + path + ", which " + what +
+                       ": install hyvox and its plugins from one build");
+}
+
 bool isFile(const std::string& path) {
     struct stat st {};
     return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
@@ -60,9 +74,13 @@ void* load(const std::string& name, const std::string& purpose) {
         }
         // RTLD_LOCAL: its symbols (its own copy of hyvox's internals, all hidden but the
         // entry point) never stand in for anyone else's. RTLD_NOW: a missing symbol fails here.
-        if (void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) return handle;
-        const char* why = ::dlerror();
-        throw BackendError(purpose + " needs " + path + ", which cannot be loaded: " + (why ? why : "unknown error"));
+        void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!handle) {
+            const char* why = ::dlerror();
+            throw BackendError(purpose + " needs " + path + ", which cannot be loaded: " + (why ? why : "unknown error"));
+        }
+        checkBuildId(handle, path, purpose);
+        return handle;
     }
     throw BackendError(purpose + " needs " + file + ", which is not installed with hyvox (looked in " +
                        (looked.empty() ? std::string("no folder") : looked) + ")");
@@ -88,6 +106,8 @@ void* pluginSymbol(const std::string& name, const char* symbol, const std::strin
                            ".so, which does not have it (a plugin from another hyvox build?)");
     return address;
 }
+
+const char* buildId() { return HYVOX_BUILD_ID; }
 
 bool pluginLoaded(const std::string& name) {
     std::lock_guard<std::mutex> lock(mutex);

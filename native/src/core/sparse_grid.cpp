@@ -166,6 +166,12 @@ bool SparseGrid::test(int i, int j, int k) const {
     return (leaf && (leaf->words[i & 7] & BitGrid::bitMask(j, k)) != 0) || inTile(brick);
 }
 
+void SparseGrid::brickWords(std::uint64_t brick, std::uint64_t out[BitGrid::kWordsPerBrick]) const {
+    const Leaf* leaf = find(brick);
+    const bool tile = !leaf && inTile(brick);
+    for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) out[w] = leaf ? leaf->words[w] : tile ? ~std::uint64_t(0) : 0;
+}
+
 void SparseGrid::set(int i, int j, int k) {
     requireFinished();
     const std::uint64_t brick = bricks_.indexOfVoxel(i, j, k);

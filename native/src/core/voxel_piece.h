@@ -6,7 +6,7 @@
 #include <array>
 #include <cstdint>
 
-namespace hyvox::attributes {
+namespace hyvox {
 
 struct VoxelPiece {
     std::array<std::int32_t, 3> voxel;  // in the tile (voxel tile.offset of the grid is 0, 0, 0)
@@ -18,4 +18,4 @@ struct VoxelPiece {
     bool margin;
 };
 
-}  // namespace hyvox::attributes
+}  // namespace hyvox

@@ -6,6 +6,7 @@
 #include "gl/device_limits.h"
 #include "gl/egl_device.h"
 #include "gl/live_objects.h"
+#include "tessellation/point_values.h"
 
 namespace hyvox {
 namespace {
@@ -28,7 +29,12 @@ GlObjectCounts liveObjects() {
     return counts;
 }
 
-const GlMethods table{runHybridBackend, runTessellationBackend, gl::maxStorageBlockBytes, listDevices, liveObjects};
+std::uint64_t tessellationTileBytes(const std::string& device, std::uint64_t budget, int channels) {
+    const std::uint64_t block = gl::maxStorageBlockBytes(device);
+    return channels > 0 ? tessellation::tileBitBytesForSums(block, budget, channels) : block;
+}
+
+const GlMethods table{runHybridBackend, runTessellationBackend, tessellationTileBytes, listDevices, liveObjects};
 
 }  // namespace
 }  // namespace hyvox

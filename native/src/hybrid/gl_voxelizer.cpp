@@ -351,7 +351,7 @@ std::optional<std::uint32_t> GlVoxelizer::runTilePairs(const Programs& programs,
     return count;
 }
 
-PassTimes GlVoxelizer::runPieces(double cutoff, BitGrid* out, std::vector<attributes::VoxelPiece>& pieces,
+PassTimes GlVoxelizer::runPieces(double cutoff, BitGrid* out, std::vector<VoxelPiece>& pieces,
                                  const std::function<void()>& before_tile) {
     const Programs& programs = programsFor(Output::AttributePairs);
     setRunUniforms(programs, cutoff);

@@ -52,7 +52,7 @@ public:
     // clipped on the GPU (shaders/hybrid/clip_pieces.comp), in no particular order. A tile
     // whose pairs overflow the list is run again with room for them all; one whose pairs
     // exceed a storage block, as its two halves.
-    PassTimes runPieces(double cutoff, BitGrid* out, std::vector<attributes::VoxelPiece>& pieces,
+    PassTimes runPieces(double cutoff, BitGrid* out, std::vector<VoxelPiece>& pieces,
                         const std::function<void()>& before_tile = {});
 
 private:

@@ -34,7 +34,7 @@ std::string cacheKey(const gl::GpuMesh& mesh, const GridSpec& grid, Mode mode, c
 }  // namespace
 
 HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<std::int32_t, 3>>* voxel_list,
-                    std::vector<attributes::VoxelPiece>* pieces) {
+                    std::vector<VoxelPiece>* pieces) {
     const Method method = job.options.method;
     if (method != Method::Triangle && method != Method::Fragment && method != Method::Hybrid)
         throw BackendError(std::string("the hybrid backend does not run method '") + toString(method) + "'");

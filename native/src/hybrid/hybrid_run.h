@@ -24,6 +24,6 @@ struct HybridRun {
 // clipped piece of every (voxel, triangle) pair (GlVoxelizer::runPieces).
 HybridRun runHybrid(const BackendJob& job, BitGrid* out,
                     std::vector<std::array<std::int32_t, 3>>* voxel_list = nullptr,
-                    std::vector<attributes::VoxelPiece>* pieces = nullptr);
+                    std::vector<VoxelPiece>* pieces = nullptr);
 
 }  // namespace hyvox::hybrid

@@ -25,7 +25,7 @@ namespace hyvox::io {
 // do; an fsync costs 4-45 ms of wall time on the test VM's ext4, as long as a whole
 // voxelization at 128 (docs/why/vdb-output.md).
 //
-// Durable (the durable_write option): fsync the temporary before the rename and the folder
+// Durable (WriteOptions::durable, the durable_write option): fsync the temporary before the rename and the folder
 // after it, so that once commit() returns the new file survives a power loss too. (A failed
 // sync of the folder is reported although the new file is already in place.)
 enum class Durability { Atomic, Durable };

@@ -66,7 +66,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     out << "  \"leaves\": " << number(s.leaves) << ",\n";
     out << "  \"tiles\": " << number(s.tiles) << ",\n";
     if (s.vdb_bytes) out << "  \"vdb_bytes\": " << number(s.vdb_bytes) << ",\n";
-    if (s.attribute_pieces || !s.options.attributes.empty()) {  // tessellation: no clipped pieces
+    if (s.attribute_pieces || s.options.attributes.surfaceValues()) {  // tessellation: no clipped pieces
         out << "  \"attribute_pieces\": " << number(s.attribute_pieces) << ",\n";
         out << "  \"attribute_leaves_rounded\": " << number(s.attribute_leaves_rounded) << ",\n";
         out << "  \"attribute_voxels_unreached\": " << number(s.attribute_voxels_unreached) << ",\n";
@@ -83,6 +83,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     out << "  \"options\": {";
     bool first = true;
     for (const OptionSpec& spec : optionSchema()) {
+        if (!spec.isVoxelizeOption()) continue;
         const OptionValue value = spec.get(s.options);
         if (std::holds_alternative<std::monostate>(value)) continue;
         out << (first ? "" : ", ") << io::jsonQuote(spec.name) << ": " << json(value);
@@ -93,7 +94,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     s.visitSections([&](const char* section, const auto& figures) {
         out << ",\n  " << io::jsonQuote(section) << ": {";
         bool first_field = true;
-        figures.visit([&](const char* name, auto value) {
+        figures.visit([&](const char* name, const auto& value) {
             out << (first_field ? "" : ", ") << io::jsonQuote(name) << ": " << number(value);
             first_field = false;
         });

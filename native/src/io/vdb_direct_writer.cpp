@@ -36,7 +36,10 @@ constexpr std::uint32_t kLibraryMajor = 10, kLibraryMinor = 0;
 // stores its active values only, as one blosc block.
 constexpr std::uint32_t kCompressActiveMask = 0x2, kCompressBlosc = 0x4;
 constexpr std::uint32_t kCompression = kCompressActiveMask | kCompressBlosc;
+// The metadata byte before a node's values (io::MaskCompress): which inactive values it holds.
 constexpr std::int8_t kNoMaskOrInactiveVals = 0;    // every inactive value is the background
+constexpr std::int8_t kNoMaskAndMinusBg = 1;        // every inactive value is -background
+constexpr std::int8_t kMaskAndNoInactiveVals = 3;   // both, and a mask that selects +background
 
 // Node geometry of Tree_float_5_4_3: a leaf spans 8 voxels per axis, a lower internal node
 // 16 leaves (128 voxels), an upper internal node 32 lower nodes (4096 voxels).
@@ -185,13 +188,16 @@ bool writeOrder(const Placed& a, const Placed& b) {
 struct PlacedTree {
     std::vector<Placed> items;
     std::vector<std::array<float, 3>> tile_values;  // by Placed::index for tiles
+    std::vector<char> tile_active;                  // the same
 };
 
 // Whether `count` consecutive items (from `first`) are all tiles of `level` with one value.
 bool mergeable(const PlacedTree& tree, std::size_t first, std::size_t count, int level) {
     const std::vector<Placed>& items = tree.items;
     for (std::size_t n = first; n < first + count; ++n)
-        if (items[n].level != level || tree.tile_values[items[n].index] != tree.tile_values[items[first].index]) return false;
+        if (items[n].level != level || tree.tile_values[items[n].index] != tree.tile_values[items[first].index] ||
+            tree.tile_active[items[n].index] != tree.tile_active[items[first].index])
+            return false;
     return true;
 }
 
@@ -232,7 +238,9 @@ PlacedTree placeTree(const VdbGrid& grid) {
         tree.items.push_back(place(tile.origin, tile.level, n));
         std::array<float, 3> value = tile.value;
         if (grid.type == VdbValueType::Float) value[1] = value[2] = 0;  // one channel
+        if (!tile.active) value = {-grid.background, 0.0f, 0.0f};
         tree.tile_values.push_back(value);
+        tree.tile_active.push_back(tile.active);
     }
     std::sort(tree.items.begin(), tree.items.end(), writeOrder);
     // Overlaps: two items in one slot, or a tile over a node that holds other items (such a
@@ -290,7 +298,7 @@ struct ActiveVoxels {
 ActiveVoxels activeVoxels(const VdbGrid& grid, const PlacedTree& tree) {
     ActiveVoxels box;
     for (const Placed& p : tree.items) {
-        if (p.level == 0) continue;
+        if (p.level == 0 || !tree.tile_active[p.index]) continue;
         static const int kSideLog2[] = {0, kLeafLog2, kLowerTotal, kUpperTotal};
         std::array<std::int32_t, 3> o = upperOrigin(p.upper);
         const std::array<std::int32_t, 3> lower_at{std::int32_t(p.lower >> 10), std::int32_t((p.lower >> 5) & 31),
@@ -362,26 +370,47 @@ void writeTransform(Bytes& out, const GridSpec& grid) {
         for (int a = 0; a < 3; ++a) out.pod(v);
 }
 
-// InternalNode::writeTopology's table: the child and value masks, the metadata byte (every
-// inactive value is the background) and the active tiles' values as one blosc block.
-// `items` [first, last) are the node's children and tiles, one per slot in table order;
-// `slotOf` gives their table offset, `tile_level` the level of the node's own tiles.
+// The metadata byte of a node whose inactive values are `inside` (-background) and
+// `outside` (+background) (io::MaskCompress, as io::writeCompressedValues decides it): with
+// both, the selection mask of the +background ones follows it.
+std::int8_t inactiveMetadata(bool inside, bool outside, float background) {
+    if (background == 0 || !inside) return kNoMaskOrInactiveVals;
+    return outside ? kMaskAndNoInactiveVals : kNoMaskAndMinusBg;
+}
+
+// InternalNode::writeTopology's table: the child and value masks, the metadata byte (and the
+// selection mask of a level set's table with tiles inside and empty slots outside) and the
+// active tiles' values as one blosc block. `items` [first, last) are the node's children and
+// tiles, one per slot in table order; `slotOf` gives their table offset, `tile_level` the
+// level of the node's own tiles.
 template <typename SlotOf>
 void writeNodeTable(Bytes& out, const PlacedTree& tree, std::size_t first, std::size_t last, std::size_t words,
-                    int tile_level, int channels, SlotOf slotOf) {
-    std::vector<std::uint64_t> children(words, 0), tiles(words, 0);
+                    int tile_level, int channels, float background, SlotOf slotOf) {
+    std::vector<std::uint64_t> children(words, 0), tiles(words, 0), outside(words, ~std::uint64_t(0));
     std::vector<float> values;
+    bool any_inside = false;
     for (std::size_t n = first; n < last; ++n) {
         const Placed& p = tree.items[n];
         const std::uint32_t slot = slotOf(p);
-        const bool tile = p.level == tile_level;
-        (tile ? tiles : children)[slot >> 6] |= std::uint64_t(1) << (slot & 63);
-        // In table order: the order writeCompressedValues gathers active values in.
-        if (tile) values.insert(values.end(), tree.tile_values[p.index].begin(), tree.tile_values[p.index].begin() + channels);
+        const std::uint64_t bit = std::uint64_t(1) << (slot & 63);
+        outside[slot >> 6] &= ~bit;  // a child, an active tile or an inside tile
+        if (p.level != tile_level) {
+            children[slot >> 6] |= bit;
+        } else if (tree.tile_active[p.index]) {
+            tiles[slot >> 6] |= bit;
+            // In table order: the order writeCompressedValues gathers active values in.
+            values.insert(values.end(), tree.tile_values[p.index].begin(), tree.tile_values[p.index].begin() + channels);
+        } else {
+            any_inside = true;
+        }
     }
+    bool any_outside = false;
+    for (std::uint64_t w : outside) any_outside = any_outside || w != 0;
     out.raw(children.data(), words * 8);
     out.raw(tiles.data(), words * 8);
-    out.pod(kNoMaskOrInactiveVals);
+    const std::int8_t metadata = inactiveMetadata(any_inside, any_outside, background);
+    out.pod(metadata);
+    if (metadata == kMaskAndNoInactiveVals) out.raw(outside.data(), words * 8);
     out.blosc(values.data(), values.size() * sizeof(float));
 }
 
@@ -391,7 +420,7 @@ void writeTopology(Bytes& out, const VdbGrid& grid, const PlacedTree& tree) {
     const int channels = grid.channels();
     const std::vector<Placed>& items = tree.items;
     out.pod(std::int32_t(1));  // buffer count
-    for (int c = 0; c < channels; ++c) out.pod(0.0f);  // background
+    for (int c = 0; c < channels; ++c) out.pod(c == 0 ? grid.background : 0.0f);
     std::uint32_t root_tiles = 0, uppers = 0;
     for (std::size_t n = 0; n < items.size(); ++n) {
         if (items[n].level == 3)
@@ -405,7 +434,7 @@ void writeTopology(Bytes& out, const VdbGrid& grid, const PlacedTree& tree) {
         if (p.level != 3) continue;
         out.pod(upperOrigin(p.upper));
         out.raw(tree.tile_values[p.index].data(), sizeof(float) * std::size_t(channels));
-        out.pod(true);  // active
+        out.pod(bool(tree.tile_active[p.index]));
     }
     std::size_t n = 0;
     while (n < items.size()) {
@@ -416,7 +445,7 @@ void writeTopology(Bytes& out, const VdbGrid& grid, const PlacedTree& tree) {
         std::size_t upper_end = n;
         while (upper_end < items.size() && items[upper_end].upper == items[n].upper) ++upper_end;
         out.pod(upperOrigin(items[n].upper));
-        writeNodeTable(out, tree, n, upper_end, kUpperWords, 2, channels,
+        writeNodeTable(out, tree, n, upper_end, kUpperWords, 2, channels, grid.background,
                        [](const Placed& p) { return p.lower; });
         while (n < upper_end) {
             if (items[n].level == 2) {
@@ -425,7 +454,7 @@ void writeTopology(Bytes& out, const VdbGrid& grid, const PlacedTree& tree) {
             }
             std::size_t lower_end = n;
             while (lower_end < upper_end && items[lower_end].lower == items[n].lower) ++lower_end;
-            writeNodeTable(out, tree, n, lower_end, kLowerWords, 1, channels,
+            writeNodeTable(out, tree, n, lower_end, kLowerWords, 1, channels, grid.background,
                            [](const Placed& p) { return p.leaf; });
             for (; n < lower_end; ++n)
                 if (items[n].level == 0) out.raw(grid.leaves[items[n].index].mask, kLeafMaskBytes);
@@ -446,7 +475,18 @@ std::string leafBuffers(const VdbGrid& grid, const std::vector<std::size_t>& lea
     for (std::size_t n = first; n != last; ++n) {
         const VdbLeaf& leaf = grid.leaves[leaves[n]];
         out.append(reinterpret_cast<const char*>(leaf.mask), kLeafMaskBytes);
-        out += char(kNoMaskOrInactiveVals);
+        // A level set's inactive voxels: inside (-background) and outside (+background).
+        std::uint64_t outside[8];
+        bool any_inside = false, any_outside = false;
+        for (int w = 0; w < 8; ++w) {
+            const std::uint64_t inactive = ~leaf.mask[w], inside = leaf.inside ? inactive & leaf.inside[w] : 0;
+            outside[w] = inactive & ~inside;
+            any_inside = any_inside || inside != 0;
+            any_outside = any_outside || outside[w] != 0;
+        }
+        const std::int8_t metadata = inactiveMetadata(any_inside, any_outside, grid.background);
+        out += char(metadata);
+        if (metadata == kMaskAndNoInactiveVals) out.append(reinterpret_cast<const char*>(outside), kLeafMaskBytes);
         float* to = active;
         std::size_t packed = 0;
         for (int w = 0; w < 8; ++w)
@@ -576,6 +616,30 @@ void appendAttributeGrids(std::vector<VdbGrid>& grids, const SparseGrid& occupan
     if (attributes.normal)
         grids.push_back(attributeGrid(occupancy, attributes, attributes.normalOffset(), "normal", VdbValueType::Vec3f,
                                       "covariant normalize"));
+}
+
+VdbGrid levelSetGrid(const VoxelizeResult& result) {
+    const LevelSetGrid& sdf = result.sdf;
+    VdbGrid grid;
+    grid.name = "sdf";
+    grid.grid_class = "level set";
+    grid.layout = VdbLeafValues::Packed;
+    grid.background = sdf.background;
+    const BrickLayout bricks = result.grid.bricks();
+    auto originOf = [&](std::uint64_t brick) {
+        const std::array<std::int32_t, 3> b = bricks.at(brick);
+        return std::array<std::int32_t, 3>{b[0] * BrickLayout::kSide, b[1] * BrickLayout::kSide, b[2] * BrickLayout::kSide};
+    };
+    grid.leaves.reserve(sdf.leaves.size());
+    for (const LevelSetGrid::Leaf& leaf : sdf.leaves)
+        grid.leaves.push_back({originOf(leaf.brick), leaf.active, sdf.values.data() + leaf.first, leaf.inside});
+    for (const SparseGrid::TileRun& run : sdf.inside_runs)
+        for (std::uint64_t b = run.begin; b < run.end; ++b) {
+            VdbTile tile{originOf(b), 1};
+            tile.active = false;
+            grid.tiles.push_back(tile);
+        }
+    return grid;
 }
 
 std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves) {

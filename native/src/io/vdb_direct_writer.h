@@ -11,7 +11,7 @@
 // CLI) also never load libopenvdb, whose start-up costs more than a small voxelization.
 //
 // Format: OpenVDB file version 224 (library 10.0), trees of type Tree_float_5_4_3 or
-// Tree_vec3s_5_4_3, background 0, compressed as OpenVDB 10 does by default (COMPRESS_BLOSC |
+// Tree_vec3s_5_4_3, background 0 (a level set's: its band), compressed as OpenVDB 10 does by default (COMPRESS_BLOSC |
 // COMPRESS_ACTIVE_MASK): every node stores its mask and only its active values, as one
 // blosc block made with OpenVDB's settings (libblosc, which OpenVDB itself links), so the
 // files are the size of OpenVDB's own and every OpenVDB reader (Blender's included) reads
@@ -42,11 +42,13 @@ enum class VdbLeafValues {
 
 // One leaf: its first voxel (multiples of 8), its 512-bit value mask (OpenVDB's NodeMask<3>
 // words: word x, bit y * 8 + z) and where its values start (see VdbLeafValues; ignored
-// for Fill). Inactive voxels hold the background, 0.
+// for Fill). Inactive voxels hold the background, or (a level set's, VdbGrid::background
+// not 0) -background where `inside` has their bit.
 struct VdbLeaf {
     std::array<std::int32_t, 3> origin;
     const std::uint64_t* mask;
     const float* values = nullptr;
+    const std::uint64_t* inside = nullptr;  // level sets: the inactive voxels inside; null = none
 };
 
 // An active tile: a whole node's region holding one value (OpenVDB's tile at `level`):
@@ -56,6 +58,7 @@ struct VdbTile {
     std::array<std::int32_t, 3> origin;
     int level = 1;
     std::array<float, 3> value{1.0f, 1.0f, 1.0f};  // value[0] alone for a Float grid
+    bool active = true;  // false: a level set's inside, holding -background (`value` unused)
 };
 
 // One grid of the file. Leaves and tiles may come in any order and must not overlap. Tiles
@@ -69,6 +72,9 @@ struct VdbGrid {
     std::string vector_type;  // Vec3f: "invariant", "covariant", "covariant normalize", ...; "" = none
     VdbLeafValues layout = VdbLeafValues::Fill;
     std::array<float, 3> fill{1.0f, 1.0f, 1.0f};  // Fill's value
+    // The tree's background (Float grids). A level set's is its band's half-width, and its
+    // inactive voxels and tiles hold +background outside and -background inside; 0 otherwise.
+    float background = 0.0f;
     std::size_t stride = 0;                        // floats between voxels; 0 = channels()
     std::vector<VdbLeaf> leaves;  // they and their values must outlive serializeVdbGrids()
     std::vector<VdbTile> tiles;
@@ -115,6 +121,10 @@ VdbGrid attributeGrid(const SparseGrid& occupancy, const AttributeGrid& attribut
 // Attribute node), "alpha" (float), "normal" (Vec3f, covariant normalize); none when empty.
 void appendAttributeGrids(std::vector<VdbGrid>& grids, const SparseGrid& occupancy, const AttributeGrid& attributes);
 
+// "sdf": the level set of result.sdf (hyvox/level_set.h), class level set, its active voxels'
+// distances packed per leaf, its inside beyond the band as inactive leaves and tiles.
+VdbGrid levelSetGrid(const VoxelizeResult& result);
+
 // An upper estimate of the memory OpenVDB would need for a float grid of `leaves` leaves.
 std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves);
 
@@ -122,8 +132,8 @@ std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves);
 // values): the measure of the memory budget, whichever writer runs.
 std::uint64_t densityGridBytes(const SparseGrid& occupancy);
 // ResourceError before anything is built when that grid and the result it is made from
-// would not fit the run's memory budget (result.stats.options).
-void checkGridBudget(const VoxelizeResult& result);
+// would not fit the write's memory budget.
+void checkGridBudget(const VoxelizeResult& result, const WriteOptions& options);
 
 // ---- densityGrid's template ----
 

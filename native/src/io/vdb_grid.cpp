@@ -130,11 +130,51 @@ openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<Vo
     return result;
 }
 
+openvdb::FloatGrid::Ptr makeLevelSetGrid(const VoxelizeResult& result) {
+    initializeOpenVdb();
+    const LevelSetGrid& sdf = result.sdf;
+    const float background = sdf.background;
+    auto grid = openvdb::FloatGrid::create(background);
+    grid->setName("sdf");
+    grid->setGridClass(openvdb::GRID_LEVEL_SET);
+    grid->setTransform(makeTransform(result.grid));
+    const BrickLayout bricks = result.grid.bricks();
+    const int side = BrickLayout::kSide;
+    std::vector<std::unique_ptr<FloatLeaf>> leaves(sdf.leaves.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sdf.leaves.size(), 256), [&](const auto& range) {
+        for (std::size_t n = range.begin(); n != range.end(); ++n) {
+            const LevelSetGrid::Leaf& from = sdf.leaves[n];
+            const std::array<std::int32_t, 3> at = bricks.at(from.brick);
+            auto leaf = std::make_unique<FloatLeaf>(openvdb::Coord(at[0] * side, at[1] * side, at[2] * side), background, false);
+            auto& mask = leaf->getValueMask();
+            for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) mask.template getWord<std::uint64_t>(w) = from.active[w];
+            float* values = leaf->buffer().data();
+            std::size_t next = from.first;
+            for (int v = 0; v < 512; ++v) {
+                const bool active = (from.active[v >> 6] >> (v & 63)) & 1, inside = (from.inside[v >> 6] >> (v & 63)) & 1;
+                values[v] = active ? sdf.values[next++] : inside ? -background : background;
+            }
+            leaves[n] = std::move(leaf);
+        }
+    });
+    auto& tree = grid->tree();
+    for (auto& leaf : leaves) tree.addLeaf(leaf.release());
+    openvdb::FloatGrid::Accessor accessor(tree);
+    for (const SparseGrid::TileRun& run : sdf.inside_runs)
+        for (std::uint64_t b = run.begin; b < run.end; ++b) {
+            const std::array<std::int32_t, 3> at = bricks.at(b);
+            accessor.addTile(1, openvdb::Coord(at[0] * side, at[1] * side, at[2] * side), -background, false);
+        }
+    tree.prune();  // inside tiles filling a node become the node's tile, as the .vdb writer writes them
+    return grid;
+}
+
 openvdb::GridPtrVec makeGrids(const VoxelizeResult& result) {
     openvdb::GridPtrVec grids;
     grids.push_back(makeDensityGrid(result.grid, result.occupancy, result.attributes.valued_tile_bricks));
     if (!result.counts.empty()) grids.push_back(makeCountGrid(result.grid, result.counts));
     for (auto& grid : makeAttributeGrids(result)) grids.push_back(grid);
+    if (!result.sdf.empty()) grids.push_back(makeLevelSetGrid(result));
     for (auto& g : grids) addMetadata(*g, result);
     return grids;
 }

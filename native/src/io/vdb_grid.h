@@ -32,9 +32,14 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& 
 // "count": the values of a multi-valued result.
 openvdb::FloatGrid::Ptr makeCountGrid(const GridSpec& grid, const std::vector<VoxelCount>& counts);
 
+// "sdf": result.sdf as an OpenVDB level set (class level set, background its band): leaves
+// with the active voxels' distances and the inactive ones' ±background, the inside beyond the
+// band as inactive tiles of -background.
+openvdb::FloatGrid::Ptr makeLevelSetGrid(const VoxelizeResult& result);
+
 // The grids writeVdb() stores (it serializes them itself, vdb_direct_writer.h): density,
-// plus count when result.counts is non-empty, plus the attribute grids, each with the
-// hyvox_* metadata.
+// plus count when result.counts is non-empty, plus the attribute grids and the sdf, each
+// with the hyvox_* metadata.
 openvdb::GridPtrVec makeGrids(const VoxelizeResult& result);
 
 // Writes grids with OpenVDB's own writer, atomically (hyvox::io::AtomicFile); throws

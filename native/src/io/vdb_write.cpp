@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hyvox/errors.h"
+#include "hyvox/option_schema.h"
 #include "hyvox/vdb.h"
 #include "io/atomic_file.h"
 #include "io/vdb_direct_writer.h"
@@ -28,9 +29,9 @@ static std::uint64_t attributeGridBytes(const VoxelizeResult& result) {
     return std::uint64_t((leaves * 512.0 + double(a.tiles.size())) * double(per_voxel) * 1.05);
 }
 
-void checkGridBudget(const VoxelizeResult& result) {
-    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize() + attributeGridBytes(result);
-    const VoxelizeOptions& options = result.stats.options;
+void checkGridBudget(const VoxelizeResult& result, const WriteOptions& options) {
+    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize() + attributeGridBytes(result) +
+                               fogGridMemUsageForLeaves(result.sdf.leaves.size());
     if (need > options.memoryBudgetBytes())
         throw ResourceError("the OpenVDB grid of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
                             std::to_string((need + (1u << 20) - 1) >> 20) + " MiB, more than the memory budget of " +
@@ -91,10 +92,11 @@ void checkVdbVoxelSize(double voxel_size) {
     throw InvalidInput(text);
 }
 
-VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, int threads, Interrupter* interrupter) {
-    if (threads < 0) throw InvalidInput("writeVdb: threads must be >= 0 (0 = all cores)");
+VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, const WriteOptions& options,
+                        Interrupter* interrupter) {
+    checkOptions(options);
     checkVdbVoxelSize(result.grid.voxel_size);
-    io::checkGridBudget(result);
+    io::checkGridBudget(result, options);
     const InterrupterRun run(interrupter, "hyvox write");
     VdbWriteReport report;
     auto start = std::chrono::steady_clock::now();
@@ -109,15 +111,16 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, i
         grids.push_back(std::move(count));
     }
     io::appendAttributeGrids(grids, result.occupancy, result.attributes);  // color, alpha, normal
+    if (!result.sdf.empty()) grids.push_back(io::levelSetGrid(result));
     throwIfInterrupted(interrupter, 10);
-    const io::VdbBytes file = io::serializeVdbGrids(result, grids, threads);
+    const io::VdbBytes file = io::serializeVdbGrids(result, grids, options.threads);
     report.grid_bytes = file.mem_usage;
     throwIfInterrupted(interrupter, 90);
     auto now = std::chrono::steady_clock::now();
     report.build_ms = std::chrono::duration<double, std::milli>(now - start).count();
     // Written in chunks, asking the interrupter between them (progress 91-98), so a large
     // file's write can be followed and cancelled (the temporary is removed, an earlier file stays).
-    const auto durability = result.stats.options.durable_write ? io::Durability::Durable : io::Durability::Atomic;
+    const auto durability = options.durable ? io::Durability::Durable : io::Durability::Atomic;
     io::AtomicFile(path, durability).writeWith([&](std::ostream& out) {
         constexpr std::size_t kChunk = 256 * 1024;
         for (std::size_t at = 0; at < file.size;) {

@@ -92,15 +92,21 @@ struct SurfaceBrick {
 
 struct Output {
     std::vector<SparseGrid::Leaf> leaves;
+    std::vector<SparseGrid::Leaf> surface_leaves;  // the surface's voxels whose centre is inside
     std::vector<SparseGrid::TileRun> runs;
+    std::vector<RayCrossings::Crossing> columns[64];  // a brick's rays (surfaceCentres)
+    std::vector<Vec3> centres;
+    std::vector<double> windings;
     std::uint64_t uniform_regions = 0, component_decisions = 0, point_evaluations = 0;
     SmoothWinding::Counters smooth;
 };
 
 class InsideFill {
 public:
-    InsideFill(const GridSpec& grid, const InsideField& field, Interrupter* interrupter)
-        : grid_(grid), bricks_(grid.bricks()), field_(field), interrupter_(interrupter) {}
+    // `centres_on_surface`: also decide the surface voxels' centres (Output::surface_leaves).
+    InsideFill(const GridSpec& grid, const InsideField& field, Interrupter* interrupter, bool centres_on_surface)
+        : grid_(grid), bricks_(grid.bricks()), field_(field), interrupter_(interrupter),
+          centres_on_surface_(centres_on_surface) {}
 
     void run(std::vector<SurfaceBrick>& surface) {
         node({0, 0, 0}, bricks_.counts, surface.data(), surface.data() + surface.size());
@@ -285,20 +291,75 @@ private:
         Output& out = outputs_.local();
         std::uint64_t wanted[8];
         gridMask(b, wanted);
-        for (int x = 0; x < 8; ++x) wanted[x] &= ~surface[x];
+        if (!centres_on_surface_)
+            for (int x = 0; x < 8; ++x) wanted[x] &= ~surface[x];
         SparseGrid::Leaf leaf{};
         leaf.brick = bricks_.index(b[0], b[1], b[2]);
         Int3 lo, hi;
         brickVoxels(b, lo, hi);
         field_.smooth->decideBrick(lo, hi, wanted, leaf.words, out.smooth);
+        SparseGrid::Leaf on_surface{};
+        on_surface.brick = leaf.brick;
+        for (int x = 0; x < 8; ++x) {
+            on_surface.words[x] = leaf.words[x] & surface[x];
+            leaf.words[x] &= ~surface[x];
+        }
+        keep(leaf, out.leaves);
+        keep(on_surface, out.surface_leaves);
+    }
+
+    static void keep(const SparseGrid::Leaf& leaf, std::vector<SparseGrid::Leaf>& into) {
         std::uint64_t any = 0;
         for (std::uint64_t w : leaf.words) any |= w;
-        if (any) out.leaves.push_back(leaf);
+        if (any) into.push_back(leaf);
+    }
+
+    // The surface voxels of brick b whose centre is inside, by the rule's own evaluation at each
+    // centre: the signed crossings below it from the brick's 64 rays at once, or the winding
+    // numbers of all of them in one walk of the tree.
+    void surfaceCentres(const Int3& b, const std::uint64_t surface[8], Output& out) {
+        Int3 lo, hi;
+        brickVoxels(b, lo, hi);
+        SparseGrid::Leaf leaf{};
+        leaf.brick = bricks_.index(b[0], b[1], b[2]);
+        std::uint64_t wanted[8];
+        gridMask(b, wanted);
+        for (int x = 0; x < 8; ++x) wanted[x] &= surface[x];
+        auto forEachWanted = [&](auto&& f) {
+            for (int x = 0; x < 8; ++x)
+                for (std::uint64_t bits = wanted[x]; bits; bits &= bits - 1) {
+                    const int n = __builtin_ctzll(bits);
+                    f(x, n >> 3, n & 7);
+                }
+        };
+        if (field_.rays) {
+            const int ni = hi[0] - lo[0], nj = hi[1] - lo[1];
+            field_.rays->columns(lo[0], lo[1], ni, nj, out.columns);
+            forEachWanted([&](int x, int y, int z) {
+                const double centre = lo[2] + z + 0.5;
+                int crossings = 0;
+                for (const RayCrossings::Crossing& c : out.columns[x * nj + y]) crossings += c.z < centre ? c.sign : 0;
+                const double value = field_.parity ? double(crossings & 1) : double(crossings);
+                if (value >= 0.5) leaf.words[x] |= BitGrid::bitMask(y, z);
+            });
+        } else {
+            out.centres.clear();
+            forEachWanted([&](int x, int y, int z) { out.centres.push_back({lo[0] + x + 0.5, lo[1] + y + 0.5, lo[2] + z + 0.5}); });
+            out.windings.resize(out.centres.size());
+            field_.winding->atBox(out.centres.data(), out.centres.size(), out.windings.data());
+            out.point_evaluations += out.centres.size();
+            std::size_t n = 0;
+            forEachWanted([&](int x, int y, int z) {
+                if (out.windings[n++] >= 0.5) leaf.words[x] |= BitGrid::bitMask(y, z);
+            });
+        }
+        keep(leaf, out.surface_leaves);
     }
 
     void decideBrick(const Int3& b, const std::uint64_t surface[8]) {
         if (field_.smooth) return decideSmoothly(b, surface);
         Output& out = outputs_.local();
+        if (centres_on_surface_) surfaceCentres(b, surface, out);
         std::uint64_t open[8];
         gridMask(b, open);
         for (int x = 0; x < 8; ++x) open[x] &= ~surface[x];
@@ -380,6 +441,7 @@ private:
     BrickLayout bricks_;
     const InsideField& field_;
     Interrupter* interrupter_;
+    bool centres_on_surface_;
     tbb::enumerable_thread_specific<Output> outputs_;
 };
 
@@ -391,7 +453,8 @@ std::string edgeFinding(const EdgeClosure& c) {
 }  // namespace
 
 SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
-                      const VoxelizeOptions& options, Interrupter* interrupter, SolidStats& stats) {
+                      const VoxelizeOptions& options, Interrupter* interrupter, SolidStats& stats,
+                      SparseGrid* surface_inside) {
     // Everything here runs on the options' threads (the sorts and the trees' builds included).
     const int threads = options.threads > 0 ? options.threads : tbb::task_arena::automatic;
     tbb::task_arena arena(threads);
@@ -446,12 +509,15 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
     for (const SparseGrid::TileRun& run : surface.tileRuns())
         for (std::uint64_t b = run.begin; b < run.end; ++b) bricks.push_back({surface.bricks().at(b), kAllSet});
 
-    InsideFill fill(grid, field, interrupter);
+    InsideFill fill(grid, field, interrupter, surface_inside != nullptr);
     arena.execute([&] { fill.run(bricks); });
 
     SparseGrid inside(grid.dims);
+    if (surface_inside) *surface_inside = SparseGrid(grid.dims);
     for (Output& out : fill.outputs()) {
         for (const SparseGrid::Leaf& leaf : out.leaves) inside.addLeaf(leaf);
+        if (surface_inside)
+            for (const SparseGrid::Leaf& leaf : out.surface_leaves) surface_inside->addLeaf(leaf);
         for (const SparseGrid::TileRun& run : out.runs) inside.addTileRun(run.begin, run.end);
         stats.uniform_regions += out.uniform_regions;
         stats.component_decisions += out.component_decisions;
@@ -461,6 +527,7 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
     }
     if (smooth) stats.point_evaluations += smooth->sampleEvaluations();
     inside.finish();
+    if (surface_inside) surface_inside->finish();
     stats.inside_voxels = inside.count();
     return inside;
 }

@@ -25,8 +25,12 @@ namespace hyvox::solid {
 
 // `surface`: the conservative surface of the whole grid (finished). Returns the inside voxels
 // (finished; disjoint from `surface` apart from tiles, which may cover surface voxels), and
-// fills `stats` (all but tile_bricks).
+// fills `stats` (all but tile_bricks). With `surface_inside`, also decides the centres of the
+// surface's own voxels by the same rule (the sign of the sdf attribute, which the occupancy
+// does not need) and stores those inside there (finished; a subset of `surface`). A centre
+// lying on the surface itself (distance 0) may go either way.
 SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
-                      const VoxelizeOptions& options, Interrupter* interrupter, SolidStats& stats);
+                      const VoxelizeOptions& options, Interrupter* interrupter, SolidStats& stats,
+                      SparseGrid* surface_inside = nullptr);
 
 }  // namespace hyvox::solid

@@ -2,6 +2,7 @@
 #include "tessellation/point_values.h"
 
 #include "attributes/clip_to_voxel.h"
+#include "attributes/surface_values.h"
 #include "hyvox/errors.h"
 
 namespace hyvox::tessellation {
@@ -14,7 +15,7 @@ std::string PointValues::defines() const {
     return text;
 }
 
-PointValues makePointValues(const ValidatedMesh& mesh, const GridSpec& grid, const attributes::SurfaceValues& values) {
+PointValues makePointValues(const ValidatedMesh& mesh, const GridSpec& grid, const AttributeEvaluator& values) {
     PointValues out;
     out.layout = values.layout();
     // The shaders sample one texture; a texture per material (OBJ map_Kd) is the exact methods'.
@@ -53,7 +54,7 @@ PointValues makePointValues(const ValidatedMesh& mesh, const GridSpec& grid, con
 std::uint64_t meansFromSums(const std::vector<std::uint32_t>& brick_blocks, const std::vector<std::uint32_t>& count_pool,
                             const std::vector<std::uint32_t>& value_pool, const BitGrid& bits,
                             const std::array<std::int32_t, 3>& tile_offset, const GridSpec& grid,
-                            const AttributeGrid& layout, std::vector<attributes::AttributeLeaf>& out) {
+                            const AttributeGrid& layout, std::vector<AttributeLeaf>& out) {
     const BrickLayout& tile_bricks = bits.bricks();
     const BrickLayout grid_bricks = grid.bricks();
     const int channels = layout.channels();
@@ -64,7 +65,7 @@ std::uint64_t meansFromSums(const std::vector<std::uint32_t>& brick_blocks, cons
         for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) any = any || words[w] != 0;
         if (!any) continue;
         const std::array<std::int32_t, 3> at = tile_bricks.at(brick);
-        attributes::AttributeLeaf& leaf = out.emplace_back();
+        AttributeLeaf& leaf = out.emplace_back();
         leaf.brick = grid_bricks.index((tile_offset[0] >> 3) + at[0], (tile_offset[1] >> 3) + at[1],
                                        (tile_offset[2] >> 3) + at[2]);
         const std::uint64_t block = brick < brick_blocks.size() ? brick_blocks[brick] : 0;

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "core/attribute_evaluator.h"
 #include "core/attribute_leaf.h"
-#include "attributes/surface_values.h"
 #include "hyvox/bit_grid.h"
 #include "hyvox/grid.h"
 #include "hyvox/mesh.h"
@@ -40,7 +40,7 @@ struct PointValues {
 
 // The corner values of `mesh`'s usable triangles (in usable order, as uploaded to the GPU);
 // the geometric normal is taken in voxel space, as the exact methods do.
-PointValues makePointValues(const ValidatedMesh& mesh, const GridSpec& grid, const attributes::SurfaceValues& values);
+PointValues makePointValues(const ValidatedMesh& mesh, const GridSpec& grid, const AttributeEvaluator& values);
 
 // Words of the value pool per count block: two per channel per voxel.
 inline std::uint64_t valueWordsPerBlock(int channels) { return 512ull * 2ull * std::uint64_t(channels); }
@@ -62,6 +62,6 @@ inline std::uint64_t tileBitBytesForSums(std::uint64_t storage_block, std::uint6
 std::uint64_t meansFromSums(const std::vector<std::uint32_t>& brick_blocks, const std::vector<std::uint32_t>& count_pool,
                             const std::vector<std::uint32_t>& value_pool, const BitGrid& bits,
                             const std::array<std::int32_t, 3>& tile_offset, const GridSpec& grid,
-                            const AttributeGrid& layout, std::vector<attributes::AttributeLeaf>& out);
+                            const AttributeGrid& layout, std::vector<AttributeLeaf>& out);
 
 }  // namespace hyvox::tessellation

@@ -15,9 +15,9 @@
 #include "core/backends.h"
 #include "core/gl_methods.h"
 #include "core/stopwatch.h"
+#include "sdf/level_set.h"
 #include "solid/fill_inside.h"
 #include "hyvox/option_schema.h"
-#include "tessellation/point_values.h"
 #include "tile_plan.h"
 
 #include <tbb/task_arena.h>
@@ -103,14 +103,19 @@ void runBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     }
 }
 
-// The attribute evaluator when options.attributes asks for any (every method: the exact
-// definition, or the tessellation's average of its points' values).
+// The attribute evaluator when options.attributes asks for colour or normals (every method:
+// the exact definition, or the tessellation's average of its points' values).
 std::optional<attributes::SurfaceValues> surfaceValues(const MeshView& mesh, const VoxelizeOptions& options) {
-    const AttributeSet wanted = parseAttributeSet(options.attributes);
-    if (!wanted.any()) return std::nullopt;
-    if (!computesAttributes(options.method))
-        throw InvalidInput(std::string("method ") + toString(options.method) + " does not compute attributes");
-    return std::optional<attributes::SurfaceValues>(std::in_place, mesh, wanted);
+    if (!options.attributes.surfaceValues()) return std::nullopt;
+    return std::optional<attributes::SurfaceValues>(std::in_place, mesh, options.attributes);
+}
+
+// The grid's options: with the sdf, padded by at least its band, so that the band outside the
+// mesh (and with it the level set's zero crossing) lies in the grid.
+GridOptions gridOptions(const VoxelizeOptions& options) {
+    GridOptions grid = options.grid;
+    if (options.attributes.sdf) grid.padding = std::max(grid.padding, options.sdf.band);
+    return grid;
 }
 
 // Refuse before allocating: the inside values hold every leaf voxel's channels (whole bricks
@@ -147,7 +152,7 @@ struct Surface {
     Interrupter* interrupter;
     Stopwatch& watch;
     const attributes::SurfaceValues* values = nullptr;
-    std::vector<attributes::AttributeLeaf>* attribute_leaves = nullptr;
+    std::vector<AttributeLeaf>* attribute_leaves = nullptr;
 
     void run(const VoxelizeOptions& options, VoxelizeResult& result, Stats& stats) const {
         result.occupancy = SparseGrid(grid.dims);
@@ -181,7 +186,7 @@ struct Surface {
                 stats.attribute_voxels_unreached += out.attribute_voxels_unreached;
             } else if (gl_pieces) {
                 const auto counted = attributes::computePieceAttributes(job, out.bits, *values, out.pieces, *attribute_leaves);
-                std::vector<attributes::VoxelPiece>().swap(out.pieces);
+                std::vector<VoxelPiece>().swap(out.pieces);
                 stats.attribute_pieces += counted.pieces;
                 stats.attribute_voxels_unreached += counted.voxels_unreached;
                 stats.attribute_leaves_rounded += counted.leaves_rounded;
@@ -209,30 +214,37 @@ struct Surface {
     }
 };
 
-// Solid mode: the inside voxels (src/solid/) added to the surface. The inside pass needs the
-// exact conservative surface as its barrier: the tessellation's approximate one gets the cpu
-// method's beside it.
-void addInside(const ValidatedMesh& validated, const GridSpec& grid, const Surface& surface,
-               const VoxelizeOptions& options, VoxelizeResult& result, Stats& stats, Interrupter* interrupter,
-               Stopwatch& watch) {
-    result.occupancy.finish();
-    SolidStats& solid = stats.solid.emplace();
-    VoxelizeResult exact;
-    if (options.method == Method::Tessellation) {
-        VoxelizeOptions cpu = options;
-        cpu.mode = Mode::Conservative;
-        cpu.method = Method::Cpu;
-        Stats ignored;
-        surface.run(cpu, exact, ignored);
-        exact.occupancy.finish();
-        stats.addTiming("solid_barrier", watch.restart());
-    }
-    const SparseGrid& barrier = options.method == Method::Tessellation ? exact.occupancy : result.occupancy;
-    SparseGrid inside = solid::fillInside(validated, grid, barrier, options, interrupter, solid);
-    stats.addTiming("solid_inside", watch.restart());
-    result.occupancy.merge(inside);
-}
+// The inside test (src/solid/): solid mode's inside voxels, and the sign of the sdf. It needs
+// the exact conservative surface as its barrier: the tessellation's approximate one and thin
+// mode's get the cpu method's conservative one beside them.
+struct InsidePass {
+    VoxelizeResult exact;       // that barrier, when the run's own surface is not it
+    SparseGrid inside;          // voxels off the barrier whose centre is inside
+    SparseGrid surface_inside;  // with the sdf: the barrier's voxels whose centre is inside
+    bool own_barrier = false;   // `exact` holds it
 
+    void run(const ValidatedMesh& validated, const GridSpec& grid, const Surface& surface,
+             const VoxelizeOptions& options, VoxelizeResult& result, Stats& stats, Interrupter* interrupter,
+             Stopwatch& watch) {
+        result.occupancy.finish();
+        SolidStats& solid = stats.solid.emplace();
+        own_barrier = options.method == Method::Tessellation || options.mode == Mode::Thin;
+        if (own_barrier) {
+            VoxelizeOptions cpu = options;
+            cpu.mode = Mode::Conservative;
+            cpu.method = Method::Cpu;
+            Stats ignored;
+            surface.run(cpu, exact, ignored);
+            exact.occupancy.finish();
+            stats.addTiming("solid_barrier", watch.restart());
+        }
+        inside = solid::fillInside(validated, grid, barrier(result), options, interrupter, solid,
+                                   options.attributes.sdf ? &surface_inside : nullptr);
+        stats.addTiming("solid_inside", watch.restart());
+    }
+    const SparseGrid& barrier(const VoxelizeResult& result) const { return own_barrier ? exact.occupancy : result.occupancy; }
+    std::uint64_t byteSize() const { return exact.occupancy.byteSize() + inside.byteSize() + surface_inside.byteSize(); }
+};
 }  // namespace
 
 ValidatedMesh validate(const MeshView& mesh, const VoxelizeOptions& options, Interrupter* interrupter) {
@@ -253,17 +265,17 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     Stopwatch watch;
     stats.addTiming("validate", validate_ms);
     const std::optional<attributes::SurfaceValues> surface = surfaceValues(mesh, options);
-    std::vector<attributes::AttributeLeaf> attribute_leaves;
-    result.grid = makeGrid(validated.bounds, options.grid);
+    std::vector<AttributeLeaf> attribute_leaves;
+    result.grid = makeGrid(validated.bounds, gridOptions(options));
     const GridSpec& grid = result.grid;
     // The tessellation holds a tile's bits in one storage buffer (the hybrid methods cut theirs
-    // into slabs themselves): its tiles also follow the device's limit.
-    std::uint64_t device_limit = options.method == Method::Tessellation
-                                    ? glMethods("the tessellation method").max_storage_block_bytes(options.gl.device)
-                                    : 0;
-    // Its attribute sums take a block per brick the points reach: tiles small enough for all.
-    if (surface && options.method == Method::Tessellation)
-        device_limit = tessellation::tileBitBytesForSums(device_limit, options.memoryBudgetBytes() / 2, surface->channels());
+    // into slabs themselves), and its attribute sums take a block per brick the points reach:
+    // its tiles also follow the device's limit.
+    const std::uint64_t device_limit =
+        options.method == Method::Tessellation
+            ? glMethods("the tessellation method")
+                  .tessellation_tile_bytes(options.gl.device, options.memoryBudgetBytes() / 2, surface ? surface->channels() : 0)
+            : 0;
     const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
     checkMemoryBudget(grid, options, plan, validated);
     const tiling::PointReach reach = tiling::pointReach(grid, options);
@@ -297,9 +309,18 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
         result.attributes.valued_tile_bricks = tileBricks(result.occupancy);
         if (solid) solid_surface = result.occupancy;
     }
-    if (solid) {
-        surface_pass.values = nullptr;  // the barrier pass (tessellation) computes no attributes
-        addInside(validated, grid, surface_pass, options, result, stats, interrupter, watch);
+    if (solid || options.attributes.sdf) {
+        surface_pass.values = nullptr;  // the barrier pass computes no attributes
+        InsidePass inside;
+        inside.run(validated, grid, surface_pass, options, result, stats, interrupter, watch);
+        if (options.attributes.sdf) {
+            const std::uint64_t held = result.occupancy.byteSize() + inside.byteSize() + solid_surface.byteSize() +
+                                       result.attributes.values.size() * sizeof(float);
+            const sdf::InsideCentres centres{inside.barrier(result), inside.surface_inside, inside.inside};
+            result.sdf = sdf::makeLevelSet(validated, grid, centres, options, held, interrupter, stats.sdf.emplace());
+            stats.addTiming("sdf", watch.restart());
+        }
+        if (solid) result.occupancy.merge(inside.inside);
     }
     throwIfInterrupted(interrupter, 100);
     checkSomethingLanded(stats, reach);

@@ -21,8 +21,9 @@ typename GridT::Ptr readVdbGrid(const std::string& path, const std::string& name
 }
 
 // The same grid: background, class, vector type, name, transform, tree shape and memory,
-// every leaf's mask and values, every active tile's value and level, and the same metadata
-// (but OpenVDB's optional "file_delayed_load", which the direct writer leaves out).
+// every leaf's mask and values, every tile's value, state and level (the inactive ones of a
+// level set's inside too), and the same metadata (but OpenVDB's optional
+// "file_delayed_load", which the direct writer leaves out).
 template <typename GridT>
 void expectSameGrids(const GridT& direct, const GridT& reference) {
     EXPECT_EQ(direct.background(), reference.background());
@@ -48,6 +49,13 @@ void expectSameGrids(const GridT& direct, const GridT& reference) {
         EXPECT_EQ(direct.tree().getValue(at), *it) << at;
         EXPECT_TRUE(direct.tree().isValueOn(at)) << at;
         EXPECT_EQ(direct.tree().getValueDepth(at), reference.tree().getValueDepth(at)) << at;
+    }
+    // Every inactive tile (a level set's -background inside; the background elsewhere).
+    for (auto it = reference.tree().cbeginValueOff(); it; ++it) {
+        if (!it.isTileValue()) continue;
+        const openvdb::Coord at = it.getCoord();
+        ASSERT_EQ(direct.tree().getValue(at), *it) << at;
+        EXPECT_FALSE(direct.tree().isValueOn(at)) << at;
     }
     for (auto it = reference.beginMeta(); it != reference.endMeta(); ++it) {
         if (it->first == "file_delayed_load") continue;
