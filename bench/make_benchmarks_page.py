@@ -32,6 +32,12 @@ SECTIONS = [
      "centre. On open meshes OpenVDB's sign flood has no closed surface to follow; the brute-force winding "
      "number says who is right (the checks table).",
      ["solid", "solid_three_way", "solid_three_way_checks", "solid_winding", "solid_disagreements"]),
+    ("The signed distance grid against OpenVDB",
+     "The `sdf` attribute (a narrow-band signed distance grid, [sdf.md](sdf.md)) against OpenVDB's "
+     "`meshToLevelSet`, what Blender's Mesh to SDF Grid node runs: same voxel size, placement and band (3 voxels), "
+     "same process, all cores. Where both sides hold a voxel, how far their distances differ; where their signs "
+     "differ, the exact winding number says which is right.",
+     ["sdf"]),
     ("Large grids",
      "The CLI end to end, one process per row, from 1024 to 8192 voxels a side: the stages, the output's "
      "leaves and tiles, the process's peak memory beside the OpenVDB grid's own. Memory follows the surface, "
@@ -52,12 +58,18 @@ SECTIONS = [
      ["gl_hybrid"]),
     ("On a GPU, beside the paper's Table 1",
      "`bench/device/` measures the GL methods on a lent GPU in one run (`bench/device/README.md`): every Table 1 "
-     "scene, checked against `cpu`, beside the paper's GTX 480 figures.",
-     ["device_table1", "device_table1_conservative", "device_attributes", "device_threads"]),
+     "scene, checked against `cpu`, beside the paper's GTX 480 figures; then the price of colour, the cpu "
+     "method's thread scaling and Live's updates without Blender.",
+     ["device_table1", "device_table1_conservative", "device_attributes", "device_threads", "device_live"]),
     ("In Blender",
      "The add-on's operator end to end (export, voxelize, write, import) against Blender's own Mesh to Volume "
      "modifier on subdivided Suzannes, both making a surface.",
      ["blender_addon"]),
+    ("Live in Blender",
+     "Live's edit-to-new-voxels latency ([live.md](live.md)) in Blender 5.0's `bpy` module: from a vertex moved "
+     "until the new grid is loaded in the evaluated volume, against Geometry Nodes' Mesh to Density Grid and the "
+     "Mesh to Volume modifier at the same voxel size; then where an update's time goes.",
+     ["live", "live_breakdown"]),
     ("Reading meshes",
      "hyvox's strict PLY/OBJ readers against the assimp path they replaced.",
      ["mesh_read"]),

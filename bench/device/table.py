@@ -254,18 +254,21 @@ def main():
 
     live_rows = [r for r in rows if r["mode"].startswith("live-") and not r["check"].startswith("ERROR")]
     if live_rows:
-        print("\nLive's updates without Blender (issue 29): per edit a vertex moved, the fixed lattice, voxelize, "
-              "write the .vdb (ms, medians); hybrid checked against cpu on the last state. Target: the bunny at "
-              "256 at 30 updates a second with hybrid:\n")
-        print("| scene | mode | res | method | update | voxelize | write | updates a second | check | target |")
-        print("|---|---|---:|---|---:|---:|---:|---:|---|---|")
+        live = Table("device_live", "Live's updates on a GPU, without Blender",
+                     [Column(c) for c in ("scene", "mode", "res", "method", "update", "voxelize", "write",
+                                          "updates a second", "check", "target")],
+                     command=shlex_join(sys.argv), **machine)
+        live.note("Per edit a vertex moved, the fixed lattice, voxelize, write the .vdb (ms, medians); hybrid "
+                  "checked against cpu on the last state. Target: the bunny at 256 at 30 updates a second with "
+                  "hybrid.")
+        tables.append(live)
         for r in sorted(live_rows, key=lambda r: (order((r["scene"], int(r["res"]))), r["mode"], r["method"])):
             rate = 1000.0 / float(r["wall_ms"]) if float(r["wall_ms"]) > 0 else 0.0
             target = ""
             if r["scene"] == "bunny_stanford_69k" and r["res"] == "256" and r["method"] == "hybrid":
                 target = "met" if rate >= 30 else "not met"
-            print(f"| {r['scene']} | {r['mode'][5:]} | {r['res']} | {r['method']} | {fmt(r['wall_ms'])} "
-                  f"| {fmt(r['stage_ms'])} | {fmt(r['pass2_ms'])} | {rate:.1f} | {check_text(r)} | {target} |")
+            live.add([r["scene"], r["mode"][5:], r["res"], r["method"], fmt(r["wall_ms"]), fmt(r["stage_ms"]),
+                      fmt(r["pass2_ms"]), f"{rate:.1f}", check_text(r), target])
 
     threads = [r for r in rows if r["method"] == "cpu" and r["step"] and r["threads"] != "0"]
     if threads:
