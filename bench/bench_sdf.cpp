@@ -127,7 +127,7 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
         corners.push_back({result.grid.toVoxel(validated.vertex(t, 0)), result.grid.toVoxel(validated.vertex(t, 1)),
                            result.grid.toVoxel(validated.vertex(t, 2))});
     const std::size_t step = std::max<std::size_t>(1, differing.size() / 200);
-    for (std::size_t n = 0; n < differing.size(); n += step) {
+    for (std::size_t n = 0; n < differing.size() && row.checked < 200; n += step) {
         const openvdb::Coord c = differing[n];
         const hyvox::solid::Vec3 q{c.x() + 0.5, c.y() + 0.5, c.z() + 0.5};
         double w = 0;
