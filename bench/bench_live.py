@@ -172,8 +172,8 @@ def hyvox_live(source, voxel_size, mode, colour, edits, out):
     for obj in bpy.context.scene.objects:
         obj.select_set(obj is source)
     bpy.context.view_layer.objects.active = source
-    result = bpy.ops.object.hyvox_voxelize(voxel_size=voxel_size, fill_interior=mode == "solid", color=colour,
-                                           live=True, output_dir=out)
+    result = bpy.ops.object.hyvox_voxelize(voxel_size=voxel_size, mode="solid" if mode == "solid" else "conservative",
+                                           color=colour, live=True, output_dir=out)
     assert result == {"FINISHED"}, result
     volume = bpy.data.objects[source.name + "_voxels"]
     live = addon("blender.live")
@@ -255,7 +255,8 @@ def animated_suzanne(mode, frames, out, resolution=128):
     for o in bpy.context.scene.objects:
         o.select_set(o is obj)
     bpy.context.view_layer.objects.active = obj
-    bpy.ops.object.hyvox_voxelize(resolution=resolution, fill_interior=mode == "solid", live=True, output_dir=out)
+    bpy.ops.object.hyvox_voxelize(resolution=resolution, mode="solid" if mode == "solid" else "conservative",
+                                  live=True, output_dir=out)
     volume = bpy.data.objects[obj.name + "_voxels"]
     live = addon("blender.live")
     ident = volume["hyvox_live_id"]

@@ -194,7 +194,7 @@ def step():
         bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=3, radius=1.0)
         helpers.select_only(source())
         result = bpy.ops.object.hyvox_voxelize(resolution=32, method="cpu", output_dir=OUT, live=True,
-                                               fill_interior=False)
+                                               mode="conservative")
         if result != {"FINISHED"} or not volume().hyvox_live:
             fail(f"the live volume was not made: {result}")
         Hold.install()

@@ -64,7 +64,7 @@ class LiveGridNodesTest(AddonTestCase):
         bsdf.inputs["Base Color"].default_value = (0.8, 0.1, 0.05, 1.0)
         source.data.materials.append(material)
         helpers.select_only(source)
-        self.assertEqual(self.voxelize(live=True, voxel_size=0.1, fill_interior=True, color=True), {"FINISHED"})
+        self.assertEqual(self.voxelize(live=True, voxel_size=0.1, mode="solid", color=True), {"FINISHED"})
         volume = bpy.data.objects["Cube_voxels"]
         reader = bpy.data.objects.new("Reader", bpy.data.meshes.new("Reader"))
         bpy.context.scene.collection.objects.link(reader)

@@ -56,7 +56,7 @@ class LiveTestCase(AddonTestCase):
     def make_live(self, obj, mode="conservative", **kw):
         helpers.select_only(obj)
         kw.setdefault("resolution", 24)
-        self.assertEqual(self.voxelize(live=True, fill_interior=mode == "solid", **kw), {"FINISHED"})
+        self.assertEqual(self.voxelize(live=True, mode=mode, **kw), {"FINISHED"})
         (volume,) = [o for o in bpy.data.objects if "hyvox_key" in o]
         self.assertTrue(volume.hyvox_live)
         return volume
@@ -402,7 +402,7 @@ class LiveRenderTest(LiveTestCase):
         render_setup(scene, render_dir)
         # The oracle: the operator's own volume sequence of frames 1-3.
         helpers.select_only(source)
-        self.assertEqual(self.voxelize(voxel_size=0.1, fill_interior=True, frame_start=1, frame_end=3), {"FINISHED"})
+        self.assertEqual(self.voxelize(voxel_size=0.1, mode="solid", frame_start=1, frame_end=3), {"FINISHED"})
         (sequence,) = self.volumes()
         expected = [file_voxels(os.path.join(self.out, n)) for n in sorted(os.listdir(self.out))
                     if n.endswith(".vdb")]
@@ -413,7 +413,7 @@ class LiveRenderTest(LiveTestCase):
         source.hide_render = True
         scene.frame_set(1)
         helpers.select_only(source)
-        self.assertEqual(self.voxelize(voxel_size=0.1, fill_interior=True, live=True), {"FINISHED"})
+        self.assertEqual(self.voxelize(voxel_size=0.1, mode="solid", live=True), {"FINISHED"})
         volume = bpy.data.objects["Icosphere_voxels"]
         rendered_files = []
 
