@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "hyvox/gl_devices.h"
 #include "hyvox/option_schema.h"
 
 namespace hyvox::bench {
@@ -91,6 +92,14 @@ inline double median(std::vector<double> values) {
     std::sort(values.begin(), values.end());
     const std::size_t n = values.size();
     return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// The EGL devices the GL methods can use, for a results header: "EGL: software" or
+// "EGL: /dev/dri/renderD128, software" (the GL methods take the first hardware one).
+inline std::string glDevicesText() {
+    std::string text;
+    for (const GlDevice& device : listGlDevices()) text += (text.empty() ? "EGL: " : ", ") + device.name;
+    return text.empty() ? "EGL: no device" : text;
 }
 
 }  // namespace hyvox::bench

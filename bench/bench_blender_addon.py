@@ -5,22 +5,27 @@ same voxel size, depsgraph evaluation timed), on Suzanne subdivided to level 4 (
 triangles) and level 6 (4M), at 256 and 512 voxels along the longest side.
 
     blender -b --factory-startup --python bench/bench_blender_addon.py -- --build B \\
-        [--levels 4,6] [--resolutions 256,512] [--repeat 3] [--method cpu] [--json FILE]
+        [--levels 4,6] [--resolutions 256,512] [--repeat 3] [--method cpu] [--json FILE] [--out DIR]
 
 Both sides start from the same plain (modifier-applied) mesh so subdivision is not timed.
 Prints a table of medians and where hyvox's time goes (the breakdown of the fastest run;
 the add-on share, (export + import) / total, is the median of the runs' own shares, and the
 export's CPU time the median of the runs').
---skip-mesh-to-volume times hyvox only."""
+--skip-mesh-to-volume times hyvox only. The table also goes to DIR/blender_addon.{json,md}
+(default bench/results/)."""
 import argparse
 import json
 import os
+import shlex
 import statistics
 import sys
 import tempfile
 import time
 
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench_results import Column, Table, add_out_argument  # noqa: E402  (beside this script)
 
 
 def parse_args():
@@ -34,6 +39,7 @@ def parse_args():
     parser.add_argument("--json", help="also write the rows as JSON here")
     parser.add_argument("--skip-mesh-to-volume", action="store_true",
                         help="time hyvox only (the add-on's own share; Mesh to Volume takes minutes)")
+    add_out_argument(parser)
     return parser.parse_args(argv)
 
 
@@ -157,6 +163,21 @@ def main():
               f"{_ms(r['mesh_to_volume_ms'])} | {_speedup(r['speedup'])} | {b['export']:.0f} | "
               f"{b['voxelize']:.0f} | {b['write']:.0f} | {b['import']:.0f} | {100 * r['addon_share']:.0f}% | "
               f"{r['export_cpu_ms']:.0f} | {r['voxels']:,} |")
+    table = Table("blender_addon", "The add-on end to end against Blender's Mesh to Volume",
+                  [Column("mesh"), Column("triangles"), Column("res"), Column("hyvox operator ms", 0),
+                   Column("Mesh to Volume ms", 0), Column("Mesh to Volume / hyvox", 1), Column("export ms", 0),
+                   Column("voxelize ms", 0), Column("write ms", 0), Column("import ms", 0),
+                   Column("add-on share %", 0), Column("export CPU ms", 0), Column("voxels")],
+                  command=shlex.join([os.path.basename(sys.argv[0])] + sys.argv[1:]))
+    table.note(f"Blender {bpy.app.version_string}, hyvox method {args.method}, medians of {args.repeat}; "
+               "the stages are the fastest run's; add-on share: (export + import) / the operator's total; both "
+               "sides make a surface from the same modifier-applied mesh.")
+    for r in rows:
+        b = r["breakdown_ms"]
+        table.add([f"Suzanne L{r['level']}", r["triangles"], r["resolution"], r["hyvox_ms"], r["mesh_to_volume_ms"],
+                   r["speedup"], b["export"], b["voxelize"], b["write"], b["import"], 100 * r["addon_share"],
+                   r["export_cpu_ms"], r["voxels"]])
+    table.write(args.out)
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=2)

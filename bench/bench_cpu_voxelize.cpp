@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // bench_cpu_voxelize MESH... [--res N]... [--mode conservative|thin] [--method cpu|reference]
-//                   [--repeat R] [--threads T]
+//                   [--repeat R] [--threads T] [--out DIR]
 // Prints, per mesh and resolution, the median (and minimum) of the backend's "voxelize" stage
 // (what the goals measure), of the whole voxelize() call, and of the process CPU time spent in
-// that call (all threads), plus the voxel count.
+// that call (all threads), plus the voxel count; the table also goes to DIR/cpu_voxelize.{json,md}
+// (default bench/results/).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_results.h"
 #include "hyvox/voxelize.h"
 #include "hyvox/mesh_io.h"
 
@@ -33,6 +35,7 @@ int main(int argc, char** argv) {
     std::vector<int> resolutions;
     hyvox::VoxelizeOptions options;
     int repeat = 7;
+    std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
         auto next = [&] { return hyvox::bench::optionValue(argc, argv, a); };
@@ -41,18 +44,26 @@ int main(int argc, char** argv) {
         else if (arg == "--method") options.method = hyvox::parseMethod(next());
         else if (arg == "--repeat") repeat = std::max(1, std::atoi(next().c_str()));
         else if (arg == "--threads") options.threads = std::atoi(next().c_str());
+        else if (arg == "--out") out_dir = next();
         else meshes.push_back(arg);
     }
     if (meshes.empty()) {
         std::fprintf(stderr,
                      "usage: bench_cpu_voxelize MESH... [--res N]... [--mode M] [--method M] [--repeat R] "
-                     "[--threads T]\n");
+                     "[--threads T] [--out DIR]\n");
         return 2;
     }
     if (resolutions.empty()) resolutions = {256, 512};
 
     std::printf("%-34s %5s %-12s %10s %10s %10s %10s %12s\n", "mesh", "res", "mode", "voxel_ms", "min_ms", "total_ms",
                 "cpu_ms", "voxels");
+    hyvox::bench::ResultTable table("cpu_voxelize", "The cpu method's voxelize stage",
+                                    {{"mesh"}, {"res"}, {"mode"}, {"method"}, {"stage ms", 2}, {"stage min ms", 2},
+                                     {"call ms", 2}, {"call CPU ms", 2}, {"voxels"}},
+                                    argc, argv);
+    table.note("Medians of " + std::to_string(repeat) + " calls, threads " +
+               (options.threads ? std::to_string(options.threads) : std::string("all")) +
+               "; call CPU: the process's CPU time during the call, all threads.");
     for (const std::string& path : meshes) {
         const hyvox::Mesh mesh = hyvox::readMesh(path);
         const std::string name = std::filesystem::path(path).filename().string();
@@ -73,7 +84,11 @@ int main(int argc, char** argv) {
                         hyvox::bench::median(total), hyvox::bench::median(cpu),
                         static_cast<unsigned long long>(voxels));
             std::fflush(stdout);
+            table.add({name, res, hyvox::toString(options.mode), hyvox::toString(options.method),
+                       hyvox::bench::median(stage), *std::min_element(stage.begin(), stage.end()),
+                       hyvox::bench::median(total), hyvox::bench::median(cpu), voxels});
         }
     }
+    table.write(out_dir);
     return 0;
 }

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // bench_gl_hybrid [--mesh-dir DIR] [--res N]... [--repeat R] [--mode conservative|thin]
-//                 [--cutoff auto|X] [--device D] [MESH... | triangle]
+//                 [--cutoff auto|X] [--device D] [--out DIR] [MESH... | triangle]
 // The JCGT paper's Table 1 per mesh and resolution: triangle-parallel, fragment-parallel and
 // hybrid @cutoff GPU times (pass 1 + pass 2, medians of R runs after a warm-up), the hybrid's
 // pass 1 / pass 2 split and large-triangle count, its end-to-end wall time (voxelize():
 // validation, upload, voxelize, readback) and the cpu backend's wall time beside them.
 // "triangle" is the paper's scene-spanning single triangle. On Mesa's llvmpipe pass times
-// come from the wall clock around glFinish (its timer queries miss compute work).
+// come from the wall clock around glFinish (its timer queries miss compute work). The table
+// also goes to DIR/gl_hybrid.{json,md} (default bench/results/).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -17,6 +18,7 @@
 #include <fstream>
 
 #include "bench_args.h"
+#include "bench_results.h"
 #include "core/stopwatch.h"
 #include "gl/bindings.h"
 #include "gl/gl_debug.h"
@@ -68,7 +70,7 @@ void main() {
     for (int x = lo.x; x <= hi.x; ++x)
         for (int y = lo.y; y <= hi.y; ++y)
             for (int z = lo.z; z <= hi.z; ++z)
-                if (overlapsBox(vec3(ivec3(x, y, z) - origin) + 0.5, v0, v1, v2)) setVoxel(ivec3(x, y, z));
+                if (overlapsBox(vec3(ivec3(x, y, z) - origin) + 0.5, v0, v1, v2)) setVoxel(ivec3(x, y, z), tri);
 }
 )glsl";
 
@@ -87,7 +89,8 @@ double naiveMs(const hyvox::MeshView& view, const hyvox::VoxelizeOptions& option
     gl::GlWorker& worker = gl::GlWorker::get(options.gl.device);
     return worker.run([&] {
         const gl::Program program = gl::buildProgram(
-            {{GL_COMPUTE_SHADER, "naive.comp"}}, "#define HYVOX_THIN 0\n#define HYVOX_VOXEL_LIST 0\n", dir.string());
+            {{GL_COMPUTE_SHADER, "naive.comp"}},
+            "#define HYVOX_THIN 0\n#define HYVOX_VOXEL_LIST 0\n#define HYVOX_ATTRIBUTE_PAIRS 0\n", dir.string());
         const gl::Buffer vertices(gpu.vertices.size() * sizeof(gl::GpuVertex), gpu.vertices.data(), 0);
         const gl::Buffer triangles(gpu.triangles.size() * 4, gpu.triangles.data(), 0);
         const gl::Buffer bits(grid.bricks().total() * BitGrid::kWordsPerBrick * sizeof(std::uint64_t), nullptr, 0);
@@ -147,6 +150,7 @@ int main(int argc, char** argv) {
     std::vector<int> resolutions;
     std::vector<std::string> meshes;
     int repeat = 5;
+    std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
     hyvox::VoxelizeOptions options;
     options.hybrid.cutoff = -1.0;
     hyvox::bench::readEnvironment(options);
@@ -163,13 +167,15 @@ int main(int argc, char** argv) {
             options.mode = hyvox::parseMode(next());
         else if (arg == "--device")
             options.gl.device = next();
+        else if (arg == "--out")
+            out_dir = next();
         else if (arg == "--cutoff") {
             const std::string v = next();
             options.hybrid.cutoff = v == "auto" ? -1.0 : std::atof(v.c_str());
         } else if (arg == "--help" || arg == "-h") {
             std::printf(
                 "usage: bench_gl_hybrid [--mesh-dir DIR] [--res N]... [--repeat R] [--mode M] [--cutoff auto|X] "
-                "[--device D] [MESH...|triangle]\n");
+                "[--device D] [--out DIR] [MESH...|triangle]\n");
             return 0;
         } else
             meshes.push_back(arg);
@@ -182,6 +188,17 @@ int main(int argc, char** argv) {
 
     std::printf("%-20s %7s %4s | %8s | %9s %9s %9s %8s %6s %8s %8s | %8s %8s\n", "scene", "tris", "res", "naive",
                 "triangle", "fragment", "hybrid", "cutoff", "large", "pass1", "pass2", "hyb wall", "cpu wall");
+    hyvox::bench::ResultTable table(
+        "gl_hybrid", std::string("The GL methods: the JCGT 2013 Table 1 columns, ") + hyvox::toString(options.mode),
+        {{"scene"}, {"triangles"}, {"res"}, {"naive ms", 2}, {"triangle ms", 2}, {"fragment ms", 2}, {"hybrid ms", 2},
+         {"hybrid cutoff", 2}, {"large triangles"}, {"pass 1 ms", 2}, {"pass 2 ms", 2}, {"hybrid wall ms", 2},
+         {"cpu wall ms", 2}},
+        argc, argv);
+    table.setGpu(hyvox::bench::glDevicesText());
+    table.note("GPU milliseconds (pass 1 + pass 2), medians of " + std::to_string(repeat) +
+               " runs after a warm-up; naive: one invocation per triangle, brute-force SAT over its bounding box "
+               "(conservative only); walls: whole voxelize() calls. On llvmpipe the passes are timed by the wall "
+               "clock around glFinish.");
     for (const std::string& name : meshes) {
         hyvox::Mesh mesh;
         if (name == "triangle") {
@@ -208,11 +225,16 @@ int main(int argc, char** argv) {
                         fragment.gpu_ms, hybrid.gpu_ms, hybrid.cutoff, hybrid.large, hybrid.pass1_ms, hybrid.pass2_ms,
                         hybrid.wall_ms, cpu.wall_ms);
             std::fflush(stdout);
+            table.add({name.substr(0, name.find('.')), mesh.triangleCount(), res,
+                       options.mode == hyvox::Mode::Conservative ? hyvox::bench::Cell(naive) : hyvox::bench::Cell(),
+                       triangle.gpu_ms, fragment.gpu_ms, hybrid.gpu_ms, hybrid.cutoff, std::int64_t(hybrid.large),
+                       hybrid.pass1_ms, hybrid.pass2_ms, hybrid.wall_ms, cpu.wall_ms});
         }
     }
     std::printf(
         "(ms; medians of %d runs. naive = one invocation per triangle, brute-force SAT over its\n"
         " bounding box; GPU columns are pass 1 + pass 2; walls are whole voxelize() calls)\n",
         repeat);
+    table.write(out_dir);
     return 0;
 }

@@ -2,16 +2,16 @@
 """Benchmark (not a test): Live's edit-to-new-voxels latency against Blender's own live
 volume paths, in official Blender 5.0 (the bpy module of the test venvs):
 
-    /work/main/build/venv/bpy50/bin/python bench/bench_live.py --build build \\
+    build/venv/bpy50/bin/python bench/bench_live.py --build build \\
         [--meshes suzanne4,bunny,spot,dragon] [--resolutions 128,256,512] [--modes solid,surface] \\
-        [--edits 5] [--out bench/results]
+        [--edits 5] [--animation-frames 24] [--out bench/results]
 
 For each mesh and resolution, one edit after the other (a vertex moved by a tenth of a
 voxel, alternately up and down), the time from the edit until the new grid is loaded in the
 evaluated volume (view_layer.update() returns, then the evaluated volume's `density` grid
 loads), median of the edits after one untimed warm-up edit:
-- hyvox Live (Auto, so cpu on llvmpipe and hybrid on a hardware GPU), solid (Fill
-  Interior, the add-on's default) and surface; where the update's time goes: export and
+- hyvox Live (Auto, so cpu on llvmpipe and hybrid on a hardware GPU), solid (Mode Solid,
+  the add-on's default) and surface; where the update's time goes: export and
   swap (the main thread's part in the UI), key (hashing the input), voxelize, write, and
   Blender (its re-evaluation, the .vdb's load and the edit's own evaluation);
 - Geometry Nodes' Mesh to Density Grid on another object (Object Info of the source), and
@@ -20,9 +20,9 @@ loads), median of the edits after one untimed warm-up edit:
 Then the main thread's time per update for the 100k-triangle Buddha, and the animated
 Suzanne (level 3, 64k triangles, a Wave modifier) at 128: new voxel frames a second when
 frame_set() steps through the animation (background mode: each frame is voxelized
-before frame_set() returns). Writes bench/results/bench_live.json and .md."""
+before frame_set() returns). Writes the tables as bench/results/live.{json,md} and
+live_breakdown.{json,md} (bench_results.py)."""
 import argparse
-import json
 import os
 import statistics
 import sys
@@ -32,7 +32,9 @@ import time
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "demo"))
+sys.path[:0] = [os.path.dirname(os.path.abspath(__file__)),
+                os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "demo")]
+from bench_results import add_out_argument  # noqa: E402
 from run_demo import enable_addon, mesh_from_arrays  # noqa: E402  (the demo's scene helpers)
 
 MESHES = {
@@ -57,8 +59,7 @@ def parse_args():
     parser.add_argument("--edits", type=int, default=5, help="timed edits per case (after one warm-up)")
     parser.add_argument("--skip-blender", action="store_true", help="hyvox Live only")
     parser.add_argument("--animation-frames", type=int, default=24)
-    parser.add_argument("--out", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "results"))
-    parser.add_argument("--name", default="bench_live", help="file name of the results (json, md)")
+    add_out_argument(parser)
     return parser.parse_args(argv)
 
 
@@ -171,8 +172,8 @@ def hyvox_live(source, voxel_size, mode, colour, edits, out):
     for obj in bpy.context.scene.objects:
         obj.select_set(obj is source)
     bpy.context.view_layer.objects.active = source
-    result = bpy.ops.object.hyvox_voxelize(voxel_size=voxel_size, mode="solid" if mode == "solid" else "conservative", color=colour,
-                                           live=True, output_dir=out)
+    result = bpy.ops.object.hyvox_voxelize(voxel_size=voxel_size, mode="solid" if mode == "solid" else "conservative",
+                                           color=colour, live=True, output_dir=out)
     assert result == {"FINISHED"}, result
     volume = bpy.data.objects[source.name + "_voxels"]
     live = addon("blender.live")
@@ -254,7 +255,8 @@ def animated_suzanne(mode, frames, out, resolution=128):
     for o in bpy.context.scene.objects:
         o.select_set(o is obj)
     bpy.context.view_layer.objects.active = obj
-    bpy.ops.object.hyvox_voxelize(resolution=resolution, mode="solid" if mode == "solid" else "conservative", live=True, output_dir=out)
+    bpy.ops.object.hyvox_voxelize(resolution=resolution, mode="solid" if mode == "solid" else "conservative",
+                                  live=True, output_dir=out)
     volume = bpy.data.objects[obj.name + "_voxels"]
     live = addon("blender.live")
     ident = volume["hyvox_live_id"]
@@ -285,53 +287,57 @@ def targets_met(row):
     return None if not checks else all(value >= target for value, target in checks)
 
 
-def markdown(rows, main_thread, animation, header):
-    lines = [header, "",
-             "| mesh | triangles | closed | res | hyvox Live solid ms | hyvox Live surface ms | Mesh to Density "
-             "Grid ms | Mesh to Volume ms | solid vs node | surface vs node | targets (solid, surface) | met |",
-             "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---|"]
+def tables(rows, main_thread, animation, edits):
+    """The results: `live` (Live against Blender's own paths, the main thread and the animation
+    as notes) and `live_breakdown` (where an update's time goes)."""
+    from bench_results import Column, Table
+    about = (f"Blender {bpy.app.version_string} (bpy module); median of {edits} edits after one warm-up; "
+             "hyvox method Auto.")
+    live = Table("live", "Live against Blender's own live volumes (edit to new voxels)",
+                 [Column("mesh"), Column("triangles"), Column("closed"), Column("res"),
+                  Column("hyvox Live solid ms", 0), Column("hyvox Live surface ms", 0),
+                  Column("Mesh to Density Grid ms", 0), Column("Mesh to Volume ms", 0), Column("solid vs node"),
+                  Column("surface vs node"), Column("targets (solid, surface)"), Column("met")])
+    live.note(about)
     for r in rows:
         solid, surface, node = r.get("solid"), r.get("surface"), r.get("node_ms")
 
-        def ms(value):
-            return "-" if value is None else f"{value:.0f}"
-
         def times(live_row):
             value = speedup(live_row, node)
-            return "-" if value is None else f"{value:.1f}x"
+            return None if value is None else f"{value:.1f}x"
 
-        met = targets_met(r)
-        lines.append(f"| {r['mesh']} | {r['triangles']:,} | {'yes' if r['closed'] else 'no'} | {r['resolution']} | "
-                     f"{ms(solid and solid['ms'])} | {ms(surface and surface['ms'])} | {ms(node)} | "
-                     f"{ms(r.get('modifier_ms'))} | {times(solid)} | {times(surface)} | "
-                     f"{10 if r['closed'] else 5}x, 10x | {'-' if met is None else 'yes' if met else 'no'} |")
-    lines += ["", "Where a Live update's time goes (medians, ms). Main thread: what the UI's main thread "
-                  "spends (the export, the run's set-up, the swap; wall clock, and its own CPU time in brackets); "
-                  "Blender: its evaluation after the swap, which loads the new .vdb, and the edit's own:", "",
-              "| mesh | res | mode | method | export | key | voxelize | write | swap | Blender | total | main thread |",
-              "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+        live.add([r["mesh"], r["triangles"], r["closed"], r["resolution"], solid and solid["ms"],
+                  surface and surface["ms"], node, r.get("modifier_ms"), times(solid), times(surface),
+                  f"{10 if r['closed'] else 5}x, 10x", targets_met(r)])
+    if main_thread:
+        live.note(f"Main thread per update, {main_thread['mesh']} ({main_thread['triangles']:,} triangles, "
+                  f"surface at {main_thread['resolution']}): {main_thread['ms']:.1f} ms by the wall clock, "
+                  f"{main_thread['cpu_ms']:.1f} ms of its own CPU time (of which export "
+                  f"{main_thread['export_ms']:.1f}, swap {main_thread['swap_ms']:.1f}); target <= 10 ms: "
+                  f"{'met' if main_thread['ms'] <= 10 else 'not met'} by the wall clock, "
+                  f"{'met' if main_thread['cpu_ms'] <= 10 else 'not met'} in CPU time.")
+    for x in animation:
+        live.note(f"Animated Suzanne level 3 ({x['triangles']:,} triangles, Wave) at 128, {x['mode']}: "
+                  f"{x['fps']:.1f} new voxel frames a second over {x['frames']} frames; target >= 10: "
+                  f"{'met' if x['fps'] >= 10 else 'not met'}.")
+    breakdown = Table("live_breakdown", "Where a Live update's time goes",
+                      [Column("mesh"), Column("res"), Column("mode"), Column("method")] +
+                      [Column(name, 1) for name in ("export ms", "key ms", "voxelize ms", "write ms", "swap ms",
+                                                    "Blender ms", "total ms", "main thread ms",
+                                                    "main thread CPU ms")])
+    breakdown.note(about + " Medians. Main thread: what the UI's main thread spends (the export, the run's "
+                   "set-up, the swap; wall clock, and its own CPU time); Blender: its evaluation after the swap, "
+                   "which loads the new .vdb, and the edit's own.")
     for r in rows:
         for mode in ("solid", "surface"):
             x = r.get(mode)
             if x is None:
                 continue
             b = x["breakdown_ms"]
-            lines.append(f"| {r['mesh']} | {r['resolution']} | {mode} | {x['method']} | {b['export']:.1f} | "
-                         f"{b['key']:.1f} | {b['voxelize']:.1f} | {b['write']:.1f} | {b['swap']:.1f} | "
-                         f"{b['blender']:.1f} | {x['ms']:.1f} | {x['main_thread_ms']:.1f} "
-                         f"({x['main_thread_cpu_ms']:.1f}) |")
-    if main_thread:
-        lines += ["", f"Main thread per update, {main_thread['mesh']} ({main_thread['triangles']:,} triangles, "
-                      f"surface at {main_thread['resolution']}): {main_thread['ms']:.1f} ms by the wall clock, "
-                      f"{main_thread['cpu_ms']:.1f} ms of its own CPU time (of which export "
-                      f"{main_thread['export_ms']:.1f}, swap {main_thread['swap_ms']:.1f}); target <= 10 ms: "
-                      f"{'met' if main_thread['ms'] <= 10 else 'not met'} by the wall clock, "
-                      f"{'met' if main_thread['cpu_ms'] <= 10 else 'not met'} in CPU time"]
-    for a in animation:
-        lines += [f"Animated Suzanne level 3 ({a['triangles']:,} triangles, Wave) at 128, {a['mode']}: "
-                  f"{a['fps']:.1f} new voxel frames a second over {a['frames']} frames; target >= 10: "
-                  f"{'met' if a['fps'] >= 10 else 'not met'}"]
-    return "\n".join(lines) + "\n"
+            breakdown.add([r["mesh"], r["resolution"], mode, x["method"], b["export"], b["key"], b["voxelize"],
+                           b["write"], b["swap"], b["blender"], x["ms"], x["main_thread_ms"],
+                           x["main_thread_cpu_ms"]])
+    return [live, breakdown]
 
 
 def main():
@@ -373,16 +379,8 @@ def main():
         for mode in modes:
             animation.append(animated_suzanne(mode, args.animation_frames, out))
             print(f"animated Suzanne {mode}: {animation[-1]['fps']:.1f} frames/s", flush=True)
-    header = (f"Blender {bpy.app.version_string} (bpy module), {os.cpu_count()} CPUs, load average "
-              f"{os.getloadavg()[0]:.1f} at the end; median of {args.edits} edits; hyvox method Auto")
-    text = markdown(rows, main_thread, animation, header)
-    print("\n" + text)
-    os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, args.name + ".json"), "w") as f:
-        json.dump({"header": header, "rows": rows, "main_thread": main_thread, "animation": animation}, f, indent=2)
-    with open(os.path.join(args.out, args.name + ".md"), "w") as f:
-        f.write(text)
-
+    for table in tables(rows, main_thread, animation, args.edits):
+        table.write(args.out)
 
 if __name__ == "__main__":
     try:

@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Mesh reading time: hyvox's strict readers (hyvox::readMesh) against the assimp path it
 // replaced for PLY and OBJ (support/assimp_mesh.h), median of --repeat runs each.
-//   bench_mesh_read [--repeat N] MESH...
+//   bench_mesh_read [--repeat N] [--out DIR] MESH...
+// The table also goes to DIR/mesh_read.{json,md} (default bench/results/).
 #include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_results.h"
 #include "hyvox/mesh_io.h"
 #include "support/assimp_mesh.h"
 
@@ -30,18 +32,25 @@ double medianMs(int repeat, Read read, std::size_t& triangles) {
 int main(int argc, char** argv) {
     int repeat = 5;
     std::vector<std::string> files;
+    std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
         if (arg == "--repeat")
             repeat = std::max(1, std::atoi(hyvox::bench::optionValue(argc, argv, a).c_str()));
+        else if (arg == "--out")
+            out_dir = hyvox::bench::optionValue(argc, argv, a);
         else
             files.push_back(arg);
     }
     if (files.empty()) {
-        std::fprintf(stderr, "usage: bench_mesh_read [--repeat N] MESH...\n");
+        std::fprintf(stderr, "usage: bench_mesh_read [--repeat N] [--out DIR] MESH...\n");
         return 2;
     }
     std::printf("%-40s %10s %12s %12s %8s\n", "mesh", "triangles", "assimp ms", "hyvox ms", "speed-up");
+    hyvox::bench::ResultTable table("mesh_read", "Mesh reading: the strict PLY/OBJ readers against assimp",
+                                    {{"mesh"}, {"triangles"}, {"assimp ms", 1}, {"hyvox ms", 1}, {"assimp / hyvox", 1}},
+                                    argc, argv);
+    table.note("Medians of " + std::to_string(repeat) + " reads of each file, one after the other.");
     for (const std::string& file : files) {
         std::size_t old_triangles = 0, new_triangles = 0;
         const double old_ms = medianMs(repeat, [&] { return hyvox::test::readMeshWithAssimp(file); }, old_triangles);
@@ -49,6 +58,9 @@ int main(int argc, char** argv) {
         const std::string name = file.substr(file.find_last_of('/') + 1);
         std::printf("%-40s %10zu %12.1f %12.1f %7.1fx%s\n", name.c_str(), new_triangles, old_ms, new_ms, old_ms / new_ms,
                     old_triangles == new_triangles ? "" : "  (triangle counts differ!)");
+        if (old_triangles != new_triangles) table.note(name + ": the two readers give different triangle counts");
+        table.add({name, new_triangles, old_ms, new_ms, old_ms / new_ms});
     }
+    table.write(out_dir);
     return 0;
 }

@@ -2,10 +2,11 @@
 // hyvox `cpu` against OpenVDB's tools::meshToUnsignedDistanceField with a 1-voxel band
 // (what Blender's Mesh to Volume uses), same voxel size, same process, same threads.
 //
-//   bench_mesh_to_volume [--runs R] [--res N]... [--mesh-dir DIR] [--csv FILE] [MESH...]
+//   bench_mesh_to_volume [--runs R] [--res N]... [--mesh-dir DIR] [--out DIR] [MESH...]
 //
 // Defaults: the bunny, the 871k dragon and Sponza from the shared meshes, at 256 and 512,
-// median of 5 runs. Prints a table and writes CSV (default bench/results/, git-ignored).
+// median of 5 runs. Prints a table and writes it to DIR/mesh_to_volume.{json,md} (default
+// bench/results/).
 // Times, per case (medians, milliseconds):
 //   stage   hyvox's "voxelize" stage alone (the backend: what the goals measure)
 //   call    the whole hyvox::voxelize() call (validate, allocate, voxelize, count)
@@ -31,6 +32,7 @@
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_results.h"
 #include "openvdb_arrays.h"
 #include "core/stopwatch.h"
 #include "hyvox/hyvox.h"
@@ -169,13 +171,6 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
     return row;
 }
 
-std::string defaultCsvPath() {
-    char stamp[32];
-    const std::time_t now = std::time(nullptr);
-    std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::gmtime(&now));
-    return std::string(HYVOX_BENCH_RESULTS_DIR) + "/mesh_to_volume-" + stamp + ".csv";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -185,23 +180,22 @@ int main(int argc, char** argv) {
         std::vector<std::string> meshes;
         const char* env_dir = std::getenv("HYVOX_MESH_DIR");
         std::string mesh_dir = env_dir ? env_dir : HYVOX_BENCH_MESH_DIR;
-        std::string csv_path;
+        std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
         for (int a = 1; a < argc; ++a) {
             const std::string arg = argv[a];
             auto value = [&] { return hyvox::bench::optionValue(argc, argv, a); };
             if (arg == "--runs") runs = std::max(1, std::atoi(value().c_str()));
             else if (arg == "--res") resolutions.push_back(std::atoi(value().c_str()));
             else if (arg == "--mesh-dir") mesh_dir = value();
-            else if (arg == "--csv") csv_path = value();
+            else if (arg == "--out") out_dir = value();
             else if (arg == "-h" || arg == "--help") {
-                std::puts("bench_mesh_to_volume [--runs R] [--res N]... [--mesh-dir DIR] [--csv FILE] [MESH...]");
+                std::puts("bench_mesh_to_volume [--runs R] [--res N]... [--mesh-dir DIR] [--out DIR] [MESH...]");
                 return 0;
             } else meshes.push_back(arg);
         }
         if (resolutions.empty()) resolutions = {256, 512};
         if (meshes.empty())
             meshes = {"bunny_stanford_69k.ply", "dragon_stanford_871k.ply.gz", "sponza_crytek_262k_vcolor.ply.gz"};
-        if (csv_path.empty()) csv_path = defaultCsvPath();
         hyvox::io::initializeOpenVdb();
 
         std::printf("hyvox %s cpu vs OpenVDB %s meshToUnsignedDistanceField (band 1 voxel); median of %d runs, "
@@ -210,14 +204,25 @@ int main(int argc, char** argv) {
                     std::thread::hardware_concurrency());
         std::printf("%-34s %5s %9s %9s %8s %8s %8s %9s %7s %7s %9s %9s\n", "mesh", "res", "hyvox vox", "vdb vox",
                     "stage", "call", "+vdb", "openvdb", "x call", "x +vdb", "RSS hyvox", "RSS vdb");
-        std::vector<Row> rows;
+        hyvox::bench::ResultTable table(
+            "mesh_to_volume", "The surface: hyvox cpu against OpenVDB meshToUnsignedDistanceField",
+            {{"mesh"}, {"res"}, {"triangles"}, {"hyvox voxels"}, {"OpenVDB voxels"}, {"stage ms", 1}, {"call ms", 1},
+             {"call + vdb ms", 1}, {"OpenVDB ms", 1}, {"OpenVDB / call", 1}, {"OpenVDB / call + vdb", 1},
+             {"hyvox peak MiB", 0}, {"OpenVDB peak MiB", 0}},
+            argc, argv);
+        table.note("Medians of " + std::to_string(runs) +
+                   " runs, all cores. stage: the voxelize stage; call: the whole hyvox::voxelize() call; "
+                   "+ vdb: with the OpenVDB density grid built from it; OpenVDB: meshToUnsignedDistanceField, "
+                   "1-voxel band, same voxel size; peak: resident memory each side adds (own process).");
         for (const std::string& name : meshes) {
             const std::string path = name.find('/') == std::string::npos ? mesh_dir + "/" + name : name;
             const hyvox::Mesh mesh = hyvox::readMesh(path);
             const std::string label = std::filesystem::path(path).filename().string();
             for (int res : resolutions) {
                 const Row row = runCase(label, mesh, res, runs);
-                rows.push_back(row);
+                table.add({row.mesh, row.resolution, row.triangles, row.hyvox_voxels, row.openvdb_voxels, row.stage_ms,
+                           row.call_ms, row.with_vdb_ms, row.openvdb_ms, row.openvdb_ms / row.call_ms,
+                           row.openvdb_ms / row.with_vdb_ms, row.hyvox_peak_mib, row.openvdb_peak_mib});
                 std::printf("%-34s %5d %9llu %9llu %8.1f %8.1f %8.1f %9.1f %6.1fx %6.1fx %6.1f MiB %6.1f MiB\n",
                             row.mesh.c_str(), row.resolution, (unsigned long long)row.hyvox_voxels,
                             (unsigned long long)row.openvdb_voxels, row.stage_ms, row.call_ms, row.with_vdb_ms,
@@ -227,22 +232,7 @@ int main(int argc, char** argv) {
             }
         }
 
-        std::filesystem::create_directories(std::filesystem::path(csv_path).parent_path());
-        std::ofstream csv(csv_path);
-        csv << "mesh,resolution,triangles,voxel_size,hyvox_voxels,openvdb_voxels,hyvox_stage_ms,hyvox_call_ms,"
-               "hyvox_with_vdb_ms,openvdb_ms,speedup_call,speedup_with_vdb,hyvox_peak_rss_mib,openvdb_peak_rss_mib,"
-               "runs\n";
-        char buf[512];
-        for (const Row& r : rows) {
-            std::snprintf(buf, sizeof buf, "%s,%d,%zu,%.9g,%llu,%llu,%.3f,%.3f,%.3f,%.3f,%.2f,%.2f,%.1f,%.1f,%d\n",
-                          r.mesh.c_str(), r.resolution, r.triangles, r.voxel_size, (unsigned long long)r.hyvox_voxels,
-                          (unsigned long long)r.openvdb_voxels, r.stage_ms, r.call_ms, r.with_vdb_ms, r.openvdb_ms,
-                          r.openvdb_ms / r.call_ms, r.openvdb_ms / r.with_vdb_ms, r.hyvox_peak_mib,
-                          r.openvdb_peak_mib, runs);
-            csv << buf;
-        }
-        if (!csv.flush()) throw std::runtime_error("cannot write " + csv_path);
-        std::printf("\nCSV: %s\n", csv_path.c_str());
+        table.write(out_dir);
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bench_mesh_to_volume: error: %s\n", e.what());

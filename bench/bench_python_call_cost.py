@@ -9,14 +9,19 @@ native work the CLI times too), its minor page faults and system CPU (getrusage)
 
     /usr/bin/python3 bench/bench_python_call_cost.py --build build --baseline OTHER_BUILD \\
         --mesh /tmp/dragon_stanford_871k.ply --res 128 --threads 1 --calls 20 --rounds 2
+
+The rounds' figures also go to DIR/python_call_cost.{json,md} (--out DIR, default bench/results/).
 """
 import argparse
+import json
 import os
 import resource
 import statistics
 import subprocess
 import sys
 import time
+
+from bench_results import Column, Table, add_out_argument
 
 
 def measure(build, mesh, res, threads, calls):
@@ -42,6 +47,10 @@ def measure(build, mesh, res, threads, calls):
     print(f"{build}: call CPU median {statistics.median(r['cpu'] for r in rows):.1f} ms (min {min(r['cpu'] for r in rows):.1f}), "
           f"stages' sum min {min(r['stages'] for r in rows):.1f} ms, minor faults {statistics.median(r['faults'] for r in rows):.0f}, "
           f"system CPU median {statistics.median(r['sys'] for r in rows):.1f} ms")
+    # The parent collects one line of figures per process for the results' table.
+    print("FIGURES " + json.dumps([build, statistics.median(r["cpu"] for r in rows), min(r["cpu"] for r in rows),
+                                   min(r["stages"] for r in rows), statistics.median(r["faults"] for r in rows),
+                                   statistics.median(r["sys"] for r in rows)]), flush=True)
 
 
 def main():
@@ -54,6 +63,7 @@ def main():
     parser.add_argument("--calls", type=int, default=20)
     parser.add_argument("--rounds", type=int, default=2)
     parser.add_argument("--one", help=argparse.SUPPRESS)  # internal: measure this build in this process
+    add_out_argument(parser)
     args = parser.parse_args()
     if args.one:
         measure(args.one, args.mesh, args.res, args.threads, args.calls)
@@ -61,12 +71,25 @@ def main():
     if not args.build:
         parser.error("--build is required")
     print(f"load average {os.getloadavg()[0]:.1f}")
+    table = Table("python_call_cost", f"What hyvox.voxelize costs around its stages: {os.path.basename(args.mesh)} "
+                  f"at {args.res}", [Column("build"), Column("call CPU median ms", 1), Column("call CPU min ms", 1),
+                                    Column("stages' sum min ms", 1), Column("minor faults", 0),
+                                    Column("system CPU median ms", 1)])
+    table.note(f"One process per build and round ({args.rounds} rounds), {args.calls} calls each (the first "
+               f"left out), threads {args.threads}.")
     builds = [b for b in (args.baseline, args.build) if b]
     for _ in range(args.rounds):
         for build in builds:  # one process per build: the modules cannot share one
-            subprocess.run([sys.executable, __file__, "--one", build, "--mesh", args.mesh, "--res", str(args.res),
-                            "--threads", str(args.threads), "--calls", str(args.calls)], check=True)
+            done = subprocess.run([sys.executable, __file__, "--one", build, "--mesh", args.mesh,
+                                   "--res", str(args.res), "--threads", str(args.threads), "--calls", str(args.calls)],
+                                  check=True, capture_output=True, text=True)
+            for line in done.stdout.splitlines():
+                if line.startswith("FIGURES "):
+                    table.add(json.loads(line[len("FIGURES "):]))
+                else:
+                    print(line, flush=True)
     print(f"load average {os.getloadavg()[0]:.1f}")
+    table.write(args.out)
 
 
 if __name__ == "__main__":

@@ -3,7 +3,7 @@
 // Blender's Mesh to SDF Grid node runs), same voxel size, placement and band (3 voxels), same
 // process, all cores on both sides, one run.
 //
-//   bench_sdf [--runs R] [--res N]... [--mesh-dir DIR] [--out-dir DIR] [MESH...]   (--help: usage)
+//   bench_sdf [--runs R] [--res N]... [--mesh-dir DIR] [--out DIR] [MESH...]   (--help: usage)
 //
 // Defaults: Spot, the Buddha and the 871k dragon (closed or nearly: their inside by ray crossings
 // or winding numbers), the bunny and Sponza (open), at 128, 256, 512 and 1024; median of 3 runs.
@@ -17,21 +17,19 @@
 //   sign differs voxels both hold whose signs differ (hyvox's |d| above 0.05 voxel)
 //   exact check of up to 200 of those, the exact winding number (every triangle's solid angle) at
 //               the voxel: how many hyvox signs right / OpenVDB right / too close to 0.5 to say
-// Writes the table as DIR/sdf.json and DIR/sdf.md (default bench/results/).
+// The table also goes to DIR/sdf.{json,md} (default bench/results/).
 #include <openvdb/tools/MeshToVolume.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_results.h"
 #include "openvdb_arrays.h"
 #include "core/stopwatch.h"
 #include "hyvox/hyvox.h"
@@ -129,7 +127,7 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
         corners.push_back({result.grid.toVoxel(validated.vertex(t, 0)), result.grid.toVoxel(validated.vertex(t, 1)),
                            result.grid.toVoxel(validated.vertex(t, 2))});
     const std::size_t step = std::max<std::size_t>(1, differing.size() / 200);
-    for (std::size_t n = 0; n < differing.size(); n += step) {
+    for (std::size_t n = 0; n < differing.size() && row.checked < 200; n += step) {
         const openvdb::Coord c = differing[n];
         const hyvox::solid::Vec3 q{c.x() + 0.5, c.y() + 0.5, c.z() + 0.5};
         double w = 0;
@@ -146,66 +144,14 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
 }
 
 constexpr const char* kUsage =
-    "usage: bench_sdf [--runs R] [--res N]... [--mesh-dir DIR] [--out-dir DIR] [MESH...]\n"
+    "usage: bench_sdf [--runs R] [--res N]... [--mesh-dir DIR] [--out DIR] [MESH...]\n"
     "  hyvox's sdf attribute against OpenVDB meshToLevelSet (band 3 voxels)\n"
     "  --runs R       timed runs per case, the median printed (default 3)\n"
     "  --res N        a resolution (repeatable; default 128, 256, 512 and 1024)\n"
     "  --mesh-dir DIR where mesh names without a '/' are read (default $HYVOX_MESH_DIR or the\n"
     "                 project's meshes)\n"
-    "  --out-dir DIR  where sdf.json and sdf.md go (default bench/results)\n"
+    "  --out DIR      write the table to DIR/sdf.json and .md (default bench/results/)\n"
     "  MESH           default: Spot, the Buddha, the 871k dragon, the bunny and Sponza\n";
-
-std::string jsonString(const std::string& text) {
-    std::string out = "\"";
-    for (char c : text) out += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
-    return out + "\"";
-}
-
-void writeResults(const std::string& dir, const std::vector<Row>& rows, int runs, const std::string& command) {
-    std::filesystem::create_directories(dir);
-    char stamp[32];
-    const std::time_t now = std::time(nullptr);
-    std::strftime(stamp, sizeof stamp, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-    const unsigned threads = std::thread::hardware_concurrency();
-    std::ofstream json(dir + "/sdf.json");
-    json << "{\n  \"benchmark\": \"sdf\",\n  \"command\": " << jsonString(command) << ",\n  \"date\": " << jsonString(stamp)
-         << ",\n  \"hyvox\": " << jsonString(hyvox::version()) << ",\n  \"openvdb\": "
-         << jsonString(openvdb::getLibraryAbiVersionString()) << ",\n  \"hardware_threads\": " << threads
-         << ",\n  \"runs\": " << runs << ",\n  \"band_voxels\": 3,\n  \"rows\": [\n";
-    for (std::size_t n = 0; n < rows.size(); ++n) {
-        const Row& r = rows[n];
-        char line[1024];
-        std::snprintf(line, sizeof line,
-                      "    {\"mesh\": %s, \"resolution\": %d, \"triangles\": %zu, \"inside\": %s, \"hyvox_ms\": %.3f, "
-                      "\"openvdb_ms\": %.3f, \"openvdb_over_hyvox\": %.3f, \"hyvox_active\": %llu, \"openvdb_active\": %llu, "
-                      "\"common\": %llu, \"max_distance_difference_voxels\": %.4f, \"sign_differs\": %llu, "
-                      "\"checked\": %d, \"hyvox_right\": %d, \"openvdb_right\": %d, \"unclear\": %d}%s\n",
-                      jsonString(r.mesh).c_str(), r.resolution, r.triangles, jsonString(r.inside).c_str(), r.hyvox_ms,
-                      r.openvdb_ms, r.openvdb_ms / r.hyvox_ms, (unsigned long long)r.hyvox_active,
-                      (unsigned long long)r.openvdb_active, (unsigned long long)r.common, r.max_difference,
-                      (unsigned long long)r.sign_differs, r.checked, r.hyvox_right, r.openvdb_right, r.unclear,
-                      n + 1 < rows.size() ? "," : "");
-        json << line;
-    }
-    json << "  ]\n}\n";
-    std::ofstream md(dir + "/sdf.md");
-    md << "<!-- SPDX-License-Identifier: GPL-3.0-or-later -->\n# sdf: hyvox against OpenVDB meshToLevelSet\n\n"
-       << "`" << command << "` — " << stamp << ", hyvox " << hyvox::version() << ", OpenVDB "
-       << openvdb::getLibraryAbiVersionString() << ", " << threads << " hardware threads, median of " << runs
-       << " runs, band 3 voxels.\n\n"
-       << "| mesh | res | hyvox inside | hyvox ms | OpenVDB ms | OpenVDB / hyvox | active (hyvox / OpenVDB) | "
-          "max \\|d\\| difference, voxels | signs differ | of a sample: hyvox right / OpenVDB right / unclear |\n"
-       << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n";
-    for (const Row& r : rows) {
-        char line[1024];
-        std::snprintf(line, sizeof line, "| %s | %d | %s | %.1f | %.1f | %.2f | %llu / %llu | %.3f | %llu | %d / %d / %d |\n",
-                      r.mesh.c_str(), r.resolution, r.inside.c_str(), r.hyvox_ms, r.openvdb_ms, r.openvdb_ms / r.hyvox_ms,
-                      (unsigned long long)r.hyvox_active, (unsigned long long)r.openvdb_active, r.max_difference,
-                      (unsigned long long)r.sign_differs, r.hyvox_right, r.openvdb_right, r.unclear);
-        md << line;
-    }
-    if (!json.flush() || !md.flush()) throw std::runtime_error("cannot write to " + dir);
-}
 
 }  // namespace
 
@@ -213,37 +159,46 @@ int main(int argc, char** argv) try {
     std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
     hyvox::bench::MeshBenchArgs args = hyvox::bench::parseMeshBenchArgs(
         argc, argv, kUsage, HYVOX_BENCH_MESH_DIR, [&](const std::string& arg, int& a) {
-            if (arg != "--out-dir") return false;
+            if (arg != "--out") return false;
             out_dir = hyvox::bench::optionValue(argc, argv, a);
             return true;
         });
-    std::string command = "build/bench/bench_sdf";
-    for (int a = 1; a < argc; ++a) command += std::string(" ") + argv[a];
     if (args.resolutions.empty()) args.resolutions = {128, 256, 512, 1024};
     if (args.files.empty())
         args.files = {"spot_vcolor.ply", "happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz", "bunny_stanford_69k.ply",
                       "sponza_crytek_262k_vcolor.ply.gz"};
     const int runs = args.runs;
     hyvox::io::initializeOpenVdb();
+    hyvox::bench::ResultTable table(
+        "sdf", "The signed distance grid against OpenVDB's meshToLevelSet",
+        {{"mesh"}, {"res"}, {"hyvox inside"}, {"hyvox ms", 1}, {"openvdb ms", 1}, {"openvdb / hyvox", 2},
+         {"hyvox active"}, {"openvdb active"}, {"max |d| difference, voxels", 3}, {"signs differ"},
+         {"sample checked"}, {"hyvox right"}, {"openvdb right"}, {"unclear"}},
+        argc, argv);
+    table.note("Medians of " + std::to_string(runs) + " runs, band 3 voxels, OpenVDB " +
+               openvdb::getLibraryAbiVersionString() +
+               ". |d| difference: where both hold a voxel and agree on its sign (hyvox's distances are exact, "
+               "OpenVDB's band approximate). Of a sample of the voxels whose signs differ, the exact winding "
+               "number says which side is right (unclear: too close to 0.5 to say).");
     std::printf("%-30s %5s %-30s %10s %10s %6s %10s %10s %9s %9s %s\n", "mesh", "res", "hyvox inside", "hyvox ms",
                 "openvdb ms", "x", "hyvox act", "vdb act", "|d| diff", "signs", "hyvox/vdb/unclear");
-    std::vector<Row> rows;
     for (const std::string& file : args.files) {
         const std::string path = file.find('/') == std::string::npos ? args.mesh_dir + "/" + file : file;
         const hyvox::Mesh mesh = hyvox::readMesh(path);
         const std::string label = std::filesystem::path(path).filename().string();
         for (const int res : args.resolutions) {
             const Row r = runCase(label, mesh, res, runs);
-            rows.push_back(r);
             std::printf("%-30s %5d %-30s %10.1f %10.1f %6.2f %10llu %10llu %9.3f %9llu %d/%d/%d\n", r.mesh.c_str(),
                         r.resolution, r.inside.c_str(), r.hyvox_ms, r.openvdb_ms, r.openvdb_ms / r.hyvox_ms,
                         (unsigned long long)r.hyvox_active, (unsigned long long)r.openvdb_active, r.max_difference,
                         (unsigned long long)r.sign_differs, r.hyvox_right, r.openvdb_right, r.unclear);
             std::fflush(stdout);
+            table.add({r.mesh, r.resolution, r.inside, r.hyvox_ms, r.openvdb_ms, r.openvdb_ms / r.hyvox_ms,
+                       r.hyvox_active, r.openvdb_active, r.max_difference, r.sign_differs, r.checked, r.hyvox_right,
+                       r.openvdb_right, r.unclear});
         }
     }
-    writeResults(out_dir, rows, runs, command);
-    std::printf("\n%s/sdf.json, %s/sdf.md\n", out_dir.c_str(), out_dir.c_str());
+    table.write(out_dir);
     return 0;
 } catch (const std::exception& error) {
     std::fprintf(stderr, "bench_sdf: %s\n", error.what());

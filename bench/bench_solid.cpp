@@ -3,8 +3,9 @@
 // an unlimited interior band followed by sdfToFogVolume (what Blender's Mesh to Volume does
 // with Fill Volume), same voxel size and placement, same process, same threads, one run.
 //
-//   bench_solid [--runs R] [--res N]... [--mesh-dir DIR] [--fog-dir DIR] [MESH...]   (--help: usage)
+//   bench_solid [--runs R] [--res N]... [--mesh-dir DIR] [--fog-dir DIR] [--out DIR] [MESH...]   (--help: usage)
 //
+// The table also goes to DIR/solid.{json,md} (default bench/results/).
 // --fog-dir: also writes OpenVDB's active fog voxels inside hyvox's grid to
 // DIR/MESH_RES.fog.ijk (int32 i, j, k per voxel, tiles expanded), for bench_solid_three_way.py.
 //
@@ -29,6 +30,7 @@
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_results.h"
 #include "openvdb_arrays.h"
 #include "core/stopwatch.h"
 #include "hyvox/hyvox.h"
@@ -126,23 +128,26 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
 }
 
 constexpr const char* kUsage =
-    "usage: bench_solid [--runs R] [--res N]... [--mesh-dir DIR] [--fog-dir DIR] [MESH...]\n"
+    "usage: bench_solid [--runs R] [--res N]... [--mesh-dir DIR] [--fog-dir DIR] [--out DIR] [MESH...]\n"
     "  hyvox mode=solid (inside rule auto) against OpenVDB meshToVolume + sdfToFogVolume\n"
     "  --runs R       timed runs per case, the median printed (default 3)\n"
     "  --res N        a resolution (repeatable; default 256, 512 and 1024)\n"
     "  --mesh-dir DIR where mesh names without a '/' are read (default $HYVOX_MESH_DIR or the\n"
     "                 project's meshes)\n"
     "  --fog-dir DIR  also write OpenVDB's fog voxels to DIR/MESH_RES.fog.ijk\n"
+    "  --out DIR      write the table to DIR/solid.json and .md (default bench/results/)\n"
     "  MESH           default: the Buddha, the 871k dragon and Sponza\n";
 
 }  // namespace
 
 int main(int argc, char** argv) try {
     std::string fog_dir;
+    std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
     hyvox::bench::MeshBenchArgs args = hyvox::bench::parseMeshBenchArgs(
         argc, argv, kUsage, HYVOX_BENCH_MESH_DIR, [&](const std::string& arg, int& a) {
-            if (arg != "--fog-dir") return false;
-            fog_dir = hyvox::bench::optionValue(argc, argv, a);
+            if (arg == "--fog-dir") fog_dir = hyvox::bench::optionValue(argc, argv, a);
+            else if (arg == "--out") out_dir = hyvox::bench::optionValue(argc, argv, a);
+            else return false;
             return true;
         });
     const int runs = args.runs;
@@ -154,6 +159,15 @@ int main(int argc, char** argv) try {
     hyvox::io::initializeOpenVdb();
     std::printf("%-34s %5s %-34s %9s %9s %9s %7s %12s %12s %10s %10s\n", "mesh", "res", "hyvox rule", "hyvox", "+vdb",
                 "openvdb", "x +vdb", "hyvox vox", "openvdb vox", "vdb-only", "hyvox-only");
+    hyvox::bench::ResultTable table(
+        "solid", "Solid: hyvox mode=solid against OpenVDB meshToVolume + sdfToFogVolume",
+        {{"mesh"}, {"res"}, {"hyvox inside rule"}, {"hyvox ms", 1}, {"hyvox + vdb ms", 1}, {"OpenVDB ms", 1},
+         {"OpenVDB / hyvox + vdb", 1}, {"hyvox voxels"}, {"OpenVDB voxels"}, {"OpenVDB only"}, {"hyvox only"}},
+        argc, argv);
+    table.note("Medians of " + std::to_string(runs) +
+               " runs, all cores, the same grid. OpenVDB only: fog voxels hyvox leaves out; hyvox only: hyvox's "
+               "inside voxels off its surface that the fog lacks. OpenVDB's sign flood needs a closed surface: "
+               "on an open mesh (Sponza) its interior is wrong, by the brute-force winding number.");
     for (const std::string& file : files) {
         const std::string path = file.find('/') == std::string::npos ? mesh_dir + "/" + file : file;
         const hyvox::Mesh mesh = hyvox::readMesh(path);
@@ -164,8 +178,12 @@ int main(int argc, char** argv) try {
                         (unsigned long long)r.hyvox_voxels, (unsigned long long)r.openvdb_voxels,
                         (unsigned long long)r.openvdb_only, (unsigned long long)r.hyvox_only_inside);
             std::fflush(stdout);
+            table.add({r.mesh, r.resolution, r.rule, r.hyvox_ms, r.with_vdb_ms, r.openvdb_ms,
+                       r.openvdb_ms / r.with_vdb_ms, r.hyvox_voxels, r.openvdb_voxels, r.openvdb_only,
+                       r.hyvox_only_inside});
         }
     }
+    table.write(out_dir);
     return 0;
 } catch (const std::exception& error) {  // a mesh that cannot be read, a grid too large, ...
     std::fprintf(stderr, "bench_solid: %s\n", error.what());

@@ -7,14 +7,16 @@ order 2, beta 2) at every voxel centre of hyvox's grid, inside where w >= 0.5.
 
     /usr/bin/python3 -m venv --system-site-packages bench/.venv
     bench/.venv/bin/pip install -r bench/requirements-py311.txt
-    PYTHONPATH=build/python bench/.venv/bin/python bench/bench_solid_three_way.py [--res 128,256] [MESH...]
+    PYTHONPATH=build/python bench/.venv/bin/python bench/bench_solid_three_way.py [--res 128,256] [--out DIR] [MESH...]
 
 Where each is wrong: on the voxels outside hyvox's (conservative) surface, the voxels where
 OpenVDB's fog or libigl's w >= 0.5 differ from hyvox, and for a random sample of each set
 (and of all those voxels) the float64 brute-force winding number (the tests' oracle,
 tests/python/test_solid.py): how often it sides with hyvox, with the other, or lies within
-0.05 of 0.5 (ambiguous: no approximation is held to those)."""
+0.05 of 0.5 (ambiguous: no approximation is held to those). The two tables also go to
+DIR/solid_three_way.{json,md} and DIR/solid_three_way_checks.{json,md} (default bench/results/)."""
 import argparse
+import json
 import os
 import pathlib
 import subprocess
@@ -26,6 +28,7 @@ import numpy as np
 
 import hyvox
 import igl
+from bench_results import Column, Table, add_out_argument
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests" / "python"))
@@ -37,10 +40,11 @@ POINTS_PER_CALL = 8_000_000  # libigl's memory for its output and temporaries st
 
 def openvdb_run(bench_solid, mesh_dir, name, res, fog_dir):
     """bench_solid's row (its hyvox and OpenVDB ms) and OpenVDB's fog voxels."""
-    out = subprocess.run([bench_solid, "--runs", "1", "--res", str(res), "--mesh-dir", str(mesh_dir), "--fog-dir", fog_dir, name],
-                         check=True, capture_output=True, text=True).stdout.splitlines()
-    fields = out[-1].split()
-    hyvox_ms, with_vdb_ms, openvdb_ms = (float(x) for x in fields[-8:-5])
+    subprocess.run([bench_solid, "--runs", "1", "--res", str(res), "--mesh-dir", str(mesh_dir), "--fog-dir", fog_dir,
+                    "--out", fog_dir, name], check=True, capture_output=True, text=True)
+    with open(os.path.join(fog_dir, "solid.json")) as f:
+        row = json.load(f)["rows"][-1]
+    hyvox_ms, openvdb_ms = row[3], row[5]
     fog = np.fromfile(os.path.join(fog_dir, f"{name}_{res}.fog.ijk"), dtype=np.int32).reshape(-1, 3)
     return hyvox_ms, openvdb_ms, fog
 
@@ -84,7 +88,21 @@ def main():
     parser.add_argument("--bench-solid", default=str(ROOT / "build" / "bench" / "bench_solid"))
     parser.add_argument("--samples", type=int, default=100, help="brute-force checks per voxel set")
     parser.add_argument("meshes", nargs="*", default=MESHES)
+    add_out_argument(parser)
     args = parser.parse_args()
+    times = Table("solid_three_way", "Solid three ways: hyvox, OpenVDB, libigl's fast winding numbers",
+                  [Column("mesh"), Column("res"), Column("hyvox rule (auto)"), Column("hyvox ms", 0),
+                   Column("hyvox ms (bench_solid)", 0), Column("OpenVDB ms", 0), Column("libigl ms", 0),
+                   Column("OpenVDB / hyvox", 1), Column("libigl / hyvox", 1), Column("voxels off hyvox's surface")])
+    times.note("One run each. hyvox in this process (mode solid, inside rule auto); OpenVDB: meshToVolume + "
+               "sdfToFogVolume through bench_solid; libigl: fast_winding_number at every voxel centre, its tree "
+               "built inside the timed call.")
+    judged = Table("solid_three_way_checks", "Solid three ways: where each is wrong, by the brute-force winding number",
+                   [Column("mesh"), Column("res"), Column("voxels (off hyvox's surface)"), Column("count"),
+                    Column("sampled"), Column("brute force with hyvox"), Column("with the other"),
+                    Column("within 0.05 of 0.5")])
+    judged.note(f"Up to {args.samples} random voxels of each set against the float64 brute-force winding number "
+                "(tests/python/test_solid.py); with hyvox / with the other: |w - 0.5| >= 0.05 on that side.")
     rng = np.random.default_rng(1)
     print(f"load average at start: {os.getloadavg()}", flush=True)
     timing = []
@@ -125,11 +143,15 @@ def main():
     for name, res, rule, ms, bench_ms, vdb_ms, igl_ms, free in timing:
         print(f"| {name} | {res} | {rule} | {ms:,.0f} | {bench_ms:,.0f} | {vdb_ms:,.0f} | {igl_ms:,.0f} | "
               f"{vdb_ms / ms:.1f} | {igl_ms / ms:.1f} | {free:,} |")
+        times.add([name, res, rule, ms, bench_ms, vdb_ms, igl_ms, vdb_ms / ms, igl_ms / ms, free])
     print("\n| mesh | res | voxels (outside hyvox's surface) | count | sampled | brute force with hyvox | "
           "with the other | within 0.05 of 0.5 |")
     print("|---|---:|---|---:|---:|---:|---:|---:|")
     for name, res, label, count, sampled, with_hyvox, against, ambiguous in checks:
         print(f"| {name} | {res} | {label} | {count:,} | {sampled} | {with_hyvox} | {against} | {ambiguous} |")
+        judged.add([name, res, label, count, sampled, with_hyvox, against, ambiguous])
+    times.write(args.out)
+    judged.write(args.out)
 
 
 if __name__ == "__main__":

@@ -3,14 +3,16 @@
 Barill et al. 2018 code, expansion order 2, beta 2) evaluated at the same voxel centres.
 
     python3 -m venv --system-site-packages bench/.venv && bench/.venv/bin/pip install libigl==2.6.3
-    PYTHONPATH=build/python bench/.venv/bin/python bench/bench_solid_winding.py [--res 256,512,1024] [MESH...]
+    PYTHONPATH=build/python bench/.venv/bin/python bench/bench_solid_winding.py [--res 256,512,1024] \\
+        [--out DIR] [MESH...]
 
 libigl answers for points, not voxels, so it gets every voxel centre of the grid hyvox laid
 out. Where that is too many for this machine's memory and time, it gets the centres of every
 s-th x-slab (s printed; its time scaled by s), one call per slab group, its tree built once per
 call (the build time, measured on its own, is counted once). Agreement: on the evaluated
 voxels outside hyvox's surface, how many libigl's w >= 0.5 puts on the other side than hyvox,
-and how many of those lie within 0.05 of the threshold (ambiguous for any approximation)."""
+and how many of those lie within 0.05 of the threshold (ambiguous for any approximation). The
+table also goes to DIR/solid_winding.{json,md} (default bench/results/)."""
 import argparse
 import os
 import time
@@ -19,6 +21,7 @@ import numpy as np
 
 import hyvox
 import igl
+from bench_results import Column, Table, add_out_argument
 
 MESHES = ["happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz", "sponza_crytek_262k_vcolor.ply.gz"]
 POINTS_PER_CALL = 8_000_000
@@ -30,7 +33,13 @@ def main():
     parser.add_argument("--mesh-dir", default=os.environ.get("HYVOX_MESH_DIR", "../shared/data/meshes"))
     parser.add_argument("--max-points", type=float, default=3e7, help="centres libigl gets at most per case")
     parser.add_argument("meshes", nargs="*", default=MESHES)
+    add_out_argument(parser)
     args = parser.parse_args()
+    table = Table("solid_winding", "Solid: hyvox against libigl's fast winding numbers at the voxel centres",
+                  [Column("mesh"), Column("res"), Column("hyvox ms", 1), Column("libigl ms", 1), Column("slab step"),
+                   Column("libigl / hyvox", 1), Column("checked"), Column("differ"), Column("within 0.05 of 0.5")])
+    table.note("libigl gets every s-th x-slab's voxel centres (s = slab step; its time scaled by s, its tree build "
+               "counted once); differ: voxels off hyvox's surface where w >= 0.5 disagrees with hyvox.")
     print(f"{'mesh':34} {'res':>5} {'hyvox ms':>9} {'igl ms':>10} {'slab step':>9} {'igl/hyvox':>9} "
           f"{'checked':>11} {'differ':>8} {'ambiguous':>9}")
     for name in args.meshes:
@@ -71,6 +80,8 @@ def main():
             igl_ms = igl_ms * step + build_ms
             print(f"{name:34} {res:5d} {hyvox_ms:9.1f} {igl_ms:10.1f} {step:9d} {igl_ms / hyvox_ms:9.1f} "
                   f"{checked:11d} {differ:8d} {ambiguous:9d}", flush=True)
+            table.add([name, res, hyvox_ms, igl_ms, step, igl_ms / hyvox_ms, checked, differ, ambiguous])
+    table.write(args.out)
 
 
 def by_slab(grid, slabs):

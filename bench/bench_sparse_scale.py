@@ -2,7 +2,7 @@
 """Benchmark (not a test): how the sparse, tiled voxelizer scales with resolution.
 
     python3 bench/bench_sparse_scale.py --build build [--res 1024,2048,4096,8192] \\
-        [--methods cpu] [--dense-up-to 4096] [--json FILE] [--plot FILE.png] MESH...
+        [--methods cpu] [--dense-up-to 4096] [--json FILE] [--plot FILE.png] [--out DIR] MESH...
 
 Each run is the CLI (`hyvox voxelize MESH -o OUT.vdb --stats-json`) in its own process, so
 its peak RSS (from wait4) is its own. Per run: the stages (read, voxelize incl. tiles,
@@ -10,7 +10,8 @@ building the OpenVDB grid, writing the file), output voxels, leaves, tiles, peak
 OpenVDB grid's own memory (Grid::memUsage, the `vdb_bytes` the CLI reports) and time per
 output voxel. "dense" runs the same with one tile over the whole grid (--tile-size = the
 longest side and a budget that admits it): the memory of the old dense bit grid.
---plot draws peak memory against resolution (needs matplotlib)."""
+--plot draws peak memory against resolution (needs matplotlib). The table also goes to
+DIR/sparse_scale[_METHODS].{json,md} (default bench/results/)."""
 import argparse
 import json
 import os
@@ -20,7 +21,13 @@ import sys
 import tempfile
 import time
 
+from bench_results import Column, Table, add_out_argument
+
 MIB = 1 << 20
+COLUMNS = [Column("mesh"), Column("res"), Column("method"), Column("tiling"), Column("read ms", 0),
+           Column("voxelize ms", 0), Column("build grid ms", 0), Column("write ms", 0), Column("voxels"),
+           Column("leaves"), Column("tiles"), Column("peak RSS MiB", 0), Column("float grid MiB", 0),
+           Column("RSS / grid", 2), Column("ns / voxel", 0)]
 
 
 def run_cli(cli, mesh, res, method, extra, out_dir):
@@ -51,6 +58,15 @@ def row(mesh, res, method, kind, result):
             "leaves": s["leaves"], "tiles": s["tiles"], "rss_mib": result["rss_mib"],
             "vdb_mib": s.get("vdb_bytes", 0) / MIB,
             "ns_per_voxel": 1e6 * (voxelize_ms + t.get("build_vdb", 0)) / max(s["voxel_count"], 1)}
+
+
+def table_row(r):
+    """The row as the results' table holds it (a refused run: its message in the read column)."""
+    if "error" in r:
+        return [r["mesh"], r["res"], r["method"], r["kind"], "refused: " + r["error"]] + [None] * (len(COLUMNS) - 5)
+    return [r["mesh"], r["res"], r["method"], r["kind"], r["read_ms"], r["voxelize_ms"], r["build_vdb_ms"],
+            r["write_ms"], r["voxels"], r["leaves"], r["tiles"], r["rss_mib"], r["vdb_mib"],
+            r["rss_mib"] / max(r["vdb_mib"], 1e-9), r["ns_per_voxel"]]
 
 
 def print_row(r):
@@ -116,6 +132,7 @@ def main():
     parser.add_argument("--plot")
     parser.add_argument("--m2v-log", help="bench_mesh_to_volume's printed table, for OpenVDB's peak RSS in the plot")
     parser.add_argument("--from-json", help="plot the rows of an earlier --json instead of running")
+    add_out_argument(parser)
     args = parser.parse_args()
     cli = str(pathlib.Path(args.build) / "hyvox")
     m2v = read_m2v_table(args.m2v_log) if args.m2v_log else None
@@ -123,6 +140,11 @@ def main():
         plot(json.loads(pathlib.Path(args.from_json).read_text()), args.plot, m2v)
         return
     rows = []
+    table = Table("sparse_scale" + ("" if args.methods == "cpu" else "_" + args.methods.replace(",", "_")),
+                  "Large grids: the sparse, tiled voxelizer from the CLI, end to end", COLUMNS)
+    table.note(f"One CLI process per row (`hyvox voxelize --memory-budget-mib {args.budget_mib}`), its peak RSS "
+               "from wait4; float grid: the OpenVDB grid's own memory (Grid::memUsage); ns / voxel: voxelize + "
+               "build grid per output voxel. tiling dense: one tile over the whole grid.")
     print(f"{'mesh':>10} {'res':>5} {'method':>7} {'kind':>6} {'read':>8} {'voxelize':>9} {'vdb':>8} {'write':>8} "
           f"{'voxels':>12} {'leaves':>9} {'tiles':>6} {'RSS MiB':>8} {'VDB MiB':>8} {'RSS/VDB':>6} {'ns/vox':>7}")
     with tempfile.TemporaryDirectory(prefix="hyvox-scale-") as tmp:
@@ -134,11 +156,14 @@ def main():
                     result = row(mesh, res, method, "sparse", run_cli(cli, mesh, res, method, budget, out_dir))
                     rows.append(result)
                     print_row(result)
+                    table.add(table_row(result))
                     if res <= args.dense_up_to:
                         dense = ["--tile-size", str(res), "--memory-budget-mib", str(max(args.budget_mib, 4 * res**3 // 8 // MIB + 64))]
                         result = row(mesh, res, method, "dense", run_cli(cli, mesh, res, method, dense, out_dir))
                         rows.append(result)
                         print_row(result)
+                        table.add(table_row(result))
+    table.write(args.out)
     if args.json:
         pathlib.Path(args.json).write_text(json.dumps(rows, indent=1))
     if args.plot:

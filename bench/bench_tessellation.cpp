@@ -6,10 +6,11 @@
 // (hyvox::floodFromOutside). One row per γ, so `--gammas 1,2` puts the old default beside
 // the new one. Dense stand-ins for the paper's Asian Dragon: the 871k dragon
 // midpoint-subdivided 4× and 16×.
-//   bench_tessellation [--res 128,256,512,1024] [--gammas 1,2] [--repeat 3] [--csv FILE] MESH...
+//   bench_tessellation [--res 128,256,512,1024] [--gammas 1,2] [--repeat 3] [--csv FILE] [--out DIR] MESH...
 // A mesh argument "NAME.ply.gz:xN" subdivides it (N = 4 or 16) on the CPU first.
 // Times are the voxelize stage (wall ms, best of --repeat runs after one warm-up); the
 // tessellation's GPU passes (timer queries, or wall time on llvmpipe) are listed apart.
+// The table also goes to DIR/tessellation.{json,md} (default bench/results/).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_results.h"
 #include "hyvox/accuracy.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/voxelize.h"
@@ -79,6 +81,7 @@ int main(int argc, char** argv) {
     std::vector<double> gammas{hyvox::TessellationOptions().gamma};
     int repeat = 3;
     std::string csv_path;
+    std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
     std::vector<std::string> meshes;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
@@ -87,10 +90,13 @@ int main(int argc, char** argv) {
         else if (arg == "--gammas") gammas = parseList<double>(next());
         else if (arg == "--repeat") repeat = std::max(1, std::atoi(next().c_str()));
         else if (arg == "--csv") csv_path = next();
+        else if (arg == "--out") out_dir = next();
         else meshes.push_back(arg);
     }
     if (meshes.empty()) {
-        std::fprintf(stderr, "usage: %s [--res 128,256] [--gammas 1,2] [--repeat 3] [--csv FILE] MESH[:x4|:x16]...\n",
+        std::fprintf(stderr,
+                     "usage: %s [--res 128,256] [--gammas 1,2] [--repeat 3] [--csv FILE] [--out DIR] "
+                     "MESH[:x4|:x16]...\n",
                      argv[0]);
         return 2;
     }
@@ -101,6 +107,17 @@ int main(int argc, char** argv) {
     std::printf("| mesh | triangles | res | cpu ms | hybrid ms | γ | tessellation ms (GPU passes) | points | bias | "
                 "bias vs thin | false | sealed |\n");
     std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    hyvox::bench::ResultTable table(
+        "tessellation", "The tessellation method: time, bias and watertightness per γ",
+        {{"mesh"}, {"triangles"}, {"res"}, {"cpu ms", 1}, {"hybrid ms", 1}, {"γ"}, {"tessellation ms", 1},
+         {"GPU passes ms", 1}, {"points"}, {"bias %", 2}, {"bias vs thin %", 2}, {"false voxels"}, {"sealed"}},
+        argc, argv);
+    table.setGpu(hyvox::bench::glDevicesText());
+    table.note("Times: the voxelize stage, best of " + std::to_string(repeat) +
+               " runs after a warm-up. bias: the exact conservative voxels the points miss; bias vs thin: the "
+               "exact 6-separating voxels they miss; false: voxels outside the conservative set; sealed: no "
+               "6-connected flood from outside reaches what the thin voxels enclose (\"-\": they enclose "
+               "nothing), \"no (N)\" with N voxels reached.");
     try {
         for (const std::string& spec : meshes) {
             const auto colon = spec.rfind(":x");
@@ -159,6 +176,12 @@ int main(int argc, char** argv) {
                                 gpu_ms, double(m.points), 100.0 * acc.bias, 100.0 * acc_thin.bias,
                                 (unsigned long long)acc.false_voxels, sealedText(seal).c_str());
                     std::fflush(stdout);
+                    char gamma_text[32];
+                    std::snprintf(gamma_text, sizeof gamma_text, "%g", gamma);
+                    table.add({name, mesh.triangleCount(), res, cpu.best_ms,
+                               hybrid.error.empty() ? hyvox::bench::Cell(hybrid.best_ms) : hyvox::bench::Cell(),
+                               std::string(gamma_text), tess.best_ms, gpu_ms, std::int64_t(m.points),
+                               100.0 * acc.bias, 100.0 * acc_thin.bias, acc.false_voxels, sealedText(seal)});
                     if (csv) {
                         std::fprintf(csv, "%s,%zu,%d,tessellation,%g,%.3f,%.3f,%.0f,%llu,%.6f,%.6f,%llu,%llu,%llu\n",
                                      name.c_str(), mesh.triangleCount(), res, gamma, tess.best_ms, gpu_ms,
@@ -176,5 +199,6 @@ int main(int argc, char** argv) {
         return 1;
     }
     if (csv) std::fclose(csv);
+    table.write(out_dir);
     return 0;
 }

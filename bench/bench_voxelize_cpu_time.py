@@ -8,12 +8,16 @@ warm up and then `--calls` times; the figures are medians over the calls, then o
 
     /usr/bin/python3 bench/bench_voxelize_cpu_time.py --build build --baseline /tmp/main_build \\
         --meshes bunny_stanford_69k.ply,dragon_stanford_res2_203k.ply.gz --res 128,512 --threads 1
+
+The table also goes to DIR/voxelize_cpu_time.{json,md} (--out DIR, default bench/results/).
 """
 import argparse
 import os
 import statistics
 import subprocess
 import sys
+
+from bench_results import Column, Table, add_out_argument
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -45,6 +49,7 @@ def parse_args():
     p.add_argument("--threads", type=int, default=1)
     p.add_argument("--rounds", type=int, default=3)
     p.add_argument("--calls", type=int, default=7)
+    add_out_argument(p)
     return p.parse_args()
 
 
@@ -59,6 +64,12 @@ def main():
     args = parse_args()
     print("| mesh | res | threads | base CPU ms | CPU ms | base / this | base stage ms | stage ms | skipped triangles | load |")
     print("|---|---|---|---|---|---|---|---|---|---|")
+    table = Table("voxelize_cpu_time", "CPU time of one voxelize() call, two builds side by side",
+                  [Column("mesh"), Column("res"), Column("threads"), Column("base CPU ms", 1), Column("CPU ms", 1),
+                   Column("base / this", 2), Column("base stage ms", 1), Column("stage ms", 1),
+                   Column("skipped triangles"), Column("triangles"), Column("load", 2)])
+    table.note(f"Medians over {args.calls} calls per process and {args.rounds} rounds of fresh processes, the "
+               f"builds alternating; base: {args.baseline}.")
     for name in args.meshes.split(","):
         mesh = os.path.join(args.mesh_dir, name)
         for res in [int(r) for r in args.res.split(",")]:
@@ -72,6 +83,9 @@ def main():
             print(f"| {name} | {res} | {args.threads} | {cpu['base']:.1f} | {cpu['this']:.1f} | "
                   f"{cpu['base'] / cpu['this']:.2f} | {stage['base']:.1f} | {stage['this']:.1f} | "
                   f"{covered} of {triangles} | {os.getloadavg()[0]:.2f} |", flush=True)
+            table.add([name, res, args.threads, cpu["base"], cpu["this"], cpu["base"] / cpu["this"], stage["base"],
+                       stage["this"], covered, triangles, os.getloadavg()[0]])
+    table.write(args.out)
 
 
 if __name__ == "__main__":

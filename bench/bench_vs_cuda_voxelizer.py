@@ -5,7 +5,7 @@ cuda_voxelizer's OpenMP CPU path (`-cpu -o binvox`), and hyvox's Python call
 
     /usr/bin/python3 bench/bench_vs_cuda_voxelizer.py --peer PATH/TO/cuda_voxelizer \\
         [--build build] [--runs 3] [--res 128,256,512,1024] [--meshes a.ply,b.ply.gz] \\
-        [--threads 0] [--csv out.csv] [--no-python] [--baseline OTHER_BUILD]
+        [--threads 0] [--csv out.csv] [--no-python] [--baseline OTHER_BUILD] [--out DIR]
 
 The peer is not part of hyvox: build it yourself (its CPU path needs no CUDA) and pass the
 binary. Both programs read the same plain binary PLY: .ply.gz meshes are unpacked into a
@@ -25,6 +25,7 @@ Columns (ms, medians):
       the build before a change) run in the same alternation: its stages sum and whole
       process, and base proc / hyvox proc (above 1: this build is faster).
   load: the 1-minute load average when the row finished (the machine may be shared).
+The table also goes to DIR/vs_cuda_voxelizer.{json,md} (default bench/results/).
 """
 import argparse
 import csv
@@ -38,6 +39,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+from bench_results import Column, Table, add_out_argument
 
 DEFAULT_MESHES = [
     "bunny_stanford_69k.ply",
@@ -62,6 +65,7 @@ def parse_args():
     parser.add_argument("--csv", help="also write the rows here")
     parser.add_argument("--no-python", action="store_true", help="skip the Python-call columns")
     parser.add_argument("--baseline", help="another hyvox build folder to time beside this one (before/after)")
+    add_out_argument(parser)
     return parser.parse_args()
 
 
@@ -142,6 +146,12 @@ def main():
         columns += ["base stages", "base proc", "x base"]
     columns.append("load")
     rows = []
+    ratios = ("x proc", "x vox", "py/cli", "x base", "load")
+    table = Table("vs_cuda_voxelizer", "End to end against cuda_voxelizer's CPU path",
+                  [Column(c, 2 if c in ratios else 1) for c in columns])
+    table.note(f"ms, medians of {args.runs} runs, one fresh process each, the contenders alternating; x proc / x "
+               "vox: the peer's time over hyvox's (above 1: hyvox is faster); py: read_mesh + voxelize + write_vdb "
+               "in one Python process, after three untimed calls at the size.")
     print("| " + " | ".join(columns) + " |")
     print("|" + "---|" * len(columns))
     with tempfile.TemporaryDirectory(prefix="hyvox_bench_") as work:
@@ -195,6 +205,8 @@ def main():
                          (f"{row[c]:.2f}" if c in ("x proc", "x vox", "py/cli", "x base", "load") else f"{row[c]:.1f}")
                          for c in columns]
                 print("| " + " | ".join(cells) + " |", flush=True)
+                table.add([row[c] for c in columns])
+    table.write(args.out)
     if args.csv:
         with open(args.csv, "w", newline="") as f:
             writer = csv.DictWriter(f, fieldnames=columns)

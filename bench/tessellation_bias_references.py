@@ -1,14 +1,15 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Bias of the tessellation method against three references, to show what its points miss.
 
-    /usr/bin/python3 bench/tessellation_bias_references.py MESH RESOLUTION [GAMMA ...]
+    /usr/bin/python3 bench/tessellation_bias_references.py [--out DIR] MESH RESOLUTION [GAMMA ...]
 
 References: the exact conservative voxels (cpu), the exact thin 6-separating voxels (cpu),
 and the "centre-line" voxels computed here: a voxel is in it when the surface crosses one of
 its three axis-parallel centre lines (rays through voxel centres along x, y and z, every hit
 marked). For a plane it is the 6-separating set; near triangle edges it is thinner. It needs
 nothing from hyvox but the grid placement, so it is an independent check of which voxels
-the points cover. Run after building (it imports build/python).
+the points cover. Run after building (it imports build/python). The table also goes to
+DIR/tessellation_bias_references.{json,md} (default bench/results/).
 """
 import os
 import sys
@@ -17,6 +18,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build", "python"))
 import hyvox  # noqa: E402
+from bench_results import DEFAULT_OUT, Column, Table  # noqa: E402
 
 
 def centre_line_keys(points, triangles, dims):
@@ -59,10 +61,14 @@ def grid_keys(grid):
 
 
 def main():
-    if len(sys.argv) < 3:
+    argv = sys.argv[1:]
+    out = DEFAULT_OUT
+    if argv[:1] == ["--out"] and len(argv) > 1:
+        out, argv = argv[1], argv[2:]
+    if len(argv) < 2:
         sys.exit(__doc__)
-    path, resolution = sys.argv[1], int(sys.argv[2])
-    gammas = [float(g) for g in sys.argv[3:]] or [1.0, 2.0, 4.0]
+    path, resolution = argv[0], int(argv[1])
+    gammas = [float(g) for g in argv[2:]] or [1.0, 2.0, 4.0]
     vertices, triangles = hyvox.read_mesh(path)
     vertices, triangles = np.asarray(vertices, np.float64), np.asarray(triangles, np.int64)
     conservative = hyvox.voxelize(vertices, triangles, resolution=resolution, method="cpu")
@@ -77,9 +83,17 @@ def main():
     print(f"{os.path.basename(path)} at {resolution}: " +
           ", ".join(f"{name} {len(keys)} voxels" for name, keys in references.items()))
     print("gamma  " + "  ".join(f"bias vs {name:>12}" for name in references))
+    table = Table("tessellation_bias_references", "What the tessellation's points miss, against three references",
+                  [Column("mesh"), Column("res"), Column("γ")] +
+                  [Column(f"bias vs {name} %", 2) for name in references])
+    table.note(", ".join(f"{name}: {len(keys):,} voxels" for name, keys in references.items()) +
+               "; centre-line: voxels whose axis-parallel centre lines the surface crosses.")
     for gamma in gammas:
         points = grid_keys(hyvox.voxelize(vertices, triangles, resolution=resolution, method="tessellation", tess_gamma=gamma))
         print(f"{gamma:5.2f}  " + "  ".join(f"{1 - np.isin(keys, points).mean():20.4%}" for keys in references.values()))
+        table.add([os.path.basename(path), resolution, gamma] +
+                  [100 * float(1 - np.isin(keys, points).mean()) for keys in references.values()])
+    table.write(out)
 
 
 if __name__ == "__main__":

@@ -1,14 +1,15 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Watertightness of the tessellation method on closed shapes nobody tuned for.
 
-    /usr/bin/python3 bench/tessellation_seal_sweep.py [--shapes 16] [--seed 99] [--gammas 1,1.25,1.5,2]
+    /usr/bin/python3 bench/tessellation_seal_sweep.py [--shapes 16] [--seed 99] [--gammas 1,1.25,1.5,2] [--out DIR]
 
 Makes random closed meshes (tetrahedra, boxes of random aspect, thin prisms with long
 skinny side triangles, squashed icosahedra), each randomly rotated, at a random resolution
 between 100 and 300, and runs `build/hyvox gamma-sweep` on each. Prints, per shape and γ,
 the points, the bias against the exact conservative and thin sets, and the voxels the thin
 set encloses that a 6-connected flood from outside reaches through the result (0 = sealed).
-This is how the default γ was chosen (README, "Watertight by default"). Run after building.
+This is how the default γ was chosen (docs/why/tessellation-gamma.md). Run after building. The
+per-γ summary also goes to DIR/tessellation_seal_sweep.{json,md} (default bench/results/).
 """
 import argparse
 import json
@@ -18,6 +19,8 @@ import sys
 import tempfile
 
 import numpy as np
+
+from bench_results import Column, Table, add_out_argument
 
 CLI = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build", "hyvox")
 
@@ -79,6 +82,7 @@ def main():
     parser.add_argument("--shapes", type=int, default=16)
     parser.add_argument("--seed", type=int, default=99)
     parser.add_argument("--gammas", default="1,1.25,1.5,2")
+    add_out_argument(parser)
     args = parser.parse_args()
     rng = np.random.default_rng(args.seed)
     makers = [tetrahedron, box, prism, icosahedron]
@@ -98,8 +102,15 @@ def main():
                 print(f"{make.__name__ + str(n):14} {resolution:4} {row['gamma']:6g} {row['points']:10.0f} "
                       f"{row['bias']:8.4f} {row['bias_thin']:9.5f} {row['leaked_voxels']:10d}")
                 leaks.setdefault(row["gamma"], []).append(row["leaked_voxels"])
+    table = Table("tessellation_seal_sweep", "Watertightness of the tessellation on random closed shapes",
+                  [Column("γ"), Column("shapes"), Column("shapes that leak")])
+    table.note(f"{args.shapes} shapes (seed {args.seed}): tetrahedra, boxes, thin prisms, squashed icosahedra, "
+               "randomly rotated, at resolutions 100-300; a shape leaks when a 6-connected flood from outside "
+               "reaches a voxel its exact thin voxels enclose.")
     for gamma, leaked in sorted(leaks.items()):
         print(f"gamma {gamma:g}: {sum(1 for x in leaked if x)} of {len(leaked)} shapes leak")
+        table.add([gamma, len(leaked), sum(1 for x in leaked if x)])
+    table.write(args.out)
     return 0
 
 

@@ -6,7 +6,7 @@
 #                            without glibc and the GL/EGL stack (the .gl debs and the driver)
 #   DEST/lib/fallback/       libstdc++ and libgcc_s, used only where the machine has none
 #   DEST/meshes/             the Table 1 meshes, gzipped
-#   DEST/run.sh, table.py    the driver and the CSV-to-table converter
+#   DEST/run.sh, table.py    the driver and the CSV-to-table converter (with bench_results.py)
 # then checks that the binary finds every library but the GL ones with LD_LIBRARY_PATH set to
 # DEST/lib alone, and prints the size that will travel (the device takes 64 MiB in all).
 #   bash bench/device/pack.sh BUILD_DIR DEST [MESH_DIR]
@@ -21,7 +21,7 @@ cmake --build "$BUILD" --target bench_device >/dev/null
 rm -rf "$DEST"
 mkdir -p "$DEST/bin" "$DEST/lib/fallback" "$DEST/meshes"
 strip -o "$DEST/bin/bench_device" "$BUILD/bench/bench_device"
-cp "$SRC/run.sh" "$SRC/table.py" "$DEST/"
+cp "$SRC/run.sh" "$SRC/table.py" "$SRC/../bench_results.py" "$DEST/"
 
 # Libraries the machine provides itself: glibc's, and the GL/EGL/GLX stack (glvnd from the
 # .gl debs, the vendor libraries from the driver). libstdc++/libgcc_s go to fallback/.

@@ -56,6 +56,7 @@ if ldd "$HERE/bin/bench_device" | grep 'not found'; then echo "# a library is mi
     echo "os=$(. /etc/os-release 2>/dev/null && echo "$PRETTY_NAME")"
     echo "cpus=$(nproc)"
     echo "cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')"
+    echo "mem_kib=$(awk '/^MemTotal/ {print $2}' /proc/meminfo)"
     if command -v nvidia-smi >/dev/null; then
         echo "nvidia_smi=$(nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.max.sm \
             --format=csv,noheader 2>&1 | head -4 | tr '\n' ';')"
@@ -105,7 +106,9 @@ echo "# bench_device exit $rc after $(($(date +%s) - start)) s (124/137: stopped
 if [ ! -s "$OUT/table1.csv" ]; then
     echo "# no table1.csv"
 elif command -v python3 >/dev/null && [ -e "$HERE/table.py" ]; then
-    python3 "$HERE/table.py" "$OUT/table1.csv" --info "$OUT/gl_info.txt" --res 256 || true
+    # The tables as results (results/*.json, *.md: copy them into bench/results/ of the checkout).
+    python3 "$HERE/table.py" "$OUT/table1.csv" --info "$OUT/gl_info.txt" --device "$OUT/device.txt" \
+        --out "$OUT/results" || true
     python3 "$HERE/table.py" "$OUT/table1.csv" --verify || true
 else
     echo "# rows: $(($(wc -l <"$OUT/table1.csv") - 1)); failed checks:"

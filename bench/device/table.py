@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Turns bench_device's CSV into the README's Markdown tables, beside the JCGT 2013 paper's
-Table 1 (GTX 480, thin binary voxelization into a dense 3D texture; ms).
+"""Turns bench_device's CSV into Markdown tables beside the JCGT 2013 paper's Table 1 (GTX 480,
+thin binary voxelization into a dense 3D texture; ms), printed and, with --out DIR, written as
+results (DIR/device_table1, device_attributes, device_threads .json and .md) for
+docs/benchmarks.md.
 
-    python3 bench/device/table.py table1.csv [--info gl_info.txt] [--res 128,256,512,1024]
-                                  [--mode thin]
+    python3 bench/device/table.py table1.csv [--info gl_info.txt] [--device device.txt]
+                                  [--res 128,256,512,1024] [--mode thin] [--out DIR]
 
 Table 1: per scene and resolution the GPU times (GL timer queries, pass 1 + pass 2; medians)
 of triangle, fragment and hybrid @ its auto cutoff with the pass split, the tessellation
@@ -15,7 +17,13 @@ Standard library only (runs on the device machine's python3 as well).
 """
 import argparse
 import csv
+import os
 import sys
+
+# bench_results.py: beside this script in the folder pack.sh makes, one folder up in the checkout.
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [HERE, os.path.dirname(HERE)]
+from bench_results import Column, Table  # noqa: E402
 
 # Table 1 of the hybrid voxelization paper (JCGT 2013), GTX 480, 6-separating (thin) binary:
 # (triangle-parallel, fragment-parallel, hybrid, cutoff (voxels^2, None = na), pass 1 share).
@@ -53,6 +61,31 @@ def fmt(value, digits=2):
     if value >= 10:
         return f"{value:.1f}"
     return f"{value:.{digits}f}"
+
+
+def shlex_join(argv):
+    import shlex
+    return shlex.join(["python3", "bench/device/table.py"] + argv[1:])
+
+
+def device_machine(device_txt, renderer, version):
+    """The results' machine and date from run.sh's device.txt (the GPU machine's, wherever the
+    table is made), else this machine's; the GPU from gl_info.txt."""
+    gpu = f"GPU: {renderer} ({version})"
+    if not device_txt:
+        return {"extra_machine": {"gpu": gpu}}
+    try:
+        with open(device_txt) as f:
+            d = dict(line.rstrip("\n").split("=", 1) for line in f if "=" in line)
+    except OSError:
+        return {"extra_machine": {"gpu": gpu}}
+    memory = d.get("mem_kib", "")
+    machine = {"cpu": d.get("cpu", "unknown"), "cores": int(d["cpus"]) if d.get("cpus", "").isdigit() else None,
+               "memory_gib": round(int(memory) / 2**20, 1) if memory.isdigit() else None, "os": d.get("os", ""),
+               "kernel": d.get("host", ""), "gpu": gpu, "load_start": None}
+    date = d.get("date", "").replace("T", " ")
+    date = date[:16] + " UTC" if len(date) >= 16 else None
+    return {"extra_machine": machine, "date": date}
 
 
 def check_text(row):
@@ -108,6 +141,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("csv")
     ap.add_argument("--info", help="gl_info.txt of the same run (GL_RENDERER, ...)")
+    ap.add_argument("--device", help="device.txt of the same run (date, CPU, OS, nvidia-smi): the results' machine")
+    ap.add_argument("--out", help="also write the tables as results (.json, .md) into this folder")
     ap.add_argument("--res", default="128,256,512,1024")
     ap.add_argument("--mode", default="thin", choices=["thin", "conservative"])
     ap.add_argument("--verify", action="store_true",
@@ -142,12 +177,17 @@ def main():
             cells.setdefault((r["scene"], res), {}).setdefault(r["method"], r)
 
     renderer = info.get("GL_RENDERER", "?")
-    print(f"GPU: {renderer}; {info.get('GL_VERSION', '?')}. Mode {args.mode}; ms, medians of the timed runs; "
-          "GPU = GL timer queries (pass 1 + pass 2); cpu = its voxelize stage (wall). "
-          "Paper: JCGT 2013 Table 1, GTX 480, thin binary into a dense 3D texture.\n")
-    print("| scene | tris | res | triangle | fragment | hybrid @cutoff | pass 1/2 | tessellation (bias) | cpu "
-          "| checks | paper scene | paper tri / frag / hybrid @cutoff | x paper hybrid |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|")
+    machine = device_machine(args.device, renderer, info.get("GL_VERSION", "?"))
+    tables = []
+    table1 = Table("device_table1" + ("" if args.mode == "thin" else "_" + args.mode),
+                   f"The GL methods on a GPU beside the paper's Table 1 ({args.mode})",
+                   [Column(c) for c in ("scene", "tris", "res", "triangle", "fragment", "hybrid @cutoff", "pass 1/2",
+                                        "tessellation (bias)", "cpu", "checks", "paper scene",
+                                        "paper tri / frag / hybrid @cutoff", "x paper hybrid")],
+                   command=shlex_join(sys.argv), **machine)
+    table1.note(f"Mode {args.mode}; ms, medians of the timed runs; GPU = GL timer queries (pass 1 + pass 2); cpu = "
+                "its voxelize stage (wall). Paper: JCGT 2013 Table 1, GTX 480, thin binary into a dense 3D texture.")
+    tables.append(table1)
 
     def order(key):
         scene, res = key
@@ -194,51 +234,66 @@ def main():
             if hyb and not hyb["check"].startswith("ERROR") and float(hyb["gpu_ms"]) > 0:
                 r = p_hyb / float(hyb["gpu_ms"])
                 ratio = f"{r:.1f}x" if r >= 1 else f"{r:.3f}x"
-        print(f"| {scene} | {triangles.get(scene, '')} | {res} | {gpu('triangle')} | {gpu('fragment')} | {hybrid} "
-              f"| {split} | {tess_text} | {fmt(cpu['stage_ms']) if cpu else ''} | {checks} "
-              f"| {paper_scene or ''} | {paper_text} | {ratio} |")
+        table1.add([scene, str(triangles.get(scene, "")), str(res), gpu("triangle"), gpu("fragment"), hybrid, split,
+                    tess_text, fmt(cpu["stage_ms"]) if cpu else "", checks, paper_scene or "", paper_text, ratio])
 
     attribute_rows = [r for r in rows if r["mode"] == "attributes" and not r["check"].startswith("ERROR")]
     if attribute_rows:
-        print("\nThe price of colour and normal voxels (conservative; wall ms of the whole call, medians): "
-              "each method's binary run, then with attributes; colour checked against cpu's:\n")
-        print("| scene | res | method | binary | with attributes | ratio | max colour diff vs cpu | check |")
-        print("|---|---:|---|---:|---:|---:|---:|---|")
+        colour = Table("device_attributes", "The price of colour and normal voxels on a GPU",
+                       [Column(c) for c in ("scene", "res", "method", "binary", "with attributes", "ratio",
+                                            "max colour diff vs cpu", "check")],
+                       command=shlex_join(sys.argv), **machine)
+        colour.note("Conservative; wall ms of the whole call, medians: each method's binary run, then with "
+                    "attributes; colour checked against cpu's.")
+        tables.append(colour)
         for r in sorted(attribute_rows, key=lambda r: (order((r["scene"], int(r["res"]))), r["method"])):
             binary, attributed = float(r["binary_wall_ms"]), float(r["wall_ms"])
             ratio = f"{attributed / binary:.1f}x" if binary > 0 else ""
             diff = "" if float(r["attr_max_diff"]) < 0 else f"{float(r['attr_max_diff']):.1e}"
-            print(f"| {r['scene']} | {r['res']} | {r['method']} | {fmt(binary)} | {fmt(attributed)} | {ratio} "
-                  f"| {diff} | {check_text(r)} |")
+            colour.add([r["scene"], r["res"], r["method"], fmt(binary), fmt(attributed), ratio, diff, check_text(r)])
 
     live_rows = [r for r in rows if r["mode"].startswith("live-") and not r["check"].startswith("ERROR")]
     if live_rows:
-        print("\nLive's updates without Blender (issue 29): per edit a vertex moved, the fixed lattice, voxelize, "
-              "write the .vdb (ms, medians); hybrid checked against cpu on the last state. Target: the bunny at "
-              "256 at 30 updates a second with hybrid:\n")
-        print("| scene | mode | res | method | update | voxelize | write | updates a second | check | target |")
-        print("|---|---|---:|---|---:|---:|---:|---:|---|---|")
+        live = Table("device_live", "Live's updates on a GPU, without Blender",
+                     [Column(c) for c in ("scene", "mode", "res", "method", "update", "voxelize", "write",
+                                          "updates a second", "check", "target")],
+                     command=shlex_join(sys.argv), **machine)
+        live.note("Per edit a vertex moved, the fixed lattice, voxelize, write the .vdb (ms, medians); hybrid "
+                  "checked against cpu on the last state. Target: the bunny at 256 at 30 updates a second with "
+                  "hybrid.")
+        tables.append(live)
         for r in sorted(live_rows, key=lambda r: (order((r["scene"], int(r["res"]))), r["mode"], r["method"])):
             rate = 1000.0 / float(r["wall_ms"]) if float(r["wall_ms"]) > 0 else 0.0
             target = ""
             if r["scene"] == "bunny_stanford_69k" and r["res"] == "256" and r["method"] == "hybrid":
                 target = "met" if rate >= 30 else "not met"
-            print(f"| {r['scene']} | {r['mode'][5:]} | {r['res']} | {r['method']} | {fmt(r['wall_ms'])} "
-                  f"| {fmt(r['stage_ms'])} | {fmt(r['pass2_ms'])} | {rate:.1f} | {check_text(r)} | {target} |")
+            live.add([r["scene"], r["mode"][5:], r["res"], r["method"], fmt(r["wall_ms"]), fmt(r["stage_ms"]),
+                      fmt(r["pass2_ms"]), f"{rate:.1f}", check_text(r), target])
 
     threads = [r for r in rows if r["method"] == "cpu" and r["step"] and r["threads"] != "0"]
     if threads:
-        print("\ncpu method, conservative, its voxelize stage (ms) by threads (speed-up vs 1 thread):\n")
         by_scene = {}
         for r in threads:
             by_scene.setdefault((r["scene"], int(r["res"])), {})[int(r["threads"])] = float(r["stage_ms"])
         counts = sorted({t for v in by_scene.values() for t in v})
-        print("| scene | res | " + " | ".join(f"{t} thr" for t in counts) + " |")
-        print("|---|---:|" + "---:|" * len(counts))
+        scaling = Table("device_threads", "The cpu method's thread scaling on the GPU machine",
+                        [Column("scene"), Column("res")] + [Column(f"{t} thr") for t in counts],
+                        command=shlex_join(sys.argv), **machine)
+        scaling.note("cpu method, conservative, its voxelize stage (ms) by threads (speed-up vs 1 thread).")
+        tables.append(scaling)
         for (scene, res), v in sorted(by_scene.items(), key=lambda kv: order(kv[0])):
             one = v.get(1)
-            cells_t = [f"{fmt(v[t])} ({one / v[t]:.1f}x)" if t in v and one and v[t] > 0 else "" for t in counts]
-            print(f"| {scene} | {res} | " + " | ".join(cells_t) + " |")
+            scaling.add([scene, str(res)] + [f"{fmt(v[t])} ({one / v[t]:.1f}x)" if t in v and one and v[t] > 0 else ""
+                                             for t in counts])
+
+    for table in tables:
+        print(f"\n{table.title}. " + " ".join(table.notes) + "\n")
+        print("| " + " | ".join(c.name for c in table.columns) + " |")
+        print("|" + "---|" * len(table.columns))
+        for row in table.rows:
+            print("| " + " | ".join(str(v) for v in row) + " |")
+        if args.out:
+            table.write(args.out)
     return 0
 
 

@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
     // and unmaps it when freed: every page is then faulted in anew (~1.3 us each here) and
     // each unmapping interrupts the CPUs of the worker threads (a TLB shootdown); from the
     // heap, a freed block's pages serve the next block. Larger blocks are still mapped.
+    // (docs/why/startup.md; the Python module leaves its host's malloc alone.)
     mallopt(M_MMAP_THRESHOLD, 32 << 20);
     mallopt(M_TRIM_THRESHOLD, 64 << 20);
     // Ctrl-C cancels a voxelization between steps; the .vdb is then never written.

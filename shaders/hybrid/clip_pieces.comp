@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Colour and normal voxels of methods `triangle`, `fragment` and `hybrid` (JCGT 2013 section
-// 3.6, with the area weights of DESIGN.md "Attributes"): one invocation per (voxel, triangle)
+// 3.6, with the area weights of docs/design.md "Attributes"): one invocation per (voxel, triangle)
 // pair the voxelizing passes listed clips the triangle to the voxel's closed box and writes
 // the piece's area and centroid. The host sums the pieces' attributes in a fixed order, with
 // the code the cpu method uses (native/src/attributes/).

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Eq. 1: each outer level is γ times the edge's length in voxels, the inner level their mean,
-// so every tessellated edge segment is at most 1/γ voxel long (tess_factors.h, the CPU twin).
+// so every tessellated edge segment is at most 1/γ voxel long (tess_factors.h, the CPU twin;
+// why this reading and γ = 2: docs/why/tessellation-gamma.md).
 // Invocation 0 also loads the triangle and its PN coefficients once for the whole patch.
 #include "tessellation/surface.glsl"
 

@@ -13,6 +13,7 @@ every text, measured with blf in the UI font at the UI scale, is compared with t
 its column in the sidebar's real region width (factory default). With SCREENSHOT_DIR, it
 also saves screenshots of the window before and after a run (sub-panels open).
 Exits 0 on success, 1 on failure."""
+import json
 import os
 import sys
 import tempfile
@@ -165,9 +166,13 @@ def sidebar():
 
 
 def screenshot(directory, name):
-    window, _, _ = sidebar()
+    window, _, region = sidebar()
     with bpy.context.temp_override(window=window, screen=window.screen):
         bpy.ops.screen.screenshot(filepath=os.path.join(directory, name))
+    # Where the sidebar is in it (window pixels from the bottom left), for the documentation's
+    # crop (docs/images/make_images.sh).
+    with open(os.path.join(directory, name + ".json"), "w") as f:
+        json.dump({"x": region.x, "y": region.y, "width": region.width, "height": region.height}, f)
 
 
 state = {"step": 0}
@@ -184,6 +189,16 @@ def step():
         helpers.clear_scene()
         bunny = helpers.bunny()
         helpers.select_only(bunny)
+        area.tag_redraw()
+        return 0.5
+    if s == 1 and shots and not state.get("transform_closed"):
+        # For the screenshots, close the tab's Transform panel above ours with a click on its
+        # header (the sidebar's top row), then come back to this step.
+        x, y = region.x + region.width // 2, region.y + region.height - 12
+        window.event_simulate("LEFTMOUSE", "PRESS", x=x, y=y)
+        window.event_simulate("LEFTMOUSE", "RELEASE", x=x, y=y)
+        state["transform_closed"] = True
+        state["step"] = 1
         area.tag_redraw()
         return 0.5
     if s == 1:

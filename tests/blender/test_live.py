@@ -239,7 +239,7 @@ class LiveErrorsTest(LiveTestCase):
         cube.data.update()
         bpy.context.view_layer.update()
         self.assertEqual(self.shown_file(volume), shown)
-        self.assertIn("non-finite", live().status_line(volume))
+        self.assertIn("not a number or infinite", live().status_line(volume))
         self.assertEqual(self.stray_files(volume), [])
 
     def test_a_grid_over_the_memory_budget_keeps_the_last_voxels(self):

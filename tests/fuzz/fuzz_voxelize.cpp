@@ -8,7 +8,7 @@
 // float, so the alignments that decide touching voxels occur often). The oracle is inside
 // the target: the cpu method must set exactly the voxels of the double-precision reference, except voxels that
 // merely touch a triangle (the reference's rule says yes with the box grown by 1e-5 voxel
-// units and no with it shrunk by as much; DESIGN.md, "Correctness"), or both must refuse the
+// units and no with it shrunk by as much; docs/design.md, "Correctness"), or both must refuse the
 // input with the same kind of error (InvalidInput / ResourceError). Anything else (a crash,
 // a sanitizer report, another mismatch, a hang) is a finding.
 #include <algorithm>

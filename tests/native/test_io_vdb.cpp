@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // OpenVDB output: the leaf-copy tree equals a voxel-by-voxel one, the file reads back with
-// voxel centres where DESIGN.md puts them, and writes are atomic.
+// voxel centres where docs/design.md puts them, and writes are atomic.
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
 #include <sys/resource.h>

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The attribute voxel definition (DESIGN.md, "Attributes"), written independently in numpy.
+"""The attribute voxel definition (docs/design.md, "Attributes"), written independently in numpy.
 
 For each voxel v, over the triangles t whose closed box meets v:
     value(v) = sum_t w_t * a_t(c_t) / sum_t w_t

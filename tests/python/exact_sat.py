@@ -3,7 +3,7 @@
 # cannot hold (fuzz findings: needles and slivers 1e-60 wide): the float32 corners in voxel
 # space as rationals, from the grid's own double origin and voxel size, against each voxel's
 # closed box by the 13-axis separating-axis test in Fractions. A voxel the triangle merely
-# touches (it meets the box grown by 1e-5 and not the box shrunk by 1e-5; DESIGN.md,
+# touches (it meets the box grown by 1e-5 and not the box shrunk by 1e-5; docs/design.md,
 # "Correctness") may go either way.
 from fractions import Fraction
 from itertools import product

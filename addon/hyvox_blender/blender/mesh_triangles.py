@@ -2,7 +2,8 @@
 """The triangles Blender renders for an evaluated mesh (its loop triangles) as (M,3) uint32
 vertex indices, read the cheapest way each Blender version allows, always the same
 triangles in the same order (tests/blender/test_export_triangles.py checks them against
-`loop_triangles`' vertices, quads non-planar and concave and n-gons included).
+`loop_triangles`' vertices, quads non-planar and concave and n-gons included;
+docs/why/addon-export.md says why quads are not split here).
 
 On 1M triangles `loop_triangles.foreach_get("vertices")` costs 30-35 ms of CPU in every
 version (a getter per triangle), and computing the loop triangles 10-15 ms more. Faster:

@@ -86,7 +86,7 @@ def resolve_method(module, settings) -> str:
     return "hybrid" if gl_available(module, settings.options.get("gl_device", "")) else "cpu"
 
 
-def ignored_settings(module, settings: "VoxelizeSettings", method: str) -> List[str]:
+def ignored_settings(module, settings, method: str) -> List[str]:
     """The options set away from the schema's default that `method` does not use, by the
     module's one rule (hyvox.ignored_options). The add-on passes every setting it has, so an
     option still at its default is no news and is not listed."""

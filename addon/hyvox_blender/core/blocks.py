@@ -3,7 +3,7 @@
 (no face between two occupied voxels), welded at shared corners, with each face's colour
 taken from its voxel. numpy only; no bpy.
 
-Voxel (i,j,k) covers [origin + (i,j,k)*s, origin + (i+1,j+1,k+1)*s] (DESIGN.md), so the
+Voxel (i,j,k) covers [origin + (i,j,k)*s, origin + (i+1,j+1,k+1)*s] (docs/design.md), so the
 blocks sit exactly where the voxels are, with no half-voxel shift."""
 from dataclasses import dataclass
 from typing import Optional, Tuple

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file
-/// Attribute voxels (DESIGN.md, "Attributes"): for each occupied voxel, the area-weighted mean
+/// Attribute voxels (docs/design.md, "Attributes"): for each occupied voxel, the area-weighted mean
 /// of the surface's colour and normal inside its closed box. Values are held per occupied
 /// voxel in the order of SparseGrid::coords() (leaf by leaf in brick order, the set bits of a
 /// leaf in ascending order), so they stay as sparse as the voxels. A solid's interior tiles

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file
-/// The voxel grid convention shared by every backend (see DESIGN.md, "Coordinates"):
+/// The voxel grid convention shared by every backend (see docs/design.md, "Coordinates"):
 /// voxel (i,j,k) covers the closed box [origin + (i,j,k)·s, origin + (i+1,j+1,k+1)·s].
 /// Shaders and voxelizers work in voxel space p' = (p - origin) / s. The formulas of the
 /// grid (to voxel space, sides, the 8³ bricks of the bit layout) are written here once.

@@ -30,7 +30,7 @@ struct MeshView {
     const float* uvs = nullptr;      ///< vertex_count * 2 (Blender UV: v = 0 is the image's bottom row)
     const float* normals = nullptr;  ///< vertex_count * 3; absent: area-weighted vertex normals
 
-    // Surface attributes for attribute voxels (DESIGN.md, "Attributes"); null = absent.
+    // Surface attributes for attribute voxels (docs/design.md, "Attributes"); null = absent.
     // Colour comes from the first source present: texture (at uvs), colors, palette.
     const float* colors = nullptr;    ///< color_channels per vertex, or per corner (triangle_count * 3 rows)
     int color_channels = 0;           ///< 3 (RGB) or 4 (RGBA)

@@ -33,7 +33,7 @@ enum class InsideRule {
     Winding,  ///< generalized winding number >= 0.5, by fast winding numbers
 };
 
-/// The backend that voxelizes the surface (DESIGN.md, "Data flow").
+/// The backend that voxelizes the surface (docs/design.md, "Data flow").
 enum class Method {
     Cpu,           ///< factored triangle/voxel test, multi-threaded (fallback without a GPU)
     Reference,     ///< brute-force double-precision SAT: the test oracle, slow on purpose
@@ -128,7 +128,7 @@ struct TessellationOptions {
     /// Safety factor γ of Eq. 1 (edge factor = γ · the edge's largest per-axis extent in voxels).
     /// 2, not the paper's 1: at γ = 1 one point per micro-triangle leaves pinholes that let a
     /// flood from outside fill a closed mesh (the Buddha, armadillo and Spot at 256). From 2 on,
-    /// every closed mesh measured is sealed with a margin; README, "Watertight by default".
+    /// every closed mesh measured is sealed with a margin (docs/why/tessellation-gamma.md).
     double gamma = 2.0;
     bool pn_triangles = false;  ///< smooth the surface by PN-triangles (Vlachos et al.) before the points
     /// Displacement (section 3.3), Blender Displace modifier semantics: each point moves along

@@ -8,7 +8,7 @@
 /// The file holds:
 ///  - "density": a FloatGrid, class fog volume, value 1 on every occupied voxel (active),
 ///    background 0. Transform: uniform scale voxel_size, translation origin + voxel_size/2,
-///    so index (i,j,k) is the centre of voxel (i,j,k) (DESIGN.md, "Coordinates").
+///    so index (i,j,k) is the centre of voxel (i,j,k) (docs/design.md, "Coordinates").
 ///  - "count": a FloatGrid with the per-voxel values of a multi-valued result (when the
 ///    method keeps them: the tessellation with tess_counts), same transform.
 ///  - "color" (Vec3f, linear RGB), "alpha" (float, when the colour source has it), "normal"

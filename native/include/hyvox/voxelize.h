@@ -11,7 +11,7 @@
 namespace hyvox {
 
 /// Voxelizes a triangle mesh: checks `options` against the schema (hyvox/option_schema.h),
-/// validates the mesh, lays out the grid (makeGrid, world units; DESIGN.md, "Coordinates") and
+/// validates the mesh, lays out the grid (makeGrid, world units; docs/design.md, "Coordinates") and
 /// runs options.method's backend into a sparse result.
 ///
 /// Thread safety: reentrant. Several voxelizations may run at once from different threads;

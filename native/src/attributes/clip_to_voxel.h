@@ -13,7 +13,7 @@ using Point = std::array<double, 3>;
 
 // Clipped areas below this count as a touch (voxel units²).
 constexpr double kTouchArea = 1e-14;
-// Weight added to every piece, so touches count (DESIGN.md, "Attributes").
+// Weight added to every piece, so touches count (docs/design.md, "Attributes").
 constexpr double kAreaEpsilon = 1e-6;
 
 struct ClippedPiece {

@@ -5,7 +5,7 @@
 // is the unit square lifted onto its plane, and the voxels cut it into bands between
 // consecutive planes h = k of the dominant axis. Each band is found from the square's four
 // heights alone (no polygon is cut), in the column's own coordinates (0..1), and measured in
-// 2D; most pieces of a large triangle are of this kind (DESIGN.md, "Attributes").
+// 2D; most pieces of a large triangle are of this kind (docs/design.md, "Attributes").
 //
 // Coordinates here are permuted so that the dominant axis is the last: (a, b, h).
 #include <algorithm>

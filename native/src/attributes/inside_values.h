@@ -4,7 +4,7 @@
 //
 // The definition, which every method, thread count and tiling gives alike:
 //  - Surface voxels (the surface pass's voxels: the conservative surface, or the tessellation's
-//    points) keep the values the method's attribute pass gave them (DESIGN.md, "Attributes").
+//    points) keep the values the method's attribute pass gave them (docs/design.md, "Attributes").
 //  - Inside voxels held voxel by voxel ("leaf voxels": those of the bricks the result holds as
 //    leaves, and of whole bricks that hold surface voxels) are valued by layers from the
 //    surface inward. Layer 0 = the surface voxels. Layer k = the leaf voxels not yet valued

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Attribute voxels of one tile from pieces a method clipped itself (the GL methods clip on
-// the GPU): the same definition and the same code as computeTileAttributes (DESIGN.md,
+// the GPU): the same definition and the same code as computeTileAttributes (docs/design.md,
 // "Attributes"). Each voxel sums its pieces in the order of their triangles, as the cpu
 // method does, so the result does not depend on the order the GPU appended them in.
 #include <vector>

@@ -12,7 +12,7 @@
 // earlier polygon (its two ends on the plane). A crossing point is interpolated between the
 // ends of that line, not of the edge the previous plane left: a point's rounding does not
 // depend on the planes cut before it, so neighbouring voxels, leaves and tiles see the same
-// points and a touch through a voxel corner is found on every side (DESIGN.md, "Attributes").
+// points and a touch through a voxel corner is found on every side (docs/design.md, "Attributes").
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Attribute voxels of one tile: for every voxel a method set, the weighted mean over the
-// triangles whose closed box meets it (DESIGN.md, "Attributes"). Sums and weights are
+// triangles whose closed box meets it (docs/design.md, "Attributes"). Sums and weights are
 // accumulated in double per region of 4³ leaves, one region per task, each region's
 // triangles in the mesh's order: the result does not depend on the thread count.
 #include <cstdint>

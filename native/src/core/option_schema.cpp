@@ -131,10 +131,9 @@ std::vector<OptionSpec> buildSchema() {
          "consistently oriented, else by fast winding numbers",
          false, 0, 0, false, insideRuleNames(), {}, nullptr, HYVOX_FIELD(asInsideRule, solid.inside)});
     add({"winding_beta", T::Number, "solid", "Winding Accuracy", "",
-         "solid and sdf, winding: fast winding number accuracy beta (a cluster is expanded when the point is "
-         "farther than beta times its radius); larger = more exact, slower: at 2 within 0.03 of the exact "
-         "winding number on Sponza's samples, at 1 up to 0.07 off (a fuzzed box), at 100 nearly every "
-         "triangle piece is summed at every point (seconds even for a small mesh)",
+         "solid and sdf, winding: accuracy of the fast winding numbers (a cluster of triangles counts as one "
+         "expansion where the point is farther than beta times the cluster's radius); larger is more exact "
+         "and slower",
          false, 1, 100, false, {}, {}, nullptr, HYVOX_FIELD(asNumber, solid.winding_beta)});
     // --- GL methods ---
     add({"gl_device", T::Text, "gl", "GL Device", "",

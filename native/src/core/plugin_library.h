@@ -5,7 +5,7 @@
 // does not need them never loads those libraries. Process start is a large part of a small
 // run: an empty program linked with libassimp (which brings libdraco and 8 more) costs
 // 2.7 ms of CPU in the dynamic linker, with libepoxy 1.8 ms, with neither 0.45 ms
-// (bench/README.md, "Process start").
+// (docs/why/startup.md).
 //
 //   libhyvox_assimp.so      mesh formats other than PLY and OBJ (io/assimp_reader.h)
 //   libhyvox_gl_methods.so  the GL methods: triangle, fragment, hybrid, tessellation

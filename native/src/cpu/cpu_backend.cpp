@@ -3,7 +3,7 @@
 // with TBB. Bits are set with relaxed atomic ORs on whole words (no locks). A triangle
 // covering many columns of its dominant plane is split by rows into tasks of its own, so
 // one big wall cannot leave a core idle. Small triangles take shortcuts that decide the
-// same voxels (vertex_cells.h, triangle_setup.h, rasterize_small.h).
+// same voxels (vertex_cells.h, triangle_setup.h, rasterize_small.h; why: docs/why/cpu-voxelize.md).
 #include <algorithm>
 #include <array>
 #include <atomic>

@@ -13,35 +13,13 @@
 #include "hyvox/option_schema.h"
 #include "hyvox/version.h"
 #include "io/atomic_file.h"
+#include "io/json_text.h"
 
 namespace hyvox {
 
-std::string jsonQuoted(const std::string& text) {
-    std::string out = "\"";
-    for (const char ch : text) {
-        const auto c = static_cast<unsigned char>(ch);
-        switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\r': out += "\\r"; break;
-            case '\t': out += "\\t"; break;
-            default:
-                if (c < 0x20) {
-                    char buf[8];
-                    std::snprintf(buf, sizeof buf, "\\u%04x", c);
-                    out += buf;
-                } else {
-                    out += ch;
-                }
-        }
-    }
-    return out + "\"";
-}
+std::string jsonQuoted(const std::string& text) { return io::jsonQuote(text); }
 
 namespace {
-
-
 // Shortest text that reads back as the same double; JSON has no NaN/Inf, so those are null.
 std::string number(double value) {
     if (!std::isfinite(value)) return "null";
@@ -55,7 +33,7 @@ std::string number(double value) {
 
 std::string number(std::uint64_t value) { return std::to_string(value); }
 // Section fields are numbers, and a few are names (the solid section's rule and reason).
-std::string number(const std::string& text) { return jsonQuoted(text); }
+std::string number(const std::string& text) { return io::jsonQuote(text); }
 
 std::string json(const OptionValue& value) {
     struct Json {
@@ -63,7 +41,7 @@ std::string json(const OptionValue& value) {
         std::string operator()(std::int64_t v) const { return std::to_string(v); }
         std::string operator()(double v) const { return number(v); }
         std::string operator()(bool v) const { return v ? "true" : "false"; }
-        std::string operator()(const std::string& v) const { return jsonQuoted(v); }
+        std::string operator()(const std::string& v) const { return io::jsonQuote(v); }
         std::string operator()(const std::array<double, 3>& v) const {
             return "[" + number(v[0]) + ", " + number(v[1]) + ", " + number(v[2]) + "]";
         }
@@ -79,9 +57,9 @@ std::string statsToJson(const VoxelizeResult& result) {
     const GridSpec& g = result.grid;
     std::ostringstream out;
     out << "{\n";
-    out << "  \"hyvox_version\": " << jsonQuoted(version()) << ",\n";
-    out << "  \"method\": " << jsonQuoted(s.method) << ",\n";
-    out << "  \"mode\": " << jsonQuoted(s.mode) << ",\n";
+    out << "  \"hyvox_version\": " << io::jsonQuote(version()) << ",\n";
+    out << "  \"method\": " << io::jsonQuote(s.method) << ",\n";
+    out << "  \"mode\": " << io::jsonQuote(s.mode) << ",\n";
     out << "  \"origin\": [" << number(g.origin[0]) << ", " << number(g.origin[1]) << ", " << number(g.origin[2])
         << "],\n";
     out << "  \"voxel_size\": " << number(g.voxel_size) << ",\n";
@@ -89,7 +67,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     if (s.region) {  // the box a region's run voxelized, voxels [lo, hi) of the grid
         const RegionBox& box = *s.region;
         out << "  \"region\": {\"index\": " << s.options.region.index << ", \"count\": " << s.options.region.count
-            << ", \"axis\": " << jsonQuoted(std::string(1, "xyz"[box.axis])) << ", \"lo\": [" << box.lo[0] << ", " << box.lo[1]
+            << ", \"axis\": " << io::jsonQuote(std::string(1, "xyz"[box.axis])) << ", \"lo\": [" << box.lo[0] << ", " << box.lo[1]
             << ", " << box.lo[2] << "], \"hi\": [" << box.hi[0] << ", " << box.hi[1] << ", " << box.hi[2] << "]},\n";
     }
     out << "  \"voxel_count\": " << number(s.voxel_count) << ",\n";
@@ -106,7 +84,7 @@ std::string statsToJson(const VoxelizeResult& result) {
     // Stage names are keys: Stats::addTiming sums a stage that ran again (once per tile).
     out << "  \"timings_ms\": {";
     for (std::size_t t = 0; t < s.timings_ms.size(); ++t)
-        out << (t ? ", " : "") << jsonQuoted(s.timings_ms[t].first) << ": " << number(s.timings_ms[t].second);
+        out << (t ? ", " : "") << io::jsonQuote(s.timings_ms[t].first) << ": " << number(s.timings_ms[t].second);
     out << "},\n";
     out << "  \"total_ms\": " << number(s.totalMs()) << ",\n";
     // The options the run used, by their schema names (unset ones are left out).
@@ -116,16 +94,16 @@ std::string statsToJson(const VoxelizeResult& result) {
         if (!spec.isVoxelizeOption()) continue;
         const OptionValue value = spec.get(s.options);
         if (std::holds_alternative<std::monostate>(value)) continue;
-        out << (first ? "" : ", ") << jsonQuoted(spec.name) << ": " << json(value);
+        out << (first ? "" : ", ") << io::jsonQuote(spec.name) << ": " << json(value);
         first = false;
     }
     out << "}";
     // The backend's own section: "cpu", "reference", "hybrid" or "tessellation".
     s.visitSections([&](const char* section, const auto& figures) {
-        out << ",\n  " << jsonQuoted(section) << ": {";
+        out << ",\n  " << io::jsonQuote(section) << ": {";
         bool first_field = true;
         figures.visit([&](const char* name, const auto& value) {
-            out << (first_field ? "" : ", ") << jsonQuoted(name) << ": " << number(value);
+            out << (first_field ? "" : ", ") << io::jsonQuote(name) << ": " << number(value);
             first_field = false;
         });
         out << "}";

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// OpenVDB's file layout for float and Vec3f 5-4-3 trees, written without OpenVDB (see the header).
+// OpenVDB's file layout for float and Vec3f 5-4-3 trees, written without OpenVDB (see the header;
+// why: docs/why/vdb-output.md).
 // Byte order and field order follow openvdb::io::Archive::write (file version 224): the
 // header, the file metadata, the grid descriptor with its stream offsets, the grid's
 // compression flags, its metadata (sorted by name, as a MetaMap), its transform, the tree

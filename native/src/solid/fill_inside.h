@@ -14,6 +14,7 @@
 //    when the bound over the part's longest path allows it;
 //  - everything else is tested voxel by voxel.
 // Decided boxes become tiles (runs of whole bricks), so memory follows the surface.
+// Why it is built this way, and what an open mesh costs: docs/why/solid.md.
 #include "hyvox/interrupter.h"
 #include "hyvox/mesh.h"
 #include "hyvox/options.h"

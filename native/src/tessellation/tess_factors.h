@@ -10,7 +10,7 @@ namespace hyvox::tessellation {
 using Vec3f = std::array<float, 3>;
 
 // E_ij = γ · |P_i - P_j| (the edge's Euclidean length in voxels): enough segments that every
-// segment of the edge is at most 1/γ voxel long (README: "Eq. 1, γ and watertightness").
+// segment of the edge is at most 1/γ voxel long (docs/why/tessellation-gamma.md).
 double edgeFactor(const Vec3f& a, const Vec3f& b, double gamma);
 
 // GL's order for triangle patches: outer[0] is the edge opposite corner 0 (corners 1-2),
