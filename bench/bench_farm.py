@@ -14,13 +14,14 @@ voxelize + write of the add-on's own timings), and writes farm.json and farm.md.
 gets a fixed voxel size so every way does the same work. openjd-cli comes from the farm
 venv (scripts/setup_venvs.sh)."""
 import argparse
-import json
 import os
 import re
 import subprocess
 import sys
 import tempfile
 import time
+
+from bench_results import Column, Table, add_out_argument
 
 SCENE = """
 import bpy, sys
@@ -65,7 +66,7 @@ def main():
     parser.add_argument("--frames", type=int, default=24)
     parser.add_argument("--resolution", type=int, default=128)
     parser.add_argument("--chunks", default="1,4", help="frames per task of the OpenJD runs")
-    parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results"))
+    add_out_argument(parser)
     args = parser.parse_args()
     build = os.path.abspath(args.build)
     openjd = os.path.join(build, "venv", "farm", "bin", "openjd")
@@ -117,26 +118,18 @@ def main():
         row["frames_per_minute"] = 60.0 * args.frames / row["seconds"]
         row["overhead_per_frame_s"] = (row["seconds"] - row["work_seconds"]) / args.frames
         row["work_per_frame_s"] = row["work_seconds"] / args.frames
-    result = {"frames": args.frames, "resolution": args.resolution, "voxel_size": voxel_size, "method": "cpu",
-              "blender": subprocess.run(["blender", "--version"], capture_output=True, text=True).stdout.split("\n")[0],
-              "assemble_seconds": assemble_seconds, "rows": rows}
-    lines = [f"# The 24-frame farm job three ways ({result['blender']}, torus, {args.frames} frames, voxel size "
-             f"{voxel_size:g} (~{args.resolution}^3), cpu)", "",
-             "| way | tasks | Blender starts | seconds | frames / min | overhead / frame (s) | voxelize / frame (s) |",
-             "|---|---:|---:|---:|---:|---:|---:|"]
+    blender = subprocess.run(["blender", "--version"], capture_output=True, text=True).stdout.split("\n")[0]
+    table = Table("farm", f"The farm job three ways ({blender}, torus, {args.frames} frames, voxel size "
+                  f"{voxel_size:g} (~{args.resolution}^3), cpu)",
+                  [Column("way"), Column("tasks"), Column("Blender starts"), Column("seconds", 1),
+                   Column("frames / min", 0), Column("overhead / frame (s)", 3), Column("voxelize / frame (s)", 3)])
     for r in rows:
-        lines.append(f"| {r['way']} | {r['tasks']} | {r['blenders']} | {r['seconds']:.1f} | "
-                     f"{r['frames_per_minute']:.0f} | {r['overhead_per_frame_s']:.3f} | {r['work_per_frame_s']:.3f} |")
-    lines += ["", f"Assemble step (one Blender: check {args.frames} files, save the .blend): {assemble_seconds:.1f} s.",
-              "voxelize / frame: the add-on's export + voxelize + write; overhead: the rest (Blender start-up, "
-              "file load, the add-on, the farm runner).", ""]
-    text = "\n".join(lines)
-    print(text)
-    os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "farm.json"), "w") as f:
-        json.dump(result, f, indent=2)
-    with open(os.path.join(args.out, "farm.md"), "w") as f:
-        f.write(text)
+        table.add([r["way"], r["tasks"], r["blenders"], r["seconds"], r["frames_per_minute"],
+                   r["overhead_per_frame_s"], r["work_per_frame_s"]])
+    table.note(f"Assemble step (one Blender: check {args.frames} files, save the .blend): {assemble_seconds:.1f} s. "
+               "voxelize / frame: the add-on's export + voxelize + write; overhead: the rest (Blender start-up, "
+               "file load, the add-on, the farm runner).")
+    table.write(args.out)
 
 
 if __name__ == "__main__":

@@ -13,12 +13,12 @@ file's random UUID). Writes OUT/regions.json and OUT/regions.md and prints the t
 .vdb files are removed. Default: the 871k dragon's surface at 4096."""
 import argparse
 import json
-import os
 import pathlib
-import platform
 import subprocess
 import sys
 import tempfile
+
+from bench_results import Column, Table, add_out_argument
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 MIB = 1 << 20
@@ -46,7 +46,7 @@ def main():
     parser.add_argument("--res", type=int, default=4096)
     parser.add_argument("--regions", type=int, default=4)
     parser.add_argument("--mesh", default=str(REPO.parent / "shared" / "data" / "meshes" / "dragon_stanford_871k.ply.gz"))
-    parser.add_argument("--out", default=str(REPO / "bench" / "results"))
+    add_out_argument(parser)
     parser.add_argument("options", nargs="*", help="further voxelize options (after --), e.g. --mode solid")
     args = parser.parse_args()
     cli = pathlib.Path(args.build) / "hyvox"
@@ -78,35 +78,19 @@ def main():
         identical = same_but_uuid(whole, merged)
 
     part_rows = rows[1:-1]
-    summary = {
-        "mesh": mesh.name, "resolution": args.res, "regions": args.regions, "options": [str(o) for o in args.options],
-        "merged_equals_whole": identical,
-        "largest_part_rss_over_whole": max(r["peak_rss_mib"] for r in part_rows) / rows[0]["peak_rss_mib"],
-        "parts_wall_s_sum": sum(r["wall_s"] for r in part_rows),
-        "parts_wall_s_longest": max(r["wall_s"] for r in part_rows),
-        "machine": {"cpus": os.cpu_count(), "load_average": os.getloadavg(), "system": platform.platform()},
-        "command": " ".join(["python3", "bench/bench_regions.py", "--res", str(args.res), "--regions", str(args.regions)] +
-                            (["--mesh", str(mesh)] if args.mesh != parser.get_default("mesh") else []) +
-                            (["--", *args.options] if args.options else [])),
-        "rows": rows,
-    }
-    lines = [f"# Regions of one grid: {mesh.name} at {args.res}, {args.regions} regions",
-             "", f"`{summary['command']}` (one process per task, `/usr/bin/time -f \"%e %M\"`)", "",
-             "| task | box (voxels lo..hi) | wall s | peak RSS MiB | RSS / whole | voxels | leaves | file MiB |",
-             "|---|---|---:|---:|---:|---:|---:|---:|"]
+    largest_part = max(r["peak_rss_mib"] for r in part_rows) / rows[0]["peak_rss_mib"]
+    table = Table("regions", f"Regions of one grid: {mesh.name} at {args.res}, {args.regions} regions",
+                  [Column("task"), Column("box (voxels lo..hi)"), Column("wall s", 2), Column("peak RSS MiB", 1),
+                   Column("RSS / whole", 2), Column("voxels"), Column("leaves"), Column("file MiB", 1)])
     for r in rows:
         box = "-" if not r["box"] else f"{r['box'][0]}..{r['box'][1]}"
-        lines.append(f"| {r['task']} | {box} | {r['wall_s']:.2f} | {r['peak_rss_mib']:.1f} | "
-                     f"{r['peak_rss_mib'] / rows[0]['peak_rss_mib']:.2f} | {r['voxels']} | {r['leaves']} | {r['file_mib']:.1f} |")
-    lines += ["", f"Merged file equals the whole run's (bytes but the UUID): {'yes' if identical else 'NO'}. "
-              f"Parts: {summary['parts_wall_s_sum']:.2f} s of tasks in all, the longest {summary['parts_wall_s_longest']:.2f} s; "
-              f"the largest part's peak memory is {summary['largest_part_rss_over_whole']:.2f} of the whole run's. "
-              f"Machine: {os.cpu_count()} cores, load average {' '.join(f'{x:.1f}' for x in os.getloadavg())} at the end.", ""]
-    out = pathlib.Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "regions.json").write_text(json.dumps(summary, indent=2) + "\n")
-    (out / "regions.md").write_text("\n".join(lines))
-    print("\n".join(lines))
+        table.add([r["task"], box, r["wall_s"], r["peak_rss_mib"], r["peak_rss_mib"] / rows[0]["peak_rss_mib"],
+                   r["voxels"], r["leaves"], r["file_mib"]])
+    table.note("One process per task (`/usr/bin/time -f \"%e %M\"`). Merged file equals the whole run's (bytes but "
+               f"the UUID): {'yes' if identical else 'NO'}. Parts: {sum(r['wall_s'] for r in part_rows):.2f} s of "
+               f"tasks in all, the longest {max(r['wall_s'] for r in part_rows):.2f} s; the largest part's peak "
+               f"memory is {largest_part:.2f} of the whole run's.")
+    table.write(args.out)
     if not identical:
         sys.exit("the merged file differs from the whole run's")
 

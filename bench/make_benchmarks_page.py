@@ -70,6 +70,14 @@ SECTIONS = [
      "until the new grid is loaded in the evaluated volume, against Geometry Nodes' Mesh to Density Grid and the "
      "Mesh to Volume modifier at the same voxel size; then where an update's time goes.",
      ["live", "live_breakdown"]),
+    ("Regions of one grid",
+     "One grid voxelized as a job of regions ([regions.md](regions.md)) against the one-machine run: each task's "
+     "peak memory and wall time, and the merge's, every task the CLI in its own process.",
+     ["regions"]),
+    ("Farm jobs",
+     "The farm job ([farm.md](farm.md)) three ways: a shell loop of `blender -b` per frame, the Open Job "
+     "Description job with a Blender per task, and with one Blender per worker session, run by the real `openjd`.",
+     ["farm"]),
     ("Reading meshes",
      "hyvox's strict PLY/OBJ readers against the assimp path they replaced.",
      ["mesh_read"]),

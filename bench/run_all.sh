@@ -77,6 +77,9 @@ if [ "$QUICK" = 1 ]; then
   run blender_addon blender -b --factory-startup -noaudio --python bench/bench_blender_addon.py -- \
     --build "$BUILD" --levels 2 --resolutions 64 --repeat 1 --out "$OUT"
   run mesh_read "$B/bench_mesh_read" --repeat 1 --out "$OUT" "$M/bunny_stanford_69k.ply"
+  run regions $PY bench/bench_regions.py --build "$BUILD" --res 512 --regions 4 --out "$OUT"
+  [ -x "$BUILD/venv/farm/bin/openjd" ] && run farm $PY bench/bench_farm.py --build "$BUILD" --frames 4 \
+    --resolution 32 --chunks 1,2 --out "$OUT"
   [ -x "$BPY50" ] && run live "$BPY50" bench/bench_live.py --build "$BUILD" --meshes bunny --resolutions 64 \
     --edits 2 --animation-frames 4 --out "$OUT"
   [ -n "${PEER:-}" ] && run vs_cuda_voxelizer $PY bench/bench_vs_cuda_voxelizer.py --peer "$PEER" \
@@ -100,6 +103,8 @@ else
     --build "$BUILD" --levels 4,5 --resolutions 256,512 --repeat 3 --out "$OUT"
   run mesh_read "$B/bench_mesh_read" --repeat 7 --out "$OUT" "$M/bunny_stanford_69k.ply" \
     "$M/dragon_stanford_871k.ply.gz" "$M/sponza_crytek_262k_vcolor.ply.gz"
+  run regions $PY bench/bench_regions.py --build "$BUILD" --out "$OUT"
+  [ -x "$BUILD/venv/farm/bin/openjd" ] && run farm $PY bench/bench_farm.py --build "$BUILD" --out "$OUT"
   [ -x "$BPY50" ] && run live "$BPY50" bench/bench_live.py --build "$BUILD" --out "$OUT"
   [ -n "${PEER:-}" ] && run vs_cuda_voxelizer $PY bench/bench_vs_cuda_voxelizer.py --peer "$PEER" \
     --build "$BUILD" \
