@@ -124,7 +124,7 @@ def probe_assembled(blend, env):
     """What the assembled .blend holds, read by a Blender that opens it."""
     script = os.path.join(HERE, "probe_assembled.py")
     done = check(run([BLENDER, "-b", "-noaudio", blend, "--python", script], env=env))
-    line = next(l for l in done.stdout.splitlines() if l.startswith("PROBE "))
+    line = next(text for text in done.stdout.splitlines() if text.startswith("PROBE "))
     return json.loads(line[len("PROBE "):])
 
 

@@ -20,7 +20,7 @@ def headless_options(env):
     expr = ("import addon_utils, sys; addon_utils.enable('hyvox_blender', default_set=False, handle_error=None); "
             "from hyvox_blender.blender.properties import SCENE_OPTIONS; print('OPTIONS', ','.join(SCENE_OPTIONS))")
     done = check(run([BLENDER, "-b", "--factory-startup", "-noaudio", "--python-expr", expr], env=env))
-    line = next(l for l in done.stdout.splitlines() if l.startswith("OPTIONS "))
+    line = next(text for text in done.stdout.splitlines() if text.startswith("OPTIONS "))
     return ["method"] + line.split(" ", 1)[1].split(",")
 
 

@@ -11,7 +11,7 @@ import bpy
 from ..core import backend, naming, summary
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
-from . import export, frame_export, importer, live, properties, render_depsgraph, render_equivalence
+from . import export, frame_export, importer, live, properties
 from .gather import gather
 
 # The last run's summary lines (shown in the panel) and record (for scripts).
