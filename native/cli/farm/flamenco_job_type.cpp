@@ -50,6 +50,7 @@ std::string optionSetting(const OptionSpec& spec) {
             fields.push_back({"default", std::get<bool>(def) ? "true" : "false"});
             break;
         case OptionType::Text:
+        case OptionType::Choices:  // a comma list, as text
             fields.push_back({"type", quoted("string")});
             fields.push_back({"default", quoted(std::get<std::string>(def))});
             break;

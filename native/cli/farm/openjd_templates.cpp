@@ -137,6 +137,7 @@ Yaml optionParameter(const OptionSpec& spec) {
             out.add("allowedValues", Yaml::texts({"true", "false"}));
             break;
         case OptionType::Text:
+        case OptionType::Choices:  // a comma list, as text
             out.add("type", Yaml::text("STRING")).add("default", Yaml::text(std::get<std::string>(def)));
             break;
         case OptionType::Choice: {
