@@ -78,6 +78,7 @@ def good_value(spec):
         "method": "reference", "voxel_size": 0.125, "origin": (-0.5, -0.25, 0.0),
         "bounds": ((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)), "gl_device": "software",
         "shader_dir": "/nonexistent/shaders", "displacement_image": "height.png", "attributes": "normal",
+        "memory_budget_mib": 512,
     }
     if spec.name in special:
         return special[spec.name]

@@ -114,12 +114,20 @@ struct SolidOptions {
     double winding_beta = 2.0;
 };
 
+// The memory budget a run has when memory_budget_mib is 0: half of this machine's physical
+// memory, or of the memory limit of the cgroup this process runs in when that is smaller
+// (a container's), in MiB, at least 256.
+std::uint64_t defaultMemoryBudgetMib();
+
 struct VoxelizeOptions {
     GridOptions grid;
     Mode mode = Mode::Conservative;
     Method method = Method::Cpu;
     int threads = 0;                        // CPU threads; 0 = all cores
-    std::uint64_t memory_budget_mib = 4096;  // what the run may hold for voxels: tile buffers + leaves
+    // What the run may hold beside the mesh it is given (MiB): every buffer of the passes it
+    // runs and of the .vdb it writes; a run estimated to need more is refused before any work.
+    // 0 = defaultMemoryBudgetMib().
+    std::uint64_t memory_budget_mib = 0;
     // Side of the boxes the grid is voxelized in, one after the other (rounded up to a
     // multiple of 8); 0 = from the memory budget (the whole grid when it fits).
     int tile_size = 0;
@@ -136,7 +144,8 @@ struct VoxelizeOptions {
     TessellationOptions tessellation;
     SolidOptions solid;
 
-    std::uint64_t memoryBudgetBytes() const { return memory_budget_mib << 20; }
+    std::uint64_t memoryBudgetMib() const { return memory_budget_mib ? memory_budget_mib : defaultMemoryBudgetMib(); }
+    std::uint64_t memoryBudgetBytes() const { return memoryBudgetMib() << 20; }
 };
 
 }  // namespace hyvox

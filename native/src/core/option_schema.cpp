@@ -81,7 +81,8 @@ std::vector<OptionSpec> buildSchema() {
     add({"threads", T::Integer, "run", "Threads", "threads", "CPU threads; 0 = all cores", false, 0, 4096, false, {}, {},
          nullptr, HYVOX_FIELD(asInteger, threads)});
     add({"memory_budget_mib", T::Integer, "run", "Memory Budget", "MiB",
-         "memory the voxels may take (tile buffers and the leaves of the result)", false, 1, double(1 << 30), false,
+         "memory a run may take beside its mesh (every pass and the .vdb it writes; a run estimated to need more "
+         "is refused before it starts); 0 = half of this machine's memory", false, 0, double(1 << 30), false,
          {}, {}, nullptr, HYVOX_FIELD(asInteger, memory_budget_mib)});
     add({"tile_size", T::Integer, "run", "Tile Size", "voxels",
          "side of the boxes voxelized one after the other (rounded up to a multiple of 8); 0 = from the "

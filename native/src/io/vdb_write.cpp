@@ -34,7 +34,7 @@ void checkGridBudget(const VoxelizeResult& result) {
     if (need > options.memoryBudgetBytes())
         throw ResourceError("the OpenVDB grid of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
                             std::to_string((need + (1u << 20) - 1) >> 20) + " MiB, more than the memory budget of " +
-                            std::to_string(options.memory_budget_mib) +
+                            std::to_string(options.memoryBudgetMib()) +
                             " MiB; raise the budget (memory_budget_mib) or use a larger voxel size");
 }
 

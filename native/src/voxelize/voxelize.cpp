@@ -41,7 +41,7 @@ void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options, con
                             (plan.whole() ? std::string("its bits") : "a " + mib(plan.tileBytes()) + " tile") +
                             " and about " + std::to_string(estimated_leaves) +
                             " leaves of surface), more than the memory budget of " +
-                            std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size");
+                            std::to_string(options.memoryBudgetMib()) + " MiB; use a larger voxel size");
 }
 
 // The displacement runs in single precision in voxel units on the GPU: beyond 2^24 voxels a
@@ -127,7 +127,7 @@ void checkInsideValuesBudget(const SparseGrid& surface, const VoxelizeResult& re
     if (held + need > double(options.memoryBudgetBytes()))
         throw ResourceError("the inside's attribute values need about " + mib(std::uint64_t(need)) + " beside " +
                             mib(std::uint64_t(held)) + " held, more than the memory budget of " +
-                            std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size");
+                            std::to_string(options.memoryBudgetMib()) + " MiB; use a larger voxel size");
 }
 
 // The bricks `grid` (finished) holds as whole tiles, ascending.
@@ -200,7 +200,7 @@ struct Surface {
             const std::uint64_t held = plan.tileBytes() + result.occupancy.byteSize();
             if (held > options.memoryBudgetBytes())
                 throw ResourceError("the surface needs more than the memory budget of " +
-                                    std::to_string(options.memory_budget_mib) + " MiB (" +
+                                    std::to_string(options.memoryBudgetMib()) + " MiB (" +
                                     std::to_string(result.occupancy.leafCount()) + " leaves after " +
                                     std::to_string(stats.tiles) + " tiles); use a larger voxel size");
             stats.addTiming("compact", watch.restart());
