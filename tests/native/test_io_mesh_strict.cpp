@@ -406,10 +406,10 @@ TEST(IoMeshStrict, GzipOutputIsBounded) {
     } catch (const hyvox::InvalidInput& e) {
         EXPECT_NE(std::string(e.what()).find("decompresses to more than 1 MiB"), std::string::npos) << e.what();
     }
-    // The default limit: 100x the compressed size, at least 256 MiB, at most the 4 GiB budget.
-    EXPECT_EQ(hyvox::io::gzipOutputLimit(1000), 256ull << 20);
-    EXPECT_EQ(hyvox::io::gzipOutputLimit(10ull << 20), 1000ull << 20);
-    EXPECT_EQ(hyvox::io::gzipOutputLimit(1ull << 40), 4096ull << 20);
+    // The limit: 100x the compressed size, at least 256 MiB, at most the budget.
+    EXPECT_EQ(hyvox::io::gzipOutputLimit(1000, 4096ull << 20), 256ull << 20);
+    EXPECT_EQ(hyvox::io::gzipOutputLimit(10ull << 20, 4096ull << 20), 1000ull << 20);
+    EXPECT_EQ(hyvox::io::gzipOutputLimit(1ull << 40, 4096ull << 20), 4096ull << 20);
     // The 64 MiB bomb is within the default (256 MiB) and is then refused as a PLY.
     EXPECT_READ_ERROR(path, "not a PLY file");
 }

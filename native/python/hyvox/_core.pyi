@@ -120,6 +120,7 @@ def voxelize(
 def read_mesh(
     path: Union[str, os.PathLike[str]],
     cancel: Optional[CancelToken] = None,
+    memory_budget_mib: int = 0,
 ) -> Tuple[
     npt.NDArray[np.float32],
     npt.NDArray[np.uint32],

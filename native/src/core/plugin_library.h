@@ -7,9 +7,11 @@
 // 2.7 ms of CPU in the dynamic linker, with libepoxy 1.8 ms, with neither 0.45 ms
 // (bench/README.md, "Process start").
 //
-//   libhyvox_assimp.so      mesh formats other than PLY and OBJ (io/assimp_reader.h)
 //   libhyvox_gl_methods.so  the GL methods: triangle, fragment, hybrid, tessellation
 //                           (voxelize/gl_methods.h)
+//
+// The same folders hold the helper programs hyvox starts as processes of their own:
+//   hyvox_assimp_reader     the mesh formats read through assimp (io/assimp_reader.h)
 //
 // Where a plugin is looked for, in order (the first folder that has the file is used):
 //   - $HYVOX_PLUGIN_DIR, when set (only there: to point a relocated build at its plugins,
@@ -33,10 +35,15 @@
 
 namespace hyvox {
 
-// The address of `symbol` in plugin `name` ("assimp" -> libhyvox_assimp.so), loading the
+// The address of `symbol` in plugin `name` ("gl_methods" -> libhyvox_gl_methods.so), loading the
 // plugin on first use (thread-safe; it stays loaded). BackendError when the plugin or a
 // library it needs cannot be loaded: "<purpose> needs libhyvox_<name>.so, ...: <reason>".
 void* pluginSymbol(const std::string& name, const char* symbol, const std::string& purpose);
+
+// The path of `file` (a plugin or a helper program) in the first of the folders above that
+// has it. BackendError when none has: "<purpose> needs <file>, which is not installed with
+// hyvox (looked in ...)".
+std::string pluginFile(const std::string& file, const std::string& purpose);
 
 // Whether plugin `name` was loaded by this process (nothing is loaded to answer).
 bool pluginLoaded(const std::string& name);
