@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target for the formats read through assimp, read as readMesh reads them: in the
 // assimp reader process (native/src/io/assimp_reader.h). The first byte picks the format
-// (gltf, glb, fbx, dae, 3mf), the rest is the file. Whatever assimp does with the bytes,
+// (fbx, dae, 3mf), the rest is the file. Whatever assimp does with the bytes,
 // this process must get a mesh whose arrays agree and whose indices are in range, or an
 // InvalidInput (a crash, a hang or memory past the budget in the reader process is one).
 // Another exception, or anything that ends this process, is a finding.
@@ -19,7 +19,7 @@
 
 namespace {
 
-constexpr const char* kFormats[] = {"gltf", "glb", "fbx", "dae", "3mf"};
+constexpr const char* kFormats[] = {"fbx", "dae", "3mf"};
 // Small enough that a damaged file's allocations fail fast, large enough for the seeds.
 constexpr hyvox::io::AssimpReadLimits kLimits{512ull << 20, 5.0};
 

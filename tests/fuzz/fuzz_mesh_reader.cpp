@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target for one strict mesh reader, chosen at build time (HYVOX_FUZZ_PLY,
-// HYVOX_FUZZ_OBJ, HYVOX_FUZZ_STL or HYVOX_FUZZ_OFF): any bytes must give a mesh whose
-// indices are in range, or InvalidInput.
+// HYVOX_FUZZ_OBJ, HYVOX_FUZZ_STL, HYVOX_FUZZ_OFF or HYVOX_FUZZ_GLTF): any bytes must give a
+// mesh whose indices are in range, or InvalidInput. The glTF target reads both its forms
+// (the first bytes tell GLB from JSON); a buffer URI naming a file is looked for beside
+// "fuzz.gltf", in the folder the fuzzer runs in.
 // The OBJ target also reads the bytes as an MTL (material file), whose seeds sit beside the
 // OBJ ones.
 // Anything else (another exception, a crash, a sanitizer report, a hang, memory beyond
@@ -11,6 +13,7 @@
 #include <cstdlib>
 
 #include "hyvox/errors.h"
+#include "io/gltf_reader.h"
 #include "io/mtl_reader.h"
 #include "io/obj_reader.h"
 #include "io/off_reader.h"
@@ -33,6 +36,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const hyvox::Mesh mesh = hyvox::io::readStl(bytes, size, "fuzz.stl");
 #elif defined(HYVOX_FUZZ_OFF)
         const hyvox::Mesh mesh = hyvox::io::readOff(bytes, size, "fuzz.off");
+#elif defined(HYVOX_FUZZ_GLTF)
+        const hyvox::Mesh mesh = hyvox::io::readGltf(bytes, size, "fuzz.gltf", 256u << 20);
 #else
         const hyvox::Mesh mesh = hyvox::io::readObj(bytes, size, "fuzz.obj");
 #endif

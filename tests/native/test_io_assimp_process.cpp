@@ -93,16 +93,24 @@ std::string errorOf(const fs::path& path, const hyvox::MeshReadOptions& options 
 
 #define EXPECT_HAS(TEXT, PART) EXPECT_NE(std::string(TEXT).find(PART), std::string::npos) << (TEXT)
 
-// One triangle as glTF, its buffer inline.
-const std::string kTriangleGltf =
-    R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
-    R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
-    R"("buffers":[{"byteLength":48,"uri":"data:application/octet-stream;base64,)"
-    // 0 0 0, 1 0 0, 0 1 0 as float32, then 0 1 2 as uint32
-    R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAEAAAACAAAA"}],)"
-    R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":12}],)"
-    R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},)"
-    R"({"bufferView":1,"componentType":5125,"count":3,"type":"SCALAR"}]})";
+// One triangle as COLLADA (a format read through assimp).
+const std::string kTriangleDae =
+    R"(<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><up_axis>Y_UP</up_axis></asset>
+  <library_geometries><geometry id="m"><mesh>
+    <source id="p"><float_array id="pa" count="9">0 0 0 1 0 0 0 1 0</float_array>
+      <technique_common><accessor source="#pa" count="3" stride="3">
+        <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+      </accessor></technique_common></source>
+    <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+    <triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>0 1 2</p></triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="s"><node><instance_geometry url="#m"/></node></visual_scene>
+  </library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+)";
 
 fs::path regressionDir() { return fs::path(HYVOX_REGRESSION_MESHES); }
 
@@ -110,14 +118,14 @@ fs::path regressionDir() { return fs::path(HYVOX_REGRESSION_MESHES); }
 
 TEST(AssimpProcess, ReadsTheFileItIsGiven) {
     TempDir dir;
-    const hyvox::Mesh mesh = hyvox::readMesh(dir.write("tri.gltf", kTriangleGltf).string());
+    const hyvox::Mesh mesh = hyvox::readMesh(dir.write("tri.dae", kTriangleDae).string());
     EXPECT_EQ(mesh.positions, (std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0}));
     EXPECT_EQ(mesh.triangles, (std::vector<std::uint32_t>{0, 1, 2}));
     // Gzipped, the bytes go to the process on its standard input.
-    const fs::path gz = dir.path / "tri.gltf.gz";
+    const fs::path gz = dir.path / "tri.dae.gz";
     gzFile out = gzopen(gz.c_str(), "wb");
     ASSERT_NE(out, nullptr);
-    gzwrite(out, kTriangleGltf.data(), unsigned(kTriangleGltf.size()));
+    gzwrite(out, kTriangleDae.data(), unsigned(kTriangleDae.size()));
     gzclose(out);
     const hyvox::Mesh unzipped = hyvox::readMesh(gz.string());
     EXPECT_EQ(unzipped.positions, mesh.positions);
@@ -154,7 +162,7 @@ TEST(AssimpProcess, MemoryPastTheBudgetIsAnError) {
 TEST(AssimpProcess, ACrashOrAnExitIsAnErrorNamingTheFile) {
     TempDir plugins, files;
     const PluginDir use(plugins.path);
-    const fs::path mesh = files.write("scene.glb", "glTF");
+    const fs::path mesh = files.write("scene.dae", "<COLLADA/>");
     fakeReader(plugins, "echo 'ai_assert failure in Something.cpp(12): x != y' >&2\nkill -ABRT $$");
     EXPECT_HAS(errorOf(mesh), "mesh file '" + mesh.string() +
                                   "': the assimp reader crashed on it (SIGABRT: ai_assert failure in Something.cpp(12): x != y)");
@@ -197,7 +205,7 @@ TEST(AssimpProcess, WhatTheProcessSendsIsNotTrusted) {
 TEST(AssimpProcess, AHangEndsAtTheTimeLimit) {
     TempDir plugins, files;
     const PluginDir use(plugins.path);
-    const fs::path mesh = files.write("scene.dae", "<COLLADA/>");
+    const fs::path mesh = files.write("scene.fbx", "FBX");
     fakeReader(plugins, "exec sleep 600");
     hyvox::MeshReadOptions options;
     options.time_limit_s = 0.3;

@@ -1,14 +1,12 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Runs inside the clean venv the wheel is installed into (check_installed_wheel.py
 starts it with an empty environment): imports hyvox, voxelizes with the CPU method, then
-a GL method, then reads a glTF file (through the assimp reader process), and records which
+a GL method, then reads a COLLADA file (through the assimp reader process), and records which
 shared libraries the process had mapped after each step, as the kernel reports them
 (/proc/self/maps).
     python wheel_child.py MESH OUT_DIR"""
-import base64
 import json
 import os
-import struct
 import sys
 
 import numpy as np
@@ -24,18 +22,23 @@ def mapped_libraries():
     return paths
 
 
-def triangle_gltf():
-    """One triangle as glTF 2.0, its buffer inline (a format read through assimp)."""
-    data = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<3I", 0, 1, 2)
-    return {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
-            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
-            "buffers": [{"byteLength": len(data),
-                         "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
-            "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
-                            {"buffer": 0, "byteOffset": 36, "byteLength": 12}],
-            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-                           "min": [0, 0, 0], "max": [1, 1, 0]},
-                          {"bufferView": 1, "componentType": 5125, "count": 3, "type": "SCALAR"}]}
+def triangle_dae():
+    """One triangle as COLLADA (a format read through the assimp reader process)."""
+    return """<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <library_geometries><geometry id="m"><mesh>
+    <source id="p"><float_array id="pa" count="9">0 0 0 1 0 0 0 1 0</float_array>
+      <technique_common><accessor source="#pa" count="3" stride="3">
+        <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+      </accessor></technique_common></source>
+    <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+    <triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>0 1 2</p></triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="s"><node><instance_geometry url="#m"/></node></visual_scene>
+  </library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+"""
 
 
 def main(mesh, out_dir):
@@ -46,11 +49,11 @@ def main(mesh, out_dir):
     after_cpu = mapped_libraries()
     gl = hyvox.voxelize(vertices, triangles, resolution=128, method="hybrid")
     after_gl = mapped_libraries()
-    gltf = os.path.join(out_dir, "triangle.gltf")
-    with open(gltf, "w") as f:
-        json.dump(triangle_gltf(), f)
-    gltf_triangles = len(hyvox.read_mesh(gltf)[1])
-    after_gltf = mapped_libraries()
+    dae = os.path.join(out_dir, "triangle.dae")
+    with open(dae, "w") as f:
+        f.write(triangle_dae())
+    dae_triangles = len(hyvox.read_mesh(dae)[1])
+    after_dae = mapped_libraries()
     np.save(os.path.join(out_dir, "cpu_coords.npy"), grid.coords())
     with open(os.path.join(out_dir, "child.json"), "w") as f:
         json.dump({
@@ -62,8 +65,8 @@ def main(mesh, out_dir):
             "gl_equals_cpu": bool(np.array_equal(gl.coords(), grid.coords())),
             "loaded_by_import_and_cpu": sorted(after_cpu - before),
             "loaded_by_gl": sorted(after_gl - after_cpu),
-            "gltf_triangles": gltf_triangles,
-            "loaded_by_gltf": sorted(after_gltf - after_gl),
+            "dae_triangles": dae_triangles,
+            "loaded_by_dae": sorted(after_dae - after_gl),
         }, f, indent=1)
 
 

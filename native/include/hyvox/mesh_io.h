@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// Reading triangle meshes from files into an owning mesh. PLY, OBJ, STL and OFF are read by
-// hyvox's own strict readers (src/io/*_reader.h): every declared count is checked against
+// Reading triangle meshes from files into an owning mesh. PLY, OBJ, STL, OFF and glTF are
+// read by hyvox's own strict readers (src/io/*_reader.h): every declared count is checked against
 // the bytes present before allocating, and a damaged file is an InvalidInput naming the file
 // and the place. The other formats go through assimp in a separate process (src/io/
 // assimp_reader.h). Triangles are kept exactly as the file lists them: degenerate and
@@ -64,7 +64,7 @@ struct Mesh {
 // count is checked against the bytes present); a gzip's output and everything the assimp
 // process does are held to these.
 struct MeshReadOptions {
-    // The gzip output and the assimp process's memory, in MiB; 0 = defaultMemoryBudgetMib()
+    // The gzip output, a glTF scene and the assimp process's memory, in MiB; 0 = defaultMemoryBudgetMib()
     // (hyvox/options.h), as VoxelizeOptions::memory_budget_mib.
     std::uint64_t memory_budget_mib = 0;
     // The assimp process is ended after this many seconds (wall clock); 0 = 60 s plus 2 s
@@ -72,9 +72,9 @@ struct MeshReadOptions {
     double time_limit_s = 0;
 };
 
-// Reads a mesh file. The formats and who reads them (docs/mesh-formats.md): PLY, OBJ, STL
-// and OFF by hyvox's own strict readers; glTF/GLB, FBX, COLLADA and 3MF through assimp
-// in a process of its own, so nothing in the file can crash, hang or exhaust this process.
+// Reads a mesh file. The formats and who reads them (docs/mesh-formats.md): PLY, OBJ, STL,
+// OFF and glTF/GLB by hyvox's own strict readers; FBX, COLLADA and 3MF through assimp in a
+// process of its own, so nothing in the file can crash, hang or exhaust this process.
 // A name ending in ".gz" is decompressed first (bounded: see io/gzip_input.h; a stream cut
 // short is an error) and read as the extension before ".gz" (e.g. "x.ply.gz" as PLY); a
 // file whose first line is "ply" is read as PLY whatever its name. Points and lines in the

@@ -10,7 +10,7 @@
 
 namespace hyvox::io {
 
-enum class MeshReader { Ply, Obj, Stl, Off, Assimp };
+enum class MeshReader { Ply, Obj, Stl, Off, Gltf, Assimp };
 
 struct MeshFormat {
     const char* extension;  // lower case, without the dot

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// readMesh picks the reader by the file's extension (mesh_formats.h): PLY, OBJ, STL and OFF
-// (plain or .gz) are read by hyvox's own strict readers, also a PLY under another name (told
+// readMesh picks the reader by the file's extension (mesh_formats.h): PLY, OBJ, STL, OFF and
+// glTF (plain or .gz) are read by hyvox's own strict readers, also a PLY under another name (told
 // by its first line); the formats offered through assimp go to the assimp process
 // (assimp_reader.h); any other name is refused, naming the formats hyvox reads.
 #include <algorithm>
@@ -13,6 +13,7 @@
 #include "hyvox/options.h"
 #include "io/assimp_reader.h"
 #include "io/file_bytes.h"
+#include "io/gltf_reader.h"
 #include "io/gzip_input.h"
 #include "io/mapped_file.h"
 #include "io/mesh_file_error.h"
@@ -47,6 +48,12 @@ std::string extensionOf(const std::string& lower_path) {
 // process opens files itself (some formats refer to other files beside them).
 constexpr std::size_t kMaxMeshFileBytes = std::size_t(1) << 40;
 
+std::uint64_t budgetBytes(const MeshReadOptions& options) {
+    VoxelizeOptions budget;
+    budget.memory_budget_mib = options.memory_budget_mib;
+    return budget.memoryBudgetBytes();
+}
+
 // The bytes of a file our own readers read, compressed or not; a gzipped assimp format.
 Mesh readBytes(const char* data, std::size_t size, const std::string& path, const io::MeshFormat* format,
                const MeshReadOptions& options, Interrupter* interrupter) {
@@ -62,6 +69,7 @@ Mesh readBytes(const char* data, std::size_t size, const std::string& path, cons
         }
         case io::MeshReader::Stl: return io::readStl(data, size, path, interrupter);
         case io::MeshReader::Off: return io::readOff(data, size, path, interrupter);
+        case io::MeshReader::Gltf: return io::readGltf(data, size, path, budgetBytes(options), interrupter);
         case io::MeshReader::Assimp: break;
     }
     return io::readWithAssimp(data, size, format->extension, path, io::assimpReadLimits(options, size), interrupter);
@@ -82,9 +90,7 @@ Mesh readMeshFile(const std::string& path, const MeshReadOptions& options, Inter
 
     if (gzipped) {
         if (!format) refuseFormat(path, extension);
-        VoxelizeOptions budget;
-        budget.memory_budget_mib = options.memory_budget_mib;
-        const std::vector<char> data = io::readGzipMeshFile(path, budget.memoryBudgetBytes(), interrupter);
+        const std::vector<char> data = io::readGzipMeshFile(path, budgetBytes(options), interrupter);
         return readBytes(data.data(), data.size(), path, format, options, interrupter);
     }
     if (!format || format->reader != io::MeshReader::Assimp) {
