@@ -10,7 +10,8 @@
 # regression case (readers: tests/native/test_io_mesh_strict.cpp, test_io_mesh_formats.cpp,
 # tests/regressions/meshes/) before fixing it.
 #   FUZZ_SECONDS=600 bash scripts/fuzz_readers.sh   (default: 60 s for PLY and OBJ, 20 s for
-#                                                     STL, OFF and glTF, 30 s for the assimp formats,
+#                                                     STL, OFF, glTF and the FBX check, 30 s for
+#                                                     the assimp formats,
 #                                                     gzip and voxelize, 45 s for solid;
 #                                                     FUZZ_SECONDS sets all)
 #   FUZZ_TARGETS="stl_reader off_reader" ...        (only these)
@@ -22,7 +23,7 @@ meshes=${HYVOX_MESH_DIR:-../shared/data/meshes}
 
 cmake -S tests/fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build-fuzz
-targets=${FUZZ_TARGETS:-ply_reader obj_reader stl_reader off_reader gltf_reader assimp_formats gzip_input voxelize solid}
+targets=${FUZZ_TARGETS:-ply_reader obj_reader stl_reader off_reader gltf_reader fbx_check assimp_formats gzip_input voxelize solid}
 wanted() { [[ " $targets " == *" $1 "* ]]; }
 
 # fresh TARGET: an empty corpus and findings folder for TARGET (build-fuzz/{corpus,findings}/TARGET).
@@ -76,10 +77,11 @@ done
 # STL, OFF, glTF and the formats read through assimp: the committed seeds (hand-made variants
 # and decided findings) and the small shared meshes written in each format
 # (tests/fuzz/format_seeds.py).
-for target in stl_reader off_reader gltf_reader assimp_formats; do
+for target in stl_reader off_reader gltf_reader fbx_check assimp_formats; do
   wanted "$target" || continue
   fresh "$target"
-  cp tests/fuzz/seeds/"${target%_reader}"/* "build-fuzz/corpus/$target/"
+  seeds=${target%_reader}
+  cp tests/fuzz/seeds/"${seeds%_check}"/* "build-fuzz/corpus/$target/"
   python3 tests/fuzz/format_seeds.py "$target" "build-fuzz/corpus/$target" "$meshes/spider_messy.ply" \
     "$meshes/teapot_utah.ply"
   default_seconds=20

@@ -35,5 +35,5 @@ cmake --build build-asan -j "$jobs"
 ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$jobs"
 
-echo "== libFuzzer (clang, ASan + UBSan): the PLY and OBJ readers 60 s each, STL, OFF and glTF 20 s, the assimp formats, gzip input and voxelize 30 s, solid 45 s; any finding fails"
+echo "== libFuzzer (clang, ASan + UBSan): the PLY and OBJ readers 60 s each, STL, OFF, glTF and the FBX check 20 s, the assimp formats, gzip input and voxelize 30 s, solid 45 s; any finding fails"
 bash scripts/fuzz_readers.sh

@@ -4,8 +4,8 @@
 Damage (each from a seed, so every case can be made again):
   truncate  the file cut at a random place (anywhere, near its start, near its end);
   flip      1 to 8 bytes set to random values;
-  count     a number the file declares (a vertex, triangle or index count, a byte length; in
-            text or as a 32-bit little-endian integer) set to another value;
+  count     a number the file declares (a vertex, triangle or index count, a byte length or
+            offset; where the format puts them: count_sites()) set to another value;
   splice    a piece of this file or of another file of the same format inserted, or
             written over a piece of this one.
 
@@ -23,13 +23,10 @@ whole mesh or have exactly the count written."""
 import hashlib
 import json
 import os
-import random
 import re
 import struct
 import subprocess
 import sys
-import zipfile
-import io
 
 import numpy as np
 
@@ -40,35 +37,89 @@ import mesh_writers  # noqa: E402
 KINDS = ("truncate", "flip", "count", "splice")
 
 
-def counts_in(format_name, data, vertices, triangles):
-    """The values the file declares that damage may change: {value: what it counts}."""
-    n, m = len(vertices), len(triangles)
-    values = {n: "vertices", m: "triangles", 3 * m: "indices", 3 * n: "coordinates", 12 * n: "bytes",
-              12 * m: "bytes"}
-    if format_name == "3mf":  # a zip: its entries' sizes
-        with zipfile.ZipFile(io.BytesIO(data)) as z:
-            for info in z.infolist():
-                values.setdefault(info.compress_size, "zip sizes")
-                values.setdefault(info.file_size, "zip sizes")
-    return {v: what for v, what in values.items() if v > 1}
-
-
-def _count_sites(data, counts):
-    """(offset, length, value, encoding) of every place a count appears: a whole decimal
-    number in text, or a little-endian uint32."""
+def _text_numbers(data, start, end, keys=None):
+    """(offset, length, value, "text") of the whole decimal numbers in data[start:end]; with
+    `keys`, only those that follow one of them (a JSON member: "count": 24)."""
     sites = []
-    for match in re.finditer(rb"(?<![0-9.eE+-])[0-9]+(?![0-9.eE])", data):
-        value = int(match.group())
-        if value in counts:
-            sites.append((match.start(), match.end() - match.start(), value, "text"))
-    for value in counts:
-        if value < 1 << 32:
-            packed = struct.pack("<I", value)
-            start = data.find(packed)
-            while start >= 0 and len(sites) < 10000:
-                sites.append((start, 4, value, "u32"))
-                start = data.find(packed, start + 1)
+    if keys is None:
+        pattern, group = rb"(?<![0-9.eE+-])[0-9]+(?![0-9.eE])", 0
+    else:
+        pattern, group = rb'"(?:' + b"|".join(keys) + rb')"\s*:\s*([0-9]+)', 1
+    for match in re.finditer(pattern, data[start:end]):
+        sites.append((start + match.start(group), match.end(group) - match.start(group), int(match.group(group)), "text"))
     return sites
+
+
+def _fbx_sites(data):
+    """The FBX container's declared sizes: record end offsets and property byte counts, and
+    each array's count and stored length."""
+    sites = []
+    wide = struct.unpack_from("<I", data, 23)[0] >= 7500
+    size, fmt, encoding = (8, "<Q", "u64") if wide else (4, "<I", "u32")
+    array_kinds = (b"d", b"l", b"i", b"f", b"b", b"c")
+    scalar_bytes = {b"C": 1, b"Y": 2, b"I": 4, b"F": 4, b"D": 8, b"L": 8}
+
+    def walk(at, end, depth):
+        while at + 3 * size + 1 <= end and depth < 32:
+            record_end, properties, property_bytes = (struct.unpack_from(fmt, data, at + k * size)[0] for k in range(3))
+            if record_end == 0:
+                return
+            sites.extend([(at, size, record_end, encoding), (at + 2 * size, size, property_bytes, encoding)])
+            p = at + 3 * size + 1 + data[at + 3 * size]
+            for _ in range(properties):
+                kind = data[p:p + 1]
+                if kind in array_kinds:
+                    sites.extend([(p + 1, 4, struct.unpack_from("<I", data, p + 1)[0], "u32"),
+                                  (p + 9, 4, struct.unpack_from("<I", data, p + 9)[0], "u32")])
+                    p += 13 + struct.unpack_from("<I", data, p + 9)[0]
+                elif kind in (b"S", b"R"):
+                    p += 5 + struct.unpack_from("<I", data, p + 1)[0]
+                else:
+                    p += 1 + scalar_bytes[kind]
+            if p < record_end:
+                walk(p, record_end, depth + 1)
+            at = record_end
+
+    walk(27, len(data), 0)
+    return sites
+
+
+def _zip_sites(data):
+    """A zip's declared entry sizes, in its local headers and its central directory."""
+    sites = []
+    for signature, sizes_at in ((b"PK\x03\x04", 18), (b"PK\x01\x02", 20)):
+        at = data.find(signature)
+        while at >= 0:
+            for k in range(2):
+                sites.append((at + sizes_at + 4 * k, 4, struct.unpack_from("<I", data, at + sizes_at + 4 * k)[0], "u32"))
+            at = data.find(signature, at + 4)
+    return sites
+
+
+def count_sites(format_name, data):
+    """(offset, length, value, encoding) of every count or size the file declares (not the
+    values of its data): what "count" damage changes. OBJ and ASCII STL declare none."""
+    gltf_keys = [b"count", b"byteLength", b"byteOffset", b"byteStride"]
+    if format_name == "ply":
+        return _text_numbers(data, 0, data.index(b"end_header"))
+    if format_name == "off":
+        third_line = data.index(b"\n", data.index(b"\n", data.index(b"\n") + 1) + 1)
+        return _text_numbers(data, 0, third_line)
+    if format_name == "stl_binary":
+        return [(80, 4, struct.unpack_from("<I", data, 80)[0], "u32")]
+    if format_name == "gltf":
+        return _text_numbers(data, 0, len(data), gltf_keys)
+    if format_name == "glb":
+        json_length = struct.unpack_from("<I", data, 12)[0]
+        container = [(8, 4, struct.unpack_from("<I", data, 8)[0], "u32"), (12, 4, json_length, "u32")]
+        if len(data) >= 24 + json_length:
+            container.append((20 + json_length, 4, struct.unpack_from("<I", data, 20 + json_length)[0], "u32"))
+        return container + _text_numbers(data, 20, 20 + json_length, gltf_keys)
+    if format_name == "fbx":
+        return _fbx_sites(data)
+    if format_name == "3mf":
+        return _zip_sites(data)
+    return []
 
 
 def damaged(format_name, data, vertices, triangles, kind, rng, others=()):
@@ -87,8 +138,7 @@ def damaged(format_name, data, vertices, triangles, kind, rng, others=()):
             out[p] = rng.randrange(256)
         return bytes(out), {"bytes": places}
     if kind == "count":
-        counts = counts_in(format_name, data, vertices, triangles)
-        sites = _count_sites(data, counts)
+        sites = count_sites(format_name, data)
         if not sites:
             return None, {"no count": True}
         offset, length, value, encoding = rng.choice(sites)
@@ -97,9 +147,10 @@ def damaged(format_name, data, vertices, triangles, kind, rng, others=()):
         if encoding == "text":
             piece = str(new).encode()
         else:
-            piece = struct.pack("<I", min(new, 2**32 - 1))
+            new = min(new, 2**(8 * length) - 1)
+            piece = new.to_bytes(length, "little")
         return data[:offset] + piece + data[offset + length:], {
-            "at": offset, "was": value, "now": new, "counts": counts[value], "encoding": encoding}
+            "at": offset, "was": value, "now": new, "encoding": encoding}
     # splice
     source = rng.choice(list(others) + [data]) if others else data
     a = rng.randrange(len(source))
@@ -264,6 +315,6 @@ def judge(format_name, kind, note, whole, cli, module, sweep):
     if kind == "count" and not same:
         now = note["now"]
         if now not in (module["triangles"], module["vertices"], 3 * module["triangles"], 3 * module["vertices"]):
-            problems.append(f"a changed count ({note['counts']} {note['was']} -> {now}) read as a mesh of "
+            problems.append(f"a changed count ({note['was']} -> {now} at byte {note['at']}) read as a mesh of "
                             f"{module['triangles']} triangles, {module['vertices']} vertices")
     return problems

@@ -3,7 +3,7 @@
 shared meshes' binary PLY, as their README lays them out) written in each format by
 tests/python/mesh_writers.py.
     python3 format_seeds.py TARGET OUT_DIR MESH.ply...
-TARGET: stl_reader, off_reader, gltf_reader or assimp_formats (whose inputs start with a byte
+TARGET: stl_reader, off_reader, gltf_reader, fbx_check or assimp_formats (whose inputs start with a byte
 that picks the format: fuzz_assimp_formats.cpp)."""
 import os
 import sys
@@ -14,9 +14,9 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import mesh_writers  # noqa: E402
 
 # fuzz_assimp_formats.cpp's kFormats, in its order.
-ASSIMP_FORMATS = ["fbx", "dae", "3mf"]
+ASSIMP_FORMATS = ["fbx", "3mf"]
 WRITERS = {"stl_reader": ["stl_binary", "stl_ascii"], "off_reader": ["off"], "gltf_reader": ["gltf", "glb"],
-           "assimp_formats": ASSIMP_FORMATS}
+           "fbx_check": ["fbx"], "assimp_formats": ASSIMP_FORMATS}
 
 
 def read_ply(path):

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target for the formats read through assimp, read as readMesh reads them: in the
 // assimp reader process (native/src/io/assimp_reader.h). The first byte picks the format
-// (fbx, dae, 3mf), the rest is the file. Whatever assimp does with the bytes,
+// (fbx, 3mf), the rest is the file; an FBX's container is checked first (fbx_check.h). Whatever assimp does with the bytes,
 // this process must get a mesh whose arrays agree and whose indices are in range, or an
 // InvalidInput (a crash, a hang or memory past the budget in the reader process is one).
 // Another exception, or anything that ends this process, is a finding.
@@ -16,10 +16,11 @@
 
 #include "hyvox/errors.h"
 #include "io/assimp_reader.h"
+#include "io/fbx_check.h"
 
 namespace {
 
-constexpr const char* kFormats[] = {"fbx", "dae", "3mf"};
+constexpr const char* kFormats[] = {"fbx", "3mf"};
 // Small enough that a damaged file's allocations fail fast, large enough for the seeds.
 constexpr hyvox::io::AssimpReadLimits kLimits{512ull << 20, 5.0};
 
@@ -30,6 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string extension = kFormats[data[0] % (sizeof kFormats / sizeof kFormats[0])];
     const char* bytes = reinterpret_cast<const char*>(data + 1);
     try {
+        if (extension == "fbx") hyvox::io::checkFbxContainer(bytes, size - 1, "fuzz.fbx", kLimits.memory_bytes);
         const hyvox::Mesh mesh = hyvox::io::readWithAssimp(bytes, size - 1, extension, "fuzz." + extension, kLimits);
         if (mesh.triangles.empty() || mesh.positions.size() % 3 != 0) std::abort();
         if (mesh.hasColors() && mesh.colors.size() != 4 * mesh.vertexCount()) std::abort();

@@ -216,7 +216,7 @@ TEST(IoMeshFormats, DamagedOffIsAnErrorNamingThePlace) {
 
 TEST(IoMeshFormats, AFormatHyvoxDoesNotReadIsRefusedByName) {
     TempDir dir;
-    const char* offered = ".ply, .obj, .stl, .off, .gltf, .glb, .fbx, .dae, .3mf";
+    const char* offered = ".ply, .obj, .stl, .off, .gltf, .glb, .fbx, .3mf";
     EXPECT_READ_ERROR(dir.write("scene.blend", "BLENDER"), "'.blend' is not a format hyvox reads", offered);
     EXPECT_READ_ERROR(dir.write("model.3ds", "MM"), "'.3ds' is not a format hyvox reads");
     EXPECT_READ_ERROR(dir.write("noextension", "solid"), "its name has no extension");

@@ -10,6 +10,7 @@ import io
 import json
 import struct
 import zipfile
+import zlib
 
 import numpy as np
 
@@ -99,40 +100,6 @@ def glb(vertices, triangles):
     return struct.pack("<III", 0x46546C67, 2, 12 + len(chunks)) + chunks
 
 
-def dae(vertices, triangles):
-    v, t = _arrays(vertices, triangles)
-    positions = " ".join(repr(x) for x in v.reshape(-1).astype(float).tolist())
-    indices = " ".join(map(str, t.reshape(-1).tolist()))
-    return f"""<?xml version="1.0" encoding="utf-8"?>
-<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
-  <asset><unit name="meter" meter="1"/><up_axis>Y_UP</up_axis></asset>
-  <library_geometries>
-    <geometry id="mesh" name="mesh">
-      <mesh>
-        <source id="mesh-positions">
-          <float_array id="mesh-positions-array" count="{v.size}">{positions}</float_array>
-          <technique_common>
-            <accessor source="#mesh-positions-array" count="{len(v)}" stride="3">
-              <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
-            </accessor>
-          </technique_common>
-        </source>
-        <vertices id="mesh-vertices"><input semantic="POSITION" source="#mesh-positions"/></vertices>
-        <triangles count="{len(t)}">
-          <input semantic="VERTEX" source="#mesh-vertices" offset="0"/>
-          <p>{indices}</p>
-        </triangles>
-      </mesh>
-    </geometry>
-  </library_geometries>
-  <library_visual_scenes>
-    <visual_scene id="scene"><node id="node" name="node"><instance_geometry url="#mesh"/></node></visual_scene>
-  </library_visual_scenes>
-  <scene><instance_visual_scene url="#scene"/></scene>
-</COLLADA>
-""".encode()
-
-
 def three_mf(vertices, triangles):
     v, t = _arrays(vertices, triangles)
     vertex_xml = "".join(f'<vertex x="{x!r}" y="{y!r}" z="{z!r}"/>' for x, y, z in v.astype(float).tolist())
@@ -163,7 +130,7 @@ class _Id(int):
     """An FBX object id: a 64-bit property (plain ints are 32-bit)."""
 
 
-def _fbx_property(value):
+def _fbx_property(value, compress):
     if isinstance(value, str):
         data = value.encode()
         return b"S" + struct.pack("<I", len(data)) + data
@@ -176,28 +143,35 @@ def _fbx_property(value):
     array = np.asarray(value)
     code, dtype = {"f": (b"d", "<f8"), "i": (b"i", "<i4")}[array.dtype.kind]
     data = np.ascontiguousarray(array, dtype).tobytes()
-    return code + struct.pack("<III", array.size, 0, len(data)) + data
+    encoding = 0
+    if compress:
+        data, encoding = zlib.compress(data), 1
+    return code + struct.pack("<III", array.size, encoding, len(data)) + data
 
 
-def _fbx_node(name, properties=(), children=(), offset=0):
-    """A binary FBX 7.4 node record starting at file offset `offset` (32-bit fields)."""
-    props = b"".join(_fbx_property(p) for p in properties)
-    head = 13 + len(name)
+def _fbx_node(name, properties, children, offset, wide, compress):
+    """A binary FBX node record starting at file offset `offset` (64-bit fields from 7.5 on)."""
+    props = b"".join(_fbx_property(p, compress) for p in properties)
+    field = "<Q" if wide else "<I"
+    head = 3 * struct.calcsize(field) + 1 + len(name)
     body = b""
     for child in children:
-        body += child(offset + head + len(props) + len(body))
+        body += child(offset + head + len(props) + len(body), wide, compress)
     if children:
-        body += b"\0" * 13
+        body += b"\0" * (3 * struct.calcsize(field) + 1)
     end = offset + head + len(props) + len(body)
-    return struct.pack("<IIIB", end, len(properties), len(props), len(name)) + name.encode() + props + body
+    return (struct.pack(field, end) + struct.pack(field, len(properties)) + struct.pack(field, len(props)) +
+            struct.pack("<B", len(name)) + name.encode() + props + body)
 
 
 def _node(name, properties=(), children=()):
-    return lambda offset: _fbx_node(name, properties, children, offset)
+    return lambda offset, wide, compress: _fbx_node(name, properties, children, offset, wide, compress)
 
 
-def fbx(vertices, triangles):
-    """Binary FBX 7.4: one Geometry and one Model connected to the root."""
+def fbx(vertices, triangles, version=7400, compress=False):
+    """Binary FBX (7.4 by default; 7.5 and later have 64-bit record fields), one Geometry and one
+    Model connected to the root; `compress`: the arrays zlib-compressed, as exporters write
+    large ones."""
     v, t = _arrays(vertices, triangles)
     polygon = t.astype(np.int64).copy()
     polygon[:, 2] = -polygon[:, 2] - 1  # the last corner of a polygon is written as -(index + 1)
@@ -208,15 +182,16 @@ def fbx(vertices, triangles):
     ])
     model = _node("Model", (_Id(2000), "mesh\0\1Model", "Mesh"), [_node("Version", (232,))])
     nodes = [
-        _node("FBXHeaderExtension", (), [_node("FBXHeaderVersion", (1003,)), _node("FBXVersion", (7400,))]),
+        _node("FBXHeaderExtension", (), [_node("FBXHeaderVersion", (1003,)), _node("FBXVersion", (version,))]),
         _node("GlobalSettings", (), [_node("Version", (1000,))]),
         _node("Objects", (), [geometry, model]),
         _node("Connections", (), [_node("C", ("OO", _Id(1000), _Id(2000))), _node("C", ("OO", _Id(2000), _Id(0)))]),
     ]
-    out = b"Kaydara FBX Binary  \0\x1a\0" + struct.pack("<I", 7400)
+    wide = version >= 7500
+    out = b"Kaydara FBX Binary  \0\x1a\0" + struct.pack("<I", version)
     for n in nodes:
-        out += n(len(out))
-    return out + b"\0" * 13
+        out += n(len(out), wide, compress)
+    return out + b"\0" * (25 if wide else 13)
 
 
 # name: (file suffix, writer); the names are what bench and tests call the formats.
@@ -228,7 +203,6 @@ FORMATS = {
     "off": (".off", off),
     "gltf": (".gltf", gltf),
     "glb": (".glb", glb),
-    "dae": (".dae", dae),
     "3mf": (".3mf", three_mf),
     "fbx": (".fbx", fbx),
 }

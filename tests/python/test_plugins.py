@@ -23,9 +23,9 @@ GL = ("libhyvox_gl_methods.so", "libepoxy.so", "libEGL.so")
 PYTHONPATH = str(pathlib.Path(hyvox.__file__).resolve().parents[1])
 
 
-def tetra_dae(path, vertices, triangles):
-    """The mesh as COLLADA (a format only assimp reads here)."""
-    path.write_bytes(mesh_writers.dae(np.asarray(vertices, np.float32), np.asarray(triangles, np.uint32)))
+def tetra_3mf(path, vertices, triangles):
+    """The mesh as 3MF (a format only assimp reads here)."""
+    path.write_bytes(mesh_writers.three_mf(np.asarray(vertices, np.float32), np.asarray(triangles, np.uint32)))
     return path
 
 
@@ -57,17 +57,17 @@ def test_cli_cpu_run_of_ply_and_obj_loads_no_plugin(cli, mesh_dir, tetra_obj, tm
         assert not has_any(names, ASSIMP + GL + ("libopenvdb.so",)), names
 
 
-def test_cli_reads_collada_through_the_assimp_reader(cli, tetrahedron, tetra_obj, tmp_path):
-    dae = tetra_dae(tmp_path / "tetra.dae", *tetrahedron)
-    names, done = loaded_by([str(cli), "voxelize", str(dae), "-o", str(tmp_path / "dae.vdb"), "-q",
+def test_cli_reads_3mf_through_the_assimp_reader(cli, tetrahedron, tetra_obj, tmp_path):
+    model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
+    names, done = loaded_by([str(cli), "voxelize", str(model), "-o", str(tmp_path / "3mf.vdb"), "-q",
                              "--resolution=16"])
     assert done.returncode == 0, done.stderr[-2000:]
     assert "libtbb.so.12" in names  # the witness sees what the CLI loads
     assert not has_any(names, ASSIMP + GL), names
     subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "obj.vdb"), "-q", "--resolution=16"],
                    check=True, timeout=120)
-    dae_voxels = voxels_of(tmp_path / "dae.vdb")
-    assert dae_voxels and dae_voxels == voxels_of(tmp_path / "obj.vdb")
+    model_voxels = voxels_of(tmp_path / "3mf.vdb")
+    assert model_voxels and model_voxels == voxels_of(tmp_path / "obj.vdb")
 
 
 def test_cli_gl_method_through_the_gl_plugin(cli, tetra_obj, tmp_path):
@@ -101,16 +101,16 @@ gl = hyvox.voxelize(v, t, resolution=16, method="hybrid")
 out["gl"] = mapped()
 out["gl_equals_cpu"] = bool(np.array_equal(gl.coords(), cpu.coords())) and len(cpu.coords()) > 0
 out["devices"] = hyvox._core.gl_devices()
-dae = hyvox.read_mesh(sys.argv[1])
-out["dae"] = mapped()
-out["dae_equals"] = bool(np.array_equal(np.asarray(dae[0])[np.asarray(dae[1])], v[t]))  # the same triangles
+model = hyvox.read_mesh(sys.argv[1])
+out["model"] = mapped()
+out["model_equals"] = bool(np.array_equal(np.asarray(model[0])[np.asarray(model[1])], v[t]))  # the same triangles
 print(json.dumps(out))
 """
 
 
 def test_module_loads_each_plugin_when_first_needed(tetrahedron, tmp_path):
-    dae = tetra_dae(tmp_path / "tetra.dae", *tetrahedron)
-    done = subprocess.run([sys.executable, "-c", MODULE_CHILD, str(dae)], capture_output=True, text=True, timeout=300,
+    model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
+    done = subprocess.run([sys.executable, "-c", MODULE_CHILD, str(model)], capture_output=True, text=True, timeout=300,
                           env={**os.environ, "PYTHONPATH": PYTHONPATH})
     assert done.returncode == 0, done.stderr[-3000:]
     out = json.loads(done.stdout)
@@ -120,20 +120,20 @@ def test_module_loads_each_plugin_when_first_needed(tetrahedron, tmp_path):
     assert has_any(out["gl"], GL[:2]) and not has_any(out["gl"], ASSIMP), out["gl"]
     assert out["gl_equals_cpu"]
     assert out["devices"] and all({"index", "name", "software"} <= set(d) for d in out["devices"])
-    assert not has_any(out["dae"], ASSIMP), out["dae"]
-    assert out["dae_equals"]
+    assert not has_any(out["model"], ASSIMP), out["model"]
+    assert out["model_equals"]
 
 
 def test_a_missing_plugin_is_a_clear_error_and_nothing_else_needs_it(cli, tetrahedron, tetra_obj, tmp_path):
     empty = tmp_path / "no_plugins"
     empty.mkdir()
     env = {**os.environ, "HYVOX_PLUGIN_DIR": str(empty)}
-    dae = tetra_dae(tmp_path / "tetra.dae", *tetrahedron)
+    model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
     run = lambda *args: subprocess.run([str(cli), "voxelize", *map(str, args), "-o", str(tmp_path / "o.vdb"), "-q",
                                         "--resolution=8"], capture_output=True, text=True, timeout=120, env=env)
-    done = run(dae)
+    done = run(model)
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
-    assert f"reading '{dae}' needs hyvox_assimp_reader, which is not installed with hyvox (looked in {empty})" \
+    assert f"reading '{model}' needs hyvox_assimp_reader, which is not installed with hyvox (looked in {empty})" \
         in done.stderr, done.stderr
     done = run(tetra_obj, "--method=hybrid")
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
@@ -167,15 +167,15 @@ def test_a_reader_program_that_does_not_start_says_why(cli, tetrahedron, tmp_pat
     folder = tmp_path / "damaged"
     folder.mkdir()
     reader = folder / "hyvox_assimp_reader"
-    dae = tetra_dae(tmp_path / "tetra.dae", *tetrahedron)
+    model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
     env = {**os.environ, "HYVOX_PLUGIN_DIR": str(folder)}
     for mode, reason in ((0o755, "Exec format error"), (0o644, "not executable, and not an ELF program")):
         reader.write_bytes(b"not a program\n" * 64)
         reader.chmod(mode)
-        done = subprocess.run([str(cli), "voxelize", str(dae), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=8"],
+        done = subprocess.run([str(cli), "voxelize", str(model), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=8"],
                               capture_output=True, text=True, timeout=120, env=env)
         assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
-        assert f"reading '{dae}' needs the assimp reader process: cannot start {reader}" in done.stderr, done.stderr
+        assert f"reading '{model}' needs the assimp reader process: cannot start {reader}" in done.stderr, done.stderr
         assert reason in done.stderr, done.stderr
 
 
@@ -188,8 +188,8 @@ def test_a_reader_program_without_its_execute_bit_still_reads(cli, tetrahedron, 
     (folder / "hyvox_assimp_reader").write_bytes(built.read_bytes())
     (folder / "hyvox_assimp_reader").chmod(0o644)
     assert not os.access(folder / "hyvox_assimp_reader", os.X_OK)
-    dae = tetra_dae(tmp_path / "tetra.dae", *tetrahedron)
-    done = subprocess.run([str(cli), "voxelize", str(dae), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=16"],
+    model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
+    done = subprocess.run([str(cli), "voxelize", str(model), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=16"],
                           capture_output=True, text=True, timeout=120, env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)})
     assert done.returncode == 0, done.stderr
     assert voxels_of(tmp_path / "o.vdb")

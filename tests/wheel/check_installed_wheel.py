@@ -11,14 +11,14 @@
   `import hyvox` + a CPU voxelization map only libraries from the installed wheel plus
   the base system ones every manylinux wheel may use (/proc/self/maps), and none of the
   plugins (native/src/core/plugin_library.h); a GL method loads the wheel's GL plugin,
-  takes libEGL from the system and sets the same voxels as the CPU method; a COLLADA file
-  is read by the wheel's assimp reader process (found in the wheel: the environment is empty
+  takes libEGL from the system and sets the same voxels as the CPU method; a 3MF file is
+  read by the wheel's assimp reader process (found in the wheel: the environment is empty
   and the wheel's binaries know no build folder) and loads no assimp into the caller;
 - its voxels equal the build tree's module's; the `hyvox` command writes a .vdb that
   pyopenvdb reads back as the same voxels; ldd finds every library of the installed CLI
   binary and of the plugins inside the wheel or in that base set (libEGL: the system's),
   and of the assimp reader program, and the installed CLI finds the plugin and the reader
-  (a COLLADA file, a GL method)."""
+  (a 3MF file, a GL method)."""
 import glob
 import json
 import os
@@ -123,8 +123,8 @@ class InstalledWheelTest(unittest.TestCase):
         self.assertTrue(self.in_wheel(gl_plugin), gl_plugin)
         self.assertTrue(all(self.in_wheel(p) for p in loaded("loaded_by_gl", "libepoxy")), self.child["loaded_by_gl"])
         # assimp runs in the reader process: nothing of it is mapped into the caller.
-        self.assertEqual(loaded("loaded_by_dae", "libassimp"), [], self.child["loaded_by_dae"])
-        self.assertEqual(self.child["dae_triangles"], 1)
+        self.assertEqual(loaded("loaded_by_3mf", "libassimp"), [], self.child["loaded_by_3mf"])
+        self.assertEqual(self.child["model_triangles"], 1)
 
     def test_gl_driver_from_the_system(self):
         egl = [p for p in self.child["loaded_by_gl"] if os.path.basename(p).startswith("libEGL.so")]
@@ -173,8 +173,8 @@ class InstalledWheelTest(unittest.TestCase):
                 self.fail(f"{binary} resolves {line.strip()} outside the wheel")
 
     def test_installed_cli_finds_the_plugins(self):
-        dae = os.path.join(self.tmp.name, "triangle.dae")  # written by wheel_child.py
-        for args in ([dae], [MESH, "--method", "hybrid"]):
+        model = os.path.join(self.tmp.name, "triangle.3mf")  # written by wheel_child.py
+        for args in ([model], [MESH, "--method", "hybrid"]):
             out = os.path.join(self.tmp.name, "plugin.vdb")
             run([os.path.join(VENV, "bin", "hyvox"), "voxelize", *args, "-o", out, "-q", "--resolution", "32"],
                 env=self.clean_env)

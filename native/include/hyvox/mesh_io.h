@@ -73,8 +73,9 @@ struct MeshReadOptions {
 };
 
 // Reads a mesh file. The formats and who reads them (docs/mesh-formats.md): PLY, OBJ, STL,
-// OFF and glTF/GLB by hyvox's own strict readers; FBX, COLLADA and 3MF through assimp in a
-// process of its own, so nothing in the file can crash, hang or exhaust this process.
+// OFF and glTF/GLB by hyvox's own strict readers; FBX (binary; its container checked first)
+// and 3MF through assimp in a process of its own, so nothing in the file can crash, hang or
+// exhaust this process.
 // A name ending in ".gz" is decompressed first (bounded: see io/gzip_input.h; a stream cut
 // short is an error) and read as the extension before ".gz" (e.g. "x.ply.gz" as PLY); a
 // file whose first line is "ply" is read as PLY whatever its name. Points and lines in the

@@ -265,7 +265,7 @@ voxelize.__doc__ = (voxelize.__doc__ or "") + _options_doc()
 def read_mesh(path: Union[str, os.PathLike], attributes: bool = False, cancel: Optional[CancelToken] = None,
               memory_budget_mib: int = 0):
     """Read a mesh file: PLY, OBJ, STL, OFF and glTF/GLB (also gzipped, as mesh.ply.gz) by
-    hyvox's own strict readers; FBX, COLLADA (.dae) and 3MF through assimp, in a process of
+    hyvox's own strict readers; binary FBX and 3MF through assimp, in a process of
     its own, so that no file can crash or hang the caller (docs/mesh-formats.md).
 
     Returns (vertices float32 (N, 3), triangles uint32 (M, 3)), triangles exactly as in the

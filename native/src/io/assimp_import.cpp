@@ -82,7 +82,7 @@ void keepOfferedFormats(Assimp::Importer& importer) {
         loader->GetExtensionList(extensions);
         const bool offered = std::any_of(extensions.begin(), extensions.end(), [](const std::string& e) {
             const MeshFormat* format = meshFormat(e);
-            return format && format->reader == MeshReader::Assimp;
+            return format && readByAssimp(format->reader);
         });
         if (!offered) others.push_back(loader);
     }

@@ -11,8 +11,7 @@ const std::vector<MeshFormat>& meshFormats() {
         {"off", MeshReader::Off, "OFF"},
         {"gltf", MeshReader::Gltf, "glTF 2.0"},
         {"glb", MeshReader::Gltf, "glTF 2.0 binary"},
-        {"fbx", MeshReader::Assimp, "FBX"},
-        {"dae", MeshReader::Assimp, "COLLADA"},
+        {"fbx", MeshReader::Fbx, "FBX (binary)"},
         {"3mf", MeshReader::Assimp, "3MF"},
     };
     return formats;

@@ -10,7 +10,10 @@
 
 namespace hyvox::io {
 
-enum class MeshReader { Ply, Obj, Stl, Off, Gltf, Assimp };
+// Fbx: the container checked here (fbx_check.h), then read by assimp; Assimp: read by assimp.
+enum class MeshReader { Ply, Obj, Stl, Off, Gltf, Fbx, Assimp };
+
+inline bool readByAssimp(MeshReader reader) { return reader == MeshReader::Fbx || reader == MeshReader::Assimp; }
 
 struct MeshFormat {
     const char* extension;  // lower case, without the dot

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // readMesh picks the reader by the file's extension (mesh_formats.h): PLY, OBJ, STL, OFF and
 // glTF (plain or .gz) are read by hyvox's own strict readers, also a PLY under another name (told
-// by its first line); the formats offered through assimp go to the assimp process
+// by its first line); FBX (its container checked here first) and 3MF go to the assimp process
 // (assimp_reader.h); any other name is refused, naming the formats hyvox reads.
 #include <algorithm>
 #include <cctype>
@@ -12,6 +12,7 @@
 #include "hyvox/mesh_io.h"
 #include "hyvox/options.h"
 #include "io/assimp_reader.h"
+#include "io/fbx_check.h"
 #include "io/file_bytes.h"
 #include "io/gltf_reader.h"
 #include "io/gzip_input.h"
@@ -70,6 +71,7 @@ Mesh readBytes(const char* data, std::size_t size, const std::string& path, cons
         case io::MeshReader::Stl: return io::readStl(data, size, path, interrupter);
         case io::MeshReader::Off: return io::readOff(data, size, path, interrupter);
         case io::MeshReader::Gltf: return io::readGltf(data, size, path, budgetBytes(options), interrupter);
+        case io::MeshReader::Fbx: io::checkFbxContainer(data, size, path, budgetBytes(options)); break;
         case io::MeshReader::Assimp: break;
     }
     return io::readWithAssimp(data, size, format->extension, path, io::assimpReadLimits(options, size), interrupter);
@@ -94,6 +96,8 @@ Mesh readMeshFile(const std::string& path, const MeshReadOptions& options, Inter
         return readBytes(data.data(), data.size(), path, format, options, interrupter);
     }
     if (!format || format->reader != io::MeshReader::Assimp) {
+        // Our readers and the FBX check read the file from memory; the checked FBX bytes are
+        // then what the assimp process gets (on its standard input), not the file again.
         // A PLY under another name is read as one; any other unknown name is refused.
         if (!format) {
             const std::vector<char> prefix = io::readFilePrefix(path, 4);
