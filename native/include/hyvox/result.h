@@ -94,6 +94,25 @@ struct TessellationStats {
     }
 };
 
+// What the run was estimated to hold beside its mesh before any work, pass by pass (bytes;
+// src/voxelize/memory_estimate.h), and the surface and inside it was estimated from. The run
+// is refused when the largest exceeds options.memory_budget_mib.
+struct MemoryEstimateStats {
+    std::uint64_t surface_pass = 0, solid_pass = 0, attribute_values = 0, vdb_write = 0, peak = 0;
+    std::uint64_t surface_leaves = 0, surface_voxels = 0, inside_bricks = 0;
+    template <typename F>
+    void visit(F&& f) const {
+        f("surface_pass", surface_pass);
+        f("solid_pass", solid_pass);
+        f("attribute_values", attribute_values);
+        f("vdb_write", vdb_write);
+        f("peak", peak);
+        f("surface_leaves", surface_leaves);
+        f("surface_voxels", surface_voxels);
+        f("inside_bricks", inside_bricks);
+    }
+};
+
 // Solid mode (src/solid/): what the closedness check found, the rule it led to, and how much
 // of the grid was decided per region instead of per voxel.
 struct SolidStats {
@@ -173,6 +192,7 @@ struct Stats {
     std::optional<HybridStats> hybrid;  // triangle, fragment and hybrid
     std::optional<TessellationStats> tessellation;
     std::optional<SolidStats> solid;  // solid mode only, beside the backend's section
+    std::optional<MemoryEstimateStats> memory_estimate;  // every run of voxelize()
 
     void addTiming(const std::string& stage, double ms) {
         for (auto& [name, total] : timings_ms)
@@ -201,6 +221,7 @@ struct Stats {
         if (hybrid) f("hybrid", *hybrid);
         if (tessellation) f("tessellation", *tessellation);
         if (solid) f("solid", *solid);
+        if (memory_estimate) f("memory_estimate", *memory_estimate);
     }
 };
 

@@ -20,20 +20,26 @@ namespace hyvox::io {
 
 std::uint64_t densityGridBytes(const SparseGrid& occupancy) { return fogGridMemUsageForLeaves(occupancy.leafCount()); }
 
-static std::uint64_t attributeGridBytes(const VoxelizeResult& result) {
-    const AttributeGrid& a = result.attributes;
-    const std::uint64_t per_voxel = (a.color ? 12 : 0) + (a.alpha ? 4 : 0) + (a.normal ? 12 : 0);
-    // Leaves dominate (512 values and a mask each); the nodes above add a few percent.
-    const double leaves = double(result.occupancy.leafCount() + a.valued_tile_bricks.size());
-    return std::uint64_t((leaves * 512.0 + double(a.tiles.size())) * double(per_voxel) * 1.05);
+double vdbWriterBytes(double leaves, double tile_bricks, double valued_voxels, double channels) {
+    // A VdbLeaf and its node in the placed tree; a VdbTile listed one by one (a list grown by
+    // doubling: three times its size while it moves) and its node.
+    constexpr double kListedLeaf = 32 + 24, kListedTile = 3 * 32 + 24;
+    constexpr double kDensityLeaf = 200, kMask = 64, kValue = 4;
+    const double grids = channels > 0 ? 2.0 : 1.0;  // the attribute grids share one set of leaves
+    const double file = kDensityLeaf * leaves + 2.0 * tile_bricks +
+                        (channels > 0 ? kMask * leaves + valued_voxels * channels * kValue : 0.0);
+    return (kListedLeaf * leaves + kListedTile * tile_bricks) * grids + 2.0 * file;
 }
 
 void checkGridBudget(const VoxelizeResult& result) {
-    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize() + attributeGridBytes(result);
+    const AttributeGrid& a = result.attributes;
+    const double leaves = double(result.occupancy.leafCount() + a.valued_tile_bricks.size());
+    const double need = vdbWriterBytes(leaves, double(result.occupancy.tileCount()), double(a.valuedVoxelCount()),
+                                       double(a.channels()));
     const VoxelizeOptions& options = result.stats.options;
-    if (need > options.memoryBudgetBytes())
-        throw ResourceError("the OpenVDB grid of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
-                            std::to_string((need + (1u << 20) - 1) >> 20) + " MiB, more than the memory budget of " +
+    if (need > double(options.memoryBudgetBytes()))
+        throw ResourceError("writing the .vdb of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
+                            std::to_string(std::uint64_t(need / double(1 << 20)) + 1) + " MiB, more than the memory budget of " +
                             std::to_string(options.memoryBudgetMib()) +
                             " MiB; raise the budget (memory_budget_mib) or use a larger voxel size");
 }

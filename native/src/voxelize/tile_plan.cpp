@@ -66,10 +66,8 @@ PointReach pointReach(const GridSpec& grid, const VoxelizeOptions& options) {
     const TessellationOptions& tess = options.tessellation;
     // PN-triangle patches bulge well under half their size (the patch planner's bound).
     if (tess.pn_triangles) reach.relative = 0.5;
-    double height = 0;  // the largest |height - midlevel| the map can hold
-    if (!tess.displacement_image.empty()) {
-        height = std::max(std::fabs(tess.displacement_midlevel), std::fabs(1.0 - tess.displacement_midlevel));  // PNG: 0..1
-    } else if (!tess.displacement_pixels.empty()) {
+    double height = 0;  // the largest |height - midlevel| the map holds (a file was read into its pixels)
+    if (!tess.displacement_pixels.empty()) {
         const auto [low, high] = std::minmax_element(tess.displacement_pixels.values.begin(), tess.displacement_pixels.values.end());
         height = std::max(std::fabs(*low - tess.displacement_midlevel), std::fabs(*high - tess.displacement_midlevel));
     }

@@ -17,6 +17,9 @@
 #include "core/stopwatch.h"
 #include "solid/fill_inside.h"
 #include "hyvox/option_schema.h"
+#include "hyvox/texture.h"
+#include "memory_estimate.h"
+#include "solid/edge_closure.h"
 #include "tessellation/point_values.h"
 #include "tile_plan.h"
 
@@ -26,23 +29,6 @@ namespace hyvox {
 namespace {
 
 std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
-
-// Refuse before allocating: one tile's bits plus the leaves the surface is expected to need.
-// The estimate (a pass over every triangle) is skipped when even a leaf in every brick of the
-// grid would fit: the common case, where it cost more than voxelizing at low resolutions.
-void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options, const tiling::TilePlan& plan,
-                       const ValidatedMesh& mesh) {
-    const double most = double(plan.tileBytes()) + double(grid.bricks().total()) * double(SparseGrid::kLeafBytes);
-    if (most <= double(options.memoryBudgetBytes())) return;  // in doubles: huge grids overflow 64 bits
-    const std::uint64_t estimated_leaves = tiling::estimateLeaves(mesh, grid);
-    const std::uint64_t need = plan.tileBytes() + estimated_leaves * SparseGrid::kLeafBytes;
-    if (need > options.memoryBudgetBytes())
-        throw ResourceError("a " + grid.dimsText() + " grid needs about " + mib(need) + " (" +
-                            (plan.whole() ? std::string("its bits") : "a " + mib(plan.tileBytes()) + " tile") +
-                            " and about " + std::to_string(estimated_leaves) +
-                            " leaves of surface), more than the memory budget of " +
-                            std::to_string(options.memoryBudgetMib()) + " MiB; use a larger voxel size");
-}
 
 // The displacement runs in single precision in voxel units on the GPU: beyond 2^24 voxels a
 // point's position has no sub-voxel digits left (and 1e30 × a height overflows the grid's
@@ -213,8 +199,8 @@ struct Surface {
 // exact conservative surface as its barrier: the tessellation's approximate one gets the cpu
 // method's beside it.
 void addInside(const ValidatedMesh& validated, const GridSpec& grid, const Surface& surface,
-               const VoxelizeOptions& options, VoxelizeResult& result, Stats& stats, Interrupter* interrupter,
-               Stopwatch& watch) {
+               const VoxelizeOptions& options, const solid::EdgeClosure& closure, VoxelizeResult& result, Stats& stats,
+               Interrupter* interrupter, Stopwatch& watch) {
     result.occupancy.finish();
     SolidStats& solid = stats.solid.emplace();
     VoxelizeResult exact;
@@ -228,7 +214,7 @@ void addInside(const ValidatedMesh& validated, const GridSpec& grid, const Surfa
         stats.addTiming("solid_barrier", watch.restart());
     }
     const SparseGrid& barrier = options.method == Method::Tessellation ? exact.occupancy : result.occupancy;
-    SparseGrid inside = solid::fillInside(validated, grid, barrier, options, interrupter, solid);
+    SparseGrid inside = solid::fillInside(validated, grid, barrier, options, closure, interrupter, solid);
     stats.addTiming("solid_inside", watch.restart());
     result.occupancy.merge(inside);
 }
@@ -242,14 +228,27 @@ ValidatedMesh validate(const MeshView& mesh, const VoxelizeOptions& options, Int
 
 namespace {
 
+// The options the passes run with: a displacement image file read into its pixels by io's PNG
+// reader (one reader and one set of limits for every image; the backends never open files).
+VoxelizeOptions withImagesRead(const VoxelizeOptions& given) {
+    VoxelizeOptions options = given;
+    TessellationOptions& tess = options.tessellation;
+    if (!tess.displacement_image.empty()) {
+        tess.displacement_pixels = readPngHeight(tess.displacement_image);
+        tess.displacement_image.clear();
+    }
+    return options;
+}
+
 // voxelize() after its options were checked and its interrupter started.
-VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeOptions& options,
+VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeOptions& given,
                                  Interrupter* interrupter, double validate_ms) {
     const MeshView& mesh = validated.view;
+    const VoxelizeOptions options = withImagesRead(given);
 
     VoxelizeResult result;
     Stats& stats = result.stats;
-    stats.options = options;
+    stats.options = given;  // as asked (the image's path, not its pixels)
     Stopwatch watch;
     stats.addTiming("validate", validate_ms);
     const std::optional<attributes::SurfaceValues> surface = surfaceValues(mesh, options);
@@ -265,7 +264,19 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     if (surface && options.method == Method::Tessellation)
         device_limit = tessellation::tileBitBytesForSums(device_limit, options.memoryBudgetBytes() / 2, surface->channels());
     const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
-    checkMemoryBudget(grid, options, plan, validated);
+    // Solid mode's edge check first: it decides the solid pass's trees, and so its memory.
+    std::optional<solid::EdgeClosure> closure;
+    if (options.mode == Mode::Solid) {
+        tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+        closure = arena.execute([&] { return solid::checkEdges(validated, grid); });
+    }
+    const memory::Estimate need = memory::estimate(validated, grid, options, plan, surface ? surface->channels() : 0,
+                                                   closure ? &*closure : nullptr);
+    stats.memory_estimate = MemoryEstimateStats{
+        std::uint64_t(need.surface), std::uint64_t(need.solid),          std::uint64_t(need.attributes),
+        std::uint64_t(need.write),   std::uint64_t(need.peak()),         std::uint64_t(need.surface_leaves),
+        std::uint64_t(need.surface_voxels), std::uint64_t(need.inside_bricks)};
+    memory::checkBudget(need, grid, options);
     const tiling::PointReach reach = tiling::pointReach(grid, options);
     checkDisplacementReach(grid, options, reach);
     stats.addTiming("validate", watch.restart());
@@ -299,7 +310,7 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     }
     if (solid) {
         surface_pass.values = nullptr;  // the barrier pass (tessellation) computes no attributes
-        addInside(validated, grid, surface_pass, options, result, stats, interrupter, watch);
+        addInside(validated, grid, surface_pass, options, *closure, result, stats, interrupter, watch);
     }
     throwIfInterrupted(interrupter, 100);
     checkSomethingLanded(stats, reach);
