@@ -52,6 +52,12 @@ TEST(IoFbxCheck, ConsistentFilesPass) {
     }
 }
 
+// Found by fuzz_fbx_check: a record whose end offset lies inside its own 13-byte header made
+// the check's byte counts wrap and read past the file (ASan: heap-buffer-overflow).
+TEST(IoFbxCheck, ARecordEndingInsideItsHeaderIsRefused) {
+    EXPECT_HAS(errorOf(seed("record_end_inside_its_header.fbx")), "or inside its own header");
+}
+
 TEST(IoFbxCheck, DisagreementsAreRefused) {
     const std::string plain = seed("tetra_7400.fbx"), zipped = seed("tetra_7500_zlib.fbx");
     // An array's stored byte length one less than its count says (the damage run's FBX case).

@@ -73,9 +73,10 @@ private:
             if (properties || property_bytes || name_length) failAt(start, "a null record that is not all zeros");
             return true;
         }
-        if (record_end <= start || record_end > end)
+        // Past its own header (or the subtractions below would wrap), and inside its parent.
+        if (record_end < at || record_end > end)
             failAt(start, "a record ends at " + std::to_string(record_end) + ", outside its parent (which ends at " +
-                              std::to_string(end) + ")");
+                              std::to_string(end) + ") or inside its own header");
         if (name_length > record_end - at) failAt(start, "a record's name runs past its end");
         at += name_length;
         if (property_bytes > record_end - at) failAt(start, "a record's properties run past its end");
