@@ -248,7 +248,7 @@ TEST(IoVdb, AGridOverTheMemoryBudgetIsRefusedBeforeItIsBuilt) {
     const std::string path = (dir.path / "fits.vdb").string();
     hyvox::writeVdb(r, path);  // fits in 1 MiB
     EXPECT_TRUE(fs::exists(path));
-    // A result of 15360 leaves does not: the writer lists each and serializes it (about 200
+    // A result of 15360 leaves does not: the writer lists each and serializes it (about 220
     // bytes) twice, about 6 MiB (io::vdbWriterBytes).
     hyvox::VoxelizeResult big;
     big.grid.dims = {8 * 32, 8 * 24, 8 * 20};

@@ -18,7 +18,6 @@
 #include <string>
 
 #include "core/backends.h"
-#include "hyvox/attribute_grid.h"
 #include "hyvox/grid.h"
 #include "hyvox/options.h"
 #include "solid/edge_closure.h"

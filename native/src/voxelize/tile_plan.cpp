@@ -115,18 +115,4 @@ std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, 
     return bins;
 }
 
-std::uint64_t estimateLeaves(const ValidatedMesh& mesh, const GridSpec& grid) {
-    double area = 0;
-    for (std::uint32_t t : mesh.usable) {
-        const auto p0 = grid.toVoxel(mesh.vertex(t, 0)), p1 = grid.toVoxel(mesh.vertex(t, 1)),
-                   p2 = grid.toVoxel(mesh.vertex(t, 2));
-        const double e0[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-        const double e1[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-        const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
-        area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    }
-    const double leaves = std::max(2.0 * area / 64.0, double(mesh.usable.size() > 0));
-    return std::uint64_t(std::min(leaves, double(grid.bricks().total())));
-}
-
 }  // namespace hyvox::tiling
