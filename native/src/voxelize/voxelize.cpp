@@ -230,10 +230,12 @@ namespace {
 
 // The options the passes run with: a displacement image file read into its pixels by io's PNG
 // reader (one reader and one set of limits for every image; the backends never open files).
+// Only the tessellation method displaces: the other methods ignore the option (with a warning
+// at the front doors), so they must not fail on an image they never use.
 VoxelizeOptions withImagesRead(const VoxelizeOptions& given) {
     VoxelizeOptions options = given;
     TessellationOptions& tess = options.tessellation;
-    if (!tess.displacement_image.empty()) {
+    if (options.method == Method::Tessellation && !tess.displacement_image.empty()) {
         tess.displacement_pixels = readPngHeight(tess.displacement_image);
         tess.displacement_image.clear();
     }
