@@ -2,7 +2,8 @@
 """Damaged mesh files and what hyvox's three front doors make of them.
 
 Damage (each from a seed, so every case can be made again):
-  truncate  the file cut at a random place (anywhere, near its start, near its end);
+  truncate  the file cut at a random place (anywhere, near its start, near its end, at the end
+            of a line);
   flip      1 to 8 bytes set to random values;
   count     a number the file declares (a vertex, triangle or index count, a byte length or
             offset; where the format puts them: count_sites()) set to another value;
@@ -127,10 +128,15 @@ def damaged(format_name, data, vertices, triangles, kind, rng, others=()):
     splice pieces from."""
     size = len(data)
     if kind == "truncate":
-        where = rng.choice(("anywhere", "start", "end"))
-        cut = {"anywhere": lambda: rng.randrange(size), "start": lambda: rng.randrange(min(size, 256)),
-               "end": lambda: max(0, size - 1 - rng.randrange(min(size, 64)))}[where]()
-        return data[:cut], {"cut": cut, "size": size}
+        # A cut at a line's end is the one a text reader most easily takes for the file's end.
+        where = rng.choice(("anywhere", "start", "end", "line"))
+        if where == "line":
+            newline = data.find(b"\n", rng.randrange(size))
+            cut = newline + 1 if 0 <= newline < size - 1 else rng.randrange(size)
+        else:
+            cut = {"anywhere": lambda: rng.randrange(size), "start": lambda: rng.randrange(min(size, 256)),
+                   "end": lambda: max(0, size - 1 - rng.randrange(min(size, 64)))}[where]()
+        return data[:cut], {"cut": cut, "size": size, "where": where}
     if kind == "flip":
         out = bytearray(data)
         places = [rng.randrange(size) for _ in range(rng.randint(1, 8))]

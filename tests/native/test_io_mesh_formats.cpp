@@ -214,6 +214,32 @@ TEST(IoMeshFormats, DamagedOffIsAnErrorNamingThePlace) {
     EXPECT_READ_ERROR(dir.write("word.off", "OFF\n3 x\n"), "'x' is not a face count");
 }
 
+// A count lowered by damage (or pieces of another file after the last element) would drop the
+// records past it without a word: only whitespace may follow the last element of a PLY.
+TEST(IoMeshFormats, PlyRecordsPastTheDeclaredCountsAreRefused) {
+    TempDir dir;
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                               "property float z\nelement face FACES\nproperty list uchar int vertex_indices\nend_header\n";
+    const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n";
+    auto with = [&](const char* faces) {
+        std::string h = header;
+        return h.replace(h.find("FACES"), 5, faces) + body;
+    };
+    EXPECT_EQ(hyvox::readMesh(dir.write("ok.ply", with("2") + "\n \r\n").string()).triangleCount(), 2u);
+    EXPECT_READ_ERROR(dir.write("lowered.ply", with("1")), "bytes follow the last element the header declares (face)");
+    // Binary: a face record (13 bytes) left over.
+    std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    binary.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+    for (int f = 0; f < 2; ++f) {
+        const std::int32_t corners[3] = {0, 1, 2};
+        binary += char(3);
+        binary.append(reinterpret_cast<const char*>(corners), sizeof corners);
+    }
+    EXPECT_READ_ERROR(dir.write("lowered_binary.ply", binary), "13 bytes follow the last element");
+}
+
 TEST(IoMeshFormats, AFormatHyvoxDoesNotReadIsRefusedByName) {
     TempDir dir;
     const char* offered = ".ply, .obj, .stl, .off, .gltf, .glb, .fbx, .3mf";

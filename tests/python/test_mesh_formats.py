@@ -143,7 +143,7 @@ def test_a_format_hyvox_does_not_read_is_refused_naming_those_it_reads(tmp_path)
 
 
 def test_damaged_files_of_every_format_end_the_same_way_through_every_door(mesh_dir, cli, tmp_path):
-    """The damage run's slice: the teapot in every format, two damaged files of each kind."""
+    """The damage run's slice: the teapot in every format, three damaged files of each kind."""
     module = mesh_damage.ModuleDoor(os.environ.get("PYTHONPATH", ""))
     vertices, triangles = hyvox.read_mesh(mesh_dir / "teapot_utah.ply")
     problems, seen = [], {}
@@ -155,7 +155,7 @@ def test_damaged_files_of_every_format_end_the_same_way_through_every_door(mesh_
             whole = module(str(original))
             assert whole["outcome"] == "ok", whole
             rng = random.Random(f"slice {name}")
-            for k in range(8):
+            for k in range(12):
                 kind = mesh_damage.KINDS[k % 4]
                 damaged, note = mesh_damage.damaged(name, data, vertices, triangles, kind, rng)
                 if damaged is None:
