@@ -17,7 +17,7 @@ namespace hyvox::io {
 
 // What the reader process may take.
 struct AssimpReadLimits {
-    std::uint64_t memory_bytes;  // its data segments (setrlimit RLIMIT_DATA), and the mesh sent back
+    std::uint64_t memory_bytes;  // its data segments past those it starts with (RLIMIT_DATA), and the mesh sent back
     double seconds;              // wall-clock time until it is ended
 };
 
