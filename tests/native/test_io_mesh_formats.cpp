@@ -240,6 +240,24 @@ TEST(IoMeshFormats, PlyRecordsPastTheDeclaredCountsAreRefused) {
     EXPECT_READ_ERROR(dir.write("lowered_binary.ply", binary), "13 bytes follow the last element");
 }
 
+// A text file without an end marker cut inside its last number ("11" cut to "1") reads as
+// another mesh: ASCII PLY and OFF ask for a line end after their last line.
+TEST(IoMeshFormats, TextFilesCutInsideTheirLastNumberAreRefused) {
+    TempDir dir;
+    std::string points;
+    for (int v = 0; v < 12; ++v) points += std::to_string(v % 2) + " " + std::to_string(v / 2) + " " + std::to_string(v % 3) + "\n";
+    const std::string off = "OFF\n12 1 0\n" + points + "3 0 1 11";
+    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 12\nproperty float x\nproperty float y\nproperty float z\n"
+                            "element face 1\nproperty list uchar int vertex_indices\nend_header\n" + points + "3 0 1 11";
+    for (const auto& [name, text] : {std::pair{"mesh.off", off}, std::pair{"mesh.ply", ply}}) {
+        const hyvox::Mesh whole = hyvox::readMesh(dir.write(name, text + "\n").string());
+        ASSERT_EQ(whole.triangles, (std::vector<std::uint32_t>{0, 1, 11})) << name;
+        EXPECT_EQ(hyvox::readMesh(dir.write(name, text + " \r\n\n").string()).triangles, whole.triangles) << name;
+        EXPECT_READ_ERROR(dir.write(name, text), "the file ends inside its last line, with no line end after it");
+        EXPECT_READ_ERROR(dir.write(name, text.substr(0, text.size() - 1)), "the file ends inside its last line");
+    }
+}
+
 TEST(IoMeshFormats, AFormatHyvoxDoesNotReadIsRefusedByName) {
     TempDir dir;
     const char* offered = ".ply, .obj, .stl, .off, .gltf, .glb, .fbx, .3mf";

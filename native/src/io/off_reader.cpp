@@ -28,6 +28,7 @@ public:
         if (nextLineWord(word))
             fail("more after the " + std::to_string(faces_) + " faces the header declares: " + quoteWord(word) +
                  " (a wrong count, or pieces of another file)");
+        if (endsInsideAWord(data_, data_ + size_)) fail(kCutInsideTheLastLine);
         if (mesh_.triangles.empty()) failMeshFile(name_, "contains no triangles (no face with 3 or more corners)");
         return std::move(mesh_);
     }

@@ -15,6 +15,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "hyvox/zero_page_allocator.h"
@@ -385,6 +386,8 @@ public:
         if (other != source.end())
             failMeshFile(name_, std::to_string(source.end() - rest) + " bytes follow the last element the header declares (" +
                                     header_.elements.back().name + "): a count is wrong, or the file holds pieces of another");
+        if (std::is_same_v<Source, AsciiSource> && endsInsideAWord(source.end() - 1, source.end()))
+            failMeshFile(name_, kCutInsideTheLastLine);
     }
 
 private:
