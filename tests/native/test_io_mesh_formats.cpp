@@ -20,6 +20,7 @@
 #include "hyvox/mesh_io.h"
 #include "io/off_reader.h"
 #include "io/stl_reader.h"
+#include "support/read_error.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -102,25 +103,6 @@ std::size_t distinctPositions(const Triangles& t) {
     for (std::uint32_t i : t.triangles) seen.insert({t.positions[3 * i], t.positions[3 * i + 1], t.positions[3 * i + 2]});
     return seen.size();
 }
-
-std::string errorOf(const fs::path& path) {
-    try {
-        hyvox::readMesh(path.string());
-    } catch (const hyvox::InvalidInput& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        return std::string("(wrong exception) ") + e.what();
-    }
-    return "(no error)";
-}
-
-#define EXPECT_READ_ERROR(FILE, ...)                                                                            \
-    do {                                                                                                        \
-        const fs::path file_ = (FILE);                                                                          \
-        const std::string message_ = errorOf(file_);                                                            \
-        EXPECT_NE(message_.find(file_.filename().string()), std::string::npos) << message_;                     \
-        for (const char* part_ : {__VA_ARGS__}) EXPECT_NE(message_.find(part_), std::string::npos) << message_; \
-    } while (0)
 
 }  // namespace
 
