@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Mesh reading time: hyvox's strict readers (hyvox::readMesh) against the assimp path it
-// replaced for PLY and OBJ (support/assimp_mesh.h), median of --repeat runs each.
-//   bench_mesh_read [--repeat N] [--out DIR] MESH...
-// The table also goes to DIR/mesh_read.{json,md} (default bench/results/).
+// Mesh reading time: hyvox::readMesh (its strict readers, or assimp in its own process for
+// the formats read through assimp) against assimp in this process (support/assimp_mesh.h:
+// the path hyvox took before), median of --repeat runs each.
+//   bench_mesh_read [--repeat N] [--out DIR] [--json FILE] MESH...
+// The table also goes to DIR/mesh_read.{json,md} (default bench/results/); --json: the rows
+// also as a plain JSON list (bench/bench_mesh_formats.py drives it).
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -31,6 +33,7 @@ double medianMs(int repeat, Read read, std::size_t& triangles) {
 
 int main(int argc, char** argv) {
     int repeat = 5;
+    std::string json_path;
     std::vector<std::string> files;
     std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
     for (int a = 1; a < argc; ++a) {
@@ -39,15 +42,18 @@ int main(int argc, char** argv) {
             repeat = std::max(1, std::atoi(hyvox::bench::optionValue(argc, argv, a).c_str()));
         else if (arg == "--out")
             out_dir = hyvox::bench::optionValue(argc, argv, a);
+        else if (arg == "--json")
+            json_path = hyvox::bench::optionValue(argc, argv, a);
         else
             files.push_back(arg);
     }
+    std::string json = "[";
     if (files.empty()) {
-        std::fprintf(stderr, "usage: bench_mesh_read [--repeat N] [--out DIR] MESH...\n");
+        std::fprintf(stderr, "usage: bench_mesh_read [--repeat N] [--out DIR] [--json FILE] MESH...\n");
         return 2;
     }
     std::printf("%-40s %10s %12s %12s %8s\n", "mesh", "triangles", "assimp ms", "hyvox ms", "speed-up");
-    hyvox::bench::ResultTable table("mesh_read", "Mesh reading: the strict PLY/OBJ readers against assimp",
+    hyvox::bench::ResultTable table("mesh_read", "Mesh reading: hyvox's readers against assimp in the process",
                                     {{"mesh"}, {"triangles"}, {"assimp ms", 1}, {"hyvox ms", 1}, {"assimp / hyvox", 1}},
                                     argc, argv);
     table.note("Medians of " + std::to_string(repeat) + " reads of each file, one after the other.");
@@ -60,6 +66,17 @@ int main(int argc, char** argv) {
                     old_triangles == new_triangles ? "" : "  (triangle counts differ!)");
         if (old_triangles != new_triangles) table.note(name + ": the two readers give different triangle counts");
         table.add({name, new_triangles, old_ms, new_ms, old_ms / new_ms});
+        char row[512];
+        std::snprintf(row, sizeof row, "%s{\"file\": \"%s\", \"triangles\": %zu, \"assimp_triangles\": %zu, "
+                      "\"assimp_ms\": %.3f, \"hyvox_ms\": %.3f}", json.size() > 1 ? ", " : "", name.c_str(),
+                      new_triangles, old_triangles, old_ms, new_ms);
+        json += row;
+    }
+    if (!json_path.empty()) {
+        std::FILE* out = std::fopen(json_path.c_str(), "w");
+        if (!out) return 1;
+        std::fprintf(out, "%s]\n", json.c_str());
+        std::fclose(out);
     }
     table.write(out_dir);
     return 0;

@@ -49,12 +49,14 @@ dist_info=$(ls -d "$tree"/hyvox-*.dist-info)
 licences="$dist_info/licenses/bundled"
 mkdir -p "$licences"
 declare -A resolved=()
-# What the unrepaired binaries (and the plugins, which bring assimp and the GL stack: see
-# native/src/core/plugin_library.h) load, real file name -> path, from this machine's loader.
+# What the unrepaired binaries (and the GL plugin and the assimp reader program, which bring
+# the GL stack and assimp: see native/src/core/plugin_library.h) load, real file name -> path,
+# from this machine's loader.
 while read -r _ _ path _; do
   [ -n "${path:-}" ] && [ "${path#/}" != "$path" ] && resolved[$(basename "$(realpath "$path")")]=$path
-done < <(unzip -o -q "$wheel" 'hyvox/_core*.so' 'hyvox/libhyvox_*.so' 'hyvox/bin/hyvox' -d "$out/raw/x" &&
-         ldd "$out"/raw/x/hyvox/_core*.so "$out"/raw/x/hyvox/libhyvox_*.so "$out"/raw/x/hyvox/bin/hyvox | grep '=>')
+done < <(unzip -o -q "$wheel" 'hyvox/_core*.so' 'hyvox/libhyvox_*.so' 'hyvox/hyvox_*' 'hyvox/bin/hyvox' -d "$out/raw/x" &&
+         ldd "$out"/raw/x/hyvox/_core*.so "$out"/raw/x/hyvox/libhyvox_*.so "$out"/raw/x/hyvox/hyvox_* \
+             "$out"/raw/x/hyvox/bin/hyvox | grep '=>')
 for grafted in "$tree"/hyvox.libs/*; do
   base=$(basename "$grafted")
   original=$(echo "$base" | sed -E 's/-[0-9a-f]{8}\././')

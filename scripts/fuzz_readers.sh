@@ -1,15 +1,20 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Fuzzes the strict mesh readers, the gzip input, voxelize() and solid mode with attributes
-# (tests/fuzz/: libFuzzer + ASan + UBSan, clang) for a fixed time each and fails on any
-# finding: a crash, a sanitizer report, an exception other than InvalidInput, an
-# out-of-range index, cpu voxels the reference does not explain, solid voxels or attribute
-# values against their oracle (tests/fuzz/fuzz_solid.cpp), a 10 s input or 2 GiB of memory.
-# A finding's input is left in build-fuzz/findings/<target>/; make it a regression case
-# (readers: tests/native/test_io_mesh_strict.cpp) before fixing it.
-#   FUZZ_SECONDS=600 bash scripts/fuzz_readers.sh   (default: 60 s per reader, 30 s for gzip
-#                                                     and voxelize, 45 s for solid; FUZZ_SECONDS
-#                                                     sets all)
+# Fuzzes the strict mesh readers (PLY, OBJ, STL, OFF, glTF), the formats read through assimp (in
+# the assimp reader process, as readMesh reads them), the gzip input, voxelize() and solid
+# mode with attributes (tests/fuzz/: libFuzzer + ASan + UBSan, clang) for a fixed time each
+# and fails on any finding: a crash, a sanitizer report, an exception other than
+# InvalidInput, an out-of-range index, cpu voxels the reference does not explain, solid
+# voxels or attribute values against their oracle (tests/fuzz/fuzz_solid.cpp), a 10 s input
+# or 2 GiB of memory. A finding's input is left in build-fuzz/findings/<target>/; make it a
+# regression case (readers: tests/native/test_io_mesh_strict.cpp, test_io_mesh_formats.cpp,
+# tests/regressions/meshes/) before fixing it.
+#   FUZZ_SECONDS=600 bash scripts/fuzz_readers.sh   (default: 60 s for PLY and OBJ, 20 s for
+#                                                     STL, OFF, glTF and the FBX check, 30 s for
+#                                                     the assimp formats,
+#                                                     gzip and voxelize, 45 s for solid;
+#                                                     FUZZ_SECONDS sets all)
+#   FUZZ_TARGETS="stl_reader off_reader" ...        (only these)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="/usr/bin:/bin:$PATH"
@@ -18,6 +23,8 @@ meshes=${HYVOX_MESH_DIR:-../shared/data/meshes}
 
 cmake -S tests/fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build-fuzz
+targets=${FUZZ_TARGETS:-ply_reader obj_reader stl_reader off_reader gltf_reader fbx_check assimp_formats gzip_input voxelize solid}
+wanted() { [[ " $targets " == *" $1 "* ]]; }
 
 # fresh TARGET: an empty corpus and findings folder for TARGET (build-fuzz/{corpus,findings}/TARGET).
 fresh() {
@@ -41,6 +48,7 @@ fuzz() {
 }
 
 for format in ply obj; do
+  wanted "${format}_reader" || continue
   # A fresh corpus each run, seeded with the committed seeds and the small shared meshes
   # (the OBJ seed is the teapot, converted here).
   corpus=build-fuzz/corpus/${format}_reader
@@ -66,11 +74,26 @@ PY
   fi
   fuzz "${format}_reader" "$seconds"
 done
+# STL, OFF, glTF and the formats read through assimp: the committed seeds (hand-made variants
+# and decided findings) and the small shared meshes written in each format
+# (tests/fuzz/format_seeds.py).
+for target in stl_reader off_reader gltf_reader fbx_check assimp_formats; do
+  wanted "$target" || continue
+  fresh "$target"
+  seeds=${target%_reader}
+  cp tests/fuzz/seeds/"${seeds%_check}"/* "build-fuzz/corpus/$target/"
+  python3 tests/fuzz/format_seeds.py "$target" "build-fuzz/corpus/$target" "$meshes/spider_messy.ply" \
+    "$meshes/teapot_utah.ply"
+  default_seconds=20
+  if [ "$target" = assimp_formats ]; then default_seconds=30; fi
+  fuzz "$target" "${FUZZ_SECONDS:-$default_seconds}"
+done
 # The gzip input (with the PLY reader behind it), seeded with the PLY seeds compressed,
 # voxelize() on random small meshes, cpu against the reference, and solid mode with
 # attributes against a brute-force winding number (their own bytes, seeded with hand-made
 # shapes and the decided findings).
 for target in gzip_input voxelize solid; do
+  wanted "$target" || continue
   fresh "$target"
   if [ "$target" = gzip_input ]; then
     python3 - "build-fuzz/corpus/$target" tests/fuzz/seeds/ply/* "$meshes/teapot_utah.ply" <<'PY'

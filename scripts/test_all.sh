@@ -41,5 +41,5 @@ echo "== Linters: ruff check and clang-tidy (any finding fails)"
 # then HYVOX_LINT_FORMAT=1 here turns them on.
 HYVOX_LINT_FORMAT=0 bash scripts/lint.sh build
 
-echo "== libFuzzer (clang, ASan + UBSan): the PLY and OBJ readers 60 s each, gzip input and voxelize 30 s each; any finding fails"
+echo "== libFuzzer (clang, ASan + UBSan): the PLY and OBJ readers 60 s each, STL, OFF, glTF and the FBX check 20 s, the assimp formats, gzip input and voxelize 30 s, solid 45 s; any finding fails"
 bash scripts/fuzz_readers.sh

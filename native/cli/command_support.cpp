@@ -54,4 +54,10 @@ double msSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+MeshReadOptions meshReadOptions(const Arguments& args) {
+    MeshReadOptions options;
+    options.memory_budget_mib = args.options.memory_budget_mib;
+    return options;
+}
+
 }  // namespace hyvox::cli

@@ -9,7 +9,9 @@
 #include <memory>
 #include <string>
 
+#include "cli_args.h"
 #include "hyvox/interrupter.h"
+#include "hyvox/mesh_io.h"
 
 namespace hyvox::cli {
 
@@ -36,6 +38,9 @@ void checkOutputPaths(const std::string& mesh, const std::string& output, const 
 // /proc): a command calls this while another thread reads its input. The workers themselves
 // start with the first parallel loop (about 0.07 ms).
 void initializeThreadPool();
+
+// The mesh is read within the run's memory budget (--memory-budget-mib), as it is voxelized.
+MeshReadOptions meshReadOptions(const Arguments& args);
 
 double msSince(std::chrono::steady_clock::time_point start);
 

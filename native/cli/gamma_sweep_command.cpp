@@ -60,7 +60,7 @@ void runGammaSweep(const Arguments& args, const std::atomic<bool>& stop) {
     const auto thread_limit = limitThreads(args.options.threads);
     checkOutputPaths(args.mesh_path, "", args.stats_json_path);
     ProgressLine interrupter = progressFor(args, stop);  // Ctrl-C stops the reading too
-    const Mesh mesh = readMesh(args.mesh_path, &interrupter);
+    const Mesh mesh = readMesh(args.mesh_path, &interrupter, meshReadOptions(args));
 
     VoxelizeOptions exact_options = args.options;
     exact_options.method = Method::Cpu;

@@ -45,7 +45,7 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     double read_ms = 0;
     std::future<Mesh> reading = std::async(std::launch::async, [&] {
         const auto start = std::chrono::steady_clock::now();
-        Mesh read = readMesh(args.mesh_path, &interrupter);
+        Mesh read = readMesh(args.mesh_path, &interrupter, meshReadOptions(args));
         read_ms = msSince(start);
         return read;
     });

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// libFuzzer target for one strict mesh reader, chosen at build time (HYVOX_FUZZ_PLY or
-// HYVOX_FUZZ_OBJ): any bytes must give a mesh whose indices are in range, or InvalidInput.
+// libFuzzer target for one strict mesh reader, chosen at build time (HYVOX_FUZZ_PLY,
+// HYVOX_FUZZ_OBJ, HYVOX_FUZZ_STL, HYVOX_FUZZ_OFF or HYVOX_FUZZ_GLTF): any bytes must give a
+// mesh whose indices are in range, or InvalidInput. The glTF target reads both its forms
+// (the first bytes tell GLB from JSON); a buffer URI naming a file is looked for beside
+// "fuzz.gltf", in the folder the fuzzer runs in.
 // The OBJ target also reads the bytes as an MTL (material file), whose seeds sit beside the
 // OBJ ones.
 // Anything else (another exception, a crash, a sanitizer report, a hang, memory beyond
@@ -10,13 +13,16 @@
 #include <cstdlib>
 
 #include "hyvox/errors.h"
+#include "io/gltf_reader.h"
 #include "io/mtl_reader.h"
 #include "io/obj_reader.h"
+#include "io/off_reader.h"
 #include "io/ply_reader.h"
+#include "io/stl_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const char* bytes = reinterpret_cast<const char*>(data);
-#if !defined(HYVOX_FUZZ_PLY)
+#if defined(HYVOX_FUZZ_OBJ)
     try {
         for (const hyvox::io::MtlMaterial& m : hyvox::io::readMtl(bytes, size, "fuzz.mtl"))
             if (m.name.empty()) std::abort();
@@ -26,6 +32,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
 #if defined(HYVOX_FUZZ_PLY)
         const hyvox::Mesh mesh = hyvox::io::readPly(bytes, size, "fuzz.ply");
+#elif defined(HYVOX_FUZZ_STL)
+        const hyvox::Mesh mesh = hyvox::io::readStl(bytes, size, "fuzz.stl");
+#elif defined(HYVOX_FUZZ_OFF)
+        const hyvox::Mesh mesh = hyvox::io::readOff(bytes, size, "fuzz.off");
+#elif defined(HYVOX_FUZZ_GLTF)
+        const hyvox::Mesh mesh = hyvox::io::readGltf(bytes, size, "fuzz.gltf", 256u << 20);
 #else
         const hyvox::Mesh mesh = hyvox::io::readObj(bytes, size, "fuzz.obj");
 #endif

@@ -23,9 +23,11 @@
 #include "hyvox/mesh_io.h"
 #include "io/gzip_input.h"
 #include "support/assimp_mesh.h"
+#include "support/read_error.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
+using hyvox::test::readErrorOf;
 using hyvox::test::TempDir;
 
 namespace {
@@ -34,29 +36,6 @@ fs::path meshDir() {
     const char* dir = std::getenv("HYVOX_MESH_DIR");
     return dir ? fs::path(dir) : fs::path();
 }
-
-// The InvalidInput message readMesh gives, "(no error)" when it reads the file, or the
-// name of any other exception (which is itself a failure of the reader's contract).
-std::string errorOf(const fs::path& path) {
-    try {
-        hyvox::readMesh(path.string());
-    } catch (const hyvox::InvalidInput& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        return std::string("(wrong exception) ") + e.what();
-    }
-    return "(no error)";
-}
-
-// Expects readMesh(FILE) to throw InvalidInput whose message names the file and holds each
-// of the given parts.
-#define EXPECT_READ_ERROR(FILE, ...)                                                              \
-    do {                                                                                          \
-        const fs::path& file_ = (FILE);                                                           \
-        const std::string message_ = errorOf(file_);                                              \
-        EXPECT_NE(message_.find(file_.filename().string()), std::string::npos) << message_;       \
-        for (const char* part_ : {__VA_ARGS__}) EXPECT_NE(message_.find(part_), std::string::npos) << message_; \
-    } while (0)
 
 // A mesh to write: positions, polygons of any size, optional colours (uchar) and UVs.
 struct Polygons {
@@ -320,7 +299,7 @@ TEST(IoMeshStrict, TheIssuesDamagedPlyFiles) {
               4u);
     // A 300-digit number is quoted short.
     const std::string long_number(300, '7');
-    const std::string message = errorOf(dir.write("long.ply", kHeader + "0 0 0\n1 0 0\n0 " + long_number + " 0\n0 0 1\n" + kFaces));
+    const std::string message = readErrorOf(dir.write("long.ply", kHeader + "0 0 0\n1 0 0\n0 " + long_number + " 0\n0 0 1\n" + kFaces));
     EXPECT_LT(message.size(), 200u) << message;
 }
 
@@ -406,10 +385,10 @@ TEST(IoMeshStrict, GzipOutputIsBounded) {
     } catch (const hyvox::InvalidInput& e) {
         EXPECT_NE(std::string(e.what()).find("decompresses to more than 1 MiB"), std::string::npos) << e.what();
     }
-    // The default limit: 100x the compressed size, at least 256 MiB, at most the 4 GiB budget.
-    EXPECT_EQ(hyvox::io::gzipOutputLimit(1000), 256ull << 20);
-    EXPECT_EQ(hyvox::io::gzipOutputLimit(10ull << 20), 1000ull << 20);
-    EXPECT_EQ(hyvox::io::gzipOutputLimit(1ull << 40), 4096ull << 20);
+    // The limit: 100x the compressed size, at least 256 MiB, at most the budget.
+    EXPECT_EQ(hyvox::io::gzipOutputLimit(1000, 4096ull << 20), 256ull << 20);
+    EXPECT_EQ(hyvox::io::gzipOutputLimit(10ull << 20, 4096ull << 20), 1000ull << 20);
+    EXPECT_EQ(hyvox::io::gzipOutputLimit(1ull << 40, 4096ull << 20), 4096ull << 20);
     // The 64 MiB bomb is within the default (256 MiB) and is then refused as a PLY.
     EXPECT_READ_ERROR(path, "not a PLY file");
 }
@@ -419,7 +398,7 @@ TEST(IoMeshStrict, NonRegularFilesAreRefusedWithoutBlocking) {
     const fs::path fifo = dir.path / "pipe.ply";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     EXPECT_READ_ERROR(fifo, "not a regular file");
-    EXPECT_NE(errorOf("/dev/null").find("not a regular file"), std::string::npos);
+    EXPECT_NE(readErrorOf("/dev/null").find("not a regular file"), std::string::npos);
 }
 
 // Every truncation and many single-byte changes of small valid files: a mesh whose indices

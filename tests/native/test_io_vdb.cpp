@@ -249,13 +249,15 @@ TEST(IoVdb, AGridOverTheMemoryBudgetIsRefusedBeforeItIsBuilt) {
     const std::string path = (dir.path / "fits.vdb").string();
     hyvox::writeVdb(r, path, one_mib);  // fits in 1 MiB
     EXPECT_TRUE(fs::exists(path));
-    // A result 64 times larger (1920 leaves, ~4 MiB of floats) does not.
+    // A result of 15360 leaves does not: the writer lists each and serializes it (about 220
+    // bytes) twice, about 6 MiB (io::vdbWriterBytes).
     hyvox::VoxelizeResult big;
-    big.grid.dims = {8 * 16, 8 * 12, 8 * 10};
+    big.grid.dims = {8 * 32, 8 * 24, 8 * 20};
     big.occupancy = hyvox::SparseGrid(big.grid.dims);
-    for (int bx = 0; bx < 16; ++bx)
-        for (int by = 0; by < 12; ++by)
-            for (int bz = 0; bz < 10; ++bz) big.occupancy.set(bx * 8, by * 8, bz * 8);
+    for (int bx = 0; bx < 32; ++bx)
+        for (int by = 0; by < 24; ++by)
+            for (int bz = 0; bz < 20; ++bz) big.occupancy.set(bx * 8, by * 8, bz * 8);
+    EXPECT_GT(hyvox::io::vdbWriterBytes(15360, 0, 0, 0), double(1 << 20));
     const std::string refused = (dir.path / "refused.vdb").string();
     EXPECT_THROW(hyvox::writeVdb(big, refused, one_mib), hyvox::ResourceError);
     EXPECT_FALSE(fs::exists(refused));

@@ -5,6 +5,7 @@
 // and flood watertightness, the Eq. 3 fit).
 #include <gtest/gtest.h>
 #include <png.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,7 @@
 
 #include "hyvox/accuracy.h"
 #include "hyvox/errors.h"
+#include "hyvox/texture.h"
 #include "hyvox/voxelize.h"
 #include "support/subdivide.h"
 #include "support/surface_twin.h"
@@ -140,18 +142,48 @@ TEST(DisplacementMap, ReadsEightAndSixteenBitGreyPng) {
     const std::string p16 = (dir / "hyvox_test_height16.png").string();
     writePng(p8, 3, 2, 8, {0, 51, 255, 102, 153, 204});
     writePng(p16, 2, 1, 16, {0, 65535});
-    const HeightImage h8 = readPngHeight(p8);
+    const HeightImage h8 = hyvox::readPngHeight(p8);
     ASSERT_EQ(h8.width, 3);
     ASSERT_EQ(h8.height, 2);
     EXPECT_NEAR(h8.values[1], 0.2f, 1e-6);
     EXPECT_NEAR(h8.values[2], 1.0f, 1e-6);
     EXPECT_NEAR(h8.values[3], 0.4f, 1e-6);
-    const HeightImage h16 = readPngHeight(p16);
+    const HeightImage h16 = hyvox::readPngHeight(p16);
     EXPECT_NEAR(h16.values[0], 0.0f, 1e-6);
     EXPECT_NEAR(h16.values[1], 1.0f, 1e-6);
     std::filesystem::remove(p8);
     std::filesystem::remove(p16);
-    EXPECT_THROW(readPngHeight((dir / "hyvox_no_such_file.png").string()), InvalidInput);
+    EXPECT_THROW(hyvox::readPngHeight((dir / "hyvox_no_such_file.png").string()), InvalidInput);
+}
+
+// A PNG whose header says 9000 x 9000 (81 M texels) and holds no pixels: the texel limit of
+// every image hyvox reads refuses it before anything is allocated for its pixels.
+TEST(DisplacementMap, AHeightImagePastTheTexelLimitIsRefusedBeforeDecoding) {
+    auto chunk = [](const char* type, const std::string& data) {
+        auto be32 = [](std::uint32_t v) {
+            return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+        };
+        const std::string body = std::string(type, 4) + data;
+        return be32(std::uint32_t(data.size())) + body +
+               be32(std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()))));
+    };
+    const std::string size = std::string("\0\0\x23\x28", 4);  // 9000
+    const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) +
+                            chunk("IHDR", size + size + std::string("\x08\0\0\0\0", 5)) + chunk("IDAT", "x") +
+                            chunk("IEND", "");
+    const std::string path = (std::filesystem::temp_directory_path() / "hyvox_test_huge_height.png").string();
+    std::FILE* file = std::fopen(path.c_str(), "wb");
+    ASSERT_NE(file, nullptr);
+    std::fwrite(png.data(), 1, png.size(), file);
+    std::fclose(file);
+    try {
+        hyvox::readPngHeight(path);
+        ADD_FAILURE() << "read";
+    } catch (const InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("has 9000x9000 texels, more than the limit of 8192x8192"), std::string::npos)
+            << e.what();
+    }
+    std::filesystem::remove(path);
 }
 
 TEST(CpuSubdivide, MidpointSubdivisionQuadruplesAndSharesEdges) {

@@ -140,7 +140,11 @@ struct Plate {
 
 TEST(Tiles, A16384WidePlateRunsInASmallBudgetAndIsExact) {
     const Plate plate;
-    const VoxelizeResult r = voxelize(plate.view(), Plate::options(512));
+    // 1.5 GiB: the estimate counts the .vdb a front door writes of its 2 M leaves (about 1.1 GiB);
+    // tiles of 4096 (16 of them) as a small budget would make.
+    VoxelizeOptions o = Plate::options(1536);
+    o.tile_size = 4096;
+    const VoxelizeResult r = voxelize(plate.view(), o);
     ASSERT_EQ(r.grid.dims, (std::array<std::int32_t, 3>{16384, 16384, 1}));
     EXPECT_GT(r.stats.tiles, 1u);
     // sum over i of the j in [0, min(16383, 16384 - i)]

@@ -24,7 +24,7 @@ def test_core_never_imports_bpy():
 @pytest.mark.parametrize("bad", [
     dict(method="magic"), dict(mode="thick"), dict(resolution=0), dict(resolution=100000),
     dict(voxel_size=-1.0), dict(tess_gamma=0.0), dict(padding=-1),
-    dict(frames=[]), dict(frames=[-2, -1]), dict(memory_budget_mib=0),
+    dict(frames=[]), dict(frames=[-2, -1]), dict(memory_budget_mib=-1),
 ])
 def test_settings_rejected(bad):
     with pytest.raises(SettingsError):

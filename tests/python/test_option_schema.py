@@ -82,6 +82,7 @@ def good_value(spec):
         "bounds": ((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)), "gl_device": "software",
         "shader_dir": "/nonexistent/shaders", "displacement_image": "height.png", "attributes": "normal",
         "region": "1/2",
+        "memory_budget_mib": 512,
     }
     if spec.name in special:
         return special[spec.name]

@@ -96,6 +96,6 @@ def test_durable_write_is_an_option_of_the_write_not_of_the_voxelization(tetrahe
         grid.write_vdb(tmp_path / "m.vdb", durable_write="maybe")
     assert str(error.value) == "durable_write must be true or false, got 'maybe'"
     with pytest.raises(ValueError) as error:
-        grid.write_vdb(tmp_path / "m.vdb", memory_budget_mib=0)
-    assert str(error.value) == "memory_budget_mib must be a whole number between 1 and 1073741824, got 0"
+        grid.write_vdb(tmp_path / "m.vdb", memory_budget_mib=-1)
+    assert str(error.value) == "memory_budget_mib must be a whole number between 0 and 1073741824, got -1"
     assert not (tmp_path / "m.vdb").exists() and not (tmp_path / "r.vdb").exists()

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-# The plugins (native/src/core/plugin_library.h): libassimp and the GL stack are loaded only
-# when a file or a method needs them, and what needs them still works, from the CLI and the
-# module. Which libraries a process loaded is asked of the dynamic linker (LD_DEBUG=files)
+# The plugins (native/src/core/plugin_library.h): the GL stack is loaded only when a method
+# needs it, and libassimp never (the formats read through assimp are read by the helper
+# program hyvox_assimp_reader, in a process of its own), and what needs them still works,
+# from the CLI and the module. Which libraries a process loaded is asked of the dynamic linker (LD_DEBUG=files)
 # or the kernel (/proc/self/maps), not of hyvox; the voxels of a run through a plugin are
 # compared with the same mesh through hyvox's own readers and the cpu method.
 import json
@@ -13,19 +14,17 @@ import sys
 import numpy as np
 
 import hyvox
+import mesh_writers
 
-# What the plugins bring: none of it belongs in a cpu run of a PLY or OBJ.
-ASSIMP = ("libhyvox_assimp.so", "libassimp.so", "libdraco.so")
+# What assimp brings: it belongs in no hyvox process but the assimp reader's.
+ASSIMP = ("libassimp.so", "libdraco.so")
 GL = ("libhyvox_gl_methods.so", "libepoxy.so", "libEGL.so")
 PYTHONPATH = str(pathlib.Path(hyvox.__file__).resolve().parents[1])
 
 
-def tetra_stl(path, vertices, triangles):
-    """The mesh as an ASCII STL (a format only assimp reads here)."""
-    facets = "".join("facet normal 0 0 0\nouter loop\n" +
-                     "".join("vertex %r %r %r\n" % tuple(vertices[c]) for c in t) + "endloop\nendfacet\n"
-                     for t in triangles)
-    path.write_text("solid t\n" + facets + "endsolid t\n")
+def tetra_3mf(path, vertices, triangles):
+    """The mesh as 3MF (a format only assimp reads here)."""
+    path.write_bytes(mesh_writers.three_mf(np.asarray(vertices, np.float32), np.asarray(triangles, np.uint32)))
     return path
 
 
@@ -57,16 +56,17 @@ def test_cli_cpu_run_of_ply_and_obj_loads_no_plugin(cli, mesh_dir, tetra_obj, tm
         assert not has_any(names, ASSIMP + GL + ("libopenvdb.so",)), names
 
 
-def test_cli_reads_stl_through_the_assimp_plugin(cli, tetrahedron, tetra_obj, tmp_path):
-    stl = tetra_stl(tmp_path / "tetra.stl", *tetrahedron)
-    names, done = loaded_by([str(cli), "voxelize", str(stl), "-o", str(tmp_path / "stl.vdb"), "-q", "--resolution=16"])
+def test_cli_reads_3mf_through_the_assimp_reader(cli, tetrahedron, tetra_obj, tmp_path):
+    model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
+    names, done = loaded_by([str(cli), "voxelize", str(model), "-o", str(tmp_path / "3mf.vdb"), "-q",
+                             "--resolution=16"])
     assert done.returncode == 0, done.stderr[-2000:]
-    assert has_any(names, ("libhyvox_assimp.so",)) and has_any(names, ("libassimp.so",)), names
-    assert not has_any(names, GL), names
+    assert "libtbb.so.12" in names  # the witness sees what the CLI loads
+    assert not has_any(names, ASSIMP + GL), names
     subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "obj.vdb"), "-q", "--resolution=16"],
                    check=True, timeout=120)
-    stl_voxels = voxels_of(tmp_path / "stl.vdb")
-    assert stl_voxels and stl_voxels == voxels_of(tmp_path / "obj.vdb")
+    model_voxels = voxels_of(tmp_path / "3mf.vdb")
+    assert model_voxels and model_voxels == voxels_of(tmp_path / "obj.vdb")
 
 
 def test_cli_gl_method_through_the_gl_plugin(cli, tetra_obj, tmp_path):
@@ -100,16 +100,16 @@ gl = hyvox.voxelize(v, t, resolution=16, method="hybrid")
 out["gl"] = mapped()
 out["gl_equals_cpu"] = bool(np.array_equal(gl.coords(), cpu.coords())) and len(cpu.coords()) > 0
 out["devices"] = hyvox._core.gl_devices()
-stl = hyvox.read_mesh(sys.argv[1])
-out["stl"] = mapped()
-out["stl_equals"] = bool(np.array_equal(np.asarray(stl[0])[np.asarray(stl[1])], v[t]))  # the same triangles
+model = hyvox.read_mesh(sys.argv[1])
+out["model"] = mapped()
+out["model_equals"] = bool(np.array_equal(np.asarray(model[0])[np.asarray(model[1])], v[t]))  # the same triangles
 print(json.dumps(out))
 """
 
 
 def test_module_loads_each_plugin_when_first_needed(tetrahedron, tmp_path):
-    stl = tetra_stl(tmp_path / "tetra.stl", *tetrahedron)
-    done = subprocess.run([sys.executable, "-c", MODULE_CHILD, str(stl)], capture_output=True, text=True, timeout=300,
+    model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
+    done = subprocess.run([sys.executable, "-c", MODULE_CHILD, str(model)], capture_output=True, text=True, timeout=300,
                           env={**os.environ, "PYTHONPATH": PYTHONPATH})
     assert done.returncode == 0, done.stderr[-3000:]
     out = json.loads(done.stdout)
@@ -119,20 +119,20 @@ def test_module_loads_each_plugin_when_first_needed(tetrahedron, tmp_path):
     assert has_any(out["gl"], GL[:2]) and not has_any(out["gl"], ASSIMP), out["gl"]
     assert out["gl_equals_cpu"]
     assert out["devices"] and all({"index", "name", "software"} <= set(d) for d in out["devices"])
-    assert has_any(out["stl"], ASSIMP[:2]), out["stl"]
-    assert out["stl_equals"]
+    assert not has_any(out["model"], ASSIMP), out["model"]
+    assert out["model_equals"]
 
 
 def test_a_missing_plugin_is_a_clear_error_and_nothing_else_needs_it(cli, tetrahedron, tetra_obj, tmp_path):
     empty = tmp_path / "no_plugins"
     empty.mkdir()
     env = {**os.environ, "HYVOX_PLUGIN_DIR": str(empty)}
-    stl = tetra_stl(tmp_path / "tetra.stl", *tetrahedron)
+    model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
     run = lambda *args: subprocess.run([str(cli), "voxelize", *map(str, args), "-o", str(tmp_path / "o.vdb"), "-q",
                                         "--resolution=8"], capture_output=True, text=True, timeout=120, env=env)
-    done = run(stl)
+    done = run(model)
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
-    assert f"reading '{stl}' needs libhyvox_assimp.so, which is not installed with hyvox (looked in {empty})" \
+    assert f"reading '{model}' needs hyvox_assimp_reader, which is not installed with hyvox (looked in {empty})" \
         in done.stderr, done.stderr
     done = run(tetra_obj, "--method=hybrid")
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
@@ -149,16 +149,16 @@ def test_a_missing_plugin_is_a_clear_error_and_nothing_else_needs_it(cli, tetrah
         done.stdout + done.stderr
 
 
-def test_a_plugin_that_does_not_load_says_why(cli, tetrahedron, tmp_path):
+def test_a_plugin_that_does_not_load_says_why(cli, tetra_obj, tmp_path):
     # A file of the plugin's name that is no shared object: dlopen's own reason is shown.
     folder = tmp_path / "damaged"
     folder.mkdir()
-    (folder / "libhyvox_assimp.so").write_bytes(b"not a shared object\n" * 64)
-    stl = tetra_stl(tmp_path / "tetra.stl", *tetrahedron)
-    done = subprocess.run([str(cli), "voxelize", str(stl), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=8"],
+    (folder / "libhyvox_gl_methods.so").write_bytes(b"not a shared object\n" * 64)
+    done = subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q",
+                           "--resolution=8", "--method=hybrid"],
                           capture_output=True, text=True, timeout=120, env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)})
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
-    assert f"needs {folder}/libhyvox_assimp.so, which cannot be loaded: " in done.stderr, done.stderr
+    assert f"needs {folder}/libhyvox_gl_methods.so, which cannot be loaded: " in done.stderr, done.stderr
     assert "invalid ELF header" in done.stderr, done.stderr
 
 
@@ -204,3 +204,33 @@ def test_a_shared_library_without_a_build_id_is_no_plugin(cli, tetra_obj, tmp_pa
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
     assert (f"the hybrid method needs {folder}/libhyvox_gl_methods.so, which has no hyvox build id "
             "(not a hyvox plugin)") in done.stderr, done.stderr
+def test_a_reader_program_that_does_not_start_says_why(cli, tetrahedron, tmp_path):
+    folder = tmp_path / "damaged"
+    folder.mkdir()
+    reader = folder / "hyvox_assimp_reader"
+    model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
+    env = {**os.environ, "HYVOX_PLUGIN_DIR": str(folder)}
+    for mode, reason in ((0o755, "Exec format error"), (0o644, "not executable, and not an ELF program")):
+        reader.write_bytes(b"not a program\n" * 64)
+        reader.chmod(mode)
+        done = subprocess.run([str(cli), "voxelize", str(model), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=8"],
+                              capture_output=True, text=True, timeout=120, env=env)
+        assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
+        assert f"reading '{model}' needs the assimp reader process: cannot start {reader}" in done.stderr, done.stderr
+        assert reason in done.stderr, done.stderr
+
+
+def test_a_reader_program_without_its_execute_bit_still_reads(cli, tetrahedron, tmp_path):
+    # A zip (the legacy add-on, Blender's extension and wheel installs) keeps no file modes:
+    # the program is then started through the program interpreter its ELF header names.
+    built = pathlib.Path(hyvox.__file__).parent / "hyvox_assimp_reader"
+    folder = tmp_path / "unzipped"
+    folder.mkdir()
+    (folder / "hyvox_assimp_reader").write_bytes(built.read_bytes())
+    (folder / "hyvox_assimp_reader").chmod(0o644)
+    assert not os.access(folder / "hyvox_assimp_reader", os.X_OK)
+    model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
+    done = subprocess.run([str(cli), "voxelize", str(model), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=16"],
+                          capture_output=True, text=True, timeout=120, env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)})
+    assert done.returncode == 0, done.stderr
+    assert voxels_of(tmp_path / "o.vdb")

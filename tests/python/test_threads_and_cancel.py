@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import hyvox
+import mesh_writers
 
 
 class Counter(threading.Thread):
@@ -146,7 +147,9 @@ def test_read_mesh_stops_when_its_token_is_cancelled(mesh_dir, tmp_path):
     stl = tmp_path / "tri.stl"
     stl.write_text("solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
                    "endloop\nendfacet\nendsolid t\n")
-    for path in (mesh_dir / "bunny_stanford_69k.ply", mesh_dir / "dragon_stanford_res2_203k.ply.gz", stl):
+    model = tmp_path / "tri.3mf"  # read by the assimp process
+    model.write_bytes(mesh_writers.three_mf(np.eye(3, dtype=np.float32), np.array([[0, 1, 2]], np.uint32)))
+    for path in (mesh_dir / "bunny_stanford_69k.ply", mesh_dir / "dragon_stanford_res2_203k.ply.gz", stl, model):
         token = hyvox.CancelToken()
         token.cancel()
         with pytest.raises(hyvox.Cancelled):

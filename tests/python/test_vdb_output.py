@@ -62,20 +62,23 @@ def test_write_vdb_threads_give_the_same_file_contents(bunny, tmp_path):
 
 
 def test_write_vdb_budget_is_its_own_and_the_voxelizations_when_unset(bunny, tmp_path):
-    # The bunny at 128: 821 leaves, whose grids need about 2 MiB (the message says so); the
-    # voxelization itself fits in 1 MiB.
+    # voxelize() refuses before any work a run whose estimate (every pass, the .vdb write
+    # included) exceeds its budget; write_vdb() checks the grids it builds against its own
+    # budget, the voxelization's when none is given.
     vertices, triangles = bunny
     path = tmp_path / "b.vdb"
-    small = hyvox.voxelize(vertices, triangles, resolution=128, memory_budget_mib=1)
-    with pytest.raises(hyvox.ResourceError, match="821 leaves needs about 2 MiB, more than the memory budget of 1 MiB"):
-        small.write_vdb(path)  # unset: the voxelization's 1 MiB
+    estimate = hyvox.voxelize(vertices, triangles, resolution=512).stats["memory_estimate"]
+    need_mib = -(-estimate["vdb_write"] // (1 << 20))
+    assert need_mib >= 2, estimate
+    with pytest.raises(hyvox.ResourceError, match="more than the memory budget of 1 MiB"):
+        hyvox.voxelize(vertices, triangles, resolution=512, memory_budget_mib=1)
+    grid = hyvox.voxelize(vertices, triangles, resolution=512, memory_budget_mib=need_mib + 1)
+    leaves = grid.stats["leaves"]
+    with pytest.raises(hyvox.ResourceError, match=rf"{leaves} leaves needs about \d+ MiB, more than the memory budget of 1 MiB"):
+        grid.write_vdb(path, memory_budget_mib=1)
     assert not path.exists()
-    small.write_vdb(path, memory_budget_mib=2)
-    assert vdb.read(str(path), "density").activeVoxelCount() == small.voxel_count
-    default = hyvox.voxelize(vertices, triangles, resolution=128)
-    with pytest.raises(hyvox.ResourceError, match="memory budget of 1 MiB"):
-        default.write_vdb(tmp_path / "refused.vdb", memory_budget_mib=1)
-    assert not (tmp_path / "refused.vdb").exists()
+    grid.write_vdb(path)  # unset: the voxelization's budget, which its estimate of the write fits
+    assert vdb.read(str(path), "density").activeVoxelCount() == grid.voxel_count
 
 
 def test_write_vdb_is_atomic(tetrahedron, tmp_path):

@@ -11,12 +11,14 @@
   `import hyvox` + a CPU voxelization map only libraries from the installed wheel plus
   the base system ones every manylinux wheel may use (/proc/self/maps), and none of the
   plugins (native/src/core/plugin_library.h); a GL method loads the wheel's GL plugin,
-  takes libEGL from the system and sets the same voxels as the CPU method; an STL loads
-  the wheel's assimp plugin with the wheel's libassimp;
+  takes libEGL from the system and sets the same voxels as the CPU method; a 3MF file is
+  read by the wheel's assimp reader process (found in the wheel: the environment is empty
+  and the wheel's binaries know no build folder) and loads no assimp into the caller;
 - its voxels equal the build tree's module's; the `hyvox` command writes a .vdb that
   pyopenvdb reads back as the same voxels; ldd finds every library of the installed CLI
   binary and of the plugins inside the wheel or in that base set (libEGL: the system's),
-  and the installed CLI finds the plugins (an STL, a GL method)."""
+  and of the assimp reader program, and the installed CLI finds the plugin and the reader
+  (a 3MF file, a GL method)."""
 import glob
 import json
 import os
@@ -120,11 +122,9 @@ class InstalledWheelTest(unittest.TestCase):
         (gl_plugin,) = loaded("loaded_by_gl", "libhyvox_gl_methods.so")
         self.assertTrue(self.in_wheel(gl_plugin), gl_plugin)
         self.assertTrue(all(self.in_wheel(p) for p in loaded("loaded_by_gl", "libepoxy")), self.child["loaded_by_gl"])
-        (assimp_plugin,) = loaded("loaded_by_stl", "libhyvox_assimp.so")
-        self.assertTrue(self.in_wheel(assimp_plugin), assimp_plugin)
-        (assimp,) = loaded("loaded_by_stl", "libassimp")
-        self.assertTrue(self.in_wheel(assimp), assimp)
-        self.assertEqual(self.child["stl_triangles"], 1)
+        # assimp runs in the reader process: nothing of it is mapped into the caller.
+        self.assertEqual(loaded("loaded_by_3mf", "libassimp"), [], self.child["loaded_by_3mf"])
+        self.assertEqual(self.child["model_triangles"], 1)
 
     def test_gl_driver_from_the_system(self):
         egl = [p for p in self.child["loaded_by_gl"] if os.path.basename(p).startswith("libEGL.so")]
@@ -159,8 +159,10 @@ class InstalledWheelTest(unittest.TestCase):
 
     def test_cli_binary_and_plugin_libraries(self):
         plugins = sorted(glob.glob(os.path.join(self.site, "hyvox", "libhyvox_*.so")))
-        self.assertEqual([os.path.basename(p) for p in plugins], ["libhyvox_assimp.so", "libhyvox_gl_methods.so"])
-        for binary in [os.path.join(self.site, "hyvox", "bin", "hyvox")] + plugins:
+        self.assertEqual([os.path.basename(p) for p in plugins], ["libhyvox_gl_methods.so"])
+        reader = os.path.join(self.site, "hyvox", "hyvox_assimp_reader")
+        self.assertTrue(os.access(reader, os.X_OK), reader)
+        for binary in [os.path.join(self.site, "hyvox", "bin", "hyvox"), reader] + plugins:
             lines = run(["ldd", binary], env=self.clean_env).stdout.splitlines()
             self.assertFalse([line for line in lines if "not found" in line], lines)
             for line in lines:
@@ -171,8 +173,8 @@ class InstalledWheelTest(unittest.TestCase):
                 self.fail(f"{binary} resolves {line.strip()} outside the wheel")
 
     def test_installed_cli_finds_the_plugins(self):
-        stl = os.path.join(self.tmp.name, "triangle.stl")  # written by wheel_child.py
-        for args in ([stl], [MESH, "--method", "hybrid"]):
+        model = os.path.join(self.tmp.name, "triangle.3mf")  # written by wheel_child.py
+        for args in ([model], [MESH, "--method", "hybrid"]):
             out = os.path.join(self.tmp.name, "plugin.vdb")
             run([os.path.join(VENV, "bin", "hyvox"), "voxelize", *args, "-o", out, "-q", "--resolution", "32"],
                 env=self.clean_env)

@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Runs inside the clean venv the wheel is installed into (check_installed_wheel.py
 starts it with an empty environment): imports hyvox, voxelizes with the CPU method, then
-a GL method, then reads an STL (through the assimp plugin), and records which shared
-libraries the process had mapped after each step, as the kernel reports them
+a GL method, then reads a 3MF file (through the assimp reader process), and records which
+shared libraries the process had mapped after each step, as the kernel reports them
 (/proc/self/maps).
     python wheel_child.py MESH OUT_DIR"""
 import json
@@ -30,12 +30,13 @@ def main(mesh, out_dir):
     after_cpu = mapped_libraries()
     gl = hyvox.voxelize(vertices, triangles, resolution=128, method="hybrid")
     after_gl = mapped_libraries()
-    stl = os.path.join(out_dir, "triangle.stl")
-    with open(stl, "w") as f:
-        f.write("solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
-                "endloop\nendfacet\nendsolid t\n")
-    stl_triangles = len(hyvox.read_mesh(stl)[1])
-    after_stl = mapped_libraries()
+    model = os.path.join(out_dir, "triangle.3mf")
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+    import mesh_writers  # numpy and the standard library only
+    with open(model, "wb") as f:
+        f.write(mesh_writers.three_mf(np.eye(3, dtype=np.float32), np.array([[0, 1, 2]], np.uint32)))
+    model_triangles = len(hyvox.read_mesh(model)[1])
+    after_model = mapped_libraries()
     np.save(os.path.join(out_dir, "cpu_coords.npy"), grid.coords())
     with open(os.path.join(out_dir, "child.json"), "w") as f:
         json.dump({
@@ -47,8 +48,8 @@ def main(mesh, out_dir):
             "gl_equals_cpu": bool(np.array_equal(gl.coords(), grid.coords())),
             "loaded_by_import_and_cpu": sorted(after_cpu - before),
             "loaded_by_gl": sorted(after_gl - after_cpu),
-            "stl_triangles": stl_triangles,
-            "loaded_by_stl": sorted(after_stl - after_gl),
+            "model_triangles": model_triangles,
+            "loaded_by_3mf": sorted(after_model - after_gl),
         }, f, indent=1)
 
 

@@ -223,7 +223,7 @@ def _preferences_properties():
                                   default="AUTO"),
         "gl_device_index": IntProperty(name="Device Index", description="Index of the EGL device to use",
                                        default=0, min=0, max=63, subtype="NONE"),
-        "memory_budget_mib": schema_property("memory_budget_mib", soft=(16, 65536)),
+        "memory_budget_mib": schema_property("memory_budget_mib", soft=(0, 65536)),
         "threads": schema_property("threads", soft=(0, 64)),
         "alignment_fix": EnumProperty(name="Half-Voxel Fix", description="Move volumes by half a voxel to "
                                       "match how this Blender draws OpenVDB voxel centres",

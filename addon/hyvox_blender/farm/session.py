@@ -19,7 +19,7 @@ import signal
 import socket
 import sys
 
-from . import task
+from .task import run_command
 
 IDLE_CHECK_SECONDS = 5.0  # how often an idle server checks that its socket is still there
 
@@ -69,7 +69,7 @@ def _serve_one(connection):
     out, err = sys.stdout, sys.stderr
     sys.stdout, sys.stderr = _Stream(connection, "out", out), _Stream(connection, "err", err)
     try:
-        code = task.run_command(request["argv"])
+        code = run_command(request["argv"])
     finally:
         sys.stdout, sys.stderr = out, err
         out.flush()

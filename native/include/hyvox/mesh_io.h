@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file
-/// Reading triangle meshes from files into an owning mesh. PLY (binary/ascii, also .ply.gz)
-/// and OBJ are read by hyvox's own strict readers (src/io/ply_reader.h, obj_reader.h): every
-/// declared count is checked against the bytes present before allocating, and a damaged file
-/// is an InvalidInput naming the file and the place. Other formats go through assimp (which
-/// never sees PLY or OBJ). Triangles are kept exactly as the file lists them: degenerate and
+/// Reading triangle meshes from files into an owning mesh. PLY, OBJ, STL, OFF and glTF are
+/// read by hyvox's own strict readers (src/io/*_reader.h): every declared count is checked
+/// against the bytes present before allocating, and a damaged file is an InvalidInput naming
+/// the file and the place. The other formats go through assimp in a separate process
+/// (src/io/assimp_reader.h). Triangles are kept exactly as the file lists them: degenerate and
 /// duplicate triangles stay (validate() skips and counts them), so triangle counts match the
 /// file.
 #include <cstddef>
@@ -62,21 +62,38 @@ struct Mesh {
     }
 };
 
-/// Reads a mesh file. A name ending in ".gz" is decompressed first (bounded: see
-/// io/gzip_input.h; a stream cut short is an error) and parsed by the extension before ".gz"
-/// (e.g. "x.ply.gz" as PLY); a file whose first line is "ply" is read as PLY whatever its
-/// name. Points and lines in the file are ignored (a PLY face or OBJ "f" with fewer than 3
-/// corners is an error); polygons are fan-triangulated. Several meshes in one file are
-/// merged, with their node transforms applied. Formats other than PLY and OBJ load the assimp
-/// plugin (libhyvox_assimp.so). Reentrant: files may be read from several threads at once.
+/// What a read may take. The strict readers hold at most a small multiple of the file (every
+/// count is checked against the bytes present); a gzip's output and everything the assimp
+/// process does are held to these.
+struct MeshReadOptions {
+    /// The gzip output, a glTF scene and the assimp process's memory, in MiB;
+    /// 0 = defaultMemoryBudgetMib() (hyvox/options.h), as VoxelizeOptions::memory_budget_mib.
+    std::uint64_t memory_budget_mib = 0;
+    /// The assimp process is ended after this many seconds (wall clock); 0 = 60 s plus 2 s
+    /// per MiB of the file.
+    double time_limit_s = 0;
+};
+
+/// Reads a mesh file. The formats and who reads them (docs/mesh-formats.md): PLY, OBJ, STL,
+/// OFF and glTF/GLB by hyvox's own strict readers; FBX (binary; its container checked first)
+/// and 3MF through assimp in a process of its own, so nothing in the file can crash, hang or
+/// exhaust this process.
+/// A name ending in ".gz" is decompressed first (bounded: see io/gzip_input.h; a stream cut
+/// short is an error) and read as the extension before ".gz" (e.g. "x.ply.gz" as PLY); a
+/// file whose first line is "ply" is read as PLY whatever its name. Points and lines in the
+/// file are ignored (a PLY face or OBJ "f" with fewer than 3 corners is an error); polygons
+/// are fan-triangulated. Several meshes in one file are merged, with their node transforms
+/// applied. Reentrant: files may be read from several threads at once.
 /// @param path the file; positions are taken in the file's units as world units
 /// @param interrupter may be null; asked at milestones (every MiB decompressed, every 64k
-///        records or lines parsed, assimp's progress steps)
+///        records or lines parsed, every 20 ms of the assimp process)
+/// @param options the memory budget and time limit of the read
 /// @return the mesh, its triangles exactly as the file lists them
-/// @throws InvalidInput a missing, unreadable, non-regular, damaged or unparsable file, or one
-///         without triangles (naming the file and the place)
-/// @throws BackendError a format that needs the assimp plugin, which cannot be loaded
-/// @throws Cancelled the interrupter asked to stop (the partly read mesh is freed)
-Mesh readMesh(const std::string& path, Interrupter* interrupter = nullptr);
+/// @throws InvalidInput naming the file: a missing, unreadable, non-regular, damaged or
+///         unparsable file, one without triangles, a format hyvox does not read, and an
+///         assimp read that crashed, ran past the time limit or past the memory budget
+/// @throws Cancelled the interrupter asked to stop (the partly read mesh is freed, the
+///         assimp process ended)
+Mesh readMesh(const std::string& path, Interrupter* interrupter = nullptr, const MeshReadOptions& options = {});
 
 }  // namespace hyvox

@@ -171,8 +171,10 @@ struct RegionOptions {
     bool whole() const { return count == 1; }  ///< the whole grid
 };
 
-/// The memory budget both a voxelization and its write start from, in MiB.
-constexpr std::uint64_t kDefaultMemoryBudgetMib = 4096;
+/// The memory budget a run has when memory_budget_mib is 0: half of this machine's physical
+/// memory, or of the memory limit of the cgroup this process runs in when that is smaller
+/// (a container's), in MiB, at least 256.
+std::uint64_t defaultMemoryBudgetMib();
 
 /// What decides a voxelization's voxels, and the resources it may use (threads, memory).
 /// How its result is written is WriteOptions' business.
@@ -184,7 +186,10 @@ struct VoxelizeOptions {
     Mode mode = Mode::Conservative;  ///< which voxels are set
     Method method = Method::Cpu;     ///< which backend sets them
     int threads = 0;                        ///< CPU threads; 0 = all cores
-    std::uint64_t memory_budget_mib = kDefaultMemoryBudgetMib;  ///< what the run may hold for voxels: tile buffers + leaves
+    /// What the run may hold beside the mesh it is given (MiB): every buffer of the passes it
+    /// runs and of the .vdb it writes; a run estimated to need more is refused before any work.
+    /// 0 = defaultMemoryBudgetMib().
+    std::uint64_t memory_budget_mib = 0;
     /// Side of the boxes the grid is voxelized in, one after the other (rounded up to a
     /// multiple of 8); 0 = from the memory budget (the whole grid when it fits).
     int tile_size = 0;
@@ -195,7 +200,9 @@ struct VoxelizeOptions {
     SolidOptions solid;                ///< solid mode's
     SdfOptions sdf;                    ///< the sdf attribute's
 
-    std::uint64_t memoryBudgetBytes() const { return memory_budget_mib << 20; }  ///< the budget in bytes
+    /// The budget in MiB, 0 resolved to defaultMemoryBudgetMib().
+    std::uint64_t memoryBudgetMib() const { return memory_budget_mib ? memory_budget_mib : defaultMemoryBudgetMib(); }
+    std::uint64_t memoryBudgetBytes() const { return memoryBudgetMib() << 20; }  ///< the budget in bytes
 };
 
 /// How writeVdb (hyvox/vdb.h) writes a result: output policy, which never changes the voxels.
@@ -208,10 +215,13 @@ struct WriteOptions {
     /// (no half-written file whatever happens to hyvox), as OpenVDB and Blender write
     /// (src/io/atomic_file.h says why).
     bool durable = false;
-    /// What the grids being built may hold beside the result they are made from.
-    std::uint64_t memory_budget_mib = kDefaultMemoryBudgetMib;
+    /// What the grids being built may hold beside the result they are made from (MiB);
+    /// 0 = defaultMemoryBudgetMib().
+    std::uint64_t memory_budget_mib = 0;
 
-    std::uint64_t memoryBudgetBytes() const { return memory_budget_mib << 20; }  ///< the budget in bytes
+    /// The budget in MiB, 0 resolved to defaultMemoryBudgetMib().
+    std::uint64_t memoryBudgetMib() const { return memory_budget_mib ? memory_budget_mib : defaultMemoryBudgetMib(); }
+    std::uint64_t memoryBudgetBytes() const { return memoryBudgetMib() << 20; }  ///< the budget in bytes
 };
 
 }  // namespace hyvox

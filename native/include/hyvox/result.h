@@ -107,6 +107,32 @@ struct TessellationStats {
     }
 };
 
+/// What the run was estimated to hold beside its mesh before any work, pass by pass (bytes;
+/// src/voxelize/memory_estimate.h), and the surface and inside it was estimated from. The run
+/// is refused when the largest exceeds the memory budget.
+struct MemoryEstimateStats {
+    std::uint64_t surface_pass = 0;      ///< the surface pass's buffers
+    std::uint64_t solid_pass = 0;        ///< the solid pass's
+    std::uint64_t attribute_values = 0;  ///< the attribute values'
+    std::uint64_t vdb_write = 0;         ///< the .vdb write's grids
+    std::uint64_t peak = 0;              ///< the largest of them, held at once
+    std::uint64_t surface_leaves = 0;    ///< the surface's estimated 8³ leaves
+    std::uint64_t surface_voxels = 0;    ///< and voxels
+    std::uint64_t inside_bricks = 0;     ///< the inside's estimated bricks (solid mode)
+    /// Calls f(name, value) for each field, as the stats JSON names them.
+    template <typename F>
+    void visit(F&& f) const {
+        f("surface_pass", surface_pass);
+        f("solid_pass", solid_pass);
+        f("attribute_values", attribute_values);
+        f("vdb_write", vdb_write);
+        f("peak", peak);
+        f("surface_leaves", surface_leaves);
+        f("surface_voxels", surface_voxels);
+        f("inside_bricks", inside_bricks);
+    }
+};
+
 /// Solid mode (src/solid/): what the closedness check found, the rule it led to, and how much
 /// of the grid was decided per region instead of per voxel.
 struct SolidStats {
@@ -214,6 +240,7 @@ struct Stats {
     /// the backend's section.
     std::optional<SolidStats> solid;
     std::optional<SdfStats> sdf;  ///< with the sdf attribute
+    std::optional<MemoryEstimateStats> memory_estimate;  ///< every run of voxelize()
 
     /// Adds `ms` milliseconds to `stage` (a new stage goes last).
     void addTiming(const std::string& stage, double ms) {
@@ -245,6 +272,7 @@ struct Stats {
         if (tessellation) f("tessellation", *tessellation);
         if (solid) f("solid", *solid);
         if (sdf) f("sdf", *sdf);
+        if (memory_estimate) f("memory_estimate", *memory_estimate);
     }
 };
 

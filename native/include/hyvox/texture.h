@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "hyvox/options.h"
+
 namespace hyvox {
 
 /// A decoded image: linear texels, rows top first.
@@ -48,6 +50,12 @@ Texture textureFromLinear(const float* pixels, int width, int height, int channe
 /// @throws InvalidInput naming the file when it is missing, not a PNG, damaged or larger than
 ///         kMaxTexels
 Texture readPngTexture(const std::string& path);
+
+/// Reads an 8- or 16-bit PNG as a displacement height image (hyvox/options.h): values 0..1,
+/// row 0 = the file's top row; a colour image's height is the mean of its R, G, B (Blender's
+/// texture intensity), an 8-bit file's values as stored (no gamma, as Blender's non-colour
+/// data). The same limits and errors as readPngTexture.
+HeightImage readPngHeight(const std::string& path);
 
 /// One decoded image per material, for MeshView::material_textures.
 struct MaterialTextures {

@@ -281,8 +281,11 @@ def plan_grid(vertices, triangles, **options) -> dict:
     return _core.plan_grid(_as_vertices(vertices), _as_triangles(triangles), native_options)
 
 
-def read_mesh(path: Union[str, os.PathLike], attributes: bool = False, cancel: Optional[CancelToken] = None):
-    """Read a mesh file (PLY binary/ascii, .ply.gz, OBJ, and what assimp reads).
+def read_mesh(path: Union[str, os.PathLike], attributes: bool = False, cancel: Optional[CancelToken] = None,
+              memory_budget_mib: int = 0):
+    """Read a mesh file: PLY, OBJ, STL, OFF and glTF/GLB (also gzipped, as mesh.ply.gz) by
+    hyvox's own strict readers; binary FBX and 3MF through assimp, in a process of
+    its own, so that no file can crash or hang the caller (docs/mesh-formats.md).
 
     Returns (vertices float32 (N, 3), triangles uint32 (M, 3)), triangles exactly as in the
     file (degenerate ones included). With attributes=True, returns
@@ -290,13 +293,17 @@ def read_mesh(path: Union[str, os.PathLike], attributes: bool = False, cancel: O
     "uvs" (float32 (N, 2)) and, for an OBJ with materials, "material_ids" (uint32 (M,)),
     "palette" (float32 (P, 3), linear MTL Kd), "textures" (P paths of map_Kd PNGs or None)
     and "material_names"; these go to voxelize() as they are. What the reader could not use
-    (a missing .mtl or image: the material keeps its Kd) is a UserWarning. Raises ValueError for a missing or unreadable file, and
-    hyvox.Cancelled when `cancel` (a hyvox.CancelToken) is cancelled from another thread while
-    the file is read (the GIL is released meanwhile).
+    (a missing .mtl or image: the material keeps its Kd) is a UserWarning. Raises ValueError
+    for a missing, unreadable or damaged file and a format hyvox does not read (the message
+    names the file and what is wrong), and hyvox.Cancelled when `cancel` (a
+    hyvox.CancelToken) is cancelled from another thread while the file is read (the GIL is
+    released meanwhile). memory_budget_mib bounds a gzip's output and the assimp process's
+    memory (0 = half of this machine's memory, as voxelize's memory_budget_mib).
     """
     if cancel is not None and not isinstance(cancel, CancelToken):
         raise TypeError("cancel must be a hyvox.CancelToken or None")
-    vertices, triangles, colors, uvs, materials, problems = _core.read_mesh(os.fspath(path), cancel=cancel)
+    vertices, triangles, colors, uvs, materials, problems = _core.read_mesh(os.fspath(path), cancel=cancel,
+                                                                            memory_budget_mib=memory_budget_mib)
     if not attributes:
         return vertices, triangles
     for problem in problems:

@@ -15,12 +15,14 @@ namespace hyvox::python {
 void bindMeshIo(py::module_& m) {
     m.def(
         "read_mesh",
-        [](const std::filesystem::path& path, std::shared_ptr<CancelToken> cancel) {
+        [](const std::filesystem::path& path, std::shared_ptr<CancelToken> cancel, std::uint64_t memory_budget_mib) {
             Mesh mesh;
             {
                 PythonInterrupter interrupter(std::move(cancel), py::none());
                 py::gil_scoped_release release;
-                mesh = readMesh(path.string(), &interrupter);
+                MeshReadOptions options;
+                options.memory_budget_mib = memory_budget_mib;
+                mesh = readMesh(path.string(), &interrupter, options);
             }
             const auto n = py::ssize_t(mesh.vertexCount());
             const auto t = py::ssize_t(mesh.triangleCount());
@@ -41,8 +43,10 @@ void bindMeshIo(py::module_& m) {
                                   arrayFromVector(std::move(mesh.triangles), {t, 3}), colors, uvs, materials,
                                   py::cast(mesh.warnings));
         },
-        py::arg("path"), py::arg("cancel") = py::none(),
-        "Read a mesh file; cancel: a CancelToken whose cancel() stops the reading (hyvox.Cancelled). Returns (vertices float32 (N,3), triangles uint32 (M,3), colors float32 (N,4) "
+        py::arg("path"), py::arg("cancel") = py::none(), py::arg("memory_budget_mib") = 0,
+        "Read a mesh file; cancel: a CancelToken whose cancel() stops the reading (hyvox.Cancelled); "
+        "memory_budget_mib: what a gzip's output and the assimp reader process may take (0 = half of this "
+        "machine's memory). Returns (vertices float32 (N,3), triangles uint32 (M,3), colors float32 (N,4) "
         "or None, uvs float32 (N,2) or None, materials (dict: material_ids uint32 (M,), palette float32 (P,3) linear, "
         "textures [str or None] * P, material_names [str] * P) or None, warnings [str]).");
 

@@ -76,7 +76,7 @@ py::array_t<bool> toDense(const Grid& g) {
     if (bytes > g->stats.options.memoryBudgetBytes())
         throw ResourceError("to_dense() of a " + g->grid.dimsText() + " grid needs " + std::to_string(bytes >> 20) +
                             " MiB, more than the memory budget of " +
-                            std::to_string(g->stats.options.memory_budget_mib) +
+                            std::to_string(g->stats.options.memoryBudgetMib()) +
                             " MiB; use coords() or write_vdb(), which stay sparse");
     py::array_t<bool> dense({py::ssize_t(d[0]), py::ssize_t(d[1]), py::ssize_t(d[2])});
     bool* out = dense.mutable_data();

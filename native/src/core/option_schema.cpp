@@ -103,9 +103,9 @@ std::vector<OptionSpec> buildSchema() {
          "CPU threads of the voxelization and of the write; 0 = all cores", false, 0, 4096, false, {}, {}, nullptr,
          HYVOX_FIELD(asInteger, threads), HYVOX_WRITE_FIELD(asInteger, threads)});
     add({"memory_budget_mib", T::Integer, "run", "Memory Budget", "MiB",
-         "memory the voxels may take (tile buffers and the leaves of the result), and the OpenVDB grids of the "
-         "write beside them", false, 1, double(1 << 30), false, {}, {}, nullptr,
-         HYVOX_FIELD(asInteger, memory_budget_mib), HYVOX_WRITE_FIELD(asInteger, memory_budget_mib)});
+         "memory a run may take beside its mesh (every pass and the .vdb it writes; a run estimated to need more "
+         "is refused before it starts); 0 = half of this machine's memory", false, 0, double(1 << 30), false,
+         {}, {}, nullptr, HYVOX_FIELD(asInteger, memory_budget_mib), HYVOX_WRITE_FIELD(asInteger, memory_budget_mib)});
     add({"tile_size", T::Integer, "run", "Tile Size", "voxels",
          "side of the boxes voxelized one after the other (rounded up to a multiple of 8); 0 = from the "
          "memory budget", false, 0, kMaxResolution, false, {}, {}, nullptr, HYVOX_FIELD(asInteger, tile_size)});

@@ -64,29 +64,30 @@ std::mutex mutex;
 std::map<std::string, void*> loaded;  // name -> dlopen handle, never closed
 
 void* load(const std::string& name, const std::string& purpose) {
-    const std::string file = "libhyvox_" + name + ".so";
+    const std::string path = pluginFile("libhyvox_" + name + ".so", purpose);
+    // RTLD_LOCAL: its symbols (its own copy of hyvox's internals, all hidden but the
+    // entry point) never stand in for anyone else's. RTLD_NOW: a missing symbol fails here.
+    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+        const char* why = ::dlerror();
+        throw BackendError(purpose + " needs " + path + ", which cannot be loaded: " + (why ? why : "unknown error"));
+    }
+    checkBuildId(handle, path, purpose);
+    return handle;
+}
+
+}  // namespace
+
+std::string pluginFile(const std::string& file, const std::string& purpose) {
     std::string looked;
     for (const std::string& folder : searchFolders()) {
         const std::string path = folder + "/" + file;
-        if (!isFile(path)) {
-            looked += (looked.empty() ? "" : ", ") + folder;
-            continue;
-        }
-        // RTLD_LOCAL: its symbols (its own copy of hyvox's internals, all hidden but the
-        // entry point) never stand in for anyone else's. RTLD_NOW: a missing symbol fails here.
-        void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!handle) {
-            const char* why = ::dlerror();
-            throw BackendError(purpose + " needs " + path + ", which cannot be loaded: " + (why ? why : "unknown error"));
-        }
-        checkBuildId(handle, path, purpose);
-        return handle;
+        if (isFile(path)) return path;
+        looked += (looked.empty() ? "" : ", ") + folder;
     }
     throw BackendError(purpose + " needs " + file + ", which is not installed with hyvox (looked in " +
                        (looked.empty() ? std::string("no folder") : looked) + ")");
 }
-
-}  // namespace
 
 void* pluginSymbol(const std::string& name, const char* symbol, const std::string& purpose) {
     std::lock_guard<std::mutex> lock(mutex);

@@ -7,9 +7,11 @@
 // 2.7 ms of CPU in the dynamic linker, with libepoxy 1.8 ms, with neither 0.45 ms
 // (docs/why/startup.md).
 //
-//   libhyvox_assimp.so      mesh formats other than PLY and OBJ (io/assimp_reader.h)
 //   libhyvox_gl_methods.so  the GL methods: triangle, fragment, hybrid, tessellation
 //                           (core/gl_methods.h)
+//
+// The same folders hold the helper programs hyvox starts as processes of their own:
+//   hyvox_assimp_reader     the mesh formats read through assimp (io/assimp_reader.h)
 //
 // Where a plugin is looked for, in order (the first folder that has the file is used):
 //   - $HYVOX_PLUGIN_DIR, when set (only there: to point a relocated build at its plugins,
@@ -41,7 +43,7 @@ extern "C" HYVOX_PLUGIN_ENTRY const char hyvox_plugin_build_id[];
 
 namespace hyvox {
 
-// The address of `symbol` in plugin `name` ("assimp" -> libhyvox_assimp.so), loading the
+// The address of `symbol` in plugin `name` ("gl_methods" -> libhyvox_gl_methods.so), loading the
 // plugin on first use (thread-safe; it stays loaded). BackendError when the plugin or a
 // library it needs cannot be loaded, or the plugin is from another build:
 // "<purpose> needs libhyvox_<name>.so, ...: <reason>".
@@ -49,6 +51,10 @@ void* pluginSymbol(const std::string& name, const char* symbol, const std::strin
 
 // This build's id, which each of its plugins carries (core/build_id.cmake).
 const char* buildId();
+// The path of `file` (a plugin or a helper program) in the first of the folders above that
+// has it. BackendError when none has: "<purpose> needs <file>, which is not installed with
+// hyvox (looked in ...)".
+std::string pluginFile(const std::string& file, const std::string& purpose);
 
 // Whether plugin `name` was loaded by this process (nothing is loaded to answer).
 bool pluginLoaded(const std::string& name);

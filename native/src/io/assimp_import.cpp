@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Mesh files through assimp, in the plugin libhyvox_assimp.so (core/plugin_library.h): the
-// only code that links libassimp, loaded by assimp_reader.cpp when a file needs it. Only aiProcess_Triangulate is requested: the cleaning steps
+// Mesh files through assimp, inside the assimp reader process. Only aiProcess_Triangulate is
+// requested: the cleaning steps
 // (JoinIdenticalVertices, FindDegenerates, SortByPType + removal, ...) would drop or merge
 // triangles, and the voxelizer must see the file's triangles as they are (validate() skips
 // and counts degenerate ones itself).
@@ -18,11 +18,13 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "hyvox/errors.h"
+#include "io/mesh_formats.h"
+#include "io/weld_vertices.h"
 
 namespace hyvox::io {
 namespace {
@@ -69,57 +71,25 @@ struct Appender {
     }
 };
 
-// Assimp's STL importer gives every face corner its own vertex. Welding corners whose
-// attributes are bitwise equal restores the file's shared vertices (and vertex count)
-// without touching any triangle.
-void weldIdenticalVertices(Mesh& mesh) {
-    const std::size_t n = mesh.vertexCount();
-    const std::size_t colors = mesh.hasColors() ? 4 : 0;
-    const std::size_t uvs = mesh.hasUvs() ? 2 : 0;
-    struct Key {
-        float v[9];
-        std::size_t size;
-        bool operator==(const Key& o) const { return std::memcmp(v, o.v, size * sizeof(float)) == 0; }
-    };
-    struct Hash {
-        std::size_t operator()(const Key& k) const {
-            std::uint64_t h = 1469598103934665603ull;
-            const auto* bytes = reinterpret_cast<const unsigned char*>(k.v);
-            for (std::size_t b = 0; b < k.size * sizeof(float); ++b) h = (h ^ bytes[b]) * 1099511628211ull;
-            return std::size_t(h);
-        }
-    };
-    std::unordered_map<Key, std::uint32_t, Hash> index;
-    index.reserve(n);
-    std::vector<std::uint32_t> remap(n);
-    Mesh out;
-    for (std::size_t v = 0; v < n; ++v) {
-        Key key{};
-        key.size = 3 + colors + uvs;
-        std::memcpy(key.v, &mesh.positions[3 * v], 3 * sizeof(float));
-        if (colors) std::memcpy(key.v + 3, &mesh.colors[4 * v], 4 * sizeof(float));
-        if (uvs) std::memcpy(key.v + 3 + colors, &mesh.uvs[2 * v], 2 * sizeof(float));
-        const auto [it, inserted] = index.emplace(key, std::uint32_t(out.vertexCount()));
-        if (inserted) {
-            out.positions.insert(out.positions.end(), key.v, key.v + 3);
-            if (colors) out.colors.insert(out.colors.end(), key.v + 3, key.v + 7);
-            if (uvs) out.uvs.insert(out.uvs.end(), key.v + 3 + colors, key.v + 5 + colors);
-        }
-        remap[v] = it->second;
+// The importer with only the loaders of the formats offered through assimp, so that no file,
+// whatever its name or content, reaches another (fewer parsers, fewer ways to fail).
+// UnregisterLoader hands each loader back to us to delete.
+void keepOfferedFormats(Assimp::Importer& importer) {
+    std::vector<Assimp::BaseImporter*> others;
+    for (std::size_t n = 0; n < importer.GetImporterCount(); ++n) {
+        Assimp::BaseImporter* loader = importer.GetImporter(n);
+        std::set<std::string> extensions;
+        loader->GetExtensionList(extensions);
+        const bool offered = std::any_of(extensions.begin(), extensions.end(), [](const std::string& e) {
+            const MeshFormat* format = meshFormat(e);
+            return format && readByAssimp(format->reader);
+        });
+        if (!offered) others.push_back(loader);
     }
-    out.triangles = std::move(mesh.triangles);
-    for (std::uint32_t& t : out.triangles) t = remap[t];
-    mesh = std::move(out);
-}
-
-// The importer without its PLY and OBJ loaders, so that no file, whatever its name or
-// content, reaches them. UnregisterLoader hands the loader back to us to delete.
-void removeOwnFormats(Assimp::Importer& importer) {
-    for (const char* extension : {"ply", "obj"})
-        if (Assimp::BaseImporter* loader = importer.GetImporter(extension)) {
-            importer.UnregisterLoader(loader);
-            delete loader;
-        }
+    for (Assimp::BaseImporter* loader : others) {
+        importer.UnregisterLoader(loader);
+        delete loader;
+    }
 }
 
 Mesh toMesh(const aiScene* scene, Assimp::Importer& importer, const std::string& path, const std::string& extension) {
@@ -136,7 +106,7 @@ Mesh toMesh(const aiScene* scene, Assimp::Importer& importer, const std::string&
         if (!seen[m]) appender.append(*scene->mMeshes[m], aiMatrix4x4());
 
     if (mesh.triangleCount() == 0) throw InvalidInput("mesh file '" + path + "' contains no triangles");
-    if (extension == "stl") weldIdenticalVertices(mesh);
+    weldIdenticalVertices(mesh);
     return mesh;
 }
 
@@ -170,27 +140,23 @@ Mesh finish(const aiScene* scene, Assimp::Importer& importer, const Interrupting
     return toMesh(scene, importer, path, extension);
 }
 
-Mesh importFile(const std::string& path, const std::string& extension, Interrupter* interrupter) {
+}  // namespace
+
+Mesh importWithAssimp(const std::string& path, const std::string& extension, Interrupter* interrupter) {
     Assimp::Importer importer;
-    removeOwnFormats(importer);
+    keepOfferedFormats(importer);
     const InterruptingProgress& progress = watch(importer, interrupter);
     const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
     return finish(scene, importer, progress, path, extension, interrupter);
 }
 
-Mesh importBytes(const char* data, std::size_t size, const std::string& extension, const std::string& path,
-                 Interrupter* interrupter) {
+Mesh importWithAssimp(const char* data, std::size_t size, const std::string& extension, const std::string& path,
+                      Interrupter* interrupter) {
     Assimp::Importer importer;
-    removeOwnFormats(importer);
+    keepOfferedFormats(importer);
     const InterruptingProgress& progress = watch(importer, interrupter);
     const aiScene* scene = importer.ReadFileFromMemory(data, size, aiProcess_Triangulate, extension.c_str());
     return finish(scene, importer, progress, path, extension, interrupter);
 }
 
-const AssimpImport table{importFile, importBytes};
-
-}  // namespace
-
 }  // namespace hyvox::io
-
-extern "C" HYVOX_PLUGIN_ENTRY const hyvox::io::AssimpImport* hyvox_assimp_import() { return &hyvox::io::table; }

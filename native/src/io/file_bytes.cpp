@@ -50,10 +50,11 @@ std::vector<char> readUpTo(const Fd& file, const std::string& path, std::size_t 
 
 }  // namespace
 
-void checkMeshFile(const std::string& path) {
+std::uint64_t checkMeshFile(const std::string& path) {
     struct stat st {};
     const Fd file = openRegular(path, st);
     if (st.st_size == 0) throw InvalidInput("mesh file '" + path + "' is empty");
+    return std::uint64_t(st.st_size);
 }
 
 std::vector<char> readFileBytes(const std::string& path, std::size_t max_bytes) {

@@ -3,14 +3,15 @@
 // Whole files into memory, for the mesh readers. Only regular files are read: a FIFO or a
 // device would block or never end, and a folder is not a mesh.
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace hyvox::io {
 
-// Throws InvalidInput ("mesh file 'PATH': ...") when the path is missing, unreadable, a
-// folder or not a regular file, or empty.
-void checkMeshFile(const std::string& path);
+// The file's size. Throws InvalidInput ("mesh file 'PATH': ...") when the path is missing,
+// unreadable, a folder or not a regular file, or empty.
+std::uint64_t checkMeshFile(const std::string& path);
 
 // The file's bytes; at most `max_bytes` are read (more is an InvalidInput).
 std::vector<char> readFileBytes(const std::string& path, std::size_t max_bytes);

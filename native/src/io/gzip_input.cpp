@@ -10,14 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "hyvox/options.h"
 #include "io/file_bytes.h"
 #include "io/mesh_file_error.h"
 
 namespace hyvox::io {
 
-std::uint64_t gzipOutputLimit(std::uint64_t compressed_bytes) {
-    const std::uint64_t budget = VoxelizeOptions{}.memoryBudgetBytes();
+std::uint64_t gzipOutputLimit(std::uint64_t compressed_bytes, std::uint64_t budget) {
     const std::uint64_t ratio_cap = compressed_bytes > budget / 100 ? budget : 100 * compressed_bytes;
     return std::min(budget, std::max<std::uint64_t>(256ull << 20, ratio_cap));
 }
@@ -87,10 +85,10 @@ std::vector<char> readGzipFile(const std::string& path, std::uint64_t max_output
     return gunzip(readCompressed(path, max_output), path, max_output, interrupter);
 }
 
-std::vector<char> readGzipFile(const std::string& path, Interrupter* interrupter) {
-    const std::vector<char> input = readCompressed(path, VoxelizeOptions{}.memoryBudgetBytes());
+std::vector<char> readGzipMeshFile(const std::string& path, std::uint64_t budget_bytes, Interrupter* interrupter) {
+    const std::vector<char> input = readCompressed(path, budget_bytes);
     throwIfInterrupted(interrupter);
-    return gunzip(input, path, gzipOutputLimit(input.size()), interrupter);
+    return gunzip(input, path, gzipOutputLimit(input.size(), budget_bytes), interrupter);
 }
 
 }  // namespace hyvox::io

@@ -12,10 +12,10 @@
 
 namespace hyvox::io {
 
-// The largest output readMesh accepts from `compressed_bytes` of gzip: at most the default
-// voxelization memory budget (4 GiB), and at most 100 times the input but never below
-// 256 MiB. Real meshes compress 2-5x (the shared ones: 2.2-3.6x); bombs reach 1000x.
-std::uint64_t gzipOutputLimit(std::uint64_t compressed_bytes);
+// The largest output readMesh accepts from `compressed_bytes` of gzip: at most the read's
+// memory budget (`budget_bytes`), and at most 100 times the input but never below 256 MiB.
+// Real meshes compress 2-5x (the shared ones: 2.2-3.6x); bombs reach 1000x.
+std::uint64_t gzipOutputLimit(std::uint64_t compressed_bytes, std::uint64_t budget_bytes);
 
 // Decompresses gzip bytes already in memory (`path` is quoted in errors), as readGzipFile
 // does with a file's bytes; the gzip fuzzer's entry.
@@ -28,7 +28,7 @@ std::vector<char> gunzip(const std::vector<char>& compressed, const std::string&
 // after every MiB of output (hyvox::Cancelled).
 std::vector<char> readGzipFile(const std::string& path, std::uint64_t max_output, Interrupter* interrupter = nullptr);
 
-// The same with max_output = gzipOutputLimit(the file's size).
-std::vector<char> readGzipFile(const std::string& path, Interrupter* interrupter = nullptr);
+// readGzipFile with max_output = gzipOutputLimit(the file's size, budget_bytes): readMesh's.
+std::vector<char> readGzipMeshFile(const std::string& path, std::uint64_t budget_bytes, Interrupter* interrupter);
 
 }  // namespace hyvox::io

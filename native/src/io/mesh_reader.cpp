@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// readMesh picks the reader: PLY and OBJ (plain or .gz) are read by hyvox's own strict
-// readers, also a PLY under another name (told by its first line); every other format goes
-// to assimp, which never sees PLY or OBJ (assimp_reader.h).
+// readMesh picks the reader by the file's extension (mesh_formats.h): PLY, OBJ, STL, OFF and
+// glTF (plain or .gz) are read by hyvox's own strict readers, also a PLY under another name (told
+// by its first line); FBX (its container checked here first) and 3MF go to the assimp process
+// (assimp_reader.h); any other name is refused, naming the formats hyvox reads.
 #include <algorithm>
 #include <cctype>
 #include <string>
@@ -9,14 +10,20 @@
 
 #include "hyvox/errors.h"
 #include "hyvox/mesh_io.h"
+#include "hyvox/options.h"
 #include "io/assimp_reader.h"
+#include "io/fbx_check.h"
 #include "io/file_bytes.h"
+#include "io/gltf_reader.h"
 #include "io/gzip_input.h"
 #include "io/mapped_file.h"
 #include "io/mesh_file_error.h"
+#include "io/mesh_formats.h"
 #include "io/obj_materials.h"
 #include "io/obj_reader.h"
+#include "io/off_reader.h"
 #include "io/ply_reader.h"
+#include "io/stl_reader.h"
 
 namespace hyvox {
 namespace {
@@ -38,43 +45,69 @@ std::string extensionOf(const std::string& lower_path) {
     return lower_path.substr(dot + 1);
 }
 
-// An uncompressed file is read whole only by the readers that parse from memory; assimp
-// opens files itself (some formats refer to other files beside them).
+// An uncompressed file is read whole only by the readers that parse from memory; the assimp
+// process opens files itself (some formats refer to other files beside them).
 constexpr std::size_t kMaxMeshFileBytes = std::size_t(1) << 40;
 
-// The bytes of a PLY or OBJ file, or of another format that was gzipped.
-Mesh readBytes(const char* data, std::size_t size, const std::string& path, const std::string& extension,
-               Interrupter* interrupter) {
-    throwIfInterrupted(interrupter);
-    // A PLY is told by its first line whatever its name, compressed or not.
-    if (extension == "ply" || io::looksLikePly(data, size)) return io::readPly(data, size, path, interrupter);
-    if (extension == "obj") {
-        Mesh mesh = io::readObj(data, size, path, interrupter);
-        io::readObjMaterials(mesh, path);
-        return mesh;
-    }
-    return io::readWithAssimp(data, size, extension, path, interrupter);  // another format, gzipped
+std::uint64_t budgetBytes(const MeshReadOptions& options) {
+    VoxelizeOptions budget;
+    budget.memory_budget_mib = options.memory_budget_mib;
+    return budget.memoryBudgetBytes();
 }
 
-Mesh readMeshFile(const std::string& path, Interrupter* interrupter) {
-    io::checkMeshFile(path);
+// The bytes of a file our own readers read, compressed or not; a gzipped assimp format.
+Mesh readBytes(const char* data, std::size_t size, const std::string& path, const io::MeshFormat* format,
+               const MeshReadOptions& options, Interrupter* interrupter) {
+    throwIfInterrupted(interrupter);
+    // A PLY is told by its first line whatever its name, compressed or not.
+    if (io::looksLikePly(data, size)) return io::readPly(data, size, path, interrupter);
+    switch (format->reader) {
+        case io::MeshReader::Ply: return io::readPly(data, size, path, interrupter);
+        case io::MeshReader::Obj: {
+            Mesh mesh = io::readObj(data, size, path, interrupter);
+            io::readObjMaterials(mesh, path);
+            return mesh;
+        }
+        case io::MeshReader::Stl: return io::readStl(data, size, path, interrupter);
+        case io::MeshReader::Off: return io::readOff(data, size, path, interrupter);
+        case io::MeshReader::Gltf: return io::readGltf(data, size, path, budgetBytes(options), interrupter);
+        case io::MeshReader::Fbx: io::checkFbxContainer(data, size, path, budgetBytes(options)); break;
+        case io::MeshReader::Assimp: break;
+    }
+    return io::readWithAssimp(data, size, format->extension, path, io::assimpReadLimits(options, size), interrupter);
+}
+
+[[noreturn]] void refuseFormat(const std::string& path, const std::string& extension) {
+    const std::string offered = "hyvox reads " + io::offeredExtensions() + " files, also gzipped (as mesh.ply.gz)";
+    if (extension.empty()) io::failMeshFile(path, "its name has no extension to tell its format by: " + offered);
+    io::failMeshFile(path, "'." + extension + "' is not a format hyvox reads: " + offered);
+}
+
+Mesh readMeshFile(const std::string& path, const MeshReadOptions& options, Interrupter* interrupter) {
+    const std::uint64_t file_bytes = io::checkMeshFile(path);
     const std::string lower_path = lower(path);
     const bool gzipped = endsWith(lower_path, ".gz");
     const std::string extension = extensionOf(gzipped ? lower_path.substr(0, lower_path.size() - 3) : lower_path);
+    const io::MeshFormat* format = io::meshFormat(extension);
 
-    if (gzipped && extension.empty())
-        throw InvalidInput("cannot tell the format of '" + path + "': name it like mesh.ply.gz or mesh.obj.gz");
-    // The prefix is read only when the name does not already send the file to our readers.
-    const bool ours = gzipped || extension == "ply" || extension == "obj" || [&] {
-        const std::vector<char> prefix = io::readFilePrefix(path, 4);
-        return io::looksLikePly(prefix.data(), prefix.size());
-    }();
-    if (!ours) return io::readWithAssimp(path, extension, interrupter);
-    if (!gzipped) {
+    if (gzipped) {
+        if (!format) refuseFormat(path, extension);
+        const std::vector<char> data = io::readGzipMeshFile(path, budgetBytes(options), interrupter);
+        return readBytes(data.data(), data.size(), path, format, options, interrupter);
+    }
+    if (!format || format->reader != io::MeshReader::Assimp) {
+        // Our readers and the FBX check read the file from memory; the checked FBX bytes are
+        // then what the assimp process gets (on its standard input), not the file again.
+        // A PLY under another name is read as one; any other unknown name is refused.
+        if (!format) {
+            const std::vector<char> prefix = io::readFilePrefix(path, 4);
+            if (!io::looksLikePly(prefix.data(), prefix.size())) refuseFormat(path, extension);
+            format = io::meshFormat("ply");
+        }
         const io::MappedFile file(path, kMaxMeshFileBytes);
         Mesh mesh;
         try {
-            mesh = readBytes(file.data(), file.size(), path, extension, interrupter);
+            mesh = readBytes(file.data(), file.size(), path, format, options, interrupter);
         } catch (const InvalidInput&) {
             // Zeros where another process cut the file short: not the file's own error.
             if (file.changedWhileRead()) io::failMeshFile(path, "changed size while it was read");
@@ -83,18 +116,17 @@ Mesh readMeshFile(const std::string& path, Interrupter* interrupter) {
         if (file.changedWhileRead()) io::failMeshFile(path, "changed size while it was read");
         return mesh;
     }
-    const std::vector<char> data = io::readGzipFile(path, interrupter);
-    return readBytes(data.data(), data.size(), path, extension, interrupter);
+    return io::readWithAssimp(path, extension, io::assimpReadLimits(options, file_bytes), interrupter);
 }
 
 }  // namespace
 
-Mesh readMesh(const std::string& path, Interrupter* interrupter) {
+Mesh readMesh(const std::string& path, Interrupter* interrupter, const MeshReadOptions& options) {
     const InterrupterRun run(interrupter, "hyvox read mesh");
     // 0% and 100% at the ends of every read (a gzip reports its share in between), so a
     // front end sees the reading start: the CLI's progress line, a test waiting to interrupt.
     throwIfInterrupted(interrupter, 0);
-    Mesh mesh = readMeshFile(path, interrupter);
+    Mesh mesh = readMeshFile(path, options, interrupter);
     throwIfInterrupted(interrupter, 100);
     return mesh;
 }

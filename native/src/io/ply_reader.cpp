@@ -7,6 +7,7 @@
 #include "io/ply_reader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
@@ -14,6 +15,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "hyvox/zero_page_allocator.h"
@@ -186,6 +188,7 @@ public:
     BinarySource(const char* begin, const char* end, bool swap) : pos_(begin), end_(end), swap_(swap) {}
 
     std::size_t remaining() const { return std::size_t(end_ - pos_); }
+    const char* end() const { return end_; }
     double scalar(Type type) {
         const std::size_t n = sizeOf(type);
         if (remaining() < n) throw RecordError{"the file ends"};
@@ -284,6 +287,7 @@ public:
         : scanner_(begin, end, first_line), begin_(begin), end_(end) {}
 
     std::size_t remaining() const { return std::size_t(end_ - begin_) - consumed_; }
+    const char* end() const { return end_; }
 
     double scalar(Type type) {
         std::string_view word;
@@ -375,6 +379,15 @@ public:
                 skipElement(e, source);
             }
         }
+        // Records the header does not count (a count lowered by damage, pieces of another file)
+        // would be dropped without a word: only whitespace may follow the last element.
+        const char* rest = source.end() - source.remaining();
+        const char* other = std::find_if(rest, source.end(), [](char c) { return !std::isspace(static_cast<unsigned char>(c)); });
+        if (other != source.end())
+            failMeshFile(name_, std::to_string(source.end() - rest) + " bytes follow the last element the header declares (" +
+                                    header_.elements.back().name + "): a count is wrong, or the file holds pieces of another");
+        if (std::is_same_v<Source, AsciiSource> && endsInsideAWord(source.end() - 1, source.end()))
+            failMeshFile(name_, kCutInsideTheLastLine);
     }
 
 private:

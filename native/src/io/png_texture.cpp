@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// readPngTexture (hyvox/texture.h) with libpng's simplified API, which expands grey, palette
-// and low bit depths to RGB(A) for us.
+// The images hyvox reads, readPngTexture and readPngHeight (hyvox/texture.h), with libpng's
+// simplified API, which expands grey, palette and low bit depths for us; one opening and one
+// texel limit for both.
 #include <png.h>
 
 #include <algorithm>
@@ -13,19 +14,35 @@
 
 namespace hyvox {
 
-Texture readPngTexture(const std::string& path) {
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!file) throw InvalidInput("cannot open texture '" + path + "'");
+namespace {
+
+// A PNG file opened and its header read, checked against the one texel limit of every image
+// hyvox reads (colour textures and displacement heights) before any pixel is allocated.
+struct PngFile {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file{nullptr, &std::fclose};
     png_image image{};
-    image.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_stdio(&image, file.get()))
-        throw InvalidInput("texture '" + path + "' is not a readable PNG: " + image.message);
-    // Checked before the pixels are allocated.
-    if (std::uint64_t(image.width) * image.height > Texture::kMaxTexels) {
-        png_image_free(&image);
-        throw InvalidInput("texture '" + path + "' has " + std::to_string(image.width) + "x" +
-                           std::to_string(image.height) + " texels, more than the limit of 8192x8192");
+
+    PngFile(const std::string& path, const char* what) {
+        file.reset(std::fopen(path.c_str(), "rb"));
+        if (!file) throw InvalidInput(std::string("cannot open ") + what + " '" + path + "'");
+        image.version = PNG_IMAGE_VERSION;
+        if (!png_image_begin_read_from_stdio(&image, file.get()))
+            throw InvalidInput(std::string(what) + " '" + path + "' is not a readable PNG: " + image.message);
+        if (std::uint64_t(image.width) * image.height > Texture::kMaxTexels) {
+            png_image_free(&image);
+            throw InvalidInput(std::string(what) + " '" + path + "' has " + std::to_string(image.width) + "x" +
+                               std::to_string(image.height) + " texels, more than the limit of 8192x8192");
+        }
     }
+    PngFile(const PngFile&) = delete;
+    PngFile& operator=(const PngFile&) = delete;
+};
+
+}  // namespace
+
+Texture readPngTexture(const std::string& path) {
+    PngFile png(path, "texture");
+    png_image& image = png.image;
     const bool alpha = (image.format & PNG_FORMAT_FLAG_ALPHA) != 0;
     const int channels = alpha ? 4 : 3;
     const std::size_t samples = std::size_t(image.width) * image.height * std::size_t(channels);
@@ -50,6 +67,37 @@ Texture readPngTexture(const std::string& path) {
     if (!png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr))
         throw InvalidInput("texture '" + path + "' could not be decoded: " + image.message);
     return textureFromBytes(pixels.data(), int(image.width), int(image.height), channels);
+}
+
+HeightImage readPngHeight(const std::string& path) {
+    PngFile png(path, "displacement image");
+    png_image& image = png.image;
+    // libpng's simplified API converts any PNG to linear 16-bit grey; for colour images
+    // it uses the sRGB luminance weights, so ask for RGB and average instead (Blender's
+    // texture intensity). 16-bit output keeps a 16-bit file's precision; an 8-bit file's
+    // sRGB-coded values are kept as stored (no gamma), like Blender's non-colour data.
+    const bool colour = (image.format & PNG_FORMAT_FLAG_COLOR) != 0;
+    const bool sixteen = (image.format & PNG_FORMAT_FLAG_LINEAR) != 0;  // 16-bit file
+    image.format = (colour ? PNG_FORMAT_RGB : PNG_FORMAT_GRAY) | (sixteen ? PNG_FORMAT_FLAG_LINEAR : 0);
+    const int channels = colour ? 3 : 1;
+    const std::size_t count = std::size_t(image.width) * image.height * channels;
+    HeightImage out;
+    out.width = int(image.width);
+    out.height = int(image.height);
+    out.values.resize(std::size_t(image.width) * image.height);
+    // Decode into `raw` (8- or 16-bit samples) and average each pixel's channels to 0..1.
+    auto decode = [&](auto raw, double maximum) {
+        if (!png_image_finish_read(&image, nullptr, raw.data(), 0, nullptr)) return false;
+        for (std::size_t p = 0; p < out.values.size(); ++p) {
+            double sum = 0;
+            for (int c = 0; c < channels; ++c) sum += raw[p * channels + c];
+            out.values[p] = float(sum / (channels * maximum));
+        }
+        return true;
+    };
+    const bool ok = sixteen ? decode(std::vector<png_uint_16>(count), 65535.0) : decode(std::vector<png_byte>(count), 255.0);
+    if (!ok) throw InvalidInput("displacement image '" + path + "' could not be decoded: " + image.message);
+    return out;
 }
 
 MaterialTextures readMaterialTextures(const std::vector<std::string>& paths) {

@@ -55,6 +55,18 @@ private:
     std::size_t line_;
 };
 
+// Whether the text ends inside a word (its last byte is no space or line end). A text mesh
+// file cut inside its last number reads as another number, so the readers of formats without
+// an end marker (ASCII PLY, OFF) refuse a last line that has no line end.
+inline bool endsInsideAWord(const char* begin, const char* end) {
+    if (begin == end) return false;
+    const char last = end[-1];
+    return last != ' ' && last != '\t' && last != '\r' && last != '\n';
+}
+
+inline constexpr const char* kCutInsideTheLastLine =
+    "the file ends inside its last line, with no line end after it: it may have been cut there";
+
 // Whole-word number parsing; false for anything that is not exactly one number in range.
 // A leading '+' is accepted (from_chars does not, some exporters write it).
 inline std::string_view withoutPlus(std::string_view word) {

@@ -144,8 +144,15 @@ bool writesCountGrid(const VoxelizeResult& result);
 std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves);
 
 // The memory the density grid of `occupancy` takes as an OpenVDB grid (float leaves of 512
-// values): the measure of the memory budget, whichever writer runs.
+// values): what building it with OpenVDB (vdb_grid.h) needs.
 std::uint64_t densityGridBytes(const SparseGrid& occupancy);
+// What writeVdb holds beside the result for a grid of `leaves` leaves and `tile_bricks` bricks
+// held as tiles, with `valued_voxels` voxels of `channels` attribute channels: the grids'
+// leaves and tiles as the writer lists them, and the serialized grids (a density leaf is its
+// mask and its compressed active values, about 220 bytes; an attribute value 4 bytes a
+// channel) twice, the writer's buffers and the file's bytes. voxelize() estimates the write
+// with it before any work (voxelize/memory_estimate.h).
+double vdbWriterBytes(double leaves, double tile_bricks, double valued_voxels, double channels);
 // ResourceError before anything is built when that grid and the result it is made from
 // would not fit the write's memory budget.
 void checkGridBudget(const VoxelizeResult& result, const WriteOptions& options);

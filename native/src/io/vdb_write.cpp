@@ -21,21 +21,18 @@ namespace hyvox::io {
 
 std::uint64_t densityGridBytes(const SparseGrid& occupancy) { return fogGridMemUsageForLeaves(occupancy.leafCount()); }
 
-static std::uint64_t attributeGridBytes(const VoxelizeResult& result) {
-    const AttributeGrid& a = result.attributes;
-    const std::uint64_t per_voxel = (a.color ? 12 : 0) + (a.alpha ? 4 : 0) + (a.normal ? 12 : 0);
-    // Leaves dominate (512 values and a mask each); the nodes above add a few percent.
-    const double leaves = double(result.occupancy.leafCount() + a.valued_tile_bricks.size());
-    return std::uint64_t((leaves * 512.0 + double(a.tiles.size())) * double(per_voxel) * 1.05);
-}
-
 void checkGridBudget(const VoxelizeResult& result, const WriteOptions& options) {
-    const std::uint64_t need = densityGridBytes(result.occupancy) + result.occupancy.byteSize() + attributeGridBytes(result) +
-                               fogGridMemUsageForLeaves(result.sdf.leaves.size());
-    if (need > options.memoryBudgetBytes())
-        throw ResourceError("the OpenVDB grid of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
-                            std::to_string((need + (1u << 20) - 1) >> 20) + " MiB, more than the memory budget of " +
-                            std::to_string(options.memory_budget_mib) +
+    const AttributeGrid& a = result.attributes;
+    const double leaves = double(result.occupancy.leafCount() + a.valued_tile_bricks.size());
+    // The sdf's leaves hold a value for each of their 512 voxels, band or not.
+    const double sdf_leaves = double(result.sdf.leaves.size());
+    const double need = vdbWriterBytes(leaves, double(result.occupancy.tileCount()), double(a.valuedVoxelCount()),
+                                       double(a.channels())) +
+                        (sdf_leaves > 0 ? vdbWriterBytes(sdf_leaves, 0, sdf_leaves * 512.0, 1.0) : 0.0);
+    if (need > double(options.memoryBudgetBytes()))
+        throw ResourceError("writing the .vdb of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
+                            std::to_string(std::uint64_t(need / double(1 << 20)) + 1) + " MiB, more than the memory budget of " +
+                            std::to_string(options.memoryBudgetMib()) +
                             " MiB; raise the budget (memory_budget_mib) or use a larger voxel size");
 }
 

@@ -99,14 +99,14 @@ LevelSetGrid makeLevelSet(const ValidatedMesh& mesh, const GridSpec& grid, const
     const std::uint64_t left = budget > held_bytes ? budget - held_bytes : 0;
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     const BandBins bins = arena.execute(
-        [&] { return binBand(mesh, grid, band, left, options.memory_budget_mib, interrupter); });
+        [&] { return binBand(mesh, grid, band, left, options.memoryBudgetMib(), interrupter); });
     // Every brick of a reached block a leaf of 512 floats: an upper bound of the grid as OpenVDB
     // (and Blender) will hold it.
     const std::uint64_t reached_bricks = std::uint64_t(bins.blocks.size()) * kBricksPerBlock * kBricksPerBlock * kBricksPerBlock;
     const std::uint64_t need = reached_bricks * (sizeof(Leaf) + 512 * sizeof(float)) + bins.byteSize();
     if (need > left)
         throw ResourceError("the sdf's band needs about " + mib(need) + " beside " + mib(held_bytes) +
-                            " held, more than the memory budget of " + std::to_string(options.memory_budget_mib) +
+                            " held, more than the memory budget of " + std::to_string(options.memoryBudgetMib()) +
                             " MiB; use a larger voxel size or a narrower sdf_band");
 
     const BlockLayout blocks(grid);

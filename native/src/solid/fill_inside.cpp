@@ -454,13 +454,26 @@ std::string edgeFinding(const EdgeClosure& c) {
 
 }  // namespace
 
+bool insideByRays(const EdgeClosure& closure, const VoxelizeOptions& options) {
+    return options.solid.inside == InsideRule::Parity ||
+           (options.solid.inside == InsideRule::Auto && closure.open_edges.empty());
+}
+
 SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
                       const VoxelizeOptions& options, Interrupter* interrupter, SolidStats& stats,
                       SparseGrid* surface_inside) {
-    // Everything here runs on the options' threads (the sorts and the trees' builds included).
     const int threads = options.threads > 0 ? options.threads : tbb::task_arena::automatic;
     tbb::task_arena arena(threads);
     const EdgeClosure closure = arena.execute([&] { return checkEdges(mesh, grid); });
+    return fillInside(mesh, grid, surface, options, closure, interrupter, stats, surface_inside);
+}
+
+SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
+                      const VoxelizeOptions& options, const EdgeClosure& closure, Interrupter* interrupter,
+                      SolidStats& stats, SparseGrid* surface_inside) {
+    // Everything here runs on the options' threads (the sorts and the trees' builds included).
+    const int threads = options.threads > 0 ? options.threads : tbb::task_arena::automatic;
+    tbb::task_arena arena(threads);
     stats.boundary_edges = closure.boundary_edges;
     stats.nonmanifold_edges = closure.nonmanifold_edges;
     stats.misoriented_edges = closure.misoriented_edges;
@@ -472,7 +485,7 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
     const bool balanced = closure.open_edges.empty();
     const InsideRule asked = options.solid.inside;
     const InsideRule rule = asked == InsideRule::Auto ? InsideRule::Winding : asked;
-    const bool by_rays = rule == InsideRule::Parity || (asked == InsideRule::Auto && balanced);
+    const bool by_rays = insideByRays(closure, options);
     stats.inside_rule = toString(rule);
     stats.evaluation = by_rays ? "ray crossings" : "fast winding numbers";
     const std::string signed_count = ": the winding number is the signed count of ray crossings";

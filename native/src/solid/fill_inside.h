@@ -20,6 +20,7 @@
 #include "hyvox/options.h"
 #include "hyvox/result.h"
 #include "hyvox/sparse_grid.h"
+#include "solid/edge_closure.h"
 
 namespace hyvox::solid {
 
@@ -33,5 +34,14 @@ namespace hyvox::solid {
 SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
                       const VoxelizeOptions& options, Interrupter* interrupter, SolidStats& stats,
                       SparseGrid* surface_inside = nullptr);
+// The same with the mesh's edge check already made (the dispatcher makes it before any work:
+// it decides which trees this pass builds, and so what memory it needs).
+SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
+                      const VoxelizeOptions& options, const EdgeClosure& closure, Interrupter* interrupter,
+                      SolidStats& stats, SparseGrid* surface_inside = nullptr);
+
+// Whether the inside is decided by ray crossings alone (parity, or auto on a mesh whose edges
+// all cancel); else by fast winding numbers (with the rays' integer part near open edges).
+bool insideByRays(const EdgeClosure& closure, const VoxelizeOptions& options);
 
 }  // namespace hyvox::solid

@@ -69,6 +69,9 @@ RayCrossings::RayCrossings(const ValidatedMesh& mesh, const GridSpec& grid) {
     // Every triangle, the zero-area ones included: the closure check counts their edges, and
     // snapped they may cover a sliver of the plane that closes the count.
     std::size_t next_usable = 0;  // mesh.usable is ascending
+    // Reserved: grown by doubling, the list would hold up to three times its size while it
+    // moves (voxelize/memory_estimate.cpp counts it once).
+    triangles_.reserve(mesh.view.triangle_count);
     for (std::size_t t = 0; t < mesh.view.triangle_count; ++t) {
         const bool usable = next_usable < mesh.usable.size() && mesh.usable[next_usable] == t;
         next_usable += usable ? 1 : 0;

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// The displacement height image (section 3.3): loaded from an 8/16-bit PNG (grey, grey+alpha,
-// RGB(A) or palette; colour images use Blender's texture intensity, the mean of R, G, B) or
-// taken from a float array, laid out as the shaders sample it (GL_LINEAR, clamped at the
-// edges; tests/native/support/surface_twin.h samples it the same way on the CPU).
+// The displacement height image (section 3.3), laid out as the shaders sample it (GL_LINEAR,
+// clamped at the edges; tests/native/support/surface_twin.h samples it the same way on the
+// CPU). Backends are given the image as data: the dispatcher reads a displacement_image file
+// into displacement_pixels with io's PNG reader (hyvox::readPngHeight) before they run.
 #include <string>
 #include <vector>
 
@@ -11,14 +11,11 @@
 
 namespace hyvox::tessellation {
 
-// Reads a PNG into 0..1 values, row 0 = the file's top row. Throws InvalidInput.
-HeightImage readPngHeight(const std::string& path);
-
 class DisplacementMap {
 public:
     DisplacementMap() = default;
-    // From the options: the PNG path if given, else the in-memory pixels; empty() when neither.
-    // Throws InvalidInput for an unreadable file or a pixel array of the wrong size / NaNs.
+    // From the options' pixels; empty() when there are none. Throws InvalidInput for a pixel
+    // array of the wrong size or with NaNs.
     static DisplacementMap fromOptions(const TessellationOptions& options);
     explicit DisplacementMap(const HeightImage& image);
 

@@ -72,10 +72,8 @@ PointReach pointReach(const GridSpec& grid, const VoxelizeOptions& options) {
     const TessellationOptions& tess = options.tessellation;
     // PN-triangle patches bulge well under half their size (the patch planner's bound).
     if (tess.pn_triangles) reach.relative = 0.5;
-    double height = 0;  // the largest |height - midlevel| the map can hold
-    if (!tess.displacement_image.empty()) {
-        height = std::max(std::fabs(tess.displacement_midlevel), std::fabs(1.0 - tess.displacement_midlevel));  // PNG: 0..1
-    } else if (!tess.displacement_pixels.empty()) {
+    double height = 0;  // the largest |height - midlevel| the map holds (a file was read into its pixels)
+    if (!tess.displacement_pixels.empty()) {
         const auto [low, high] = std::minmax_element(tess.displacement_pixels.values.begin(), tess.displacement_pixels.values.end());
         height = std::max(std::fabs(*low - tess.displacement_midlevel), std::fabs(*high - tess.displacement_midlevel));
     }
@@ -122,26 +120,6 @@ std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, 
                         .push_back(t);
     }
     return bins;
-}
-
-std::uint64_t estimateLeaves(const ValidatedMesh& mesh, const GridSpec& grid, const TilePlan& plan) {
-    double area = 0;
-    std::uint64_t triangles = 0;
-    for (std::uint32_t t : mesh.usable) {
-        const auto p0 = grid.toVoxel(mesh.vertex(t, 0)), p1 = grid.toVoxel(mesh.vertex(t, 1)),
-                   p2 = grid.toVoxel(mesh.vertex(t, 2));
-        bool meets = true;  // the triangle's bounding box, one voxel wider, meets the plan's box
-        for (int a = 0; a < 3; ++a)
-            meets = meets && std::max({p0[a], p1[a], p2[a]}) >= plan.lo[a] - 1 && std::min({p0[a], p1[a], p2[a]}) <= plan.hi[a];
-        if (!meets) continue;
-        ++triangles;
-        const double e0[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-        const double e1[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-        const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
-        area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    }
-    const double leaves = std::max(2.0 * area / 64.0, double(triangles > 0));
-    return std::uint64_t(std::min(leaves, double(BrickLayout::over(plan.boxDims()).total())));
 }
 
 }  // namespace hyvox::tiling

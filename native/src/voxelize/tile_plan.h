@@ -51,10 +51,4 @@ std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, 
                                                       const TilePlan& plan, const PointReach& reach,
                                                       Interrupter* interrupter = nullptr);
 
-// The surface's leaves, estimated before any work from the triangles' areas: a surface of
-// area A (voxel units²) crosses about 2·A/64 leaves of 8×8 faces, and every triangle at
-// least one. Only the triangles whose bounding box meets the plan's box count, each whole;
-// bounded by the box's bricks.
-std::uint64_t estimateLeaves(const ValidatedMesh& mesh, const GridSpec& grid, const TilePlan& plan);
-
 }  // namespace hyvox::tiling

@@ -19,6 +19,9 @@
 #include "solid/fill_inside.h"
 #include "hyvox/option_schema.h"
 #include "hyvox/region.h"
+#include "hyvox/texture.h"
+#include "memory_estimate.h"
+#include "solid/edge_closure.h"
 #include "tile_plan.h"
 
 #include <tbb/task_arena.h>
@@ -27,29 +30,6 @@ namespace hyvox {
 namespace {
 
 std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
-
-// Refuse before allocating: one tile's bits plus the leaves the surface is expected to need.
-// The estimate (a pass over every triangle) is skipped when even a leaf in every brick of the
-// grid would fit: the common case, where it cost more than voxelizing at low resolutions.
-// A region's run counts its box only: what it holds.
-void checkMemoryBudget(const GridSpec& grid, const VoxelizeOptions& options, const tiling::TilePlan& plan,
-                       const ValidatedMesh& mesh) {
-    GridSpec box = grid;
-    box.dims = plan.boxDims();
-    const double most = double(plan.tileBytes()) + double(box.bricks().total()) * double(SparseGrid::kLeafBytes);
-    if (most <= double(options.memoryBudgetBytes())) return;  // in doubles: huge grids overflow 64 bits
-    const std::uint64_t estimated_leaves = tiling::estimateLeaves(mesh, grid, plan);
-    const std::uint64_t need = plan.tileBytes() + estimated_leaves * SparseGrid::kLeafBytes;
-    const std::string what = plan.region ? "region " + formatRegion(options.region) + " (" + box.dimsText() + ") of the " +
-                                               grid.dimsText() + " grid"
-                                         : "a " + grid.dimsText() + " grid";
-    if (need > options.memoryBudgetBytes())
-        throw ResourceError(what + " needs about " + mib(need) + " (" +
-                            (plan.whole() ? std::string("its bits") : "a " + mib(plan.tileBytes()) + " tile") +
-                            " and about " + std::to_string(estimated_leaves) +
-                            " leaves of surface), more than the memory budget of " +
-                            std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size");
-}
 
 // The displacement runs in single precision in voxel units on the GPU: beyond 2^24 voxels a
 // point's position has no sub-voxel digits left (and 1e30 × a height overflows the grid's
@@ -157,7 +137,7 @@ void checkInsideValuesBudget(const SparseGrid& surface, const VoxelizeResult& re
     if (held + need > double(options.memoryBudgetBytes()))
         throw ResourceError("the inside's attribute values need about " + mib(std::uint64_t(need)) + " beside " +
                             mib(std::uint64_t(held)) + " held, more than the memory budget of " +
-                            std::to_string(options.memory_budget_mib) + " MiB; use a larger voxel size");
+                            std::to_string(options.memoryBudgetMib()) + " MiB; use a larger voxel size");
 }
 
 // The bricks `grid` (finished) holds as whole tiles, ascending.
@@ -230,7 +210,7 @@ struct Surface {
             const std::uint64_t held = plan.tileBytes() + result.occupancy.byteSize();
             if (held > options.memoryBudgetBytes())
                 throw ResourceError("the surface needs more than the memory budget of " +
-                                    std::to_string(options.memory_budget_mib) + " MiB (" +
+                                    std::to_string(options.memoryBudgetMib()) + " MiB (" +
                                     std::to_string(result.occupancy.leafCount()) + " leaves after " +
                                     std::to_string(stats.tiles) + " tiles); use a larger voxel size");
             stats.addTiming("compact", watch.restart());
@@ -249,8 +229,8 @@ struct InsidePass {
     bool own_barrier = false;   // `exact` holds it
 
     void run(const ValidatedMesh& validated, const GridSpec& grid, const Surface& surface,
-             const VoxelizeOptions& options, VoxelizeResult& result, Stats& stats, Interrupter* interrupter,
-             Stopwatch& watch) {
+             const VoxelizeOptions& options, const solid::EdgeClosure& closure, VoxelizeResult& result, Stats& stats,
+             Interrupter* interrupter, Stopwatch& watch) {
         result.occupancy.finish();
         SolidStats& solid = stats.solid.emplace();
         own_barrier = options.method == Method::Tessellation || options.mode == Mode::Thin;
@@ -263,7 +243,7 @@ struct InsidePass {
             exact.occupancy.finish();
             stats.addTiming("solid_barrier", watch.restart());
         }
-        inside = solid::fillInside(validated, grid, barrier(result), options, interrupter, solid,
+        inside = solid::fillInside(validated, grid, barrier(result), options, closure, interrupter, solid,
                                    options.attributes.sdf ? &surface_inside : nullptr);
         stats.addTiming("solid_inside", watch.restart());
     }
@@ -279,14 +259,29 @@ ValidatedMesh validate(const MeshView& mesh, const VoxelizeOptions& options, Int
 
 namespace {
 
+// The options the passes run with: a displacement image file read into its pixels by io's PNG
+// reader (one reader and one set of limits for every image; the backends never open files).
+// Only the tessellation method displaces: the other methods ignore the option (with a warning
+// at the front doors), so they must not fail on an image they never use.
+VoxelizeOptions withImagesRead(const VoxelizeOptions& given) {
+    VoxelizeOptions options = given;
+    TessellationOptions& tess = options.tessellation;
+    if (options.method == Method::Tessellation && !tess.displacement_image.empty()) {
+        tess.displacement_pixels = readPngHeight(tess.displacement_image);
+        tess.displacement_image.clear();
+    }
+    return options;
+}
+
 // voxelize() after its options were checked and its interrupter started.
-VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeOptions& options,
+VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeOptions& given,
                                  Interrupter* interrupter, double validate_ms) {
     const MeshView& mesh = validated.view;
+    const VoxelizeOptions options = withImagesRead(given);
 
     VoxelizeResult result;
     Stats& stats = result.stats;
-    stats.options = options;
+    stats.options = given;  // as asked (the image's path, not its pixels)
     Stopwatch watch;
     stats.addTiming("validate", validate_ms);
     const std::optional<attributes::SurfaceValues> surface = surfaceValues(mesh, options);
@@ -303,7 +298,20 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
             : 0;
     const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
     if (plan.region) stats.region = regionBox(grid, options.region);
-    checkMemoryBudget(grid, options, plan, validated);
+    // The inside test's edge check first (solid mode, and the sdf's sign): it decides the solid
+    // pass's trees, and so its memory.
+    std::optional<solid::EdgeClosure> closure;
+    if (options.mode == Mode::Solid || options.attributes.sdf) {
+        tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+        closure = arena.execute([&] { return solid::checkEdges(validated, grid); });
+    }
+    const memory::Estimate need = memory::estimate(validated, grid, options, plan, surface ? surface->channels() : 0,
+                                                   closure ? &*closure : nullptr);
+    stats.memory_estimate = MemoryEstimateStats{
+        std::uint64_t(need.surface), std::uint64_t(need.solid),          std::uint64_t(need.attributes),
+        std::uint64_t(need.write),   std::uint64_t(need.peak()),         std::uint64_t(need.surface_leaves),
+        std::uint64_t(need.surface_voxels), std::uint64_t(need.inside_bricks)};
+    memory::checkBudget(need, grid, options);
     const tiling::PointReach reach = tiling::pointReach(grid, options);
     checkDisplacementReach(grid, options, reach);
     stats.addTiming("validate", watch.restart());
@@ -338,7 +346,7 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     if (solid || options.attributes.sdf) {
         surface_pass.values = nullptr;  // the barrier pass computes no attributes
         InsidePass inside;
-        inside.run(validated, grid, surface_pass, options, result, stats, interrupter, watch);
+        inside.run(validated, grid, surface_pass, options, *closure, result, stats, interrupter, watch);
         if (options.attributes.sdf) {
             const std::uint64_t held = result.occupancy.byteSize() + inside.byteSize() + solid_surface.byteSize() +
                                        result.attributes.values.size() * sizeof(float);
