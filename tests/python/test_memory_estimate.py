@@ -6,10 +6,8 @@
 # progress step, naming the pass and the setting. bench/bench_memory_estimate.py runs the
 # same comparison over more meshes and resolutions.
 import json
-import resource
 import subprocess
 
-import numpy as np
 import pytest
 
 import hyvox
