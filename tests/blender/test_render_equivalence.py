@@ -101,10 +101,11 @@ class RenderEquivalenceTest(AddonTestCase):
 
     def test_operator_skips_the_render_only_when_the_rule_says_so(self):
         # The same voxels either way; the render evaluation runs only when the rule says no.
-        operators = helpers.addon("blender.operators")
+        # The operator exports each frame through frame_export, which asks these two modules.
+        exporter = helpers.addon("blender.frame_export")
         render_calls = []
-        real_render = operators.render_depsgraph.with_render_depsgraph
-        real_rule = operators.render_equivalence.same_in_renders
+        real_render = exporter.render_depsgraph.with_render_depsgraph
+        real_rule = exporter.render_equivalence.same_in_renders
 
         def counting_render(*args):
             render_calls.append(1)
@@ -116,14 +117,14 @@ class RenderEquivalenceTest(AddonTestCase):
             cube = helpers.cube("Plain")
             cube.rotation_euler = (0.3, 0.2, 0.1)
             helpers.select_only(cube)
-            operators.render_depsgraph.with_render_depsgraph = counting_render
+            exporter.render_depsgraph.with_render_depsgraph = counting_render
             if forced_render:
-                operators.render_equivalence.same_in_renders = lambda names, view_layer: False
+                exporter.render_equivalence.same_in_renders = lambda names, view_layer: False
             try:
                 self.voxelize(voxel_size=0.1)
             finally:
-                operators.render_depsgraph.with_render_depsgraph = real_render
-                operators.render_equivalence.same_in_renders = real_rule
+                exporter.render_depsgraph.with_render_depsgraph = real_render
+                exporter.render_equivalence.same_in_renders = real_rule
             self.assertEqual(len(render_calls), int(forced_render))
             path = bpy.path.abspath(self.volumes()[0].data.filepath)
             results.append(helpers.sorted_rows(helpers.vdb_world_centres(path)))
