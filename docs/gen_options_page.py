@@ -111,7 +111,7 @@ def page(voxelize_options, write_options):
         "of its limits is refused, never clamped.",
         "",
         "In Blender, *Mode* is `mode` (*Solid* there by default), *Color* (on by default) adds `color` to",
-        "`attributes` and *Signed Distance* (Output sub-panel) adds `sdf`; the options not shown there are",
+        "`attributes` and *SDF Grid* (Output sub-panel) adds `sdf`; the options not shown there are",
         "reached from a script",
         "(`bpy.ops.object.hyvox_voxelize(...)` takes the panel's settings, `hyvox.voxelize` all of them).",
         "",

@@ -173,7 +173,7 @@ def scene_and_operator_properties(operator=False):
                               "(the render color attribute, else the Base Color's image or value): the volume's "
                               "material, Blocks and .vox files show it; objects without a material add none. "
                               "Solid: the inside takes the color of the surface around it", default=True, **skip),
-        "signed_distance": BoolProperty(name="Signed Distance", description="Also store the distance to "
+        "signed_distance": BoolProperty(name="SDF Grid", description="Also store the signed distance to "
                                         "the surface near it, negative inside, as a grid named sdf (a level set) for "
                                         "Blender's SDF grid nodes and a smooth Grid to Mesh. Meshes with holes keep "
                                         "their inside (the winding number decides it)", default=False, **skip),

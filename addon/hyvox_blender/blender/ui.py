@@ -102,7 +102,7 @@ class VIEW3D_PT_hyvox_output(_HyvoxSubPanel, bpy.types.Panel):
         col.prop(settings, "parent_to_source", text="Parent")
         col.prop(settings, "hide_source", text="Hide Source")
         col = layout.column(heading="Write")
-        col.prop(settings, "signed_distance", text="Signed Distance")
+        col.prop(settings, "signed_distance")
         col.prop(settings, "export_vox", text=".vox File")
         layout.prop(settings, "output_dir", text="Folder")
         layout.operator("wm.hyvox_clean_voxel_files", text="Clean Unused Files", icon="TRASH")
