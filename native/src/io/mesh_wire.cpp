@@ -144,8 +144,10 @@ void Decoder::feed(const char* data, std::size_t size) {
                 }
                 break;
             case State::Arrays:
-                if (take(arrays_[array_].data, arrays_[array_].bytes, data, size) && ++array_ == array_count_)
-                    state_ = State::Done;
+                if (take(arrays_[array_].data, arrays_[array_].bytes, data, size)) {
+                    ++array_;
+                    if (array_ == array_count_) state_ = State::Done;
+                }
                 break;
             case State::Done: throw StreamError{"bytes after the mesh"};
         }

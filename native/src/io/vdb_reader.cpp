@@ -38,7 +38,7 @@ enum InactiveValues : std::int8_t {
 // Node geometry of the 5-4-3 trees (vdb_direct_writer.cpp has the same).
 constexpr int kLeafLog2 = 3, kLowerLog2 = 4, kUpperLog2 = 5;
 constexpr int kLowerTotal = kLeafLog2 + kLowerLog2;  // 7
-constexpr std::size_t kLeafValues = 512, kLowerValues = 4096, kUpperValues = 32768;
+constexpr std::size_t kLeafValues = 512;
 
 // Bounds every count read from the file before anything is allocated for it.
 constexpr std::uint32_t kMaxEntries = 1u << 20;  // metadata entries, grids

@@ -58,7 +58,7 @@ struct Sweep {
             const double a = dxy2 + dz * dz - radius2 - s2;
             const double height = height_xy + hz * (z_first + m);
             const bool in_sphere = (a < 0) | (a * a < four_radius2 * s2);
-            lower[m] = in_sphere & (height * height < s2) ? 1.0 : 0.0;
+            lower[m] = (in_sphere & (height * height < s2)) ? 1.0 : 0.0;
         }
         int from = 0, to = count - 1;
         while (from <= to && lower[from] == 0) ++from;

@@ -31,7 +31,7 @@ inline std::string readErrorOf(const std::filesystem::path& path) {
 // of the given parts.
 #define EXPECT_READ_ERROR(FILE, ...)                                                                            \
     do {                                                                                                        \
-        const std::filesystem::path file_ = (FILE);                                                             \
+        const std::filesystem::path& file_ = (FILE);                                                            \
         const std::string message_ = hyvox::test::readErrorOf(file_);                                           \
         EXPECT_NE(message_.find(file_.filename().string()), std::string::npos) << message_;                     \
         for (const char* part_ : {__VA_ARGS__}) EXPECT_NE(message_.find(part_), std::string::npos) << message_; \
