@@ -123,15 +123,14 @@ def _numeric(rows, index):
 
 
 def header_line(record):
-    """One line: the command, the machine, the date and the build the figures come from."""
+    """One line: the command and the machine the figures come from, and hyvox's version. The date
+    and the commit stay in the .json: the page shows the current results, git their history."""
     m, v = record["machine"], record["hyvox"]
     load = f"load {m['load_start']:.1f}-{m['load_end']:.1f}" if m.get("load_start") is not None else ""
     what = ", ".join(x for x in (m.get("cpu"), f"{m['cores']} cores" if m.get("cores") else "",
                                  f"{m['memory_gib']} GiB" if m.get("memory_gib") else "", m.get("os"), m.get("gpu"),
                                  load) if x)
-    build = f"hyvox {v.get('version', '')}" + (f" at {v['commit']}" if v.get("commit") else "") + \
-        (" with local changes" if v.get("dirty") else "")
-    return f"`{record['command']}`  \n{what}; {record['date']}; {build}."
+    return f"`{record['command']}`  \n{what}; hyvox {v.get('version', '')}."
 
 
 def render_markdown(record):
