@@ -5,11 +5,12 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "hyvox/stats_json.h"
+#include "io/json_text.h"
 
 namespace hyvox::farm {
 
-std::string quoted(const std::string& value) { return jsonQuoted(value); }
+// A JSON string literal is also a YAML double-quoted scalar and a JavaScript string.
+std::string quoted(const std::string& value) { return io::jsonQuote(value); }
 
 std::string shortestNumber(double value) {
     char buf[32];

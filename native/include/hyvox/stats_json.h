@@ -18,10 +18,6 @@ namespace hyvox {
 ///  in solid mode). Origin and voxel size in world units; NaN and infinities are null.
 std::string statsToJson(const VoxelizeResult& result);
 
-/// `text` as a JSON string literal, quotes included (also a YAML double-quoted scalar and a
-/// JavaScript string: the farm job templates write theirs with it).
-std::string jsonQuoted(const std::string& text);
-
 /// Writes text to a file atomically (a temporary file in the same folder, then a rename).
 /// @param path the file to write (checkOutputPath() says what is refused)
 /// @param text written as it is

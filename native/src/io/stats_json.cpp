@@ -17,8 +17,6 @@
 
 namespace hyvox {
 
-std::string jsonQuoted(const std::string& text) { return io::jsonQuote(text); }
-
 namespace {
 // Shortest text that reads back as the same double; JSON has no NaN/Inf, so those are null.
 std::string number(double value) {

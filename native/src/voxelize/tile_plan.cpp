@@ -23,7 +23,7 @@ std::uint64_t denseBytes(const std::array<std::int32_t, 3>& dims) {
 
 }  // namespace
 
-Tile TilePlan::tile(std::size_t index, const GridSpec& /*grid*/) const {
+Tile TilePlan::tile(std::size_t index) const {
     const std::size_t tz = index % std::size_t(counts[2]);
     const std::size_t ty = (index / std::size_t(counts[2])) % std::size_t(counts[1]);
     const std::size_t tx = index / (std::size_t(counts[2]) * std::size_t(counts[1]));

@@ -24,7 +24,7 @@ struct TilePlan {
     // One tile over the whole grid (every triangle reaches it).
     bool whole() const { return !region && counts[0] * counts[1] * counts[2] == 1; }
     std::size_t total() const { return std::size_t(counts[0]) * std::size_t(counts[1]) * std::size_t(counts[2]); }
-    Tile tile(std::size_t index, const GridSpec& grid) const;
+    Tile tile(std::size_t index) const;
     std::uint64_t tileBytes() const;  // the dense bits of one tile
 };
 

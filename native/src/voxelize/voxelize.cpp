@@ -175,7 +175,7 @@ struct Surface {
         TileProgress progress(interrupter, plan.total());
         for (std::size_t t = 0; t < plan.total(); ++t) {
             if (!plan.whole() && bins[t].empty()) continue;
-            const Tile tile = plan.tile(t, grid);
+            const Tile tile = plan.tile(t);
             ValidatedMesh part;
             if (!plan.whole()) part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds};
             const ValidatedMesh& tile_mesh = plan.whole() ? validated : part;
