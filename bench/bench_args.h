@@ -64,14 +64,18 @@ MeshBenchArgs parseMeshBenchArgs(int argc, char** argv, const char* usage, const
             std::fputs(usage, stdout);
             std::exit(0);
         }
-        if (arg == "--runs") args.runs = positiveValue("--runs", optionValue(argc, argv, a), usage);
-        else if (arg == "--res") args.resolutions.push_back(positiveValue("--res", optionValue(argc, argv, a), usage));
-        else if (arg == "--mesh-dir") args.mesh_dir = optionValue(argc, argv, a);
+        if (arg == "--runs")
+            args.runs = positiveValue("--runs", optionValue(argc, argv, a), usage);
+        else if (arg == "--res")
+            args.resolutions.push_back(positiveValue("--res", optionValue(argc, argv, a), usage));
+        else if (arg == "--mesh-dir")
+            args.mesh_dir = optionValue(argc, argv, a);
         else if (arg.size() > 1 && arg[0] == '-') {
             if (more(arg, a)) continue;
             std::fprintf(stderr, "unknown option '%s'\n%s", arg.c_str(), usage);
             std::exit(2);
-        } else args.files.push_back(arg);
+        } else
+            args.files.push_back(arg);
     }
     return args;
 }

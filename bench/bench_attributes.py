@@ -20,6 +20,7 @@ stages `attributes` (the surface's values) and `attributes_inside` (the inside's
 are printed in ms). The table also goes to DIR/attributes_MODE[_METHODS].{json,md} (default
 bench/results/).
 """
+
 import argparse
 import pathlib
 import statistics
@@ -40,8 +41,11 @@ def scenes(mesh_dir: pathlib.Path):
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--mesh-dir", type=pathlib.Path,
-                        default=pathlib.Path(__file__).resolve().parents[2] / "shared" / "data" / "meshes")
+    parser.add_argument(
+        "--mesh-dir",
+        type=pathlib.Path,
+        default=pathlib.Path(__file__).resolve().parents[2] / "shared" / "data" / "meshes",
+    )
     parser.add_argument("--resolutions", default="256,512")
     parser.add_argument("--methods", default="cpu")
     parser.add_argument("--repeats", type=int, default=3)
@@ -52,21 +56,37 @@ def main() -> None:
     args = parser.parse_args()
     clock = time.process_time if args.cpu_time else time.perf_counter
     variants = {"binary": None, "color": "color", "color+normal": "color,normal"}
-    print(f"hyvox {hyvox.__version__}; mode {args.mode}; median of {args.repeats} "
-          f"({'CPU' if args.cpu_time else 'wall'} seconds, threads {args.threads or 'all'}), ratio to binary")
+    print(
+        f"hyvox {hyvox.__version__}; mode {args.mode}; median of {args.repeats} "
+        f"({'CPU' if args.cpu_time else 'wall'} seconds, threads {args.threads or 'all'}), ratio to binary"
+    )
     result_name = f"attributes_{args.mode}" + ("" if args.methods == "cpu" else "_" + args.methods.replace(",", "_"))
-    table = Table(result_name, f"The price of colour: binary, colour, colour + normal ({args.mode})",
-                  [Column("scene"), Column("method"), Column("res")] +
-                  [Column(f"{variant} s", 3) for variant in variants] +
-                  [Column("colour / binary", 2), Column("colour + normal / binary", 2), Column("voxels"),
-                   Column("surface values ms", 0), Column("inside values ms", 0)],
-                  extra_machine={"gpu": "EGL: " + ", ".join(d.name for d in hyvox.gl_devices())}
-                  if args.methods != "cpu" else None)
-    table.note(f"Medians of {args.repeats} {'CPU' if args.cpu_time else 'wall'} seconds of the voxelize() call "
-               f"(threads {args.threads or 'all'}), the variants interleaved; surface / inside values: the "
-               "colour + normal run's attribute stages (the inside's only in solid mode).")
-    print(f"{'scene':24} {'method':12} {'res':>5} " + " ".join(f"{name:>13}" for name in variants) +
-          f" {'color/bin':>10} {'c+n/bin':>8} {'voxels':>10} {'surface ms':>10} {'inside ms':>10}")
+    table = Table(
+        result_name,
+        f"The price of colour: binary, colour, colour + normal ({args.mode})",
+        [Column("scene"), Column("method"), Column("res")]
+        + [Column(f"{variant} s", 3) for variant in variants]
+        + [
+            Column("colour / binary", 2),
+            Column("colour + normal / binary", 2),
+            Column("voxels"),
+            Column("surface values ms", 0),
+            Column("inside values ms", 0),
+        ],
+        extra_machine={"gpu": "EGL: " + ", ".join(d.name for d in hyvox.gl_devices())}
+        if args.methods != "cpu"
+        else None,
+    )
+    table.note(
+        f"Medians of {args.repeats} {'CPU' if args.cpu_time else 'wall'} seconds of the voxelize() call "
+        f"(threads {args.threads or 'all'}), the variants interleaved; surface / inside values: the "
+        "colour + normal run's attribute stages (the inside's only in solid mode)."
+    )
+    print(
+        f"{'scene':24} {'method':12} {'res':>5} "
+        + " ".join(f"{name:>13}" for name in variants)
+        + f" {'color/bin':>10} {'c+n/bin':>8} {'voxels':>10} {'surface ms':>10} {'inside ms':>10}"
+    )
     for name, v, t, sources in scenes(args.mesh_dir):
         for method in args.methods.split(","):
             for resolution in (int(r) for r in args.resolutions.split(",")):
@@ -80,8 +100,15 @@ def main() -> None:
                         for variant, attributes in variants.items():
                             extra = dict(sources, attributes=attributes) if attributes else {}
                             start = clock()
-                            grid = hyvox.voxelize(v, t, resolution=resolution, method=method, threads=args.threads,
-                                                  mode=args.mode, **extra)
+                            grid = hyvox.voxelize(
+                                v,
+                                t,
+                                resolution=resolution,
+                                method=method,
+                                threads=args.threads,
+                                mode=args.mode,
+                                **extra,
+                            )
                             times[variant].append(clock() - start)
                             voxels = grid.voxel_count
                             if variant == "color+normal":
@@ -92,14 +119,22 @@ def main() -> None:
                     table.note(f"{name}, {method} at {resolution}: does not fit ({error}).")
                     continue
                 median = {variant: statistics.median(values) for variant, values in times.items()}
-                print(f"{name:24} {method:12} {resolution:5} " +
-                      " ".join(f"{median[variant]:13.3f}" for variant in variants) +
-                      f" {median['color'] / median['binary']:10.2f} {median['color+normal'] / median['binary']:8.2f}"
-                      f" {voxels:10}" + "".join(f" {statistics.median(stages[s]):10.0f}" for s in stages), flush=True)
-                table.add([name, method, resolution] + [median[variant] for variant in variants] +
-                          [median["color"] / median["binary"], median["color+normal"] / median["binary"], voxels] +
-                          [statistics.median(stages["attributes"]),
-                           statistics.median(stages["attributes_inside"]) if args.mode == "solid" else None])
+                print(
+                    f"{name:24} {method:12} {resolution:5} "
+                    + " ".join(f"{median[variant]:13.3f}" for variant in variants)
+                    + f" {median['color'] / median['binary']:10.2f} {median['color+normal'] / median['binary']:8.2f}"
+                    f" {voxels:10}" + "".join(f" {statistics.median(stages[s]):10.0f}" for s in stages),
+                    flush=True,
+                )
+                table.add(
+                    [name, method, resolution]
+                    + [median[variant] for variant in variants]
+                    + [median["color"] / median["binary"], median["color+normal"] / median["binary"], voxels]
+                    + [
+                        statistics.median(stages["attributes"]),
+                        statistics.median(stages["attributes_inside"]) if args.mode == "solid" else None,
+                    ]
+                )
     table.write(args.out)
 
 

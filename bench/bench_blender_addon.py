@@ -13,6 +13,7 @@ the add-on share, (export + import) / total, is the median of the runs' own shar
 export's CPU time the median of the runs').
 --skip-mesh-to-volume times hyvox only. The table also goes to DIR/blender_addon.{json,md}
 (default bench/results/)."""
+
 import argparse
 import json
 import os
@@ -29,7 +30,7 @@ from bench_results import Column, Table, add_out_argument  # noqa: E402  (beside
 
 
 def parse_args():
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
     parser = argparse.ArgumentParser(prog="blender -b --python bench/bench_blender_addon.py --")
     parser.add_argument("--build", default="build")
     parser.add_argument("--levels", default="4,6")
@@ -37,14 +38,18 @@ def parse_args():
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--method", default="cpu")
     parser.add_argument("--json", help="also write the rows as JSON here")
-    parser.add_argument("--skip-mesh-to-volume", action="store_true",
-                        help="time hyvox only (the add-on's own share; Mesh to Volume takes minutes)")
+    parser.add_argument(
+        "--skip-mesh-to-volume",
+        action="store_true",
+        help="time hyvox only (the add-on's own share; Mesh to Volume takes minutes)",
+    )
     add_out_argument(parser)
     return parser.parse_args(argv)
 
 
 def enable_addon(build):
     import addon_utils
+
     sys.path.insert(0, os.path.join(os.path.abspath(build), "addon"))
     if addon_utils.enable("hyvox_blender", default_set=True, handle_error=None) is None:
         raise SystemExit(f"could not enable hyvox_blender from {build}/addon")
@@ -68,6 +73,7 @@ def time_hyvox(obj, voxel_size, method, out):
     for o in bpy.context.view_layer.objects:
         o.select_set(o is obj)
     from hyvox_blender.blender import operators
+
     # The export's CPU time too (the process's, all threads; the export runs alone on the main
     # thread before voxelizing): on a loaded machine its wall time mostly measures the scheduler.
     export_frame, export_cpu = operators._Run.export_frame, []
@@ -134,49 +140,95 @@ def main():
             for resolution in [int(x) for x in args.resolutions.split(",")]:
                 voxel_size = extent / resolution
                 runs = [time_hyvox(obj, voxel_size, args.method, out) for _ in range(args.repeat)]
-                m2v = None if args.skip_mesh_to_volume else [
-                    time_mesh_to_volume(obj, voxel_size) for _ in range(args.repeat)]
+                m2v = (
+                    None
+                    if args.skip_mesh_to_volume
+                    else [time_mesh_to_volume(obj, voxel_size) for _ in range(args.repeat)]
+                )
                 best = min(runs, key=lambda r: r[0])
                 row = {
-                    "level": level, "triangles": triangles, "resolution": resolution,
-                    "voxel_size": voxel_size, "method": args.method,
+                    "level": level,
+                    "triangles": triangles,
+                    "resolution": resolution,
+                    "voxel_size": voxel_size,
+                    "method": args.method,
                     "hyvox_ms": statistics.median(r[0] for r in runs),
                     "mesh_to_volume_ms": statistics.median(m2v) if m2v else None,
-                    "voxels": best[2], "breakdown_ms": best[1],
+                    "voxels": best[2],
+                    "breakdown_ms": best[1],
                     # The add-on's own overhead (export + import) as a share of each run's total.
                     "addon_share": statistics.median((r[1]["export"] + r[1]["import"]) / r[1]["total"] for r in runs),
                     "export_cpu_ms": statistics.median(r[1]["export_cpu"] for r in runs),
                 }
                 row["speedup"] = row["mesh_to_volume_ms"] / row["hyvox_ms"] if m2v else None
                 rows.append(row)
-                print(f"L{level} {resolution}: hyvox {row['hyvox_ms']:.0f} ms, "
-                      f"Mesh to Volume {_ms(row['mesh_to_volume_ms'])} ms", flush=True)
+                print(
+                    f"L{level} {resolution}: hyvox {row['hyvox_ms']:.0f} ms, "
+                    f"Mesh to Volume {_ms(row['mesh_to_volume_ms'])} ms",
+                    flush=True,
+                )
 
-    print(f"\nBlender {bpy.app.version_string}, {os.cpu_count()} CPUs, hyvox method {args.method}, "
-          f"median of {args.repeat}, load average {os.getloadavg()[0]:.1f}")
-    print("| mesh | triangles | res | hyvox operator ms | Mesh to Volume ms | speed-up | "
-          "export | voxelize | write | import | add-on share | export CPU | voxels |")
+    print(
+        f"\nBlender {bpy.app.version_string}, {os.cpu_count()} CPUs, hyvox method {args.method}, "
+        f"median of {args.repeat}, load average {os.getloadavg()[0]:.1f}"
+    )
+    print(
+        "| mesh | triangles | res | hyvox operator ms | Mesh to Volume ms | speed-up | "
+        "export | voxelize | write | import | add-on share | export CPU | voxels |"
+    )
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in rows:
         b = r["breakdown_ms"]
-        print(f"| Suzanne L{r['level']} | {r['triangles']:,} | {r['resolution']} | {r['hyvox_ms']:.0f} | "
-              f"{_ms(r['mesh_to_volume_ms'])} | {_speedup(r['speedup'])} | {b['export']:.0f} | "
-              f"{b['voxelize']:.0f} | {b['write']:.0f} | {b['import']:.0f} | {100 * r['addon_share']:.0f}% | "
-              f"{r['export_cpu_ms']:.0f} | {r['voxels']:,} |")
-    table = Table("blender_addon", "The add-on end to end against Blender's Mesh to Volume",
-                  [Column("mesh"), Column("triangles"), Column("res"), Column("hyvox operator ms", 0),
-                   Column("Mesh to Volume ms", 0), Column("Mesh to Volume / hyvox", 1), Column("export ms", 0),
-                   Column("voxelize ms", 0), Column("write ms", 0), Column("import ms", 0),
-                   Column("add-on share %", 0), Column("export CPU ms", 0), Column("voxels")],
-                  command=shlex.join([os.path.basename(sys.argv[0])] + sys.argv[1:]))
-    table.note(f"Blender {bpy.app.version_string}, hyvox method {args.method}, medians of {args.repeat}; "
-               "the stages are the fastest run's; add-on share: (export + import) / the operator's total; both "
-               "sides make a surface from the same modifier-applied mesh.")
+        print(
+            f"| Suzanne L{r['level']} | {r['triangles']:,} | {r['resolution']} | {r['hyvox_ms']:.0f} | "
+            f"{_ms(r['mesh_to_volume_ms'])} | {_speedup(r['speedup'])} | {b['export']:.0f} | "
+            f"{b['voxelize']:.0f} | {b['write']:.0f} | {b['import']:.0f} | {100 * r['addon_share']:.0f}% | "
+            f"{r['export_cpu_ms']:.0f} | {r['voxels']:,} |"
+        )
+    table = Table(
+        "blender_addon",
+        "The add-on end to end against Blender's Mesh to Volume",
+        [
+            Column("mesh"),
+            Column("triangles"),
+            Column("res"),
+            Column("hyvox operator ms", 0),
+            Column("Mesh to Volume ms", 0),
+            Column("Mesh to Volume / hyvox", 1),
+            Column("export ms", 0),
+            Column("voxelize ms", 0),
+            Column("write ms", 0),
+            Column("import ms", 0),
+            Column("add-on share %", 0),
+            Column("export CPU ms", 0),
+            Column("voxels"),
+        ],
+        command=shlex.join([os.path.basename(sys.argv[0])] + sys.argv[1:]),
+    )
+    table.note(
+        f"Blender {bpy.app.version_string}, hyvox method {args.method}, medians of {args.repeat}; "
+        "the stages are the fastest run's; add-on share: (export + import) / the operator's total; both "
+        "sides make a surface from the same modifier-applied mesh."
+    )
     for r in rows:
         b = r["breakdown_ms"]
-        table.add([f"Suzanne L{r['level']}", r["triangles"], r["resolution"], r["hyvox_ms"], r["mesh_to_volume_ms"],
-                   r["speedup"], b["export"], b["voxelize"], b["write"], b["import"], 100 * r["addon_share"],
-                   r["export_cpu_ms"], r["voxels"]])
+        table.add(
+            [
+                f"Suzanne L{r['level']}",
+                r["triangles"],
+                r["resolution"],
+                r["hyvox_ms"],
+                r["mesh_to_volume_ms"],
+                r["speedup"],
+                b["export"],
+                b["voxelize"],
+                b["write"],
+                b["import"],
+                100 * r["addon_share"],
+                r["export_cpu_ms"],
+                r["voxels"],
+            ]
+        )
     table.write(args.out)
     if args.json:
         with open(args.json, "w") as f:
@@ -188,6 +240,7 @@ if __name__ == "__main__":
         main()
     except Exception:
         import traceback
+
         traceback.print_exc()
         sys.stdout.flush()
         os._exit(1)

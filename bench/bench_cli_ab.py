@@ -9,6 +9,7 @@ to reap: start, stages and exit) and the process's CPU time (its rusage: all thr
 
 The table also goes to DIR/cli_ab.{json,md} (--out DIR, default bench/results/).
 """
+
 import argparse
 import os
 import statistics
@@ -39,8 +40,9 @@ def main():
     parser.add_argument("--mesh", required=True)
     parser.add_argument("--res", default="128")
     parser.add_argument("--runs", type=int, default=40)
-    parser.add_argument("--vdb-prefix", default="/tmp/hyvox_cli_ab",
-                        help="the runs' output prefix (one .vdb per binary)")
+    parser.add_argument(
+        "--vdb-prefix", default="/tmp/hyvox_cli_ab", help="the runs' output prefix (one .vdb per binary)"
+    )
     parser.add_argument("--idle-wait", type=float, default=60, help="seconds to wait for an idle machine per round")
     parser.add_argument("--extra", default="", help="more voxelize options, e.g. '--threads 1'")
     add_out_argument(parser)
@@ -65,21 +67,36 @@ def main():
             cpu[binary].append((usage.ru_utime + usage.ru_stime) * 1e3)
             if status != 0:
                 raise SystemExit(f"{binary} failed (status {status})")
-    print(f"{os.path.basename(args.mesh)} at {args.res}: {len(wall[args.binaries[0]])} rounds "
-          f"({skipped} skipped: never idle), load now {os.getloadavg()[0]:.2f}")
+    print(
+        f"{os.path.basename(args.mesh)} at {args.res}: {len(wall[args.binaries[0]])} rounds "
+        f"({skipped} skipped: never idle), load now {os.getloadavg()[0]:.2f}"
+    )
     print("| build | wall p10 | wall p30 | wall median | wall p70 | CPU median |")
     print("|---|---:|---:|---:|---:|---:|")
-    table = Table("cli_ab", f"Whole CLI processes of two builds: {os.path.basename(args.mesh)} at {args.res}",
-                  [Column("build"), Column("wall p10 ms", 2), Column("wall p30 ms", 2), Column("wall median ms", 2),
-                   Column("wall p70 ms", 2), Column("CPU median ms", 2)])
-    table.note(f"{len(wall[args.binaries[0]])} rounds, each started once the machine was idle "
-               f"({skipped} skipped: never idle); the builds alternate.")
+    table = Table(
+        "cli_ab",
+        f"Whole CLI processes of two builds: {os.path.basename(args.mesh)} at {args.res}",
+        [
+            Column("build"),
+            Column("wall p10 ms", 2),
+            Column("wall p30 ms", 2),
+            Column("wall median ms", 2),
+            Column("wall p70 ms", 2),
+            Column("CPU median ms", 2),
+        ],
+    )
+    table.note(
+        f"{len(wall[args.binaries[0]])} rounds, each started once the machine was idle "
+        f"({skipped} skipped: never idle); the builds alternate."
+    )
     for binary in args.binaries:
         if len(wall[binary]) < 2:
             continue
         q = statistics.quantiles(wall[binary], n=10)
-        print(f"| {binary} | {q[0]:.2f} | {q[2]:.2f} | {statistics.median(wall[binary]):.2f} | {q[6]:.2f} | "
-              f"{statistics.median(cpu[binary]):.2f} |")
+        print(
+            f"| {binary} | {q[0]:.2f} | {q[2]:.2f} | {statistics.median(wall[binary]):.2f} | {q[6]:.2f} | "
+            f"{statistics.median(cpu[binary]):.2f} |"
+        )
         table.add([binary, q[0], q[2], statistics.median(wall[binary]), q[6], statistics.median(cpu[binary])])
     table.write(args.out)
 

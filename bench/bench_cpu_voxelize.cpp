@@ -8,15 +8,15 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <ctime>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "bench_args.h"
 #include "bench_results.h"
-#include "hyvox/voxelize.h"
 #include "hyvox/mesh_io.h"
+#include "hyvox/voxelize.h"
 
 namespace {
 
@@ -39,13 +39,20 @@ int main(int argc, char** argv) {
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
         auto next = [&] { return hyvox::bench::optionValue(argc, argv, a); };
-        if (arg == "--res") resolutions.push_back(std::atoi(next().c_str()));
-        else if (arg == "--mode") options.mode = hyvox::parseMode(next());
-        else if (arg == "--method") options.method = hyvox::parseMethod(next());
-        else if (arg == "--repeat") repeat = std::max(1, std::atoi(next().c_str()));
-        else if (arg == "--threads") options.threads = std::atoi(next().c_str());
-        else if (arg == "--out") out_dir = next();
-        else meshes.push_back(arg);
+        if (arg == "--res")
+            resolutions.push_back(std::atoi(next().c_str()));
+        else if (arg == "--mode")
+            options.mode = hyvox::parseMode(next());
+        else if (arg == "--method")
+            options.method = hyvox::parseMethod(next());
+        else if (arg == "--repeat")
+            repeat = std::max(1, std::atoi(next().c_str()));
+        else if (arg == "--threads")
+            options.threads = std::atoi(next().c_str());
+        else if (arg == "--out")
+            out_dir = next();
+        else
+            meshes.push_back(arg);
     }
     if (meshes.empty()) {
         std::fprintf(stderr,
@@ -58,8 +65,15 @@ int main(int argc, char** argv) {
     std::printf("%-34s %5s %-12s %10s %10s %10s %10s %12s\n", "mesh", "res", "mode", "voxel_ms", "min_ms", "total_ms",
                 "cpu_ms", "voxels");
     hyvox::bench::ResultTable table("cpu_voxelize", "The cpu method's voxelize stage",
-                                    {{"mesh"}, {"res"}, {"mode"}, {"method"}, {"stage ms", 2}, {"stage min ms", 2},
-                                     {"call ms", 2}, {"call CPU ms", 2}, {"voxels"}},
+                                    {{"mesh"},
+                                     {"res"},
+                                     {"mode"},
+                                     {"method"},
+                                     {"stage ms", 2},
+                                     {"stage min ms", 2},
+                                     {"call ms", 2},
+                                     {"call CPU ms", 2},
+                                     {"voxels"}},
                                     argc, argv);
     table.note("Medians of " + std::to_string(repeat) + " calls, threads " +
                (options.threads ? std::to_string(options.threads) : std::string("all")) +
@@ -80,9 +94,9 @@ int main(int argc, char** argv) {
                 voxels = result.stats.voxel_count;
             }
             std::printf("%-34s %5d %-12s %10.2f %10.2f %10.2f %10.2f %12llu\n", name.c_str(), res,
-                        hyvox::toString(options.mode), hyvox::bench::median(stage), *std::min_element(stage.begin(), stage.end()),
-                        hyvox::bench::median(total), hyvox::bench::median(cpu),
-                        static_cast<unsigned long long>(voxels));
+                        hyvox::toString(options.mode), hyvox::bench::median(stage),
+                        *std::min_element(stage.begin(), stage.end()), hyvox::bench::median(total),
+                        hyvox::bench::median(cpu), static_cast<unsigned long long>(voxels));
             std::fflush(stdout);
             table.add({name, res, hyvox::toString(options.mode), hyvox::toString(options.method),
                        hyvox::bench::median(stage), *std::min_element(stage.begin(), stage.end()),

@@ -13,6 +13,7 @@ Prints frames per minute and the per-frame overhead beside the voxelize time (ex
 voxelize + write of the add-on's own timings), and writes farm.json and farm.md. The job
 gets a fixed voxel size so every way does the same work. openjd-cli comes from the farm
 venv (scripts/setup_venvs.sh)."""
+
 import argparse
 import os
 import re
@@ -74,8 +75,12 @@ def main():
     work = tempfile.mkdtemp(prefix="hyvox_bench_farm_")
     env = worker_env(build, os.path.join(work, "scripts"))
     scene = os.path.join(work, "torus.blend")
-    subprocess.run(["blender", "-b", "--factory-startup", "-noaudio", "--python-expr", SCENE, "--",
-                    str(args.frames), scene], check=True, capture_output=True, env=env)
+    subprocess.run(
+        ["blender", "-b", "--factory-startup", "-noaudio", "--python-expr", SCENE, "--", str(args.frames), scene],
+        check=True,
+        capture_output=True,
+        env=env,
+    )
     template = os.path.join(work, "hyvox.openjd.yaml")
     subprocess.run([cli, "job-template", "openjd", "-o", template], check=True)
     voxel_size = 4.0 / args.resolution  # about the torus' longest side over the resolution
@@ -86,31 +91,79 @@ def main():
     cli_blender = os.path.join(build, "addon", "hyvox_blender", "cli_blender.py")
     start, work_s = time.perf_counter(), 0.0
     for frame in range(1, args.frames + 1):
-        _, w, _ = timed(["blender", "-b", "-noaudio", scene, "--python", cli_blender, "--", "--frames",
-                         f"{frame}-{frame}", "--output", loop_out, "--voxel-size", repr(voxel_size), "--method",
-                         "cpu", "--mode", "conservative", "--objects", "Torus"], env)
+        _, w, _ = timed(
+            [
+                "blender",
+                "-b",
+                "-noaudio",
+                scene,
+                "--python",
+                cli_blender,
+                "--",
+                "--frames",
+                f"{frame}-{frame}",
+                "--output",
+                loop_out,
+                "--voxel-size",
+                repr(voxel_size),
+                "--method",
+                "cpu",
+                "--mode",
+                "conservative",
+                "--objects",
+                "Torus",
+            ],
+            env,
+        )
         work_s += w
-    rows.append({"way": "shell loop, blender -b per frame", "tasks": args.frames, "blenders": args.frames,
-                 "seconds": time.perf_counter() - start, "work_seconds": work_s})
+    rows.append(
+        {
+            "way": "shell loop, blender -b per frame",
+            "tasks": args.frames,
+            "blenders": args.frames,
+            "seconds": time.perf_counter() - start,
+            "work_seconds": work_s,
+        }
+    )
 
     for session in ("false", "true"):
         for chunk in (int(c) for c in args.chunks.split(",")):
             out = os.path.join(work, f"openjd_{session}_{chunk}")
             command = [openjd, "run", template, "--step", "Voxelize"]
-            params = {"BlendFile": scene, "OutputDir": out, "Frames": frames, "ChunkSize": chunk, "ChunkSeconds": 0,
-                      "VoxelSize": repr(voxel_size), "Method": "cpu", "Mode": "conservative", "Objects": "Torus",
-                      "SessionBlender": session}
+            params = {
+                "BlendFile": scene,
+                "OutputDir": out,
+                "Frames": frames,
+                "ChunkSize": chunk,
+                "ChunkSeconds": 0,
+                "VoxelSize": repr(voxel_size),
+                "Method": "cpu",
+                "Mode": "conservative",
+                "Objects": "Torus",
+                "SessionBlender": session,
+            }
             for key, value in params.items():
                 command += ["-p", f"{key}={value}"]
             seconds, work_s, _ = timed(command, env)
             tasks = -(-args.frames // chunk)
-            rows.append({"way": ("OpenJD, one Blender per session" if session == "true"
-                                 else "OpenJD, one Blender per task") + f", chunks of {chunk}",
-                         "tasks": tasks, "blenders": 1 if session == "true" else tasks,
-                         "seconds": seconds, "work_seconds": work_s})
+            rows.append(
+                {
+                    "way": ("OpenJD, one Blender per session" if session == "true" else "OpenJD, one Blender per task")
+                    + f", chunks of {chunk}",
+                    "tasks": tasks,
+                    "blenders": 1 if session == "true" else tasks,
+                    "seconds": seconds,
+                    "work_seconds": work_s,
+                }
+            )
     assemble = [openjd, "run", template, "--step", "Assemble"]
-    for key, value in {"BlendFile": scene, "OutputDir": os.path.join(work, "openjd_true_1"), "Frames": frames,
-                       "VoxelSize": repr(voxel_size), "Objects": "Torus"}.items():
+    for key, value in {
+        "BlendFile": scene,
+        "OutputDir": os.path.join(work, "openjd_true_1"),
+        "Frames": frames,
+        "VoxelSize": repr(voxel_size),
+        "Objects": "Torus",
+    }.items():
         assemble += ["-p", f"{key}={value}"]
     assemble_seconds, _, _ = timed(assemble, env)
 
@@ -119,16 +172,37 @@ def main():
         row["overhead_per_frame_s"] = (row["seconds"] - row["work_seconds"]) / args.frames
         row["work_per_frame_s"] = row["work_seconds"] / args.frames
     blender = subprocess.run(["blender", "--version"], capture_output=True, text=True).stdout.split("\n")[0]
-    table = Table("farm", f"The farm job three ways ({blender}, torus, {args.frames} frames, voxel size "
-                  f"{voxel_size:g} (~{args.resolution}^3), cpu)",
-                  [Column("way"), Column("tasks"), Column("Blender starts"), Column("seconds", 1),
-                   Column("frames / min", 0), Column("overhead / frame (s)", 3), Column("voxelize / frame (s)", 3)])
+    table = Table(
+        "farm",
+        f"The farm job three ways ({blender}, torus, {args.frames} frames, voxel size "
+        f"{voxel_size:g} (~{args.resolution}^3), cpu)",
+        [
+            Column("way"),
+            Column("tasks"),
+            Column("Blender starts"),
+            Column("seconds", 1),
+            Column("frames / min", 0),
+            Column("overhead / frame (s)", 3),
+            Column("voxelize / frame (s)", 3),
+        ],
+    )
     for r in rows:
-        table.add([r["way"], r["tasks"], r["blenders"], r["seconds"], r["frames_per_minute"],
-                   r["overhead_per_frame_s"], r["work_per_frame_s"]])
-    table.note(f"Assemble step (one Blender: check {args.frames} files, save the .blend): {assemble_seconds:.1f} s. "
-               "voxelize / frame: the add-on's export + voxelize + write; overhead: the rest (Blender start-up, "
-               "file load, the add-on, the farm runner).")
+        table.add(
+            [
+                r["way"],
+                r["tasks"],
+                r["blenders"],
+                r["seconds"],
+                r["frames_per_minute"],
+                r["overhead_per_frame_s"],
+                r["work_per_frame_s"],
+            ]
+        )
+    table.note(
+        f"Assemble step (one Blender: check {args.frames} files, save the .blend): {assemble_seconds:.1f} s. "
+        "voxelize / frame: the add-on's export + voxelize + write; overhead: the rest (Blender start-up, "
+        "file load, the add-on, the farm runner)."
+    )
     table.write(args.out)
 
 

@@ -83,8 +83,7 @@ double naiveMs(const hyvox::MeshView& view, const hyvox::VoxelizeOptions& option
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / "hyvox_bench_naive";
     std::filesystem::create_directories(dir / "common");
     for (const auto& [name, text] : gl::embeddedShaders())
-        if (name.rfind("common/", 0) == 0)
-            std::ofstream(dir / name) << text;
+        if (name.rfind("common/", 0) == 0) std::ofstream(dir / name) << text;
     std::ofstream(dir / "naive.comp") << kNaiveShader;
     gl::GlWorker& worker = gl::GlWorker::get(options.gl.device);
     return worker.run([&] {
@@ -109,8 +108,7 @@ double naiveMs(const hyvox::MeshView& view, const hyvox::VoxelizeOptions& option
             Stopwatch watch;
             glDispatchCompute(std::min<GLuint>(groups, 65535), (groups + 65534) / 65535, 1);
             glFinish();
-            if (r)
-                ms.push_back(watch.elapsedMs());
+            if (r) ms.push_back(watch.elapsedMs());
         }
         gl::checkGl("naive baseline");
         return median(ms);
@@ -180,8 +178,7 @@ int main(int argc, char** argv) {
         } else
             meshes.push_back(arg);
     }
-    if (resolutions.empty())
-        resolutions = {128, 256, 512};
+    if (resolutions.empty()) resolutions = {128, 256, 512};
     if (meshes.empty())
         meshes = {"bunny_stanford_69k.ply", "dragon_stanford_871k.ply.gz", "happy_buddha_100k.ply",
                   "sponza_crytek_262k_vcolor.ply.gz", "triangle"};
@@ -190,8 +187,18 @@ int main(int argc, char** argv) {
                 "triangle", "fragment", "hybrid", "cutoff", "large", "pass1", "pass2", "hyb wall", "cpu wall");
     hyvox::bench::ResultTable table(
         "gl_hybrid", std::string("The GL methods: the JCGT 2013 Table 1 columns, ") + hyvox::toString(options.mode),
-        {{"scene"}, {"triangles"}, {"res"}, {"naive ms", 2}, {"triangle ms", 2}, {"fragment ms", 2}, {"hybrid ms", 2},
-         {"hybrid cutoff", 2}, {"large triangles"}, {"pass 1 ms", 2}, {"pass 2 ms", 2}, {"hybrid wall ms", 2},
+        {{"scene"},
+         {"triangles"},
+         {"res"},
+         {"naive ms", 2},
+         {"triangle ms", 2},
+         {"fragment ms", 2},
+         {"hybrid ms", 2},
+         {"hybrid cutoff", 2},
+         {"large triangles"},
+         {"pass 1 ms", 2},
+         {"pass 2 ms", 2},
+         {"hybrid wall ms", 2},
          {"cpu wall ms", 2}},
         argc, argv);
     table.setGpu(hyvox::bench::glDevicesText());

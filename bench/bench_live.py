@@ -22,6 +22,7 @@ Suzanne (level 3, 64k triangles, a Wave modifier) at 128: new voxel frames a sec
 frame_set() steps through the animation (background mode: each frame is voxelized
 before frame_set() returns). Writes the tables as bench/results/live.{json,md} and
 live_breakdown.{json,md} (bench_results.py)."""
+
 import argparse
 import os
 import statistics
@@ -32,8 +33,10 @@ import time
 import bpy
 import numpy as np
 
-sys.path[:0] = [os.path.dirname(os.path.abspath(__file__)),
-                os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "demo")]
+sys.path[:0] = [
+    os.path.dirname(os.path.abspath(__file__)),
+    os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "demo"),
+]
 from bench_results import add_out_argument  # noqa: E402
 from run_demo import enable_addon, mesh_from_arrays  # noqa: E402  (the demo's scene helpers)
 
@@ -48,11 +51,16 @@ MESHES = {
 def parse_args():
     argv = sys.argv[1:]
     if "--" in argv:
-        argv = argv[argv.index("--") + 1:]
+        argv = argv[argv.index("--") + 1 :]
     parser = argparse.ArgumentParser(prog="bench_live.py")
     parser.add_argument("--build", default="build")
-    parser.add_argument("--mesh-dir", default=os.environ.get("HYVOX_MESH_DIR", os.path.join(
-        os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "data", "meshes")))
+    parser.add_argument(
+        "--mesh-dir",
+        default=os.environ.get(
+            "HYVOX_MESH_DIR",
+            os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "data", "meshes"),
+        ),
+    )
     parser.add_argument("--meshes", default=",".join(MESHES))
     parser.add_argument("--resolutions", default="128,256,512")
     parser.add_argument("--modes", default="solid,surface")
@@ -65,6 +73,7 @@ def parse_args():
 
 def addon(name):
     import importlib
+
     return importlib.import_module("hyvox_blender." + name)
 
 
@@ -72,8 +81,7 @@ def addon(name):
 def clear():
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj, do_unlink=True)
-    for collection in (bpy.data.meshes, bpy.data.volumes, bpy.data.materials, bpy.data.images,
-                       bpy.data.node_groups):
+    for collection in (bpy.data.meshes, bpy.data.volumes, bpy.data.materials, bpy.data.images, bpy.data.node_groups):
         for block in list(collection):
             collection.remove(block)
 
@@ -172,8 +180,13 @@ def hyvox_live(source, voxel_size, mode, colour, edits, out):
     for obj in bpy.context.scene.objects:
         obj.select_set(obj is source)
     bpy.context.view_layer.objects.active = source
-    result = bpy.ops.object.hyvox_voxelize(voxel_size=voxel_size, mode="solid" if mode == "solid" else "conservative",
-                                           color=colour, live=True, output_dir=out)
+    result = bpy.ops.object.hyvox_voxelize(
+        voxel_size=voxel_size,
+        mode="solid" if mode == "solid" else "conservative",
+        color=colour,
+        live=True,
+        output_dir=out,
+    )
     assert result == {"FINISHED"}, result
     volume = bpy.data.objects[source.name + "_voxels"]
     live = addon("blender.live")
@@ -190,15 +203,23 @@ def hyvox_live(source, voxel_size, mode, colour, edits, out):
     voxels = addon("blender.operators").last_run_record["volumes"][0]["voxel_counts"][0]
     bpy.data.objects.remove(volume, do_unlink=True)
     bpy.context.view_layer.update()
-    breakdown = {name: statistics.median(s.get(name, 0.0) for s in stages)
-                 for name in ("export", "key", "voxelize", "write", "swap")}
-    breakdown["blender"] = statistics.median(lat - sum(s.get(n, 0.0) for n in ("export", "key", "voxelize", "write",
-                                                                               "swap"))
-                                             for lat, s in zip(latencies, stages))
-    return {"ms": statistics.median(latencies), "all_ms": latencies, "breakdown_ms": breakdown,
-            "method": method, "voxels": voxels,
-            "main_thread_ms": statistics.median(s["main"] for s in stages),
-            "main_thread_cpu_ms": statistics.median(s["main_cpu"] for s in stages)}
+    breakdown = {
+        name: statistics.median(s.get(name, 0.0) for s in stages)
+        for name in ("export", "key", "voxelize", "write", "swap")
+    }
+    breakdown["blender"] = statistics.median(
+        lat - sum(s.get(n, 0.0) for n in ("export", "key", "voxelize", "write", "swap"))
+        for lat, s in zip(latencies, stages)
+    )
+    return {
+        "ms": statistics.median(latencies),
+        "all_ms": latencies,
+        "breakdown_ms": breakdown,
+        "method": method,
+        "voxels": voxels,
+        "main_thread_ms": statistics.median(s["main"] for s in stages),
+        "main_thread_cpu_ms": statistics.median(s["main_cpu"] for s in stages),
+    }
 
 
 def density_grid_node(source, voxel_size, edits):
@@ -255,8 +276,9 @@ def animated_suzanne(mode, frames, out, resolution=128):
     for o in bpy.context.scene.objects:
         o.select_set(o is obj)
     bpy.context.view_layer.objects.active = obj
-    bpy.ops.object.hyvox_voxelize(resolution=resolution, mode="solid" if mode == "solid" else "conservative",
-                                  live=True, output_dir=out)
+    bpy.ops.object.hyvox_voxelize(
+        resolution=resolution, mode="solid" if mode == "solid" else "conservative", live=True, output_dir=out
+    )
     volume = bpy.data.objects[obj.name + "_voxels"]
     live = addon("blender.live")
     ident = volume["hyvox_live_id"]
@@ -281,8 +303,10 @@ def speedup(live_row, node_ms):
 def targets_met(row):
     """The issue's targets: surface 10x the node everywhere; solid 10x on closed meshes,
     5x on open ones (their inside is the winding number's)."""
-    checks = [(speedup(row.get("surface"), row.get("node_ms")), 10.0),
-              (speedup(row.get("solid"), row.get("node_ms")), 10.0 if row["closed"] else 5.0)]
+    checks = [
+        (speedup(row.get("surface"), row.get("node_ms")), 10.0),
+        (speedup(row.get("solid"), row.get("node_ms")), 10.0 if row["closed"] else 5.0),
+    ]
     checks = [(value, target) for value, target in checks if value is not None]
     return None if not checks else all(value >= target for value, target in checks)
 
@@ -291,13 +315,28 @@ def tables(rows, main_thread, animation, edits):
     """The results: `live` (Live against Blender's own paths, the main thread and the animation
     as notes) and `live_breakdown` (where an update's time goes)."""
     from bench_results import Column, Table
-    about = (f"Blender {bpy.app.version_string} (bpy module); median of {edits} edits after one warm-up; "
-             "hyvox method Auto.")
-    live = Table("live", "Live against Blender's own live volumes (edit to new voxels)",
-                 [Column("mesh"), Column("triangles"), Column("closed"), Column("res"),
-                  Column("hyvox Live solid ms", 0), Column("hyvox Live surface ms", 0),
-                  Column("Mesh to Density Grid ms", 0), Column("Mesh to Volume ms", 0), Column("solid vs node"),
-                  Column("surface vs node"), Column("targets (solid, surface)"), Column("met")])
+
+    about = (
+        f"Blender {bpy.app.version_string} (bpy module); median of {edits} edits after one warm-up; hyvox method Auto."
+    )
+    live = Table(
+        "live",
+        "Live against Blender's own live volumes (edit to new voxels)",
+        [
+            Column("mesh"),
+            Column("triangles"),
+            Column("closed"),
+            Column("res"),
+            Column("hyvox Live solid ms", 0),
+            Column("hyvox Live surface ms", 0),
+            Column("Mesh to Density Grid ms", 0),
+            Column("Mesh to Volume ms", 0),
+            Column("solid vs node"),
+            Column("surface vs node"),
+            Column("targets (solid, surface)"),
+            Column("met"),
+        ],
+    )
     live.note(about)
     for r in rows:
         solid, surface, node = r.get("solid"), r.get("surface"), r.get("node_ms")
@@ -306,37 +345,84 @@ def tables(rows, main_thread, animation, edits):
             value = speedup(live_row, node)
             return None if value is None else f"{value:.1f}x"
 
-        live.add([r["mesh"], r["triangles"], r["closed"], r["resolution"], solid and solid["ms"],
-                  surface and surface["ms"], node, r.get("modifier_ms"), times(solid), times(surface),
-                  f"{10 if r['closed'] else 5}x, 10x", targets_met(r)])
+        live.add(
+            [
+                r["mesh"],
+                r["triangles"],
+                r["closed"],
+                r["resolution"],
+                solid and solid["ms"],
+                surface and surface["ms"],
+                node,
+                r.get("modifier_ms"),
+                times(solid),
+                times(surface),
+                f"{10 if r['closed'] else 5}x, 10x",
+                targets_met(r),
+            ]
+        )
     if main_thread:
-        live.note(f"Main thread per update, {main_thread['mesh']} ({main_thread['triangles']:,} triangles, "
-                  f"surface at {main_thread['resolution']}): {main_thread['ms']:.1f} ms by the wall clock, "
-                  f"{main_thread['cpu_ms']:.1f} ms of its own CPU time (of which export "
-                  f"{main_thread['export_ms']:.1f}, swap {main_thread['swap_ms']:.1f}); target <= 10 ms: "
-                  f"{'met' if main_thread['ms'] <= 10 else 'not met'} by the wall clock, "
-                  f"{'met' if main_thread['cpu_ms'] <= 10 else 'not met'} in CPU time.")
+        live.note(
+            f"Main thread per update, {main_thread['mesh']} ({main_thread['triangles']:,} triangles, "
+            f"surface at {main_thread['resolution']}): {main_thread['ms']:.1f} ms by the wall clock, "
+            f"{main_thread['cpu_ms']:.1f} ms of its own CPU time (of which export "
+            f"{main_thread['export_ms']:.1f}, swap {main_thread['swap_ms']:.1f}); target <= 10 ms: "
+            f"{'met' if main_thread['ms'] <= 10 else 'not met'} by the wall clock, "
+            f"{'met' if main_thread['cpu_ms'] <= 10 else 'not met'} in CPU time."
+        )
     for x in animation:
-        live.note(f"Animated Suzanne level 3 ({x['triangles']:,} triangles, Wave) at 128, {x['mode']}: "
-                  f"{x['fps']:.1f} new voxel frames a second over {x['frames']} frames; target >= 10: "
-                  f"{'met' if x['fps'] >= 10 else 'not met'}.")
-    breakdown = Table("live_breakdown", "Where a Live update's time goes",
-                      [Column("mesh"), Column("res"), Column("mode"), Column("method")] +
-                      [Column(name, 1) for name in ("export ms", "key ms", "voxelize ms", "write ms", "swap ms",
-                                                    "Blender ms", "total ms", "main thread ms",
-                                                    "main thread CPU ms")])
-    breakdown.note(about + " Medians. Main thread: what the UI's main thread spends (the export, the run's "
-                   "set-up, the swap; wall clock, and its own CPU time); Blender: its evaluation after the swap, "
-                   "which loads the new .vdb, and the edit's own.")
+        live.note(
+            f"Animated Suzanne level 3 ({x['triangles']:,} triangles, Wave) at 128, {x['mode']}: "
+            f"{x['fps']:.1f} new voxel frames a second over {x['frames']} frames; target >= 10: "
+            f"{'met' if x['fps'] >= 10 else 'not met'}."
+        )
+    breakdown = Table(
+        "live_breakdown",
+        "Where a Live update's time goes",
+        [Column("mesh"), Column("res"), Column("mode"), Column("method")]
+        + [
+            Column(name, 1)
+            for name in (
+                "export ms",
+                "key ms",
+                "voxelize ms",
+                "write ms",
+                "swap ms",
+                "Blender ms",
+                "total ms",
+                "main thread ms",
+                "main thread CPU ms",
+            )
+        ],
+    )
+    breakdown.note(
+        about + " Medians. Main thread: what the UI's main thread spends (the export, the run's "
+        "set-up, the swap; wall clock, and its own CPU time); Blender: its evaluation after the swap, "
+        "which loads the new .vdb, and the edit's own."
+    )
     for r in rows:
         for mode in ("solid", "surface"):
             x = r.get(mode)
             if x is None:
                 continue
             b = x["breakdown_ms"]
-            breakdown.add([r["mesh"], r["resolution"], mode, x["method"], b["export"], b["key"], b["voxelize"],
-                           b["write"], b["swap"], b["blender"], x["ms"], x["main_thread_ms"],
-                           x["main_thread_cpu_ms"]])
+            breakdown.add(
+                [
+                    r["mesh"],
+                    r["resolution"],
+                    mode,
+                    x["method"],
+                    b["export"],
+                    b["key"],
+                    b["voxelize"],
+                    b["write"],
+                    b["swap"],
+                    b["blender"],
+                    x["ms"],
+                    x["main_thread_ms"],
+                    x["main_thread_cpu_ms"],
+                ]
+            )
     return [live, breakdown]
 
 
@@ -355,26 +441,42 @@ def main():
             extent = max(source.dimensions)
             for resolution in [int(x) for x in args.resolutions.split(",")]:
                 voxel_size = extent / resolution
-                row = {"mesh": name, "triangles": triangles, "closed": closed, "resolution": resolution,
-                       "voxel_size": voxel_size}
+                row = {
+                    "mesh": name,
+                    "triangles": triangles,
+                    "closed": closed,
+                    "resolution": resolution,
+                    "voxel_size": voxel_size,
+                }
                 for mode in modes:
                     row[mode] = hyvox_live(source, voxel_size, mode, name == "spot", args.edits, out)
-                    print(f"{name} {resolution} hyvox {mode}: {row[mode]['ms']:.0f} ms "
-                          f"{row[mode]['breakdown_ms']}", flush=True)
+                    print(
+                        f"{name} {resolution} hyvox {mode}: {row[mode]['ms']:.0f} ms {row[mode]['breakdown_ms']}",
+                        flush=True,
+                    )
                 if not args.skip_blender:
                     row["node_ms"] = density_grid_node(source, voxel_size, args.edits)
                     row["modifier_ms"] = mesh_to_volume(source, voxel_size, args.edits)
-                    print(f"{name} {resolution}: Mesh to Density Grid {row['node_ms']:.0f} ms, "
-                          f"Mesh to Volume {row['modifier_ms']:.0f} ms", flush=True)
+                    print(
+                        f"{name} {resolution}: Mesh to Density Grid {row['node_ms']:.0f} ms, "
+                        f"Mesh to Volume {row['modifier_ms']:.0f} ms",
+                        flush=True,
+                    )
                 rows.append(row)
         # The main thread's share for 100k triangles: the Buddha (exactly 100,000).
         clear()
         vertices, triangles = hyvox.read_mesh(os.path.join(args.mesh_dir, "happy_buddha_100k.ply"))
         buddha = mesh_from_arrays("Buddha", vertices, triangles)
         result = hyvox_live(buddha, max(buddha.dimensions) / 256, "surface", False, args.edits, out)
-        main_thread = {"mesh": "happy_buddha_100k", "triangles": len(triangles), "resolution": 256,
-                       "ms": result["main_thread_ms"], "cpu_ms": result["main_thread_cpu_ms"],
-                       "export_ms": result["breakdown_ms"]["export"], "swap_ms": result["breakdown_ms"]["swap"]}
+        main_thread = {
+            "mesh": "happy_buddha_100k",
+            "triangles": len(triangles),
+            "resolution": 256,
+            "ms": result["main_thread_ms"],
+            "cpu_ms": result["main_thread_cpu_ms"],
+            "export_ms": result["breakdown_ms"]["export"],
+            "swap_ms": result["breakdown_ms"]["swap"],
+        }
         print(f"main thread per update, 100k triangles: {main_thread}", flush=True)
         for mode in modes:
             animation.append(animated_suzanne(mode, args.animation_frames, out))
@@ -382,11 +484,13 @@ def main():
     for table in tables(rows, main_thread, animation, args.edits):
         table.write(args.out)
 
+
 if __name__ == "__main__":
     try:
         main()
     except Exception:
         import traceback
+
         traceback.print_exc()
         sys.stdout.flush()
         os._exit(1)

@@ -10,6 +10,7 @@ when base + estimate is at least the peak and at most 1.5 times it.
         [--meshes ../shared/data/meshes] [--out bench/results] [--only dragon,sponza]
 
 Writes OUT/memory_estimate.json and OUT/memory_estimate.md."""
+
 import argparse
 import json
 import os
@@ -35,8 +36,27 @@ MESHES = [
 
 def run(cli, mesh, resolution, mode, colour, work):
     out, stats, timing = (os.path.join(work, n) for n in ("m.vdb", "m.json", "time.txt"))
-    command = ["/usr/bin/time", "-o", timing, "-f", "%M", cli, "voxelize", mesh, "-o", out, "--resolution",
-               str(resolution), "--mode", mode, "--method", "cpu", "-q", "--stats-json", stats]
+    command = [
+        "/usr/bin/time",
+        "-o",
+        timing,
+        "-f",
+        "%M",
+        cli,
+        "voxelize",
+        mesh,
+        "-o",
+        out,
+        "--resolution",
+        str(resolution),
+        "--mode",
+        mode,
+        "--method",
+        "cpu",
+        "-q",
+        "--stats-json",
+        stats,
+    ]
     if colour:
         command += ["--attributes", "color"]
     start = time.time()
@@ -48,8 +68,14 @@ def run(cli, mesh, resolution, mode, colour, work):
     with open(stats) as f:
         s = json.load(f)
     os.remove(out)
-    return {"peak": peak, "seconds": seconds, "estimate": s["memory_estimate"], "leaves": s["leaves"],
-            "voxels": s["voxel_count"], "tile_bricks": s.get("solid", {}).get("tile_bricks", 0)}
+    return {
+        "peak": peak,
+        "seconds": seconds,
+        "estimate": s["memory_estimate"],
+        "leaves": s["leaves"],
+        "voxels": s["voxel_count"],
+        "tile_bricks": s.get("solid", {}).get("tile_bricks", 0),
+    }
 
 
 def main():
@@ -75,34 +101,57 @@ def main():
                         if mode == "solid" and resolution > solid_limit:
                             continue
                         r = run(args.cli, mesh, resolution, mode, colour, work)
-                        row = {"mesh": label, "mode": mode, "colour": colour, "resolution": resolution,
-                               "base_mib": mib(base), "peak_mib": mib(r["peak"]), "seconds": r["seconds"]}
+                        row = {
+                            "mesh": label,
+                            "mode": mode,
+                            "colour": colour,
+                            "resolution": resolution,
+                            "base_mib": mib(base),
+                            "peak_mib": mib(r["peak"]),
+                            "seconds": r["seconds"],
+                        }
                         if "refused" in r:
                             row["refused"] = r["refused"]
                         else:
                             e = r["estimate"]
-                            row.update(estimate_mib=mib(e["peak"]), ratio=(base + e["peak"]) / r["peak"],
-                                       passes_mib={k: mib(e[k]) for k in ("surface_pass", "solid_pass",
-                                                                          "attribute_values", "vdb_write")},
-                                       leaves=r["leaves"], leaves_estimated=e["surface_leaves"],
-                                       tile_bricks=r["tile_bricks"], inside_bricks_estimated=e["inside_bricks"])
+                            row.update(
+                                estimate_mib=mib(e["peak"]),
+                                ratio=(base + e["peak"]) / r["peak"],
+                                passes_mib={
+                                    k: mib(e[k])
+                                    for k in ("surface_pass", "solid_pass", "attribute_values", "vdb_write")
+                                },
+                                leaves=r["leaves"],
+                                leaves_estimated=e["surface_leaves"],
+                                tile_bricks=r["tile_bricks"],
+                                inside_bricks_estimated=e["inside_bricks"],
+                            )
                         rows.append(row)
                         print(json.dumps(row), flush=True)
-    header = (f"Memory estimate against the peak resident memory of `hyvox voxelize` (cpu, writing the .vdb), "
-              f"{platform.node()}, {os.cpu_count()} cores, `python3 bench/bench_memory_estimate.py "
-              f"--resolutions {args.resolutions}`. base: the mesh at resolution 8, conservative (process and mesh); "
-              f"ratio: (base + estimate) / peak, which should lie in [1, 1.5].")
-    lines = ["| mesh | mode | colour | res | peak MiB | base MiB | estimate MiB | ratio | largest pass | "
-             "leaves (est.) | s |", "|---|---|---|---:|---:|---:|---:|---:|---|---|---:|"]
+    header = (
+        f"Memory estimate against the peak resident memory of `hyvox voxelize` (cpu, writing the .vdb), "
+        f"{platform.node()}, {os.cpu_count()} cores, `python3 bench/bench_memory_estimate.py "
+        f"--resolutions {args.resolutions}`. base: the mesh at resolution 8, conservative (process and mesh); "
+        f"ratio: (base + estimate) / peak, which should lie in [1, 1.5]."
+    )
+    lines = [
+        "| mesh | mode | colour | res | peak MiB | base MiB | estimate MiB | ratio | largest pass | "
+        "leaves (est.) | s |",
+        "|---|---|---|---:|---:|---:|---:|---:|---|---|---:|",
+    ]
     for r in rows:
         if "refused" in r:
-            lines.append(f"| {r['mesh']} | {r['mode']} | {'yes' if r['colour'] else 'no'} | {r['resolution']} | "
-                         f"{r['peak_mib']:.0f} | {r['base_mib']:.0f} | refused | | | | {r['seconds']:.1f} |")
+            lines.append(
+                f"| {r['mesh']} | {r['mode']} | {'yes' if r['colour'] else 'no'} | {r['resolution']} | "
+                f"{r['peak_mib']:.0f} | {r['base_mib']:.0f} | refused | | | | {r['seconds']:.1f} |"
+            )
             continue
         largest = max(r["passes_mib"], key=r["passes_mib"].get)
-        lines.append(f"| {r['mesh']} | {r['mode']} | {'yes' if r['colour'] else 'no'} | {r['resolution']} | "
-                     f"{r['peak_mib']:.0f} | {r['base_mib']:.0f} | {r['estimate_mib']:.0f} | {r['ratio']:.2f} | "
-                     f"{largest} | {r['leaves']} ({r['leaves_estimated']}) | {r['seconds']:.1f} |")
+        lines.append(
+            f"| {r['mesh']} | {r['mode']} | {'yes' if r['colour'] else 'no'} | {r['resolution']} | "
+            f"{r['peak_mib']:.0f} | {r['base_mib']:.0f} | {r['estimate_mib']:.0f} | {r['ratio']:.2f} | "
+            f"{largest} | {r['leaves']} ({r['leaves_estimated']}) | {r['seconds']:.1f} |"
+        )
     text = header + "\n\n" + "\n".join(lines) + "\n"
     print(text)
     os.makedirs(args.out, exist_ok=True)

@@ -10,6 +10,7 @@ reader against assimp's.
         [--meshes ../shared/data/meshes] [--out bench/results]
 
 Writes OUT/mesh_formats.json and OUT/mesh_formats.md."""
+
 import argparse
 import json
 import os
@@ -24,8 +25,13 @@ sys.path.insert(0, os.path.join(HERE, "..", "tests", "python"))
 import mesh_writers  # noqa: E402
 from bench_results import Column, Table, add_out_argument  # noqa: E402
 
-MESHES = ["teapot_utah.ply", "bunny_stanford_69k.ply", "dragon_stanford_res2_203k.ply.gz",
-          "sponza_crytek_262k_vcolor.ply.gz", "dragon_stanford_871k.ply.gz"]
+MESHES = [
+    "teapot_utah.ply",
+    "bunny_stanford_69k.ply",
+    "dragon_stanford_res2_203k.ply.gz",
+    "sponza_crytek_262k_vcolor.ply.gz",
+    "dragon_stanford_871k.ply.gz",
+]
 
 
 def main():
@@ -49,22 +55,43 @@ def main():
             subprocess.run([args.bench, "--repeat", str(args.repeat), "--json", out, "--out", work, *files], check=True)
             for row in json.load(open(out)):
                 stem, name = row["file"].rsplit(".", 2)[0:2]
-                rows.append({"mesh": stem, "format": name, "triangles": row["triangles"],
-                             "reader": "assimp process" if name in ("fbx", "3mf") else "strict",
-                             "hyvox_ms": row["hyvox_ms"], "assimp_in_process_ms": row["assimp_ms"],
-                             "ratio": row["hyvox_ms"] / row["assimp_ms"],
-                             "same_triangle_count": row["triangles"] == row["assimp_triangles"]})
-    table = Table("mesh_formats", "Reading the shared meshes in every format: hyvox.readMesh against assimp in "
-                  "the process", [Column("mesh"), Column("format"), Column("triangles"), Column("hyvox reader"),
-                                  Column("hyvox ms", 1), Column("assimp in process ms", 1), Column("ratio", 2)])
+                rows.append(
+                    {
+                        "mesh": stem,
+                        "format": name,
+                        "triangles": row["triangles"],
+                        "reader": "assimp process" if name in ("fbx", "3mf") else "strict",
+                        "hyvox_ms": row["hyvox_ms"],
+                        "assimp_in_process_ms": row["assimp_ms"],
+                        "ratio": row["hyvox_ms"] / row["assimp_ms"],
+                        "same_triangle_count": row["triangles"] == row["assimp_triangles"],
+                    }
+                )
+    table = Table(
+        "mesh_formats",
+        "Reading the shared meshes in every format: hyvox.readMesh against assimp in the process",
+        [
+            Column("mesh"),
+            Column("format"),
+            Column("triangles"),
+            Column("hyvox reader"),
+            Column("hyvox ms", 1),
+            Column("assimp in process ms", 1),
+            Column("ratio", 2),
+        ],
+    )
     for r in rows:
-        table.add([r["mesh"], r["format"], r["triangles"], r["reader"], r["hyvox_ms"], r["assimp_in_process_ms"],
-                   r["ratio"]])
+        table.add(
+            [r["mesh"], r["format"], r["triangles"], r["reader"], r["hyvox_ms"], r["assimp_in_process_ms"], r["ratio"]]
+        )
         if not r["same_triangle_count"]:
             table.note(f"{r['mesh']}.{r['format']}: the two readers give different triangle counts")
-    table.note(f"Medians of {args.repeat} reads. ratio < 1: hyvox faster. FBX and 3MF: assimp in its own process "
-               "(the ratio is the process's price).")
+    table.note(
+        f"Medians of {args.repeat} reads. ratio < 1: hyvox faster. FBX and 3MF: assimp in its own process "
+        "(the ratio is the process's price)."
+    )
     table.write(args.out)
+
 
 if __name__ == "__main__":
     main()

@@ -62,14 +62,15 @@ int main(int argc, char** argv) {
         const double old_ms = medianMs(repeat, [&] { return hyvox::test::readMeshWithAssimp(file); }, old_triangles);
         const double new_ms = medianMs(repeat, [&] { return hyvox::readMesh(file); }, new_triangles);
         const std::string name = file.substr(file.find_last_of('/') + 1);
-        std::printf("%-40s %10zu %12.1f %12.1f %7.1fx%s\n", name.c_str(), new_triangles, old_ms, new_ms, old_ms / new_ms,
-                    old_triangles == new_triangles ? "" : "  (triangle counts differ!)");
+        std::printf("%-40s %10zu %12.1f %12.1f %7.1fx%s\n", name.c_str(), new_triangles, old_ms, new_ms,
+                    old_ms / new_ms, old_triangles == new_triangles ? "" : "  (triangle counts differ!)");
         if (old_triangles != new_triangles) table.note(name + ": the two readers give different triangle counts");
         table.add({name, new_triangles, old_ms, new_ms, old_ms / new_ms});
         char row[512];
-        std::snprintf(row, sizeof row, "%s{\"file\": \"%s\", \"triangles\": %zu, \"assimp_triangles\": %zu, "
-                      "\"assimp_ms\": %.3f, \"hyvox_ms\": %.3f}", json.size() > 1 ? ", " : "", name.c_str(),
-                      new_triangles, old_triangles, old_ms, new_ms);
+        std::snprintf(row, sizeof row,
+                      "%s{\"file\": \"%s\", \"triangles\": %zu, \"assimp_triangles\": %zu, "
+                      "\"assimp_ms\": %.3f, \"hyvox_ms\": %.3f}",
+                      json.size() > 1 ? ", " : "", name.c_str(), new_triangles, old_triangles, old_ms, new_ms);
         json += row;
     }
     if (!json_path.empty()) {

@@ -27,18 +27,18 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <thread>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "bench_args.h"
 #include "bench_results.h"
-#include "openvdb_arrays.h"
 #include "core/stopwatch.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/version.h"
 #include "io/vdb_grid.h"
+#include "openvdb_arrays.h"
 
 namespace {
 
@@ -184,32 +184,47 @@ int main(int argc, char** argv) {
         for (int a = 1; a < argc; ++a) {
             const std::string arg = argv[a];
             auto value = [&] { return hyvox::bench::optionValue(argc, argv, a); };
-            if (arg == "--runs") runs = std::max(1, std::atoi(value().c_str()));
-            else if (arg == "--res") resolutions.push_back(std::atoi(value().c_str()));
-            else if (arg == "--mesh-dir") mesh_dir = value();
-            else if (arg == "--out") out_dir = value();
+            if (arg == "--runs")
+                runs = std::max(1, std::atoi(value().c_str()));
+            else if (arg == "--res")
+                resolutions.push_back(std::atoi(value().c_str()));
+            else if (arg == "--mesh-dir")
+                mesh_dir = value();
+            else if (arg == "--out")
+                out_dir = value();
             else if (arg == "-h" || arg == "--help") {
                 std::puts("bench_mesh_to_volume [--runs R] [--res N]... [--mesh-dir DIR] [--out DIR] [MESH...]");
                 return 0;
-            } else meshes.push_back(arg);
+            } else
+                meshes.push_back(arg);
         }
         if (resolutions.empty()) resolutions = {256, 512};
         if (meshes.empty())
             meshes = {"bunny_stanford_69k.ply", "dragon_stanford_871k.ply.gz", "sponza_crytek_262k_vcolor.ply.gz"};
         hyvox::io::initializeOpenVdb();
 
-        std::printf("hyvox %s cpu vs OpenVDB %s meshToUnsignedDistanceField (band 1 voxel); median of %d runs, "
-                    "%u hardware threads\n\n",
-                    hyvox::version(), openvdb::getLibraryAbiVersionString(), runs,
-                    std::thread::hardware_concurrency());
+        std::printf(
+            "hyvox %s cpu vs OpenVDB %s meshToUnsignedDistanceField (band 1 voxel); median of %d runs, "
+            "%u hardware threads\n\n",
+            hyvox::version(), openvdb::getLibraryAbiVersionString(), runs, std::thread::hardware_concurrency());
         std::printf("%-34s %5s %9s %9s %8s %8s %8s %9s %7s %7s %9s %9s\n", "mesh", "res", "hyvox vox", "vdb vox",
                     "stage", "call", "+vdb", "openvdb", "x call", "x +vdb", "RSS hyvox", "RSS vdb");
-        hyvox::bench::ResultTable table(
-            "mesh_to_volume", "The surface: hyvox cpu against OpenVDB meshToUnsignedDistanceField",
-            {{"mesh"}, {"res"}, {"triangles"}, {"hyvox voxels"}, {"OpenVDB voxels"}, {"stage ms", 1}, {"call ms", 1},
-             {"call + vdb ms", 1}, {"OpenVDB ms", 1}, {"OpenVDB / call", 1}, {"OpenVDB / call + vdb", 1},
-             {"hyvox peak MiB", 0}, {"OpenVDB peak MiB", 0}},
-            argc, argv);
+        hyvox::bench::ResultTable table("mesh_to_volume",
+                                        "The surface: hyvox cpu against OpenVDB meshToUnsignedDistanceField",
+                                        {{"mesh"},
+                                         {"res"},
+                                         {"triangles"},
+                                         {"hyvox voxels"},
+                                         {"OpenVDB voxels"},
+                                         {"stage ms", 1},
+                                         {"call ms", 1},
+                                         {"call + vdb ms", 1},
+                                         {"OpenVDB ms", 1},
+                                         {"OpenVDB / call", 1},
+                                         {"OpenVDB / call + vdb", 1},
+                                         {"hyvox peak MiB", 0},
+                                         {"OpenVDB peak MiB", 0}},
+                                        argc, argv);
         table.note("Medians of " + std::to_string(runs) +
                    " runs, all cores. stage: the voxelize stage; call: the whole hyvox::voxelize() call; "
                    "+ vdb: with the OpenVDB density grid built from it; OpenVDB: meshToUnsignedDistanceField, "

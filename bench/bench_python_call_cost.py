@@ -12,6 +12,7 @@ native work the CLI times too), its minor page faults and system CPU (getrusage)
 
 The rounds' figures also go to DIR/python_call_cost.{json,md} (--out DIR, default bench/results/).
 """
+
 import argparse
 import json
 import os
@@ -36,21 +37,36 @@ def measure(build, mesh, res, threads, calls):
         grid = hyvox.voxelize(vertices, triangles, method="cpu", resolution=res, threads=threads)
         cpu_ms = (time.process_time() - cpu_before) * 1e3
         usage_after = resource.getrusage(resource.RUSAGE_SELF)
-        rows.append({
-            "cpu": cpu_ms,
-            "stages": sum(grid.stats["timings_ms"].values()),
-            "faults": usage_after.ru_minflt - usage_before.ru_minflt,
-            "sys": (usage_after.ru_stime - usage_before.ru_stime) * 1e3,
-        })
+        rows.append(
+            {
+                "cpu": cpu_ms,
+                "stages": sum(grid.stats["timings_ms"].values()),
+                "faults": usage_after.ru_minflt - usage_before.ru_minflt,
+                "sys": (usage_after.ru_stime - usage_before.ru_stime) * 1e3,
+            }
+        )
         del grid, vertices, triangles
     rows = rows[1:]  # the first call also starts the thread pool
-    print(f"{build}: call CPU median {statistics.median(r['cpu'] for r in rows):.1f} ms (min {min(r['cpu'] for r in rows):.1f}), "
-          f"stages' sum min {min(r['stages'] for r in rows):.1f} ms, minor faults {statistics.median(r['faults'] for r in rows):.0f}, "
-          f"system CPU median {statistics.median(r['sys'] for r in rows):.1f} ms")
+    print(
+        f"{build}: call CPU median {statistics.median(r['cpu'] for r in rows):.1f} ms (min {min(r['cpu'] for r in rows):.1f}), "
+        f"stages' sum min {min(r['stages'] for r in rows):.1f} ms, minor faults {statistics.median(r['faults'] for r in rows):.0f}, "
+        f"system CPU median {statistics.median(r['sys'] for r in rows):.1f} ms"
+    )
     # The parent collects one line of figures per process for the results' table.
-    print("FIGURES " + json.dumps([build, statistics.median(r["cpu"] for r in rows), min(r["cpu"] for r in rows),
-                                   min(r["stages"] for r in rows), statistics.median(r["faults"] for r in rows),
-                                   statistics.median(r["sys"] for r in rows)]), flush=True)
+    print(
+        "FIGURES "
+        + json.dumps(
+            [
+                build,
+                statistics.median(r["cpu"] for r in rows),
+                min(r["cpu"] for r in rows),
+                min(r["stages"] for r in rows),
+                statistics.median(r["faults"] for r in rows),
+                statistics.median(r["sys"] for r in rows),
+            ]
+        ),
+        flush=True,
+    )
 
 
 def main():
@@ -71,21 +87,47 @@ def main():
     if not args.build:
         parser.error("--build is required")
     print(f"load average {os.getloadavg()[0]:.1f}")
-    table = Table("python_call_cost", f"What hyvox.voxelize costs around its stages: {os.path.basename(args.mesh)} "
-                  f"at {args.res}", [Column("build"), Column("call CPU median ms", 1), Column("call CPU min ms", 1),
-                                    Column("stages' sum min ms", 1), Column("minor faults", 0),
-                                    Column("system CPU median ms", 1)])
-    table.note(f"One process per build and round ({args.rounds} rounds), {args.calls} calls each (the first "
-               f"left out), threads {args.threads}.")
+    table = Table(
+        "python_call_cost",
+        f"What hyvox.voxelize costs around its stages: {os.path.basename(args.mesh)} at {args.res}",
+        [
+            Column("build"),
+            Column("call CPU median ms", 1),
+            Column("call CPU min ms", 1),
+            Column("stages' sum min ms", 1),
+            Column("minor faults", 0),
+            Column("system CPU median ms", 1),
+        ],
+    )
+    table.note(
+        f"One process per build and round ({args.rounds} rounds), {args.calls} calls each (the first "
+        f"left out), threads {args.threads}."
+    )
     builds = [b for b in (args.baseline, args.build) if b]
     for _ in range(args.rounds):
         for build in builds:  # one process per build: the modules cannot share one
-            done = subprocess.run([sys.executable, __file__, "--one", build, "--mesh", args.mesh,
-                                   "--res", str(args.res), "--threads", str(args.threads), "--calls", str(args.calls)],
-                                  check=True, capture_output=True, text=True)
+            done = subprocess.run(
+                [
+                    sys.executable,
+                    __file__,
+                    "--one",
+                    build,
+                    "--mesh",
+                    args.mesh,
+                    "--res",
+                    str(args.res),
+                    "--threads",
+                    str(args.threads),
+                    "--calls",
+                    str(args.calls),
+                ],
+                check=True,
+                capture_output=True,
+                text=True,
+            )
             for line in done.stdout.splitlines():
                 if line.startswith("FIGURES "):
-                    table.add(json.loads(line[len("FIGURES "):]))
+                    table.add(json.loads(line[len("FIGURES ") :]))
                 else:
                     print(line, flush=True)
     print(f"load average {os.getloadavg()[0]:.1f}")

@@ -11,6 +11,7 @@ peak resident KiB): `hyvox voxelize MESH -o whole.vdb --resolution R`, then for 
 -o merged.vdb`. The merged file is checked against the whole run's (the same bytes but the
 file's random UUID). Writes OUT/regions.json and OUT/regions.md and prints the table; the
 .vdb files are removed. Default: the 871k dragon's surface at 4096."""
+
 import argparse
 import json
 import pathlib
@@ -45,7 +46,9 @@ def main():
     parser.add_argument("--build", default=str(REPO / "build"), help="the build folder (its hyvox CLI)")
     parser.add_argument("--res", type=int, default=4096)
     parser.add_argument("--regions", type=int, default=4)
-    parser.add_argument("--mesh", default=str(REPO.parent / "shared" / "data" / "meshes" / "dragon_stanford_871k.ply.gz"))
+    parser.add_argument(
+        "--mesh", default=str(REPO.parent / "shared" / "data" / "meshes" / "dragon_stanford_871k.ply.gz")
+    )
     add_out_argument(parser)
     parser.add_argument("options", nargs="*", help="further voxelize options (after --), e.g. --mode solid")
     args = parser.parse_args()
@@ -61,9 +64,18 @@ def main():
             out, stats = folder / f"{stem}.vdb", folder / f"{stem}.json"
             wall, rss, _ = timed([cli, "voxelize", mesh, "-o", out, "--stats-json", stats, *common, *extra])
             s = json.loads(stats.read_text())
-            rows.append({"task": name, "wall_s": wall, "peak_rss_mib": rss, "voxels": s["voxel_count"],
-                         "leaves": s["leaves"], "file_mib": out.stat().st_size / MIB,
-                         "box": s.get("region") and [s["region"]["lo"], s["region"]["hi"]], "dims": s["dims"]})
+            rows.append(
+                {
+                    "task": name,
+                    "wall_s": wall,
+                    "peak_rss_mib": rss,
+                    "voxels": s["voxel_count"],
+                    "leaves": s["leaves"],
+                    "file_mib": out.stat().st_size / MIB,
+                    "box": s.get("region") and [s["region"]["lo"], s["region"]["hi"]],
+                    "dims": s["dims"],
+                }
+            )
             print(f"{name:>10} {wall:8.2f} s {rss:9.1f} MiB {s['voxel_count']:>12} voxels", flush=True)
             return out
 
@@ -71,25 +83,57 @@ def main():
         parts = [voxelize(f"part {k}/{args.regions}", "--region", f"{k}/{args.regions}") for k in range(args.regions)]
         merged = folder / "merged.vdb"
         wall, rss, _ = timed([cli, "merge", *parts, "-o", merged, "-q"])
-        rows.append({"task": "merge", "wall_s": wall, "peak_rss_mib": rss, "voxels": rows[0]["voxels"],
-                     "leaves": rows[0]["leaves"], "file_mib": merged.stat().st_size / MIB, "box": None,
-                     "dims": rows[0]["dims"]})
+        rows.append(
+            {
+                "task": "merge",
+                "wall_s": wall,
+                "peak_rss_mib": rss,
+                "voxels": rows[0]["voxels"],
+                "leaves": rows[0]["leaves"],
+                "file_mib": merged.stat().st_size / MIB,
+                "box": None,
+                "dims": rows[0]["dims"],
+            }
+        )
         print(f"{'merge':>10} {wall:8.2f} s {rss:9.1f} MiB", flush=True)
         identical = same_but_uuid(whole, merged)
 
     part_rows = rows[1:-1]
     largest_part = max(r["peak_rss_mib"] for r in part_rows) / rows[0]["peak_rss_mib"]
-    table = Table("regions", f"Regions of one grid: {mesh.name} at {args.res}, {args.regions} regions",
-                  [Column("task"), Column("box (voxels lo..hi)"), Column("wall s", 2), Column("peak RSS MiB", 1),
-                   Column("RSS / whole", 2), Column("voxels"), Column("leaves"), Column("file MiB", 1)])
+    table = Table(
+        "regions",
+        f"Regions of one grid: {mesh.name} at {args.res}, {args.regions} regions",
+        [
+            Column("task"),
+            Column("box (voxels lo..hi)"),
+            Column("wall s", 2),
+            Column("peak RSS MiB", 1),
+            Column("RSS / whole", 2),
+            Column("voxels"),
+            Column("leaves"),
+            Column("file MiB", 1),
+        ],
+    )
     for r in rows:
         box = "-" if not r["box"] else f"{r['box'][0]}..{r['box'][1]}"
-        table.add([r["task"], box, r["wall_s"], r["peak_rss_mib"], r["peak_rss_mib"] / rows[0]["peak_rss_mib"],
-                   r["voxels"], r["leaves"], r["file_mib"]])
-    table.note("One process per task (`/usr/bin/time -f \"%e %M\"`). Merged file equals the whole run's (bytes but "
-               f"the UUID): {'yes' if identical else 'NO'}. Parts: {sum(r['wall_s'] for r in part_rows):.2f} s of "
-               f"tasks in all, the longest {max(r['wall_s'] for r in part_rows):.2f} s; the largest part's peak "
-               f"memory is {largest_part:.2f} of the whole run's.")
+        table.add(
+            [
+                r["task"],
+                box,
+                r["wall_s"],
+                r["peak_rss_mib"],
+                r["peak_rss_mib"] / rows[0]["peak_rss_mib"],
+                r["voxels"],
+                r["leaves"],
+                r["file_mib"],
+            ]
+        )
+    table.note(
+        'One process per task (`/usr/bin/time -f "%e %M"`). Merged file equals the whole run\'s (bytes but '
+        f"the UUID): {'yes' if identical else 'NO'}. Parts: {sum(r['wall_s'] for r in part_rows):.2f} s of "
+        f"tasks in all, the longest {max(r['wall_s'] for r in part_rows):.2f} s; the largest part's peak "
+        f"memory is {largest_part:.2f} of the whole run's."
+    )
     table.write(args.out)
     if not identical:
         sys.exit("the merged file differs from the whole run's")

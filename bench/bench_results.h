@@ -135,8 +135,8 @@ inline std::string shellQuote(const std::string& word) {
     if (word.empty()) return "''";
     bool safe = true;
     for (const char c : word)
-        safe = safe && (std::isalnum(static_cast<unsigned char>(c)) ||
-                        std::string("@%+=:,./-_").find(c) != std::string::npos);
+        safe = safe &&
+            (std::isalnum(static_cast<unsigned char>(c)) || std::string("@%+=:,./-_").find(c) != std::string::npos);
     if (safe) return word;
     std::string out = "'";
     for (const char c : word) out += c == '\'' ? std::string("'\"'\"'") : std::string(1, c);
@@ -204,8 +204,8 @@ private:
         m.cpu = detail::firstLineValue("/proc/cpuinfo", "model name", ':');
         if (m.cpu.empty()) m.cpu = "unknown";
         m.cores = std::thread::hardware_concurrency();
-        m.memory_gib = detail::rounded(std::atof(detail::firstLineValue("/proc/meminfo", "MemTotal", ':').c_str()) /
-                                           (1024.0 * 1024.0), 1);
+        m.memory_gib = detail::rounded(
+            std::atof(detail::firstLineValue("/proc/meminfo", "MemTotal", ':').c_str()) / (1024.0 * 1024.0), 1);
         m.os = detail::firstLineValue("/etc/os-release", "PRETTY_NAME", '=');
         utsname names{};
         if (::uname(&names) == 0) m.kernel = names.release;
@@ -215,9 +215,10 @@ private:
         m.commit = detail::commandOutput(git + "rev-parse --short=10 HEAD 2>/dev/null");
         // Local changes to the code, not to the results being written or the page made of them.
         m.dirty = !m.commit.empty() &&
-                  !detail::commandOutput(git + "status --porcelain --untracked-files=no -- . ':!bench/results' "
-                                               "':!docs/benchmarks.md' 2>/dev/null")
-                       .empty();
+            !detail::commandOutput(git +
+                                   "status --porcelain --untracked-files=no -- . ':!bench/results' "
+                                   "':!docs/benchmarks.md' 2>/dev/null")
+                 .empty();
         m.version = hyvox::version();
         const char* quick = std::getenv("HYVOX_BENCH_QUICK");
         m.quick = quick && std::string(quick) == "1";
@@ -235,9 +236,9 @@ private:
             << ",\n  \"kernel\": " << jsonQuote(m.kernel);
         if (!gpu_.empty()) out << ",\n  \"gpu\": " << jsonQuote(gpu_);
         out << ",\n  \"load_start\": " << jsonNumber(m.load_start) << ",\n  \"load_end\": " << jsonNumber(m.load_end)
-            << "\n },\n \"hyvox\": {\n  \"version\": " << jsonQuote(m.version) << ",\n  \"commit\": "
-            << jsonQuote(m.commit) << ",\n  \"dirty\": " << (m.dirty ? "true" : "false") << "\n },\n \"quick\": "
-            << (m.quick ? "true" : "false") << ",\n \"columns\": [";
+            << "\n },\n \"hyvox\": {\n  \"version\": " << jsonQuote(m.version)
+            << ",\n  \"commit\": " << jsonQuote(m.commit) << ",\n  \"dirty\": " << (m.dirty ? "true" : "false")
+            << "\n },\n \"quick\": " << (m.quick ? "true" : "false") << ",\n \"columns\": [";
         for (std::size_t c = 0; c < columns_.size(); ++c) {
             out << (c ? ",\n  " : "\n  ") << "{\"name\": " << jsonQuote(columns_[c].name);
             if (columns_[c].digits >= 0) out << ", \"digits\": " << columns_[c].digits;
@@ -249,10 +250,14 @@ private:
             for (std::size_t c = 0; c < rows_[r].size(); ++c) {
                 const auto& v = rows_[r][c].value;
                 out << (c ? ", " : "");
-                if (const auto* text = std::get_if<std::string>(&v)) out << jsonQuote(*text);
-                else if (const auto* whole = std::get_if<std::int64_t>(&v)) out << *whole;
-                else if (const auto* real = std::get_if<double>(&v)) out << jsonNumber(*real);
-                else out << "null";
+                if (const auto* text = std::get_if<std::string>(&v))
+                    out << jsonQuote(*text);
+                else if (const auto* whole = std::get_if<std::int64_t>(&v))
+                    out << *whole;
+                else if (const auto* real = std::get_if<double>(&v))
+                    out << jsonNumber(*real);
+                else
+                    out << "null";
             }
             out << "]";
         }
@@ -269,15 +274,16 @@ private:
         std::snprintf(memory, sizeof memory, "%s GiB", detail::jsonNumber(m.memory_gib).c_str());
         std::string what;
         const std::string cores = m.cores ? std::to_string(m.cores) + " cores" : "";
-        for (const std::string& part : {m.cpu, cores, m.memory_gib > 0 ? std::string(memory) : std::string(), m.os,
-                                        gpu_, std::string(load)})
+        for (const std::string& part :
+             {m.cpu, cores, m.memory_gib > 0 ? std::string(memory) : std::string(), m.os, gpu_, std::string(load)})
             if (!part.empty()) what += (what.empty() ? "" : ", ") + part;
         // The date and the commit stay in the .json: the page shows the current results, git
         // their history.
         std::ostringstream out;
         out << "<!-- Generated by the benchmark named below; bench/make_benchmarks_page.py puts it in "
                "docs/benchmarks.md. -->\n\n### "
-            << title_ << "\n\n`" << command_ << "`  \n" << what << "; hyvox " << m.version << ".\n";
+            << title_ << "\n\n`" << command_ << "`  \n"
+            << what << "; hyvox " << m.version << ".\n";
         if (m.quick)
             out << "\n*A quick run at small sizes (`bench/run_all.sh --quick`): it shows that the benchmark works, "
                    "not figures to quote.*\n";
@@ -288,8 +294,10 @@ private:
             bool numeric = false, other = false;
             for (const auto& row : rows_) {
                 const auto& v = row[c].value;
-                if (std::holds_alternative<std::int64_t>(v) || std::holds_alternative<double>(v)) numeric = true;
-                else if (std::holds_alternative<std::string>(v)) other = true;
+                if (std::holds_alternative<std::int64_t>(v) || std::holds_alternative<double>(v))
+                    numeric = true;
+                else if (std::holds_alternative<std::string>(v))
+                    other = true;
             }
             out << (numeric && !other ? "---:|" : "---|");
         }

@@ -30,12 +30,12 @@
 
 #include "bench_args.h"
 #include "bench_results.h"
-#include "openvdb_arrays.h"
 #include "core/stopwatch.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/version.h"
 #include "io/vdb_grid.h"
+#include "openvdb_arrays.h"
 #include "solid/fast_winding.h"
 
 namespace {
@@ -60,8 +60,9 @@ struct Lookup {
         if (!r.occupancy.inside(i, j, k)) return false;
         const std::uint64_t brick = r.grid.bricks().indexOfVoxel(i, j, k);
         const auto& leaves = r.sdf.leaves;
-        const auto it = std::lower_bound(leaves.begin(), leaves.end(), brick,
-                                         [](const hyvox::LevelSetGrid::Leaf& l, std::uint64_t b) { return l.brick < b; });
+        const auto it =
+            std::lower_bound(leaves.begin(), leaves.end(), brick,
+                             [](const hyvox::LevelSetGrid::Leaf& l, std::uint64_t b) { return l.brick < b; });
         if (it == leaves.end() || it->brick != brick) return false;
         const int v = (i & 7) * 64 + (j & 7) * 8 + (k & 7);
         if (!((it->active[v >> 6] >> (v & 63)) & 1)) return false;
@@ -97,7 +98,8 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
     openvdb::FloatGrid::Ptr level_set;
     for (int r = 0; r < runs; ++r) {
         hyvox::Stopwatch watch;
-        level_set = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*transform, arrays.points, arrays.triangles, 3.0f);
+        level_set =
+            openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*transform, arrays.points, arrays.triangles, 3.0f);
         theirs.push_back(watch.elapsedMs());
     }
     row.hyvox_ms = median(ours);
@@ -157,24 +159,34 @@ constexpr const char* kUsage =
 
 int main(int argc, char** argv) try {
     std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
-    hyvox::bench::MeshBenchArgs args = hyvox::bench::parseMeshBenchArgs(
-        argc, argv, kUsage, HYVOX_BENCH_MESH_DIR, [&](const std::string& arg, int& a) {
+    hyvox::bench::MeshBenchArgs args =
+        hyvox::bench::parseMeshBenchArgs(argc, argv, kUsage, HYVOX_BENCH_MESH_DIR, [&](const std::string& arg, int& a) {
             if (arg != "--out") return false;
             out_dir = hyvox::bench::optionValue(argc, argv, a);
             return true;
         });
     if (args.resolutions.empty()) args.resolutions = {128, 256, 512, 1024};
     if (args.files.empty())
-        args.files = {"spot_vcolor.ply", "happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz", "bunny_stanford_69k.ply",
-                      "sponza_crytek_262k_vcolor.ply.gz"};
+        args.files = {"spot_vcolor.ply", "happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz",
+                      "bunny_stanford_69k.ply", "sponza_crytek_262k_vcolor.ply.gz"};
     const int runs = args.runs;
     hyvox::io::initializeOpenVdb();
-    hyvox::bench::ResultTable table(
-        "sdf", "The signed distance grid against OpenVDB's meshToLevelSet",
-        {{"mesh"}, {"res"}, {"hyvox inside"}, {"hyvox ms", 1}, {"openvdb ms", 1}, {"openvdb / hyvox", 2},
-         {"hyvox active"}, {"openvdb active"}, {"max |d| difference, voxels", 3}, {"signs differ"},
-         {"sample checked"}, {"hyvox right"}, {"openvdb right"}, {"unclear"}},
-        argc, argv);
+    hyvox::bench::ResultTable table("sdf", "The signed distance grid against OpenVDB's meshToLevelSet",
+                                    {{"mesh"},
+                                     {"res"},
+                                     {"hyvox inside"},
+                                     {"hyvox ms", 1},
+                                     {"openvdb ms", 1},
+                                     {"openvdb / hyvox", 2},
+                                     {"hyvox active"},
+                                     {"openvdb active"},
+                                     {"max |d| difference, voxels", 3},
+                                     {"signs differ"},
+                                     {"sample checked"},
+                                     {"hyvox right"},
+                                     {"openvdb right"},
+                                     {"unclear"}},
+                                    argc, argv);
     table.note("Medians of " + std::to_string(runs) + " runs, band 3 voxels, OpenVDB " +
                openvdb::getLibraryAbiVersionString() +
                ". |d| difference: where both hold a voxel and agree on its sign (hyvox's distances are exact, "

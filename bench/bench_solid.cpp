@@ -31,11 +31,11 @@
 
 #include "bench_args.h"
 #include "bench_results.h"
-#include "openvdb_arrays.h"
 #include "core/stopwatch.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "io/vdb_grid.h"
+#include "openvdb_arrays.h"
 
 namespace {
 
@@ -100,9 +100,11 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
         }
     }
     if (!fog_dir.empty()) {
-        const std::string path = fog_dir + "/" + name.substr(name.find_last_of('/') + 1) + "_" + std::to_string(resolution) + ".fog.ijk";
+        const std::string path =
+            fog_dir + "/" + name.substr(name.find_last_of('/') + 1) + "_" + std::to_string(resolution) + ".fog.ijk";
         std::ofstream out(path, std::ios::binary);
-        out.write(reinterpret_cast<const char*>(fog_voxels.data()), std::streamsize(fog_voxels.size() * sizeof(std::int32_t)));
+        out.write(reinterpret_cast<const char*>(fog_voxels.data()),
+                  std::streamsize(fog_voxels.size() * sizeof(std::int32_t)));
         if (!out) {
             std::fprintf(stderr, "cannot write %s\n", path.c_str());
             std::exit(1);
@@ -117,7 +119,8 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
     for (const hyvox::SparseGrid::Leaf& leaf : result.occupancy.leaves()) {
         const auto at = bricks.at(leaf.brick);
         for (int n = 0; n < 512; ++n)
-            if ((leaf.words[n >> 6] >> (n & 63)) & 1) check(8 * at[0] + (n >> 6), 8 * at[1] + ((n >> 3) & 7), 8 * at[2] + (n & 7));
+            if ((leaf.words[n >> 6] >> (n & 63)) & 1)
+                check(8 * at[0] + (n >> 6), 8 * at[1] + ((n >> 3) & 7), 8 * at[2] + (n & 7));
     }
     for (const hyvox::SparseGrid::TileRun& run : result.occupancy.tileRuns())
         for (std::uint64_t b = run.begin; b < run.end; ++b) {
@@ -143,11 +146,14 @@ constexpr const char* kUsage =
 int main(int argc, char** argv) try {
     std::string fog_dir;
     std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
-    hyvox::bench::MeshBenchArgs args = hyvox::bench::parseMeshBenchArgs(
-        argc, argv, kUsage, HYVOX_BENCH_MESH_DIR, [&](const std::string& arg, int& a) {
-            if (arg == "--fog-dir") fog_dir = hyvox::bench::optionValue(argc, argv, a);
-            else if (arg == "--out") out_dir = hyvox::bench::optionValue(argc, argv, a);
-            else return false;
+    hyvox::bench::MeshBenchArgs args =
+        hyvox::bench::parseMeshBenchArgs(argc, argv, kUsage, HYVOX_BENCH_MESH_DIR, [&](const std::string& arg, int& a) {
+            if (arg == "--fog-dir")
+                fog_dir = hyvox::bench::optionValue(argc, argv, a);
+            else if (arg == "--out")
+                out_dir = hyvox::bench::optionValue(argc, argv, a);
+            else
+                return false;
             return true;
         });
     const int runs = args.runs;
@@ -155,15 +161,24 @@ int main(int argc, char** argv) try {
     const std::string& mesh_dir = args.mesh_dir;
     std::vector<std::string>& files = args.files;
     if (resolutions.empty()) resolutions = {256, 512, 1024};
-    if (files.empty()) files = {"happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz", "sponza_crytek_262k_vcolor.ply.gz"};
+    if (files.empty())
+        files = {"happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz", "sponza_crytek_262k_vcolor.ply.gz"};
     hyvox::io::initializeOpenVdb();
     std::printf("%-34s %5s %-34s %9s %9s %9s %7s %12s %12s %10s %10s\n", "mesh", "res", "hyvox rule", "hyvox", "+vdb",
                 "openvdb", "x +vdb", "hyvox vox", "openvdb vox", "vdb-only", "hyvox-only");
-    hyvox::bench::ResultTable table(
-        "solid", "Solid: hyvox mode=solid against OpenVDB meshToVolume + sdfToFogVolume",
-        {{"mesh"}, {"res"}, {"hyvox inside rule"}, {"hyvox ms", 1}, {"hyvox + vdb ms", 1}, {"OpenVDB ms", 1},
-         {"OpenVDB / hyvox + vdb", 1}, {"hyvox voxels"}, {"OpenVDB voxels"}, {"OpenVDB only"}, {"hyvox only"}},
-        argc, argv);
+    hyvox::bench::ResultTable table("solid", "Solid: hyvox mode=solid against OpenVDB meshToVolume + sdfToFogVolume",
+                                    {{"mesh"},
+                                     {"res"},
+                                     {"hyvox inside rule"},
+                                     {"hyvox ms", 1},
+                                     {"hyvox + vdb ms", 1},
+                                     {"OpenVDB ms", 1},
+                                     {"OpenVDB / hyvox + vdb", 1},
+                                     {"hyvox voxels"},
+                                     {"OpenVDB voxels"},
+                                     {"OpenVDB only"},
+                                     {"hyvox only"}},
+                                    argc, argv);
     table.note("Medians of " + std::to_string(runs) +
                " runs, all cores, the same grid. OpenVDB only: fog voxels hyvox leaves out; hyvox only: hyvox's "
                "inside voxels off its surface that the fog lacks. OpenVDB's sign flood needs a closed surface: "
@@ -174,9 +189,10 @@ int main(int argc, char** argv) try {
         for (const int res : resolutions) {
             const Row r = runCase(file, mesh, res, runs, fog_dir);
             std::printf("%-34s %5d %-34s %9.1f %9.1f %9.1f %7.1f %12llu %12llu %10llu %10llu\n", r.mesh.c_str(),
-                        r.resolution, r.rule.c_str(), r.hyvox_ms, r.with_vdb_ms, r.openvdb_ms, r.openvdb_ms / r.with_vdb_ms,
-                        (unsigned long long)r.hyvox_voxels, (unsigned long long)r.openvdb_voxels,
-                        (unsigned long long)r.openvdb_only, (unsigned long long)r.hyvox_only_inside);
+                        r.resolution, r.rule.c_str(), r.hyvox_ms, r.with_vdb_ms, r.openvdb_ms,
+                        r.openvdb_ms / r.with_vdb_ms, (unsigned long long)r.hyvox_voxels,
+                        (unsigned long long)r.openvdb_voxels, (unsigned long long)r.openvdb_only,
+                        (unsigned long long)r.hyvox_only_inside);
             std::fflush(stdout);
             table.add({r.mesh, r.resolution, r.rule, r.hyvox_ms, r.with_vdb_ms, r.openvdb_ms,
                        r.openvdb_ms / r.with_vdb_ms, r.hyvox_voxels, r.openvdb_voxels, r.openvdb_only,

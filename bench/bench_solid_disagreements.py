@@ -8,6 +8,7 @@ sample of each disagreement against the tests' float64 brute-force winding numbe
 
 The table also goes to DIR/solid_disagreements.{json,md} (--out DIR, default bench/results/).
 """
+
 import argparse
 import os
 import pathlib
@@ -40,20 +41,48 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--res", type=int, default=1024)
     parser.add_argument("--samples", type=int, default=100)
-    parser.add_argument("--mesh-dir", default=os.environ.get("HYVOX_MESH_DIR", str(ROOT.parent / "shared" / "data" / "meshes")))
+    parser.add_argument(
+        "--mesh-dir", default=os.environ.get("HYVOX_MESH_DIR", str(ROOT.parent / "shared" / "data" / "meshes"))
+    )
     parser.add_argument("--bench-solid", default=str(ROOT / "build" / "bench" / "bench_solid"))
     parser.add_argument("mesh")
     add_out_argument(parser)
     args = parser.parse_args()
-    table = Table("solid_disagreements",
-                  "Solid: where hyvox and OpenVDB's fog disagree, by the brute-force winding number",
-                  [Column("mesh"), Column("res"), Column("voxels"), Column("count"), Column("sampled"),
-                   Column("w >= 0.55"), Column("w <= 0.45"), Column("within 0.05 of 0.5")])
+    table = Table(
+        "solid_disagreements",
+        "Solid: where hyvox and OpenVDB's fog disagree, by the brute-force winding number",
+        [
+            Column("mesh"),
+            Column("res"),
+            Column("voxels"),
+            Column("count"),
+            Column("sampled"),
+            Column("w >= 0.55"),
+            Column("w <= 0.45"),
+            Column("within 0.05 of 0.5"),
+        ],
+    )
     print(f"load average at start: {os.getloadavg()}", flush=True)
     with tempfile.TemporaryDirectory() as fog_dir:
-        row = subprocess.run([args.bench_solid, "--runs", "1", "--res", str(args.res), "--mesh-dir", args.mesh_dir,
-                              "--fog-dir", fog_dir, "--out", fog_dir, args.mesh],
-                             check=True, capture_output=True, text=True).stdout
+        row = subprocess.run(
+            [
+                args.bench_solid,
+                "--runs",
+                "1",
+                "--res",
+                str(args.res),
+                "--mesh-dir",
+                args.mesh_dir,
+                "--fog-dir",
+                fog_dir,
+                "--out",
+                fog_dir,
+                args.mesh,
+            ],
+            check=True,
+            capture_output=True,
+            text=True,
+        ).stdout
         print(row, flush=True)
         fog = keys(np.fromfile(os.path.join(fog_dir, f"{args.mesh}_{args.res}.fog.ijk"), dtype=np.int32).reshape(-1, 3))
     vertices, triangles = hyvox.read_mesh(os.path.join(args.mesh_dir, args.mesh))
@@ -63,18 +92,33 @@ def main():
     del solid
     surface = keys(hyvox.voxelize(vertices, triangles, resolution=args.res).coords())
     inside = np.setdiff1d(ours, surface, assume_unique=True)
-    sets = {"hyvox inside (off its surface), OpenVDB outside": np.setdiff1d(inside, fog, assume_unique=True),
-            "OpenVDB inside, hyvox outside": np.setdiff1d(fog, ours, assume_unique=True)}
+    sets = {
+        "hyvox inside (off its surface), OpenVDB outside": np.setdiff1d(inside, fog, assume_unique=True),
+        "OpenVDB inside, hyvox outside": np.setdiff1d(fog, ours, assume_unique=True),
+    }
     print(f"hyvox {len(ours):,} voxels ({len(surface):,} surface), fog {len(fog):,}", flush=True)
     rng = np.random.default_rng(1)
     for label, found in sets.items():
         pick = found[rng.choice(len(found), min(args.samples, len(found)), replace=False)]
         w = brute_force_winding(vertices, triangles, origin + (coordinates(pick) + 0.5) * size)
         clear = np.abs(w - 0.5) >= 0.05
-        print(f"{label}: {len(found):,}; sampled {len(pick)}: w >= 0.55 {int((clear & (w >= 0.5)).sum())}, "
-              f"w <= 0.45 {int((clear & (w < 0.5)).sum())}, within 0.05 of 0.5 {int((~clear).sum())}", flush=True)
-        table.add([args.mesh, args.res, label, len(found), len(pick), int((clear & (w >= 0.5)).sum()),
-                   int((clear & (w < 0.5)).sum()), int((~clear).sum())])
+        print(
+            f"{label}: {len(found):,}; sampled {len(pick)}: w >= 0.55 {int((clear & (w >= 0.5)).sum())}, "
+            f"w <= 0.45 {int((clear & (w < 0.5)).sum())}, within 0.05 of 0.5 {int((~clear).sum())}",
+            flush=True,
+        )
+        table.add(
+            [
+                args.mesh,
+                args.res,
+                label,
+                len(found),
+                len(pick),
+                int((clear & (w >= 0.5)).sum()),
+                int((clear & (w < 0.5)).sum()),
+                int((~clear).sum()),
+            ]
+        )
     print(f"load average at end: {os.getloadavg()}")
     table.write(args.out)
 

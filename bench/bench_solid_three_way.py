@@ -15,6 +15,7 @@ OpenVDB's fog or libigl's w >= 0.5 differ from hyvox, and for a random sample of
 tests/python/test_solid.py): how often it sides with hyvox, with the other, or lies within
 0.05 of 0.5 (ambiguous: no approximation is held to those). The two tables also go to
 DIR/solid_three_way.{json,md} and DIR/solid_three_way_checks.{json,md} (default bench/results/)."""
+
 import argparse
 import json
 import os
@@ -40,8 +41,25 @@ POINTS_PER_CALL = 8_000_000  # libigl's memory for its output and temporaries st
 
 def openvdb_run(bench_solid, mesh_dir, name, res, fog_dir):
     """bench_solid's row (its hyvox and OpenVDB ms) and OpenVDB's fog voxels."""
-    subprocess.run([bench_solid, "--runs", "1", "--res", str(res), "--mesh-dir", str(mesh_dir), "--fog-dir", fog_dir,
-                    "--out", fog_dir, name], check=True, capture_output=True, text=True)
+    subprocess.run(
+        [
+            bench_solid,
+            "--runs",
+            "1",
+            "--res",
+            str(res),
+            "--mesh-dir",
+            str(mesh_dir),
+            "--fog-dir",
+            fog_dir,
+            "--out",
+            fog_dir,
+            name,
+        ],
+        check=True,
+        capture_output=True,
+        text=True,
+    )
     with open(os.path.join(fog_dir, "solid.json")) as f:
         row = json.load(f)["rows"][-1]
     hyvox_ms, openvdb_ms = row[3], row[5]
@@ -62,7 +80,7 @@ def libigl_inside(V, F, grid):
         xs = range(x0, min(nx, x0 + per_call))
         query = origin + (np.concatenate([slab + [x, 0, 0] for x in xs]) + 0.5) * h
         start = time.perf_counter()
-        w[x0 * ny * nz:(xs[-1] + 1) * ny * nz] = igl.fast_winding_number(V, F, query)
+        w[x0 * ny * nz : (xs[-1] + 1) * ny * nz] = igl.fast_winding_number(V, F, query)
         ms += 1e3 * (time.perf_counter() - start)
     w = w.reshape(nx, ny, nz)
     return w >= 0.5, w, ms
@@ -84,25 +102,53 @@ def judge(V, F, grid, ijk, ours, rng, samples):
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--res", default="128,256")
-    parser.add_argument("--mesh-dir", default=os.environ.get("HYVOX_MESH_DIR", str(ROOT.parent / "shared" / "data" / "meshes")))
+    parser.add_argument(
+        "--mesh-dir", default=os.environ.get("HYVOX_MESH_DIR", str(ROOT.parent / "shared" / "data" / "meshes"))
+    )
     parser.add_argument("--bench-solid", default=str(ROOT / "build" / "bench" / "bench_solid"))
     parser.add_argument("--samples", type=int, default=100, help="brute-force checks per voxel set")
     parser.add_argument("meshes", nargs="*", default=MESHES)
     add_out_argument(parser)
     args = parser.parse_args()
-    times = Table("solid_three_way", "Solid three ways: hyvox, OpenVDB, libigl's fast winding numbers",
-                  [Column("mesh"), Column("res"), Column("hyvox rule (auto)"), Column("hyvox ms", 0),
-                   Column("hyvox ms (bench_solid)", 0), Column("OpenVDB ms", 0), Column("libigl ms", 0),
-                   Column("OpenVDB / hyvox", 1), Column("libigl / hyvox", 1), Column("voxels off hyvox's surface")])
-    times.note("One run each. hyvox in this process (mode solid, inside rule auto); OpenVDB: meshToVolume + "
-               "sdfToFogVolume through bench_solid; libigl: fast_winding_number at every voxel centre, its tree "
-               "built inside the timed call.")
-    judged = Table("solid_three_way_checks", "Solid three ways: where each is wrong, by the brute-force winding number",
-                   [Column("mesh"), Column("res"), Column("voxels (off hyvox's surface)"), Column("count"),
-                    Column("sampled"), Column("brute force with hyvox"), Column("with the other"),
-                    Column("within 0.05 of 0.5")])
-    judged.note(f"Up to {args.samples} random voxels of each set against the float64 brute-force winding number "
-                "(tests/python/test_solid.py); with hyvox / with the other: |w - 0.5| >= 0.05 on that side.")
+    times = Table(
+        "solid_three_way",
+        "Solid three ways: hyvox, OpenVDB, libigl's fast winding numbers",
+        [
+            Column("mesh"),
+            Column("res"),
+            Column("hyvox rule (auto)"),
+            Column("hyvox ms", 0),
+            Column("hyvox ms (bench_solid)", 0),
+            Column("OpenVDB ms", 0),
+            Column("libigl ms", 0),
+            Column("OpenVDB / hyvox", 1),
+            Column("libigl / hyvox", 1),
+            Column("voxels off hyvox's surface"),
+        ],
+    )
+    times.note(
+        "One run each. hyvox in this process (mode solid, inside rule auto); OpenVDB: meshToVolume + "
+        "sdfToFogVolume through bench_solid; libigl: fast_winding_number at every voxel centre, its tree "
+        "built inside the timed call."
+    )
+    judged = Table(
+        "solid_three_way_checks",
+        "Solid three ways: where each is wrong, by the brute-force winding number",
+        [
+            Column("mesh"),
+            Column("res"),
+            Column("voxels (off hyvox's surface)"),
+            Column("count"),
+            Column("sampled"),
+            Column("brute force with hyvox"),
+            Column("with the other"),
+            Column("within 0.05 of 0.5"),
+        ],
+    )
+    judged.note(
+        f"Up to {args.samples} random voxels of each set against the float64 brute-force winding number "
+        "(tests/python/test_solid.py); with hyvox / with the other: |w - 0.5| >= 0.05 on that side."
+    )
     rng = np.random.default_rng(1)
     print(f"load average at start: {os.getloadavg()}", flush=True)
     timing = []
@@ -123,8 +169,18 @@ def main():
                 fog[tuple(fog_ijk.T)] = True
                 igl_in, _, igl_ms = libigl_inside(V, F, solid)
                 free = ~surface
-                timing.append((name, res, f"{stats['inside_rule']} by {stats['evaluation']}", hyvox_ms, bench_hyvox_ms,
-                               openvdb_ms, igl_ms, int(free.sum())))
+                timing.append(
+                    (
+                        name,
+                        res,
+                        f"{stats['inside_rule']} by {stats['evaluation']}",
+                        hyvox_ms,
+                        bench_hyvox_ms,
+                        openvdb_ms,
+                        igl_ms,
+                        int(free.sum()),
+                    )
+                )
                 print("timing", timing[-1], f"load {os.getloadavg()[0]:.1f}", flush=True)
                 sets = {
                     "all outside hyvox's surface": np.argwhere(free),
@@ -137,15 +193,21 @@ def main():
                     checks.append((name, res, label, len(ijk)) + judge(V, F, solid, ijk, ours, rng, args.samples))
                     print("check", checks[-1], flush=True)
     print(f"\nload average at end: {os.getloadavg()}\n")
-    print("| mesh | res | hyvox rule (auto) | hyvox ms | hyvox ms (bench_solid) | OpenVDB ms | libigl ms | "
-          "OpenVDB / hyvox | libigl / hyvox | voxels outside hyvox's surface |")
+    print(
+        "| mesh | res | hyvox rule (auto) | hyvox ms | hyvox ms (bench_solid) | OpenVDB ms | libigl ms | "
+        "OpenVDB / hyvox | libigl / hyvox | voxels outside hyvox's surface |"
+    )
     print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|")
     for name, res, rule, ms, bench_ms, vdb_ms, igl_ms, free in timing:
-        print(f"| {name} | {res} | {rule} | {ms:,.0f} | {bench_ms:,.0f} | {vdb_ms:,.0f} | {igl_ms:,.0f} | "
-              f"{vdb_ms / ms:.1f} | {igl_ms / ms:.1f} | {free:,} |")
+        print(
+            f"| {name} | {res} | {rule} | {ms:,.0f} | {bench_ms:,.0f} | {vdb_ms:,.0f} | {igl_ms:,.0f} | "
+            f"{vdb_ms / ms:.1f} | {igl_ms / ms:.1f} | {free:,} |"
+        )
         times.add([name, res, rule, ms, bench_ms, vdb_ms, igl_ms, vdb_ms / ms, igl_ms / ms, free])
-    print("\n| mesh | res | voxels (outside hyvox's surface) | count | sampled | brute force with hyvox | "
-          "with the other | within 0.05 of 0.5 |")
+    print(
+        "\n| mesh | res | voxels (outside hyvox's surface) | count | sampled | brute force with hyvox | "
+        "with the other | within 0.05 of 0.5 |"
+    )
     print("|---|---:|---|---:|---:|---:|---:|---:|")
     for name, res, label, count, sampled, with_hyvox, against, ambiguous in checks:
         print(f"| {name} | {res} | {label} | {count:,} | {sampled} | {with_hyvox} | {against} | {ambiguous} |")

@@ -13,6 +13,7 @@ call (the build time, measured on its own, is counted once). Agreement: on the e
 voxels outside hyvox's surface, how many libigl's w >= 0.5 puts on the other side than hyvox,
 and how many of those lie within 0.05 of the threshold (ambiguous for any approximation). The
 table also goes to DIR/solid_winding.{json,md} (default bench/results/)."""
+
 import argparse
 import os
 import time
@@ -35,13 +36,29 @@ def main():
     parser.add_argument("meshes", nargs="*", default=MESHES)
     add_out_argument(parser)
     args = parser.parse_args()
-    table = Table("solid_winding", "Solid: hyvox against libigl's fast winding numbers at the voxel centres",
-                  [Column("mesh"), Column("res"), Column("hyvox ms", 1), Column("libigl ms", 1), Column("slab step"),
-                   Column("libigl / hyvox", 1), Column("checked"), Column("differ"), Column("within 0.05 of 0.5")])
-    table.note("libigl gets every s-th x-slab's voxel centres (s = slab step; its time scaled by s, its tree build "
-               "counted once); differ: voxels off hyvox's surface where w >= 0.5 disagrees with hyvox.")
-    print(f"{'mesh':34} {'res':>5} {'hyvox ms':>9} {'igl ms':>10} {'slab step':>9} {'igl/hyvox':>9} "
-          f"{'checked':>11} {'differ':>8} {'ambiguous':>9}")
+    table = Table(
+        "solid_winding",
+        "Solid: hyvox against libigl's fast winding numbers at the voxel centres",
+        [
+            Column("mesh"),
+            Column("res"),
+            Column("hyvox ms", 1),
+            Column("libigl ms", 1),
+            Column("slab step"),
+            Column("libigl / hyvox", 1),
+            Column("checked"),
+            Column("differ"),
+            Column("within 0.05 of 0.5"),
+        ],
+    )
+    table.note(
+        "libigl gets every s-th x-slab's voxel centres (s = slab step; its time scaled by s, its tree build "
+        "counted once); differ: voxels off hyvox's surface where w >= 0.5 disagrees with hyvox."
+    )
+    print(
+        f"{'mesh':34} {'res':>5} {'hyvox ms':>9} {'igl ms':>10} {'slab step':>9} {'igl/hyvox':>9} "
+        f"{'checked':>11} {'differ':>8} {'ambiguous':>9}"
+    )
     for name in args.meshes:
         vertices, triangles = hyvox.read_mesh(os.path.join(args.mesh_dir, name))
         V = vertices.astype(np.float64)
@@ -64,7 +81,7 @@ def main():
             igl_ms, checked, differ, ambiguous = 0.0, 0, 0, 0
             ours_ijk, shell_ijk = by_slab(solid, slabs), by_slab(surface, slabs)
             for g0 in range(0, len(slabs), group):
-                xs = slabs[g0:g0 + group]
+                xs = slabs[g0 : g0 + group]
                 ijk = np.concatenate([per_slab + [x, 0, 0] for x in xs]).astype(np.int64)
                 query = origin + (ijk + 0.5) * h
                 start = time.perf_counter()
@@ -78,8 +95,11 @@ def main():
                 differ += int(other.sum())
                 ambiguous += int((other & (np.abs(w - 0.5) < 0.05)).sum())
             igl_ms = igl_ms * step + build_ms
-            print(f"{name:34} {res:5d} {hyvox_ms:9.1f} {igl_ms:10.1f} {step:9d} {igl_ms / hyvox_ms:9.1f} "
-                  f"{checked:11d} {differ:8d} {ambiguous:9d}", flush=True)
+            print(
+                f"{name:34} {res:5d} {hyvox_ms:9.1f} {igl_ms:10.1f} {step:9d} {igl_ms / hyvox_ms:9.1f} "
+                f"{checked:11d} {differ:8d} {ambiguous:9d}",
+                flush=True,
+            )
             table.add([name, res, hyvox_ms, igl_ms, step, igl_ms / hyvox_ms, checked, differ, ambiguous])
     table.write(args.out)
 

@@ -86,12 +86,18 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         auto next = [&] { return hyvox::bench::optionValue(argc, argv, i); };
-        if (arg == "--res") resolutions = parseList<int>(next());
-        else if (arg == "--gammas") gammas = parseList<double>(next());
-        else if (arg == "--repeat") repeat = std::max(1, std::atoi(next().c_str()));
-        else if (arg == "--csv") csv_path = next();
-        else if (arg == "--out") out_dir = next();
-        else meshes.push_back(arg);
+        if (arg == "--res")
+            resolutions = parseList<int>(next());
+        else if (arg == "--gammas")
+            gammas = parseList<double>(next());
+        else if (arg == "--repeat")
+            repeat = std::max(1, std::atoi(next().c_str()));
+        else if (arg == "--csv")
+            csv_path = next();
+        else if (arg == "--out")
+            out_dir = next();
+        else
+            meshes.push_back(arg);
     }
     if (meshes.empty()) {
         std::fprintf(stderr,
@@ -102,16 +108,28 @@ int main(int argc, char** argv) {
     }
     std::FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
     if (csv)
-        std::fprintf(csv, "mesh,triangles,resolution,method,gamma,ms,gpu_pass_ms,points,voxels,bias,bias_thin,"
-                          "false_voxels,enclosed,leaked\n");
-    std::printf("| mesh | triangles | res | cpu ms | hybrid ms | γ | tessellation ms (GPU passes) | points | bias | "
-                "bias vs thin | false | sealed |\n");
+        std::fprintf(csv,
+                     "mesh,triangles,resolution,method,gamma,ms,gpu_pass_ms,points,voxels,bias,bias_thin,"
+                     "false_voxels,enclosed,leaked\n");
+    std::printf(
+        "| mesh | triangles | res | cpu ms | hybrid ms | γ | tessellation ms (GPU passes) | points | bias | "
+        "bias vs thin | false | sealed |\n");
     std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
-    hyvox::bench::ResultTable table(
-        "tessellation", "The tessellation method: time, bias and watertightness per γ",
-        {{"mesh"}, {"triangles"}, {"res"}, {"cpu ms", 1}, {"hybrid ms", 1}, {"γ"}, {"tessellation ms", 1},
-         {"GPU passes ms", 1}, {"points"}, {"bias %", 2}, {"bias vs thin %", 2}, {"false voxels"}, {"sealed"}},
-        argc, argv);
+    hyvox::bench::ResultTable table("tessellation", "The tessellation method: time, bias and watertightness per γ",
+                                    {{"mesh"},
+                                     {"triangles"},
+                                     {"res"},
+                                     {"cpu ms", 1},
+                                     {"hybrid ms", 1},
+                                     {"γ"},
+                                     {"tessellation ms", 1},
+                                     {"GPU passes ms", 1},
+                                     {"points"},
+                                     {"bias %", 2},
+                                     {"bias vs thin %", 2},
+                                     {"false voxels"},
+                                     {"sealed"}},
+                                    argc, argv);
     table.setGpu(hyvox::bench::glDevicesText());
     table.note("Times: the voxelize stage, best of " + std::to_string(repeat) +
                " runs after a warm-up. bias: the exact conservative voxels the points miss; bias vs thin: the "
@@ -145,8 +163,10 @@ int main(int argc, char** argv) {
                 thin_options.mode = hyvox::Mode::Thin;
                 const hyvox::VoxelizeResult thin = hyvox::voxelize(mesh.view(), thin_options);
                 char hybrid_ms[64];
-                if (hybrid.error.empty()) std::snprintf(hybrid_ms, sizeof hybrid_ms, "%.1f", hybrid.best_ms);
-                else std::snprintf(hybrid_ms, sizeof hybrid_ms, "n/a");
+                if (hybrid.error.empty())
+                    std::snprintf(hybrid_ms, sizeof hybrid_ms, "%.1f", hybrid.best_ms);
+                else
+                    std::snprintf(hybrid_ms, sizeof hybrid_ms, "n/a");
                 if (csv) {
                     std::fprintf(csv, "%s,%zu,%d,cpu,,%.3f,,,%llu,,,,,\n", name.c_str(), mesh.triangleCount(), res,
                                  cpu.best_ms, (unsigned long long)cpu.result.stats.voxel_count);
@@ -170,18 +190,19 @@ int main(int argc, char** argv) {
                     if (cpu.error.empty()) acc = compareToReference(tess.result.occupancy, cpu.result.occupancy);
                     const hyvox::AccuracyReport acc_thin = compareToReference(tess.result.occupancy, thin.occupancy);
                     const hyvox::SealReport seal = floodFromOutside(tess.result.occupancy, thin.occupancy);
-                    std::printf("| %s | %zu | %d | %.1f | %s | %g | %.1f (%.1f) | %.0f | %.2f%% | %.2f%% | %llu | %s "
-                                "|\n",
-                                name.c_str(), mesh.triangleCount(), res, cpu.best_ms, hybrid_ms, gamma, tess.best_ms,
-                                gpu_ms, double(m.points), 100.0 * acc.bias, 100.0 * acc_thin.bias,
-                                (unsigned long long)acc.false_voxels, sealedText(seal).c_str());
+                    std::printf(
+                        "| %s | %zu | %d | %.1f | %s | %g | %.1f (%.1f) | %.0f | %.2f%% | %.2f%% | %llu | %s "
+                        "|\n",
+                        name.c_str(), mesh.triangleCount(), res, cpu.best_ms, hybrid_ms, gamma, tess.best_ms, gpu_ms,
+                        double(m.points), 100.0 * acc.bias, 100.0 * acc_thin.bias, (unsigned long long)acc.false_voxels,
+                        sealedText(seal).c_str());
                     std::fflush(stdout);
                     char gamma_text[32];
                     std::snprintf(gamma_text, sizeof gamma_text, "%g", gamma);
                     table.add({name, mesh.triangleCount(), res, cpu.best_ms,
                                hybrid.error.empty() ? hyvox::bench::Cell(hybrid.best_ms) : hyvox::bench::Cell(),
-                               std::string(gamma_text), tess.best_ms, gpu_ms, std::int64_t(m.points),
-                               100.0 * acc.bias, 100.0 * acc_thin.bias, acc.false_voxels, sealedText(seal)});
+                               std::string(gamma_text), tess.best_ms, gpu_ms, std::int64_t(m.points), 100.0 * acc.bias,
+                               100.0 * acc_thin.bias, acc.false_voxels, sealedText(seal)});
                     if (csv) {
                         std::fprintf(csv, "%s,%zu,%d,tessellation,%g,%.3f,%.3f,%.0f,%llu,%.6f,%.6f,%llu,%llu,%llu\n",
                                      name.c_str(), mesh.triangleCount(), res, gamma, tess.best_ms, gpu_ms,

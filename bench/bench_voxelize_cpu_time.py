@@ -11,6 +11,7 @@ warm up and then `--calls` times; the figures are medians over the calls, then o
 
 The table also goes to DIR/voxelize_cpu_time.{json,md} (--out DIR, default bench/results/).
 """
+
 import argparse
 import os
 import statistics
@@ -21,7 +22,7 @@ from bench_results import Column, Table, add_out_argument
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
-ONE_BUILD = r'''
+ONE_BUILD = r"""
 import sys, time, statistics
 sys.path.insert(0, sys.argv[1])
 import hyvox
@@ -36,7 +37,7 @@ for _ in range(calls):
     stage.append(grid.stats["timings_ms"]["voxelize"])
     covered = grid.stats["cpu"].get("triangles_already_covered", 0)
 print(statistics.median(cpu), statistics.median(stage), covered, len(triangles))
-'''
+"""
 
 
 def parse_args():
@@ -54,22 +55,52 @@ def parse_args():
 
 
 def run_build(build, mesh, res, args):
-    out = subprocess.run([sys.executable, "-c", ONE_BUILD, os.path.join(os.path.abspath(build), "python"), mesh,
-                          str(res), str(args.threads), str(args.calls)], capture_output=True, text=True, check=True)
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            ONE_BUILD,
+            os.path.join(os.path.abspath(build), "python"),
+            mesh,
+            str(res),
+            str(args.threads),
+            str(args.calls),
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     cpu, stage, covered, triangles = out.stdout.split()
     return float(cpu), float(stage), int(covered), int(triangles)
 
 
 def main():
     args = parse_args()
-    print("| mesh | res | threads | base CPU ms | CPU ms | base / this | base stage ms | stage ms | skipped triangles | load |")
+    print(
+        "| mesh | res | threads | base CPU ms | CPU ms | base / this | base stage ms | stage ms | skipped triangles | load |"
+    )
     print("|---|---|---|---|---|---|---|---|---|---|")
-    table = Table("voxelize_cpu_time", "CPU time of one voxelize() call, two builds side by side",
-                  [Column("mesh"), Column("res"), Column("threads"), Column("base CPU ms", 1), Column("CPU ms", 1),
-                   Column("base / this", 2), Column("base stage ms", 1), Column("stage ms", 1),
-                   Column("skipped triangles"), Column("triangles"), Column("load", 2)])
-    table.note(f"Medians over {args.calls} calls per process and {args.rounds} rounds of fresh processes, the "
-               f"builds alternating; base: {args.baseline}.")
+    table = Table(
+        "voxelize_cpu_time",
+        "CPU time of one voxelize() call, two builds side by side",
+        [
+            Column("mesh"),
+            Column("res"),
+            Column("threads"),
+            Column("base CPU ms", 1),
+            Column("CPU ms", 1),
+            Column("base / this", 2),
+            Column("base stage ms", 1),
+            Column("stage ms", 1),
+            Column("skipped triangles"),
+            Column("triangles"),
+            Column("load", 2),
+        ],
+    )
+    table.note(
+        f"Medians over {args.calls} calls per process and {args.rounds} rounds of fresh processes, the "
+        f"builds alternating; base: {args.baseline}."
+    )
     for name in args.meshes.split(","):
         mesh = os.path.join(args.mesh_dir, name)
         for res in [int(r) for r in args.res.split(",")]:
@@ -80,11 +111,27 @@ def main():
             cpu = {k: statistics.median(r[0] for r in v) for k, v in runs.items()}
             stage = {k: statistics.median(r[1] for r in v) for k, v in runs.items()}
             covered, triangles = runs["this"][-1][2], runs["this"][-1][3]
-            print(f"| {name} | {res} | {args.threads} | {cpu['base']:.1f} | {cpu['this']:.1f} | "
-                  f"{cpu['base'] / cpu['this']:.2f} | {stage['base']:.1f} | {stage['this']:.1f} | "
-                  f"{covered} of {triangles} | {os.getloadavg()[0]:.2f} |", flush=True)
-            table.add([name, res, args.threads, cpu["base"], cpu["this"], cpu["base"] / cpu["this"], stage["base"],
-                       stage["this"], covered, triangles, os.getloadavg()[0]])
+            print(
+                f"| {name} | {res} | {args.threads} | {cpu['base']:.1f} | {cpu['this']:.1f} | "
+                f"{cpu['base'] / cpu['this']:.2f} | {stage['base']:.1f} | {stage['this']:.1f} | "
+                f"{covered} of {triangles} | {os.getloadavg()[0]:.2f} |",
+                flush=True,
+            )
+            table.add(
+                [
+                    name,
+                    res,
+                    args.threads,
+                    cpu["base"],
+                    cpu["this"],
+                    cpu["base"] / cpu["this"],
+                    stage["base"],
+                    stage["this"],
+                    covered,
+                    triangles,
+                    os.getloadavg()[0],
+                ]
+            )
     table.write(args.out)
 
 

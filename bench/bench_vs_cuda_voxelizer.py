@@ -27,6 +27,7 @@ Columns (ms, medians):
   load: the 1-minute load average when the row finished (the machine may be shared).
 The table also goes to DIR/vs_cuda_voxelizer.{json,md} (default bench/results/).
 """
+
 import argparse
 import csv
 import gzip
@@ -56,12 +57,16 @@ def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--peer", required=True, help="the cuda_voxelizer binary (built with its CPU path)")
     parser.add_argument("--build", default=os.path.join(HERE, "..", "build"), help="hyvox build folder")
-    parser.add_argument("--mesh-dir", default=os.environ.get("HYVOX_MESH_DIR",
-                                                             os.path.join(HERE, "..", "..", "shared", "data", "meshes")))
+    parser.add_argument(
+        "--mesh-dir",
+        default=os.environ.get("HYVOX_MESH_DIR", os.path.join(HERE, "..", "..", "shared", "data", "meshes")),
+    )
     parser.add_argument("--meshes", default=",".join(DEFAULT_MESHES))
     parser.add_argument("--res", default="128,256,512,1024")
     parser.add_argument("--runs", type=int, default=3)
-    parser.add_argument("--threads", type=int, default=0, help="hyvox --threads and the peer's OMP_NUM_THREADS (0 = all)")
+    parser.add_argument(
+        "--threads", type=int, default=0, help="hyvox --threads and the peer's OMP_NUM_THREADS (0 = all)"
+    )
     parser.add_argument("--csv", help="also write the rows here")
     parser.add_argument("--no-python", action="store_true", help="skip the Python-call columns")
     parser.add_argument("--baseline", help="another hyvox build folder to time beside this one (before/after)")
@@ -94,13 +99,36 @@ def timed_run(command, env):
 def run_hyvox(hyvox, mesh, res, threads, work, env):
     out = os.path.join(work, "hyvox.vdb")
     stats_path = os.path.join(work, "hyvox.json")
-    proc_ms, _ = timed_run([hyvox, "voxelize", mesh, "-o", out, "--method", "cpu", "--resolution", str(res),
-                            "--threads", str(threads), "--stats-json", stats_path, "-q"], env)
+    proc_ms, _ = timed_run(
+        [
+            hyvox,
+            "voxelize",
+            mesh,
+            "-o",
+            out,
+            "--method",
+            "cpu",
+            "--resolution",
+            str(res),
+            "--threads",
+            str(threads),
+            "--stats-json",
+            stats_path,
+            "-q",
+        ],
+        env,
+    )
     with open(stats_path) as f:
         stats = json.load(f)
     t = stats["timings_ms"]
-    return {"read": t["read_mesh"], "vox": t["voxelize"], "vdb": t["build_vdb"] + t["write_vdb"],
-            "stages": sum(t.values()), "proc": proc_ms, "voxels": stats["voxel_count"]}
+    return {
+        "read": t["read_mesh"],
+        "vox": t["voxelize"],
+        "vdb": t["build_vdb"] + t["write_vdb"],
+        "stages": sum(t.values()),
+        "proc": proc_ms,
+        "voxels": stats["voxel_count"],
+    }
 
 
 def run_peer(peer, mesh, res, env):
@@ -121,8 +149,12 @@ def run_python(hyvox_module, mesh, res, threads, work):
     voxelized = time.perf_counter()
     grid.write_vdb(out, threads)
     written = time.perf_counter()
-    return {"read": (read - start) * 1e3, "vox": (voxelized - read) * 1e3, "vdb": (written - voxelized) * 1e3,
-            "sum": (written - start) * 1e3}
+    return {
+        "read": (read - start) * 1e3,
+        "vox": (voxelized - read) * 1e3,
+        "vdb": (written - voxelized) * 1e3,
+        "sum": (written - start) * 1e3,
+    }
 
 
 def median_of(rows, key):
@@ -139,19 +171,41 @@ def main():
     if not args.no_python:
         sys.path.insert(0, os.path.join(os.path.abspath(args.build), "python"))
         import hyvox as hyvox_module  # noqa: E402 (the build's module)
-    columns = ["mesh", "res", "voxels", "hyvox read", "hyvox vox", "hyvox vdb", "hyvox stages", "hyvox proc",
-               "peer vox", "peer proc", "x proc", "x vox", "py read", "py vox", "py vdb", "py sum", "py/cli",
-               "py first"]
+    columns = [
+        "mesh",
+        "res",
+        "voxels",
+        "hyvox read",
+        "hyvox vox",
+        "hyvox vdb",
+        "hyvox stages",
+        "hyvox proc",
+        "peer vox",
+        "peer proc",
+        "x proc",
+        "x vox",
+        "py read",
+        "py vox",
+        "py vdb",
+        "py sum",
+        "py/cli",
+        "py first",
+    ]
     if args.baseline:
         columns += ["base stages", "base proc", "x base"]
     columns.append("load")
     rows = []
     ratios = ("x proc", "x vox", "py/cli", "x base", "load")
-    table = Table("vs_cuda_voxelizer", "End to end against cuda_voxelizer's CPU path",
-                  [Column(c, 2 if c in ratios else 1) for c in columns])
-    table.note(f"ms, medians of {args.runs} runs, one fresh process each, the contenders alternating; x proc / x "
-               "vox: the peer's time over hyvox's (above 1: hyvox is faster); py: read_mesh + voxelize + write_vdb "
-               "in one Python process, after three untimed calls at the size.")
+    table = Table(
+        "vs_cuda_voxelizer",
+        "End to end against cuda_voxelizer's CPU path",
+        [Column(c, 2 if c in ratios else 1) for c in columns],
+    )
+    table.note(
+        f"ms, medians of {args.runs} runs, one fresh process each, the contenders alternating; x proc / x "
+        "vox: the peer's time over hyvox's (above 1: hyvox is faster); py: read_mesh + voxelize + write_vdb "
+        "in one Python process, after three untimed calls at the size."
+    )
     print("| " + " | ".join(columns) + " |")
     print("|" + "---|" * len(columns))
     with tempfile.TemporaryDirectory(prefix="hyvox_bench_") as work:
@@ -171,11 +225,16 @@ def main():
                     first_py = run_python(hyvox_module, mesh, res, args.threads, work)
                     for _ in range(2):
                         run_python(hyvox_module, mesh, res, args.threads, work)
-                contenders = [lambda: ours.append(run_hyvox(hyvox, mesh, res, args.threads, work, env)),
-                              lambda: peers.append(run_peer(args.peer, mesh, res, env))]
+                contenders = [
+                    lambda: ours.append(run_hyvox(hyvox, mesh, res, args.threads, work, env)),
+                    lambda: peers.append(run_peer(args.peer, mesh, res, env)),
+                ]
                 if args.baseline:
-                    contenders.append(lambda: bases.append(
-                        run_hyvox(os.path.join(args.baseline, "hyvox"), mesh, res, args.threads, work, env)))
+                    contenders.append(
+                        lambda: bases.append(
+                            run_hyvox(os.path.join(args.baseline, "hyvox"), mesh, res, args.threads, work, env)
+                        )
+                    )
                 if hyvox_module is not None:
                     contenders.append(lambda: pys.append(run_python(hyvox_module, mesh, res, args.threads, work)))
                 for run in range(args.runs):
@@ -201,9 +260,12 @@ def main():
                     row["x base"] = row["base proc"] / row["hyvox proc"]
                 row["load"] = os.getloadavg()[0]
                 rows.append(row)
-                cells = [str(row[c]) if isinstance(row[c], (str, int)) else
-                         (f"{row[c]:.2f}" if c in ("x proc", "x vox", "py/cli", "x base", "load") else f"{row[c]:.1f}")
-                         for c in columns]
+                cells = [
+                    str(row[c])
+                    if isinstance(row[c], (str, int))
+                    else (f"{row[c]:.2f}" if c in ("x proc", "x vox", "py/cli", "x base", "load") else f"{row[c]:.1f}")
+                    for c in columns
+                ]
                 print("| " + " | ".join(cells) + " |", flush=True)
                 table.add([row[c] for c in columns])
     table.write(args.out)

@@ -11,6 +11,7 @@ nothing from hyvox but the grid placement, so it is an independent check of whic
 the points cover. Run after building (it imports build/python). The table also goes to
 DIR/tessellation_bias_references.{json,md} (default bench/results/).
 """
+
 import os
 import sys
 
@@ -80,19 +81,31 @@ def main():
         "centre-line": centre_line_keys(in_voxels, triangles, dims),
         "thin": grid_keys(thin),
     }
-    print(f"{os.path.basename(path)} at {resolution}: " +
-          ", ".join(f"{name} {len(keys)} voxels" for name, keys in references.items()))
+    print(
+        f"{os.path.basename(path)} at {resolution}: "
+        + ", ".join(f"{name} {len(keys)} voxels" for name, keys in references.items())
+    )
     print("gamma  " + "  ".join(f"bias vs {name:>12}" for name in references))
-    table = Table("tessellation_bias_references", "What the tessellation's points miss, against three references",
-                  [Column("mesh"), Column("res"), Column("γ")] +
-                  [Column(f"bias vs {name} %", 2) for name in references])
-    table.note(", ".join(f"{name}: {len(keys):,} voxels" for name, keys in references.items()) +
-               "; centre-line: voxels whose axis-parallel centre lines the surface crosses.")
+    table = Table(
+        "tessellation_bias_references",
+        "What the tessellation's points miss, against three references",
+        [Column("mesh"), Column("res"), Column("γ")] + [Column(f"bias vs {name} %", 2) for name in references],
+    )
+    table.note(
+        ", ".join(f"{name}: {len(keys):,} voxels" for name, keys in references.items())
+        + "; centre-line: voxels whose axis-parallel centre lines the surface crosses."
+    )
     for gamma in gammas:
-        points = grid_keys(hyvox.voxelize(vertices, triangles, resolution=resolution, method="tessellation", tess_gamma=gamma))
-        print(f"{gamma:5.2f}  " + "  ".join(f"{1 - np.isin(keys, points).mean():20.4%}" for keys in references.values()))
-        table.add([os.path.basename(path), resolution, gamma] +
-                  [100 * float(1 - np.isin(keys, points).mean()) for keys in references.values()])
+        points = grid_keys(
+            hyvox.voxelize(vertices, triangles, resolution=resolution, method="tessellation", tess_gamma=gamma)
+        )
+        print(
+            f"{gamma:5.2f}  " + "  ".join(f"{1 - np.isin(keys, points).mean():20.4%}" for keys in references.values())
+        )
+        table.add(
+            [os.path.basename(path), resolution, gamma]
+            + [100 * float(1 - np.isin(keys, points).mean()) for keys in references.values()]
+        )
     table.write(out)
 
 

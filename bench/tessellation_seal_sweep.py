@@ -11,6 +11,7 @@ set encloses that a 6-connected flood from outside reaches through the result (0
 This is how the default γ was chosen (docs/why/tessellation-gamma.md). Run after building. The
 per-γ summary also goes to DIR/tessellation_seal_sweep.{json,md} (default bench/results/).
 """
+
 import argparse
 import json
 import os
@@ -40,8 +41,20 @@ def tetrahedron(rng):
 
 def box(rng):
     v = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float) * rng.uniform(0.1, 1, 3)
-    t = [[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
-         [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]]
+    t = [
+        [0, 1, 3],
+        [0, 3, 2],
+        [4, 6, 7],
+        [4, 7, 5],
+        [0, 4, 5],
+        [0, 5, 1],
+        [2, 3, 7],
+        [2, 7, 6],
+        [0, 2, 6],
+        [0, 6, 4],
+        [1, 5, 7],
+        [1, 7, 3],
+    ]
     return v, t
 
 
@@ -58,20 +71,56 @@ def prism(rng):
 
 
 def icosahedron(rng):
-    p = (1 + 5 ** 0.5) / 2
-    v = np.array([[-1, p, 0], [1, p, 0], [-1, -p, 0], [1, -p, 0], [0, -1, p], [0, 1, p], [0, -1, -p], [0, 1, -p],
-                  [p, 0, -1], [p, 0, 1], [-p, 0, -1], [-p, 0, 1]], float) * rng.uniform(0.3, 1, 3)
-    t = [[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6],
-         [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9], [4, 9, 5], [2, 4, 11], [6, 2, 10],
-         [8, 6, 7], [9, 8, 1]]
+    p = (1 + 5**0.5) / 2
+    v = np.array(
+        [
+            [-1, p, 0],
+            [1, p, 0],
+            [-1, -p, 0],
+            [1, -p, 0],
+            [0, -1, p],
+            [0, 1, p],
+            [0, -1, -p],
+            [0, 1, -p],
+            [p, 0, -1],
+            [p, 0, 1],
+            [-p, 0, -1],
+            [-p, 0, 1],
+        ],
+        float,
+    ) * rng.uniform(0.3, 1, 3)
+    t = [
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ]
     return v, t
 
 
 def write_ply(path, vertices, triangles):
     with open(path, "wb") as f:
-        f.write(f"ply\nformat binary_little_endian 1.0\nelement vertex {len(vertices)}\n"
-                "property float x\nproperty float y\nproperty float z\n"
-                f"element face {len(triangles)}\nproperty list uchar int vertex_indices\nend_header\n".encode())
+        f.write(
+            f"ply\nformat binary_little_endian 1.0\nelement vertex {len(vertices)}\n"
+            "property float x\nproperty float y\nproperty float z\n"
+            f"element face {len(triangles)}\nproperty list uchar int vertex_indices\nend_header\n".encode()
+        )
         f.write(np.asarray(vertices, "<f4").tobytes())
         for tri in triangles:
             f.write(b"\x03" + np.asarray(tri, "<i4").tobytes())
@@ -96,17 +145,37 @@ def main():
             resolution = int(rng.integers(100, 300))
             mesh, stats = os.path.join(tmp, "shape.ply"), os.path.join(tmp, "sweep.json")
             write_ply(mesh, vertices, triangles)
-            subprocess.run([CLI, "gamma-sweep", mesh, "--resolution", str(resolution), "--gammas", args.gammas,
-                            "--quiet", "--stats-json", stats], check=True)
+            subprocess.run(
+                [
+                    CLI,
+                    "gamma-sweep",
+                    mesh,
+                    "--resolution",
+                    str(resolution),
+                    "--gammas",
+                    args.gammas,
+                    "--quiet",
+                    "--stats-json",
+                    stats,
+                ],
+                check=True,
+            )
             for row in json.load(open(stats))["rows"]:
-                print(f"{make.__name__ + str(n):14} {resolution:4} {row['gamma']:6g} {row['points']:10.0f} "
-                      f"{row['bias']:8.4f} {row['bias_thin']:9.5f} {row['leaked_voxels']:10d}")
+                print(
+                    f"{make.__name__ + str(n):14} {resolution:4} {row['gamma']:6g} {row['points']:10.0f} "
+                    f"{row['bias']:8.4f} {row['bias_thin']:9.5f} {row['leaked_voxels']:10d}"
+                )
                 leaks.setdefault(row["gamma"], []).append(row["leaked_voxels"])
-    table = Table("tessellation_seal_sweep", "Watertightness of the tessellation on random closed shapes",
-                  [Column("γ"), Column("shapes"), Column("shapes that leak")])
-    table.note(f"{args.shapes} shapes (seed {args.seed}): tetrahedra, boxes, thin prisms, squashed icosahedra, "
-               "randomly rotated, at resolutions 100-300; a shape leaks when a 6-connected flood from outside "
-               "reaches a voxel its exact thin voxels enclose.")
+    table = Table(
+        "tessellation_seal_sweep",
+        "Watertightness of the tessellation on random closed shapes",
+        [Column("γ"), Column("shapes"), Column("shapes that leak")],
+    )
+    table.note(
+        f"{args.shapes} shapes (seed {args.seed}): tetrahedra, boxes, thin prisms, squashed icosahedra, "
+        "randomly rotated, at resolutions 100-300; a shape leaks when a 6-connected flood from outside "
+        "reaches a voxel its exact thin voxels enclose."
+    )
     for gamma, leaked in sorted(leaks.items()):
         print(f"gamma {gamma:g}: {sum(1 for x in leaked if x)} of {len(leaked)} shapes leak")
         table.add([gamma, len(leaked), sum(1 for x in leaked if x)])

@@ -13,6 +13,7 @@ side in render_live.png; print the stats.
 Options after `--`: --build DIR (the CMake build with addon/ in it, default: build),
 --output DIR (default: out/demo), --resolution N (default 128), --method M (default auto),
 --samples N (default 16)."""
+
 import argparse
 import os
 import sys
@@ -25,7 +26,7 @@ MESHES = os.path.join(HERE, "..", "..", "shared", "data", "meshes")
 
 
 def parse_args():
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
     parser = argparse.ArgumentParser(prog="blender -b --python demo/run_demo.py --")
     parser.add_argument("--build", default="build", help="CMake build folder holding addon/")
     parser.add_argument("--output", default=os.path.join("out", "demo"))
@@ -38,6 +39,7 @@ def parse_args():
 
 def enable_addon(build):
     import addon_utils
+
     sys.path.insert(0, os.path.join(os.path.abspath(build), "addon"))
     if addon_utils.enable("hyvox_blender", default_set=True, handle_error=None) is None:
         raise SystemExit(f"could not enable hyvox_blender from {build}/addon (build it first)")
@@ -45,6 +47,7 @@ def enable_addon(build):
 
 def mesh_from_arrays(name, vertices, triangles):
     import numpy as np
+
     mesh = bpy.data.meshes.new(name)
     mesh.vertices.add(len(vertices))
     mesh.vertices.foreach_set("co", np.ascontiguousarray(vertices, np.float32).ravel())
@@ -64,6 +67,7 @@ def fit(obj, height, x):
     """Scale obj to the given height, standing on z=0 centred at (x, 0), from its
     world-space bounds (it may be rotated)."""
     from mathutils import Vector
+
     bpy.context.view_layer.update()
     corners = [obj.matrix_world @ Vector(c) for c in obj.bound_box]
     lo = Vector(min(c[i] for c in corners) for i in range(3))
@@ -100,6 +104,7 @@ def principled_material(name):
 
 def build_scene(args):
     from hyvox_blender.core import backend
+
     # Start from an empty scene (reloading factory settings would disable the add-on).
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj, do_unlink=True)
@@ -147,8 +152,10 @@ def add_textured_spot(args):
     add-on exports), standing where Suzanne stood."""
     import numpy as np
     from hyvox_blender.core import backend
-    vertices, triangles, attrs = backend.load_module().read_mesh(os.path.join(args.meshes, "spot_uv.ply"),
-                                                                 attributes=True)
+
+    vertices, triangles, attrs = backend.load_module().read_mesh(
+        os.path.join(args.meshes, "spot_uv.ply"), attributes=True
+    )
     spot = mesh_from_arrays("Spot", vertices, triangles)
     uv_layer = spot.data.uv_layers.new(name="UVMap")
     uv_layer.data.foreach_set("uv", np.ascontiguousarray(attrs["uvs"][triangles.astype(np.int64)], np.float32).ravel())
@@ -182,8 +189,10 @@ def add_vertex_coloured_sponza(args):
     material's Base Color reads (the colour source the add-on exports), at the scene's left."""
     import numpy as np
     from hyvox_blender.core import backend
+
     vertices, triangles, attrs = backend.load_module().read_mesh(
-        os.path.join(args.meshes, "sponza_crytek_262k_vcolor.ply.gz"), attributes=True)
+        os.path.join(args.meshes, "sponza_crytek_262k_vcolor.ply.gz"), attributes=True
+    )
     sponza = mesh_from_arrays("Sponza", vertices, triangles)
     encoded = attrs["colors"][:, :3].astype(np.float64)  # the file's bytes: sRGB
     linear = np.where(encoded <= 0.04045, encoded / 12.92, ((encoded + 0.055) / 1.055) ** 2.4)
@@ -206,8 +215,14 @@ def voxelize_with_colour(obj, args, output, mode):
     for other in bpy.context.view_layer.objects:
         other.select_set(other is obj)
     bpy.context.view_layer.objects.active = obj
-    bpy.ops.object.hyvox_voxelize(resolution=args.resolution, method=args.method, separate=True, color=True,
-                                  mode=mode, output_dir=os.path.join(output, "vdb"))
+    bpy.ops.object.hyvox_voxelize(
+        resolution=args.resolution,
+        method=args.method,
+        separate=True,
+        color=True,
+        mode=mode,
+        output_dir=os.path.join(output, "vdb"),
+    )
     return bpy.data.objects[obj.name + "_voxels"]
 
 
@@ -219,6 +234,7 @@ def render_live_animation(args, output):
     frame range and no bake: the render voxelizes each frame as it renders it (the source is
     hidden in renders); the frames side by side in render_live.png."""
     import numpy as np
+
     scene = bpy.context.scene
     bpy.ops.mesh.primitive_monkey_add(size=2.0)
     source = bpy.context.active_object
@@ -236,8 +252,9 @@ def render_live_animation(args, output):
     for other in bpy.context.view_layer.objects:
         other.select_set(other is source)
     bpy.context.view_layer.objects.active = source
-    bpy.ops.object.hyvox_voxelize(resolution=args.resolution, method=args.method, live=True,
-                                  output_dir=os.path.join(output, "vdb"))
+    bpy.ops.object.hyvox_voxelize(
+        resolution=args.resolution, method=args.method, live=True, output_dir=os.path.join(output, "vdb")
+    )
     volume = bpy.data.objects[source.name + "_voxels"]
     shader = volume.active_material.node_tree.nodes["Principled Volume"]
     shader.inputs["Color"].default_value = (0.25, 0.55, 0.9, 1)
@@ -280,8 +297,9 @@ def main():
     for obj in bpy.context.view_layer.objects:
         obj.select_set(obj in sources)
     bpy.context.view_layer.objects.active = sources[0]
-    bpy.ops.object.hyvox_voxelize(resolution=args.resolution, method=args.method, separate=True,
-                                  output_dir=os.path.join(output, "vdb"))
+    bpy.ops.object.hyvox_voxelize(
+        resolution=args.resolution, method=args.method, separate=True, output_dir=os.path.join(output, "vdb")
+    )
     from hyvox_blender.blender import operators
 
     # Show each volume beside its mesh: move it 2.6 units along +x (on top of the
@@ -352,8 +370,10 @@ def main():
     print("\n=== hyvox demo ===")
     for line in summary:
         print(line)
-    print(f"render {render_s:.1f} s; Live, frames {LIVE_FRAMES[0]}-{LIVE_FRAMES[-1]} voxelized as they "
-          f"rendered: {live_s:.1f} s")
+    print(
+        f"render {render_s:.1f} s; Live, frames {LIVE_FRAMES[0]}-{LIVE_FRAMES[-1]} voxelized as they "
+        f"rendered: {live_s:.1f} s"
+    )
     print("blend :", blend)
     print("render:", png, colour_png, sponza_png, live_png)
 
@@ -363,6 +383,7 @@ if __name__ == "__main__":
         main()
     except Exception as exc:
         import traceback
+
         traceback.print_exc()
         print(f"hyvox demo failed: {exc}", file=sys.stderr)
         sys.stdout.flush()

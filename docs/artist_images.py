@@ -15,6 +15,7 @@ zip in a bpy module); OUT defaults to docs/images. Writes small PNG strips:
 and prints, for each volume render, its mean brightness against the mesh's and the largest
 difference of the mean colour's chromaticity (rgb / (r + g + b)) from the mesh's, and (Blender
 4.2+) what Geometry Nodes' Sample Grid reads of the `color` grid at Spot's surface."""
+
 import math
 import os
 import sys
@@ -34,7 +35,7 @@ BACKGROUND = 0.15  # the world's grey, shown behind the renders
 
 
 def arguments():
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:]
+    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else sys.argv[1:]
     if not argv:
         raise SystemExit(__doc__)
     return os.path.abspath(argv[0]), os.path.abspath(argv[1] if len(argv) > 1 else os.path.join(HERE, "images"))
@@ -45,11 +46,14 @@ def enable_addon(build):
     sys.path.insert(0, os.path.join(ROOT, "tests", "blender"))
     if bpy.app.version >= (4, 2, 0) and not bpy.app.binary_path:
         import run_bpy_tests  # the bpy module: install the extension zip into a fresh user folder
+
         run_bpy_tests.install_extension(build, os.environ["BLENDER_USER_RESOURCES"])
     else:
         import helpers
+
         helpers.enable_addon(build)
     import helpers
+
     return helpers
 
 
@@ -113,8 +117,9 @@ def save_strip(panels, path):
     rgb = np.clip(strip[..., :3] + (1.0 - alpha) * BACKGROUND, 0.0, 1.0)
     encoded = np.where(rgb <= 0.0031308, rgb * 12.92, 1.055 * rgb ** (1 / 2.4) - 0.055)
     image = bpy.data.images.new("strip", strip.shape[1], strip.shape[0])
-    image.pixels.foreach_set(np.concatenate([encoded, np.ones_like(encoded[..., :1])], axis=-1)
-                             .astype(np.float32).ravel())
+    image.pixels.foreach_set(
+        np.concatenate([encoded, np.ones_like(encoded[..., :1])], axis=-1).astype(np.float32).ravel()
+    )
     image.filepath_raw, image.file_format = path, "PNG"
     image.save()
     bpy.data.images.remove(image)
@@ -152,6 +157,7 @@ def colour_images(helpers, out, work):
     mask = mesh[..., 3] > 0.5  # Spot's outline
     panels = [mesh]
     from test_looks_density import legacy_material  # the material earlier versions made
+
     volume.data.materials[0] = legacy_material(volume["hyvox_voxel_size"], has_color=True)
     show(False)
     panels.append(render(os.path.join(work, "earlier.exr")))
@@ -207,11 +213,14 @@ def sample_grid_at_the_surface(source, volume):
         values = np.empty(len(mesh.vertices) * width, np.float32)
         mesh.attributes[name].data.foreach_get("vector" if width == 3 else "value", values)
         return values.reshape(-1, width) if width == 3 else values
+
     trilinear, nearest = read("color Trilinear", 3), read("color Nearest Neighbor", 3)
     density = read("density Trilinear", 1)
     held = nearest.sum(axis=1) > 0
-    for name, values in (("Sample Grid of color", trilinear),
-                         ("divided by Sample Grid of density", trilinear / np.maximum(density, 1e-6)[:, None])):
+    for name, values in (
+        ("Sample Grid of color", trilinear),
+        ("divided by Sample Grid of density", trilinear / np.maximum(density, 1e-6)[:, None]),
+    ):
         ratio = values[held].sum(axis=1) / nearest[held].sum(axis=1)
         print(f"| {name} | " + " | ".join(f"{q:.3f}" for q in np.percentile(ratio, [5, 50, 95])) + " |")
     source.modifiers.remove(modifier)
@@ -273,6 +282,7 @@ if __name__ == "__main__":
         main()
     except BaseException:
         import traceback
+
         traceback.print_exc()
         sys.stdout.flush()
         os._exit(1)

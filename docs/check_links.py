@@ -8,6 +8,7 @@ Exit status 1 when a link is broken, each listed. Standard library only.
 
     python3 docs/check_links.py [PAGE.md...]
 """
+
 import os
 import pathlib
 import re
@@ -72,8 +73,7 @@ def broken_links(page, counted):
 
 
 def main(argv):
-    pages = [pathlib.Path(p).resolve() for p in argv] or sorted(
-        {p for pattern in PAGES for p in ROOT.glob(pattern)})
+    pages = [pathlib.Path(p).resolve() for p in argv] or sorted({p for pattern in PAGES for p in ROOT.glob(pattern)})
     counted = []
     problems = [p for page in pages for p in broken_links(page, counted)]
     for p in problems:

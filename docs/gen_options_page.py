@@ -9,6 +9,7 @@ native/python/gen_stubs.py writes the .pyi: one source, so the page cannot disag
 PACKAGE_PARENT is the folder holding the built hyvox/ package (B/python). Which options the
 Blender add-on shows, and where, is read from addon/hyvox_blender/blender/properties.py
 without importing it (it needs bpy)."""
+
 import ast
 import pathlib
 import sys
@@ -21,15 +22,25 @@ GROUPS = [
     ("run", "The run", "What is voxelized, by which method, with how many threads and how much memory."),
     ("output", "Output files", "How the `.vdb` and the stats JSON are written."),
     ("solid", "Solid mode", "What counts as inside (`mode` solid)."),
-    ("gl", "The GL methods", "`triangle`, `fragment`, `hybrid` and `tessellation` (GL 4.5 in a headless EGL "
-                             "context of their own)."),
+    (
+        "gl",
+        "The GL methods",
+        "`triangle`, `fragment`, `hybrid` and `tessellation` (GL 4.5 in a headless EGL context of their own).",
+    ),
     ("hybrid", "The hybrid method", ""),
     ("tessellation", "The tessellation method", ""),
 ]
 METAVAR = {"int": "N", "float": "X", "str": "TEXT", "vector3": "X,Y,Z", "box": "X0,Y0,Z0,X1,Y1,Z1"}
-PYTHON_TYPE = {"int": "int", "float": "float", "bool": "bool", "str": "str", "choice": "str",
-               "choices": "str (a comma list) or a sequence of the names",
-               "vector3": "(x, y, z)", "box": "((x0, y0, z0), (x1, y1, z1))"}
+PYTHON_TYPE = {
+    "int": "int",
+    "float": "float",
+    "bool": "bool",
+    "str": "str",
+    "choice": "str",
+    "choices": "str (a comma list) or a sequence of the names",
+    "vector3": "(x, y, z)",
+    "box": "((x0, y0, z0), (x1, y1, z1))",
+}
 
 
 def blender_places():
@@ -87,8 +98,9 @@ def methods_text(spec, methods):
 
 def python_text(spec, voxelize_names, write_names):
     """Where the Python module takes the option: voxelize()'s keyword, write_vdb()'s, or both."""
-    kinds = (["`voxelize`"] if spec.name in voxelize_names else []) + \
-        (["`VoxelGrid.write_vdb`"] if spec.name in write_names else [])
+    kinds = (["`voxelize`"] if spec.name in voxelize_names else []) + (
+        ["`VoxelGrid.write_vdb`"] if spec.name in write_names else []
+    )
     return f"`{spec.name}=` ({PYTHON_TYPE[spec.type]}) of " + " and ".join(kinds)
 
 
@@ -120,8 +132,10 @@ def page(voxelize_options, write_options):
     ]
     for spec in options:
         blender = f"*{spec.label}* ({places[spec.name]})" if spec.name in places else "-"
-        lines.append(f"| [`{spec.name}`](#{spec.name}) | {flags(spec, in_table=True)} | {PYTHON_TYPE[spec.type]} | "
-                     f"{default_text(spec)} | {methods_text(spec, methods)} | {blender} |")
+        lines.append(
+            f"| [`{spec.name}`](#{spec.name}) | {flags(spec, in_table=True)} | {PYTHON_TYPE[spec.type]} | "
+            f"{default_text(spec)} | {methods_text(spec, methods)} | {blender} |"
+        )
     for group, title, about in GROUPS:
         members = [s for s in options if s.group == group]
         if not members:
@@ -140,8 +154,10 @@ def page(voxelize_options, write_options):
             lines.append(f"- Default: {default_text(spec)}")
             lines.append(f"- Allowed: {spec.requirement}" + (f"; unit: {spec.unit}" if spec.unit else ""))
             if spec.env:
-                lines.append(f"- Environment: `{spec.env}` (read by the command line and the Python package "
-                             "when the option is not given)")
+                lines.append(
+                    f"- Environment: `{spec.env}` (read by the command line and the Python package "
+                    "when the option is not given)"
+                )
             lines.append(f"- Applies to: {methods_text(spec, methods)}")
             lines.append("")
         if lines[-1] == "":
@@ -153,8 +169,10 @@ def main(argv):
     if len(argv) == 3 and argv[0] == "--compare":
         generated, committed = (pathlib.Path(p) for p in argv[1:])
         if not committed.exists() or committed.read_text(encoding="utf-8") != generated.read_text(encoding="utf-8"):
-            print(f"{committed} is not what the options schema makes ({generated}); after a change to the schema "
-                  f"or to the add-on's settings, regenerate it:\n    cp {generated} {committed}")
+            print(
+                f"{committed} is not what the options schema makes ({generated}); after a change to the schema "
+                f"or to the add-on's settings, regenerate it:\n    cp {generated} {committed}"
+            )
             return 1
         return 0
     if len(argv) != 2:

@@ -18,9 +18,11 @@ bl_info = {
 
 def register():
     from .blender import registration
+
     registration.register()
 
 
 def unregister():
     from .blender import registration
+
     registration.unregister()

@@ -16,6 +16,7 @@ and Geometry Nodes are evaluated at render settings, as the render shows the sce
 -a (render the animation) before the `--`. --live makes live volumes (docs/live.md): with
 -a every rendered frame gets its own voxels, with no frame range and no bake step.
 Exits 1 on failure."""
+
 import argparse
 import importlib
 import json
@@ -30,8 +31,10 @@ def parse_args(argv, package):
     properties = importlib.import_module(package + ".blender.properties")
     SCENE_OPTIONS, option_spec = properties.SCENE_OPTIONS, properties.option_spec
     AUTO_METHOD = importlib.import_module(package + ".core.backend").AUTO_METHOD
-    parser = argparse.ArgumentParser(prog="blender -b FILE --python cli_blender.py --",
-                                     description="Voxelize objects of a .blend into OpenVDB volumes.")
+    parser = argparse.ArgumentParser(
+        prog="blender -b FILE --python cli_blender.py --",
+        description="Voxelize objects of a .blend into OpenVDB volumes.",
+    )
     parser.add_argument("--output", "-o", help="folder for the .vdb files (default: next to the .blend)")
     types = {"int": int, "float": float, "choice": str, "str": str}
     for name in ("method",) + SCENE_OPTIONS:
@@ -42,12 +45,20 @@ def parse_args(argv, package):
     parser.add_argument("--frames", help="frame range, e.g. 1-10 (one .vdb per frame)")
     parser.add_argument("--objects", help="comma-separated object names")
     parser.add_argument("--separate", action="store_true", help="one volume per object")
-    parser.add_argument("--no-color", dest="color", action="store_false",
-                        help="no `color` grid (default: the colour the objects' materials show)")
-    parser.add_argument("--viewport", action="store_true",
-                        help="evaluate modifiers at viewport settings (default: render settings)")
-    parser.add_argument("--live", action="store_true",
-                        help="live volumes: they follow the sources, and a render (-a) voxelizes each frame")
+    parser.add_argument(
+        "--no-color",
+        dest="color",
+        action="store_false",
+        help="no `color` grid (default: the colour the objects' materials show)",
+    )
+    parser.add_argument(
+        "--viewport", action="store_true", help="evaluate modifiers at viewport settings (default: render settings)"
+    )
+    parser.add_argument(
+        "--live",
+        action="store_true",
+        help="live volumes: they follow the sources, and a render (-a) voxelizes each frame",
+    )
     parser.add_argument("--save", help="save the .blend with the volumes to this path")
     parser.add_argument("--stats-json", help="write origin, voxel size, counts and timings here")
     args = parser.parse_args(argv)
@@ -61,6 +72,7 @@ def addon_package():
     (bl_ext.<repository>.hyvox_blender for an installed extension, hyvox_blender for a
     legacy add-on in a scripts folder), else this folder as a legacy add-on from its parent."""
     import addon_utils
+
     here = os.path.dirname(os.path.realpath(__file__))
     for module in addon_utils.modules():
         if os.path.dirname(os.path.realpath(getattr(module, "__file__", None) or "")) == here:
@@ -75,6 +87,7 @@ def enable_addon():
     """Enable this file's add-on (also when not installed, or installed but not enabled in
     the preferences this Blender started with); returns its module name."""
     import addon_utils
+
     package = addon_package()
     if addon_utils.enable(package, default_set=False, handle_error=None) is None:
         raise SystemExit(f"hyvox: could not enable the add-on {package}")
@@ -83,6 +96,7 @@ def enable_addon():
 
 def choose_objects(names):
     import bpy
+
     layer = bpy.context.view_layer
     if names:
         missing = [n for n in names if n not in bpy.data.objects]
@@ -91,7 +105,8 @@ def choose_objects(names):
         chosen = [bpy.data.objects[n] for n in names]
     else:
         chosen = list(bpy.context.selected_objects) or [
-            o for o in layer.objects if o.type == "MESH" and o.visible_get()]
+            o for o in layer.objects if o.type == "MESH" and o.visible_get()
+        ]
     for obj in layer.objects:
         obj.select_set(False)
     for obj in chosen:
@@ -103,6 +118,7 @@ def choose_objects(names):
 
 def main(argv):
     import bpy
+
     package = enable_addon()
     args = parse_args(argv, package)
     operators = importlib.import_module(package + ".blender.operators")
@@ -136,7 +152,7 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
     try:
         main(argv)
     except (Exception, SystemExit) as exc:  # every failure: a message and exit code 1

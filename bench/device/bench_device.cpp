@@ -71,16 +71,21 @@ Step parseStep(const std::string& text) {
     const auto at = text.find('@');
     const int res = at == std::string::npos ? 0 : std::atoi(text.c_str() + at + 1);
     if (res <= 0) {
-        std::fprintf(stderr, "bad --order step '%s' (want MODE@RES, threads@RES, attributes@RES or live@RES, e.g. thin@256)\n",
+        std::fprintf(stderr,
+                     "bad --order step '%s' (want MODE@RES, threads@RES, attributes@RES or live@RES, e.g. thin@256)\n",
                      text.c_str());
         std::exit(2);
     }
     Step step;
     step.resolution = res;
-    if (text.substr(0, at) == "threads") step.threads = true;
-    else if (text.substr(0, at) == "attributes") step.attributes = true;
-    else if (text.substr(0, at) == "live") step.live = true;
-    else step.mode = hyvox::parseMode(text.substr(0, at));
+    if (text.substr(0, at) == "threads")
+        step.threads = true;
+    else if (text.substr(0, at) == "attributes")
+        step.attributes = true;
+    else if (text.substr(0, at) == "live")
+        step.live = true;
+    else
+        step.mode = hyvox::parseMode(text.substr(0, at));
     return step;
 }
 
@@ -268,8 +273,9 @@ double maxColourDifference(const hyvox::VoxelizeResult& a, const hyvox::Voxelize
         const auto found = index_b.find(key(coords_a[v]));
         if (found == index_b.end()) continue;
         for (int ch = 0; ch < colour_channels; ++ch)
-            worst = std::max(worst, double(std::fabs(values_a[v * std::size_t(n) + std::size_t(ch)] -
-                                                     values_b[found->second * std::size_t(n) + std::size_t(ch)])));
+            worst = std::max(worst,
+                             double(std::fabs(values_a[v * std::size_t(n) + std::size_t(ch)] -
+                                              values_b[found->second * std::size_t(n) + std::size_t(ch)])));
     }
     return worst;
 }
@@ -298,7 +304,7 @@ std::string deviceInfo(const std::string& selection, bool& hardware) {
     std::string info;
     for (const hyvox::GlDevice& d : hyvox::listGlDevices())
         info += "egl_device=" + std::to_string(d.index) + " " + d.name + (d.software ? " (software)" : " (hardware)") +
-                "\n";
+            "\n";
     try {
         hyvox::gl::GlWorker& worker = hyvox::gl::GlWorker::get(selection);
         hardware = !worker.device().software;
@@ -311,11 +317,11 @@ std::string deviceInfo(const std::string& selection, bool& hardware) {
             glGetIntegerv(GL_MAX_TESS_GEN_LEVEL, &tess);
             glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &ssbo);
             return "gl_device_used=" + std::to_string(worker.device().index) + " " + worker.device().name +
-                   (worker.device().software ? " (software)" : " (hardware)") + "\nGL_VENDOR=" + text(GL_VENDOR) +
-                   "\nGL_RENDERER=" + text(GL_RENDERER) + "\nGL_VERSION=" + text(GL_VERSION) +
-                   "\nGL_SHADING_LANGUAGE_VERSION=" + text(GL_SHADING_LANGUAGE_VERSION) +
-                   "\nGL_MAX_TESS_GEN_LEVEL=" + std::to_string(tess) +
-                   "\nGL_MAX_SHADER_STORAGE_BLOCK_SIZE=" + std::to_string(ssbo) + "\n";
+                (worker.device().software ? " (software)" : " (hardware)") + "\nGL_VENDOR=" + text(GL_VENDOR) +
+                "\nGL_RENDERER=" + text(GL_RENDERER) + "\nGL_VERSION=" + text(GL_VERSION) +
+                "\nGL_SHADING_LANGUAGE_VERSION=" + text(GL_SHADING_LANGUAGE_VERSION) +
+                "\nGL_MAX_TESS_GEN_LEVEL=" + std::to_string(tess) +
+                "\nGL_MAX_SHADER_STORAGE_BLOCK_SIZE=" + std::to_string(ssbo) + "\n";
         });
     } catch (const std::exception& e) {
         info += "gl_error=" + field(e.what()) + "\n";
@@ -482,7 +488,7 @@ public:
                     row.stage_ms = median(voxelize);
                     double p0, p1, p2;
                     row.gpu_ms = gpuPasses(row.last.stats, p0, p1, p2);  // of the last update
-                    row.pass2_ms = median(write);  // the write, in the CSV's pass2 column
+                    row.pass2_ms = median(write);                        // the write, in the CSV's pass2 column
                 } catch (const std::exception& e) {
                     row.error = e.what();
                 }
@@ -520,9 +526,9 @@ private:
         std::fprintf(csv_,
                      "%zu,%s,%zu,%s,%d,%s,%d,%d,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.3f,%llu,%llu,%llu,%llu,%llu,%s,"
                      "%llu,%llu,%llu,%llu,%.6f,%.6f,%llu,%.1f,%s,%.3f,%.3g\n",
-                     step, name.c_str(), mesh.triangleCount(), mode, res, method, row.threads,
-                     row.runs, row.gpu_ms, row.pass0_ms, row.pass1_ms, row.pass2_ms, row.stage_ms, row.wall_ms,
-                     row.first_ms, s.hybrid ? h.cutoff : 0.0, (unsigned long long)h.large_triangles,
+                     step, name.c_str(), mesh.triangleCount(), mode, res, method, row.threads, row.runs, row.gpu_ms,
+                     row.pass0_ms, row.pass1_ms, row.pass2_ms, row.stage_ms, row.wall_ms, row.first_ms,
+                     s.hybrid ? h.cutoff : 0.0, (unsigned long long)h.large_triangles,
                      (unsigned long long)h.cutoff_search_runs, (unsigned long long)s.tiles,
                      (unsigned long long)s.voxel_count, (unsigned long long)c.ref_voxels, check.c_str(),
                      (unsigned long long)c.missed, (unsigned long long)c.false_voxels, (unsigned long long)c.touches,
@@ -530,11 +536,12 @@ private:
                      (unsigned long long)(s.tessellation ? s.tessellation->points : 0), elapsedS(),
                      stageText(s).c_str(), c.binary_wall_ms, c.attr_max_diff);
         std::fflush(csv_);
-        std::printf("%-26s %9zu %-12s %4d %-12s t%-2d runs %d gpu %9.3f (p0 %.3f p1 %.3f p2 %.3f) stage %9.2f wall "
-                    "%9.2f first %9.2f voxels %llu %s%s\n",
-                    name.c_str(), mesh.triangleCount(), mode, res, method, row.threads, row.runs,
-                    row.gpu_ms, row.pass0_ms, row.pass1_ms, row.pass2_ms, row.stage_ms, row.wall_ms, row.first_ms,
-                    (unsigned long long)s.voxel_count, check.c_str(), attributeText(c, row.wall_ms).c_str());
+        std::printf(
+            "%-26s %9zu %-12s %4d %-12s t%-2d runs %d gpu %9.3f (p0 %.3f p1 %.3f p2 %.3f) stage %9.2f wall "
+            "%9.2f first %9.2f voxels %llu %s%s\n",
+            name.c_str(), mesh.triangleCount(), mode, res, method, row.threads, row.runs, row.gpu_ms, row.pass0_ms,
+            row.pass1_ms, row.pass2_ms, row.stage_ms, row.wall_ms, row.first_ms, (unsigned long long)s.voxel_count,
+            check.c_str(), attributeText(c, row.wall_ms).c_str());
         std::fflush(stdout);
         if (!row.error.empty() || c.check == "DIFF" || (c.check == "bias" && c.false_voxels)) ++failures_;
     }
@@ -553,9 +560,9 @@ private:
 int main(int argc, char** argv) {
     std::string mesh_dir = ".", csv_path, info_path;
     std::vector<std::string> order = {"thin@256", "thin@512", "thin@128", "conservative@256", "thin@1024"};
-    std::vector<std::string> scenes = {"bunny_stanford_69k.ply", "dragon_stanford_res2_203k.ply.gz",
+    std::vector<std::string> scenes = {"bunny_stanford_69k.ply",           "dragon_stanford_res2_203k.ply.gz",
                                        "sponza_crytek_262k_vcolor.ply.gz", "triangle",
-                                       "dragon_stanford_871k.ply.gz", "dragon_stanford_871k.ply.gz:x4",
+                                       "dragon_stanford_871k.ply.gz",      "dragon_stanford_871k.ply.gz:x4",
                                        "dragon_stanford_871k.ply.gz:x16"};
     int repeat = 5;
     double row_budget_s = 3, budget_s = 300;
@@ -566,16 +573,26 @@ int main(int argc, char** argv) {
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
         auto next = [&] { return hyvox::bench::optionValue(argc, argv, a); };
-        if (arg == "--mesh-dir") mesh_dir = next();
-        else if (arg == "--csv") csv_path = next();
-        else if (arg == "--info") info_path = next();
-        else if (arg == "--order") order = splitList(next());
-        else if (arg == "--scenes") scenes = splitList(next());
-        else if (arg == "--repeat") repeat = std::max(1, std::atoi(next().c_str()));
-        else if (arg == "--row-budget-s") row_budget_s = std::atof(next().c_str());
-        else if (arg == "--budget-s") budget_s = std::atof(next().c_str());
-        else if (arg == "--device") base.gl.device = next();
-        else if (arg == "--require-hardware") require_hardware = true;
+        if (arg == "--mesh-dir")
+            mesh_dir = next();
+        else if (arg == "--csv")
+            csv_path = next();
+        else if (arg == "--info")
+            info_path = next();
+        else if (arg == "--order")
+            order = splitList(next());
+        else if (arg == "--scenes")
+            scenes = splitList(next());
+        else if (arg == "--repeat")
+            repeat = std::max(1, std::atoi(next().c_str()));
+        else if (arg == "--row-budget-s")
+            row_budget_s = std::atof(next().c_str());
+        else if (arg == "--budget-s")
+            budget_s = std::atof(next().c_str());
+        else if (arg == "--device")
+            base.gl.device = next();
+        else if (arg == "--require-hardware")
+            require_hardware = true;
         else {
             std::fprintf(stderr,
                          "usage: bench_device --mesh-dir DIR --csv FILE [--info FILE] [--order STEP,...] "
@@ -630,10 +647,14 @@ int main(int argc, char** argv) {
             if ((step.threads || step.live) && spec == "triangle") continue;  // nothing to spread or edit
             try {
                 const hyvox::Mesh& mesh = meshes.get(spec);
-                if (step.threads) bench.threadsStep(si, spec, mesh, step.resolution);
-                else if (step.attributes) bench.attributeStep(si, spec, mesh, step.resolution);
-                else if (step.live) bench.liveStep(si, spec, mesh, step.resolution);
-                else bench.exactStep(si, spec, mesh, step.mode, step.resolution);
+                if (step.threads)
+                    bench.threadsStep(si, spec, mesh, step.resolution);
+                else if (step.attributes)
+                    bench.attributeStep(si, spec, mesh, step.resolution);
+                else if (step.live)
+                    bench.liveStep(si, spec, mesh, step.resolution);
+                else
+                    bench.exactStep(si, spec, mesh, step.mode, step.resolution);
             } catch (const std::exception& e) {
                 std::printf("# %s (step %s): %s\n", spec.c_str(), order[si].c_str(), e.what());
                 ++failures;

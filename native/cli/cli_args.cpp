@@ -238,7 +238,8 @@ Arguments parseCommand(const std::vector<std::string>& args) {
         out.options.tessellation.counts = false;  // the sweep needs only the occupancy
         out.gammas = {1, 1.5, 2, 3, 4, 6};
     } else {
-        throw UsageError("unknown command '" + args[0] + "' (the commands are 'voxelize', 'gamma-sweep', 'merge' and 'job-template')");
+        throw UsageError("unknown command '" + args[0] +
+                         "' (the commands are 'voxelize', 'gamma-sweep', 'merge' and 'job-template')");
     }
     try {
         applyEnvironment(out.options, [](const char* variable) -> const char* { return std::getenv(variable); });
@@ -258,8 +259,10 @@ Arguments parseCommand(const std::vector<std::string>& args) {
             out.command = Command::Help;
             return out;
         } else if (option == "-o" || option == "--output") {
-            if (sweep) throw UsageError(option + " is not a gamma-sweep option: the sweep writes no .vdb "
-                                                 "(--stats-json writes its table)");
+            if (sweep)
+                throw UsageError(option +
+                                 " is not a gamma-sweep option: the sweep writes no .vdb "
+                                 "(--stats-json writes its table)");
             out.output_path = value();
         } else if (option == "--stats-json") {
             out.stats_json_path = value();

@@ -29,14 +29,14 @@ struct Arguments {
     std::string mesh_path;
     std::string output_path;
     std::string stats_json_path;  // empty: none
-    bool quiet = false;     // -q: nothing on success, no progress
-    bool progress = false;  // --progress: show progress also when stderr is not a terminal
+    bool quiet = false;           // -q: nothing on success, no progress
+    bool progress = false;        // --progress: show progress also when stderr is not a terminal
     // Help: the command whose help was asked for (Help itself: the list of commands).
     Command help_topic = Command::Help;
     std::string texture_path;  // empty: none; a PNG sampled at the mesh's UVs for --attributes color
     VoxelizeOptions options;
-    WriteOptions write;  // the .vdb's and the stats JSON's
-    std::vector<double> gammas;  // gamma-sweep: the safety factors to try, ascending
+    WriteOptions write;                   // the .vdb's and the stats JSON's
+    std::vector<double> gammas;           // gamma-sweep: the safety factors to try, ascending
     std::vector<std::string> part_paths;  // merge: the .vdb files to join
     // Options given on the command line that the chosen method ignores (printed as warnings).
     std::vector<std::string> warnings;

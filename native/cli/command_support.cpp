@@ -36,7 +36,8 @@ void checkOutputPaths(const std::string& mesh, const std::string& output, const 
     if (!output.empty() && sameFile(output, mesh))
         throw UsageError("-o '" + output + "' is the input mesh '" + mesh + "'; refusing to overwrite it");
     if (!stats_json.empty() && sameFile(stats_json, mesh))
-        throw UsageError("--stats-json '" + stats_json + "' is the input mesh '" + mesh + "'; refusing to overwrite it");
+        throw UsageError("--stats-json '" + stats_json + "' is the input mesh '" + mesh +
+                         "'; refusing to overwrite it");
     if (!output.empty() && !stats_json.empty() && sameFile(output, stats_json))
         throw UsageError("--stats-json '" + stats_json + "' and -o '" + output +
                          "' are the same file; the stats would replace the .vdb");

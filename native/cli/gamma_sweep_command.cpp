@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "command_support.h"
-#include "progress_line.h"
 #include "hyvox/accuracy.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/stats_json.h"
 #include "hyvox/version.h"
+#include "progress_line.h"
 
 namespace hyvox::cli {
 namespace {
@@ -70,10 +70,11 @@ void runGammaSweep(const Arguments& args, const std::atomic<bool>& stop) {
     const VoxelizeResult thin = voxelize(mesh.view(), exact_options, &interrupter);
     const GridSpec& grid = exact.grid;
     if (!args.quiet) {
-        std::printf("hyvox %s gamma-sweep: %s, %zu triangles, %d x %d x %d voxels; exact references: conservative %llu "
-                    "voxels, thin %llu\n",
-                    version(), args.mesh_path.c_str(), mesh.triangleCount(), grid.dims[0], grid.dims[1], grid.dims[2],
-                    (unsigned long long)exact.stats.voxel_count, (unsigned long long)thin.stats.voxel_count);
+        std::printf(
+            "hyvox %s gamma-sweep: %s, %zu triangles, %d x %d x %d voxels; exact references: conservative %llu "
+            "voxels, thin %llu\n",
+            version(), args.mesh_path.c_str(), mesh.triangleCount(), grid.dims[0], grid.dims[1], grid.dims[2],
+            (unsigned long long)exact.stats.voxel_count, (unsigned long long)thin.stats.voxel_count);
         // "leaked": voxels the thin set encloses that a 6-connected flood from outside the
         // grid reaches through the result's empty voxels (0 = sealed; meaningful for closed
         // meshes, an open one encloses nothing).
@@ -120,13 +121,13 @@ void runGammaSweep(const Arguments& args, const std::atomic<bool>& stop) {
     }
     if (fit && !args.quiet) {
         std::printf("Eq. 3 fit: gamma = -B ln(A bias) with A = %.5g, B = %.5g\n", fit->A, fit->B);
-        for (double p : {0.05, 0.02, 0.01, 0.005})
-            std::printf("  bias %5.3f needs gamma %.3f\n", p, fit->gammaFor(p));
+        for (double p : {0.05, 0.02, 0.01, 0.005}) std::printf("  bias %5.3f needs gamma %.3f\n", p, fit->gammaFor(p));
     }
     if (!args.stats_json_path.empty())
-        writeTextFileAtomic(args.stats_json_path, sweepJson(grid, exact.stats.voxel_count, thin.stats.voxel_count, rows,
-                                                            fit ? &*fit : nullptr),
-                            args.write.durable);
+        writeTextFileAtomic(
+            args.stats_json_path,
+            sweepJson(grid, exact.stats.voxel_count, thin.stats.voxel_count, rows, fit ? &*fit : nullptr),
+            args.write.durable);
 }
 
 }  // namespace hyvox::cli

@@ -18,9 +18,12 @@ struct Kind {
 };
 
 const Kind kKinds[] = {
-    {"openjd", farm::blenderJobTemplate, "Open Job Description template (Deadline Cloud): a .blend's frames as chunked tasks"},
-    {"openjd-regions", farm::regionJobTemplate, "Open Job Description template: one mesh's grid as region tasks and a merge"},
-    {"flamenco", farm::flamencoJobType, "Flamenco job type (hyvox.js, for the Manager's scripts/ folder): a .blend's frames"},
+    {"openjd", farm::blenderJobTemplate,
+     "Open Job Description template (Deadline Cloud): a .blend's frames as chunked tasks"},
+    {"openjd-regions", farm::regionJobTemplate,
+     "Open Job Description template: one mesh's grid as region tasks and a merge"},
+    {"flamenco", farm::flamencoJobType,
+     "Flamenco job type (hyvox.js, for the Manager's scripts/ folder): a .blend's frames"},
 };
 
 }  // namespace
@@ -32,8 +35,9 @@ std::string jobTemplateUsage() {
         "Prints a render-farm job for hyvox, its settings generated from the options schema\n"
         "(docs/farm.md tells how to install each):\n";
     for (const Kind& kind : kKinds) text += std::string("  ") + kind.name + "\n      " + kind.what + "\n";
-    return text + "\ncommand options:\n  -o, --output FILE\n      write it to FILE (atomically) instead of printing it\n"
-                  "  -h, --help\n      show this help\n";
+    return text +
+        "\ncommand options:\n  -o, --output FILE\n      write it to FILE (atomically) instead of printing it\n"
+        "  -h, --help\n      show this help\n";
 }
 
 void runJobTemplate(const std::vector<std::string>& args) {
@@ -50,12 +54,14 @@ void runJobTemplate(const std::vector<std::string>& args) {
             output = args[++a];
             continue;
         }
-        if (kind) throw UsageError("more than one kind given ('" + std::string(kind->name) + "' and '" + arg + "')",
-                                   "hyvox job-template --help");
+        if (kind)
+            throw UsageError("more than one kind given ('" + std::string(kind->name) + "' and '" + arg + "')",
+                             "hyvox job-template --help");
         for (const Kind& k : kKinds)
             if (arg == k.name) kind = &k;
-        if (!kind) throw UsageError("unknown job kind '" + arg + "' (openjd, openjd-regions, flamenco)",
-                                    "hyvox job-template --help");
+        if (!kind)
+            throw UsageError("unknown job kind '" + arg + "' (openjd, openjd-regions, flamenco)",
+                             "hyvox job-template --help");
     }
     if (!kind) throw UsageError("no job kind given (openjd, openjd-regions, flamenco)", "hyvox job-template --help");
     const std::string text = kind->generate();

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "cli_args.h"
+#include "gamma_sweep_command.h"
 #include "hyvox/errors.h"
 #include "hyvox/version.h"
-#include "gamma_sweep_command.h"
 #include "job_template_command.h"
 #include "merge_command.h"
 #include "voxelize_command.h"

@@ -70,7 +70,7 @@ Arguments parseMergeArguments(const std::vector<std::string>& args) {
 
 void runMerge(const Arguments& args, const std::atomic<bool>& stop) {
     const auto thread_limit = limitThreads(args.write.threads);
-    checkOutputPath(args.output_path);  // before the parts are read
+    checkOutputPath(args.output_path);                   // before the parts are read
     ProgressLine interrupter = progressFor(args, stop);  // Ctrl-C and SIGTERM stop it, nothing written
     MergeOptions options;
     options.threads = args.write.threads;

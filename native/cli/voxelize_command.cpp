@@ -7,13 +7,13 @@
 #include <string>
 
 #include "command_support.h"
-#include "progress_line.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/stats_json.h"
 #include "hyvox/texture.h"
 #include "hyvox/vdb.h"
 #include "hyvox/version.h"
+#include "progress_line.h"
 
 namespace hyvox::cli {
 namespace {
@@ -79,7 +79,8 @@ void runVoxelize(const Arguments& args, const std::atomic<bool>& stop) {
     result.stats.addTiming("write_vdb", written.write_ms);
     result.stats.vdb_bytes = written.grid_bytes;
 
-    if (!args.stats_json_path.empty()) writeTextFileAtomic(args.stats_json_path, statsToJson(result), args.write.durable);
+    if (!args.stats_json_path.empty())
+        writeTextFileAtomic(args.stats_json_path, statsToJson(result), args.write.durable);
     if (!args.quiet) printSummary(args, mesh, result);
 }
 

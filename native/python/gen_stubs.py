@@ -8,6 +8,7 @@ hold the markers @VOXELIZE_OPTIONS@ (one keyword per option of voxelize()) and
 @WRITE_OPTIONS@ (one per option of VoxelGrid.write_vdb() its signature does not already
 name), each on a line of its own, indented as the keywords go. Run by the build after the
 module is linked, so the stubs can never disagree with the schema."""
+
 import re
 import sys
 
@@ -42,7 +43,7 @@ def fill(text: str, marker: str, options, where: str) -> str:
         return text
     indent = found[0]
     # The keywords the signature around the marker names itself (write_vdb's threads).
-    signature = text[text.rfind("def ", 0, text.index(marker)):text.index(marker)]
+    signature = text[text.rfind("def ", 0, text.index(marker)) : text.index(marker)]
     named = set(re.findall(r"(\w+):", signature))
     rest = [spec for spec in options if spec.name not in named]
     return text.replace(indent + marker, keyword_lines(rest, indent))

@@ -7,6 +7,7 @@ name (bl_ext.user_default.hyvox_blender), enable it there and voxelize the saved
 
 The bpy module has no Blender binary, so the child is this venv's Python importing bpy,
 opening the .blend and running the script as `blender -b FILE --python SCRIPT -- ARGS` would."""
+
 import json
 import os
 import subprocess
@@ -50,10 +51,30 @@ class ExtensionCliTest(AddonTestCase):
         listing = os.path.join(self.out, "addons.txt")
         # BLENDER_USER_RESOURCES (run_bpy_tests.py) is inherited: the same user folder.
         done = subprocess.run(
-            [sys.executable, "-c", CHILD, blend, script, listing, "--objects", "Bunny",
-             "--output", vdb_dir, "--resolution", "64", "--method", "cpu", "--mode", "conservative",
-             "--stats-json", stats],
-            capture_output=True, text=True, timeout=240)
+            [
+                sys.executable,
+                "-c",
+                CHILD,
+                blend,
+                script,
+                listing,
+                "--objects",
+                "Bunny",
+                "--output",
+                vdb_dir,
+                "--resolution",
+                "64",
+                "--method",
+                "cpu",
+                "--mode",
+                "conservative",
+                "--stats-json",
+                stats,
+            ],
+            capture_output=True,
+            text=True,
+            timeout=240,
+        )
         self.assertEqual(done.returncode, 0, done.stdout[-3000:] + done.stderr[-3000:])
         with open(listing) as f:
             imported = f.read().split("\n")
@@ -65,11 +86,11 @@ class ExtensionCliTest(AddonTestCase):
 
         vertices, triangles = helpers.bunny_arrays()
         world = np.asarray(vertices, np.float64) + LOCATION
-        grid = helpers.hyvox_module().voxelize(world.astype(np.float32), triangles, resolution=64,
-                                               method="cpu")
+        grid = helpers.hyvox_module().voxelize(world.astype(np.float32), triangles, resolution=64, method="cpu")
         expected = np.asarray(grid.origin) + (grid.coords() + 0.5) * grid.voxel_size
         got = helpers.vdb_world_centres(os.path.join(vdb_dir, "Bunny_voxels.vdb"))
         self.assertEqual(len(got), len(expected))
-        np.testing.assert_allclose(helpers.sorted_rows(got), helpers.sorted_rows(expected),
-                                   atol=1e-5 * grid.voxel_size + 1e-6)
+        np.testing.assert_allclose(
+            helpers.sorted_rows(got), helpers.sorted_rows(expected), atol=1e-5 * grid.voxel_size + 1e-6
+        )
         print("cli through", helpers.ADDON_PACKAGE, ":", len(got), "voxels; stats", volume.get("voxel_counts"))

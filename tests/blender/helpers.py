@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Shared pieces of the headless add-on tests: enabling the add-on from a build, scene
 set-up, and reading .vdb files back with pyopenvdb."""
+
 import importlib
 import os
 import subprocess
@@ -11,8 +12,9 @@ import unittest
 import bpy
 import numpy as np
 
-MESH_DIR = os.environ.get("HYVOX_MESH_DIR", os.path.join(
-    os.path.dirname(__file__), "..", "..", "..", "shared", "data", "meshes"))
+MESH_DIR = os.environ.get(
+    "HYVOX_MESH_DIR", os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared", "data", "meshes")
+)
 
 
 # The add-on's module name and the folders its files and its hyvox module must come from:
@@ -26,6 +28,7 @@ MODULE_DIR = ""
 def enable_addon(build_dir):
     global ADDON_DIR, MODULE_DIR
     import addon_utils
+
     addon_path = os.path.join(build_dir, "addon")
     if addon_path not in sys.path:
         sys.path.insert(0, addon_path)
@@ -54,14 +57,30 @@ def clear_scene():
     """An empty scene without reloading files (which would reset add-on state)."""
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj, do_unlink=True)
-    for coll in (bpy.data.meshes, bpy.data.volumes, bpy.data.materials, bpy.data.curves,
-                 bpy.data.cameras, bpy.data.lights):
+    for coll in (
+        bpy.data.meshes,
+        bpy.data.volumes,
+        bpy.data.materials,
+        bpy.data.curves,
+        bpy.data.cameras,
+        bpy.data.lights,
+    ):
         for block in list(coll):
             coll.remove(block)
     scene = bpy.context.scene
     scene.frame_set(1)
-    for prop in ("resolution", "voxel_size", "method", "mode", "inside", "separate", "output_dir",
-                 "use_frame_range", "size_mode", "color"):
+    for prop in (
+        "resolution",
+        "voxel_size",
+        "method",
+        "mode",
+        "inside",
+        "separate",
+        "output_dir",
+        "use_frame_range",
+        "size_mode",
+        "color",
+    ):
         scene.hyvox.property_unset(prop)
 
 
@@ -111,6 +130,7 @@ def read_vdb(path, grid_name="density"):
     voxels (vdb_dump.read). Where this Python has no pyopenvdb (the bpy module's venv),
     Debian's Python reads the file in a child process and grid is None."""
     import vdb_dump
+
     try:
         import pyopenvdb  # noqa: F401
     except ImportError:
@@ -197,8 +217,12 @@ class AddonTestCase(unittest.TestCase):
 
     def scene_state(self):
         """What 'scene unchanged' compares."""
-        return (sorted(o.name for o in bpy.data.objects), len(bpy.data.volumes),
-                len(bpy.data.materials), bpy.context.scene.frame_current)
+        return (
+            sorted(o.name for o in bpy.data.objects),
+            len(bpy.data.volumes),
+            len(bpy.data.materials),
+            bpy.context.scene.frame_current,
+        )
 
 
 # -- tests in a real window (xvfb-run blender --enable-event-simulate --python TEST -- BUILD) --
@@ -207,7 +231,8 @@ def run_in_window(step, fail, seconds, prepare=None):
     then call step() from a timer until it ends the process (its return value is the next
     interval); an exception in it, or `seconds` without an end, is fail(message)."""
     import traceback
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+
+    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
     build = argv[0] if argv else "build"
     if prepare is not None:
         prepare(build)

@@ -21,6 +21,7 @@ or its token is cancelled (then the wrapper records when it saw the cancel).
    renders with its own voxels, against the reference voxelizer.
 7. The source deleted during a held run: cancelled, no error, no stray file.
 Exits 0 on success, 1 on failure (CTest runs it under xvfb-run)."""
+
 import os
 import sys
 import tempfile
@@ -47,6 +48,7 @@ def fail(message):
 class Hold:
     """Wraps the add-on's backend.voxelize: while armed, the next call waits on its worker
     until released or cancelled."""
+
     armed = False
     entered = threading.Event()
     release = threading.Event()
@@ -56,6 +58,7 @@ class Hold:
     @classmethod
     def install(cls):
         from hyvox_blender.core import backend
+
         real = backend.voxelize
 
         def held(module, vertices, triangles, settings, method, token=None, **kwargs):
@@ -81,6 +84,7 @@ class Hold:
 
 def live():
     from hyvox_blender.blender import live as module
+
     return module
 
 
@@ -112,11 +116,13 @@ def runs():
 def oracle_voxels(obj):
     """World lattice indices of the reference voxelizer's voxels for obj's evaluated mesh."""
     from test_live import evaluated_world_mesh, oracle_voxels as voxels
+
     return voxels(*evaluated_world_mesh(obj), float(volume()["hyvox_voxel_size"]), "conservative")
 
 
 def file_voxels(path):
     from test_live import file_voxels as voxels
+
     return voxels(path)
 
 
@@ -136,6 +142,7 @@ def record_rendered(*_args):
 
 def render_setup(scene, path):
     from test_live import render_setup as setup
+
     setup(scene, path)
 
 
@@ -193,8 +200,9 @@ def step():
         helpers.clear_scene()
         bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=3, radius=1.0)
         helpers.select_only(source())
-        result = bpy.ops.object.hyvox_voxelize(resolution=32, method="cpu", output_dir=OUT, live=True,
-                                               mode="conservative")
+        result = bpy.ops.object.hyvox_voxelize(
+            resolution=32, method="cpu", output_dir=OUT, live=True, mode="conservative"
+        )
         if result != {"FINISHED"} or not volume().hyvox_live:
             fail(f"the live volume was not made: {result}")
         Hold.install()
@@ -212,8 +220,11 @@ def step():
             if not Hold.entered.is_set():
                 fail("no run started during the stroke")
             gap = state["max_gap"]
-            print(f"largest gap between timer ticks while Live ran: {gap * 1000:.0f} ms "
-                  f"({state['edits']} edits in {now - state['t0']:.2f} s, the first run held throughout)", flush=True)
+            print(
+                f"largest gap between timer ticks while Live ran: {gap * 1000:.0f} ms "
+                f"({state['edits']} edits in {now - state['t0']:.2f} s, the first run held throughout)",
+                flush=True,
+            )
             # Blocking on the held run would leave a gap as long as the stroke (over 1.5 s).
             if gap > 0.75:
                 fail(f"the UI stalled for {gap * 1000:.0f} ms while a run was held")
@@ -326,8 +337,11 @@ def step():
                 fail(f"Render Animation returned {result}")
             go("render_wait")
     elif s == "render_wait":
-        if wait(lambda: len(state["rendered"]) == 3 and not bpy.app.is_job_running("RENDER") and idle(),
-                "Render Animation ends", seconds=60):
+        if wait(
+            lambda: len(state["rendered"]) == 3 and not bpy.app.is_job_running("RENDER") and idle(),
+            "Render Animation ends",
+            seconds=60,
+        ):
             bpy.app.handlers.render_post.remove(record_rendered)
             for frame, path in enumerate(state["rendered"], start=1):
                 bpy.context.scene.frame_set(frame)

@@ -15,6 +15,7 @@
    as the test wants, on any machine) keeps the UI responsive, and a simulated Esc cancels
    it through the native token: no volume, no files, the operator ends.
 Exits 0 on success, 1 on failure (CTest runs it when xvfb-run is installed)."""
+
 import hashlib
 import os
 import sys
@@ -49,6 +50,7 @@ def view3d_override():
 
 def running():
     from hyvox_blender.blender.operators import OBJECT_OT_hyvox_voxelize
+
     return OBJECT_OT_hyvox_voxelize._active
 
 
@@ -57,6 +59,7 @@ def hold_until_cancelled():
     cancelled, then call the real one (which raises hyvox.Cancelled for a cancelled token):
     a slow run whose length is an event the test controls, not the machine's speed."""
     from hyvox_blender.core import backend
+
     real = backend.voxelize
 
     def held(module, vertices, triangles, settings, method, token=None, **kwargs):
@@ -76,6 +79,7 @@ def hold_the_write():
     """Make the next run's .vdb write wait for WRITE["release"] (set by the test only), and
     ignore the cancel token: a stage that cannot be interrupted, whose end the test decides."""
     from hyvox_blender.core import backend
+
     real = getattr(backend.voxelize, "original", backend.voxelize)
 
     class HeldGrid:

@@ -13,6 +13,7 @@ every text, measured with blf in the UI font at the UI scale, is compared with t
 its column in the sidebar's real region width (factory default). With SCREENSHOT_DIR, it
 also saves screenshots of the window before and after a run (sub-panels open).
 Exits 0 on success, 1 on failure."""
+
 import json
 import os
 import sys
@@ -104,8 +105,8 @@ def room(where, content, unit):
     value = content * (1 - SPLIT)
     limit = {
         "label": content * SPLIT - unit * 0.5,
-        "value_menu": value - unit * 1.5,     # the drop-down arrow and padding
-        "value_check": value - unit * 1.5,    # the check box before the text
+        "value_menu": value - unit * 1.5,  # the drop-down arrow and padding
+        "value_check": value - unit * 1.5,  # the check box before the text
         "full": content - unit,
         "full_check": content - unit * 1.5,
     }.get(where)
@@ -117,6 +118,7 @@ def room(where, content, unit):
 
 def panels():
     from hyvox_blender.blender import live_ui, ui
+
     return ui.CLASSES + (live_ui.VIEW3D_PT_hyvox_live,)
 
 
@@ -179,7 +181,7 @@ state = {"step": 0}
 
 
 def step():
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
     shots = argv[1] if len(argv) > 1 else None
     s = state["step"]
     state["step"] += 1

@@ -3,6 +3,7 @@
 then Get Named Grid) and follow when Live updates them: Grid to Mesh of `density` gives a
 mesh over the voxels, Sample Grid of `color` gives the source's colour, and both change
 when the source is edited. Registered for the bpy 5.x venvs only (the grid nodes are 5.0's)."""
+
 import bpy
 import numpy as np
 

@@ -8,6 +8,7 @@ A fresh, empty Blender user folder (BLENDER_USER_RESOURCES) per run; the extensi
 B/hyvox_blender-*-linux_x64.zip is installed there with Install from Disk's operator,
 which also installs its bundled wheel into that folder's site-packages and enables it.
 Then the named unittest files run as under run_tests.py (no skips allowed)."""
+
 import glob
 import os
 import sys
@@ -19,19 +20,21 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 def install_extension(build_dir, user_dir):
     import bpy
+
     (zip_path,) = glob.glob(os.path.join(build_dir, "hyvox_blender-*-linux_x64.zip"))
-    result = bpy.ops.extensions.package_install_files(
-        filepath=zip_path, repo="user_default", enable_on_install=True)
+    result = bpy.ops.extensions.package_install_files(filepath=zip_path, repo="user_default", enable_on_install=True)
     if result != {"FINISHED"}:
         raise RuntimeError(f"installing {zip_path} returned {result}")
     import helpers
+
     helpers.ADDON_PACKAGE = "bl_ext.user_default.hyvox_blender"
     if helpers.ADDON_PACKAGE not in bpy.context.preferences.addons:
         raise RuntimeError(f"{zip_path} installed but {helpers.ADDON_PACKAGE} is not enabled")
     helpers.ADDON_DIR = os.path.join(user_dir, "extensions", "user_default", "hyvox_blender")
     # Where Blender installs an extension's wheels (one site-packages per user folder).
-    helpers.MODULE_DIR = os.path.join(user_dir, "extensions", ".local", "lib",
-                                      "python%d.%d" % sys.version_info[:2], "site-packages", "hyvox")
+    helpers.MODULE_DIR = os.path.join(
+        user_dir, "extensions", ".local", "lib", "python%d.%d" % sys.version_info[:2], "site-packages", "hyvox"
+    )
 
 
 def main(argv):
@@ -47,6 +50,7 @@ def main(argv):
         sys.path.insert(0, HERE)
         import bpy
         import helpers  # after bpy's first import (it imports bpy)
+
         print("Blender", bpy.app.version_string, "Python", sys.version.split()[0])
         install_extension(build_dir, user_dir)
         return helpers.run_suite(names)

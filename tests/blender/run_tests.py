@@ -6,6 +6,7 @@
 Enables hyvox_blender from BUILD_DIR/addon (as an artist's install would), runs the
 unittest cases of the named test files (all test_*.py by default) and exits non-zero on
 any failure, so CTest and CI see it."""
+
 import os
 import sys
 import traceback
@@ -22,6 +23,7 @@ def main(argv):
     os.environ["HYVOX_BUILD_DIR"] = build_dir
     sys.path.insert(0, HERE)
     import helpers
+
     helpers.enable_addon(build_dir)
 
     if not names:
@@ -30,7 +32,7 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
     try:
         code = main(argv)
     except Exception:

@@ -2,6 +2,7 @@
 """Blender 5's SDF grid nodes on a Signed Distance volume (run in the bpy 5.x releases only:
 earlier Blenders have no SDF grid nodes): Object Info -> Get Named Grid `sdf` -> SDF Grid Offset
 -> Grid to Mesh gives a closed mesh at the offset distance from the source surface."""
+
 import bpy
 import numpy as np
 

@@ -5,12 +5,13 @@ made and stays empty), saves to BLEND unless it is "unsaved" or "failed", prints
 "SESSION <unsaved|failed|saved> <its folder>" and quits as Blender quits (atexit handlers run).
 
     blender -b --factory-startup --python session_quit.py -- ADDON_PARENT unsaved|failed|BLEND"""
+
 import sys
 
 import addon_utils
 import bpy
 
-parent, blend = sys.argv[sys.argv.index("--") + 1:][:2]
+parent, blend = sys.argv[sys.argv.index("--") + 1 :][:2]
 sys.path.insert(0, parent)
 addon_utils.enable("hyvox_blender", default_set=True, handle_error=None)
 from hyvox_blender.core import naming  # noqa: E402

@@ -3,6 +3,7 @@
 counts against a dense numpy count of the .vdb's voxels read with pyopenvdb), per-face
 colours from the voxels' colours, a .vox beside the .vdb, and re-runs replacing across
 output kinds."""
+
 import os
 import struct
 from collections import Counter
@@ -28,7 +29,7 @@ def vox_voxel_count(path):
     assert data[:4] == b"VOX "
     offset, total = 20, 0
     while offset < len(data):
-        tag, content, children = data[offset:offset + 4], *struct.unpack_from("<ii", data, offset + 4)
+        tag, content, children = data[offset : offset + 4], *struct.unpack_from("<ii", data, offset + 4)
         if tag == b"XYZI":
             total += struct.unpack_from("<i", data, offset + 12)[0]
         offset += 12 + content + children

@@ -4,6 +4,7 @@ open file's volumes and results (a result's .vox export with its .vdb, a Blocks 
 .vox and .vdb) and those an undo or redo can bring back, so a redo after a Clean finds its file; once
 the file is opened again (a new undo history) the replaced results' files go. (This test
 opens a file: its own Blender process.)"""
+
 import os
 
 import bpy

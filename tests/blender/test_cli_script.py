@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The headless pipeline entry point (hyvox_blender/cli_blender.py) in a child Blender:
 frame chunks, stats JSON, saving, and exit code 1 on failure."""
+
 import json
 import os
 import subprocess
@@ -14,13 +15,23 @@ from helpers import AddonTestCase
 
 def cli_path():
     import hyvox_blender
+
     return os.path.join(os.path.dirname(hyvox_blender.__file__), "cli_blender.py")
 
 
 class CliScriptTest(AddonTestCase):
     def run_cli(self, blend, *args):
-        command = [bpy.app.binary_path, "-b", "--factory-startup", "-noaudio", blend,
-                   "--python", cli_path(), "--", *args]
+        command = [
+            bpy.app.binary_path,
+            "-b",
+            "--factory-startup",
+            "-noaudio",
+            blend,
+            "--python",
+            cli_path(),
+            "--",
+            *args,
+        ]
         return subprocess.run(command, capture_output=True, text=True, timeout=120)
 
     def save_scene(self):
@@ -37,9 +48,23 @@ class CliScriptTest(AddonTestCase):
         vdb_dir = os.path.join(self.out, "vdb")
         stats = os.path.join(self.out, "stats.json")
         saved = os.path.join(self.out, "voxelized.blend")
-        done = self.run_cli(blend, "--frames", "3-4", "--output", vdb_dir, "--resolution", "16",
-                            "--method", "cpu", "--objects", "Cube", "--stats-json", stats,
-                            "--save", saved)
+        done = self.run_cli(
+            blend,
+            "--frames",
+            "3-4",
+            "--output",
+            vdb_dir,
+            "--resolution",
+            "16",
+            "--method",
+            "cpu",
+            "--objects",
+            "Cube",
+            "--stats-json",
+            stats,
+            "--save",
+            saved,
+        )
         self.assertEqual(done.returncode, 0, done.stdout[-2000:] + done.stderr[-2000:])
         self.assertEqual(sorted(os.listdir(vdb_dir)), ["Cube_voxels_0003.vdb", "Cube_voxels_0004.vdb"])
         with open(stats) as f:
@@ -53,6 +78,7 @@ class CliScriptTest(AddonTestCase):
 
     def test_colour_grid_unless_no_color(self):
         import pyopenvdb as vdb
+
         cube = helpers.cube(size=1.0)
         material = bpy.data.materials.new("Blue")
         material.diffuse_color = (0.1, 0.2, 0.9, 1.0)  # no nodes: the viewport colour counts
@@ -62,8 +88,9 @@ class CliScriptTest(AddonTestCase):
         for extra, grids in (((), ["color", "density"]), (("--no-color",), ["density"])):
             vdb_dir = os.path.join(self.out, "vdb" + "".join(extra))
             # A surface run, so the grids' voxels are the cube's shell.
-            done = self.run_cli(blend, "--output", vdb_dir, "--resolution", "8", "--objects", "Cube",
-                                "--mode", "conservative", *extra)
+            done = self.run_cli(
+                blend, "--output", vdb_dir, "--resolution", "8", "--objects", "Cube", "--mode", "conservative", *extra
+            )
             self.assertEqual(done.returncode, 0, done.stdout[-2000:] + done.stderr[-2000:])
             (name,) = os.listdir(vdb_dir)
             path = os.path.join(vdb_dir, name)
@@ -87,6 +114,7 @@ class CliScriptTest(AddonTestCase):
         """`blender -b scene.blend --python cli_blender.py -a -- --live`: the animation renders
         as voxels, each frame its own, with no frame range and nothing baked."""
         from test_live import read_frames, render_setup
+
         scene = bpy.context.scene
         cube = helpers.cube(size=1.0)
         for frame, x in ((1, -1.0), (2, 0.0), (3, 1.2)):
@@ -100,8 +128,24 @@ class CliScriptTest(AddonTestCase):
         blend = os.path.join(self.out, "animated.blend")
         bpy.ops.wm.save_as_mainfile(filepath=blend, copy=True)
         vdb_dir = os.path.join(self.out, "vdb")
-        command = [bpy.app.binary_path, "-b", "--factory-startup", "-noaudio", blend, "--python", cli_path(),
-                   "-a", "--", "--live", "--output", vdb_dir, "--resolution", "12", "--objects", "Cube"]
+        command = [
+            bpy.app.binary_path,
+            "-b",
+            "--factory-startup",
+            "-noaudio",
+            blend,
+            "--python",
+            cli_path(),
+            "-a",
+            "--",
+            "--live",
+            "--output",
+            vdb_dir,
+            "--resolution",
+            "12",
+            "--objects",
+            "Cube",
+        ]
         done = subprocess.run(command, capture_output=True, text=True, timeout=300)
         self.assertEqual(done.returncode, 0, done.stdout[-2000:] + done.stderr[-2000:])
         images = read_frames(render_dir, (1, 2, 3))

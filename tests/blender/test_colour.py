@@ -3,6 +3,7 @@
 colour attribute, Base Color image, per-slot Base Color) reaches the .vdb's `color` grid
 (read back with pyopenvdb), the volume's material shows it, Blocks carry it, and a render
 of the volume has the mesh's colours."""
+
 import os
 
 import bpy
@@ -11,17 +12,18 @@ import numpy as np
 import helpers
 from helpers import AddonTestCase
 
-RED = (0.6, 0.05, 0.02, 1.0)    # linear
+RED = (0.6, 0.05, 0.02, 1.0)  # linear
 GREEN = (0.03, 0.5, 0.1, 1.0)
-SIZE = 0.125                     # voxel size: 16 voxels across the 2-unit cube
+SIZE = 0.125  # voxel size: 16 voxels across the 2-unit cube
 
 
 def split_cube(name="Split"):
     """Two 1.5-unit cubes in one mesh, one each side of x = 0 with a gap of 4 voxels, so
     every voxel and every vertex lies in one half: x < 0 or x > 0."""
     h = 0.75
-    corners = np.array([(-h, -h, -h), (h, -h, -h), (h, h, -h), (-h, h, -h),
-                        (-h, -h, h), (h, -h, h), (h, h, h), (-h, h, h)])
+    corners = np.array(
+        [(-h, -h, -h), (h, -h, -h), (h, h, -h), (-h, h, -h), (-h, -h, h), (h, -h, h), (h, h, h), (-h, h, h)]
+    )
     faces = np.array([(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)])
     vertices = np.concatenate([corners - (1.0, 0, 0), corners + (1.0, 0, 0)])
     return helpers.mesh_object(name, vertices, np.concatenate([faces, faces + 8]))
@@ -37,6 +39,7 @@ def face_halves(mesh):
 def colour_vdb(path):
     """(world centres (K,3), linear colours (K,3)) of the .vdb's `color` grid."""
     import pyopenvdb as vdb
+
     grid = vdb.read(path, "color")
     ijk, values = [], []
     for item in grid.citerOnValues():
@@ -52,15 +55,16 @@ def colour_vdb(path):
 def read_vox(path):
     """(XYZI records (K,4) uint8 of the one model, RGBA palette (256,4)) of a .vox file."""
     import struct
+
     with open(path, "rb") as f:
         data = f.read()
     offset, models, palette = 20, [], None
     while offset < len(data):
-        tag, content, children = data[offset:offset + 4], *struct.unpack_from("<ii", data, offset + 4)
-        body = data[offset + 12:offset + 12 + content]
+        tag, content, children = data[offset : offset + 4], *struct.unpack_from("<ii", data, offset + 4)
+        body = data[offset + 12 : offset + 12 + content]
         if tag == b"XYZI":
             count = struct.unpack_from("<i", body)[0]
-            models.append(np.frombuffer(body[4:4 + 4 * count], np.uint8).reshape(-1, 4))
+            models.append(np.frombuffer(body[4 : 4 + 4 * count], np.uint8).reshape(-1, 4))
         elif tag == b"RGBA":
             palette = np.frombuffer(body, np.uint8).reshape(256, 4)
         offset += 12 + content + children
@@ -157,6 +161,7 @@ class ColourTest(_ColourCase):
 
     def test_colour_off_and_no_material_make_no_colour_grid(self):
         import pyopenvdb as vdb
+
         obj = split_cube()
         helpers.select_only(obj)
         self.assertEqual(self.voxelize(voxel_size=SIZE), {"FINISHED"})  # no material, no attribute
@@ -170,8 +175,9 @@ class ColourTest(_ColourCase):
     def test_texture_matches_hyvox_with_the_same_texture(self):
         hyvox = helpers.hyvox_module()
         png = os.path.join(helpers.MESH_DIR, "spot_texture.png")
-        vertices, triangles, attributes = hyvox.read_mesh(os.path.join(helpers.MESH_DIR, "spot_uv.ply"),
-                                                          attributes=True)
+        vertices, triangles, attributes = hyvox.read_mesh(
+            os.path.join(helpers.MESH_DIR, "spot_uv.ply"), attributes=True
+        )
         uvs = attributes["uvs"]
         obj = helpers.mesh_object("Spot", vertices, triangles)
         layer = obj.data.uv_layers.new(name="UVMap")
@@ -188,8 +194,9 @@ class ColourTest(_ColourCase):
         self.assertEqual(self.voxelize(resolution=48), {"FINISHED"})
         centres, colours = colour_vdb(self.volume_file()[0])
 
-        expected = hyvox.voxelize(vertices, triangles, resolution=48, method="cpu", uvs=uvs, texture=png,
-                                  attributes="color")
+        expected = hyvox.voxelize(
+            vertices, triangles, resolution=48, method="cpu", uvs=uvs, texture=png, attributes="color"
+        )
         size = expected.voxel_size
         self.assertAlmostEqual(size, float(self.volumes()[0]["hyvox_voxel_size"]), places=6)
         want = {tuple(k): c for k, c in zip(np.asarray(expected.coords()), expected.attributes()["color"])}
@@ -229,7 +236,6 @@ class ColourTest(_ColourCase):
             used = palette[records[side, 3] - 1, :3].astype(np.float64)
             self.assertGreater(side.sum(), 100)
             np.testing.assert_allclose(used, np.tile(encoded, (side.sum(), 1)), atol=0.51)
-
 
 
 RENDER_PIXELS = 72
@@ -305,8 +311,11 @@ class ColourRenderTest(_ColourCase):
             encoded = np.where(rgb <= 0.0031308, rgb * 12.92, 1.055 * rgb ** (1 / 2.4) - 0.055)
             out = bpy.data.images.new("keep", RENDER_PIXELS * 2, RENDER_PIXELS)
             alpha = side_by_side[..., 3:4]
-            out.pixels.foreach_set(np.concatenate([encoded * alpha + (1 - alpha), np.ones_like(alpha)],
-                                                  axis=-1)[::-1].astype(np.float32).ravel())
+            out.pixels.foreach_set(
+                np.concatenate([encoded * alpha + (1 - alpha), np.ones_like(alpha)], axis=-1)[::-1]
+                .astype(np.float32)
+                .ravel()
+            )
             out.filepath_raw, out.file_format = keep, "PNG"
             out.save()
 
@@ -314,7 +323,7 @@ class ColourRenderTest(_ColourCase):
             """Mean RGB of a square of 12 pixels around world (x, 0) (image row 0 = bottom)."""
             column = int((x + RENDER_WIDTH / 2) / RENDER_WIDTH * RENDER_PIXELS)
             middle = RENDER_PIXELS // 2
-            return image[middle - 6:middle + 6, column - 6:column + 6, :3].reshape(-1, 3).mean(axis=0)
+            return image[middle - 6 : middle + 6, column - 6 : column + 6, :3].reshape(-1, 3).mean(axis=0)
 
         for x, expected in ((-1.0, RED), (1.0, GREEN)):
             mesh_rgb, volume_rgb = region(mesh_image, x), region(volume_image, x)
@@ -324,10 +333,11 @@ class ColourRenderTest(_ColourCase):
             # bounces a pixel shows single scattering, in proportion to it.
             volume_albedo = 4 * np.array(expected[:3]) / (1 + np.array(expected[:3])) ** 2
             volume_albedo /= volume_albedo.sum()
-            print(f"region x={x}: mesh {mesh_rgb.round(4)} volume {volume_rgb.round(4)} "
-                  f"chromaticity mesh {mesh_chroma.round(3)} volume {volume_chroma.round(3)} albedo {albedo.round(3)}"
-                  f" volume albedo {volume_albedo.round(3)}")
+            print(
+                f"region x={x}: mesh {mesh_rgb.round(4)} volume {volume_rgb.round(4)} "
+                f"chromaticity mesh {mesh_chroma.round(3)} volume {volume_chroma.round(3)} albedo {albedo.round(3)}"
+                f" volume albedo {volume_albedo.round(3)}"
+            )
             self.assertGreater(volume_rgb.sum(), 0.02, "the volume is seen")
             np.testing.assert_allclose(mesh_chroma, albedo, atol=0.03)  # the set-up shows albedo
             np.testing.assert_allclose(volume_chroma, volume_albedo, atol=0.03)
-

@@ -4,6 +4,7 @@ default). A .blend saved with the Fill Interior switch of earlier versions opens
 Mode it meant; one saved by this version opens as saved. Grouped volumes are named after the
 active object and their files after the volume, stable across re-runs. (This test opens
 files: its own Blender process.)"""
+
 import os
 import re
 
@@ -13,8 +14,14 @@ import helpers
 from helpers import AddonTestCase
 
 # (stored Fill Interior or None, stored Mode or None) -> the Mode it meant
-OLD_FILES = [((1, "thin"), "solid"), ((0, "thin"), "thin"), ((None, None), "solid"), ((0, None), "conservative"),
-             ((None, "thin"), "solid"), ((1, None), "solid")]
+OLD_FILES = [
+    ((1, "thin"), "solid"),
+    ((0, "thin"), "thin"),
+    ((None, None), "solid"),
+    ((0, None), "conservative"),
+    ((None, "thin"), "solid"),
+    ((1, None), "solid"),
+]
 
 
 class ControlsTest(AddonTestCase):

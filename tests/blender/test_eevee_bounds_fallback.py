@@ -7,6 +7,7 @@ The add-on adds the modifier only in Blender 4.2-4.5; here its rule is forced on
 tests run the same way in every Blender (in 3.4 the nodes are really missing). The
 failures are forced as they happen in a file: the nodes missing, a node group of that
 name that is not the add-on's, and a failure while the group is being built."""
+
 import contextlib
 import io
 
@@ -47,7 +48,7 @@ class EeveeBoundsFallbackTest(AddonTestCase):
         (obj,) = self.volumes()
         self.assertEqual(obj.name, "Cube_voxels")
         coords, _, _, _ = helpers.read_vdb(bpy.path.abspath(obj.data.filepath))
-        self.assertEqual(len(np.unique(coords, axis=0)), 8 ** 3 - 6 ** 3)
+        self.assertEqual(len(np.unique(coords, axis=0)), 8**3 - 6**3)
         warnings = [line for line in printed.getvalue().splitlines() if line.startswith("Warning:")]
         print("reported:", warnings)
         return obj, warnings

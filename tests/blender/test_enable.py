@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The add-on enables from the build and registers what the artist sees."""
+
 import os
 
 import addon_utils
@@ -27,8 +28,9 @@ class EnableTest(AddonTestCase):
     def test_enabled_from_build(self):
         enabled, loaded = addon_utils.check(helpers.ADDON_PACKAGE)
         self.assertTrue(enabled and loaded)
-        self.assertTrue(inside(helpers.addon().__file__, helpers.ADDON_DIR),
-                        (helpers.addon().__file__, helpers.ADDON_DIR))
+        self.assertTrue(
+            inside(helpers.addon().__file__, helpers.ADDON_DIR), (helpers.addon().__file__, helpers.ADDON_DIR)
+        )
 
     def test_module_is_the_bundled_one(self):
         # The legacy add-on's own copy, or the extension's wheel (never a module that
@@ -52,6 +54,7 @@ class EnableTest(AddonTestCase):
 
     def test_module_found(self):
         from helpers import hyvox_module
+
         module = hyvox_module()
         self.assertTrue(hasattr(module, "voxelize"))
 

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Error paths are reported and leave the scene unchanged."""
+
 import os
 
 import bpy
@@ -85,8 +86,10 @@ class ErrorTest(AddonTestCase):
         # The second object of a group: its own name and index, not the merged mesh's.
         first = helpers.cube("First")
         second = helpers.cube("Second", 1.0, (3, 0, 0))
-        for value, fragment in ((float("nan"), "not a number or infinite"),
-                                (float("inf"), "infinite (Blender stores Inf as 3.4e+38)")):
+        for value, fragment in (
+            (float("nan"), "not a number or infinite"),
+            (float("inf"), "infinite (Blender stores Inf as 3.4e+38)"),
+        ):
             with self.subTest(value=value):
                 second.data.vertices[5].co.z = value
                 helpers.select_only(first, second)

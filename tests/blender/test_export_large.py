@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """A 1M-triangle evaluated mesh exports into numpy whole and in world space. (How fast is
 measured by bench/bench_blender_addon.py, not asserted here.)"""
+
 import bpy
 import numpy as np
 

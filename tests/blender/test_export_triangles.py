@@ -4,6 +4,7 @@ are Blender's own loop triangles, read here one by one through the per-item API:
 vertex triples in the same order, for triangles, planar, non-planar, concave and folded
 quads, convex, concave and non-planar n-gons, each kind alone and all mixed, as plain
 meshes and as evaluated through modifiers."""
+
 import math
 
 import bpy
@@ -61,11 +62,20 @@ def ngons(rng):
         faces.append(tuple(range(base, base + len(ring))))
 
     add([(math.cos(a), math.sin(a), 0) for a in np.linspace(0, 2 * math.pi, 7)[:-1]])  # convex hexagon
-    add([((1.0 if k % 2 == 0 else 0.4) * math.cos(k * math.pi / 5) + 3,
-          (1.0 if k % 2 == 0 else 0.4) * math.sin(k * math.pi / 5), 0) for k in range(10)])  # star
+    add(
+        [
+            (
+                (1.0 if k % 2 == 0 else 0.4) * math.cos(k * math.pi / 5) + 3,
+                (1.0 if k % 2 == 0 else 0.4) * math.sin(k * math.pi / 5),
+                0,
+            )
+            for k in range(10)
+        ]
+    )  # star
     add([(6, 0, 0), (8, 0, 0), (8, 0.5, 0), (6.5, 0.5, 0), (6.5, 2, 0), (6, 2, 0)])  # L
-    add([(math.cos(a) + 10, math.sin(a), rng.uniform(-0.5, 0.5))
-         for a in np.linspace(0, 2 * math.pi, 9)[:-1]])  # non-planar octagon
+    add(
+        [(math.cos(a) + 10, math.sin(a), rng.uniform(-0.5, 0.5)) for a in np.linspace(0, 2 * math.pi, 9)[:-1]]
+    )  # non-planar octagon
     return np.array(points), faces
 
 

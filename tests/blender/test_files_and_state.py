@@ -2,6 +2,7 @@
 """Files and state across runs: what a re-run replaces, the artist's transform kept
 relative to the source, parenting, new files per run (undo safety), and the session's own
 folder for unsaved results. Cleaning unused files: test_clean_files.py."""
+
 import hashlib
 import math
 import os
@@ -27,6 +28,7 @@ def digest(path):
 class FilesAndStateTest(AddonTestCase):
     def test_unsaved_results_go_to_this_sessions_own_folder(self):
         from hyvox_blender.core import naming
+
         self.assertEqual(bpy.data.filepath, "")
         cube = helpers.cube()
         helpers.select_only(cube)
@@ -54,6 +56,7 @@ class FilesAndStateTest(AddonTestCase):
 
     def test_parented_to_the_source_and_the_artists_edits_kept(self):
         from hyvox_blender.core import alignment
+
         cube = helpers.cube()
         helpers.select_only(cube)
         self.voxelize(voxel_size=0.25)
@@ -68,14 +71,13 @@ class FilesAndStateTest(AddonTestCase):
         before = first.matrix_world.copy()
         cube.location = (5.0, 0.0, 0.0)
         bpy.context.view_layer.update()
-        np.testing.assert_allclose(np.array(first.matrix_world.translation - before.translation), [5, 0, 0],
-                                   atol=1e-6)
+        np.testing.assert_allclose(np.array(first.matrix_world.translation - before.translation), [5, 0, 0], atol=1e-6)
 
         self.voxelize(voxel_size=0.125)  # a re-run at the new place, with another voxel size
         (second,) = self.volumes()
         self.assertIs(second.parent, cube)
         version = bpy.app.version
-        expected = (Vector((0.0, 0.0, 2.0)) + Vector(alignment.object_offset(0.125, version)))
+        expected = Vector((0.0, 0.0, 2.0)) + Vector(alignment.object_offset(0.125, version))
         np.testing.assert_allclose(tuple(second.location), tuple(expected), atol=1e-6)
         self.assertAlmostEqual(second.rotation_euler.z, math.radians(30), places=6)
         self.assertEqual(tuple(second.scale), (1.0, 1.0, 2.0))

@@ -4,6 +4,7 @@ Volume holds exactly the module's solid voxels, and renders as a filled body: se
 its middle a filled sphere absorbs far more light than its hollow shell. The render is kept
 as a PNG in $HYVOX_RENDER_DIR when that is set (to look at it). With Colour, the inside takes
 the colour of the surface around it: the `color` grid has the density's voxels and tiles."""
+
 import os
 
 import bpy
@@ -32,8 +33,9 @@ class FillInteriorTest(AddonTestCase):
     def voxelize_sphere(self, **kw):
         obj = sphere()
         helpers.select_only(obj)
-        self.assertEqual(bpy.ops.object.hyvox_voxelize(output_dir=self.out, method="cpu", resolution=32, **kw),
-                         {"FINISHED"})
+        self.assertEqual(
+            bpy.ops.object.hyvox_voxelize(output_dir=self.out, method="cpu", resolution=32, **kw), {"FINISHED"}
+        )
         (volume,) = self.volumes()
         return obj, volume
 
@@ -47,8 +49,9 @@ class FillInteriorTest(AddonTestCase):
         self.assertEqual(len(got), solid.voxel_count)
         self.assertGreater(solid.voxel_count, 2 * surface.voxel_count)
         expected = np.array(solid.origin) + (solid.coords() + 0.5) * solid.voxel_size
-        np.testing.assert_allclose(helpers.sorted_rows(got), helpers.sorted_rows(expected),
-                                   atol=1e-5 * solid.voxel_size + 1e-7)
+        np.testing.assert_allclose(
+            helpers.sorted_rows(got), helpers.sorted_rows(expected), atol=1e-5 * solid.voxel_size + 1e-7
+        )
 
     def centre_transmittance(self, volume, name):
         bpy.data.objects["Sphere"].hide_render = True
@@ -60,7 +63,7 @@ class FillInteriorTest(AddonTestCase):
         pixels = helpers.render_pixels(os.path.join(folder, name + ".png"))[:, :, 0]
         self.assertEqual(pixels.shape, (PIXELS, PIXELS))
         mid = PIXELS // 2
-        return pixels[mid - 3:mid + 3, mid - 3:mid + 3].mean()
+        return pixels[mid - 3 : mid + 3, mid - 3 : mid + 3].mean()
 
     def test_filled_sphere_renders_as_a_body(self):
         # setup_render's absorber: ln 2 per unit of density and length. Through the middle:
@@ -78,6 +81,7 @@ class FillInteriorTest(AddonTestCase):
 
     def test_colour_when_solid_colours_every_voxel(self):
         import pyopenvdb as vdb
+
         obj = split_cube()
         mesh = obj.data
         attribute = mesh.color_attributes.new("Col", "FLOAT_COLOR", "CORNER")
@@ -85,8 +89,10 @@ class FillInteriorTest(AddonTestCase):
         attribute.data.foreach_set("color", np.where(per_loop[:, None], RED, GREEN).astype(np.float32).ravel())
         helpers.select_only(obj)
         self.assertEqual(bpy.context.scene.hyvox.mode, "solid")
-        self.assertEqual(bpy.ops.object.hyvox_voxelize(output_dir=self.out, method="cpu", voxel_size=0.0625,
-                                                       color=True), {"FINISHED"})
+        self.assertEqual(
+            bpy.ops.object.hyvox_voxelize(output_dir=self.out, method="cpu", voxel_size=0.0625, color=True),
+            {"FINISHED"},
+        )
         (volume,) = self.volumes()
         path = bpy.path.abspath(volume.data.filepath)
         grids = {name: vdb.read(path, name) for name in ("density", "color")}
@@ -99,7 +105,7 @@ class FillInteriorTest(AddonTestCase):
         self.assertEqual(tiles(color), tiles(density))
         self.assertTrue(tiles(color), "two 24-voxel solid cubes have whole-brick tiles")
         # Solid: far more than the two shells (24³ each, 6 · 24² on the surface).
-        self.assertGreater(density.activeVoxelCount(), 2 * 20 ** 3)
+        self.assertGreater(density.activeVoxelCount(), 2 * 20**3)
         # Each cube's inside has its surface's one colour, tiles included.
         to_world = density.transform.indexToWorld
         for item in color.citerOnValues():

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """A setting the chosen method does not use is reported (INFO) by the operator, and the run
 still voxelizes exactly what the module gives without it."""
+
 import sys
 import warnings
 

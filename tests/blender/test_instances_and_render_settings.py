@@ -2,6 +2,7 @@
 """What the depsgraph evaluates is what gets voxelized: collection instances and Geometry
 Nodes instances with their world matrices, curves and text, and modifiers at render
 settings by default (viewport settings on request, also in the headless script)."""
+
 import json
 import math
 import os
@@ -21,6 +22,7 @@ def centres(obj):
 
 def last_triangles():
     from hyvox_blender.blender import operators
+
     return [v["triangles"] for v in operators.last_run_record["volumes"]]
 
 
@@ -33,7 +35,7 @@ def subdivided_cube(viewport_levels=1, render_levels=3):
 
 # Catmull-Clark splits every quad into four per level; a cube has 6 quads, 2 triangles each.
 def cube_triangles(levels):
-    return 6 * 4 ** levels * 2
+    return 6 * 4**levels * 2
 
 
 class InstancesAndRenderSettingsTest(AddonTestCase):
@@ -85,8 +87,9 @@ class InstancesAndRenderSettingsTest(AddonTestCase):
         self.assertEqual(last_triangles(), [3 * 12])
         helpers.select_only(*copies)
         self.voxelize(voxel_size=0.05)
-        np.testing.assert_allclose(centres(bpy.data.objects["Scatter_voxels"]),
-                                   centres(bpy.data.objects["Copy0_and_2_more_voxels"]), atol=1e-5)
+        np.testing.assert_allclose(
+            centres(bpy.data.objects["Scatter_voxels"]), centres(bpy.data.objects["Copy0_and_2_more_voxels"]), atol=1e-5
+        )
 
     def test_a_mesh_with_instances_keeps_both(self):
         """Instancing on vertices (the parent's own faces and the children it instances)."""
@@ -132,8 +135,9 @@ class InstancesAndRenderSettingsTest(AddonTestCase):
         self.voxelize(voxel_size=0.1, evaluation="VIEWPORT")
         self.assertEqual(last_triangles(), [cube_triangles(1)])
         self.assertEqual(bpy.context.scene.render.engine, "BLENDER_EEVEE")  # the scene's engine is back
-        self.assertNotIn("HYVOX_RENDER_EVALUATION", {e.bl_idname for e in bpy.types.RenderEngine.__subclasses__()
-                                                      if e.is_registered})
+        self.assertNotIn(
+            "HYVOX_RENDER_EVALUATION", {e.bl_idname for e in bpy.types.RenderEngine.__subclasses__() if e.is_registered}
+        )
 
     def test_hidden_in_renders_falls_back_to_the_viewport_with_a_warning(self):
         cube = subdivided_cube(viewport_levels=1, render_levels=3)
@@ -147,13 +151,36 @@ class InstancesAndRenderSettingsTest(AddonTestCase):
         blend = os.path.join(self.out, "scene.blend")
         bpy.ops.wm.save_as_mainfile(filepath=blend, copy=True)
         import hyvox_blender
+
         script = os.path.join(os.path.dirname(hyvox_blender.__file__), "cli_blender.py")
         for extra, levels in (([], 3), (["--viewport"], 1)):
             stats = os.path.join(self.out, f"stats{levels}.json")
-            done = subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", "-noaudio", blend, "--python",
-                                   script, "--", "--objects", "Smooth", "--voxel-size", "0.1", "--method", "cpu",
-                                   "--output", self.out, "--stats-json", stats, *extra],
-                                  capture_output=True, text=True, timeout=120)
+            done = subprocess.run(
+                [
+                    bpy.app.binary_path,
+                    "-b",
+                    "--factory-startup",
+                    "-noaudio",
+                    blend,
+                    "--python",
+                    script,
+                    "--",
+                    "--objects",
+                    "Smooth",
+                    "--voxel-size",
+                    "0.1",
+                    "--method",
+                    "cpu",
+                    "--output",
+                    self.out,
+                    "--stats-json",
+                    stats,
+                    *extra,
+                ],
+                capture_output=True,
+                text=True,
+                timeout=120,
+            )
             self.assertEqual(done.returncode, 0, done.stderr[-2000:])
             with open(stats) as f:
                 self.assertEqual([v["triangles"] for v in json.load(f)["volumes"]], [cube_triangles(levels)])

@@ -5,6 +5,7 @@ or frame_set() returns, the live volume's file holds the voxels of the new state
 The oracle is the module's reference voxelizer on the evaluated mesh, exported here by
 Blender's own per-element API (not the add-on's export), on the lattice the volume keeps
 (its voxel size, the origin at the whole multiple of it at or below the bounds)."""
+
 import os
 
 import bpy
@@ -39,8 +40,9 @@ def oracle_voxels(vertices, triangles, voxel_size, mode):
     low = vertices[np.unique(triangles)].min(axis=0).astype(np.float64)
     origin = np.floor(low / voxel_size) * voxel_size
     origin -= np.where(origin > low, voxel_size, 0.0)
-    grid = helpers.hyvox_module().voxelize(vertices, triangles, voxel_size=voxel_size, origin=tuple(origin),
-                                           method="reference", mode=mode)
+    grid = helpers.hyvox_module().voxelize(
+        vertices, triangles, voxel_size=voxel_size, origin=tuple(origin), method="reference", mode=mode
+    )
     offset = np.rint(np.array(grid.origin) / voxel_size).astype(np.int64)
     return {tuple(p) for p in grid.coords().astype(np.int64) + offset}
 
@@ -121,6 +123,7 @@ class LiveEditsTest(LiveTestCase):
 
     def test_edit_mode_changes_are_followed(self):
         import bmesh
+
         bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2, radius=1.0)
         sphere = bpy.context.active_object
         volume = self.make_live(sphere)
@@ -133,8 +136,9 @@ class LiveEditsTest(LiveTestCase):
             bmesh.update_edit_mesh(sphere.data)
             bpy.context.view_layer.update()
             self.assert_holds_the_state(volume, sphere)  # the oracle reads the edit-mode evaluation too
-            self.assertGreater(max(p[2] for p in file_voxels(self.shown_file(volume))) * volume["hyvox_voxel_size"],
-                               1.5)
+            self.assertGreater(
+                max(p[2] for p in file_voxels(self.shown_file(volume))) * volume["hyvox_voxel_size"], 1.5
+            )
         finally:
             bpy.ops.object.mode_set(mode="OBJECT")
 
@@ -224,8 +228,11 @@ class LiveErrorsTest(LiveTestCase):
         self.assertTrue(os.path.exists(shown))
         self.assertIn("no faces", live().status_line(volume))
         # Faces again: Live goes on, the error is gone.
-        cube.data.from_pydata([tuple(v) for v in vertices], [], [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4),
-                                                                 (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)])
+        cube.data.from_pydata(
+            [tuple(v) for v in vertices],
+            [],
+            [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)],
+        )
         cube.data.update()
         bpy.context.view_layer.update()
         self.assert_holds_the_state(volume, cube)
@@ -332,6 +339,7 @@ class LiveOutputsTest(LiveTestCase):
         self.assertIs(bpy.data.objects.get("Icosphere_blocks"), blocks)  # updated in place
         self.assertEqual(blocks.data.name, mesh_name)
         from test_blocks_output import dense_exposed_faces, vox_voxel_count
+
         files = [bpy.path.abspath(p) for p in blocks["hyvox_live_files"]]
         (vdb,) = [p for p in files if p.endswith(".vdb")]
         (vox,) = [p for p in files if p.endswith(".vox")]
@@ -404,8 +412,7 @@ class LiveRenderTest(LiveTestCase):
         helpers.select_only(source)
         self.assertEqual(self.voxelize(voxel_size=0.1, mode="solid", frame_start=1, frame_end=3), {"FINISHED"})
         (sequence,) = self.volumes()
-        expected = [file_voxels(os.path.join(self.out, n)) for n in sorted(os.listdir(self.out))
-                    if n.endswith(".vdb")]
+        expected = [file_voxels(os.path.join(self.out, n)) for n in sorted(os.listdir(self.out)) if n.endswith(".vdb")]
         self.assertEqual(len(expected), 3)
         sequence.name = "Sequence"
         sequence["hyvox_key"] = "not a result any more"  # the live run must not replace it

@@ -3,6 +3,7 @@
 saving keeps the voxels shown with the .blend as a run's are kept; opening a file cancels
 Live and deletes what only the closed session showed, never what a saved .blend refers to;
 disabling the add-on leaves every volume with its voxels."""
+
 import addon_utils
 import os
 

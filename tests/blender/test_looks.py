@@ -10,6 +10,7 @@ says which engines show what here):
   objects' colours (their albedo's hue, rendered) once re-run with it, and loses the colour
   nodes when re-run without, keeping the artist's own settings and links.
 Density: test_looks_density.py."""
+
 import math
 import os
 
@@ -71,7 +72,7 @@ def disc(radius=1.0 - 2.6 / PIXELS):
     default its outline less a pixel)."""
     centres = (np.arange(PIXELS) + 0.5) / PIXELS * 2.6 - 1.3
     x, z = np.meshgrid(centres, centres)
-    return x * x + z * z < radius ** 2
+    return x * x + z * z < radius**2
 
 
 def scattering_engines():
@@ -131,14 +132,17 @@ class LooksTest(LooksCase):
                 grey = self.mean("grey")
                 tree.links.new(undivided, shader.inputs["Color"])
                 darker = self.mean("undivided")
-                print(f"{engine}: mean brightness with color {colored:.4f}, grey {grey:.4f}, "
-                      f"color grid undivided {darker:.4f}")
+                print(
+                    f"{engine}: mean brightness with color {colored:.4f}, grey {grey:.4f}, "
+                    f"color grid undivided {darker:.4f}"
+                )
                 self.assertAlmostEqual(colored, grey, delta=0.02 * grey)
                 self.assertLess(darker, 0.9 * grey)  # what the division makes up for
 
     @staticmethod
     def undivided_albedo(tree, color):
         """4 c / (1 + c)^2 of the grid's colour c, not divided by the density."""
+
         def node(operation, *inputs):
             math_node = tree.nodes.new("ShaderNodeVectorMath")
             math_node.operation = operation
@@ -148,12 +152,14 @@ class LooksTest(LooksCase):
                 else:
                     tree.links.new(value, socket)
             return math_node.outputs["Vector"]
+
         total = node("ADD", color, (1.0, 1.0, 1.0))
         return node("DIVIDE", node("MULTIPLY", color, (4.0, 4.0, 4.0)), node("MULTIPLY", total, total))
 
     def test_color_is_on_by_default_and_a_rerun_follows_the_grids(self):
         volume_material = helpers.addon("blender.volume_material")
         from test_colour import GREEN, RED, face_halves, principled_material, split_cube
+
         source = split_cube()
         source.data.materials.append(principled_material("Red", RED))
         source.data.materials.append(principled_material("Green", GREEN))
@@ -166,6 +172,7 @@ class LooksTest(LooksCase):
             volume = self.volume()
             volume.data.grids.load()
             return (volume,) + self.shader(volume) + (sorted(g.name for g in volume.data.grids),)
+
         volume, tree, shader, grids = state()
         self.assertEqual(grids, ["density"])
         self.assertFalse(shader.inputs["Color"].links)
@@ -183,12 +190,14 @@ class LooksTest(LooksCase):
             image = self.render("rerun_color")
             for x, expected in ((-1.0, RED), (1.0, GREEN)):
                 column = int((x + 1.3) / 2.6 * PIXELS)
-                rgb = image[PIXELS // 2 - 4:PIXELS // 2 + 4, column - 4:column + 4, :3].reshape(-1, 3).mean(axis=0)
+                rgb = image[PIXELS // 2 - 4 : PIXELS // 2 + 4, column - 4 : column + 4, :3].reshape(-1, 3).mean(axis=0)
                 # Filled, nearly opaque: single scattering of the world's white light shows
                 # the albedo of each half's colour c.
                 albedo = 4 * np.array(expected[:3]) / (1 + np.array(expected[:3])) ** 2
-                print(f"{engine}: re-run with Color, x={x}: rgb {rgb.round(4)}, chromaticity "
-                      f"{(rgb / rgb.sum()).round(3)}, albedo's {(albedo / albedo.sum()).round(3)}")
+                print(
+                    f"{engine}: re-run with Color, x={x}: rgb {rgb.round(4)}, chromaticity "
+                    f"{(rgb / rgb.sum()).round(3)}, albedo's {(albedo / albedo.sum()).round(3)}"
+                )
                 np.testing.assert_allclose(rgb / rgb.sum(), albedo / albedo.sum(), atol=0.03)
 
         self.assertEqual(self.voxelize(voxel_size=0.125, color=False), {"FINISHED"})

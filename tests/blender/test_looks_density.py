@@ -5,6 +5,7 @@ world units) and as a shell (density per voxel layer), in the add-on's material 
 it as a pure absorber (where a density of 1 / voxel size, as earlier versions set, makes the
 two resolutions differ many times over); a re-run's volume equals a fresh run's, also from a
 material an earlier version made."""
+
 import bpy
 
 import helpers
@@ -48,8 +49,10 @@ class DensityTest(LooksCase):
                     scattered = self.mean("scattered", INNER)
                 seen[mode, resolution] = scattered, transmitted
                 density = self.shader(volume)[1].inputs["Density"].default_value
-                print(f"{mode} at {resolution}: density {density:.4g}, mean brightness "
-                      f"{scattered}, mean transmittance {transmitted:.4f}")
+                print(
+                    f"{mode} at {resolution}: density {density:.4g}, mean brightness "
+                    f"{scattered}, mean transmittance {transmitted:.4f}"
+                )
             with self.subTest(mode=mode):
                 self.assertAlmostEqual(seen[mode, 48][1], seen[mode, 256][1], delta=0.05)
                 self.assertTrue(0.15 < seen[mode, 256][1] < 0.85, "the absorber lets a measurable share through")

@@ -2,6 +2,7 @@
 """Enabling an add-on whose compiled module cannot load says why in plain words (which
 file, which Python it was built for, which library is missing), in a child Blender
 enabling a copy of the add-on with a broken module bundled (tests/python/broken_module.py)."""
+
 import os
 import pathlib
 import shutil
@@ -31,13 +32,23 @@ class ModuleDiagnosisTest(AddonTestCase):
             root = pathlib.Path(tmp)
             broken = build_broken_package(root)
             addon = root / "addon"
-            shutil.copytree(helpers.ADDON_DIR, addon / "hyvox_blender",
-                            ignore=shutil.ignore_patterns("__pycache__", "hyvox"))
+            shutil.copytree(
+                helpers.ADDON_DIR, addon / "hyvox_blender", ignore=shutil.ignore_patterns("__pycache__", "hyvox")
+            )
             shutil.copytree(broken, addon / "hyvox_blender" / "hyvox")
             run = subprocess.run(
-                [bpy.app.binary_path, "-b", "--factory-startup", "-noaudio",
-                 "--python-expr", ENABLE.format(addon=str(addon))],
-                capture_output=True, text=True, timeout=120)
+                [
+                    bpy.app.binary_path,
+                    "-b",
+                    "--factory-startup",
+                    "-noaudio",
+                    "--python-expr",
+                    ENABLE.format(addon=str(addon)),
+                ],
+                capture_output=True,
+                text=True,
+                timeout=120,
+            )
             output = run.stdout + run.stderr
             self.assertIn("NOT ENABLED", output)
             self.assertIn("hyvox could not load its compiled module.", output)

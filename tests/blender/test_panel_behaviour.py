@@ -3,6 +3,7 @@
 named under Method, tooltips in plain words first, the scene's frame range by
 default, the result selected and visible after a run (the source hidden on request), a
 re-run from the selected result, and a status message that says what was made."""
+
 import os
 
 import bpy
@@ -32,6 +33,7 @@ class PanelBehaviourTest(AddonTestCase):
         # The method list is fixed (enabling asks for no device, test_enable.py); the panel's
         # note under Method says where a GL method runs, from the module's device list.
         from hyvox_blender.blender import ui
+
         devices = helpers.hyvox_module().gl_devices()
         items = list(bpy.context.scene.hyvox.bl_rna.properties["method"].enum_items)
         self.assertEqual(items[0].identifier, "auto")
@@ -41,8 +43,13 @@ class PanelBehaviourTest(AddonTestCase):
                 self.assertIn("Needs OpenGL 4.5", item.description)
                 self.assertFalse(any(d["name"] in item.description for d in devices), item.description)
         hardware = [d for d in devices if not d["software"]]
-        expected = (f"GPU: {hardware[0]['name']}" if hardware else
-                    "GL runs in software here (slow)" if devices else "No OpenGL 4.5 device here")
+        expected = (
+            f"GPU: {hardware[0]['name']}"
+            if hardware
+            else "GL runs in software here (slow)"
+            if devices
+            else "No OpenGL 4.5 device here"
+        )
         settings = bpy.context.scene.hyvox
         settings.method = "hybrid"
         texts = []
@@ -54,6 +61,7 @@ class PanelBehaviourTest(AddonTestCase):
 
     def test_tooltips_start_in_plain_words(self):
         from hyvox_blender.blender import properties
+
         scene = bpy.context.scene.hyvox.bl_rna.properties
         prefs = helpers.addon_preferences().bl_rna.properties
         for name, plain in properties.PLAIN_WORDS.items():
@@ -67,8 +75,11 @@ class PanelBehaviourTest(AddonTestCase):
         """Blender's spelling ("Color"), no Markdown in tooltips, and every setting of the
         Scene, the operator and the preferences described (its choices too)."""
         texts = []
-        for rna in (bpy.context.scene.hyvox.bl_rna, bpy.ops.object.hyvox_voxelize.get_rna_type(),
-                    helpers.addon_preferences().bl_rna):
+        for rna in (
+            bpy.context.scene.hyvox.bl_rna,
+            bpy.ops.object.hyvox_voxelize.get_rna_type(),
+            helpers.addon_preferences().bl_rna,
+        ):
             for prop in rna.properties:
                 if prop.identifier in ("rna_type", "name", "bl_idname"):
                     continue
@@ -120,6 +131,9 @@ class PanelBehaviourTest(AddonTestCase):
     def test_status_says_what_was_made(self):
         from hyvox_blender.core import summary
         from hyvox_blender.core.pipeline import Group, GroupResult, Timings
+
         result = GroupResult(Group("Cube", ["Cube"]), voxel_counts=[1234])
-        self.assertEqual(summary.short_report({"Cube": result}, Timings(voxelize_ms=1500.0)),
-                         "Made Cube volume of 1,234 voxels in 1.50 s")
+        self.assertEqual(
+            summary.short_report({"Cube": result}, Timings(voxelize_ms=1500.0)),
+            "Made Cube volume of 1,234 voxels in 1.50 s",
+        )

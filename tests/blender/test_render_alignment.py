@@ -14,6 +14,7 @@ outermost voxel layer, see core/alignment.py) is measurably lighter.
 Where the voxels sit in their 8^3 leaf matters to Blender 4.2-4.5: at voxel size 1/4 the
 cube's voxels are 0..7, the +x/+y/+z walls on the leaf's top faces; at 1/3 they are 0..5,
 inside the leaf's bounds with room for the fade."""
+
 import math
 import os
 
@@ -24,12 +25,12 @@ from mathutils import Vector
 import helpers
 from helpers import AddonTestCase
 
-SIZE = 0.25        # voxel size: 8 voxels across the cube, filling one leaf
+SIZE = 0.25  # voxel size: 8 voxels across the cube, filling one leaf
 INSIDE_SIZE = 1 / 3  # 6 voxels across: the +x/+y/+z walls two voxels inside the leaf
-PIXELS = 96        # image width and height
-ORTHO = 3.0        # world units across the image
+PIXELS = 96  # image width and height
+ORTHO = 3.0  # world units across the image
 WALL_SPREAD = 0.05  # darkest-value difference between walls (measured: EEVEE <= 0.004, Cycles 5.0 0.013,
-                    # 5.3 0.003 at 64 samples, where 16 gave 5.3 0.051; clipped walls 0.27)
+# 5.3 0.003 at 64 samples, where 16 gave 5.3 0.051; clipped walls 0.27)
 # Blender 4.3.0 (the only 4.3 on PyPI) renders the whole EEVEE frame black, background
 # included, whenever a Volume object is in view (measured on llvmpipe, Mesa 22.3.6; a mesh
 # with a volume material renders). In 4.3 (Debian 13 has a later 4.3.x, untested) such a
@@ -46,7 +47,7 @@ def setup_render(scene, volume_obj, engine="CYCLES"):
     nodes.clear()
     out = nodes.new("ShaderNodeOutputMaterial")
     absorb = nodes.new("ShaderNodeVolumeAbsorption")
-    absorb.inputs["Color"].default_value = (0, 0, 0, 1)   # absorbs every channel
+    absorb.inputs["Color"].default_value = (0, 0, 0, 1)  # absorbs every channel
     attribute = nodes.new("ShaderNodeAttribute")
     attribute.attribute_name = "density"
     scale = nodes.new("ShaderNodeMath")
@@ -109,14 +110,14 @@ def world_x(pixel):
 def profiles(pixels):
     """Mean of the 4 middle rows (along x) and of the 4 middle columns (along y)."""
     mid = PIXELS // 2
-    return pixels[mid - 2:mid + 2].mean(axis=0), pixels[:, mid - 2:mid + 2].mean(axis=1)
+    return pixels[mid - 2 : mid + 2].mean(axis=0), pixels[:, mid - 2 : mid + 2].mean(axis=1)
 
 
 def wall_minima(pixels):
     """Darkest value of the -x, +x, -y and +y walls: each half of the mean of the middle
     16 rows (columns), where the walls are uniform, so Cycles' noise averages out."""
     mid = PIXELS // 2
-    rows, cols = pixels[mid - 8:mid + 8].mean(axis=0), pixels[:, mid - 8:mid + 8].mean(axis=1)
+    rows, cols = pixels[mid - 8 : mid + 8].mean(axis=0), pixels[:, mid - 8 : mid + 8].mean(axis=1)
     return [rows[:mid].min(), rows[mid:].min(), cols[:mid].min(), cols[mid:].min()]
 
 
@@ -128,8 +129,12 @@ class RenderAlignmentTest(AddonTestCase):
 
     def render_edges(self, pixels=None):
         rows, cols = profiles(self.render() if pixels is None else pixels)
-        return [world_x(crossing(rows)), world_x(crossing(rows, True)),
-                world_x(crossing(cols)), world_x(crossing(cols, True))]
+        return [
+            world_x(crossing(rows)),
+            world_x(crossing(rows, True)),
+            world_x(crossing(cols)),
+            world_x(crossing(cols, True)),
+        ]
 
     def cube_scene(self, engine, size):
         """The voxelized cube in the render set-up; its Volume object."""
@@ -159,8 +164,7 @@ class RenderAlignmentTest(AddonTestCase):
         corrected = any(obj.location)
         obj.location = (0, 0, 0) if corrected else (-size / 2,) * 3
         other = self.render_edges()
-        print(engine, "corrected" if not corrected else "uncorrected", "crossings:",
-              ["%.4f" % e for e in other])
+        print(engine, "corrected" if not corrected else "uncorrected", "crossings:", ["%.4f" % e for e in other])
         self.assertGreater(np.abs(np.abs(other) - 1.0).max(), size / 4)
         return obj
 
@@ -199,8 +203,12 @@ class RenderAlignmentTest(AddonTestCase):
         obj.location = obj["hyvox_offset"]
         pixels = self.render()
         edges, walls = self.render_edges(pixels), wall_minima(pixels)
-        print("without the bounds modifier: crossings", ["%.4f" % e for e in edges],
-              "darkest", ["%.3f" % w for w in walls])
+        print(
+            "without the bounds modifier: crossings",
+            ["%.4f" % e for e in edges],
+            "darkest",
+            ["%.3f" % w for w in walls],
+        )
         self.assertGreater(walls[1] - walls[0], 4 * WALL_SPREAD, f"+x wall not faint: {walls}")
         self.assertGreater(walls[3] - walls[2], 4 * WALL_SPREAD, f"+y wall not faint: {walls}")
 

@@ -3,6 +3,7 @@
 (blender/render_equivalence.py): checked against what a render evaluation actually exports
 (render_depsgraph.py), for a plain mesh (skipped: the same arrays) and for each thing that
 makes renders differ (not skipped)."""
+
 import bpy
 import numpy as np
 
@@ -25,7 +26,8 @@ def render_and_viewport(names):
 def same_arrays(a, b):
     return a.keys() == b.keys() and all(
         len(a[n]) == len(b[n]) and all(np.array_equal(x, y) for p, q in zip(a[n], b[n]) for x, y in zip(p, q))
-        for n in a)
+        for n in a
+    )
 
 
 class RenderEquivalenceTest(AddonTestCase):

@@ -5,6 +5,7 @@ them by relative paths, an undo after the save finds its file where the save put
 session's temporary folder goes once it is empty; on quit it goes if empty and stays with an
 unsaved file's results in it, and a stale folder of an ended session goes when Blender starts
 (this test saves and starts Blender: its own Blender processes)."""
+
 import json
 import os
 import subprocess
@@ -20,14 +21,20 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def blender(*args, env=None, timeout=120):
-    return subprocess.run([bpy.app.binary_path, "-b", "--factory-startup", "-noaudio", *args],
-                          capture_output=True, text=True, timeout=timeout, env=env)
+    return subprocess.run(
+        [bpy.app.binary_path, "-b", "--factory-startup", "-noaudio", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env=env,
+    )
 
 
 class SaveMovesResultsTest(AddonTestCase):
     def test_first_save_moves_unsaved_results_next_to_the_blend(self):
         from hyvox_blender.blender import operators
         from hyvox_blender.core import naming, session_folder
+
         self.assertEqual(bpy.data.filepath, "")
         cube, ball = helpers.cube("Cube"), helpers.cube("Ball", 1.0, (4, 0, 0))
         block = helpers.cube("Block", 1.0, (8, 0, 0))
@@ -65,16 +72,19 @@ class SaveMovesResultsTest(AddonTestCase):
         for _ in range(3):
             bpy.ops.ed.undo()
         volume = bpy.data.objects["Cube_voxels"]
-        self.assertEqual(bpy.path.abspath(volume.data.filepath),
-                         os.path.join(cache, os.path.basename(first_vox)[:-4] + ".vdb"))
+        self.assertEqual(
+            bpy.path.abspath(volume.data.filepath), os.path.join(cache, os.path.basename(first_vox)[:-4] + ".vdb")
+        )
         self.assertTrue(volume.data.grids.load() and len(volume.data.grids))
         for _ in range(3):
             bpy.ops.ed.redo()
 
         # The saved file itself, opened by another Blender: relative paths, grids that load.
-        check = ("import bpy, os\n"
-                 "for v in sorted(bpy.data.volumes, key=lambda v: v.name):\n"
-                 "    print('VOLUME', v.filepath, os.path.exists(bpy.path.abspath(v.filepath)), v.grids.load())\n")
+        check = (
+            "import bpy, os\n"
+            "for v in sorted(bpy.data.volumes, key=lambda v: v.name):\n"
+            "    print('VOLUME', v.filepath, os.path.exists(bpy.path.abspath(v.filepath)), v.grids.load())\n"
+        )
         done = blender(blend, "--python-expr", check)
         lines = [line.split() for line in done.stdout.splitlines() if line.startswith("VOLUME ")]
         self.assertEqual(len(lines), 2, done.stdout[-2000:])
@@ -84,6 +94,7 @@ class SaveMovesResultsTest(AddonTestCase):
 
     def test_session_folders_go_when_no_session_needs_them(self):
         from hyvox_blender.core import session_folder
+
         with tempfile.TemporaryDirectory(prefix="hyvox-tmp-") as tmp:
             env = dict(os.environ, TMPDIR=tmp)
             # A session that ended longer than STALE_AFTER_S ago, and one that runs (this
@@ -100,8 +111,9 @@ class SaveMovesResultsTest(AddonTestCase):
                     os.utime(path, (then, then))
             script = os.path.join(HERE, "session_quit.py")
             unsaved = blender("--python", script, "--", os.path.dirname(helpers.ADDON_DIR), "unsaved", env=env)
-            saved = blender("--python", script, "--", os.path.dirname(helpers.ADDON_DIR),
-                            os.path.join(tmp, "saved.blend"), env=env)
+            saved = blender(
+                "--python", script, "--", os.path.dirname(helpers.ADDON_DIR), os.path.join(tmp, "saved.blend"), env=env
+            )
             failed = blender("--python", script, "--", os.path.dirname(helpers.ADDON_DIR), "failed", env=env)
             folders = {}
             for done in (unsaved, saved, failed):

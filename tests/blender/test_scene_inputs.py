@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """What gets voxelized: modifiers and world transforms applied, selections grouped as
 asked, re-running replaces."""
+
 import math
 
 import bpy

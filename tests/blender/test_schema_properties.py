@@ -3,6 +3,7 @@
 soft limits, defaults and enum choices equal hyvox.OPTIONS (read back from bl_rna), an
 operator value out of the limits is refused with the schema's own message (the one the CLI
 and hyvox.voxelize give), and the redo panel shows the values the run used."""
+
 import math
 
 import bpy
@@ -39,14 +40,18 @@ class SchemaPropertiesTest(AddonTestCase):
         return [s for s in specs if s.type in ("int", "float")] if numeric else specs
 
     def test_scene_and_preferences_hard_limits_are_the_schema_limits(self):
-        for rna, names in ((self.scene_rna, self.properties.SCENE_OPTIONS),
-                           (self.prefs_rna, self.properties.PREFERENCE_OPTIONS)):
+        for rna, names in (
+            (self.scene_rna, self.properties.SCENE_OPTIONS),
+            (self.prefs_rna, self.properties.PREFERENCE_OPTIONS),
+        ):
             for spec in self.specs(names):
                 with self.subTest(spec.name):
                     low, high = expected_limits(spec)
                     prop = rna[spec.name]
-                    self.assertTrue(close(prop.hard_min, low) and close(prop.hard_max, high),
-                                    (prop.hard_min, prop.hard_max, low, high))
+                    self.assertTrue(
+                        close(prop.hard_min, low) and close(prop.hard_max, high),
+                        (prop.hard_min, prop.hard_max, low, high),
+                    )
                     self.assertIn(spec.help[1:], prop.description)
                     self.assertEqual(prop.name, spec.label)
                     if spec.default is not None:
@@ -57,8 +62,10 @@ class SchemaPropertiesTest(AddonTestCase):
             with self.subTest(spec.name):
                 op_prop, scene_prop = self.op_rna[spec.name], self.scene_rna[spec.name]
                 # Same definition as the scene's, with the limits moved to the soft ones.
-                self.assertEqual((op_prop.name, op_prop.description, op_prop.type),
-                                 (scene_prop.name, scene_prop.description, scene_prop.type))
+                self.assertEqual(
+                    (op_prop.name, op_prop.description, op_prop.type),
+                    (scene_prop.name, scene_prop.description, scene_prop.type),
+                )
                 low, high = expected_limits(spec)
                 self.assertTrue(op_prop.soft_min >= low and op_prop.soft_max <= high)
                 self.assertTrue(op_prop.hard_min <= low and op_prop.hard_max >= high)
@@ -66,8 +73,9 @@ class SchemaPropertiesTest(AddonTestCase):
     def test_enum_choices_are_the_schemas(self):
         for rna in (self.scene_rna, self.op_rna):
             self.assertEqual([i.identifier for i in rna["mode"].enum_items], list(self.hyvox.option("mode").choices))
-            self.assertEqual([i.identifier for i in rna["method"].enum_items],
-                             ["auto"] + list(self.hyvox.option("method").choices))
+            self.assertEqual(
+                [i.identifier for i in rna["method"].enum_items], ["auto"] + list(self.hyvox.option("method").choices)
+            )
 
     def bad_values(self, spec):
         below = spec.min if spec.min_exclusive else spec.min - 1

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Signed Distance (the sdf attribute): the volume holds a float grid `sdf` beside `density`,
 its values the module's, and the material still reads `density`."""
+
 import bpy
 import numpy as np
 
@@ -30,15 +31,21 @@ class SignedDistanceTest(AddonTestCase):
         coords, size, zero, _ = helpers.read_vdb(bpy.path.abspath(volume.filepath), "sdf")
         ijk, distance = grid.sdf()
         self.assertEqual(len(coords), len(ijk))
-        np.testing.assert_allclose(helpers.sorted_rows(zero + coords * size),
-                                   helpers.sorted_rows(np.asarray(grid.origin) + (ijk + 0.5) * grid.voxel_size), atol=1e-6)
+        np.testing.assert_allclose(
+            helpers.sorted_rows(zero + coords * size),
+            helpers.sorted_rows(np.asarray(grid.origin) + (ijk + 0.5) * grid.voxel_size),
+            atol=1e-6,
+        )
         self.assertLess(np.abs(distance).max(), 3 * 0.1)
         self.assertGreater((distance < 0).sum(), 100)
         # The material renders the density, as without the sdf.
         material = obj.active_material
         shader = next(n for n in material.node_tree.nodes if n.type == "PRINCIPLED_VOLUME")
-        attribute = shader.inputs["Density Attribute"].default_value if "Density Attribute" in shader.inputs \
+        attribute = (
+            shader.inputs["Density Attribute"].default_value
+            if "Density Attribute" in shader.inputs
             else shader.density_attribute
+        )
         self.assertEqual(attribute, "density")
 
     def test_off_by_default(self):

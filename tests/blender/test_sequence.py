@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """A frame range writes one .vdb per frame and plays back as a volume sequence."""
+
 import os
 
 import bpy
@@ -22,7 +23,7 @@ class SequenceTest(AddonTestCase):
         self.assertEqual(bpy.context.scene.frame_current, 2)  # frame restored
         # Exactly the four frames' files: no staging (.partial) file is left behind.
         names = sorted(os.listdir(self.out))
-        tag = names[0][len("Cube_voxels_"):-len("_0001.vdb")]  # this run's own tag
+        tag = names[0][len("Cube_voxels_") : -len("_0001.vdb")]  # this run's own tag
         self.assertEqual(names, [f"Cube_voxels_{tag}_{f:04d}.vdb" for f in range(1, 5)])
 
         (obj,) = self.volumes()
@@ -34,8 +35,10 @@ class SequenceTest(AddonTestCase):
             bpy.context.scene.frame_set(frame)
             evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get()).data
             self.assertEqual(evaluated.grids.frame, frame)
-            self.assertTrue(evaluated.grids.frame_filepath.endswith(f"Cube_voxels_{tag}_{frame:04d}.vdb"),
-                            evaluated.grids.frame_filepath)
+            self.assertTrue(
+                evaluated.grids.frame_filepath.endswith(f"Cube_voxels_{tag}_{frame:04d}.vdb"),
+                evaluated.grids.frame_filepath,
+            )
             centres = helpers.vdb_world_centres(bpy.path.abspath(evaluated.grids.frame_filepath))
             xs.append(centres[:, 0].mean())
             # Every frame shares one voxel size.
@@ -53,8 +56,10 @@ class SequenceTest(AddonTestCase):
         for frame in (10, 11, 12):
             bpy.context.scene.frame_set(frame)
             evaluated = self.volumes()[0].evaluated_get(bpy.context.evaluated_depsgraph_get()).data
-            self.assertTrue(evaluated.grids.frame_filepath.endswith(f"_{frame:04d}.vdb"),
-                            (frame, evaluated.grids.frame_filepath, volume.frame_offset))
+            self.assertTrue(
+                evaluated.grids.frame_filepath.endswith(f"_{frame:04d}.vdb"),
+                (frame, evaluated.grids.frame_filepath, volume.frame_offset),
+            )
 
     def test_a_static_part_keeps_its_voxels_while_another_moves(self):
         """The lattice is fixed in world space (voxels do not swim): a static cube grouped

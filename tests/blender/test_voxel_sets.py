@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The Volume's voxels are exactly the module's voxels, in the right place."""
+
 import os
 
 import bpy
@@ -39,8 +40,9 @@ class VoxelSetTest(AddonTestCase):
         expected, grid = module_centres(vertices, triangles, resolution=128, method="cpu")
         got = helpers.vdb_world_centres(path)
         self.assertEqual(len(got), len(expected))
-        np.testing.assert_allclose(helpers.sorted_rows(got), helpers.sorted_rows(expected),
-                                   atol=1e-5 * grid.voxel_size + 1e-7)
+        np.testing.assert_allclose(
+            helpers.sorted_rows(got), helpers.sorted_rows(expected), atol=1e-5 * grid.voxel_size + 1e-7
+        )
         self.assertAlmostEqual(obj["hyvox_voxel_size"], grid.voxel_size, places=9)
 
     def test_cube_covers_its_bounds(self):
@@ -54,7 +56,7 @@ class VoxelSetTest(AddonTestCase):
         np.testing.assert_allclose(centres.min(axis=0) - size / 2, [-1, -1, -1], atol=1e-6)
         np.testing.assert_allclose(centres.max(axis=0) + size / 2, [1, 1, 1], atol=1e-6)
         # A hollow shell: 8^3 minus the 6^3 interior.
-        self.assertEqual(len(centres), 8 ** 3 - 6 ** 3)
+        self.assertEqual(len(centres), 8**3 - 6**3)
         object_triangles = helpers.addon("blender.export").object_triangles
         vertices, triangles = object_triangles(cube, bpy.context.evaluated_depsgraph_get())
         expected, _ = module_centres(vertices, triangles, voxel_size=size, method="cpu")

@@ -2,6 +2,7 @@
 """Blender's own extension validator (the one `blender --command extension validate`
 runs, shipped inside the bpy module) accepts the built extension zip:
     B/venv/bpyXY/bin/python validate_extension.py BUILD_DIR"""
+
 import glob
 import importlib.util
 import os

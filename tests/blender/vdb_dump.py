@@ -3,6 +3,7 @@
 test process that has no pyopenvdb (the bpy module's venv) by Debian's Python:
     python3 vdb_dump.py FILE.vdb GRID OUT.npz
 which writes coords, size and zero as read() returns them."""
+
 import sys
 
 import numpy as np
@@ -12,6 +13,7 @@ def read(path, grid_name="density"):
     """(ijk (K,3) int64, voxel size (3,), world position of index (0,0,0), grid) of the
     grid's active voxels; tiles (count > 1) are expanded."""
     import pyopenvdb as vdb
+
     grid = vdb.read(path, grid_name)
     coords = []
     for item in grid.citerOnValues():

@@ -10,6 +10,7 @@ OUT/problems/ with its note. Exits 1 when any file has a problem.
 
 --variants: damaged files per mesh and format (a quarter of each kind); the largest meshes
 get fewer (at least a quarter as many), so that the run stays within hours on two cores."""
+
 import argparse
 import collections
 import json
@@ -82,14 +83,20 @@ def main():
             data = open(original, "rb").read()
             whole = module(original)
             if whole["outcome"] != "ok" or whole["digest"] != reference:
-                problems.append({"mesh": mesh, "format": name, "kind": "undamaged", "problems": [
-                    f"the undamaged file does not read back as the mesh: {whole}"]})
+                problems.append(
+                    {
+                        "mesh": mesh,
+                        "format": name,
+                        "kind": "undamaged",
+                        "problems": [f"the undamaged file does not read back as the mesh: {whole}"],
+                    }
+                )
                 table[name]["problems"] += 1
                 continue
             # Splice pieces from the earlier meshes' files of this format: the same format's
             # structures in the wrong place.
             others = pieces[name][-3:]
-            pieces[name].append(data[:1 << 16])
+            pieces[name].append(data[: 1 << 16])
             rng = random.Random(f"{args.seed} {mesh} {name}")
             for k in range(count):
                 kind = mesh_damage.KINDS[k % len(mesh_damage.KINDS)]
@@ -111,8 +118,19 @@ def main():
                     table[name]["problems"] += 1
                     kept = os.path.join(problems_dir, f"{stem}_{name}_{k}{suffix}")
                     shutil.copy(path, kept)
-                    problems.append({"mesh": mesh, "format": name, "kind": kind, "note": note, "file": kept,
-                                     "problems": found, "cli": cli, "module": read, "gamma-sweep": sweep})
+                    problems.append(
+                        {
+                            "mesh": mesh,
+                            "format": name,
+                            "kind": kind,
+                            "note": note,
+                            "file": kept,
+                            "problems": found,
+                            "cli": cli,
+                            "module": read,
+                            "gamma-sweep": sweep,
+                        }
+                    )
         for f in files.values():
             os.remove(f)
         print(f"{mesh}: {count} damaged files per format, {time.time() - start:.0f} s so far", flush=True)
@@ -127,9 +145,11 @@ def main():
     for name in formats:
         total.update(table[name])
     lines.append("| all | " + " | ".join(str(total[c]) for c in columns) + " |")
-    header = (f"Damaged files of the shared meshes in every format, through the CLI, the module and "
-              f"gamma-sweep (tests/damage/damage_meshes.py --variants {args.variants} --seed {args.seed}): "
-              f"{total['files']} files, {total['problems']} with a problem, {time.time() - start:.0f} s.")
+    header = (
+        f"Damaged files of the shared meshes in every format, through the CLI, the module and "
+        f"gamma-sweep (tests/damage/damage_meshes.py --variants {args.variants} --seed {args.seed}): "
+        f"{total['files']} files, {total['problems']} with a problem, {time.time() - start:.0f} s."
+    )
     text = header + "\n\n" + "\n".join(lines) + "\n"
     print(text)
     for p in problems:
@@ -137,8 +157,17 @@ def main():
     with open(os.path.join(args.out, "damage.md"), "w") as f:
         f.write(text)
     with open(os.path.join(args.out, "damage.json"), "w") as f:
-        json.dump({"variants": args.variants, "seed": args.seed, "meshes": meshes,
-                   "formats": {name: dict(table[name]) for name in formats}, "problems": problems}, f, indent=1)
+        json.dump(
+            {
+                "variants": args.variants,
+                "seed": args.seed,
+                "meshes": meshes,
+                "formats": {name: dict(table[name]) for name in formats},
+                "problems": problems,
+            },
+            f,
+            indent=1,
+        )
     return 1 if problems else 0
 
 

@@ -21,6 +21,7 @@ message; the same triangle and voxel counts); no partial result: a cut file read
 must be the whole mesh (an OBJ, which has no end marker, the mesh of the lines left: the
 original's triangles but possibly the last), and a changed count read as a mesh must be the
 whole mesh or have exactly the count written."""
+
 import hashlib
 import json
 import os
@@ -47,7 +48,9 @@ def _text_numbers(data, start, end, keys=None):
     else:
         pattern, group = rb'"(?:' + b"|".join(keys) + rb')"\s*:\s*([0-9]+)', 1
     for match in re.finditer(pattern, data[start:end]):
-        sites.append((start + match.start(group), match.end(group) - match.start(group), int(match.group(group)), "text"))
+        sites.append(
+            (start + match.start(group), match.end(group) - match.start(group), int(match.group(group)), "text")
+        )
     return sites
 
 
@@ -68,10 +71,14 @@ def _fbx_sites(data):
             sites.extend([(at, size, record_end, encoding), (at + 2 * size, size, property_bytes, encoding)])
             p = at + 3 * size + 1 + data[at + 3 * size]
             for _ in range(properties):
-                kind = data[p:p + 1]
+                kind = data[p : p + 1]
                 if kind in array_kinds:
-                    sites.extend([(p + 1, 4, struct.unpack_from("<I", data, p + 1)[0], "u32"),
-                                  (p + 9, 4, struct.unpack_from("<I", data, p + 9)[0], "u32")])
+                    sites.extend(
+                        [
+                            (p + 1, 4, struct.unpack_from("<I", data, p + 1)[0], "u32"),
+                            (p + 9, 4, struct.unpack_from("<I", data, p + 9)[0], "u32"),
+                        ]
+                    )
                     p += 13 + struct.unpack_from("<I", data, p + 9)[0]
                 elif kind in (b"S", b"R"):
                     p += 5 + struct.unpack_from("<I", data, p + 1)[0]
@@ -92,7 +99,9 @@ def _zip_sites(data):
         at = data.find(signature)
         while at >= 0:
             for k in range(2):
-                sites.append((at + sizes_at + 4 * k, 4, struct.unpack_from("<I", data, at + sizes_at + 4 * k)[0], "u32"))
+                sites.append(
+                    (at + sizes_at + 4 * k, 4, struct.unpack_from("<I", data, at + sizes_at + 4 * k)[0], "u32")
+                )
             at = data.find(signature, at + 4)
     return sites
 
@@ -134,8 +143,11 @@ def damaged(format_name, data, vertices, triangles, kind, rng, others=()):
             newline = data.find(b"\n", rng.randrange(size))
             cut = newline + 1 if 0 <= newline < size - 1 else rng.randrange(size)
         else:
-            cut = {"anywhere": lambda: rng.randrange(size), "start": lambda: rng.randrange(min(size, 256)),
-                   "end": lambda: max(0, size - 1 - rng.randrange(min(size, 64)))}[where]()
+            cut = {
+                "anywhere": lambda: rng.randrange(size),
+                "start": lambda: rng.randrange(min(size, 256)),
+                "end": lambda: max(0, size - 1 - rng.randrange(min(size, 64))),
+            }[where]()
         return data[:cut], {"cut": cut, "size": size, "where": where}
     if kind == "flip":
         out = bytearray(data)
@@ -153,18 +165,22 @@ def damaged(format_name, data, vertices, triangles, kind, rng, others=()):
         if encoding == "text":
             piece = str(new).encode()
         else:
-            new = min(new, 2**(8 * length) - 1)
+            new = min(new, 2 ** (8 * length) - 1)
             piece = new.to_bytes(length, "little")
-        return data[:offset] + piece + data[offset + length:], {
-            "at": offset, "was": value, "now": new, "encoding": encoding}
+        return data[:offset] + piece + data[offset + length :], {
+            "at": offset,
+            "was": value,
+            "now": new,
+            "encoding": encoding,
+        }
     # splice
     source = rng.choice(list(others) + [data]) if others else data
     a = rng.randrange(len(source))
-    piece = source[a:a + rng.randint(1, 512)]
+    piece = source[a : a + rng.randint(1, 512)]
     at = rng.randrange(size)
     if rng.random() < 0.5:
         return data[:at] + piece + data[at:], {"insert": at, "bytes": len(piece)}
-    return data[:at] + piece + data[at + len(piece):], {"overwrite": at, "bytes": len(piece)}
+    return data[:at] + piece + data[at + len(piece) :], {"overwrite": at, "bytes": len(piece)}
 
 
 def corner_rows(vertices, triangles):
@@ -191,8 +207,12 @@ def cli_door(cli, path, work):
         if os.path.exists(f):
             os.remove(f)
     try:
-        done = subprocess.run([cli, "voxelize", path, "-o", out, "--resolution", "8", "--method", "cpu", "-q",
-                               "--stats-json", stats], capture_output=True, text=True, timeout=CLI_SECONDS)
+        done = subprocess.run(
+            [cli, "voxelize", path, "-o", out, "--resolution", "8", "--method", "cpu", "-q", "--stats-json", stats],
+            capture_output=True,
+            text=True,
+            timeout=CLI_SECONDS,
+        )
     except subprocess.TimeoutExpired:
         return {"outcome": "failure", "why": f"no end within {CLI_SECONDS} s"}
     return _cli_outcome(done, stats)
@@ -200,8 +220,12 @@ def cli_door(cli, path, work):
 
 def gamma_sweep_door(cli, path, work):
     try:
-        done = subprocess.run([cli, "gamma-sweep", path, "--gammas", "1,2", "--resolution", "8", "-q"],
-                              capture_output=True, text=True, timeout=CLI_SECONDS)
+        done = subprocess.run(
+            [cli, "gamma-sweep", path, "--gammas", "1,2", "--resolution", "8", "-q"],
+            capture_output=True,
+            text=True,
+            timeout=CLI_SECONDS,
+        )
     except subprocess.TimeoutExpired:
         return {"outcome": "failure", "why": f"no end within {CLI_SECONDS} s"}
     return _cli_outcome(done, None)
@@ -217,7 +241,7 @@ def _cli_outcome(done, stats):
         return result
     lines = [line for line in done.stderr.splitlines() if line.startswith("hyvox: error: ")]
     if done.returncode == 1 and lines:
-        return {"outcome": "error", "message": lines[-1][len("hyvox: error: "):]}
+        return {"outcome": "error", "message": lines[-1][len("hyvox: error: ") :]}
     return {"outcome": "failure", "why": f"exit status {done.returncode}", "stderr": done.stderr[-500:]}
 
 
@@ -266,8 +290,14 @@ class ModuleDoor:
         self.worker = None
 
     def _start(self):
-        self.worker = subprocess.Popen([sys.executable, "-c", WORKER, HERE], stdin=subprocess.PIPE,
-                                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=self.env)
+        self.worker = subprocess.Popen(
+            [sys.executable, "-c", WORKER, HERE],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            env=self.env,
+        )
 
     def __call__(self, path, original=None):
         if self.worker is None or self.worker.poll() is not None:
@@ -291,6 +321,7 @@ class ModuleDoor:
 
 # --- judging -----------------------------------------------------------------------------
 
+
 def judge(format_name, kind, note, whole, cli, module, sweep):
     """The problems with one damaged file's outcomes ([] when there are none). `whole`: the
     undamaged file's module outcome."""
@@ -303,8 +334,10 @@ def judge(format_name, kind, note, whole, cli, module, sweep):
         return problems
     kinds = {name: o["outcome"] for name, o in doors.items()}
     if len(set(kinds.values())) != 1:
-        problems.append(f"the doors disagree: {kinds} " +
-                        "; ".join(f"{n}: {o.get('message', '')}" for n, o in doors.items() if o["outcome"] == "error"))
+        problems.append(
+            f"the doors disagree: {kinds} "
+            + "; ".join(f"{n}: {o.get('message', '')}" for n, o in doors.items() if o["outcome"] == "error")
+        )
         return problems
     if cli["outcome"] == "error":
         messages = {cli["message"], module["message"], sweep["message"]}
@@ -321,6 +354,8 @@ def judge(format_name, kind, note, whole, cli, module, sweep):
     if kind == "count" and not same:
         now = note["now"]
         if now not in (module["triangles"], module["vertices"], 3 * module["triangles"], 3 * module["vertices"]):
-            problems.append(f"a changed count ({note['was']} -> {now} at byte {note['at']}) read as a mesh of "
-                            f"{module['triangles']} triangles, {module['vertices']} vertices")
+            problems.append(
+                f"a changed count ({note['was']} -> {now} at byte {note['at']}) read as a mesh of "
+                f"{module['triangles']} triangles, {module['vertices']} vertices"
+            )
     return problems

@@ -4,6 +4,7 @@ Blender and the add-on installed as a studio deploys it (a legacy add-on in
 $BLENDER_USER_SCRIPTS/addons/), and the Flamenco job type's commands. The oracle is the
 add-on's own headless script (cli_blender.py, the operator) over the whole frame range in
 one run; voxels are read back with pyopenvdb."""
+
 import json
 import os
 import subprocess
@@ -72,14 +73,39 @@ def oracle(tmp_path_factory, env, scene):
     """The frames as the operator makes them in one run over the whole range."""
     out = str(tmp_path_factory.mktemp("oracle"))
     cli_blender = os.path.join(BUILD, "addon", "hyvox_blender", "cli_blender.py")
-    check(run([BLENDER, "-b", "-noaudio", scene, "--python", cli_blender, "--", "--frames", FRAMES, "--output", out,
-               "--resolution", RESOLUTION, "--method", "cpu", "--mode", "conservative", "--objects", "Torus"], env=env))
+    check(
+        run(
+            [
+                BLENDER,
+                "-b",
+                "-noaudio",
+                scene,
+                "--python",
+                cli_blender,
+                "--",
+                "--frames",
+                FRAMES,
+                "--output",
+                out,
+                "--resolution",
+                RESOLUTION,
+                "--method",
+                "cpu",
+                "--mode",
+                "conservative",
+                "--objects",
+                "Torus",
+            ],
+            env=env,
+        )
+    )
     return out
 
 
 def voxels(path):
     """(sorted world-space centres, voxel size) of a .vdb's density grid."""
     import pyopenvdb as vdb
+
     grid = vdb.read(path, "density")
     ijk = np.array([item.min for item in grid.citerOnValues()], dtype=np.float64).reshape(-1, 3)
     size = grid.transform.voxelSize()[0]
@@ -114,8 +140,17 @@ def openjd_run(template_path, params, env, step=None, extra=()):
 
 
 def job_params(scene, out, **more):
-    params = {"BlendFile": scene, "OutputDir": out, "Frames": FRAMES, "ChunkSize": 2, "ChunkSeconds": 0,
-              "Resolution": RESOLUTION, "Method": "cpu", "Mode": "conservative", "Objects": "Torus"}
+    params = {
+        "BlendFile": scene,
+        "OutputDir": out,
+        "Frames": FRAMES,
+        "ChunkSize": 2,
+        "ChunkSeconds": 0,
+        "Resolution": RESOLUTION,
+        "Method": "cpu",
+        "Mode": "conservative",
+        "Objects": "Torus",
+    }
     params.update(more)
     return params
 
@@ -125,14 +160,16 @@ def probe_assembled(blend, env):
     script = os.path.join(HERE, "probe_assembled.py")
     done = check(run([BLENDER, "-b", "-noaudio", blend, "--python", script], env=env))
     line = next(text for text in done.stdout.splitlines() if text.startswith("PROBE "))
-    return json.loads(line[len("PROBE "):])
+    return json.loads(line[len("PROBE ") :])
 
 
 def load_template(path):
     """A job template as data (PyYAML is in the farm venv)."""
     import json as _json
-    done = check(run([FARM_PYTHON, "-c", "import json, sys, yaml; print(json.dumps(yaml.safe_load(open(sys.argv[1]))))",
-                      path]))
+
+    done = check(
+        run([FARM_PYTHON, "-c", "import json, sys, yaml; print(json.dumps(yaml.safe_load(open(sys.argv[1]))))", path])
+    )
     return _json.loads(done.stdout)
 
 

@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Runs a Flamenco job type's compileJob in QuickJS against flamenco_api.js:
 
-    python flamenco_compile.py JOB_TYPE.js SETTINGS_JSON    prints {"jobType", "tasks"} as JSON
-    python flamenco_compile.py JOB_TYPE.js                  prints JOB_TYPE as JSON"""
+python flamenco_compile.py JOB_TYPE.js SETTINGS_JSON    prints {"jobType", "tasks"} as JSON
+python flamenco_compile.py JOB_TYPE.js                  prints JOB_TYPE as JSON"""
+
 import os
 import sys
 

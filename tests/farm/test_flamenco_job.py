@@ -3,18 +3,36 @@
 Flamenco's documented API (flamenco_api.js), authors a task per frame chunk and an assemble
 task after them, with the OpenJD template's command lines; those commands, run for real as
 Flamenco Worker runs blender-render, give the operator's frames."""
+
 import os
 
-from conftest import (BLENDER, assert_same_voxels, check, flamenco, frame_files, load_template, probe_assembled, run,
-                      template)
+from conftest import (
+    BLENDER,
+    assert_same_voxels,
+    check,
+    flamenco,
+    frame_files,
+    load_template,
+    probe_assembled,
+    run,
+    template,
+)
 
 
 def test_compiled_commands_run_for_real(tmp_path, env, scene, oracle):
     job_type = template("flamenco", tmp_path)
     out = str(tmp_path / "farm")
     settings = {s["key"]: s.get("default") for s in flamenco(job_type)["settings"]}
-    settings.update(frames="1-6", chunk_size=2, output_dir=out, objects="Torus", blendfile=scene, resolution=64,
-                    method="cpu", mode="conservative")
+    settings.update(
+        frames="1-6",
+        chunk_size=2,
+        output_dir=out,
+        objects="Torus",
+        blendfile=scene,
+        resolution=64,
+        method="cpu",
+        mode="conservative",
+    )
     tasks = flamenco(job_type, settings)["tasks"]
     assert [t["name"] for t in tasks] == ["voxelize-1,2", "voxelize-3,4", "voxelize-5,6", "assemble"]
     assert tasks[-1]["dependencies"] == [t["name"] for t in tasks[:-1]]
@@ -22,16 +40,22 @@ def test_compiled_commands_run_for_real(tmp_path, env, scene, oracle):
 
     # The same command lines as the OpenJD template's, value for value.
     openjd = load_template(template("openjd", tmp_path))
-    params = {p["name"]: str(settings[key]) for p, key in ((p, k) for p in openjd["parameterDefinitions"]
-                                                             for k in settings if k.replace("_", "") ==
-                                                             p["name"].lower().replace("dir", "_dir").replace("_", ""))}
+    params = {
+        p["name"]: str(settings[key])
+        for p, key in (
+            (p, k)
+            for p in openjd["parameterDefinitions"]
+            for k in settings
+            if k.replace("_", "") == p["name"].lower().replace("dir", "_dir").replace("_", "")
+        )
+    }
     for step, task in ((openjd["steps"][0], tasks[0]), (openjd["steps"][1], tasks[-1])):
         expected = step["script"]["actions"]["onRun"]["args"][3:]
         expected = [a.replace("{{Task.Param.Frame}}", "1,2") for a in expected]
         for name, value in params.items():
             expected = [a.replace("{{Param." + name + "}}", value) for a in expected]
         args = task["commands"][0]["parameters"]["args"]
-        assert args[args.index("--") + 1:] == expected
+        assert args[args.index("--") + 1 :] == expected
 
     for task in tasks:  # in their dependency order
         (command,) = task["commands"]

@@ -3,13 +3,13 @@
 frames 1-6 in chunks of 2 on a session Blender equal the operator's frames, and the
 assembled .blend plays them as one volume sequence; a task cancelled half way (SIGTERM)
 leaves no partial file, and its re-run gives the files of an uninterrupted run."""
+
 import os
 import re
 import signal
 import subprocess
 
-from conftest import (OPENJD, assert_same_voxels, check, frame_files, job_params, openjd_run, probe_assembled,
-                      template)
+from conftest import OPENJD, assert_same_voxels, check, frame_files, job_params, openjd_run, probe_assembled, template
 
 # The OpenVDB header's file UUID (bytes 21-56): new for every file written; the rest of two
 # writes of the same voxels is the same, byte for byte.

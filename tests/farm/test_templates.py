@@ -2,6 +2,7 @@
 """The generated jobs: valid for Open Job Description's own checker, and every voxelize
 option a parameter (a Flamenco setting) equal to its entry of the options schema, for
 exactly the options the add-on's headless script takes."""
+
 import math
 import os
 
@@ -17,8 +18,10 @@ def camel(name):
 
 def headless_options(env):
     """method + the Scene's settings: the voxelize options cli_blender.py takes."""
-    expr = ("import addon_utils, sys; addon_utils.enable('hyvox_blender', default_set=False, handle_error=None); "
-            "from hyvox_blender.blender.properties import SCENE_OPTIONS; print('OPTIONS', ','.join(SCENE_OPTIONS))")
+    expr = (
+        "import addon_utils, sys; addon_utils.enable('hyvox_blender', default_set=False, handle_error=None); "
+        "from hyvox_blender.blender.properties import SCENE_OPTIONS; print('OPTIONS', ','.join(SCENE_OPTIONS))"
+    )
     done = check(run([BLENDER, "-b", "--factory-startup", "-noaudio", "--python-expr", expr], env=env))
     line = next(text for text in done.stdout.splitlines() if text.startswith("OPTIONS "))
     return ["method"] + line.split(" ", 1)[1].split(",")

@@ -5,6 +5,7 @@ tests/python/mesh_writers.py.
     python3 format_seeds.py TARGET OUT_DIR MESH.ply...
 TARGET: stl_reader, off_reader, gltf_reader, fbx_check or assimp_formats (whose inputs start with a byte
 that picks the format: fuzz_assimp_formats.cpp)."""
+
 import os
 import sys
 
@@ -15,8 +16,13 @@ import mesh_writers  # noqa: E402
 
 # fuzz_assimp_formats.cpp's kFormats, in its order.
 ASSIMP_FORMATS = ["fbx", "3mf"]
-WRITERS = {"stl_reader": ["stl_binary", "stl_ascii"], "off_reader": ["off"], "gltf_reader": ["gltf", "glb"],
-           "fbx_check": ["fbx"], "assimp_formats": ASSIMP_FORMATS}
+WRITERS = {
+    "stl_reader": ["stl_binary", "stl_ascii"],
+    "off_reader": ["off"],
+    "gltf_reader": ["gltf", "glb"],
+    "fbx_check": ["fbx"],
+    "assimp_formats": ASSIMP_FORMATS,
+}
 
 
 def read_ply(path):
@@ -25,8 +31,9 @@ def read_ply(path):
     lines = data[:body].decode().splitlines()
     nv = int(next(line for line in lines if line.startswith("element vertex")).split()[2])
     nf = int(next(line for line in lines if line.startswith("element face")).split()[2])
-    stride = 4 * sum(1 for line in lines if line.startswith("property float")) + \
-        sum(1 for line in lines if line.startswith("property uchar"))
+    stride = 4 * sum(1 for line in lines if line.startswith("property float")) + sum(
+        1 for line in lines if line.startswith("property uchar")
+    )
     records = np.frombuffer(data, np.uint8, nv * stride, body).reshape(nv, stride)
     vertices = records[:, :12].copy().view("<f4").reshape(nv, 3)
     faces = np.frombuffer(data, np.dtype([("n", "u1"), ("i", "<i4", 3)]), nf, body + nv * stride)["i"]

@@ -26,8 +26,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
         for (const hyvox::io::MtlMaterial& m : hyvox::io::readMtl(bytes, size, "fuzz.mtl"))
             if (m.name.empty()) std::abort();
-    } catch (const hyvox::InvalidInput&) {
-    }
+    } catch (const hyvox::InvalidInput&) {}
 #endif
     try {
 #if defined(HYVOX_FUZZ_PLY)
@@ -49,7 +48,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (mesh.hasMaterials()) {
             if (mesh.material_ids.size() != mesh.triangleCount()) std::abort();
             for (std::uint32_t m : mesh.material_ids)
-                if (m >= mesh.material_names.size() || 3 * std::size_t(m) + 2 >= mesh.material_colors.size()) std::abort();
+                if (m >= mesh.material_names.size() || 3 * std::size_t(m) + 2 >= mesh.material_colors.size())
+                    std::abort();
         }
     } catch (const hyvox::InvalidInput&) {
         // the expected answer to bad bytes

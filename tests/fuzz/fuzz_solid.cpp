@@ -87,12 +87,12 @@ Run run(const hyvox::MeshView& mesh, const hyvox::VoxelizeOptions& options) {
 }
 
 // A violated invariant: names it (line and condition) and aborts, which libFuzzer reports.
-#define REQUIRE(condition)                                                                \
-    do {                                                                                  \
-        if (!(condition)) {                                                               \
+#define REQUIRE(condition)                                                                   \
+    do {                                                                                     \
+        if (!(condition)) {                                                                  \
             std::fprintf(stderr, "fuzz_solid.cpp:%d: violated: %s\n", __LINE__, #condition); \
-            std::abort();                                                                 \
-        }                                                                                 \
+            std::abort();                                                                    \
+        }                                                                                    \
     } while (false)
 
 // Every tile region covers only tile bricks of the occupancy that have no values one by one,
@@ -115,7 +115,8 @@ void checkAttributeLayout(const Run& r) {
         const std::int32_t side = tile.side() / hyvox::BrickLayout::kSide;
         for (std::int32_t x = tile.origin[0] / 8; x < std::min(tile.origin[0] / 8 + side, bricks.counts[0]); ++x)
             for (std::int32_t y = tile.origin[1] / 8; y < std::min(tile.origin[1] / 8 + side, bricks.counts[1]); ++y)
-                for (std::int32_t z = tile.origin[2] / 8; z < std::min(tile.origin[2] / 8 + side, bricks.counts[2]); ++z)
+                for (std::int32_t z = tile.origin[2] / 8; z < std::min(tile.origin[2] / 8 + side, bricks.counts[2]);
+                     ++z)
                     covered.push_back(bricks.index(x, y, z));
     }
     std::sort(covered.begin(), covered.end());
@@ -130,7 +131,8 @@ void checkValues(const Run& r, const std::vector<float>& color_lo, const std::ve
         for (std::size_t c = 0; c < channels; ++c) REQUIRE(std::isfinite(value[c]));
         if (a.color)
             for (int c = 0; c < (a.alpha ? 4 : 3); ++c) {
-                const double slack = 1e-5 * std::max({1.0, std::fabs(double(color_lo[c])), std::fabs(double(color_hi[c]))});
+                const double slack =
+                    1e-5 * std::max({1.0, std::fabs(double(color_lo[c])), std::fabs(double(color_hi[c]))});
                 REQUIRE(value[c] >= color_lo[std::size_t(c)] - slack && value[c] <= color_hi[std::size_t(c)] + slack);
             }
         if (a.normal) {
@@ -164,7 +166,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // tree's pieces of the large triangles), past the fuzzer's timeout.
     const std::uint8_t resolution = bytes.take<std::uint8_t>();
     const bool large = (sample_seed & 0xc0) == 0xc0 && (shape & 3) != 0 && !(shape & 0x0c) &&
-                       options.solid.inside != hyvox::InsideRule::Winding;
+        options.solid.inside != hyvox::InsideRule::Winding;
     options.grid.resolution = large ? 25 + resolution % 24 : 1 + resolution % 24;
     const double betas[4] = {2.0, 1.0, 4.0, 100.0};
     options.solid.winding_beta = betas[(knobs >> 6) & 3];
@@ -199,10 +201,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             for (int n = 0; n < 8; ++n)
                 corner[n] = addVertex((n & 1) ? hi[0] : lo[0], (n & 2) ? hi[1] : lo[1], (n & 4) ? hi[2] : lo[2]);
             // Each face's quad seen from outside, counter-clockwise.
-            const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+            const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                     {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
             for (const auto& f : faces)
-                triangles.insert(triangles.end(), {corner[f[0]], corner[f[1]], corner[f[2]], corner[f[0]], corner[f[2]],
-                                                   corner[f[3]]});
+                triangles.insert(triangles.end(),
+                                 {corner[f[0]], corner[f[1]], corner[f[2]], corner[f[0]], corner[f[2]], corner[f[3]]});
             if ((shape & 3) == 2) {
                 std::uint32_t t[4];
                 for (std::uint32_t& v : t) {
@@ -234,9 +237,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if ((shape & 3) != 0 && (shape & 0x0c)) {
         const std::size_t face = std::size_t(bytes.take<std::uint8_t>()) % (triangles.size() / 3);
         std::uint32_t* t = triangles.data() + 3 * face;
-        if ((shape & 0x0c) == 0x04) triangles.erase(triangles.begin() + std::ptrdiff_t(3 * face), triangles.begin() + std::ptrdiff_t(3 * face + 3));
-        else if ((shape & 0x0c) == 0x08) std::swap(t[1], t[2]);
-        else triangles.insert(triangles.end(), {t[0], t[1], t[2]});
+        if ((shape & 0x0c) == 0x04)
+            triangles.erase(triangles.begin() + std::ptrdiff_t(3 * face),
+                            triangles.begin() + std::ptrdiff_t(3 * face + 3));
+        else if ((shape & 0x0c) == 0x08)
+            std::swap(t[1], t[2]);
+        else
+            triangles.insert(triangles.end(), {t[0], t[1], t[2]});
     }
     const std::size_t vertex_count = positions.size() / 3, triangle_count = triangles.size() / 3;
     if (triangle_count == 0) return 0;
@@ -274,7 +281,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
     // The surface is part of the solid, and keeps its values.
     auto cell = [&](const Voxel& v) {
-        return (std::size_t(v[0]) * std::size_t(grid.dims[1]) + std::size_t(v[1])) * std::size_t(grid.dims[2]) + std::size_t(v[2]);
+        return (std::size_t(v[0]) * std::size_t(grid.dims[1]) + std::size_t(v[1])) * std::size_t(grid.dims[2]) +
+            std::size_t(v[2]);
     };
     std::vector<std::int64_t> solid_index(grid.voxelCount(), -1);
     for (std::size_t v = 0; v < solid.coords.size(); ++v) solid_index[cell(solid.coords[v])] = std::int64_t(v);
@@ -283,7 +291,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const std::int64_t at = solid_index[cell(surface.coords[v])];
         REQUIRE(at >= 0);
         for (std::size_t c = 0; c < attribute_channels; ++c)
-            REQUIRE(solid.values[std::size_t(at) * attribute_channels + c] == surface.values[v * attribute_channels + c]);
+            REQUIRE(solid.values[std::size_t(at) * attribute_channels + c] ==
+                    surface.values[v * attribute_channels + c]);
     }
 
     // Attributes: layout, ranges, finiteness; threads do not change them.
@@ -314,7 +323,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         std::array<Vec3, 3> corners;
         for (int c = 0; c < 3; ++c) {
             const auto p = validated.vertex(t, c);
-            for (int a = 0; a < 3; ++a) corners[std::size_t(c)][std::size_t(a)] = (double(p[std::size_t(a)]) - grid.origin[std::size_t(a)]) / grid.voxel_size;
+            for (int a = 0; a < 3; ++a)
+                corners[std::size_t(c)][std::size_t(a)] =
+                    (double(p[std::size_t(a)]) - grid.origin[std::size_t(a)]) / grid.voxel_size;
         }
         voxel_triangles.push_back(corners);
     }

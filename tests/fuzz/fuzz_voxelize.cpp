@@ -13,10 +13,10 @@
 // a sanitizer report, another mismatch, a hang) is a finding.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
-#include <cmath>
 #include <cstring>
 #include <iterator>
 #include <string>
@@ -95,7 +95,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (cpu_error != reference_error) std::abort();
     if (!cpu_error.empty() || cpu == reference) return 0;
     Coords differ;
-    std::set_symmetric_difference(cpu.begin(), cpu.end(), reference.begin(), reference.end(), std::back_inserter(differ));
+    std::set_symmetric_difference(cpu.begin(), cpu.end(), reference.begin(), reference.end(),
+                                  std::back_inserter(differ));
     const hyvox::ValidatedMesh validated = hyvox::validate(mesh);
     for (const auto& voxel : differ)
         if (!isTouch(validated, grid, options.mode, voxel)) std::abort();

@@ -27,11 +27,11 @@ using Pieces = std::map<Voxel, ClippedPiece>;
 Pieces sweep(const Corners& corners, int lo, int hi, std::uint64_t* inner = nullptr) {
     const TriangleFrame frame(corners);
     Pieces pieces;
-    const std::uint64_t from_inner = hyvox::attributes::sweepTriangle(
-        corners, frame, {lo, lo, lo}, {hi, hi, hi}, hyvox::attributes::EveryVoxel{},
-        [&](const Voxel& voxel, const ClippedPiece& piece) {
-            EXPECT_TRUE(pieces.emplace(voxel, piece).second) << "voxel visited twice";
-        });
+    const std::uint64_t from_inner =
+        hyvox::attributes::sweepTriangle(corners, frame, {lo, lo, lo}, {hi, hi, hi}, hyvox::attributes::EveryVoxel{},
+                                         [&](const Voxel& voxel, const ClippedPiece& piece) {
+                                             EXPECT_TRUE(pieces.emplace(voxel, piece).second) << "voxel visited twice";
+                                         });
     if (inner) *inner += from_inner;
     return pieces;
 }
@@ -52,7 +52,8 @@ Pieces clipBoxes(const Corners& corners, int lo, int hi, double margin) {
         for (int j = from[1]; j <= to[1]; ++j)
             for (int k = from[2]; k <= to[2]; ++k) {
                 ClippedPiece piece;
-                if (clipTriangleToVoxel(corners, {i, j, k}, frame, piece, margin)) pieces.emplace(Voxel{i, j, k}, piece);
+                if (clipTriangleToVoxel(corners, {i, j, k}, frame, piece, margin))
+                    pieces.emplace(Voxel{i, j, k}, piece);
             }
     return pieces;
 }
@@ -66,7 +67,8 @@ double triangleArea(const Corners& c) {
 
 void expectSamePiece(const ClippedPiece& got, const ClippedPiece& expected, const Voxel& v) {
     EXPECT_NEAR(got.area, expected.area, 1e-12) << v[0] << " " << v[1] << " " << v[2];
-    for (std::size_t d = 0; d < 3; ++d) EXPECT_NEAR(got.centroid[d], expected.centroid[d], 1e-9) << v[0] << " " << v[1] << " " << v[2];
+    for (std::size_t d = 0; d < 3; ++d)
+        EXPECT_NEAR(got.centroid[d], expected.centroid[d], 1e-9) << v[0] << " " << v[1] << " " << v[2];
 }
 
 // A triangle of corners spread up to a random `size` around a random centre.
@@ -105,7 +107,8 @@ std::size_t expectSweepEqualsBoxClipping(const Corners& corners, int lo, int hi,
 TEST(AttributeSweep, RandomTrianglesGiveTheBoxClippingPieces) {
     std::mt19937 random(12);
     std::uniform_real_distribution<double> coordinate(0.0, 8.0), size(0.01, 6.0);
-    for (int t = 0; t < 300; ++t) expectSweepEqualsBoxClipping(randomTriangle(random, coordinate, size), -8, 16, 1e-12, t);
+    for (int t = 0; t < 300; ++t)
+        expectSweepEqualsBoxClipping(randomTriangle(random, coordinate, size), -8, 16, 1e-12, t);
 }
 
 // A range that starts or ends inside the triangle (a leaf's) gets the same pieces as one
@@ -122,7 +125,7 @@ TEST(AttributeSweep, PartialRangesGiveTheSamePieces) {
             const Pieces part = sweep(corners, lo, hi);
             for (const auto& [voxel, piece] : whole) {
                 const bool inside = voxel[0] >= lo && voxel[0] <= hi && voxel[1] >= lo && voxel[1] <= hi &&
-                                    voxel[2] >= lo && voxel[2] <= hi;
+                    voxel[2] >= lo && voxel[2] <= hi;
                 const auto found = part.find(voxel);
                 ASSERT_EQ(found != part.end(), inside) << "triangle " << t;
                 if (inside) expectSamePiece(found->second, piece, voxel);
@@ -202,8 +205,8 @@ TEST(AttributeSweep, LatticeAlignedLargeTrianglesGiveTheBoxClippingPieces) {
     };
     const std::vector<Case> cases{
         {{Point{0.5, 0.5, 3}, Point{14.5, 0.5, 3}, Point{0.5, 14.5, 3}}, true},
-        {{Point{2, 0, 4}, Point{2, 14, 4}, Point{2, 0, 16}}, true},  // in the face x = 2
-        {{Point{0, 0, 0}, Point{15, 0, 5}, Point{0, 15, 10}}, false},  // z = x / 3 + 2y / 3
+        {{Point{2, 0, 4}, Point{2, 14, 4}, Point{2, 0, 16}}, true},                      // in the face x = 2
+        {{Point{0, 0, 0}, Point{15, 0, 5}, Point{0, 15, 10}}, false},                    // z = x / 3 + 2y / 3
         {{Point{0.5, 0.5, 0.5}, Point{14.5, 0.5, 14.5}, Point{0.5, 14.5, 0.5}}, false},  // z = x
         {{Point{0, 0, 1}, Point{16, 8, 9}, Point{0, 16, 1}}, false},  // z = x / 2 + 1, edges through lattice points
         {{Point{0.25, 0.5, 0.5}, Point{14.25, 13.5, 6.5}, Point{0.25 + 1e-4, 0.5, 0.5 + 2e-4}}, false},  // sliver

@@ -40,13 +40,16 @@ const std::array<std::array<std::uint32_t, 3>, 6> kOrders{
 std::vector<Case> nearDegenerateTriangles() {
     std::vector<Case> cases{
         {"fuzz_needle_near_1e-37",
-         {{{-1.41794e-37f, -1.917669e-37f, -1.917669e-37f}, {-1.924353e-37f, 1.1985432e-38f, 0.0f},
+         {{{-1.41794e-37f, -1.917669e-37f, -1.917669e-37f},
+           {-1.924353e-37f, 1.1985432e-38f, 0.0f},
            {-2.5045195e+33f, -2.5045195e+33f, -2.5045195e+33f}}}},
         {"fuzz_thin_sliver_1e-19_wide",
-         {{{0.0f, 4.9223826e-38f, -1.0652918e-37f}, {1.41499e-17f, 8.843688e-18f, 8.843688e-18f},
+         {{{0.0f, 4.9223826e-38f, -1.0652918e-37f},
+           {1.41499e-17f, 8.843688e-18f, 8.843688e-18f},
            {-1.912195e-37f, -1.9029754e-37f, 0.0f}}}},
         {"fuzz_sliver_beside_a_diagonal",
-         {{{8.85928915e-41f, 0.0f, -1.91017832e-37f}, {-2.50451951e+33f, 2.11894795e-33f, -2.50448284e+33f},
+         {{{8.85928915e-41f, 0.0f, -1.91017832e-37f},
+           {-2.50451951e+33f, 2.11894795e-33f, -2.50448284e+33f},
            {-9.40395481e-38f, 2.1019477e-44f, 8.0f}}}},
     };
     // Generated at several scales: needles (two corners a few ulps apart), caps (the middle
@@ -66,8 +69,8 @@ std::vector<Case> nearDegenerateTriangles() {
                 for (int axis = 0; axis < 3; ++axis) {
                     a[axis] = scale * unit(random);
                     b[axis] = scale * unit(random);
-                    if (kind == 0) c[axis] = nudge(b[axis]);                              // needle
-                    if (kind == 1) c[axis] = nudge(0.5f * a[axis] + 0.5f * b[axis]);      // cap
+                    if (kind == 0) c[axis] = nudge(b[axis]);                                // needle
+                    if (kind == 1) c[axis] = nudge(0.5f * a[axis] + 0.5f * b[axis]);        // cap
                     if (kind == 2) c[axis] = nudge(b[axis] + 1e-6f * (b[axis] - a[axis]));  // sliver
                 }
                 const char* kinds[] = {"needle", "cap", "sliver"};

@@ -45,7 +45,8 @@ std::vector<Case> meshCases() {
     for (const std::string& file : sharedMeshFiles()) {
         const bool coarse = file == "dragon_stanford_res2_203k.ply.gz" || file == "igea_cyberware_268k.ply.gz";
         cases.push_back({file, coarse ? 64 : 128});
-        if (file == "bunny_stanford_69k.ply" || file == "sponza_crytek_262k_vcolor.ply.gz") cases.push_back({file, 256});
+        if (file == "bunny_stanford_69k.ply" || file == "sponza_crytek_262k_vcolor.ply.gz")
+            cases.push_back({file, 256});
     }
     return cases;
 }

@@ -28,7 +28,8 @@ struct SharedMesh {
         auto p = [&](std::uint32_t v) {
             return std::array<double, 3>{positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]};
         };
-        for (std::size_t t = 0; t < triangles.size(); t += 3) s.add(p(triangles[t]), p(triangles[t + 1]), p(triangles[t + 2]));
+        for (std::size_t t = 0; t < triangles.size(); t += 3)
+            s.add(p(triangles[t]), p(triangles[t + 1]), p(triangles[t + 2]));
         return s;
     }
 };

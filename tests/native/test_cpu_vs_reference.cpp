@@ -65,8 +65,7 @@ INSTANTIATE_TEST_SUITE_P(At64And128, EveryMesh,
 INSTANTIATE_TEST_SUITE_P(At256, EveryMesh,
                          ::testing::Combine(::testing::Values("bunny_stanford_69k.ply",
                                                               "sponza_crytek_262k_vcolor.ply.gz"),
-                                            ::testing::Values(256),
-                                            ::testing::Values(Mode::Conservative, Mode::Thin)),
+                                            ::testing::Values(256), ::testing::Values(Mode::Conservative, Mode::Thin)),
                          caseName);
 
 // Whether the segment from `from` to `to` meets voxel v's closed box grown by `eps` (slab
@@ -131,9 +130,8 @@ TEST(CpuVsReference, PlanelessNeedleFromTheFuzzer) {
 // corners, as the cpu method does. The thin voxels lie on the sliver: a strict subset of the
 // conservative ones (which the SAT decides soundly either way).
 TEST(CpuVsReference, ThinSliverNearTheOriginFromTheFuzzer) {
-    const std::vector<float> positions{0.0f,        4.9223826e-38f, -1.0652918e-37f,
-                                       1.41499e-17f, 8.843688e-18f,  8.843688e-18f,
-                                       -1.912195e-37f, -1.9029754e-37f, 0.0f};
+    const std::vector<float> positions{0.0f,          4.9223826e-38f, -1.0652918e-37f, 1.41499e-17f, 8.843688e-18f,
+                                       8.843688e-18f, -1.912195e-37f, -1.9029754e-37f, 0.0f};
     const std::vector<std::uint32_t> triangles{0, 2, 1};  // (1, 0, 2) is zero-area in double: validate() skips it
     const MeshView mesh = viewOf(positions, triangles);
     VoxelizeOptions options;
@@ -164,9 +162,15 @@ TEST(CpuVsReference, ThinSliverNearTheOriginFromTheFuzzer) {
 // voxel it crosses by more than 1e-9 in x and z is set. tests/python/test_sliver_exact_oracle.py decides
 // the same voxels in exact arithmetic.
 TEST(CpuVsReference, SliverBesideADiagonalFromTheFuzzer) {
-    const std::vector<float> positions{-2.50451951e+33f, 2.11894795e-33f, -2.50448284e+33f,
-                                       8.85928915e-41f,  0.0f,            -1.91017832e-37f,
-                                       -9.40395481e-38f, 2.1019477e-44f,  8.0f};
+    const std::vector<float> positions{-2.50451951e+33f,
+                                       2.11894795e-33f,
+                                       -2.50448284e+33f,
+                                       8.85928915e-41f,
+                                       0.0f,
+                                       -1.91017832e-37f,
+                                       -9.40395481e-38f,
+                                       2.1019477e-44f,
+                                       8.0f};
     const std::vector<std::uint32_t> triangles{1, 0, 2};
     const MeshView mesh = viewOf(positions, triangles);
     for (Mode mode : {Mode::Conservative, Mode::Thin}) {

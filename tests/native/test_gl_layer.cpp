@@ -12,12 +12,12 @@
 #include <sstream>
 #include <thread>
 
+#include "gl/bindings.h"
 #include "gl/egl_device.h"
 #include "gl/gl_debug.h"
 #include "gl/gl_objects.h"
 #include "gl/gl_worker.h"
 #include "gl/shader_library.h"
-#include "gl/bindings.h"
 #include "hyvox/errors.h"
 #include "support/temp_dir.h"
 
@@ -28,8 +28,7 @@ TEST(GlLayer, ListsASoftwareDevice) {
     const auto devices = listEglDevices();
     ASSERT_FALSE(devices.empty());
     bool software = false;
-    for (const auto& d : devices)
-        software |= d.software;
+    for (const auto& d : devices) software |= d.software;
     EXPECT_TRUE(software) << "Mesa's software EGL device (llvmpipe) is the CI fallback";
 }
 
@@ -102,8 +101,9 @@ TEST(GlLayer, CompileErrorsNameTheFileAndQuoteTheLog) {
     std::filesystem::create_directories(temp.path / "common");
     std::ofstream(temp.path / "common" / "helper.glsl")
         << "// SPDX-License-Identifier: GPL-3.0-or-later\nfloat helper() { return 1.0 }\n";
-    std::ofstream(temp.path / "broken.comp") << "// SPDX-License-Identifier: GPL-3.0-or-later\n#include "
-                                                "\"common/helper.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+    std::ofstream(temp.path / "broken.comp")
+        << "// SPDX-License-Identifier: GPL-3.0-or-later\n#include "
+           "\"common/helper.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
     GlWorker::get().run([&] {
         try {
             buildProgram({{GL_COMPUTE_SHADER, "broken.comp"}}, "", dir);
@@ -133,8 +133,7 @@ TEST(GlLayer, EmbeddedShadersMatchTheSourceTree) {
 // Binding points and uniform locations the drivers assign must equal the C++ values.
 GLint blockBinding(GLuint program, const char* block) {
     const GLuint index = glGetProgramResourceIndex(program, GL_SHADER_STORAGE_BLOCK, block);
-    if (index == GL_INVALID_INDEX)
-        return -1;
+    if (index == GL_INVALID_INDEX) return -1;
     const GLenum property = GL_BUFFER_BINDING;
     GLint value = -1;
     glGetProgramResourceiv(program, GL_SHADER_STORAGE_BLOCK, index, 1, &property, 1, nullptr, &value);

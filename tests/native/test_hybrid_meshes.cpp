@@ -37,7 +37,7 @@ void checkMesh(const MeshView& mesh, int resolution, const std::string& label) {
             SCOPED_TRACE(label + " @" + std::to_string(resolution) + " " + toString(method) + " " + toString(mode));
             const VoxelizeResult result = voxelize(mesh, optionsFor(method, mode, resolution));
             const auto cmp = test::compareResults(mesh, mode, result, oracle);
-            test::expectMatchesOracle(cmp);  // touches: at most 7 per case on llvmpipe
+            test::expectMatchesOracle(cmp);             // touches: at most 7 per case on llvmpipe
             if (cmp.result_only + cmp.oracle_only > 0)  // touches are counted, and shown
                 std::cout << "  " << label << " @" << resolution << " " << toString(method) << " " << toString(mode)
                           << ": " << cmp.summary() << "\n";
@@ -72,8 +72,7 @@ TEST_P(GlMeshTest, MatchesOraclesInBothModes) {
 std::vector<MeshCase> meshCases() {
     std::vector<MeshCase> cases;
     for (const std::string& file : test::sharedMeshFiles())
-        for (int resolution : {64, 128})
-            cases.push_back({file, resolution});
+        for (int resolution : {64, 128}) cases.push_back({file, resolution});
     cases.push_back({"bunny_stanford_69k.ply", 256});
     cases.push_back({"sponza_crytek_262k_vcolor.ply.gz", 256});
     return cases;

@@ -5,9 +5,9 @@
 // and the clear errors (bad shader folder, no such device, grid too large).
 #include <gtest/gtest.h>
 
-#include <stdexcept>
 #include <fstream>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -164,7 +164,8 @@ TEST(GlSmall, LongSliversMatchTheReference) {
 // axis, a NaN depth range, nothing to rasterize). At 200 they cross several llvmpipe chunks.
 TEST(GlSmall, PlanelessNeedlesMatchTheExactMethods) {
     test::TriangleSoup soup;
-    const std::array<double, 3> near_a{-1.924353e-37, 1.1985432e-38, 0.0}, near_b{-1.41794e-37, -1.917669e-37, -1.917669e-37};
+    const std::array<double, 3> near_a{-1.924353e-37, 1.1985432e-38, 0.0},
+        near_b{-1.41794e-37, -1.917669e-37, -1.917669e-37};
     soup.add(near_b, near_a, {-2.5045195e+33, -2.5045195e+33, -2.5045195e+33});
     soup.add(near_b, near_a, {-2.5045195e+33, -1.1e+33, -0.4e+33});
     for (int resolution : {35, 200})
@@ -213,7 +214,7 @@ void expectGlMethodsMatchTheExactMethods(const std::vector<float>& positions,
 // wide. The fragment method dropped it: the length of its short end underflowed in float,
 // and the dilated triangle became NaN.
 TEST(GlSmall, SliverWithAnEndTooShortForFloatMatchesTheExactMethods) {
-    expectGlMethodsMatchTheExactMethods({0.0f, 4.9223826e-38f, -1.0652918e-37f,  //
+    expectGlMethodsMatchTheExactMethods({0.0f, 4.9223826e-38f, -1.0652918e-37f,       //
                                          1.41499e-17f, 8.843688e-18f, 8.843688e-18f,  //
                                          -1.912195e-37f, -1.9029754e-37f, 0.0f},
                                         {0, 2, 1}, 35, 1);
@@ -225,14 +226,12 @@ TEST(GlSmall, SliverWithAnEndTooShortForFloatMatchesTheExactMethods) {
 // set the right side. This keeps them there: one voxel per slab along x at least.
 TEST(GlSmall, SliverBesideADiagonalMatchesTheExactMethods) {
     expectGlMethodsMatchTheExactMethods({-2.50451951e+33f, 2.11894795e-33f, -2.50448284e+33f,  //
-                                         8.85928915e-41f, 0.0f, -1.91017832e-37f,  //
+                                         8.85928915e-41f, 0.0f, -1.91017832e-37f,              //
                                          -9.40395481e-38f, 2.1019477e-44f, 8.0f},
                                         {1, 0, 2}, 30, 30);
 }
 
-test::TestMesh bunny() {
-    return test::loadTestMesh(test::meshPath("bunny_stanford_69k.ply"));
-}
+test::TestMesh bunny() { return test::loadTestMesh(test::meshPath("bunny_stanford_69k.ply")); }
 
 TEST(GlSmall, HybridLimitsAreFragmentAndTriangleParallel) {
     const test::TestMesh mesh = bunny();
@@ -342,8 +341,9 @@ TEST(GlSmall, GridTooLargeForOneSlabIsRefusedClearly) {
         voxelize(mesh.view(), o);
         FAIL() << "expected InvalidInput";
     } catch (const InvalidInput& e) {
-        EXPECT_EQ(std::string(e.what()), "gl_tile_bytes 4096 is less than one 8-voxel slab of this " + grid.dimsText() +
-                                             " grid (" + std::to_string(slab_bytes) + " bytes); give at least that");
+        EXPECT_EQ(std::string(e.what()),
+                  "gl_tile_bytes 4096 is less than one 8-voxel slab of this " + grid.dimsText() + " grid (" +
+                      std::to_string(slab_bytes) + " bytes); give at least that");
     }
     o.gl.tile_bytes = slab_bytes;  // exactly one slab per tile: runs
     EXPECT_GT(voxelize(mesh.view(), o).occupancy.count(), 0u);

@@ -6,8 +6,8 @@
 // found first through HYVOX_PLUGIN_DIR; the real reader reads the committed files that made
 // assimp abort (tests/regressions/meshes/). tests/python/test_mesh_formats.py has the real
 // reader's reads, its memory budget and its cancel from another thread.
-#include <gtest/gtest.h>
 #include <dirent.h>
+#include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -117,8 +117,9 @@ TEST(AssimpProcess, ACrashOrAnExitIsAnErrorNamingTheFile) {
     const PluginDir use(plugins.path);
     const fs::path mesh = files.write("scene.3mf", "PK");
     fakeReader(plugins, "echo 'ai_assert failure in Something.cpp(12): x != y' >&2\nkill -ABRT $$");
-    EXPECT_HAS(errorOf(mesh), "mesh file '" + mesh.string() +
-                                  "': the assimp reader crashed on it (SIGABRT: ai_assert failure in Something.cpp(12): x != y)");
+    EXPECT_HAS(errorOf(mesh),
+               "mesh file '" + mesh.string() +
+                   "': the assimp reader crashed on it (SIGABRT: ai_assert failure in Something.cpp(12): x != y)");
     fakeReader(plugins, "kill -SEGV $$");
     EXPECT_HAS(errorOf(mesh), "the assimp reader crashed on it (SIGSEGV)");
     fakeReader(plugins, "echo 'something went wrong' >&2\nexit 7");
@@ -135,7 +136,8 @@ TEST(AssimpProcess, WhatTheProcessSendsIsNotTrusted) {
     fakeReader(plugins, "printf 'garbage'");
     EXPECT_HAS(errorOf(mesh), "the assimp reader sent back no valid mesh (a message of no known kind)");
     fakeReader(plugins, "printf 'P'");  // then nothing
-    EXPECT_HAS(errorOf(mesh), "the assimp reader sent back no valid mesh (the stream ended before a whole mesh or error)");
+    EXPECT_HAS(errorOf(mesh),
+               "the assimp reader sent back no valid mesh (the stream ended before a whole mesh or error)");
     // A well-formed mesh message whose triangle names a vertex past the end.
     hyvox::Mesh bad;
     bad.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
@@ -150,7 +152,10 @@ TEST(AssimpProcess, WhatTheProcessSendsIsNotTrusted) {
     fakeReader(plugins, "cat '" + files.write("huge.bin", huge).string() + "'");
     EXPECT_HAS(errorOf(mesh), "the assimp reader sent back no valid mesh (a mesh larger than the memory budget)");
     // Its error message is passed on as it is.
-    fakeReader(plugins, "cat '" + files.write("error.bin", hyvox::io::wire::errorMessage("cannot read mesh file 'x': why")).string() + "'");
+    fakeReader(plugins,
+               "cat '" +
+                   files.write("error.bin", hyvox::io::wire::errorMessage("cannot read mesh file 'x': why")).string() +
+                   "'");
     EXPECT_EQ(errorOf(mesh), "cannot read mesh file 'x': why");
     EXPECT_EQ(children(), std::vector<std::string>{});
 }

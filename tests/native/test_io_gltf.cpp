@@ -66,11 +66,14 @@ std::string squareBin() {
 std::string squareJson(const std::string& uri, const std::string& nodes = R"([{"mesh":0}])",
                        const std::string& extra = "") {
     return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":)" + nodes +
-           R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
-           R"("buffers":[{"byteLength":60)" + (uri.empty() ? "" : R"(,"uri":")" + uri + "\"") + R"(}],)"
-           R"("bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],)"
-           R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},)"
-           R"({"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}])" + extra + "}";
+        R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+        R"("buffers":[{"byteLength":60)" +
+        (uri.empty() ? "" : R"(,"uri":")" + uri + "\"") +
+        R"(}],)"
+        R"("bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],)"
+        R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},)"
+        R"({"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}])" +
+        extra + "}";
 }
 
 hyvox::Mesh read(const std::string& bytes, const std::string& name = "m.glb", std::uint64_t max_bytes = 1ull << 30) {
@@ -114,19 +117,19 @@ TEST(IoGltf, GlbAndGltfReadBackTheSquare) {
 TEST(IoGltf, NodeTransformsHierarchyAndInstances) {
     // Node 0: translation (10,0,0), child node 1 scaled by 2 holding the mesh; node 2 the same
     // mesh by a matrix moving it (0,0,5); the scene lists nodes 0 and 2.
-    const std::string nodes =
-        R"([{"translation":[10,0,0],"children":[1]},{"scale":[2,2,2],"mesh":0},)"
-        R"({"matrix":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,5,1],"mesh":0}])";
+    const std::string nodes = R"([{"translation":[10,0,0],"children":[1]},{"scale":[2,2,2],"mesh":0},)"
+                              R"({"matrix":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,5,1],"mesh":0}])";
     std::string json = squareJson("", nodes);
     json.replace(json.find(R"("scenes":[{"nodes":[0]}])"), 24, R"("scenes":[{"nodes":[0,2]}])");
     const hyvox::Mesh mesh = read(glb(json, squareBin()));
     ASSERT_EQ(mesh.vertexCount(), 8u);
     const std::vector<float> expected = {10, 0, 0, 12, 0, 0, 12, 2, 0, 10, 2, 0,  // 2x, then +10 in x
-                                         0, 0, 5, 1, 0, 5, 1, 1, 5, 0, 1, 5};
+                                         0,  0, 5, 1,  0, 5, 1,  1, 5, 0,  1, 5};
     EXPECT_EQ(mesh.positions, expected);
     EXPECT_EQ(mesh.triangles, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7}));
     // A rotation: a quarter turn about z takes (1,0,0) to (0,1,0).
-    const hyvox::Mesh turned = read(glb(squareJson("", R"([{"rotation":[0,0,0.70710678118654752,0.70710678118654752],"mesh":0}])"), squareBin()));
+    const hyvox::Mesh turned = read(
+        glb(squareJson("", R"([{"rotation":[0,0,0.70710678118654752,0.70710678118654752],"mesh":0}])"), squareBin()));
     EXPECT_NEAR(turned.positions[3], 0.0f, 1e-6f);
     EXPECT_NEAR(turned.positions[4], 1.0f, 1e-6f);
 }
@@ -137,15 +140,17 @@ TEST(IoGltf, StripsFansIndexTypesAndAttributes) {
     const std::vector<float> positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 2, 0, 0};
     const std::vector<std::uint8_t> strip = {0, 1, 2, 3, 4, 0, 0, 0};  // padded to 4
     const std::vector<std::uint32_t> fan = {0, 1, 3, 2};
-    const std::vector<std::uint8_t> colours = {255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 0, 255, 255, 255, 255, 128, 0, 0, 255};
+    const std::vector<std::uint8_t> colours = {255, 0, 0,   255, 0,   255, 0,   128, 0, 0,
+                                               255, 0, 255, 255, 255, 255, 128, 0,   0, 255};
     const std::vector<float> uvs = {0, 0, 1, 0, 0, 1, 1, 1, 0.5f, 0.25f};
     const std::string bin = bytesOf(positions) + bytesOf(strip) + bytesOf(fan) + bytesOf(colours) + bytesOf(uvs);
-    const std::string json =
-        R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[)"
-        R"({"attributes":{"POSITION":0,"COLOR_0":3,"TEXCOORD_0":4},"indices":1,"mode":5},)"
-        R"({"attributes":{"POSITION":0},"indices":2,"mode":6},)"
-        R"({"attributes":{"POSITION":0},"mode":0}]}],)"  // points: skipped
-        R"("buffers":[{"byteLength":)" + std::to_string(bin.size()) + R"(}],)"
+    const std::string json = R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[)"
+                             R"({"attributes":{"POSITION":0,"COLOR_0":3,"TEXCOORD_0":4},"indices":1,"mode":5},)"
+                             R"({"attributes":{"POSITION":0},"indices":2,"mode":6},)"
+                             R"({"attributes":{"POSITION":0},"mode":0}]}],)"  // points: skipped
+                             R"("buffers":[{"byteLength":)" +
+        std::to_string(bin.size()) +
+        R"(}],)"
         R"("bufferViews":[{"buffer":0,"byteLength":60},{"buffer":0,"byteOffset":60,"byteLength":8},)"
         R"({"buffer":0,"byteOffset":68,"byteLength":16},{"buffer":0,"byteOffset":84,"byteLength":20},)"
         R"({"buffer":0,"byteOffset":104,"byteLength":40}],)"
@@ -155,7 +160,7 @@ TEST(IoGltf, StripsFansIndexTypesAndAttributes) {
         R"({"bufferView":3,"componentType":5121,"normalized":true,"count":5,"type":"VEC4"},)"
         R"({"bufferView":4,"componentType":5126,"count":5,"type":"VEC2"}]})";
     const hyvox::Mesh mesh = read(glb(json, bin));  // no scene, no nodes: every mesh as it is
-    ASSERT_EQ(mesh.vertexCount(), 10u);  // the position accessor once per primitive with triangles
+    ASSERT_EQ(mesh.vertexCount(), 10u);             // the position accessor once per primitive with triangles
     // The specification's strip {v_i, v_(i+1+i%2), v_(i+2-i%2)}: (0,1,2), (1,3,2), (2,3,4); its fan
     // {v_(i+1), v_(i+2), v_0}: (1,3,0), (3,2,0) of the second primitive's vertices (5..9).
     EXPECT_EQ(mesh.triangles, (std::vector<std::uint32_t>{0, 1, 2, 1, 3, 2, 2, 3, 4, 6, 8, 5, 8, 7, 5}));
@@ -180,12 +185,15 @@ TEST(IoGltf, DamagedFilesAreErrorsNamingTheObject) {
         EXPECT_NE(at, std::string::npos) << from;
         return glb(json.replace(at, from.size(), to), bin);
     };
-    EXPECT_HAS(errorOf(with(R"("count":4,)", R"("count":5,)")), "glTF accessors[0] needs 60 bytes of bufferViews[0], which has 48");
-    EXPECT_HAS(errorOf(with(R"("byteLength":12})", R"("byteLength":13})")), "bufferViews[1] (bytes 48 + 13) runs past its buffer of 60");
+    EXPECT_HAS(errorOf(with(R"("count":4,)", R"("count":5,)")),
+               "glTF accessors[0] needs 60 bytes of bufferViews[0], which has 48");
+    EXPECT_HAS(errorOf(with(R"("byteLength":12})", R"("byteLength":13})")),
+               "bufferViews[1] (bytes 48 + 13) runs past its buffer of 60");
     EXPECT_HAS(errorOf(with(R"("indices":1)", R"("indices":7)")), "names accessors[7], but the file has 2");
     EXPECT_HAS(errorOf(with(R"("count":6,)", R"("count":5,)")), "5 corners is no whole number of triangles");
     EXPECT_HAS(errorOf(with(R"([{"mesh":0}])", R"([{"mesh":0,"children":[0]}])")), "nodes[0] is reached twice");
-    EXPECT_HAS(errorOf(with(R"("componentType":5126)", R"("componentType":5127)")), "componentType 5127 is no glTF component type");
+    EXPECT_HAS(errorOf(with(R"("componentType":5126)", R"("componentType":5127)")),
+               "componentType 5127 is no glTF component type");
     EXPECT_HAS(errorOf(with(R"("version":"2.0")", R"("version":"1.0")")), "only glTF 2.x is read");
     EXPECT_HAS(errorOf(with(R"("asset":)", R"("extensionsRequired":["KHR_draco_mesh_compression"],"asset":)")),
                "needs KHR_draco_mesh_compression");
@@ -200,7 +208,8 @@ TEST(IoGltf, DamagedFilesAreErrorsNamingTheObject) {
     // The container: cut, and its length field wrong.
     const std::string file = glb(ok, bin);
     EXPECT_HAS(errorOf(file.substr(0, file.size() - 1)), "the GLB header says");
-    EXPECT_HAS(errorOf(squareJson("data:application/octet-stream;base64,@@@@"), "m.gltf"), "its data URI is not base64");
+    EXPECT_HAS(errorOf(squareJson("data:application/octet-stream;base64,@@@@"), "m.gltf"),
+               "its data URI is not base64");
     EXPECT_HAS(errorOf(squareJson("missing.bin"), "/nonexistent/m.gltf"), "buffers[0]: cannot open mesh file");
     EXPECT_HAS(errorOf(squareJson("https://example.com/b.bin"), "m.gltf"), "names another place");
     // Instancing past the budget: the square on 8000 nodes, 1.3 MB, in a 1 MiB budget.
@@ -211,7 +220,8 @@ TEST(IoGltf, DamagedFilesAreErrorsNamingTheObject) {
     std::string roots = "[";
     for (int n = 0; n < 8000; ++n) roots += (n ? "," : "") + std::to_string(n);
     many.replace(many.find(R"("scenes":[{"nodes":[0]}])"), 24, R"("scenes":[{"nodes":)" + roots + "]}]");
-    EXPECT_HAS(errorOf(glb(many, bin), "m.glb", 1 << 20), "the scene's meshes need more than the memory budget of 1 MiB");
+    EXPECT_HAS(errorOf(glb(many, bin), "m.glb", 1 << 20),
+               "the scene's meshes need more than the memory budget of 1 MiB");
 }
 
 TEST(IoGltf, JsonIsStrict) {
@@ -259,7 +269,8 @@ TEST(IoGltf, EveryTruncationAndByteFlipIsReadOrRefused) {
         }
         for (std::size_t i = 0; i < 8 * bytes.size(); ++i) {
             std::string changed = bytes;
-            for (int n = 1 + int(rng() % 3); n > 0; --n) changed[rng() % changed.size()] = interesting[rng() % sizeof interesting];
+            for (int n = 1 + int(rng() % 3); n > 0; --n)
+                changed[rng() % changed.size()] = interesting[rng() % sizeof interesting];
             try {
                 const hyvox::Mesh mesh = hyvox::io::readGltf(changed.data(), changed.size(), name, 1ull << 30);
                 for (std::uint32_t index : mesh.triangles) ASSERT_LT(index, mesh.vertexCount());

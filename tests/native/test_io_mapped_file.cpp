@@ -22,8 +22,8 @@ using hyvox::test::TempDir;
 std::string stripPly(int quads, std::size_t& header_size) {
     const int vertices = 2 * (quads + 1);
     std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(vertices) +
-                         "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-                         std::to_string(2 * quads) + "\nproperty list uchar int vertex_indices\nend_header\n";
+        "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(2 * quads) +
+        "\nproperty list uchar int vertex_indices\nend_header\n";
     header_size = header.size();
     std::string body;
     auto put = [&](const void* p, std::size_t n) { body.append(static_cast<const char*>(p), n); };

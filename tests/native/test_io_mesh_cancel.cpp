@@ -37,8 +37,8 @@ constexpr int kQuads = 150000;  // 300k faces: several 64k-record chunks per ele
 
 std::string asciiPly() {
     std::string out = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(2 * (kQuads + 1)) +
-                      "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-                      std::to_string(2 * kQuads) + "\nproperty list uchar int vertex_indices\nend_header\n";
+        "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(2 * kQuads) +
+        "\nproperty list uchar int vertex_indices\nend_header\n";
     for (int i = 0; i <= kQuads; ++i) out += std::to_string(i) + " 0 0\n" + std::to_string(i) + " 1 0\n";
     for (int i = 0; i < kQuads; ++i) {
         const int a = 2 * i;
@@ -50,8 +50,8 @@ std::string asciiPly() {
 
 std::string binaryPly() {
     std::string out = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(2 * (kQuads + 1)) +
-                      "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-                      std::to_string(2 * kQuads) + "\nproperty list uchar int vertex_indices\nend_header\n";
+        "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(2 * kQuads) +
+        "\nproperty list uchar int vertex_indices\nend_header\n";
     auto put = [&](const void* p, std::size_t n) { out.append(static_cast<const char*>(p), n); };
     for (int i = 0; i <= kQuads; ++i)
         for (float y : {0.0f, 1.0f}) {
@@ -60,7 +60,8 @@ std::string binaryPly() {
         }
     for (int i = 0; i < kQuads; ++i) {
         const std::int32_t a = 2 * i;
-        for (const std::array<std::int32_t, 3>& f : {std::array<std::int32_t, 3>{a, a + 2, a + 1}, {a + 1, a + 2, a + 3}}) {
+        for (const std::array<std::int32_t, 3>& f :
+             {std::array<std::int32_t, 3>{a, a + 2, a + 1}, {a + 1, a + 2, a + 3}}) {
             const unsigned char three = 3;
             put(&three, 1);
             put(f.data(), sizeof f);
@@ -84,7 +85,7 @@ std::string stl() {  // ASCII STL, read through assimp
     std::string out = "solid strip\n";
     for (int i = 0; i < 2000; ++i)
         out += "facet normal 0 0 1\nouter loop\nvertex " + std::to_string(i) + " 0 0\nvertex " + std::to_string(i + 1) +
-               " 0 0\nvertex " + std::to_string(i) + " 1 0\nendloop\nendfacet\n";
+            " 0 0\nvertex " + std::to_string(i) + " 1 0\nendloop\nendfacet\n";
     return out + "endsolid strip\n";
 }
 

@@ -58,7 +58,8 @@ std::string stlBinary(const Triangles& t, const std::string& header = "written b
     for (std::size_t f = 0; f < count; ++f) {
         const float normal[3] = {0, 0, 1};
         out.append(reinterpret_cast<const char*>(normal), 12);
-        for (int c = 0; c < 3; ++c) out.append(reinterpret_cast<const char*>(&t.positions[3 * t.triangles[3 * f + c]]), 12);
+        for (int c = 0; c < 3; ++c)
+            out.append(reinterpret_cast<const char*>(&t.positions[3 * t.triangles[3 * f + c]]), 12);
         out += std::string("\x07\x00", 2);  // the attribute bytes: not used
     }
     return out;
@@ -79,12 +80,13 @@ std::string stlAscii(const Triangles& t) {
 
 std::string off(const Triangles& t) {
     std::string out = "OFF\n# a comment line\n" + std::to_string(t.positions.size() / 3) + " " +
-                      std::to_string(t.triangles.size() / 3) + " 0\n";
+        std::to_string(t.triangles.size() / 3) + " 0\n";
     for (std::size_t v = 0; v < t.positions.size() / 3; ++v)
-        out += number(t.positions[3 * v]) + " " + number(t.positions[3 * v + 1]) + " " + number(t.positions[3 * v + 2]) + "\n";
+        out += number(t.positions[3 * v]) + " " + number(t.positions[3 * v + 1]) + " " +
+            number(t.positions[3 * v + 2]) + "\n";
     for (std::size_t f = 0; f < t.triangles.size() / 3; ++f)
         out += "3 " + std::to_string(t.triangles[3 * f]) + " " + std::to_string(t.triangles[3 * f + 1]) + " " +
-               std::to_string(t.triangles[3 * f + 2]) + "\n";
+            std::to_string(t.triangles[3 * f + 2]) + "\n";
     return out;
 }
 
@@ -100,7 +102,8 @@ std::vector<float> corners(const Triangles& t) { return corners(t.positions, t.t
 
 std::size_t distinctPositions(const Triangles& t) {
     std::set<std::vector<float>> seen;
-    for (std::uint32_t i : t.triangles) seen.insert({t.positions[3 * i], t.positions[3 * i + 1], t.positions[3 * i + 2]});
+    for (std::uint32_t i : t.triangles)
+        seen.insert({t.positions[3 * i], t.positions[3 * i + 1], t.positions[3 * i + 2]});
     return seen.size();
 }
 
@@ -162,16 +165,19 @@ TEST(IoMeshFormats, OffReadsBackWithItsVariants) {
     // Polygons fan-triangulated, comments anywhere, no edge count, a face colour; COFF with
     // integer and with fractional colours, NOFF with normals.
     const std::string text =
-        "OFF # keyword\n4 2\n0 0 0\n1 0 0 # trailing comment\n1 1 0\n\n0 1 0\n# between\n4 0 1 2 3 255 0 0\n3 0 2 1 0.5\n";
+        "OFF # keyword\n4 2\n0 0 0\n1 0 0 # trailing comment\n1 1 0\n\n0 1 0\n# between\n4 0 1 2 3 255 0 0\n3 0 2 1 "
+        "0.5\n";
     const hyvox::Mesh quad = hyvox::readMesh(dir.write("quad.off", text).string());
     EXPECT_EQ(quad.triangles, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3, 0, 2, 1}));
     EXPECT_FALSE(quad.hasColors());  // face colours are not used
-    const hyvox::Mesh bytes = hyvox::readMesh(dir.write("c.off", "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 128\n"
-                                                                 "0 1 0 0 0 255 255\n3 0 1 2\n").string());
+    const hyvox::Mesh bytes = hyvox::readMesh(dir.write("c.off",
+                                                        "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 128\n"
+                                                        "0 1 0 0 0 255 255\n3 0 1 2\n")
+                                                  .string());
     EXPECT_EQ(bytes.colors, (std::vector<float>{1, 0, 0, 1, 0, 1, 0, 128 / 255.0f, 0, 0, 1, 1}));
     EXPECT_TRUE(bytes.colors_alpha);
-    const hyvox::Mesh fractions =
-        hyvox::readMesh(dir.write("f.off", "COFF\n3 1\n0 0 0 1 0 0\n1 0 0 0 0.5 0\n0 1 0 0 0 0.25\n3 0 1 2\n").string());
+    const hyvox::Mesh fractions = hyvox::readMesh(
+        dir.write("f.off", "COFF\n3 1\n0 0 0 1 0 0\n1 0 0 0 0.5 0\n0 1 0 0 0 0.25\n3 0 1 2\n").string());
     EXPECT_EQ(fractions.colors, (std::vector<float>{1, 0, 0, 1, 0, 0.5f, 0, 1, 0, 0, 0.25f, 1}));
     EXPECT_FALSE(fractions.colors_alpha);
     const hyvox::Mesh normals =
@@ -182,15 +188,19 @@ TEST(IoMeshFormats, OffReadsBackWithItsVariants) {
 TEST(IoMeshFormats, DamagedOffIsAnErrorNamingThePlace) {
     TempDir dir;
     // The file of the issue: an OFF cut inside its face list (assimp aborted on it).
-    EXPECT_READ_ERROR(fs::path(HYVOX_REGRESSION_MESHES) / "off_cut_in_face_list.off", "the file is truncated or a count is wrong");
+    EXPECT_READ_ERROR(fs::path(HYVOX_REGRESSION_MESHES) / "off_cut_in_face_list.off",
+                      "the file is truncated or a count is wrong");
     const std::string head = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n";
-    EXPECT_READ_ERROR(dir.write("index.off", head + "3 0 1 3\n"), "line 6:", "vertex index 3 names none of the 3 vertices");
+    EXPECT_READ_ERROR(dir.write("index.off", head + "3 0 1 3\n"),
+                      "line 6:", "vertex index 3 names none of the 3 vertices");
     EXPECT_READ_ERROR(dir.write("two.off", head + "2 0 1\n"), "face 0 has 2 corners");
     EXPECT_READ_ERROR(dir.write("missing.off", head + "3 0 1\n"), "face 0 declares 3 corners but lists 2");
-    EXPECT_READ_ERROR(dir.write("after.off", head + "3 0 1 2\n3 0 1 2\n"), "more after the 1 faces the header declares");
+    EXPECT_READ_ERROR(dir.write("after.off", head + "3 0 1 2\n3 0 1 2\n"),
+                      "more after the 1 faces the header declares");
     EXPECT_READ_ERROR(dir.write("colour.off", head + "3 0 1 2 7 7\n"), "a face colour has 1, 3 or 4");
     EXPECT_READ_ERROR(dir.write("vertex.off", "OFF\n3 1 0\n0 0 0 5\n1 0 0\n0 1 0\n3 0 1 2\n"), "vertex 0 has 4 values");
-    EXPECT_READ_ERROR(dir.write("huge.off", "OFF\n4000000000 4000000000\n0 0 0\n"), "more than the 7 bytes after them can hold");
+    EXPECT_READ_ERROR(dir.write("huge.off", "OFF\n4000000000 4000000000\n0 0 0\n"),
+                      "more than the 7 bytes after them can hold");
     EXPECT_READ_ERROR(dir.write("4d.off", "4OFF\n3 1\n"), "another dimension");
     EXPECT_READ_ERROR(dir.write("binary.off", "OFF BINARY\n"), "binary OFF is not read");
     EXPECT_READ_ERROR(dir.write("word.off", "OFF\n3 x\n"), "'x' is not a face count");
@@ -200,8 +210,9 @@ TEST(IoMeshFormats, DamagedOffIsAnErrorNamingThePlace) {
 // records past it without a word: only whitespace may follow the last element of a PLY.
 TEST(IoMeshFormats, PlyRecordsPastTheDeclaredCountsAreRefused) {
     TempDir dir;
-    const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                               "property float z\nelement face FACES\nproperty list uchar int vertex_indices\nend_header\n";
+    const std::string header =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face FACES\nproperty list uchar int vertex_indices\nend_header\n";
     const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n";
     auto with = [&](const char* faces) {
         std::string h = header;
@@ -210,8 +221,9 @@ TEST(IoMeshFormats, PlyRecordsPastTheDeclaredCountsAreRefused) {
     EXPECT_EQ(hyvox::readMesh(dir.write("ok.ply", with("2") + "\n \r\n").string()).triangleCount(), 2u);
     EXPECT_READ_ERROR(dir.write("lowered.ply", with("1")), "bytes follow the last element the header declares (face)");
     // Binary: a face record (13 bytes) left over.
-    std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    std::string binary =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
     const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     binary.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
     for (int f = 0; f < 2; ++f) {
@@ -227,10 +239,13 @@ TEST(IoMeshFormats, PlyRecordsPastTheDeclaredCountsAreRefused) {
 TEST(IoMeshFormats, TextFilesCutInsideTheirLastNumberAreRefused) {
     TempDir dir;
     std::string points;
-    for (int v = 0; v < 12; ++v) points += std::to_string(v % 2) + " " + std::to_string(v / 2) + " " + std::to_string(v % 3) + "\n";
+    for (int v = 0; v < 12; ++v)
+        points += std::to_string(v % 2) + " " + std::to_string(v / 2) + " " + std::to_string(v % 3) + "\n";
     const std::string off = "OFF\n12 1 0\n" + points + "3 0 1 11";
-    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 12\nproperty float x\nproperty float y\nproperty float z\n"
-                            "element face 1\nproperty list uchar int vertex_indices\nend_header\n" + points + "3 0 1 11";
+    const std::string ply =
+        "ply\nformat ascii 1.0\nelement vertex 12\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+        points + "3 0 1 11";
     for (const auto& [name, text] : {std::pair{"mesh.off", off}, std::pair{"mesh.ply", ply}}) {
         const hyvox::Mesh whole = hyvox::readMesh(dir.write(name, text + "\n").string());
         ASSERT_EQ(whole.triangles, (std::vector<std::uint32_t>{0, 1, 11})) << name;
@@ -258,7 +273,8 @@ TEST(IoMeshFormats, EveryTruncationAndByteFlipIsReadOrRefused) {
     t.triangles.back() = 4;
     using Reader = hyvox::Mesh (*)(const char*, std::size_t, const std::string&, hyvox::Interrupter*);
     const std::vector<std::tuple<std::string, std::string, Reader>> seeds = {
-        {"b.stl", stlBinary(t), hyvox::io::readStl}, {"a.stl", stlAscii(t), hyvox::io::readStl},
+        {"b.stl", stlBinary(t), hyvox::io::readStl},
+        {"a.stl", stlAscii(t), hyvox::io::readStl},
         {"o.off", off(t), hyvox::io::readOff}};
     std::mt19937 rng(6);
     const char interesting[] = {'\0', '\n', ' ', '-', '9', 'e', '#', '\xff', '\x7f', '3'};
@@ -282,7 +298,8 @@ TEST(IoMeshFormats, EveryTruncationAndByteFlipIsReadOrRefused) {
         }
         for (std::size_t i = 0; i < 16 * bytes.size(); ++i) {
             std::string changed = bytes;
-            for (int n = 1 + int(rng() % 3); n > 0; --n) changed[rng() % changed.size()] = interesting[rng() % sizeof interesting];
+            for (int n = 1 + int(rng() % 3); n > 0; --n)
+                changed[rng() % changed.size()] = interesting[rng() % sizeof interesting];
             try {
                 const hyvox::Mesh mesh = reader(changed.data(), changed.size(), name, nullptr);
                 for (std::uint32_t index : mesh.triangles) ASSERT_LT(index, mesh.vertexCount()) << name;

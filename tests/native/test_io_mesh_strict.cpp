@@ -9,12 +9,12 @@
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -68,11 +68,12 @@ hyvox::Mesh expectedMesh(const Polygons& p) {
     m.positions = p.positions;
     for (const auto& face : p.faces)
         for (std::size_t k = 2; k < face.size(); ++k)
-            m.triangles.insert(m.triangles.end(), {std::uint32_t(face[0]), std::uint32_t(face[k - 1]),
-                                                   std::uint32_t(face[k])});
+            m.triangles.insert(m.triangles.end(),
+                               {std::uint32_t(face[0]), std::uint32_t(face[k - 1]), std::uint32_t(face[k])});
     for (std::size_t v = 0; v < p.colors.size() / 3; ++v)
-        m.colors.insert(m.colors.end(), {float(p.colors[3 * v] / 255.0), float(p.colors[3 * v + 1] / 255.0),
-                                         float(p.colors[3 * v + 2] / 255.0), 1.0f});
+        m.colors.insert(m.colors.end(),
+                        {float(p.colors[3 * v] / 255.0), float(p.colors[3 * v + 1] / 255.0),
+                         float(p.colors[3 * v + 2] / 255.0), 1.0f});
     m.uvs = p.uvs;
     return m;
 }
@@ -91,9 +92,11 @@ enum class PlyFormat { Ascii, Little, Big };
 std::string writePly(const Polygons& p, PlyFormat format) {
     const std::size_t n = p.positions.size() / 3;
     std::string out = "ply\nformat ";
-    out += format == PlyFormat::Ascii ? "ascii" : format == PlyFormat::Little ? "binary_little_endian" : "binary_big_endian";
+    out += format == PlyFormat::Ascii ? "ascii"
+        : format == PlyFormat::Little ? "binary_little_endian"
+                                      : "binary_big_endian";
     out += " 1.0\ncomment written by test_io_mesh_strict\nelement vertex " + std::to_string(n) +
-           "\nproperty float x\nproperty float y\nproperty float z\n";
+        "\nproperty float x\nproperty float y\nproperty float z\n";
     if (!p.colors.empty()) out += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
     if (!p.uvs.empty()) out += "property float s\nproperty float t\n";
     out += "element face " + std::to_string(p.faces.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
@@ -149,8 +152,9 @@ void expectSameMesh(const hyvox::Mesh& got, const hyvox::Mesh& expected) {
 }
 
 // A small valid PLY of the issue's shape: 4 vertices, a tetrahedron's 4 faces.
-const std::string kHeader = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                            "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+const std::string kHeader =
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+    "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
 const std::string kVertices = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
 const std::string kFaces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
 
@@ -214,7 +218,8 @@ TEST(IoMeshStrict, WrittenObjReadsBackExactly) {
     ASSERT_EQ(mesh.triangleCount(), expected.triangleCount());
     for (std::size_t c = 0; c < expected.triangles.size(); ++c)
         for (int a = 0; a < 3; ++a)
-            ASSERT_EQ(mesh.positions[3 * mesh.triangles[c] + a], expected.positions[3 * expected.triangles[c] + a]) << c;
+            ASSERT_EQ(mesh.positions[3 * mesh.triangles[c] + a], expected.positions[3 * expected.triangles[c] + a])
+                << c;
     EXPECT_FALSE(mesh.hasUvs());
     EXPECT_FALSE(mesh.hasColors());
 }
@@ -222,7 +227,8 @@ TEST(IoMeshStrict, WrittenObjReadsBackExactly) {
 TEST(IoMeshStrict, ObjUvsSplitVertices) {
     TempDir dir;
     const hyvox::Mesh mesh = hyvox::readMesh(
-        dir.write("uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.25 0.5\nvt 0.75 1\nf 1/1 2/1 3/2\nf 1/2 3/2 2/1\n").string());
+        dir.write("uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.25 0.5\nvt 0.75 1\nf 1/1 2/1 3/2\nf 1/2 3/2 2/1\n")
+            .string());
     ASSERT_EQ(mesh.vertexCount(), 4u);  // vertex 1 with two different UVs is two vertices
     EXPECT_EQ(mesh.triangles, (std::vector<std::uint32_t>{0, 1, 2, 3, 2, 1}));
     EXPECT_EQ(mesh.uvs, (std::vector<float>{0.25f, 0.5f, 0.25f, 0.5f, 0.75f, 1, 0.75f, 1}));
@@ -246,8 +252,8 @@ TEST(IoMeshStrict, TheIssuesDamagedPlyFiles) {
     // A face with zero indices, and one with two.
     EXPECT_READ_ERROR(dir.write("zero.ply", kHeader + kVertices + "3 0 2 1\n0\n3 0 3 2\n3 1 2 3\n"), "face 1 of 4",
                       "0 vertex indices", "line 15");
-    EXPECT_READ_ERROR(dir.write("two.ply", kHeader + kVertices + "3 0 2 1\n3 0 1 3\n2 0 3\n3 1 2 3\n"),
-                      "face 2 of 4", "at least 3");
+    EXPECT_READ_ERROR(dir.write("two.ply", kHeader + kVertices + "3 0 2 1\n3 0 1 3\n2 0 3\n3 1 2 3\n"), "face 2 of 4",
+                      "at least 3");
     // Vertex counts of 2^64 (does not fit) and 2^64 - 1 (fits, but not in 40 bytes).
     std::string huge = kHeader;
     huge.replace(huge.find("vertex 4"), 8, "vertex 18446744073709551616");
@@ -289,17 +295,20 @@ TEST(IoMeshStrict, TheIssuesDamagedPlyFiles) {
                       "before any element");
     EXPECT_READ_ERROR(dir.write("nofmt.ply", "ply\nelement vertex 0\nend_header\n"), "no 'format'");
     // A point cloud: no triangles.
-    EXPECT_READ_ERROR(dir.write("points.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
-                                              "property float y\nproperty float z\nend_header\n0 0 0\n"),
+    EXPECT_READ_ERROR(dir.write("points.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                                "property float y\nproperty float z\nend_header\n0 0 0\n"),
                       "no triangles");
     // An element without properties may declare any count: nothing to read, no loop.
     std::string empty_element = kHeader;
     empty_element.replace(empty_element.find("end_header"), 10, "element nothing 18446744073709551615\nend_header");
-    EXPECT_EQ(hyvox::readMesh(dir.write("empty_element.ply", empty_element + kVertices + kFaces).string()).triangleCount(),
-              4u);
+    EXPECT_EQ(
+        hyvox::readMesh(dir.write("empty_element.ply", empty_element + kVertices + kFaces).string()).triangleCount(),
+        4u);
     // A 300-digit number is quoted short.
     const std::string long_number(300, '7');
-    const std::string message = readErrorOf(dir.write("long.ply", kHeader + "0 0 0\n1 0 0\n0 " + long_number + " 0\n0 0 1\n" + kFaces));
+    const std::string message =
+        readErrorOf(dir.write("long.ply", kHeader + "0 0 0\n1 0 0\n0 " + long_number + " 0\n0 0 1\n" + kFaces));
     EXPECT_LT(message.size(), 200u) << message;
 }
 
@@ -407,11 +416,10 @@ TEST(IoMeshStrict, EveryTruncationAndByteFlipIsReadOrRefused) {
     TempDir dir;
     const Polygons p = sampleMesh(6, 5, true, true, 11);
     std::string obj = "v 0 0 0\nv 1 0 0 \nv 0 1 0\nvt 0.5 0.5\nf 1/1 2/1 3/1\nf -1 -2 -3\n";
-    const std::vector<std::pair<std::string, std::string>> seeds = {
-        {"a.ply", writePly(p, PlyFormat::Ascii)},
-        {"l.ply", writePly(p, PlyFormat::Little)},
-        {"b.ply", writePly(p, PlyFormat::Big)},
-        {"o.obj", obj}};
+    const std::vector<std::pair<std::string, std::string>> seeds = {{"a.ply", writePly(p, PlyFormat::Ascii)},
+                                                                    {"l.ply", writePly(p, PlyFormat::Little)},
+                                                                    {"b.ply", writePly(p, PlyFormat::Big)},
+                                                                    {"o.obj", obj}};
     std::mt19937 rng(5);
     const char interesting[] = {'\0', '\n', ' ', '-', '9', 'e', '/', '\xff', '\x7f', '3'};
     std::size_t read = 0, refused = 0;

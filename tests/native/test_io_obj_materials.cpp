@@ -35,9 +35,11 @@ TEST(IoObjMaterials, IdsColoursAndImagesBesideTheFiles) {
     std::filesystem::create_directories(dir.path / "lib");
     dir.write("tex/a.png", std::string(kPng, 8));
     dir.write("lib/m.mtl", "newmtl red\nKd 1 0 0\nnewmtl painted\nKd 0.5\nmap_Kd ../tex/a.png\n");
-    const hyvox::Mesh mesh = hyvox::readMesh(
-        dir.write("m.obj", "mtllib lib/m.mtl\n" + kSquare + "f 1 2 3\nusemtl painted\nf 1 3 4\nusemtl red\nf 2 3 4\n"
-                           "usemtl painted\nf 1 2 4\n").string());
+    const hyvox::Mesh mesh = hyvox::readMesh(dir.write("m.obj",
+                                                       "mtllib lib/m.mtl\n" + kSquare +
+                                                           "f 1 2 3\nusemtl painted\nf 1 3 4\nusemtl red\nf 2 3 4\n"
+                                                           "usemtl painted\nf 1 2 4\n")
+                                                 .string());
     EXPECT_TRUE(mesh.warnings.empty());
     EXPECT_EQ(mesh.material_names, (std::vector<std::string>{"", "painted", "red"}));
     EXPECT_EQ(mesh.material_ids, (std::vector<std::uint32_t>{0, 1, 2, 1}));
@@ -54,9 +56,11 @@ TEST(IoObjMaterials, WhatCannotBeUsedIsAWarning) {
     TempDir dir;
     dir.write("not_png.png", "GIF89a");
     dir.write("m.mtl", "newmtl gone\nKd 0 1 0\nmap_Kd nowhere.png\nnewmtl gif\nmap_Kd not_png.png\n");
-    const hyvox::Mesh mesh = hyvox::readMesh(
-        dir.write("m.obj", "mtllib m.mtl absent.mtl\n" + kSquare +
-                               "usemtl gone\nf 1 2 3\nusemtl gif\nf 1 3 4\nusemtl unknown\nf 2 3 4\n").string());
+    const hyvox::Mesh mesh =
+        hyvox::readMesh(dir.write("m.obj",
+                                  "mtllib m.mtl absent.mtl\n" + kSquare +
+                                      "usemtl gone\nf 1 2 3\nusemtl gif\nf 1 3 4\nusemtl unknown\nf 2 3 4\n")
+                            .string());
     EXPECT_EQ(mesh.triangleCount(), 3u);
     EXPECT_TRUE(anyWarningHas(mesh, "absent.mtl")) << mesh.warnings.size();
     EXPECT_TRUE(anyWarningHas(mesh, "nowhere.png"));

@@ -26,11 +26,10 @@ TEST(IoStatsJson, HoldsTheFields) {
     r.stats.hybrid = hybrid;
     r.stats.options.gl.shader_dir = "odd \"dir\"\n";
     const std::string json = hyvox::statsToJson(r);
-    for (const char* part :
-         {"\"method\": \"cpu\"", "\"mode\": \"thin\"", "\"origin\": [-1.5, 0.25, 3]", "\"voxel_size\": 0.1",
-          "\"dims\": [10, 20, 30]", "\"voxel_count\": 1234",
-          "\"triangles\": {\"input\": 12, \"used\": 10, \"degenerate\": 2}", "\"validate\": 1.5",
-          "\"voxelize\": 3.5", "\"total_ms\": 5", "\"hybrid\": {\"pass1_gpu_ms\": 0.25",
-          "\"cutoff\": null", "\"shader_dir\": \"odd \\\"dir\\\"\\n\""})
+    for (const char* part : {"\"method\": \"cpu\"", "\"mode\": \"thin\"", "\"origin\": [-1.5, 0.25, 3]",
+                             "\"voxel_size\": 0.1", "\"dims\": [10, 20, 30]", "\"voxel_count\": 1234",
+                             "\"triangles\": {\"input\": 12, \"used\": 10, \"degenerate\": 2}", "\"validate\": 1.5",
+                             "\"voxelize\": 3.5", "\"total_ms\": 5", "\"hybrid\": {\"pass1_gpu_ms\": 0.25",
+                             "\"cutoff\": null", "\"shader_dir\": \"odd \\\"dir\\\"\\n\""})
         EXPECT_NE(json.find(part), std::string::npos) << part << "\n" << json;
 }

@@ -106,7 +106,7 @@ TEST(IoVdb, LeafCopyEqualsVoxelByVoxel) {
 
 TEST(IoVdb, LeafOriginsFollowBrickLayout) {
     hyvox::VoxelizeResult r = sampleResult(1, 0.0);  // only the two corner voxels
-    r.occupancy.set(17, 9, 3);                      // brick (2,1,0)
+    r.occupancy.set(17, 9, 3);                       // brick (2,1,0)
     const auto grid = hyvox::io::makeDensityGrid(r.grid, r.occupancy);
     EXPECT_EQ(grid->tree().leafCount(), 3u);
     const auto* leaf = grid->tree().probeConstLeaf(openvdb::Coord(16, 8, 0));
@@ -323,6 +323,6 @@ TEST(IoVdb, TheFileWriteReportsProgressAndCanBeCancelled) {
     EXPECT_THROW(hyvox::writeVdb(result, path.string(), {}, &stop), hyvox::Cancelled);
     EXPECT_GT(stop.seen.back(), 90);
     EXPECT_LT(stop.seen.back(), 100);
-    EXPECT_TRUE(slurp(path) == before);  // (not EXPECT_EQ: a mismatch would print megabytes)
+    EXPECT_TRUE(slurp(path) == before);                           // (not EXPECT_EQ: a mismatch would print megabytes)
     EXPECT_EQ(dir.names(), std::vector<std::string>{"big.vdb"});  // no temporary left
 }

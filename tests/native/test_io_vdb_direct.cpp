@@ -69,7 +69,8 @@ std::string firstGridBuffers(const std::string& path) {
 
 void checkAgainstOpenVdb(const hyvox::VoxelizeResult& r, int threads) {
     TempDir dir;
-    const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string();
+    const std::string direct_path = (dir.path / "direct.vdb").string(),
+                      reference_path = (dir.path / "openvdb.vdb").string();
     hyvox::WriteOptions write;
     write.threads = threads;
     hyvox::writeVdb(r, direct_path, write);

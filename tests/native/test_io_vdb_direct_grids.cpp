@@ -83,14 +83,15 @@ TEST(IoVdbDirectGrids, LeavesAndTilesEqualOpenVdbsPrunedTree) {
         for (int by = 0; by < 16; ++by)
             for (int bz = 0; bz < 16; ++bz) tile_bricks.push_back(brickIndex(bx, by, bz));
     for (int bz = 0; bz < 10; ++bz) tile_bricks.push_back(brickIndex(5, 20, bz));  // part of the node at (0, 128, 0)
-    tile_bricks.push_back(brickIndex(2, 1, 16));  // next to the leaves
+    tile_bricks.push_back(brickIndex(2, 1, 16));                                   // next to the leaves
     std::sort(tile_bricks.begin(), tile_bricks.end());
     for (std::uint64_t b : tile_bricks) occupancy.runs.push_back({b, b + 1});
 
     const VdbGrid density = hyvox::io::densityGrid(occupancy);
     ASSERT_EQ(density.tiles.size(), tile_bricks.size());
     TempDir dir;
-    const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string();
+    const std::string direct_path = (dir.path / "direct.vdb").string(),
+                      reference_path = (dir.path / "openvdb.vdb").string();
     writeFile(direct_path, hyvox::io::serializeVdbGrids(r, {density}, 0));
 
     // OpenVDB: the leaves, every brick as a level-1 tile, then prune(), as the solid mode does.
@@ -119,13 +120,16 @@ TEST(IoVdbDirectGrids, TilesOfOtherValuesAndLevelsEqualOpenVdbs) {
     // Tiles given at every level, with values other than 1, and a Vec3f grid of tiles.
     hyvox::VoxelizeResult r = makeResult({9000, 200, 200}, 0.3, 3, {12, 12, 12});
     VdbGrid grid = hyvox::io::densityGrid(r.occupancy);
-    grid.tiles = {{{64, 0, 0}, 1, {2.5f, 0, 0}}, {{72, 0, 0}, 1, {-1.0f, 0, 0}}, {{128, 128, 0}, 2, {3.0f, 0, 0}},
+    grid.tiles = {{{64, 0, 0}, 1, {2.5f, 0, 0}},
+                  {{72, 0, 0}, 1, {-1.0f, 0, 0}},
+                  {{128, 128, 0}, 2, {3.0f, 0, 0}},
                   {{4096, 0, 0}, 3, {0.5f, 0, 0}}};
     auto reference = referenceShell(r);
-    for (const auto& ijk : r.occupancy.coords()) reference->tree().setValue(openvdb::Coord(ijk[0], ijk[1], ijk[2]), 1.0f);
+    for (const auto& ijk : r.occupancy.coords())
+        reference->tree().setValue(openvdb::Coord(ijk[0], ijk[1], ijk[2]), 1.0f);
     for (const auto& tile : grid.tiles)
-        reference->tree().addTile(openvdb::Index(tile.level), openvdb::Coord(tile.origin[0], tile.origin[1], tile.origin[2]),
-                                  tile.value[0], true);
+        reference->tree().addTile(openvdb::Index(tile.level),
+                                  openvdb::Coord(tile.origin[0], tile.origin[1], tile.origin[2]), tile.value[0], true);
 
     VdbGrid vectors = grid;
     vectors.name = "velocity";
@@ -143,11 +147,13 @@ TEST(IoVdbDirectGrids, TilesOfOtherValuesAndLevelsEqualOpenVdbs) {
     for (const auto& ijk : r.occupancy.coords())
         reference_vectors->tree().setValue(openvdb::Coord(ijk[0], ijk[1], ijk[2]), openvdb::Vec3s(0.25f, -4.0f, 8.0f));
     for (const auto& tile : vectors.tiles)
-        reference_vectors->tree().addTile(openvdb::Index(tile.level), openvdb::Coord(tile.origin[0], tile.origin[1], tile.origin[2]),
+        reference_vectors->tree().addTile(openvdb::Index(tile.level),
+                                          openvdb::Coord(tile.origin[0], tile.origin[1], tile.origin[2]),
                                           openvdb::Vec3s(tile.value[0], tile.value[1], tile.value[2]), true);
 
     TempDir dir;
-    const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string();
+    const std::string direct_path = (dir.path / "direct.vdb").string(),
+                      reference_path = (dir.path / "openvdb.vdb").string();
     writeFile(direct_path, hyvox::io::serializeVdbGrids(r, {grid, vectors}, 2));
     hyvox::io::writeGridsAtomic({reference, reference_vectors}, reference_path);
     const auto direct = hyvox::test::readVdbGrid<openvdb::FloatGrid>(direct_path, "density");
@@ -185,7 +191,8 @@ TEST(IoVdbDirectGrids, AttributeGridsEqualOpenVdbs) {
         openvdb::Vec3SGrid::Accessor accessor(grid->tree());
         for (std::size_t v = 0; v < coords.size(); ++v) {
             const float* c = &r.attributes.values[v * 7 + std::size_t(offset)];
-            accessor.setValue(openvdb::Coord(coords[v][0], coords[v][1], coords[v][2]), openvdb::Vec3s(c[0], c[1], c[2]));
+            accessor.setValue(openvdb::Coord(coords[v][0], coords[v][1], coords[v][2]),
+                              openvdb::Vec3s(c[0], c[1], c[2]));
         }
         return grid;
     };
@@ -197,7 +204,8 @@ TEST(IoVdbDirectGrids, AttributeGridsEqualOpenVdbs) {
     alpha->setName("alpha");
     alpha->setTransform(density->transform().copy());
     for (std::size_t v = 0; v < coords.size(); ++v)
-        alpha->tree().setValue(openvdb::Coord(coords[v][0], coords[v][1], coords[v][2]), r.attributes.values[v * 7 + 3]);
+        alpha->tree().setValue(openvdb::Coord(coords[v][0], coords[v][1], coords[v][2]),
+                               r.attributes.values[v * 7 + 3]);
     {
         openvdb::FloatGrid::Accessor accessor(density->tree());
         for (const auto& ijk : coords) accessor.setValue(openvdb::Coord(ijk[0], ijk[1], ijk[2]), 1.0f);
@@ -206,7 +214,8 @@ TEST(IoVdbDirectGrids, AttributeGridsEqualOpenVdbs) {
     // writeVdb (the direct writer) against the voxel-by-voxel grids written by OpenVDB, and
     // against makeGrids (OpenVDB's own attribute grids, the Python module's path).
     TempDir dir;
-    const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string(),
+    const std::string direct_path = (dir.path / "direct.vdb").string(),
+                      reference_path = (dir.path / "openvdb.vdb").string(),
                       made_path = (dir.path / "made.vdb").string();
     hyvox::writeVdb(r, direct_path);
     hyvox::io::writeGridsAtomic({density, color, alpha, normal}, reference_path);
@@ -256,11 +265,11 @@ TEST(IoVdbDirectGrids, LevelSetEqualsOpenVdbs) {
         }
         sdf.leaves.push_back(leaf);
     };
-    addLeaf({0, 0, 0}, 1.0, 0.5);   // all active
-    addLeaf({0, 0, 1}, 0.3, 0.0);   // inactive outside only
-    addLeaf({0, 0, 2}, 0.3, 1.0);   // inactive inside only
-    addLeaf({0, 1, 0}, 0.3, 0.5);   // both
-    addLeaf({0, 1, 1}, 0.0, 0.5);   // no active voxel
+    addLeaf({0, 0, 0}, 1.0, 0.5);      // all active
+    addLeaf({0, 0, 1}, 0.3, 0.0);      // inactive outside only
+    addLeaf({0, 0, 2}, 0.3, 1.0);      // inactive inside only
+    addLeaf({0, 1, 0}, 0.3, 0.5);      // both
+    addLeaf({0, 1, 1}, 0.0, 0.5);      // no active voxel
     addLeaf({560, 30, 17}, 0.5, 0.5);  // in another upper node
     // Inside tiles: two whole lower nodes (16³ bricks each, from brick (16, 0, 0) and (16, 16,
     // 0) on), and a few bricks of a third beside its empty slots.
@@ -272,7 +281,8 @@ TEST(IoVdbDirectGrids, LevelSetEqualsOpenVdbs) {
         for (int by = 0; by < 32; ++by) addRun({bx, by, 0}, 16);
     addRun({40, 3, 5}, 4);
     addRun({40, 4, 5}, 2);
-    std::sort(sdf.inside_runs.begin(), sdf.inside_runs.end(), [](const auto& a, const auto& b) { return a.begin < b.begin; });
+    std::sort(sdf.inside_runs.begin(), sdf.inside_runs.end(),
+              [](const auto& a, const auto& b) { return a.begin < b.begin; });
 
     // OpenVDB, voxel by voxel.
     auto density = referenceShell(r);
@@ -303,7 +313,8 @@ TEST(IoVdbDirectGrids, LevelSetEqualsOpenVdbs) {
         reference->tree().prune();
     }
     TempDir dir;
-    const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string(),
+    const std::string direct_path = (dir.path / "direct.vdb").string(),
+                      reference_path = (dir.path / "openvdb.vdb").string(),
                       made_path = (dir.path / "made.vdb").string();
     hyvox::writeVdb(r, direct_path);
     hyvox::io::writeGridsAtomic({density, reference}, reference_path);

@@ -98,7 +98,8 @@ void expectSameTree(const GridType& grid, const VdbReadGrid& read) {
     const int width = read.channels();
     EXPECT_EQ(read.name, grid.getName());
     // OpenVDB writes no class for GRID_UNKNOWN.
-    const std::string grid_class = grid.getGridClass() == openvdb::GRID_UNKNOWN ? "" : openvdb::GridBase::gridClassToString(grid.getGridClass());
+    const std::string grid_class =
+        grid.getGridClass() == openvdb::GRID_UNKNOWN ? "" : openvdb::GridBase::gridClassToString(grid.getGridClass());
     EXPECT_EQ(read.metaText("class"), grid_class);
     const auto background = asFloats<GridType>(grid.background());
     EXPECT_TRUE(std::equal(background.begin(), background.begin() + width, read.background.begin()));
@@ -117,10 +118,12 @@ void expectSameTree(const GridType& grid, const VdbReadGrid& read) {
             const auto want = asFloats<GridType>(leaf->getValue(v));
             const float* value = nullptr;
             if (leaf->isValueOn(v))
-                value = read.uniform ? read.uniform_value.data() : &read.values[std::size_t(active++) * std::size_t(width)];
+                value =
+                    read.uniform ? read.uniform_value.data() : &read.values[std::size_t(active++) * std::size_t(width)];
             else
-                value = got.inactive >= 0 ? &read.inactive_values[(std::size_t(got.inactive) * 512 + v) * std::size_t(width)]
-                                          : read.background.data();
+                value = got.inactive >= 0
+                    ? &read.inactive_values[(std::size_t(got.inactive) * 512 + v) * std::size_t(width)]
+                    : read.background.data();
             ASSERT_TRUE(std::equal(want.begin(), want.begin() + width, value)) << read.name << " voxel " << v;
         }
     }
@@ -157,10 +160,10 @@ TEST(IoVdbRead, EveryCompressionReadsBackAsOpenVdbsTrees) {
     ASSERT_GT(fog->tree().activeTileCount(), 0u);
     const std::string transform = hyvox::io::vdbTransformBytes(spec());
     using namespace openvdb::io;
-    for (const std::uint32_t compression : {std::uint32_t(COMPRESS_NONE), std::uint32_t(COMPRESS_ZIP),
-                                            std::uint32_t(COMPRESS_BLOSC), std::uint32_t(COMPRESS_ACTIVE_MASK),
-                                            std::uint32_t(COMPRESS_ZIP | COMPRESS_ACTIVE_MASK),
-                                            std::uint32_t(COMPRESS_BLOSC | COMPRESS_ACTIVE_MASK)}) {
+    for (const std::uint32_t compression :
+         {std::uint32_t(COMPRESS_NONE), std::uint32_t(COMPRESS_ZIP), std::uint32_t(COMPRESS_BLOSC),
+          std::uint32_t(COMPRESS_ACTIVE_MASK), std::uint32_t(COMPRESS_ZIP | COMPRESS_ACTIVE_MASK),
+          std::uint32_t(COMPRESS_BLOSC | COMPRESS_ACTIVE_MASK)}) {
         SCOPED_TRACE("compression " + std::to_string(compression));
         const std::string path = (dir.path / ("grids" + std::to_string(compression) + ".vdb")).string();
         openvdb::io::File file(path);

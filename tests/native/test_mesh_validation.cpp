@@ -57,7 +57,8 @@ TEST(MeshValidation, FloatMaxCoordinatesAreRejectedAsBlendersInf) {
             hyvox::validate(view(p, t));
             FAIL() << "expected InvalidInput for " << bad;
         } catch (const hyvox::InvalidInput& e) {
-            EXPECT_NE(std::string(e.what()).find("vertex 2 has a non-finite coordinate"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("vertex 2 has a non-finite coordinate"), std::string::npos)
+                << e.what();
             EXPECT_NE(std::string(e.what()).find("Inf as Blender stores it"), std::string::npos) << e.what();
         }
     }
@@ -148,7 +149,7 @@ TEST(MeshValidation, ChunkedPassEqualsASerialPass) {
         const double e0[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
         const double e1[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
         const bool zero = e0[1] * e1[2] - e0[2] * e1[1] == 0 && e0[2] * e1[0] - e0[0] * e1[2] == 0 &&
-                          e0[0] * e1[1] - e0[1] * e1[0] == 0;
+            e0[0] * e1[1] - e0[1] * e1[0] == 0;
         if (idx[0] == idx[1] || idx[1] == idx[2] || idx[0] == idx[2] || zero) continue;
         usable.push_back(std::uint32_t(t));
         for (const float* p : {a, b, c})

@@ -57,7 +57,8 @@ double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const 
     const double vb = d5 * d2 - d1 * d6;
     if (vb <= 0 && d2 >= 0 && d6 <= 0) return length(sub(p, along(a, ac, d2 / (d2 - d6))));
     const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return length(sub(p, along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)))));
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+        return length(sub(p, along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)))));
     const double denom = 1.0 / (va + vb + vc);
     const Vec3 q = along(along(a, ab, vb * denom), ac, vc * denom);
     return length(sub(p, q));
@@ -68,7 +69,8 @@ double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const 
 struct Oracle {
     Oracle(const ValidatedMesh& mesh, const GridSpec& grid) {
         for (const std::uint32_t t : mesh.usable) {
-            std::array<Vec3, 3> c{grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)), grid.toVoxel(mesh.vertex(t, 2))};
+            std::array<Vec3, 3> c{grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)),
+                                  grid.toVoxel(mesh.vertex(t, 2))};
             corners.push_back(c);
             Vec3 lo, hi;
             for (int a = 0; a < 3; ++a) {
@@ -277,7 +279,8 @@ TEST(SdfGrid, PaddedByTheBand) {
         }
         // The same voxels, shifted; the origin's other rounding may move a voxel that only
         // touches the mesh.
-        EXPECT_NEAR(double(with.occupancy.count()), double(without.occupancy.count()), 0.01 * double(without.occupancy.count()));
+        EXPECT_NEAR(double(with.occupancy.count()), double(without.occupancy.count()),
+                    0.01 * double(without.occupancy.count()));
     }
 }
 

@@ -65,7 +65,8 @@ TEST(SolidSparseGrid, WholeBricksBecomeTilesAndEverythingElseSeesTheirVoxels) {
     EXPECT_EQ(sparse.leafCount() + sparse.tileCount(), [&] {
         std::size_t bricks = 0;
         for (std::size_t n = 0; n < dense.brickCount(); ++n)
-            bricks += std::any_of(dense.data() + n * 8, dense.data() + n * 8 + 8, [](std::uint64_t w) { return w != 0; });
+            bricks +=
+                std::any_of(dense.data() + n * 8, dense.data() + n * 8 + 8, [](std::uint64_t w) { return w != 0; });
         return bricks;
     }());
     EXPECT_EQ(sparse.count(), dense.count());
@@ -76,7 +77,8 @@ TEST(SolidSparseGrid, WholeBricksBecomeTilesAndEverythingElseSeesTheirVoxels) {
     EXPECT_EQ(listed, expected);
     for (int i = 0; i < 37; ++i)
         for (int j = 0; j < 24; ++j)
-            for (int k = 0; k < 19; ++k) ASSERT_EQ(sparse.test(i, j, k), dense.test(i, j, k)) << i << "," << j << "," << k;
+            for (int k = 0; k < 19; ++k)
+                ASSERT_EQ(sparse.test(i, j, k), dense.test(i, j, k)) << i << "," << j << "," << k;
 }
 
 TEST(SolidSparseGrid, MergeIsTheUnionWhateverTheVoxelsCameAs) {
@@ -115,7 +117,8 @@ struct Octahedron {
     std::vector<float> positions;
     std::vector<std::uint32_t> triangles;
     Octahedron() {
-        const double p[6][3] = {{c + r, c, c}, {c - r, c, c}, {c, c + r, c}, {c, c - r, c}, {c, c, c + r}, {c, c, c - r}};
+        const double p[6][3] = {{c + r, c, c}, {c - r, c, c}, {c, c + r, c},
+                                {c, c - r, c}, {c, c, c + r}, {c, c, c - r}};
         for (const auto& v : p)
             for (double x : v) positions.push_back(float(x));
         // Outward: for each octant (sx, sy, sz) the face (x, y, z corners) ordered counter-clockwise.
@@ -201,7 +204,8 @@ TEST(SolidRays, DegenerateNeedleFarPastTheGridIsNoReasonToRefuse) {
                             continue;
                         }
                         const auto p = grid.voxelCentre(i, j, k);
-                        const bool expected = std::fabs(p[0] - oct.c) + std::fabs(p[1] - oct.c) + std::fabs(p[2] - oct.c) < oct.r;
+                        const bool expected =
+                            std::fabs(p[0] - oct.c) + std::fabs(p[1] - oct.c) + std::fabs(p[2] - oct.c) < oct.r;
                         ASSERT_EQ(filled.occupancy.test(i, j, k), expected) << i << "," << j << "," << k;
                         inside += expected;
                     }
@@ -252,7 +256,8 @@ struct VoxelTriangles {
     // The usable triangles of a validated mesh.
     VoxelTriangles(const ValidatedMesh& mesh, const GridSpec& grid) {
         for (const std::uint32_t t : mesh.usable)
-            corners.push_back({grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)), grid.toVoxel(mesh.vertex(t, 2))});
+            corners.push_back(
+                {grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)), grid.toVoxel(mesh.vertex(t, 2))});
     }
     double winding(const solid::Vec3& q) const {
         double sum = 0;
@@ -286,7 +291,8 @@ TEST(SolidWinding, FastWindingNumbersMatchTheExactSum) {
     auto worstError = [&](double beta) {
         const solid::FastWinding fast(validated, grid, beta);
         double worst = 0;
-        for (std::size_t n = 0; n < points.size(); ++n) worst = std::max(worst, std::fabs(fast.at(points[n]) - exact[n]));
+        for (std::size_t n = 0; n < points.size(); ++n)
+            worst = std::max(worst, std::fabs(fast.at(points[n]) - exact[n]));
         return worst;
     };
     const double at2 = worstError(2.0), at8 = worstError(8.0);
@@ -314,7 +320,7 @@ TEST(SolidWinding, FloatSheetSumMatchesTallTriangles) {
                 s.b[k] = s.a[k] + (longer ? span(rng) : near(rng) / 4);
             }
             if (n % 50 == 0) s.b[0] = s.a[0], s.b[1] = s.a[1];  // vertical edges too
-            if (n % 5 == 1) {  // far below the box (above it for rays up): tall sheets
+            if (n % 5 == 1) {                                   // far below the box (above it for rays up): tall sheets
                 const double drop = upward ? 500.0 : -500.0;
                 s.a[2] += drop, s.b[2] += drop;
             }
@@ -330,7 +336,7 @@ TEST(SolidWinding, FloatSheetSumMatchesTallTriangles) {
             for (const auto& s : sheets) {
                 const solid::Vec3 a_top{s.a[0], s.a[1], s.a[2] + height}, b_top{s.b[0], s.b[1], s.b[2] + height};
                 exact += s.excess *
-                         (solid::triangleWinding(s.b, s.a, a_top, q) + solid::triangleWinding(s.b, a_top, b_top, q));
+                    (solid::triangleWinding(s.b, s.a, a_top, q) + solid::triangleWinding(s.b, a_top, b_top, q));
                 // The distance in xy from q's column to the edge.
                 const double dx = s.b[0] - s.a[0], dy = s.b[1] - s.a[1], length2 = dx * dx + dy * dy;
                 const double px = q[0] - s.a[0], py = q[1] - s.a[1];
@@ -414,7 +420,8 @@ TEST(SolidRays, BlockOfColumnsEqualsColumnByColumn) {
     const GridSpec grid = makeGrid(validated.bounds, options);
     const solid::RayCrossings rays(validated, grid);
     auto sorted = [](std::vector<solid::RayCrossings::Crossing> list) {
-        std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.z < b.z || (a.z == b.z && a.sign < b.sign); });
+        std::sort(list.begin(), list.end(),
+                  [](const auto& a, const auto& b) { return a.z < b.z || (a.z == b.z && a.sign < b.sign); });
         return list;
     };
     std::size_t crossings = 0;
@@ -455,8 +462,9 @@ TEST(SolidWinding, ManyPointsAtOnceEqualOneAtATime) {
         const solid::Vec3 corner{u(rng), u(rng), u(rng)};
         std::vector<solid::Vec3> points;
         for (int n = 0; n < 1 + batch * 7; ++n)
-            points.push_back(batch % 2 ? solid::Vec3{corner[0] + brick(rng), corner[1] + brick(rng), corner[2] + brick(rng)}
-                                       : solid::Vec3{u(rng), u(rng), u(rng)});
+            points.push_back(batch % 2
+                                 ? solid::Vec3{corner[0] + brick(rng), corner[1] + brick(rng), corner[2] + brick(rng)}
+                                 : solid::Vec3{u(rng), u(rng), u(rng)});
         std::vector<double> many(points.size());
         winding.atMany(points.data(), points.size(), many.data());
         for (std::size_t n = 0; n < points.size(); ++n) EXPECT_EQ(many[n], winding.at(points[n])) << batch << " " << n;
@@ -493,7 +501,8 @@ TEST(SolidWinding, LocalExpansionMatchesTheClustersFieldsPointByPoint) {
         expansion.reset(centre);
         for (int n = 0; n < 100; ++n) {
             solid::Vec3 direction{unit(rng), unit(rng), unit(rng)};
-            const double length = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
+            const double length =
+                std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
             const double d = kappa * rho * (1.0 + 3.0 * spread(rng));
             Cluster k;
             for (int i = 0; i < 3; ++i) k.c[i] = centre[i] + d * direction[i] / length, k.area[i] = 50.0 * unit(rng);
@@ -526,11 +535,12 @@ struct SponzaOnGrid {
     explicit SponzaOnGrid(int resolution)
         : mesh(test::loadTestMesh(test::meshPath("sponza_crytek_262k_vcolor.ply.gz"))),
           validated(validate(mesh.view())),
-          grid(makeGrid(validated.bounds, [&] {
-              GridOptions options;
-              options.resolution = resolution;
-              return options;
-          }())),
+          grid(makeGrid(validated.bounds,
+                        [&] {
+                            GridOptions options;
+                            options.resolution = resolution;
+                            return options;
+                        }())),
           triangles(validated, grid) {}
     double exactWinding(const solid::Vec3& q) const { return triangles.winding(q); }
     test::TestMesh mesh;
@@ -556,7 +566,8 @@ TEST(SolidWinding, BoxOfPointsMatchesOneAtATimeAndTheExactSum) {
         for (int d = 0; d < 3; ++d) brick[d] = 8 * int(rng() % std::uint32_t((grid.dims[d] + 7) / 8));
         std::vector<solid::Vec3> points;
         for (int n = 0; n < count; ++n)
-            points.push_back({brick[0] + int(rng() % 8) + 0.5, brick[1] + int(rng() % 8) + 0.5, brick[2] + int(rng() % 8) + 0.5});
+            points.push_back(
+                {brick[0] + int(rng() % 8) + 0.5, brick[1] + int(rng() % 8) + 0.5, brick[2] + int(rng() % 8) + 0.5});
         return points;
     };
     {
@@ -588,8 +599,9 @@ TEST(SolidWinding, BoxOfPointsMatchesOneAtATimeAndTheExactSum) {
             ++checked;
         }
     }
-    std::printf("atBox - at(): max %.3g; vs the exact sum over %d points: atBox max %.3g mean %.3g, at() max %.3g mean %.3g\n",
-                worst_vs_at, checked, worst_box, sum_box / checked, worst_at, sum_at / checked);
+    std::printf(
+        "atBox - at(): max %.3g; vs the exact sum over %d points: atBox max %.3g mean %.3g, at() max %.3g mean %.3g\n",
+        worst_vs_at, checked, worst_box, sum_box / checked, worst_at, sum_at / checked);
     // Measured: atBox - at() at most 0.031 (at() errs by up to 0.029 on the points checked);
     // atBox's own error at most 0.024, mean 0.0030 (at(): 0.0051). Every point against at()
     // within the band the decisions are tested with, the checked ones against the exact sum.
@@ -623,7 +635,8 @@ TEST(SolidWinding, BrickSamplesAreTheBoxesPointsAndMatchTheExactSum) {
                     top[d] = lo[d] + 8 < grid.dims[d] ? lo[d] + 8 : grid.dims[d] - 1;
                     wide = wide && top[d] - lo[d] >= 2;
                 }
-                for (int c = 0; c < 8; ++c) points.push_back({c & 4 ? top[0] : lo[0], c & 2 ? top[1] : lo[1], c & 1 ? top[2] : lo[2]});
+                for (int c = 0; c < 8; ++c)
+                    points.push_back({c & 4 ? top[0] : lo[0], c & 2 ? top[1] : lo[1], c & 1 ? top[2] : lo[2]});
                 const Int3 middle{(lo[0] + top[0]) / 2, (lo[1] + top[1]) / 2, (lo[2] + top[2]) / 2};
                 if (wide) points.push_back(middle);
                 if (top[0] - lo[0] == 8) halved.push_back({middle[0], lo[1], lo[2]});
@@ -654,8 +667,9 @@ TEST(SolidWinding, BrickSamplesAreTheBoxesPointsAndMatchTheExactSum) {
         sum_exact += std::fabs(first[n] - (exact - below));
         ++checked;
     }
-    std::printf("brick samples: %zu points; against the exact sum over %d: max %.3g mean %.3g; against at(): max %.3g\n",
-                points.size(), checked, worst_exact, sum_exact / checked, worst_at);
+    std::printf(
+        "brick samples: %zu points; against the exact sum over %d: max %.3g mean %.3g; against at(): max %.3g\n",
+        points.size(), checked, worst_exact, sum_exact / checked, worst_at);
     // Measured: against the exact sum max 0.029, mean 0.005 (at() itself errs as much there);
     // against at() max 0.004. The bounds are the band the decisions are tested with.
     EXPECT_GT(checked, 100);
@@ -697,7 +711,8 @@ TEST(SolidWinding, BrickSamplesAskedByManyThreadsEqualOneThreads) {
             std::vector<std::size_t> order(candidates.size());
             for (std::size_t n = 0; n < order.size(); ++n) order[n] = n;
             std::shuffle(order.begin(), order.end(), std::mt19937(unsigned(t)));
-            for (const std::size_t n : order) found[std::size_t(t)][n] = shared.find(candidates[n], values[std::size_t(t)][n]);
+            for (const std::size_t n : order)
+                found[std::size_t(t)][n] = shared.find(candidates[n], values[std::size_t(t)][n]);
         });
     for (std::thread& t : threads) t.join();
     std::size_t points = 0;
@@ -752,7 +767,8 @@ TEST(SolidWinding, EachCallReadsItsOwnMeshsRays) {
             const auto base = std::uint32_t(positions.size() / 3);
             for (const auto& c : corners)
                 for (const float x : c) positions.push_back(x / 16);
-            for (std::uint32_t k = 1; k + 1 < corners.size(); ++k) triangles.insert(triangles.end(), {base, base + k, base + k + 1});
+            for (std::uint32_t k = 1; k + 1 < corners.size(); ++k)
+                triangles.insert(triangles.end(), {base, base + k, base + k + 1});
         };
         const float a = 3.2f, b = 28.8f, lo = bottom, hi = 56;  // faces outward
         polygon({{a, a, lo}, {a, b, lo}, {b, b, lo}, {b, a, lo}});

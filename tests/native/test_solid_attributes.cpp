@@ -74,7 +74,9 @@ struct Dense {
     std::array<int, 3> dims;
     std::vector<char> set;
     std::vector<double> values;
-    std::size_t at(int i, int j, int k) const { return (std::size_t(i) * std::size_t(dims[1]) + std::size_t(j)) * std::size_t(dims[2]) + std::size_t(k); }
+    std::size_t at(int i, int j, int k) const {
+        return (std::size_t(i) * std::size_t(dims[1]) + std::size_t(j)) * std::size_t(dims[2]) + std::size_t(k);
+    }
     explicit Dense(const VoxelizeResult& r) : dims{r.grid.dims[0], r.grid.dims[1], r.grid.dims[2]} {
         set.assign(std::size_t(dims[0]) * std::size_t(dims[1]) * std::size_t(dims[2]), 0);
         values.assign(set.size() * 6, 0.0);
@@ -112,7 +114,8 @@ TEST(SolidAttributes, InsideValuesFollowTheLayerAndTileRule) {
             bool surface_voxel = false;
             for (int x = 0; x < 8; ++x)
                 for (int y = 0; y < 8; ++y)
-                    for (int z = 0; z < 8; ++z) surface_voxel = surface_voxel || s.set[d.at(at[0] * 8 + x, at[1] * 8 + y, at[2] * 8 + z)];
+                    for (int z = 0; z < 8; ++z)
+                        surface_voxel = surface_voxel || s.set[d.at(at[0] * 8 + x, at[1] * 8 + y, at[2] * 8 + z)];
             if (surface_voxel) continue;
             tile_bricks.push_back({at[0], at[1], at[2]});
             for (int x = 0; x < 8; ++x)
@@ -159,7 +162,8 @@ TEST(SolidAttributes, InsideValuesFollowTheLayerAndTileRule) {
     for (std::size_t a = 0; a < d.set.size(); ++a) {
         if (!d.set[a] || tile[a]) continue;
         ASSERT_TRUE(valued[a]) << "a leaf voxel the layers do not reach";
-        for (int c = 0; c < 6; ++c) ASSERT_NEAR(d.values[a * 6 + std::size_t(c)], values[a * 6 + std::size_t(c)], 1e-5) << a;
+        for (int c = 0; c < 6; ++c)
+            ASSERT_NEAR(d.values[a * 6 + std::size_t(c)], values[a * 6 + std::size_t(c)], 1e-5) << a;
         inside += !s.set[a];
     }
     ASSERT_TRUE(solid.stats.solid);
@@ -191,7 +195,8 @@ TEST(SolidAttributes, InsideValuesFollowTheLayerAndTileRule) {
             double sums[6] = {};
             int count = 0;
             for (const auto& [other, value] : tile_value) {
-                if (std::abs(other[0] - b[0]) > 1 || std::abs(other[1] - b[1]) > 1 || std::abs(other[2] - b[2]) > 1) continue;
+                if (std::abs(other[0] - b[0]) > 1 || std::abs(other[1] - b[1]) > 1 || std::abs(other[2] - b[2]) > 1)
+                    continue;
                 for (int c = 0; c < 6; ++c) sums[c] += value[std::size_t(c)];
                 ++count;
             }
@@ -206,7 +211,8 @@ TEST(SolidAttributes, InsideValuesFollowTheLayerAndTileRule) {
     for (const auto& [b, value] : tile_value)
         for (int x = 0; x < 8; ++x)
             for (int c = 0; c < 6; ++c)
-                ASSERT_NEAR(d.values[d.at(b[0] * 8 + x, b[1] * 8 + 7 - x, b[2] * 8 + x) * 6 + std::size_t(c)], value[std::size_t(c)], 1e-5);
+                ASSERT_NEAR(d.values[d.at(b[0] * 8 + x, b[1] * 8 + 7 - x, b[2] * 8 + x) * 6 + std::size_t(c)],
+                            value[std::size_t(c)], 1e-5);
 }
 
 TEST(SolidAttributes, ThreadsAndTilingChangeNothing) {
@@ -233,7 +239,8 @@ TEST(SolidAttributes, DirectFileEqualsOpenVdbsAndSharesTheDensitysTree) {
     ASSERT_FALSE(r.attributes.tiles.empty());
     ASSERT_FALSE(r.attributes.valued_tile_bricks.empty()) << "whole bricks holding surface voxels";
     test::TempDir dir;
-    const std::string direct_path = (dir.path / "direct.vdb").string(), reference_path = (dir.path / "openvdb.vdb").string();
+    const std::string direct_path = (dir.path / "direct.vdb").string(),
+                      reference_path = (dir.path / "openvdb.vdb").string();
     writeVdb(r, direct_path);
     const openvdb::GridPtrVec grids = io::makeGrids(r);
     io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), reference_path);

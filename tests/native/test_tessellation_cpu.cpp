@@ -93,7 +93,8 @@ TEST(TessellationSurface, PnTrianglesInterpolateCornersAndBulgeTowardsTheSphere)
         // The face centre: flat lies at radius 1/√3, PN much closer to the unit sphere.
         const Vec3d centre{1.0 / 3, 1.0 / 3, 1.0 / 3};
         auto radius = [](const SurfacePoint& p) {
-            return std::sqrt(p.position[0] * p.position[0] + p.position[1] * p.position[1] + p.position[2] * p.position[2]);
+            return std::sqrt(p.position[0] * p.position[0] + p.position[1] * p.position[1] +
+                             p.position[2] * p.position[2]);
         };
         const double flat = radius(surface.evaluate(t, centre, false));
         const double pn = radius(surface.evaluate(t, centre, true));
@@ -160,17 +161,14 @@ TEST(DisplacementMap, ReadsEightAndSixteenBitGreyPng) {
 // every image hyvox reads refuses it before anything is allocated for its pixels.
 TEST(DisplacementMap, AHeightImagePastTheTexelLimitIsRefusedBeforeDecoding) {
     auto chunk = [](const char* type, const std::string& data) {
-        auto be32 = [](std::uint32_t v) {
-            return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
-        };
+        auto be32 = [](std::uint32_t v) { return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; };
         const std::string body = std::string(type, 4) + data;
         return be32(std::uint32_t(data.size())) + body +
-               be32(std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()))));
+            be32(std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()))));
     };
     const std::string size = std::string("\0\0\x23\x28", 4);  // 9000
     const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) +
-                            chunk("IHDR", size + size + std::string("\x08\0\0\0\0", 5)) + chunk("IDAT", "x") +
-                            chunk("IEND", "");
+        chunk("IHDR", size + size + std::string("\x08\0\0\0\0", 5)) + chunk("IDAT", "x") + chunk("IEND", "");
     const std::string path = (std::filesystem::temp_directory_path() / "hyvox_test_huge_height.png").string();
     std::FILE* file = std::fopen(path.c_str(), "wb");
     ASSERT_NE(file, nullptr);
@@ -180,7 +178,8 @@ TEST(DisplacementMap, AHeightImagePastTheTexelLimitIsRefusedBeforeDecoding) {
         hyvox::readPngHeight(path);
         ADD_FAILURE() << "read";
     } catch (const InvalidInput& e) {
-        EXPECT_NE(std::string(e.what()).find("has 9000x9000 texels, more than the limit of 8192x8192"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("has 9000x9000 texels, more than the limit of 8192x8192"),
+                  std::string::npos)
             << e.what();
     }
     std::filesystem::remove(path);

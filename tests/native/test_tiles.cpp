@@ -7,8 +7,8 @@
 
 #include <algorithm>
 #include <random>
-#include <tuple>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "hyvox/sparse_grid.h"
@@ -20,8 +20,7 @@
 namespace hyvox {
 namespace {
 
-constexpr Method kTiledMethods[] = {Method::Cpu, Method::Reference, Method::Triangle, Method::Fragment,
-                                    Method::Hybrid};
+constexpr Method kTiledMethods[] = {Method::Cpu, Method::Reference, Method::Triangle, Method::Fragment, Method::Hybrid};
 
 VoxelizeOptions optionsFor(Method method, Mode mode, int resolution, int tile_size) {
     VoxelizeOptions o;
@@ -85,13 +84,15 @@ TEST_P(TiledMeshTest, EveryMethodSetsTheSameVoxelsInSmallTiles) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedMeshes, TiledMeshTest, ::testing::ValuesIn(test::sharedMeshFiles()),
-                         [](const ::testing::TestParamInfo<std::string>& mesh_case) { return test::meshCaseName(mesh_case.param, 48); });
+                         [](const ::testing::TestParamInfo<std::string>& mesh_case) {
+                             return test::meshCaseName(mesh_case.param, 48);
+                         });
 
 // Two squares lying exactly on voxel planes that are tile borders (z = 16, x = 8): their
 // voxels on both sides of the plane belong to different tiles.
 TEST(Tiles, FacesOnTileBordersMarkBothSides) {
-    const std::vector<float> positions = {2, 2, 16, 30, 2, 16, 30, 30, 16, 2, 30, 16,
-                                          8, 3, 3,  8,  29, 3, 8,  29, 29, 8,  3, 29};
+    const std::vector<float> positions = {2, 2, 16, 30, 2,  16, 30, 30, 16, 2, 30, 16,
+                                          8, 3, 3,  8,  29, 3,  8,  29, 29, 8, 3,  29};
     const std::vector<std::uint32_t> triangles = {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7};
     const MeshView mesh = test::viewOf(positions, triangles);
     for (Method method : kTiledMethods) {
@@ -184,7 +185,8 @@ TEST(SparseGrid, TilesInAnyOrderGiveTheDenseGridsLeaves) {
     for (int x0 : {32, 0, 16})  // out of order on purpose
         for (int y0 : {0, 16})
             for (int z0 : {16, 0}) {
-                const std::array<std::int32_t, 3> dims{std::min(16, 40 - x0), std::min(16, 24 - y0), std::min(16, 17 - z0)};
+                const std::array<std::int32_t, 3> dims{std::min(16, 40 - x0), std::min(16, 24 - y0),
+                                                       std::min(16, 17 - z0)};
                 BitGrid tile(dims);
                 for (int i = 0; i < dims[0]; ++i)
                     for (int j = 0; j < dims[1]; ++j)

@@ -12,13 +12,14 @@ CANCELLED_NORMAL_LENGTH (opposite faces cancelling in a voxel) is zero.
 
 All clipping is Sutherland-Hodgman in double, vectorised over every (triangle, voxel) pair.
 """
+
 from __future__ import annotations
 
 import numpy as np
 
 AREA_EPSILON = 1e-6  # the weight of a touch
-TOUCH_AREA = 1e-14   # clipped areas below this count as a touch (voxel units²)
-MAX_VERTICES = 9     # a triangle clipped by 6 half-spaces has at most 3 + 6 corners
+TOUCH_AREA = 1e-14  # clipped areas below this count as a touch (voxel units²)
+MAX_VERTICES = 9  # a triangle clipped by 6 half-spaces has at most 3 + 6 corners
 CANCELLED_NORMAL_LENGTH = 1e-5  # a shorter mean normal has no direction: zero
 TOUCH_MARGIN = 1e-9  # box growth that finds touches the exact clip loses to rounding
 
@@ -189,8 +190,12 @@ def voxel_attributes(
     corners_world = vertices[triangles]
     corners = (corners_world - np.asarray(origin, dtype=np.float64)) / float(voxel_size)
     cross = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    usable = (np.linalg.norm(cross, axis=1) > 0) & (triangles[:, 0] != triangles[:, 1]) & (
-        triangles[:, 1] != triangles[:, 2]) & (triangles[:, 0] != triangles[:, 2])
+    usable = (
+        (np.linalg.norm(cross, axis=1) > 0)
+        & (triangles[:, 0] != triangles[:, 1])
+        & (triangles[:, 1] != triangles[:, 2])
+        & (triangles[:, 0] != triangles[:, 2])
+    )
     keep = np.nonzero(usable)[0]
     tri_local, found, weight, centroid = clipped_pairs(corners[keep], dims)
     if voxels is not None:
@@ -200,8 +205,9 @@ def voxel_attributes(
         lost = set_keys - found_keys
         if lost:
             more = clipped_pairs(corners[keep], dims, TOUCH_MARGIN, lost)
-            tri_local, found, weight, centroid = (np.concatenate([a, b]) for a, b in
-                                                  zip((tri_local, found, weight, centroid), more))
+            tri_local, found, weight, centroid = (
+                np.concatenate([a, b]) for a, b in zip((tri_local, found, weight, centroid), more)
+            )
     voxels = found
     tri = keep[tri_local]
     bary = _barycentrics(corners[tri], centroid)
@@ -229,9 +235,7 @@ def voxel_attributes(
     sum_weight = np.bincount(inverse, weights=weight)
     out = {}
     for name, value in values.items():
-        sums = np.stack(
-            [np.bincount(inverse, weights=weight * value[:, c]) for c in range(value.shape[1])], axis=1
-        )
+        sums = np.stack([np.bincount(inverse, weights=weight * value[:, c]) for c in range(value.shape[1])], axis=1)
         mean = sums / sum_weight[:, None]
         if name == "color" and mean.shape[1] == 4:
             out["alpha"] = mean[:, 3]

@@ -3,6 +3,7 @@
 explanation (tests/python/test_module_diagnosis.py, tests/blender/test_module_diagnosis.py):
 a real shared object built here with the C compiler, linked against a library that is
 then deleted."""
+
 import pathlib
 import shutil
 import subprocess
@@ -20,12 +21,24 @@ def build_broken_package(root: pathlib.Path) -> pathlib.Path:
     work.mkdir()
     (work / "gone.c").write_text("int hyvox_gone(void) { return 1; }\n")
     (work / "core.c").write_text("int hyvox_gone(void);\nint PyInit__core(void) { return hyvox_gone(); }\n")
-    subprocess.run([cc, "-shared", "-fPIC", "-o", str(work / GONE), f"-Wl,-soname,{GONE}", str(work / "gone.c")],
-                   check=True)
+    subprocess.run(
+        [cc, "-shared", "-fPIC", "-o", str(work / GONE), f"-Wl,-soname,{GONE}", str(work / "gone.c")], check=True
+    )
     package = root / "hyvox"
     package.mkdir()
-    subprocess.run([cc, "-shared", "-fPIC", "-o", str(package / ("_core" + SUFFIX)), str(work / "core.c"),
-                    f"-L{work}", f"-l:{GONE}"], check=True)
+    subprocess.run(
+        [
+            cc,
+            "-shared",
+            "-fPIC",
+            "-o",
+            str(package / ("_core" + SUFFIX)),
+            str(work / "core.c"),
+            f"-L{work}",
+            f"-l:{GONE}",
+        ],
+        check=True,
+    )
     (work / GONE).unlink()
     (package / "__init__.py").write_text("from . import _core\nvoxelize = None\n")
     return package

@@ -32,9 +32,11 @@ def cli() -> pathlib.Path:
 
 def shared_mesh(name, file):
     """A session fixture `name`: (vertices, triangles) of the shared mesh `file`."""
+
     @pytest.fixture(scope="session", name=name)
     def read(mesh_dir):
         return hyvox.read_mesh(mesh_dir / file)
+
     return read
 
 
@@ -56,6 +58,8 @@ def tetra_obj(tetrahedron, tmp_path) -> pathlib.Path:
     """The tetrahedron as an OBJ file in tmp_path, for the CLI."""
     vertices, triangles = tetrahedron
     path = tmp_path / "tetra.obj"
-    path.write_text("".join(f"v {x:g} {y:g} {z:g}\n" for x, y, z in vertices) +
-                    "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in triangles))
+    path.write_text(
+        "".join(f"v {x:g} {y:g} {z:g}\n" for x, y, z in vertices)
+        + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in triangles)
+    )
     return path

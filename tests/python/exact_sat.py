@@ -48,8 +48,11 @@ def is_touch(corners, voxel):
 def exact_voxels_near(corners, found, dims):
     """The exact voxels among those any method found and their 26 neighbours (enough when
     the triangle lies within a fraction of a voxel of what the methods see)."""
-    candidates = {tuple(v + d for v, d in zip(voxel, step))
-                  for voxel in set().union(*found) for step in product((-1, 0, 1), repeat=3)}
+    candidates = {
+        tuple(v + d for v, d in zip(voxel, step))
+        for voxel in set().union(*found)
+        for step in product((-1, 0, 1), repeat=3)
+    }
     return {c for c in candidates if all(0 <= v < n for v, n in zip(c, dims)) and exact_overlap(corners, c)}
 
 

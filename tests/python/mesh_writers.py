@@ -5,6 +5,7 @@ from the library that reads them (assimp) nor from hyvox. Each takes float32 ver
 and uint32 triangles (M, 3) and returns the file's bytes.
 
     FORMATS: {name: (file suffix, writer)}"""
+
 import base64
 import io
 import json
@@ -21,9 +22,11 @@ def _arrays(vertices, triangles):
 
 def ply_binary(vertices, triangles):
     v, t = _arrays(vertices, triangles)
-    header = (f"ply\nformat binary_little_endian 1.0\nelement vertex {len(v)}\nproperty float x\n"
-              f"property float y\nproperty float z\nelement face {len(t)}\n"
-              "property list uchar int vertex_indices\nend_header\n").encode()
+    header = (
+        f"ply\nformat binary_little_endian 1.0\nelement vertex {len(v)}\nproperty float x\n"
+        f"property float y\nproperty float z\nelement face {len(t)}\n"
+        "property list uchar int vertex_indices\nend_header\n"
+    ).encode()
     faces = np.zeros(len(t), np.dtype([("n", "u1"), ("i", "<i4", 3)]))
     faces["n"] = 3
     faces["i"] = t
@@ -72,22 +75,35 @@ def _gltf(vertices, triangles, uri):
         buffer["uri"] = uri(data)
     document = {
         "asset": {"version": "2.0", "generator": "hyvox tests"},
-        "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4}]}],
         "buffers": [buffer],
-        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": v.nbytes, "target": 34962},
-                        {"buffer": 0, "byteOffset": v.nbytes, "byteLength": t.nbytes, "target": 34963}],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(v), "type": "VEC3",
-                       "min": v.min(axis=0).tolist(), "max": v.max(axis=0).tolist()},
-                      {"bufferView": 1, "componentType": 5125, "count": t.size, "type": "SCALAR"}],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": v.nbytes, "target": 34962},
+            {"buffer": 0, "byteOffset": v.nbytes, "byteLength": t.nbytes, "target": 34963},
+        ],
+        "accessors": [
+            {
+                "bufferView": 0,
+                "componentType": 5126,
+                "count": len(v),
+                "type": "VEC3",
+                "min": v.min(axis=0).tolist(),
+                "max": v.max(axis=0).tolist(),
+            },
+            {"bufferView": 1, "componentType": 5125, "count": t.size, "type": "SCALAR"},
+        ],
     }
     return document, data
 
 
 def gltf(vertices, triangles):
     """glTF with its buffer embedded as a base64 data URI (one self-contained file)."""
-    document, _ = _gltf(vertices, triangles,
-                        lambda data: "data:application/octet-stream;base64," + base64.b64encode(data).decode())
+    document, _ = _gltf(
+        vertices, triangles, lambda data: "data:application/octet-stream;base64," + base64.b64encode(data).decode()
+    )
     return json.dumps(document).encode()
 
 
@@ -104,20 +120,26 @@ def three_mf(vertices, triangles):
     v, t = _arrays(vertices, triangles)
     vertex_xml = "".join(f'<vertex x="{x!r}" y="{y!r}" z="{z!r}"/>' for x, y, z in v.astype(float).tolist())
     triangle_xml = "".join(f'<triangle v1="{a}" v2="{b}" v3="{c}"/>' for a, b, c in t.tolist())
-    model = ('<?xml version="1.0" encoding="UTF-8"?>\n'
-             '<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">'
-             f'<resources><object id="1" type="model"><mesh><vertices>{vertex_xml}</vertices>'
-             f'<triangles>{triangle_xml}</triangles></mesh></object></resources>'
-             '<build><item objectid="1"/></build></model>')
-    types = ('<?xml version="1.0" encoding="UTF-8"?>\n'
-             '<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">'
-             '<Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/>'
-             '<Default Extension="model" ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/>'
-             '</Types>')
-    rels = ('<?xml version="1.0" encoding="UTF-8"?>\n'
-            '<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">'
-            '<Relationship Target="/3D/3dmodel.model" Id="rel0" '
-            'Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>')
+    model = (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        '<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">'
+        f'<resources><object id="1" type="model"><mesh><vertices>{vertex_xml}</vertices>'
+        f"<triangles>{triangle_xml}</triangles></mesh></object></resources>"
+        '<build><item objectid="1"/></build></model>'
+    )
+    types = (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        '<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">'
+        '<Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/>'
+        '<Default Extension="model" ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/>'
+        "</Types>"
+    )
+    rels = (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        '<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">'
+        '<Relationship Target="/3D/3dmodel.model" Id="rel0" '
+        'Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>'
+    )
     out = io.BytesIO()
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
         z.writestr("[Content_Types].xml", types)
@@ -160,8 +182,15 @@ def _fbx_node(name, properties, children, offset, wide, compress):
     if children:
         body += b"\0" * (3 * struct.calcsize(field) + 1)
     end = offset + head + len(props) + len(body)
-    return (struct.pack(field, end) + struct.pack(field, len(properties)) + struct.pack(field, len(props)) +
-            struct.pack("<B", len(name)) + name.encode() + props + body)
+    return (
+        struct.pack(field, end)
+        + struct.pack(field, len(properties))
+        + struct.pack(field, len(props))
+        + struct.pack("<B", len(name))
+        + name.encode()
+        + props
+        + body
+    )
 
 
 def _node(name, properties=(), children=()):
@@ -175,11 +204,15 @@ def fbx(vertices, triangles, version=7400, compress=False):
     v, t = _arrays(vertices, triangles)
     polygon = t.astype(np.int64).copy()
     polygon[:, 2] = -polygon[:, 2] - 1  # the last corner of a polygon is written as -(index + 1)
-    geometry = _node("Geometry", (_Id(1000), "mesh\0\1Geometry", "Mesh"), [
-        _node("Vertices", (v.reshape(-1).astype(np.float64),)),
-        _node("PolygonVertexIndex", (polygon.reshape(-1).astype(np.int32),)),
-        _node("GeometryVersion", (124,)),
-    ])
+    geometry = _node(
+        "Geometry",
+        (_Id(1000), "mesh\0\1Geometry", "Mesh"),
+        [
+            _node("Vertices", (v.reshape(-1).astype(np.float64),)),
+            _node("PolygonVertexIndex", (polygon.reshape(-1).astype(np.int32),)),
+            _node("GeometryVersion", (124,)),
+        ],
+    )
     model = _node("Model", (_Id(2000), "mesh\0\1Model", "Mesh"), [_node("Version", (232,))])
     nodes = [
         _node("FBXHeaderExtension", (), [_node("FBXHeaderVersion", (1003,)), _node("FBXVersion", (version,))]),

@@ -2,6 +2,7 @@
 """Blocks output (core/blocks.py) against a dense numpy count of exposed faces, and the
 MagicaVoxel .vox export (core/vox.py) read back by an independent parser written here from
 the format's description."""
+
 import os
 import struct
 import sys
@@ -55,6 +56,7 @@ def test_face_counts_match_a_dense_count(name):
 
 def test_voxelized_bunny_blocks(bunny):
     import hyvox
+
     grid = hyvox.voxelize(*bunny, resolution=48, method="cpu")
     ijk = grid.coords()
     mesh = blocks.blocks_mesh(ijk, grid.voxel_size, grid.origin)
@@ -70,7 +72,7 @@ def test_faces_face_out_of_the_solid_and_corners_are_welded():
     size, origin = 0.25, np.array([1.0, -2.0, 0.5])
     mesh = blocks.blocks_mesh(ijk, size, origin)
     occupied = {tuple(v) for v in ijk}
-    corners = mesh.vertices[mesh.faces].astype(np.float64)        # (F,4,3)
+    corners = mesh.vertices[mesh.faces].astype(np.float64)  # (F,4,3)
     normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     np.testing.assert_allclose(normal, blocks.DIRECTIONS[mesh.face_sides] * size * size, atol=1e-5)
     centre = corners.mean(axis=1)
@@ -108,7 +110,7 @@ def parse_vox(data):
 
     def read_string(offset):
         n = struct.unpack_from("<i", data, offset)[0]
-        return data[offset + 4:offset + 4 + n].decode(), offset + 4 + n
+        return data[offset + 4 : offset + 4 + n].decode(), offset + 4 + n
 
     def read_dict(offset):
         pairs = struct.unpack_from("<i", data, offset)[0]
@@ -123,7 +125,7 @@ def parse_vox(data):
     assert tag == b"MAIN" and content == 0 and 20 + children == len(data)
     offset, models, sizes, transforms, shapes, palette = 20, [], [], {}, {}, None
     while offset < len(data):
-        tag = data[offset:offset + 4]
+        tag = data[offset : offset + 4]
         content, nested = struct.unpack_from("<ii", data, offset + 4)
         body = offset + 12
         if tag == b"SIZE":
@@ -168,7 +170,7 @@ def voxels_of(parsed):
 def test_vox_round_trip_with_exact_palette(tmp_path):
     ijk = CASES["sparse"]
     rng = np.random.default_rng(7)
-    choices = rng.random((40, 3))                    # 40 distinct colours: kept exactly
+    choices = rng.random((40, 3))  # 40 distinct colours: kept exactly
     colors = choices[rng.integers(0, 40, len(ijk))]
     path = tmp_path / "a.vox"
     assert vox.write_vox(str(path), ijk, colors) == 1
@@ -208,7 +210,7 @@ def test_vox_palette_quantised_from_many_colours():
     error = np.array([np.subtract(got[tuple(v + shift)], c, dtype=float) for v, c in zip(ijk, srgb_wanted)])
     levels = np.array([6, 7, 6])
     uniform = np.round(np.round(srgb_wanted / 255.0 * (levels - 1)) / (levels - 1) * 255.0)
-    assert np.mean(error ** 2) < np.mean((uniform - srgb_wanted) ** 2)
+    assert np.mean(error**2) < np.mean((uniform - srgb_wanted) ** 2)
 
 
 def test_vox_refuses_nothing():

@@ -2,6 +2,7 @@
 """The add-on's colour combining (core/colour.py, no bpy): which form a group's colour takes,
 and that the per-corner form gives the same voxels' colours as hyvox.voxelize would for
 each source on its own."""
+
 import os
 import sys
 
@@ -19,8 +20,17 @@ TRIANGLE = (np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32), np.array([[
 def textured_part(offset, texture, key="img"):
     v, t = TRIANGLE
     uvs = np.array([[0.1, 0.2], [0.9, 0.3], [0.4, 0.8]], np.float32)
-    return (v + offset, t, PartColour(uvs=uvs, texture=texture, texture_key=key, textured=np.array([True]),
-                                      corner_colors=np.zeros((3, 4), np.float32)))
+    return (
+        v + offset,
+        t,
+        PartColour(
+            uvs=uvs,
+            texture=texture,
+            texture_key=key,
+            textured=np.array([True]),
+            corner_colors=np.zeros((3, 4), np.float32),
+        ),
+    )
 
 
 def test_no_colour_gives_no_arguments():
@@ -36,9 +46,14 @@ def test_one_image_everywhere_stays_a_texture_on_unshared_vertices():
     assert len(vertices) == len(kwargs["uvs"]) == 6
     # The same voxels and colours as the parts merged by hand with shared UVs.
     merged = np.concatenate([TRIANGLE[0], TRIANGLE[0] + 2.0])
-    direct = hyvox.voxelize(merged, np.array([[0, 1, 2], [3, 4, 5]], np.uint32), resolution=16,
-                            uvs=np.concatenate([parts[0][2].uvs, parts[1][2].uvs]), texture=texture,
-                            attributes="color")
+    direct = hyvox.voxelize(
+        merged,
+        np.array([[0, 1, 2], [3, 4, 5]], np.uint32),
+        resolution=16,
+        uvs=np.concatenate([parts[0][2].uvs, parts[1][2].uvs]),
+        texture=texture,
+        attributes="color",
+    )
     combined = hyvox.voxelize(vertices, triangles, resolution=16, attributes="color", **kwargs)
     np.testing.assert_array_equal(direct.coords(), combined.coords())
     np.testing.assert_allclose(direct.attributes()["color"], combined.attributes()["color"], atol=1e-6)
@@ -66,6 +81,13 @@ def test_sample_bilinear_matches_hyvox_at_a_vertex_voxel():
     texture = np.random.default_rng(3).integers(0, 256, (5, 7, 3), dtype=np.uint8)
     uv = np.array([[0.37, 0.61]], np.float32)
     v = np.array([[0.4, 0.4, 0.5], [0.41, 0.4, 0.5], [0.4, 0.41, 0.5]], np.float32)
-    grid = hyvox.voxelize(v, np.array([[0, 1, 2]], np.uint32), voxel_size=1.0, origin=(0, 0, 0),
-                          uvs=np.repeat(uv, 3, axis=0), texture=texture, attributes="color")
+    grid = hyvox.voxelize(
+        v,
+        np.array([[0, 1, 2]], np.uint32),
+        voxel_size=1.0,
+        origin=(0, 0, 0),
+        uvs=np.repeat(uv, 3, axis=0),
+        texture=texture,
+        attributes="color",
+    )
     np.testing.assert_allclose(grid.attributes()["color"][0], sample_bilinear(texture, uv)[0, :3], atol=1e-6)

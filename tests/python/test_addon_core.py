@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The add-on's bpy-free layer: settings, naming, alignment math, mesh merging."""
+
 import os
 import re
 import subprocess
@@ -21,11 +22,21 @@ def test_core_never_imports_bpy():
     assert "bpy" not in sys.modules
 
 
-@pytest.mark.parametrize("bad", [
-    dict(method="magic"), dict(mode="thick"), dict(resolution=0), dict(resolution=100000),
-    dict(voxel_size=-1.0), dict(tess_gamma=0.0), dict(padding=-1),
-    dict(frames=[]), dict(frames=[-2, -1]), dict(memory_budget_mib=-1),
-])
+@pytest.mark.parametrize(
+    "bad",
+    [
+        dict(method="magic"),
+        dict(mode="thick"),
+        dict(resolution=0),
+        dict(resolution=100000),
+        dict(voxel_size=-1.0),
+        dict(tess_gamma=0.0),
+        dict(padding=-1),
+        dict(frames=[]),
+        dict(frames=[-2, -1]),
+        dict(memory_budget_mib=-1),
+    ],
+)
 def test_settings_rejected(bad):
     with pytest.raises(SettingsError):
         VoxelizeSettings(**bad).validate()
@@ -38,9 +49,15 @@ def test_settings_voxel_size_wins_over_resolution():
     assert VoxelizeSettings(frames=[1, 2]).is_sequence
 
 
-@pytest.mark.parametrize("text,frames", [
-    ("7", [7]), ("1-4", [1, 2, 3, 4]), ("0-6:3", [0, 3, 6]), (" 10-12 ", [10, 11, 12]),
-])
+@pytest.mark.parametrize(
+    "text,frames",
+    [
+        ("7", [7]),
+        ("1-4", [1, 2, 3, 4]),
+        ("0-6:3", [0, 3, 6]),
+        (" 10-12 ", [10, 11, 12]),
+    ],
+)
 def test_frame_ranges(text, frames):
     assert parse_frame_range(text) == frames
 
@@ -97,9 +114,16 @@ def test_unsaved_folder_is_unique_per_session():
     """Another session (another interpreter) gets another folder."""
     script = "from hyvox_blender.core import naming; print(naming.default_output_dir(''))"
     root = os.path.join(os.path.dirname(__file__), "..", "..", "addon")
-    others = {subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True,
-                             env=dict(os.environ, PYTHONPATH=root + os.pathsep + os.environ.get("PYTHONPATH", "")))
-              .stdout.strip() for _ in range(2)}
+    others = {
+        subprocess.run(
+            [sys.executable, "-c", script],
+            capture_output=True,
+            text=True,
+            check=True,
+            env=dict(os.environ, PYTHONPATH=root + os.pathsep + os.environ.get("PYTHONPATH", "")),
+        ).stdout.strip()
+        for _ in range(2)
+    }
     assert len(others) == 2 and naming.default_output_dir("") not in others
     for folder in others:
         assert os.path.isdir(folder)
@@ -133,9 +157,10 @@ def test_half_voxel_shift_by_version():
 def test_eevee_bounds_rule_covers_eevee_next_before_5():
     # EEVEE Next (4.2-4.5) clips the last voxel layer; legacy EEVEE (3.4) and 5.0 do not
     # (tests/blender/test_render_alignment.py renders it in 3.4.1, 4.5.15 and 5.0.1).
-    assert [alignment.eevee_clips_last_voxel_layer(v) for v in
-            [(3, 4, 1), (4, 1, 1), (4, 2, 0), (4, 5, 15), (5, 0, 0), (5, 0, 1)]] == \
-        [False, False, True, True, False, False]
+    assert [
+        alignment.eevee_clips_last_voxel_layer(v)
+        for v in [(3, 4, 1), (4, 1, 1), (4, 2, 0), (4, 5, 15), (5, 0, 0), (5, 0, 1)]
+    ] == [False, False, True, True, False, False]
 
 
 def test_merge_meshes_offsets_indices():
@@ -152,6 +177,7 @@ def test_panel_hides_options_that_do_not_apply():
     # its GL_METHODS (the methods marked with their device) are those the gl options apply to.
     import hyvox
     from hyvox_blender.core import panel_rules
+
     applies = lambda name, method: hyvox.option(name).applies_to(method)  # noqa: E731
     assert applies("tess_gamma", "tessellation")
     assert not applies("tess_gamma", "hybrid")
@@ -161,8 +187,9 @@ def test_panel_hides_options_that_do_not_apply():
     assert applies("resolution", "cpu") and applies("threads", "reference")
     assert set(panel_rules.GL_METHODS) == {m for m in hyvox.METHODS if applies("gl_device", m)}
     software = panel_rules.gl_device_summary([{"index": 0, "name": "software", "software": True}])
-    gpu = panel_rules.gl_device_summary([{"index": 0, "name": "software", "software": True},
-                                         {"index": 1, "name": "H200", "software": False}])
+    gpu = panel_rules.gl_device_summary(
+        [{"index": 0, "name": "software", "software": True}, {"index": 1, "name": "H200", "software": False}]
+    )
     assert software == {"name": "software", "software": True} and gpu == {"name": "H200", "software": False}
     assert panel_rules.gl_device_summary([]) is None
     assert "software" in panel_rules.method_note("hybrid", "hybrid", software)
@@ -173,9 +200,21 @@ def test_panel_hides_options_that_do_not_apply():
 
 def test_panel_summary_lines_are_short():
     from hyvox_blender.core import panel_rules
-    record = {"volumes": [{"name": "Bunny", "voxel_counts": [13977], "dims": [64, 64, 50],
-                           "voxel_size": 0.0024328, "triangles": 69451, "method": "cpu", "frames": None}],
-              "timings_ms": {"total": 67.0}}
+
+    record = {
+        "volumes": [
+            {
+                "name": "Bunny",
+                "voxel_counts": [13977],
+                "dims": [64, 64, 50],
+                "voxel_size": 0.0024328,
+                "triangles": 69451,
+                "method": "cpu",
+                "frames": None,
+            }
+        ],
+        "timings_ms": {"total": 67.0},
+    }
     lines = panel_rules.summary_lines(record)
     assert lines[0] == "Bunny" and "  13,977 voxels" in lines and lines[-1] == "Took 0.07 s"
     assert max(len(line) for line in lines) <= 24

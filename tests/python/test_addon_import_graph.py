@@ -26,7 +26,7 @@ def imports_of(path, modules):
             found.update(alias.name for alias in node.names)
         elif isinstance(node, ast.ImportFrom):
             base = package.split(".")
-            base = base[:len(base) - (node.level - 1)] if node.level else []
+            base = base[: len(base) - (node.level - 1)] if node.level else []
             source = ".".join(base + ([node.module] if node.module else []))
             found.add(source)
             # "from . import backend": the names may be modules of that package.
@@ -48,7 +48,7 @@ def cycles(graph):
         state[node] = "open"
         for target in sorted(graph[node]):
             if state.get(target) == "open":
-                found.append(path[path.index(target):] + [target])
+                found.append(path[path.index(target) :] + [target])
             elif target not in state:
                 visit(target, path + [target])
         state[node] = "done"

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The lattice fixed in world space (core/lattice.py): sequence frames (and Live runs) put
 their voxels on one lattice, so a static part keeps its voxels while another part moves."""
+
 import math
 import os
 import sys
@@ -19,6 +20,7 @@ from shapes import icosphere  # noqa: E402
 @pytest.fixture(scope="module")
 def hyvox():
     import hyvox as module
+
     return module
 
 
@@ -29,7 +31,7 @@ def test_snapped_origin_is_the_multiple_at_or_below():
             origin = lattice.snapped_origin(low, size)
             for o, x in zip(origin, low):
                 k = round(o / size)
-                assert o == k * size          # a whole multiple, as the same double every time
+                assert o == k * size  # a whole multiple, as the same double every time
                 assert o <= x < o + size * (1 + 1e-9)
 
 
@@ -71,6 +73,7 @@ def _cube_and_sphere(sphere_x):
 def _file_world_indices(path):
     """The .vdb's voxels (read back with pyopenvdb) as world lattice indices."""
     import pyopenvdb as vdb
+
     grid = vdb.read(path, "density")
     size = grid.transform.voxelSize()[0]
     points = []
@@ -123,8 +126,14 @@ def test_a_static_part_keeps_its_voxels_across_a_sequence(hyvox, tmp_path, mode)
     # Left to the module, the origin follows each frame's bounds and the cube's voxels change.
     free = [hyvox.voxelize(*_cube_and_sphere(xs[f]), voxel_size=0.15, method="cpu", mode=mode) for f in (1, 2, 3)]
     assert len({grid.origin[0] for grid in free}) == 3
-    corners = [{tuple(np.round(np.array(g.origin) + ijk * g.voxel_size, 6)) for ijk in g.coords()
-                if g.origin[0] + ijk[0] * g.voxel_size >= 0.0} for g in free]
+    corners = [
+        {
+            tuple(np.round(np.array(g.origin) + ijk * g.voxel_size, 6))
+            for ijk in g.coords()
+            if g.origin[0] + ijk[0] * g.voxel_size >= 0.0
+        }
+        for g in free
+    ]
     assert not corners[0] == corners[1] == corners[2]
 
 

@@ -2,6 +2,7 @@
 """Live's bpy-free parts: the key of an input, the bounded cache, one run (voxels against
 the module called directly), and the scheduler's state machine (one run per volume at most,
 a burst of edits in at most two runs, newest wins, cancel drops)."""
+
 import os
 import sys
 import threading
@@ -25,6 +26,7 @@ GROUP = Group("Ball", ["Ball"])
 @pytest.fixture(scope="module")
 def hyvox():
     import hyvox as module
+
     return module
 
 
@@ -46,8 +48,9 @@ def test_the_key_follows_geometry_colour_and_options():
     key = live_key.run_key(live_key.geometry_digest([a]), fingerprint)
     assert key == live_key.run_key(live_key.geometry_digest([ball()]), fingerprint)  # equal input
     assert key != live_key.run_key(live_key.geometry_digest([b]), fingerprint)
-    assert key != live_key.run_key(live_key.geometry_digest([a]),
-                                   live_key.options_fingerprint({"voxel_size": 0.1, "mode": "thin"}))
+    assert key != live_key.run_key(
+        live_key.geometry_digest([a]), live_key.options_fingerprint({"voxel_size": 0.1, "mode": "thin"})
+    )
     coloured = GroupMesh(GROUP, a.vertices, a.triangles, {"colors": np.ones((len(a.triangles) * 3, 3), np.float32)})
     recoloured = GroupMesh(GROUP, a.vertices, a.triangles, {"colors": np.zeros((len(a.triangles) * 3, 3), np.float32)})
     assert len({live_key.geometry_digest([m]) for m in (a, coloured, recoloured)}) == 3
@@ -130,10 +133,13 @@ def test_clear_deletes_what_the_cache_wrote_except_the_protected(tmp_path):
 # -- one run ------------------------------------------------------------------------------
 def _file_world_voxels(path):
     import pyopenvdb as vdb
+
     grid = vdb.read(path, "density")
     size = grid.transform.voxelSize()[0]
-    return {tuple(int(round(c / size - 0.5)) for c in grid.transform.indexToWorld(item.min))
-            for item in grid.citerOnValues()}
+    return {
+        tuple(int(round(c / size - 0.5)) for c in grid.transform.indexToWorld(item.min))
+        for item in grid.citerOnValues()
+    }
 
 
 @pytest.mark.parametrize("mode", ["conservative", "solid"])
@@ -143,8 +149,9 @@ def test_a_run_writes_the_modules_voxels_on_the_fixed_lattice(hyvox, tmp_path, m
     output = LiveRun(live_input(tmp_path, mesh, mode=mode), cache)()
     assert not output.cached and len(output.result.files) == 1
     fixed = lattice.fixed_lattice(mesh.vertices, mesh.triangles, 0, 0.1)
-    oracle = hyvox.voxelize(mesh.vertices, mesh.triangles, voxel_size=0.1, origin=fixed.origin, method="reference",
-                            mode=mode)
+    oracle = hyvox.voxelize(
+        mesh.vertices, mesh.triangles, voxel_size=0.1, origin=fixed.origin, method="reference", mode=mode
+    )
     offset = np.array([round(o / 0.1) for o in oracle.origin])
     assert _file_world_voxels(output.result.files[0]) == {tuple(p) for p in oracle.coords().astype(np.int64) + offset}
     assert os.listdir(tmp_path) == [os.path.basename(output.result.files[0])]  # nothing staged is left
@@ -152,6 +159,7 @@ def test_a_run_writes_the_modules_voxels_on_the_fixed_lattice(hyvox, tmp_path, m
 
 def test_the_same_input_again_comes_from_the_cache(hyvox, tmp_path, monkeypatch):
     from hyvox_blender.core import backend
+
     calls = []
     real = backend.voxelize
     monkeypatch.setattr(backend, "voxelize", lambda *a, **kw: calls.append(1) or real(*a, **kw))
@@ -169,6 +177,7 @@ def test_a_failed_run_leaves_no_file(hyvox, tmp_path):
     bad.vertices[3] = np.nan
     run = LiveRun(live_input(tmp_path, bad), LiveCache())
     from hyvox_blender.core.errors import HyvoxError
+
     with pytest.raises(HyvoxError):
         run()
     assert os.listdir(tmp_path) == []
@@ -177,6 +186,7 @@ def test_a_failed_run_leaves_no_file(hyvox, tmp_path):
 # -- the scheduler ------------------------------------------------------------------------
 class FakeRun:
     """A run that holds until released (or cancelled), recording how many run at once."""
+
     running = 0
     most_at_once = 0
     lock = threading.Lock()
@@ -199,6 +209,7 @@ class FakeRun:
             self.entered.set()
             assert self.release.wait(10)
             from hyvox_blender.core.errors import CancelledError, HyvoxError
+
             if self.cancelled:
                 raise CancelledError("cancelled")
             if self.fail:

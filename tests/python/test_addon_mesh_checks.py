@@ -2,6 +2,7 @@
 """The add-on's checks of an object's vertices (core/mesh_checks.py): the first unusable
 coordinate found as numpy finds it, and the far-vertex warning against meshes whose strays
 are known (added by the test) and real meshes that have none."""
+
 import os
 import sys
 
@@ -44,9 +45,15 @@ def test_a_few_far_vertices_are_named(strays):
 
 def test_no_warning_without_strays(mesh_dir):
     import hyvox
+
     bunny, _ = hyvox.read_mesh(str(mesh_dir / "bunny_stanford_69k.ply"))
-    for vertices in (CUBE, grid_points(20), grid_points(10, (1000.0, 1.0, 1.0)), bunny,
-                     np.concatenate([grid_points(10), grid_points(10) + (100.0, 0, 0)])):  # two equal parts
+    for vertices in (
+        CUBE,
+        grid_points(20),
+        grid_points(10, (1000.0, 1.0, 1.0)),
+        bunny,
+        np.concatenate([grid_points(10), grid_points(10) + (100.0, 0, 0)]),
+    ):  # two equal parts
         assert mesh_checks.far_vertices_warning("Mesh", vertices) == ""
 
 

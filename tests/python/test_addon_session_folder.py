@@ -2,6 +2,7 @@
 """The temporary folders of unsaved sessions (core/session_folder.py): a folder goes only when
 no running session can need it, with real processes as the owners (one that has ended, one
 that still runs) and the folder's own times."""
+
 import json
 import os
 import subprocess
@@ -15,14 +16,21 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "addon"))
 from hyvox_blender.core import naming, session_folder  # noqa: E402
 
 ADDON = os.path.join(os.path.dirname(__file__), "..", "..", "addon")
-MAKE = ("import sys; from hyvox_blender.core import session_folder; "
-        "print(session_folder.make(sys.argv[1]), flush=True); sys.stdin.read()")
+MAKE = (
+    "import sys; from hyvox_blender.core import session_folder; "
+    "print(session_folder.make(sys.argv[1]), flush=True); sys.stdin.read()"
+)
 
 
 def other_session(parent):
     """A process that makes its own session folder in `parent` and runs until its stdin closes."""
-    child = subprocess.Popen([sys.executable, "-c", MAKE, str(parent)], stdin=subprocess.PIPE,
-                             stdout=subprocess.PIPE, text=True, env=dict(os.environ, PYTHONPATH=ADDON))
+    child = subprocess.Popen(
+        [sys.executable, "-c", MAKE, str(parent)],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+        env=dict(os.environ, PYTHONPATH=ADDON),
+    )
     return child, child.stdout.readline().strip()
 
 

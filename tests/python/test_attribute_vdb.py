@@ -30,16 +30,33 @@ def assert_grid_matches(path, name, grid, expected):
 
 def test_cli_writes_colour_and_normal_grids_from_file_colours(cli, mesh_dir, tmp_path):
     out, stats = tmp_path / "spot.vdb", tmp_path / "stats.json"
-    done = subprocess.run([str(cli), "voxelize", str(mesh_dir / "spot_vcolor.ply"), "-o", str(out), "-q",
-                           "--resolution", "40", "--attributes", "color,normal", "--stats-json", str(stats)],
-                          capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [
+            str(cli),
+            "voxelize",
+            str(mesh_dir / "spot_vcolor.ply"),
+            "-o",
+            str(out),
+            "-q",
+            "--resolution",
+            "40",
+            "--attributes",
+            "color,normal",
+            "--stats-json",
+            str(stats),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     names = sorted(meta["name"] for meta in vdb.readAllGridMetadata(str(out)))
     assert names == ["color", "density", "normal"]  # no alpha: the file has none
     assert json.loads(stats.read_text())["attribute_voxels_unreached"] == 0
     v, t, attrs = hyvox.read_mesh(mesh_dir / "spot_vcolor.ply", attributes=True)
-    grid = hyvox.voxelize(v, t, resolution=40, attributes="color,normal",
-                          colors=(attrs["colors"][:, :3] * 255).round().astype(np.uint8))
+    grid = hyvox.voxelize(
+        v, t, resolution=40, attributes="color,normal", colors=(attrs["colors"][:, :3] * 255).round().astype(np.uint8)
+    )
     assert_grid_matches(out, "color", grid, grid.attributes()["color"])
     assert_grid_matches(out, "normal", grid, grid.attributes()["normal"])
 
@@ -47,17 +64,47 @@ def test_cli_writes_colour_and_normal_grids_from_file_colours(cli, mesh_dir, tmp
 def test_cli_texture_flag(cli, mesh_dir, tmp_path):
     out = tmp_path / "spot.vdb"
     png = mesh_dir / "spot_texture.png"
-    done = subprocess.run([str(cli), "voxelize", str(mesh_dir / "spot_uv.ply"), "-o", str(out), "-q",
-                           "--resolution", "32", "--attributes", "color", "--texture", str(png)],
-                          capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [
+            str(cli),
+            "voxelize",
+            str(mesh_dir / "spot_uv.ply"),
+            "-o",
+            str(out),
+            "-q",
+            "--resolution",
+            "32",
+            "--attributes",
+            "color",
+            "--texture",
+            str(png),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     v, t, attrs = hyvox.read_mesh(mesh_dir / "spot_uv.ply", attributes=True)
     grid = hyvox.voxelize(v, t, resolution=32, attributes="color", uvs=attrs["uvs"], texture=png)
     assert_grid_matches(out, "color", grid, grid.attributes()["color"])
 
     # A mesh without UVs cannot take a texture: a clear error, no file.
-    bad = subprocess.run([str(cli), "voxelize", str(mesh_dir / "spot_vcolor.ply"), "-o", str(tmp_path / "no.vdb"),
-                          "--attributes", "color", "--texture", str(png)], capture_output=True, text=True, timeout=60)
+    bad = subprocess.run(
+        [
+            str(cli),
+            "voxelize",
+            str(mesh_dir / "spot_vcolor.ply"),
+            "-o",
+            str(tmp_path / "no.vdb"),
+            "--attributes",
+            "color",
+            "--texture",
+            str(png),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert bad.returncode != 0 and "needs the mesh's UVs" in bad.stderr
     assert not (tmp_path / "no.vdb").exists()
 
@@ -65,8 +112,14 @@ def test_cli_texture_flag(cli, mesh_dir, tmp_path):
 def test_alpha_grid_when_the_colours_have_alpha(tmp_path):
     v = np.array([[0, 0, 0], [3, 0, 0.5], [0, 3, 1], [3, 3, 3]], dtype=np.float32)
     t = np.array([[0, 1, 2], [1, 3, 2]])
-    grid = hyvox.voxelize(v, t, resolution=12, attributes="color", material_ids=[0, 1],
-                          palette=[[1.0, 0.5, 0.0, 0.25], [0.0, 0.5, 1.0, 1.0]])
+    grid = hyvox.voxelize(
+        v,
+        t,
+        resolution=12,
+        attributes="color",
+        material_ids=[0, 1],
+        palette=[[1.0, 0.5, 0.0, 0.25], [0.0, 0.5, 1.0, 1.0]],
+    )
     path = tmp_path / "alpha.vdb"
     grid.write_vdb(path)
     alpha = grid.attributes()["alpha"]
@@ -82,9 +135,25 @@ def test_cli_writes_the_gl_methods_attribute_grids(cli, mesh_dir, tmp_path):
     colors = (attrs["colors"][:, :3] * 255).round().astype(np.uint8)
     for method in ("triangle", "fragment", "hybrid"):
         out = tmp_path / f"spot_{method}.vdb"
-        done = subprocess.run([str(cli), "voxelize", str(mesh_dir / "spot_vcolor.ply"), "-o", str(out), "-q",
-                               "--resolution", "32", "--method", method, "--attributes", "color,normal"],
-                              capture_output=True, text=True, timeout=120)
+        done = subprocess.run(
+            [
+                str(cli),
+                "voxelize",
+                str(mesh_dir / "spot_vcolor.ply"),
+                "-o",
+                str(out),
+                "-q",
+                "--resolution",
+                "32",
+                "--method",
+                method,
+                "--attributes",
+                "color,normal",
+            ],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
         assert done.returncode == 0, done.stderr
         grid = hyvox.voxelize(v, t, resolution=32, method=method, attributes="color,normal", colors=colors)
         assert_grid_matches(out, "color", grid, grid.attributes()["color"])

@@ -74,10 +74,12 @@ def test_thin_mode_values_are_the_same_definition_on_fewer_voxels(spot_vcolor):
 def test_file_colours_are_taken_as_srgb(spot_vcolor):
     # Mesh colours read from a file (bytes / 255) go through the same sRGB decoding.
     v, t, attrs = spot_vcolor
-    from_bytes = hyvox.voxelize(v, t, resolution=32, colors=(attrs["colors"][:, :3] * 255).round().astype(np.uint8),
-                                attributes="color")
-    linear = hyvox.voxelize(v, t, resolution=32, colors=srgb_to_linear(attrs["colors"][:, :3]).astype(np.float32),
-                            attributes="color")
+    from_bytes = hyvox.voxelize(
+        v, t, resolution=32, colors=(attrs["colors"][:, :3] * 255).round().astype(np.uint8), attributes="color"
+    )
+    linear = hyvox.voxelize(
+        v, t, resolution=32, colors=srgb_to_linear(attrs["colors"][:, :3]).astype(np.float32), attributes="color"
+    )
     np.testing.assert_allclose(from_bytes.attributes()["color"], linear.attributes()["color"], atol=1e-6)
 
 
@@ -102,14 +104,22 @@ def test_sponza_crop_matches_the_oracle(mesh_dir):
     assert 500 < len(crop) < 20000, len(crop)
     encoded = (attrs["colors"][:, :3] * 255).round().astype(np.uint8)
     grid = hyvox.voxelize(v, crop, resolution=64, colors=encoded, attributes=("color", "normal"))
-    ijk, oracle = voxel_attributes(v, crop, grid.origin, grid.voxel_size, grid.dims,
-                                   colors=srgb_to_linear(encoded / 255.0))
+    ijk, oracle = voxel_attributes(
+        v, crop, grid.origin, grid.voxel_size, grid.dims, colors=srgb_to_linear(encoded / 255.0)
+    )
     compare(grid, ijk, oracle, atol=1e-5)
 
 
 def hand_made(method, **sources):
-    return hyvox.voxelize(sources.pop("v"), sources.pop("t"), voxel_size=1.0, origin=(0, 0, 0),
-                          bounds=((0, 0, 0), (2, 2, 2)), method=method, **sources)
+    return hyvox.voxelize(
+        sources.pop("v"),
+        sources.pop("t"),
+        voxel_size=1.0,
+        origin=(0, 0, 0),
+        bounds=((0, 0, 0), (2, 2, 2)),
+        method=method,
+        **sources,
+    )
 
 
 @pytest.mark.parametrize("method", EXACT)
@@ -137,17 +147,22 @@ def test_triangles_through_voxel_corners(method):
     v = np.array([[0, 0, 0], [3, 0, 0.5], [0, 3, 1], [3, 3, 3]], dtype=np.float32)
     t = np.array([[0, 1, 2], [1, 3, 2]])
     palette = np.array([[1.0, 0.5, 0.0, 0.25], [0.0, 0.5, 1.0, 1.0]])
-    grid = hyvox.voxelize(v, t, resolution=12, method=method, attributes="color,normal", material_ids=[0, 1],
-                          palette=palette)
+    grid = hyvox.voxelize(
+        v, t, resolution=12, method=method, attributes="color,normal", material_ids=[0, 1], palette=palette
+    )
     assert grid.stats["attribute_leaves_rounded"] > 0 and grid.stats["attribute_voxels_unreached"] == 0
     # The oracle takes per-vertex colours: the triangles get corners of their own.
     v2 = v[[0, 1, 2, 1, 3, 2]]
     t2 = np.array([[0, 1, 2], [3, 4, 5]])
     colors = palette[[0, 0, 0, 1, 1, 1]]
-    ijk, oracle = voxel_attributes(v2, t2, grid.origin, grid.voxel_size, grid.dims, colors=colors,
-                                   voxels=grid.coords())
-    compare(grid, ijk, {"color": oracle["color"], "alpha": oracle["alpha"][:, None], "normal": oracle["normal"]},
-            atol=1e-5, names=("color", "normal"))
+    ijk, oracle = voxel_attributes(v2, t2, grid.origin, grid.voxel_size, grid.dims, colors=colors, voxels=grid.coords())
+    compare(
+        grid,
+        ijk,
+        {"color": oracle["color"], "alpha": oracle["alpha"][:, None], "normal": oracle["normal"]},
+        atol=1e-5,
+        names=("color", "normal"),
+    )
     keys = np.argsort(by_voxel(grid.coords(), grid.dims))
     np.testing.assert_allclose(grid.attributes()["alpha"][keys], oracle["alpha"], atol=1e-5)
 
@@ -157,8 +172,7 @@ def test_triangle_on_a_voxel_face(method):
     v = np.array([[0.2, 0.2, 1.0], [0.8, 0.2, 1.0], [0.2, 0.8, 1.0], [1.9, 1.9, 1.9]])
     t = np.array([[0, 1, 2]])
     colors = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [0, 0, 0]], dtype=np.float32)
-    grid = hand_made(method, v=v, t=t, colors=colors, attributes="color,normal",
-                     face_normals=np.array([[0, 0, 2.0]]))
+    grid = hand_made(method, v=v, t=t, colors=colors, attributes="color,normal", face_normals=np.array([[0, 0, 2.0]]))
     assert sorted(grid.coords().tolist()) == [[0, 0, 0], [0, 0, 1]]
     got = grid.attributes()
     np.testing.assert_allclose(got["color"], np.full((2, 3), 1 / 3), atol=1e-6)
@@ -170,8 +184,10 @@ def test_cpu_slab_sweep_equals_the_reference_box_clipping(spot_vcolor):
     # corners round differently (a few ulp in double), so the means may differ in the last bit
     # of their float. A piece lost or counted twice moves a mean by far more than 1e-6.
     v, t, attrs = spot_vcolor
-    cpu, reference = (hyvox.voxelize(v, t, resolution=64, method=m, colors=attrs["colors"][:, :3],
-                                     attributes="color,normal") for m in EXACT)
+    cpu, reference = (
+        hyvox.voxelize(v, t, resolution=64, method=m, colors=attrs["colors"][:, :3], attributes="color,normal")
+        for m in EXACT
+    )
     assert np.array_equal(cpu.coords(), reference.coords())
     assert cpu.stats["attribute_pieces"] == reference.stats["attribute_pieces"]
     for name in ("color", "normal"):
@@ -180,16 +196,20 @@ def test_cpu_slab_sweep_equals_the_reference_box_clipping(spot_vcolor):
 
 def test_threads_do_not_change_the_values(spot_vcolor):
     v, t, attrs = spot_vcolor
-    results = [hyvox.voxelize(v, t, resolution=48, threads=n, colors=attrs["colors"][:, :3], attributes="color,normal")
-               for n in (1, 3)]
+    results = [
+        hyvox.voxelize(v, t, resolution=48, threads=n, colors=attrs["colors"][:, :3], attributes="color,normal")
+        for n in (1, 3)
+    ]
     for name in ("color", "normal"):
         assert np.array_equal(results[0].attributes()[name], results[1].attributes()[name])
 
 
 def test_tiles_do_not_change_the_values(spot_vcolor):
     v, t, attrs = spot_vcolor
-    whole, tiled = (hyvox.voxelize(v, t, resolution=48, tile_size=size, colors=attrs["colors"][:, :3],
-                                   attributes="color") for size in (0, 16))
+    whole, tiled = (
+        hyvox.voxelize(v, t, resolution=48, tile_size=size, colors=attrs["colors"][:, :3], attributes="color")
+        for size in (0, 16)
+    )
     assert whole.stats["tiles"] == 1 and tiled.stats["tiles"] > 1
     assert np.array_equal(whole.coords(), tiled.coords())
     assert np.array_equal(whole.attributes()["color"], tiled.attributes()["color"])
@@ -215,7 +235,9 @@ def test_bad_attribute_input_is_a_clear_error(tetrahedron, sources, message):
 @pytest.mark.parametrize("value", ["colour", "color,colour", ("color", "colour")])
 def test_unknown_attribute_is_refused(tetrahedron, value):
     v, t = tetrahedron
-    with pytest.raises(ValueError, match="unknown attributes 'colour' in 'color,colour'|unknown attributes 'colour' in 'colour'"):
+    with pytest.raises(
+        ValueError, match="unknown attributes 'colour' in 'color,colour'|unknown attributes 'colour' in 'colour'"
+    ):
         hyvox.voxelize(v, t, resolution=8, attributes=value)
 
 
@@ -266,8 +288,9 @@ def test_png_texture_kinds_decode_srgb(tmp_path, tetrahedron, mode, pixel, expec
     v, t = tetrahedron
     uvs = np.array([[0, 0], [1, 0], [0.3, 0.9], [2.5, -1.5]])  # wrapping UVs too
     got = hyvox.voxelize(v, t, resolution=6, attributes="color", uvs=uvs, texture=path).attributes()
-    np.testing.assert_allclose(got["color"], np.broadcast_to(srgb_to_linear(expected[:3]), got["color"].shape),
-                               atol=1e-6)
+    np.testing.assert_allclose(
+        got["color"], np.broadcast_to(srgb_to_linear(expected[:3]), got["color"].shape), atol=1e-6
+    )
     if expected[3] is None:
         assert "alpha" not in got
     else:
@@ -289,13 +312,23 @@ def test_a_two_sided_wall_has_no_normal(method):
     frame = np.array([[0.83, 0.21, 0.37], [-0.29, 0.91, 0.17]])
     vertices = uv @ frame + np.array([0.1, 0.2, 0.3])
     corner = (np.arange(n)[:, None] * (n + 1) + np.arange(n)[None, :]).ravel()
-    front = np.concatenate([np.stack([corner, corner + n + 1, corner + n + 2], axis=1),
-                            np.stack([corner, corner + n + 2, corner + 1], axis=1)]).astype(np.uint32)
+    front = np.concatenate(
+        [
+            np.stack([corner, corner + n + 1, corner + n + 2], axis=1),
+            np.stack([corner, corner + n + 2, corner + 1], axis=1),
+        ]
+    ).astype(np.uint32)
     back = front[:, [2, 1, 0]][:, [1, 2, 0]]  # reversed, then rotated
     colour = np.array([0.2, 0.5, 0.8], dtype=np.float32)
     colors = np.tile(colour, (len(vertices), 1))
-    grid = hyvox.voxelize(vertices, np.concatenate([front, back]), resolution=24, method=method, colors=colors,
-                          attributes=("color", "normal"))
+    grid = hyvox.voxelize(
+        vertices,
+        np.concatenate([front, back]),
+        resolution=24,
+        method=method,
+        colors=colors,
+        attributes=("color", "normal"),
+    )
     got = grid.attributes()
     assert grid.voxel_count > 200
     assert np.all(got["normal"] == 0), np.count_nonzero(np.any(got["normal"] != 0, axis=1))

@@ -16,8 +16,9 @@ def run(cli, *args):
 def test_voxelize_bunny(cli, mesh_dir, tmp_path, bunny):
     out = tmp_path / "bunny.vdb"
     stats_path = tmp_path / "stats.json"
-    result = run(cli, "voxelize", mesh_dir / "bunny_stanford_69k.ply", "-o", out, "--resolution", 128,
-                 "--stats-json", stats_path)
+    result = run(
+        cli, "voxelize", mesh_dir / "bunny_stanford_69k.ply", "-o", out, "--resolution", 128, "--stats-json", stats_path
+    )
     assert result.returncode == 0, result.stderr
     assert "voxels" in result.stdout and result.stderr == ""
     stats = json.loads(stats_path.read_text())
@@ -32,6 +33,7 @@ def test_voxelize_bunny(cli, mesh_dir, tmp_path, bunny):
     assert stats["voxel_count"] == expected.voxel_count
     assert stats["origin"] == list(expected.origin) and stats["voxel_size"] == expected.voxel_size
     import pyopenvdb as vdb  # the test interpreter has it (tests/python/CMakeLists.txt): no skip
+
     density = vdb.read(str(out), "density")
     dense = np.zeros(expected.dims, np.float32)
     density.copyToArray(dense, ijk=(0, 0, 0))
@@ -61,8 +63,14 @@ def test_cli_file_equals_the_module(cli, mesh_dir, tmp_path, mesh, resolution, e
     keywords = {k: (int(v) if k == "threads" else v) for k, v in options.items() if k != "attributes"}
     if "attributes" in options:
         v, t, attrs = hyvox.read_mesh(mesh_dir / mesh, attributes=True)
-        expected = hyvox.voxelize(v, t, resolution=resolution, attributes="color",
-                                  colors=(attrs["colors"][:, :3] * 255).round().astype(np.uint8), **keywords)
+        expected = hyvox.voxelize(
+            v,
+            t,
+            resolution=resolution,
+            attributes="color",
+            colors=(attrs["colors"][:, :3] * 255).round().astype(np.uint8),
+            **keywords,
+        )
     else:
         expected = hyvox.voxelize(*hyvox.read_mesh(mesh_dir / mesh), resolution=resolution, **keywords)
     dense = np.zeros(expected.dims, np.float32)
@@ -77,9 +85,25 @@ def test_cli_file_equals_the_module(cli, mesh_dir, tmp_path, mesh, resolution, e
 
 def test_options(cli, mesh_dir, tmp_path):
     out = tmp_path / "t.vdb"
-    result = run(cli, "voxelize", mesh_dir / "teapot_utah.ply", f"--output={out}", "--voxel-size", "0.25",
-                 "--mode", "thin", "--method", "cpu", "--padding", "1", "--threads", "1", "-q",
-                 "--stats-json", tmp_path / "s.json")
+    result = run(
+        cli,
+        "voxelize",
+        mesh_dir / "teapot_utah.ply",
+        f"--output={out}",
+        "--voxel-size",
+        "0.25",
+        "--mode",
+        "thin",
+        "--method",
+        "cpu",
+        "--padding",
+        "1",
+        "--threads",
+        "1",
+        "-q",
+        "--stats-json",
+        tmp_path / "s.json",
+    )
     assert result.returncode == 0, result.stderr
     assert result.stdout == ""
     stats = json.loads((tmp_path / "s.json").read_text())

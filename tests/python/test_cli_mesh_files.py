@@ -17,8 +17,10 @@ def run(cli, *args):
     return subprocess.run([str(cli), *map(str, args)], capture_output=True, text=True, timeout=300)
 
 
-HEADER = ("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-          "element face 4\nproperty list uchar int vertex_indices\nend_header\n")
+HEADER = (
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+    "element face 4\nproperty list uchar int vertex_indices\nend_header\n"
+)
 VERTICES = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
 FACES = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"
 
@@ -33,19 +35,26 @@ def header_end(data):
 
 # name, a function of the shared mesh folder giving the file's bytes, and what the message says.
 DAMAGED = [
-    ("cut_vertices.ply", lambda d: bunny_bytes(d)[:header_end(bunny_bytes(d)) + 1000], "truncated"),
+    ("cut_vertices.ply", lambda d: bunny_bytes(d)[: header_end(bunny_bytes(d)) + 1000], "truncated"),
     ("cut_faces.ply", lambda d: bunny_bytes(d)[:-100], "face"),
     ("cut_header.ply", lambda d: bunny_bytes(d)[:100], "end_header"),
     ("no_end_header.ply", lambda d: HEADER.replace("end_header\n", "").encode(), "end_header"),
     ("zero_indices.ply", lambda d: (HEADER + VERTICES + "3 0 2 1\n0\n3 0 3 2\n3 1 2 3\n").encode(), "at least 3"),
-    ("count_2p64.ply", lambda d: (HEADER.replace("vertex 4", "vertex 18446744073709551616") + VERTICES + FACES).encode(),
-     "whole number"),
+    (
+        "count_2p64.ply",
+        lambda d: (HEADER.replace("vertex 4", "vertex 18446744073709551616") + VERTICES + FACES).encode(),
+        "whole number",
+    ),
     ("many_faces.ply", lambda d: (HEADER.replace("face 4", "face 100000000") + VERTICES + FACES).encode(), "100000000"),
     ("twelve_faces.ply", lambda d: (HEADER.replace("face 4", "face 12") + VERTICES + FACES[:24]).encode(), "face"),
     ("letters.ply", lambda d: (HEADER + "0 0 0\n1 0 0\n3 a b c\n0 0 1\n" + FACES).encode(), "'a' is not a number"),
     ("no_x.ply", lambda d: (HEADER.replace("float x", "float w") + VERTICES + FACES).encode(), "no 'x'"),
     ("out_of_range.ply", lambda d: (HEADER + VERTICES + "3 0 2 1\n3 0 1 9\n3 0 3 2\n3 1 2 3\n").encode(), "index 9"),
-    ("cut.ply.gz", lambda d: gzip.compress(bunny_bytes(d))[:len(gzip.compress(bunny_bytes(d))) * 85 // 100], "ends early"),
+    (
+        "cut.ply.gz",
+        lambda d: gzip.compress(bunny_bytes(d))[: len(gzip.compress(bunny_bytes(d))) * 85 // 100],
+        "ends early",
+    ),
     ("two_corners.obj", lambda d: b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "at least 3 corners"),
     ("letters.obj", lambda d: b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 a 3\n", "'a'"),
 ]
@@ -68,6 +77,7 @@ def test_damaged_mesh_is_a_clear_error(cli, mesh_dir, tmp_path, name, make, mess
 def test_failed_reads_hold_no_memory(tmp_path):
     """The issue's 200-byte PLY declaring 100M faces held 1.5 GB per failed read_mesh."""
     import resource
+
     mesh = tmp_path / "many.ply"
     mesh.write_text(HEADER.replace("face 4", "face 100000000") + VERTICES + FACES)
     before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
@@ -84,8 +94,16 @@ def test_damaged_mesh_in_gamma_sweep(cli, tmp_path):
     assert result.returncode == 1 and "at least 3" in result.stderr, result.stderr
 
 
-@pytest.mark.parametrize("name", ["bunny_stanford_69k.ply", "spot_vcolor.ply", "spot_uv.ply",
-                                  "sponza_crytek_262k_vcolor.ply.gz", "dragon_stanford_res2_203k.ply.gz"])
+@pytest.mark.parametrize(
+    "name",
+    [
+        "bunny_stanford_69k.ply",
+        "spot_vcolor.ply",
+        "spot_uv.ply",
+        "sponza_crytek_262k_vcolor.ply.gz",
+        "dragon_stanford_res2_203k.ply.gz",
+    ],
+)
 def test_read_mesh_matches_numpy_parse(mesh_dir, name):
     """The shared meshes' binary layout read with numpy: the reader returns exactly it."""
     data = (mesh_dir / name).read_bytes()

@@ -37,8 +37,18 @@ def check_stages(found):
 
 def test_forced_progress_into_a_pipe_is_one_line_per_percent(cli, mesh_dir, tmp_path):
     out = tmp_path / "b.vdb"
-    result = run(cli, "voxelize", mesh_dir / "bunny_stanford_69k.ply", "-o", out, "--resolution", 128,
-                 "--method", "cpu", "--progress")
+    result = run(
+        cli,
+        "voxelize",
+        mesh_dir / "bunny_stanford_69k.ply",
+        "-o",
+        out,
+        "--resolution",
+        128,
+        "--method",
+        "cpu",
+        "--progress",
+    )
     assert result.returncode == 0, result.stderr
     assert "\r" not in result.stderr and result.stderr.endswith("100%\n")
     found = stages(result.stderr.splitlines())
@@ -78,8 +88,17 @@ def run_on_terminal(cli, *args):
 
 
 def test_progress_on_a_terminal_rewrites_one_line_per_stage(cli, mesh_dir, tmp_path):
-    status, shown = run_on_terminal(cli, "voxelize", mesh_dir / "bunny_stanford_69k.ply", "-o",
-                                    tmp_path / "t.vdb", "--resolution", 128, "--method", "cpu")
+    status, shown = run_on_terminal(
+        cli,
+        "voxelize",
+        mesh_dir / "bunny_stanford_69k.ply",
+        "-o",
+        tmp_path / "t.vdb",
+        "--resolution",
+        128,
+        "--method",
+        "cpu",
+    )
     assert status == 0, shown
     shown = shown.replace("\r\n", "\n")  # the terminal's own newline translation
     lines = shown.split("\n")
@@ -111,9 +130,11 @@ def test_help_per_command(cli):
 
 
 def test_usage_error_is_one_line_and_a_hint(cli, mesh_dir):
-    for args, hint in [(["voxelize", mesh_dir / "teapot_utah.ply", "--bogus"], "hyvox voxelize --help"),
-                       (["gamma-sweep", "--gammas", "2"], "hyvox gamma-sweep --help"),
-                       (["frobnicate"], "hyvox --help")]:
+    for args, hint in [
+        (["voxelize", mesh_dir / "teapot_utah.ply", "--bogus"], "hyvox voxelize --help"),
+        (["gamma-sweep", "--gammas", "2"], "hyvox gamma-sweep --help"),
+        (["frobnicate"], "hyvox --help"),
+    ]:
         result = run(cli, *args)
         lines = result.stderr.splitlines()
         assert result.returncode == 2 and result.stdout == ""

@@ -25,9 +25,11 @@ def big_gzip(tmp_path_factory):
     faces = np.zeros(block, dtype=[("n", "u1"), ("i", "<i4", 3)])
     faces["n"] = 3
     faces["i"] = np.stack([i, (i + 1) % 1024, (i + 32) % 1024], axis=1)
-    header = (f"ply\nformat binary_little_endian 1.0\nelement vertex {rows}\nproperty float x\n"
-              f"property float y\nproperty float z\nelement face {rows}\n"
-              "property list uchar int vertex_indices\nend_header\n").encode()
+    header = (
+        f"ply\nformat binary_little_endian 1.0\nelement vertex {rows}\nproperty float x\n"
+        f"property float y\nproperty float z\nelement face {rows}\n"
+        "property list uchar int vertex_indices\nend_header\n"
+    ).encode()
     path = tmp_path_factory.mktemp("big_mesh") / "big.ply.gz"
     with open(path, "wb") as out:
         out.write(gzip.compress(header))
@@ -41,8 +43,12 @@ def big_gzip(tmp_path_factory):
 @pytest.mark.parametrize("signal_number", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
 def test_signal_while_reading_stops_cleanly(cli, big_gzip, tmp_path, signal_number):
     output = tmp_path / "out.vdb"
-    process = subprocess.Popen([str(cli), "voxelize", str(big_gzip), "-o", str(output), "--progress",
-                                "--resolution", "256"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    process = subprocess.Popen(
+        [str(cli), "voxelize", str(big_gzip), "-o", str(output), "--progress", "--resolution", "256"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     try:
         lines = []
         for line in process.stderr:  # one line per percent (stderr is a pipe)

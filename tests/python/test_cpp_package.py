@@ -31,8 +31,19 @@ def test_installed_package_builds_the_example_and_gives_the_modules_voxels(mesh_
     assert {"libhyvox_gl_methods.so", "hyvox_assimp_reader"} <= set(installed), installed
 
     example = tmp_path / "example"
-    run([cmake, "-S", EXAMPLE, "-B", example, "-G", "Ninja", f"-DCMAKE_PREFIX_PATH={prefix}",
-         "-DCMAKE_BUILD_TYPE=Release"])
+    run(
+        [
+            cmake,
+            "-S",
+            EXAMPLE,
+            "-B",
+            example,
+            "-G",
+            "Ninja",
+            f"-DCMAKE_PREFIX_PATH={prefix}",
+            "-DCMAKE_BUILD_TYPE=Release",
+        ]
+    )
     run([cmake, "--build", example])
     program = example / "voxel_count"
     mesh = mesh_dir / "bunny_stanford_69k.ply"

@@ -61,8 +61,10 @@ def test_a_grid_too_large_is_reported_with_a_short_number():
 
 
 def test_a_displacement_beyond_single_precision_is_refused_up_front():
-    for options, named in [({"displacement_strength": 1e30}, "displacement_strength 1e+30"),
-                           ({"displacement_strength": 1.0, "displacement_midlevel": 1e30}, "displacement_midlevel 1e+30")]:
+    for options, named in [
+        ({"displacement_strength": 1e30}, "displacement_strength 1e+30"),
+        ({"displacement_strength": 1.0, "displacement_midlevel": 1e30}, "displacement_midlevel 1e+30"),
+    ]:
         with pytest.raises(ValueError, match=r"at most 16777216 voxels can be computed") as caught:
             voxelize_tetra(method="tessellation", resolution=32, **options)
         assert named in str(caught.value)
@@ -75,14 +77,20 @@ def test_a_displacement_that_carries_every_point_away_is_an_error_not_zero_voxel
     # The same strength with bounds that hold the displaced surface is a meaningful result:
     # voxels far outside the undisplaced mesh's box (which lies in the grid's voxels 15..16).
     reach = 0.5 * 1000.0 + 1
-    grid = voxelize_tetra(method="tessellation", resolution=32, displacement_strength=1000.0,
-                          bounds=((-reach, -reach, -reach), (reach, reach, reach)))
+    grid = voxelize_tetra(
+        method="tessellation",
+        resolution=32,
+        displacement_strength=1000.0,
+        bounds=((-reach, -reach, -reach), (reach, reach, reach)),
+    )
     coords = grid.coords()
     assert len(coords) > 0
     assert (np.abs(coords.astype(np.int64) - 16) > 2).any()
     # Some points clipped, some landed: not an error either.
     grid = voxelize_tetra(method="tessellation", resolution=32, displacement_strength=0.5)
-    assert grid.voxel_count > 0 and 0 < grid.stats["tessellation"]["points_clipped"] < grid.stats["tessellation"]["points"]
+    assert (
+        grid.voxel_count > 0 and 0 < grid.stats["tessellation"]["points_clipped"] < grid.stats["tessellation"]["points"]
+    )
 
 
 def test_a_voxel_size_a_vdb_cannot_hold_is_a_clear_error_at_the_write(tmp_path):
@@ -104,15 +112,23 @@ def test_the_cli_refuses_a_voxel_size_the_vdb_cannot_hold_before_the_work(cli, t
     mesh = tmp_path / "tiny.obj"
     mesh.write_text("v 0 0 0\nv 0.001 0 0\nv 0 0.001 0\nv 0 0 0.001\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
     out = tmp_path / "o.vdb"
-    done = subprocess.run([str(cli), "voxelize", str(mesh), "-o", str(out), "--resolution", "100"],
-                          capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [str(cli), "voxelize", str(mesh), "-o", str(out), "--resolution", "100"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode != 0
     assert "voxel size 1e-05 is below the smallest a .vdb file can hold" in done.stderr
     assert "voxelize" not in done.stdout and not out.exists()  # refused before voxelizing
 
 
 def test_the_cli_gives_the_same_refusals(cli, tmp_path, tetra_obj):
-    done = subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "--voxel-size", "1e20"],
-                          capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "--voxel-size", "1e20"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode != 0 and "more than 1e+06 times the mesh's longest side" in done.stderr
     assert not (tmp_path / "o.vdb").exists()

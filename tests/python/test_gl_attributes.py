@@ -90,8 +90,9 @@ def test_bunny_part_with_smooth_normals_equals_the_cpu(bunny, method):
         np.add.at(normals, part[:, corner], faces)
 
     def run(m=method, mode="conservative"):
-        return hyvox.voxelize(v, part, resolution=64, method=m, mode=mode, normals=normals.astype(np.float32),
-                              attributes="normal")
+        return hyvox.voxelize(
+            v, part, resolution=64, method=m, mode=mode, normals=normals.astype(np.float32), attributes="normal"
+        )
 
     assert_same_attributes(run(), run("cpu"), ("normal",))
     assert_same_attributes(run(mode="thin"), run("cpu", mode="thin"), ("normal",))
@@ -107,8 +108,17 @@ def test_palette_and_alpha_on_a_made_mesh_equal_the_cpu(method):
     palette = np.array([[1.0, 0.25, 0.0, 0.5], [0.0, 0.5, 1.0, 1.0]])
 
     def run(m=method):
-        return hyvox.voxelize(v, t, voxel_size=0.25, origin=(0, 0, 0), bounds=((0, 0, 0), (4, 4, 4)), method=m,
-                              material_ids=[0, 1], palette=palette, attributes="color,normal")
+        return hyvox.voxelize(
+            v,
+            t,
+            voxel_size=0.25,
+            origin=(0, 0, 0),
+            bounds=((0, 0, 0), (4, 4, 4)),
+            method=m,
+            material_ids=[0, 1],
+            palette=palette,
+            attributes="color,normal",
+        )
 
     gl = run()
     assert_same_attributes(gl, run("cpu"), ("color", "alpha", "normal"))
@@ -121,8 +131,9 @@ def test_tiles_and_gl_slabs_do_not_change_the_values(spot_vcolor):
     v, t, attrs = spot_vcolor
     colors = attrs["colors"][:, :3]
     whole = hyvox.voxelize(v, t, resolution=48, method="hybrid", colors=colors, attributes="color")
-    tiled = hyvox.voxelize(v, t, resolution=48, method="hybrid", colors=colors, attributes="color", tile_size=16,
-                           gl_tile_bytes=2 * 2 * 64)  # one 8-voxel slab of a 16³ tile
+    tiled = hyvox.voxelize(
+        v, t, resolution=48, method="hybrid", colors=colors, attributes="color", tile_size=16, gl_tile_bytes=2 * 2 * 64
+    )  # one 8-voxel slab of a 16³ tile
     assert tiled.stats["tiles"] > 1 and tiled.stats["hybrid"]["tiles"] > tiled.stats["tiles"]
     assert np.array_equal(whole.coords(), tiled.coords())
     assert np.array_equal(whole.attributes()["color"], tiled.attributes()["color"])

@@ -48,8 +48,21 @@ def test_voxelize_warns_about_an_option_the_method_ignores_and_really_ignores_it
 
 def test_the_warning_says_what_the_cli_says(cli, tmp_path, tetra_obj):
     spec = hyvox.option("tess_gamma")
-    done = subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q", "--method=reference",
-                           f"{spec.cli_flag}={cli_text(good_value(spec))}"], capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [
+            str(cli),
+            "voxelize",
+            str(tetra_obj),
+            "-o",
+            str(tmp_path / "o.vdb"),
+            "-q",
+            "--method=reference",
+            f"{spec.cli_flag}={cli_text(good_value(spec))}",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     with pytest.warns(hyvox.IgnoredOptionWarning) as caught:
         hyvox.voxelize(*TETRA, resolution=8, method="reference", tess_gamma=good_value(spec))
     assert done.stderr.strip() == "hyvox: warning: " + str(caught[0].message).replace(spec.name, spec.cli_flag)
@@ -65,7 +78,10 @@ def test_options_that_apply_unset_ones_and_the_environment_do_not_warn(monkeypat
 
 def test_ignored_options_keeps_the_order_and_names_unknown_options():
     assert hyvox.ignored_options("cpu", ["tess_gamma", "resolution", "gl_device", "hybrid_cutoff"]) == [
-        "tess_gamma", "gl_device", "hybrid_cutoff"]
+        "tess_gamma",
+        "gl_device",
+        "hybrid_cutoff",
+    ]
     assert hyvox.ignored_options("tessellation", ["tess_gamma", "gl_device", "hybrid_cutoff"]) == ["hybrid_cutoff"]
     with pytest.raises(KeyError):
         hyvox.ignored_options("cpu", ["no_such_option"])
@@ -77,16 +93,24 @@ def test_the_addon_reports_changed_settings_another_method_uses_and_passes_none_
 
     # tess_gamma changed, hybrid_cutoff and gl_device at their defaults: only the changed one
     # is news (the add-on passes every setting on every run).
-    settings = VoxelizeSettings(method="cpu", resolution=8, tess_gamma=8.0,
-                                hybrid_cutoff=hyvox.option("hybrid_cutoff").default, gl_device="")
+    settings = VoxelizeSettings(
+        method="cpu", resolution=8, tess_gamma=8.0, hybrid_cutoff=hyvox.option("hybrid_cutoff").default, gl_device=""
+    )
     pipeline = Pipeline(settings, str(tmp_path), export, module=hyvox)
     assert pipeline.ignored_options == ["tess_gamma"]
-    assert backend.ignored_message(pipeline.ignored_options, "cpu") == "tess_gamma does not apply to the cpu method: ignored"
+    assert (
+        backend.ignored_message(pipeline.ignored_options, "cpu")
+        == "tess_gamma does not apply to the cpu method: ignored"
+    )
     assert backend.ignored_message(["a", "b"], "cpu") == "a, b do not apply to the cpu method: ignored"
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # the module is not handed the options it would warn about
         (result,) = pipeline.run().values()
     assert result.voxel_counts == [hyvox.voxelize(*TETRA, resolution=8, method="cpu").voxel_count]
     # For the method that uses them, nothing is ignored.
-    assert Pipeline(VoxelizeSettings(method="tessellation", resolution=8, tess_gamma=8.0, hybrid_cutoff=2.0),
-                    str(tmp_path), export, module=hyvox).ignored_options == ["hybrid_cutoff"]
+    assert Pipeline(
+        VoxelizeSettings(method="tessellation", resolution=8, tess_gamma=8.0, hybrid_cutoff=2.0),
+        str(tmp_path),
+        export,
+        module=hyvox,
+    ).ignored_options == ["hybrid_cutoff"]

@@ -54,17 +54,19 @@ def test_bad_triangles(tetrahedron, triangles, message):
 @pytest.mark.parametrize("value", [3.4028235e38, -3.4028235e38, 3.4e38, float("inf")])
 def test_float_max_is_refused_like_inf(tetrahedron, cli, tmp_path, value):
     import subprocess
+
     vertices, triangles = tetrahedron
     bad = np.array(vertices, dtype=np.float32)
     bad[2, 2] = value
     with pytest.raises(ValueError, match="vertex 2 has a non-finite coordinate"):
         hyvox.voxelize(bad, triangles, resolution=8)
     mesh = tmp_path / "bad.obj"
-    mesh.write_text("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in bad.tolist()) +
-                    "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in np.asarray(triangles).tolist()))
+    mesh.write_text(
+        "".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in bad.tolist())
+        + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in np.asarray(triangles).tolist())
+    )
     out = tmp_path / "out.vdb"
-    done = subprocess.run([str(cli), "voxelize", str(mesh), "-o", str(out)], capture_output=True, text=True,
-                          timeout=60)
+    done = subprocess.run([str(cli), "voxelize", str(mesh), "-o", str(out)], capture_output=True, text=True, timeout=60)
     # (the reader numbers the vertices in the order the faces use them)
     assert done.returncode == 1 and "has a non-finite coordinate" in done.stderr, done.stderr
     assert not out.exists()
@@ -185,11 +187,27 @@ def test_every_option_reaches_the_native_options(tetrahedron):
     # The GL and tessellation options are ignored by cpu, but must be accepted and mapped.
     vertices, triangles = tetrahedron
     grid = hyvox.voxelize(
-        vertices, triangles, resolution=8, voxel_size=None, mode="thin", method="cpu", padding=1, threads=1,
-        origin=(-0.5, -0.5, -0.5), bounds=((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)), memory_budget_mib=1024,
-        gl_device="software", shader_dir="", hybrid_cutoff=2.0, tess_gamma=1.5, pn_triangles=True,
-        displacement_image="", displacement_strength=0.1, displacement_midlevel=0.5,
-        displacement_pixels=np.zeros((4, 4)), tess_counts=False,
+        vertices,
+        triangles,
+        resolution=8,
+        voxel_size=None,
+        mode="thin",
+        method="cpu",
+        padding=1,
+        threads=1,
+        origin=(-0.5, -0.5, -0.5),
+        bounds=((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)),
+        memory_budget_mib=1024,
+        gl_device="software",
+        shader_dir="",
+        hybrid_cutoff=2.0,
+        tess_gamma=1.5,
+        pn_triangles=True,
+        displacement_image="",
+        displacement_strength=0.1,
+        displacement_midlevel=0.5,
+        displacement_pixels=np.zeros((4, 4)),
+        tess_counts=False,
     )
     assert grid.mode == "thin" and grid.method == "cpu"
     assert grid.voxel_size == pytest.approx(0.25) and grid.dims == (10, 10, 10)  # 2 / 8, plus padding
@@ -206,9 +224,20 @@ def test_tessellation_options_take_effect():
     uvs = v[:, :2].copy()
     normals = np.tile(np.float32([0, 0, 1]), (4, 1))
     bounds = ((0, 0, -0.5), (1, 1, 0.5))
+
     def run(normals=normals, **kw):
-        return hyvox.voxelize(v, t, resolution=16, method="tessellation", gl_device="software", bounds=bounds,
-                              uvs=uvs, normals=normals, **kw)
+        return hyvox.voxelize(
+            v,
+            t,
+            resolution=16,
+            method="tessellation",
+            gl_device="software",
+            bounds=bounds,
+            uvs=uvs,
+            normals=normals,
+            **kw,
+        )
+
     flat = run()
     assert flat.voxel_count == 16 * 16 and len(flat.counts()[0]) == flat.voxel_count  # counts on by default
     assert len(run(tess_counts=False).counts()[0]) == 0
@@ -222,8 +251,9 @@ def test_tessellation_options_take_effect():
     assert run(dome, pn_triangles=True).coords()[:, 2].max() > flat.coords()[:, 2].max()
     assert np.array_equal(run(dome).to_dense(), flat.to_dense())
     # A midlevel equal to every height leaves the square where it was.
-    still = run(displacement_pixels=np.full((8, 8), 0.5, np.float32), displacement_strength=0.25,
-                displacement_midlevel=0.5)
+    still = run(
+        displacement_pixels=np.full((8, 8), 0.5, np.float32), displacement_strength=0.25, displacement_midlevel=0.5
+    )
     assert np.array_equal(still.to_dense(), flat.to_dense())
 
 

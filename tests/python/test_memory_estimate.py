@@ -16,24 +16,41 @@ import hyvox
 def peak_of(command):
     """The peak resident bytes of `command` (a fresh child: ru_maxrss of the children is the
     largest of them, so one child per call)."""
-    code = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], check=True); "
-            "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
+    code = (
+        "import resource, subprocess, sys; subprocess.run(sys.argv[1:], check=True); "
+        "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)"
+    )
     done = subprocess.run(["/usr/bin/python3", "-c", code, *command], capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr[-2000:]
     return int(done.stdout.split()[-1]) * 1024
 
 
-@pytest.mark.parametrize("mesh,resolution,extra", [
-    ("bunny_stanford_69k.ply", 1024, []),
-    ("spot_vcolor.ply", 512, ["--mode=solid", "--attributes=color"]),
-    ("dragon_stanford_res2_203k.ply.gz", 768, ["--mode=solid"]),
-])
+@pytest.mark.parametrize(
+    "mesh,resolution,extra",
+    [
+        ("bunny_stanford_69k.ply", 1024, []),
+        ("spot_vcolor.ply", 512, ["--mode=solid", "--attributes=color"]),
+        ("dragon_stanford_res2_203k.ply.gz", 768, ["--mode=solid"]),
+    ],
+)
 def test_the_estimate_follows_the_memory_held(mesh, resolution, extra, mesh_dir, cli, tmp_path):
     def run(res, more):
         stats = tmp_path / "s.json"
-        command = [str(cli), "voxelize", str(mesh_dir / mesh), "-o", str(tmp_path / "o.vdb"), "-q", "--method=cpu",
-                   f"--resolution={res}", "--stats-json", str(stats), *more]
+        command = [
+            str(cli),
+            "voxelize",
+            str(mesh_dir / mesh),
+            "-o",
+            str(tmp_path / "o.vdb"),
+            "-q",
+            "--method=cpu",
+            f"--resolution={res}",
+            "--stats-json",
+            str(stats),
+            *more,
+        ]
         return peak_of(command), json.loads(stats.read_text())
+
     base, _ = run(8, [])
     peak, stats = run(resolution, extra)
     estimate = stats["memory_estimate"]["peak"]
@@ -43,8 +60,10 @@ def test_the_estimate_follows_the_memory_held(mesh, resolution, extra, mesh_dir,
 def test_a_run_past_the_budget_is_refused_before_it_starts(mesh_dir):
     vertices, triangles = hyvox.read_mesh(mesh_dir / "bunny_stanford_69k.ply")
     steps = []
-    for options, part in ((dict(resolution=16384, mode="solid", memory_budget_mib=4096), "for the "),
-                          (dict(resolution=2048, attributes="normal", memory_budget_mib=256), "for the ")):
+    for options, part in (
+        (dict(resolution=16384, mode="solid", memory_budget_mib=4096), "for the "),
+        (dict(resolution=2048, attributes="normal", memory_budget_mib=256), "for the "),
+    ):
         with pytest.raises(hyvox.ResourceError) as refused:
             hyvox.voxelize(vertices, triangles, method="cpu", progress=steps.append, **options)
         message = str(refused.value)

@@ -46,7 +46,7 @@ def all_children():
             stat = open(f"/proc/{pid}/stat").read()
         except OSError:
             continue
-        if stat[stat.rindex(")") + 2:].split()[1] == me:
+        if stat[stat.rindex(")") + 2 :].split()[1] == me:
             found[pid] = stat
     return found
 
@@ -82,9 +82,23 @@ def test_every_format_reads_back_the_mesh_it_was_written_from(mesh, mesh_dir, cl
             v, t = hyvox.read_mesh(file)
             assert same_triangles(corner_rows(v, t), expected), file
             out = tmp_path / "o.vdb"
-            done = subprocess.run([str(cli), "voxelize", str(file), "-o", str(out), "-q", "--resolution=24",
-                                   "--method=cpu", "--stats-json", str(tmp_path / "s.json")],
-                                  capture_output=True, text=True, timeout=120)
+            done = subprocess.run(
+                [
+                    str(cli),
+                    "voxelize",
+                    str(file),
+                    "-o",
+                    str(out),
+                    "-q",
+                    "--resolution=24",
+                    "--method=cpu",
+                    "--stats-json",
+                    str(tmp_path / "s.json"),
+                ],
+                capture_output=True,
+                text=True,
+                timeout=120,
+            )
             assert done.returncode == 0, done.stderr
             assert json.loads((tmp_path / "s.json").read_text())["voxel_count"] == cpu.voxel_count, file
     assert children() == []
@@ -94,12 +108,18 @@ def zip_bomb_3mf():
     """A 3MF whose model inflates to 512 MiB of spaces (about 500 KiB on disk)."""
     model = io.BytesIO()
     with zipfile.ZipFile(model, "w", zipfile.ZIP_DEFLATED) as z:
-        z.writestr("[Content_Types].xml", '<?xml version="1.0"?><Types xmlns="http://schemas.openxmlformats.org/'
-                   'package/2006/content-types"><Default Extension="model" ContentType="application/'
-                   'vnd.ms-package.3dmanufacturing-3dmodel+xml"/></Types>')
-        z.writestr("_rels/.rels", '<?xml version="1.0"?><Relationships xmlns="http://schemas.openxmlformats.org/'
-                   'package/2006/relationships"><Relationship Target="/3D/3dmodel.model" Id="r" Type="http://'
-                   'schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>')
+        z.writestr(
+            "[Content_Types].xml",
+            '<?xml version="1.0"?><Types xmlns="http://schemas.openxmlformats.org/'
+            'package/2006/content-types"><Default Extension="model" ContentType="application/'
+            'vnd.ms-package.3dmanufacturing-3dmodel+xml"/></Types>',
+        )
+        z.writestr(
+            "_rels/.rels",
+            '<?xml version="1.0"?><Relationships xmlns="http://schemas.openxmlformats.org/'
+            'package/2006/relationships"><Relationship Target="/3D/3dmodel.model" Id="r" Type="http://'
+            'schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>',
+        )
         with z.open("3D/3dmodel.model", "w", force_zip64=True) as entry:
             spaces = b" " * (1 << 20)
             for _ in range(512):
@@ -113,8 +133,12 @@ def test_the_assimp_process_is_held_to_the_memory_budget(cli, tmp_path):
     message = "reading it through assimp needs more than the memory budget of 256 MiB (memory_budget_mib)"
     with pytest.raises(ValueError, match=r"bomb\.3mf.*" + message.replace("(", r"\(").replace(")", r"\)")):
         hyvox.read_mesh(bomb, memory_budget_mib=256)
-    done = subprocess.run([str(cli), "voxelize", str(bomb), "-o", str(tmp_path / "o.vdb"), "-q",
-                           "--memory-budget-mib=256"], capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [str(cli), "voxelize", str(bomb), "-o", str(tmp_path / "o.vdb"), "-q", "--memory-budget-mib=256"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 1 and message in done.stderr, done.stderr
     assert children() == []
 
@@ -178,9 +202,11 @@ def test_damaged_files_of_every_format_end_the_same_way_through_every_door(mesh_
                     continue
                 path = tmp_path / f"damaged{suffix}"
                 path.write_bytes(damaged)
-                outcomes = (mesh_damage.cli_door(str(cli), str(path), str(tmp_path)),
-                            module(str(path), str(original) if kind == "truncate" and name == "obj" else None),
-                            mesh_damage.gamma_sweep_door(str(cli), str(path), str(tmp_path)))
+                outcomes = (
+                    mesh_damage.cli_door(str(cli), str(path), str(tmp_path)),
+                    module(str(path), str(original) if kind == "truncate" and name == "obj" else None),
+                    mesh_damage.gamma_sweep_door(str(cli), str(path), str(tmp_path)),
+                )
                 seen[outcomes[0]["outcome"]] = seen.get(outcomes[0]["outcome"], 0) + 1
                 found = mesh_damage.judge(name, kind, note, whole, *outcomes)
                 if found:

@@ -4,6 +4,7 @@ built for and which library is missing (hyvox_blender.core.module_diagnosis), in
 Python's misleading ImportError. The broken modules (broken_module.py) are real shared
 objects: one linked against a library that is then deleted, and the same one named for
 another Python."""
+
 import pathlib
 import shutil
 import subprocess
@@ -28,8 +29,7 @@ def broken(tmp_path):
 
 def import_error(package: pathlib.Path) -> ImportError:
     code = f"import sys; sys.path.insert(0, {str(package.parent)!r}); import hyvox"
-    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         env={"PATH": "/usr/bin:/bin"})
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env={"PATH": "/usr/bin:/bin"})
     assert run.returncode != 0
     return ImportError(run.stderr.strip().splitlines()[-1])
 
@@ -61,14 +61,18 @@ def test_no_module_file(tmp_path):
 def test_loading_add_on_reports_it(broken, tmp_path):
     # The add-on's loader, with the broken package bundled where the build puts it.
     addon = tmp_path / "addon"
-    shutil.copytree(ADDON / "hyvox_blender", addon / "hyvox_blender",
-                    ignore=shutil.ignore_patterns("__pycache__", "hyvox"))
+    shutil.copytree(
+        ADDON / "hyvox_blender", addon / "hyvox_blender", ignore=shutil.ignore_patterns("__pycache__", "hyvox")
+    )
     shutil.copytree(broken, addon / "hyvox_blender" / "hyvox")
-    code = (f"import sys; sys.path.insert(0, {str(addon)!r})\n"
-            "from hyvox_blender.core import backend, errors\n"
-            "try:\n    backend.load_module()\n"
-            "except errors.ModuleMissingError as exc:\n    print(exc)\n")
-    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         env={"PATH": "/usr/bin:/bin"}, check=True)
+    code = (
+        f"import sys; sys.path.insert(0, {str(addon)!r})\n"
+        "from hyvox_blender.core import backend, errors\n"
+        "try:\n    backend.load_module()\n"
+        "except errors.ModuleMissingError as exc:\n    print(exc)\n"
+    )
+    run = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env={"PATH": "/usr/bin:/bin"}, check=True
+    )
     assert f"Missing libraries: {GONE}." in run.stdout, run.stdout + run.stderr
     assert f"File: {addon / 'hyvox_blender' / 'hyvox' / ('_core' + SUFFIX)}" in run.stdout

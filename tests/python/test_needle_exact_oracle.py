@@ -10,15 +10,18 @@ import pytest
 import hyvox
 from exact_sat import cross, exact_voxels_near, sub, unexplained, voxel_space_corners
 
-NEEDLE = np.array([[-1.41794e-37, -1.917669e-37, -1.917669e-37], [-1.924353e-37, 1.1985432e-38, 0.0],
-                   [-2.5045195e+33] * 3], np.float32)
+NEEDLE = np.array(
+    [[-1.41794e-37, -1.917669e-37, -1.917669e-37], [-1.924353e-37, 1.1985432e-38, 0.0], [-2.5045195e33] * 3], np.float32
+)
 TRIANGLES = np.array([[0, 1, 2]], np.uint32)
 
 
 @pytest.fixture(scope="module")
 def runs():
-    return {method: hyvox.voxelize(NEEDLE, TRIANGLES, resolution=35, padding=1, method=method)
-            for method in ("cpu", "reference", "triangle", "fragment", "hybrid")}
+    return {
+        method: hyvox.voxelize(NEEDLE, TRIANGLES, resolution=35, padding=1, method=method)
+        for method in ("cpu", "reference", "triangle", "fragment", "hybrid")
+    }
 
 
 def test_every_exact_method_sets_the_exact_needles_voxels(runs):

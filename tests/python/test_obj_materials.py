@@ -38,7 +38,9 @@ def write_obj(folder, image="painted.png", mtl="scene.mtl", write_mtl=True, writ
     if write_mtl:
         (folder / mtl).write_text(
             "# two materials\nnewmtl painted\nKd {} {} {}\nmap_Kd {}\n\nnewmtl plain\nKa 0 0 0\nKd {} {} {}\n".format(
-                *PAINTED_KD, image, *PLAIN_KD))
+                *PAINTED_KD, image, *PLAIN_KD
+            )
+        )
     if write_image:
         Image.fromarray(pixels()).save(folder / "painted.png")
     return folder / "scene.obj"
@@ -72,11 +74,27 @@ def test_read_mesh_gives_the_materials(tmp_path):
 def test_file_colours_equal_the_arrays_and_the_oracle(tmp_path, cli):
     path = write_obj(tmp_path)
     v, t, attrs = hyvox.read_mesh(path, attributes=True)
-    from_file = hyvox.voxelize(v, t, resolution=RESOLUTION, attributes="color", uvs=attrs["uvs"],
-                               material_ids=attrs["material_ids"], palette=attrs["palette"], textures=attrs["textures"])
+    from_file = hyvox.voxelize(
+        v,
+        t,
+        resolution=RESOLUTION,
+        attributes="color",
+        uvs=attrs["uvs"],
+        material_ids=attrs["material_ids"],
+        palette=attrs["palette"],
+        textures=attrs["textures"],
+    )
     vertices, triangles, uvs, material_ids, palette = arrays()
-    from_arrays = hyvox.voxelize(vertices, triangles, resolution=RESOLUTION, attributes="color", uvs=uvs,
-                                 material_ids=material_ids, palette=palette, textures=[pixels(), None])
+    from_arrays = hyvox.voxelize(
+        vertices,
+        triangles,
+        resolution=RESOLUTION,
+        attributes="color",
+        uvs=uvs,
+        material_ids=material_ids,
+        palette=palette,
+        textures=[pixels(), None],
+    )
     assert np.array_equal(from_file.coords(), from_arrays.coords())
     colors = from_arrays.attributes()["color"]
     assert np.array_equal(from_file.attributes()["color"], colors)
@@ -84,10 +102,12 @@ def test_file_colours_equal_the_arrays_and_the_oracle(tmp_path, cli):
     # The oracle, part by part (no voxel holds both): the image at the quad's UVs, Kd on the triangle.
     grid = from_arrays
     texels = srgb_to_linear(pixels() / 255.0)
-    quad_ijk, quad = voxel_attributes(vertices, triangles[:2], grid.origin, grid.voxel_size, grid.dims, uvs=uvs,
-                                      texture=texels)
-    plain_ijk, plain = voxel_attributes(vertices, triangles[2:], grid.origin, grid.voxel_size, grid.dims,
-                                        material_ids=[1], palette=palette)
+    quad_ijk, quad = voxel_attributes(
+        vertices, triangles[:2], grid.origin, grid.voxel_size, grid.dims, uvs=uvs, texture=texels
+    )
+    plain_ijk, plain = voxel_attributes(
+        vertices, triangles[2:], grid.origin, grid.voxel_size, grid.dims, material_ids=[1], palette=palette
+    )
     oracle_keys = np.concatenate([by_key(quad_ijk, grid.dims), by_key(plain_ijk, grid.dims)])
     oracle = np.concatenate([quad["color"], plain["color"]])
     keys = by_key(grid.coords(), grid.dims)
@@ -99,8 +119,23 @@ def test_file_colours_equal_the_arrays_and_the_oracle(tmp_path, cli):
 
     # The CLI takes the materials from the file by itself (no --texture).
     out = tmp_path / "scene.vdb"
-    done = subprocess.run([str(cli), "voxelize", str(path), "-o", str(out), "-q", "--resolution", str(RESOLUTION),
-                           "--attributes", "color"], capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [
+            str(cli),
+            "voxelize",
+            str(path),
+            "-o",
+            str(out),
+            "-q",
+            "--resolution",
+            str(RESOLUTION),
+            "--attributes",
+            "color",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     assert "warning" not in done.stderr
     written = {tuple(item["min"]): item["value"] for item in vdb.read(str(out), "color").iterOnValues()}
@@ -114,15 +149,38 @@ def test_a_missing_image_is_a_warning_and_the_material_keeps_its_kd(tmp_path, cl
     with pytest.warns(UserWarning, match="missing.png.*cannot be opened"):
         v, t, attrs = hyvox.read_mesh(path, attributes=True)
     assert attrs["textures"] == [None, None]
-    grid = hyvox.voxelize(v, t, resolution=RESOLUTION, attributes="color", uvs=attrs["uvs"],
-                          material_ids=attrs["material_ids"], palette=attrs["palette"], textures=attrs["textures"])
+    grid = hyvox.voxelize(
+        v,
+        t,
+        resolution=RESOLUTION,
+        attributes="color",
+        uvs=attrs["uvs"],
+        material_ids=attrs["material_ids"],
+        palette=attrs["palette"],
+        textures=attrs["textures"],
+    )
     colors = grid.attributes()["color"]
     on_quad = grid.coords()[:, 0] < 5 * RESOLUTION / 9  # the quad's voxels (x < 5 world units)
     np.testing.assert_allclose(colors[on_quad], np.tile(PAINTED_KD, (on_quad.sum(), 1)), atol=1e-6)
     np.testing.assert_allclose(colors[~on_quad], np.tile(PLAIN_KD, ((~on_quad).sum(), 1)), atol=1e-6)
 
-    done = subprocess.run([str(cli), "voxelize", str(path), "-o", str(tmp_path / "out.vdb"), "-q", "--resolution",
-                           str(RESOLUTION), "--attributes", "color"], capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [
+            str(cli),
+            "voxelize",
+            str(path),
+            "-o",
+            str(tmp_path / "out.vdb"),
+            "-q",
+            "--resolution",
+            str(RESOLUTION),
+            "--attributes",
+            "color",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     assert "warning" in done.stderr and "missing.png" in done.stderr
 
@@ -149,18 +207,50 @@ def test_geometry_alone_reads_without_warnings(tmp_path, recwarn):
 def test_textures_must_match_the_palette(tmp_path):
     vertices, triangles, uvs, material_ids, palette = arrays()
     with pytest.raises(ValueError, match="one entry .* per palette colour"):
-        hyvox.voxelize(vertices, triangles, resolution=8, attributes="color", uvs=uvs, material_ids=material_ids,
-                       palette=palette, textures=[pixels()])
+        hyvox.voxelize(
+            vertices,
+            triangles,
+            resolution=8,
+            attributes="color",
+            uvs=uvs,
+            material_ids=material_ids,
+            palette=palette,
+            textures=[pixels()],
+        )
     with pytest.raises(ValueError, match="texture must be a path or an array"):
-        hyvox.voxelize(vertices, triangles, resolution=8, attributes="color", uvs=uvs, material_ids=material_ids,
-                       palette=palette, textures=[7, None])
+        hyvox.voxelize(
+            vertices,
+            triangles,
+            resolution=8,
+            attributes="color",
+            uvs=uvs,
+            material_ids=material_ids,
+            palette=palette,
+            textures=[7, None],
+        )
     with pytest.raises(ValueError, match="needs the mesh's UVs"):
-        hyvox.voxelize(vertices, triangles, resolution=8, attributes="color", material_ids=material_ids,
-                       palette=palette, textures=[pixels(), None])
+        hyvox.voxelize(
+            vertices,
+            triangles,
+            resolution=8,
+            attributes="color",
+            material_ids=material_ids,
+            palette=palette,
+            textures=[pixels(), None],
+        )
 
 
 def test_the_tessellation_refuses_a_texture_per_material():
     vertices, triangles, uvs, material_ids, palette = arrays()
     with pytest.raises(ValueError, match="not one per material"):
-        hyvox.voxelize(vertices, triangles, resolution=8, method="tessellation", attributes="color", uvs=uvs,
-                       material_ids=material_ids, palette=palette, textures=[pixels(), None])
+        hyvox.voxelize(
+            vertices,
+            triangles,
+            resolution=8,
+            method="tessellation",
+            attributes="color",
+            uvs=uvs,
+            material_ids=material_ids,
+            palette=palette,
+            textures=[pixels(), None],
+        )

@@ -4,6 +4,7 @@ refused with the same message by the CLI and the Python module, every option set
 command line or in Python reaches the run (stats["options"]), the environment variables the
 schema names are read by both doors, and the generated stubs and docstring list every option.
 Parametrised over hyvox.OPTIONS itself, so an option added later is tested without new code."""
+
 import ast
 import json
 import math
@@ -68,8 +69,12 @@ def test_bad_value_same_message_in_python_and_cli(name, value, text, cli, tmp_pa
     assert str(python_error.value) == message
 
     spec = hyvox.option(name)
-    done = subprocess.run([str(cli), "voxelize", "mesh.ply", "-o", str(tmp_path / "out.vdb"),
-                           f"{spec.cli_flag}={text}"], capture_output=True, text=True, timeout=60)
+    done = subprocess.run(
+        [str(cli), "voxelize", "mesh.ply", "-o", str(tmp_path / "out.vdb"), f"{spec.cli_flag}={text}"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert done.returncode == 2
     assert f"hyvox: error: {spec.cli_flag}: {message}\n" in done.stderr
     assert not (tmp_path / "out.vdb").exists()
@@ -78,9 +83,14 @@ def test_bad_value_same_message_in_python_and_cli(name, value, text, cli, tmp_pa
 def good_value(spec):
     """A valid value other than the default, for runs of the cpu method on a tetrahedron."""
     special = {
-        "method": "reference", "voxel_size": 0.125, "origin": (-0.5, -0.25, 0.0),
-        "bounds": ((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)), "gl_device": "software",
-        "shader_dir": "/nonexistent/shaders", "displacement_image": "height.png", "attributes": "normal",
+        "method": "reference",
+        "voxel_size": 0.125,
+        "origin": (-0.5, -0.25, 0.0),
+        "bounds": ((-0.5, -0.5, -0.5), (1.5, 1.5, 1.5)),
+        "gl_device": "software",
+        "shader_dir": "/nonexistent/shaders",
+        "displacement_image": "height.png",
+        "attributes": "normal",
         "region": "1/2",
         "memory_budget_mib": 512,
     }
@@ -120,8 +130,17 @@ def test_every_option_reaches_the_run_from_both_doors(spec, cli, tmp_path, tetra
     assert grid.stats["options"][spec.name] == as_json(value)
 
     stats = tmp_path / "stats.json"
-    args = [str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "out.vdb"), "--stats-json", str(stats), "-q",
-            f"{spec.cli_flag}={cli_text(value)}"] + [f"--{k}={v}" for k, v in others.items()]
+    args = [
+        str(cli),
+        "voxelize",
+        str(tetra_obj),
+        "-o",
+        str(tmp_path / "out.vdb"),
+        "--stats-json",
+        str(stats),
+        "-q",
+        f"{spec.cli_flag}={cli_text(value)}",
+    ] + [f"--{k}={v}" for k, v in others.items()]
     done = subprocess.run(args, capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert json.loads(stats.read_text())["options"][spec.name] == as_json(value)
@@ -132,7 +151,12 @@ ENV_SPECS = [spec for spec in hyvox.OPTIONS if spec.env]
 
 def test_environment_variables_are_schema_options():
     assert {spec.env for spec in ENV_SPECS} == {
-        "HYVOX_GL_DEVICE", "HYVOX_SHADER_DIR", "HYVOX_GL_TILE_BYTES", "HYVOX_GL_WALL_TIMING", "HYVOX_TESS_INSTANCED"}
+        "HYVOX_GL_DEVICE",
+        "HYVOX_SHADER_DIR",
+        "HYVOX_GL_TILE_BYTES",
+        "HYVOX_GL_WALL_TIMING",
+        "HYVOX_TESS_INSTANCED",
+    }
 
 
 @pytest.mark.filterwarnings("ignore::hyvox.IgnoredOptionWarning")  # other methods' options on purpose
@@ -146,8 +170,12 @@ def test_environment_reaches_the_run_from_both_doors(spec, cli, tmp_path, monkey
     assert hyvox.voxelize(TETRA_V, TETRA_T, **{spec.name: spec.default}).stats["options"][spec.name] == spec.default
 
     stats = tmp_path / "stats.json"
-    done = subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q",
-                           "--stats-json", str(stats)], capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q", "--stats-json", str(stats)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     assert json.loads(stats.read_text())["options"][spec.name] == as_json(value)
 
@@ -175,16 +203,26 @@ def test_unset_options_are_the_schema_defaults(cli, tmp_path, tetra_obj):
     assert unset.stats["options"] == spelled.stats["options"]
     assert np.array_equal(unset.to_dense(), spelled.to_dense())
     stats = tmp_path / "stats.json"
-    done = subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q", "--stats-json",
-                           str(stats)], capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q", "--stats-json", str(stats)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     cli_stats = json.loads(stats.read_text())
     assert cli_stats["options"] == unset.stats["options"]
     assert cli_stats["voxel_count"] == unset.voxel_count
 
 
-STUB_TYPES = {"int": "int", "float": "float", "bool": "bool", "str": "str", "vector3": "Sequence[float]",
-              "box": "Tuple[Sequence[float], Sequence[float]]"}
+STUB_TYPES = {
+    "int": "int",
+    "float": "float",
+    "bool": "bool",
+    "str": "str",
+    "vector3": "Sequence[float]",
+    "box": "Tuple[Sequence[float], Sequence[float]]",
+}
 
 
 def test_generated_stubs_list_every_option():
@@ -196,8 +234,19 @@ def test_generated_stubs_list_every_option():
         names = "Literal[" + ", ".join(repr(c) for c in spec.choices) + "]"
         inner = {"choice": names, "choices": f"Union[str, Sequence[{names}]]"}.get(spec.type) or STUB_TYPES[spec.type]
         assert keywords.pop(spec.name) == f"Optional[{inner}]", spec.name
-    assert set(keywords) == {"uvs", "normals", "displacement_pixels", "colors", "texture", "material_ids", "palette",
-                             "textures", "face_normals", "progress", "cancel"}
+    assert set(keywords) == {
+        "uvs",
+        "normals",
+        "displacement_pixels",
+        "colors",
+        "texture",
+        "material_ids",
+        "palette",
+        "textures",
+        "face_normals",
+        "progress",
+        "cancel",
+    }
 
 
 def test_generated_stubs_list_every_write_option():
@@ -226,21 +275,32 @@ def test_stats_have_the_backends_typed_section():
     assert reference["reference"]["voxel_tests"] >= len(TETRA_T) and "cpu" not in reference
 
 
-METHOD_GROUPS = {"gl": {"triangle", "fragment", "hybrid", "tessellation"}, "hybrid": {"hybrid"},
-                 "tessellation": {"tessellation"}}
+METHOD_GROUPS = {
+    "gl": {"triangle", "fragment", "hybrid", "tessellation"},
+    "hybrid": {"hybrid"},
+    "tessellation": {"tessellation"},
+}
 
 
 @pytest.mark.parametrize("spec", [s for s in hyvox.OPTIONS if s.group in METHOD_GROUPS], ids=lambda s: s.name)
 def test_cli_warns_about_options_the_method_ignores(spec, cli, tmp_path, tetra_obj):
     flag = f"{spec.cli_flag}={cli_text(good_value(spec))}"
-    done = subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q", "--method=cpu", flag],
-                          capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q", "--method=cpu", flag],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     assert f"hyvox: warning: {spec.cli_flag} does not apply to the cpu method: ignored" in done.stderr
     # The method the option belongs to takes it without a word (on llvmpipe where there is no GPU).
     method = sorted(METHOD_GROUPS[spec.group])[-1]
-    done = subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q", f"--method={method}",
-                           flag], capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q", f"--method={method}", flag],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     # The arguments must have parsed (warnings are printed right after parsing, a usage error,
     # status 2, prints none); the run itself may fail on the test value (a missing shader
     # folder or displacement image, a tile too small).

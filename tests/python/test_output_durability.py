@@ -22,8 +22,13 @@ def traced(command, tmp_path, env=None):
     if STRACE is None:
         pytest.fail("strace not found (scripts/install_deps.sh installs it)")
     log = tmp_path / "strace.log"
-    done = subprocess.run([STRACE, "-f", "-y", "-qq", "-e", "trace=fsync,fdatasync,rename,renameat,renameat2",
-                           "-o", str(log), *command], capture_output=True, text=True, timeout=300, env=env)
+    done = subprocess.run(
+        [STRACE, "-f", "-y", "-qq", "-e", "trace=fsync,fdatasync,rename,renameat,renameat2", "-o", str(log), *command],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env=env,
+    )
     assert done.returncode == 0, done.stderr
     calls = []
     for line in log.read_text().splitlines():
@@ -35,14 +40,15 @@ def traced(command, tmp_path, env=None):
 
 def writes_of(calls, name):
     """The calls that concern output `name`: its temporary's fsync, the rename, the folder's fsync."""
-    renames = [i for i, (call, paths) in enumerate(calls)
-               if call.startswith("rename") and os.path.basename(paths[-1]) == name]
+    renames = [
+        i for i, (call, paths) in enumerate(calls) if call.startswith("rename") and os.path.basename(paths[-1]) == name
+    ]
     assert len(renames) == 1, calls
     at = renames[0]
     temporary = calls[at][1][0]
     assert os.path.basename(temporary).startswith(f".{name}.tmp-"), calls
     synced_before = [paths[0] for call, paths in calls[:at] if call in ("fsync", "fdatasync")]
-    synced_after = [paths[0] for call, paths in calls[at + 1:] if call in ("fsync", "fdatasync")]
+    synced_after = [paths[0] for call, paths in calls[at + 1 :] if call in ("fsync", "fdatasync")]
     return temporary, synced_before, synced_after
 
 
@@ -50,8 +56,17 @@ def writes_of(calls, name):
 def test_cli_syncs_outputs_only_when_asked(durable, cli, tetra_obj, tmp_path):
     folder = tmp_path / "out"
     folder.mkdir()
-    command = [str(cli), "voxelize", str(tetra_obj), "-o", str(folder / "t.vdb"), "--stats-json",
-               str(folder / "t.json"), "-q", "--resolution=8"] + (["--durable-write"] if durable else [])
+    command = [
+        str(cli),
+        "voxelize",
+        str(tetra_obj),
+        "-o",
+        str(folder / "t.vdb"),
+        "--stats-json",
+        str(folder / "t.json"),
+        "-q",
+        "--resolution=8",
+    ] + (["--durable-write"] if durable else [])
     calls = traced(command, tmp_path)
     for name in ("t.vdb", "t.json"):
         temporary, before, after = writes_of(calls, name)
@@ -69,9 +84,13 @@ def test_module_write_vdb_follows_the_option(durable, tmp_path):
     script = (
         "import sys, hyvox\n"
         "v = [[0.,0,0],[1.,0,0],[0.,1,0],[0.,0,1]]; t = [[0,2,1],[0,1,3],[0,3,2],[1,2,3]]\n"
-        f"hyvox.voxelize(v, t, resolution=8).write_vdb(sys.argv[1], durable_write={durable})\n")
-    calls = traced([sys.executable, "-c", script, str(tmp_path / "m.vdb")], tmp_path,
-                   env={**os.environ, "PYTHONPATH": os.path.dirname(os.path.dirname(hyvox.__file__))})
+        f"hyvox.voxelize(v, t, resolution=8).write_vdb(sys.argv[1], durable_write={durable})\n"
+    )
+    calls = traced(
+        [sys.executable, "-c", script, str(tmp_path / "m.vdb")],
+        tmp_path,
+        env={**os.environ, "PYTHONPATH": os.path.dirname(os.path.dirname(hyvox.__file__))},
+    )
     temporary, before, after = writes_of(calls, "m.vdb")
     if durable:
         assert os.path.realpath(temporary) in [os.path.realpath(p) for p in before], calls
@@ -87,7 +106,9 @@ def test_durable_write_is_an_option_of_the_write_not_of_the_voxelization(tetrahe
     assert hyvox.option("durable_write").default is False
     grid = hyvox.voxelize(vertices, triangles, resolution=8)
     assert "durable_write" not in grid.stats["options"]  # what decided the voxels only
-    with pytest.raises(TypeError, match=r"^durable_write is an option of VoxelGrid.write_vdb\(\), not of voxelize\(\)$"):
+    with pytest.raises(
+        TypeError, match=r"^durable_write is an option of VoxelGrid.write_vdb\(\), not of voxelize\(\)$"
+    ):
         hyvox.voxelize(vertices, triangles, resolution=8, durable_write=True)
     with pytest.raises(TypeError, match=r"^resolution is an option of voxelize\(\), not of VoxelGrid.write_vdb\(\)$"):
         grid.write_vdb(tmp_path / "r.vdb", resolution=8)

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """hyvox.plan_grid lays out the grid voxelize() lays out, without voxelizing (a farm job's
 chunks take the voxel size of the job's first frame by it)."""
+
 import numpy as np
 import pytest
 
@@ -14,8 +15,10 @@ def box_mesh(low, high):
     return corners, np.array([t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))], dtype=np.uint32)
 
 
-@pytest.mark.parametrize("options", [dict(resolution=37), dict(resolution=64, padding=3), dict(voxel_size=0.07),
-                                     dict(resolution=20, mode="solid")])
+@pytest.mark.parametrize(
+    "options",
+    [dict(resolution=37), dict(resolution=64, padding=3), dict(voxel_size=0.07), dict(resolution=20, mode="solid")],
+)
 def test_plan_is_the_grid_voxelize_lays_out(options):
     vertices, triangles = box_mesh((0.1, -0.2, 0.3), (1.3, 0.4, 2.0))
     plan = hyvox.plan_grid(vertices, triangles, **options)
@@ -30,8 +33,11 @@ def test_degenerate_triangles_do_not_count_towards_the_bounds():
     triangles = np.vstack([triangles, [[far, far + 1, far + 1]]]).astype(np.uint32)  # a repeated index
     plan = hyvox.plan_grid(vertices, triangles, resolution=10)
     assert plan["voxel_size"] == pytest.approx(0.1)
-    assert plan == {"origin": (0.0, 0.0, 0.0), "voxel_size": hyvox.voxelize(vertices, triangles, resolution=10).voxel_size,
-                    "dims": (10, 10, 10)}
+    assert plan == {
+        "origin": (0.0, 0.0, 0.0),
+        "voxel_size": hyvox.voxelize(vertices, triangles, resolution=10).voxel_size,
+        "dims": (10, 10, 10),
+    }
 
 
 def test_bad_input_is_refused():

@@ -30,8 +30,9 @@ def tetra_3mf(path, vertices, triangles):
 
 def loaded_by(command, env=None):
     """The shared objects the dynamic linker opened for `command` (LD_DEBUG=files), and its result."""
-    done = subprocess.run(command, capture_output=True, text=True, timeout=300,
-                          env={**(env or os.environ), "LD_DEBUG": "files"})
+    done = subprocess.run(
+        command, capture_output=True, text=True, timeout=300, env={**(env or os.environ), "LD_DEBUG": "files"}
+    )
     opened = {line.split("file=")[1].split()[0] for line in done.stderr.splitlines() if "file=" in line}
     return {os.path.basename(name) for name in opened}, done
 
@@ -43,14 +44,16 @@ def has_any(names, libraries):
 def voxels_of(path):
     sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "blender"))
     import vdb_dump  # pyopenvdb: an independent reader
+
     coords, _, _, _ = vdb_dump.read(str(path))
     return set(map(tuple, np.asarray(coords).reshape(-1, 3).tolist()))
 
 
 def test_cli_cpu_run_of_ply_and_obj_loads_no_plugin(cli, mesh_dir, tetra_obj, tmp_path):
     for mesh in (mesh_dir / "bunny_stanford_69k.ply", tetra_obj):
-        names, done = loaded_by([str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "o.vdb"), "-q",
-                                 "--resolution=32", "--method=cpu"])
+        names, done = loaded_by(
+            [str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=32", "--method=cpu"]
+        )
         assert done.returncode == 0, done.stderr[-2000:]
         assert "libtbb.so.12" in names  # the witness sees what the CLI loads
         assert not has_any(names, ASSIMP + GL + ("libopenvdb.so",)), names
@@ -58,25 +61,51 @@ def test_cli_cpu_run_of_ply_and_obj_loads_no_plugin(cli, mesh_dir, tetra_obj, tm
 
 def test_cli_reads_3mf_through_the_assimp_reader(cli, tetrahedron, tetra_obj, tmp_path):
     model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
-    names, done = loaded_by([str(cli), "voxelize", str(model), "-o", str(tmp_path / "3mf.vdb"), "-q",
-                             "--resolution=16"])
+    names, done = loaded_by(
+        [str(cli), "voxelize", str(model), "-o", str(tmp_path / "3mf.vdb"), "-q", "--resolution=16"]
+    )
     assert done.returncode == 0, done.stderr[-2000:]
     assert "libtbb.so.12" in names  # the witness sees what the CLI loads
     assert not has_any(names, ASSIMP + GL), names
-    subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "obj.vdb"), "-q", "--resolution=16"],
-                   check=True, timeout=120)
+    subprocess.run(
+        [str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "obj.vdb"), "-q", "--resolution=16"],
+        check=True,
+        timeout=120,
+    )
     model_voxels = voxels_of(tmp_path / "3mf.vdb")
     assert model_voxels and model_voxels == voxels_of(tmp_path / "obj.vdb")
 
 
 def test_cli_gl_method_through_the_gl_plugin(cli, tetra_obj, tmp_path):
-    names, done = loaded_by([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "gl.vdb"), "-q",
-                             "--resolution=16", "--method=hybrid"])
+    names, done = loaded_by(
+        [
+            str(cli),
+            "voxelize",
+            str(tetra_obj),
+            "-o",
+            str(tmp_path / "gl.vdb"),
+            "-q",
+            "--resolution=16",
+            "--method=hybrid",
+        ]
+    )
     assert done.returncode == 0, done.stderr[-2000:]
     assert has_any(names, ("libhyvox_gl_methods.so",)) and has_any(names, ("libepoxy.so",)), names
     assert not has_any(names, ASSIMP), names
-    subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "cpu.vdb"), "-q", "--resolution=16",
-                    "--method=cpu"], check=True, timeout=120)
+    subprocess.run(
+        [
+            str(cli),
+            "voxelize",
+            str(tetra_obj),
+            "-o",
+            str(tmp_path / "cpu.vdb"),
+            "-q",
+            "--resolution=16",
+            "--method=cpu",
+        ],
+        check=True,
+        timeout=120,
+    )
     gl_voxels = voxels_of(tmp_path / "gl.vdb")
     assert gl_voxels and gl_voxels == voxels_of(tmp_path / "cpu.vdb")  # the exact methods agree
 
@@ -109,8 +138,13 @@ print(json.dumps(out))
 
 def test_module_loads_each_plugin_when_first_needed(tetrahedron, tmp_path):
     model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
-    done = subprocess.run([sys.executable, "-c", MODULE_CHILD, str(model)], capture_output=True, text=True, timeout=300,
-                          env={**os.environ, "PYTHONPATH": PYTHONPATH})
+    done = subprocess.run(
+        [sys.executable, "-c", MODULE_CHILD, str(model)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={**os.environ, "PYTHONPATH": PYTHONPATH},
+    )
     assert done.returncode == 0, done.stderr[-3000:]
     out = json.loads(done.stdout)
     assert any(n.startswith("_core") for n in out["cpu"])
@@ -128,25 +162,42 @@ def test_a_missing_plugin_is_a_clear_error_and_nothing_else_needs_it(cli, tetrah
     empty.mkdir()
     env = {**os.environ, "HYVOX_PLUGIN_DIR": str(empty)}
     model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
-    run = lambda *args: subprocess.run([str(cli), "voxelize", *map(str, args), "-o", str(tmp_path / "o.vdb"), "-q",
-                                        "--resolution=8"], capture_output=True, text=True, timeout=120, env=env)
+    run = lambda *args: subprocess.run(
+        [str(cli), "voxelize", *map(str, args), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=8"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=env,
+    )
     done = run(model)
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
-    assert f"reading '{model}' needs hyvox_assimp_reader, which is not installed with hyvox (looked in {empty})" \
-        in done.stderr, done.stderr
+    assert (
+        f"reading '{model}' needs hyvox_assimp_reader, which is not installed with hyvox (looked in {empty})"
+        in done.stderr
+    ), done.stderr
     done = run(tetra_obj, "--method=hybrid")
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
-    assert "the hybrid method needs libhyvox_gl_methods.so, which is not installed with hyvox" in done.stderr, done.stderr
+    assert "the hybrid method needs libhyvox_gl_methods.so, which is not installed with hyvox" in done.stderr, (
+        done.stderr
+    )
     done = run(tetra_obj, "--method=cpu")  # a cpu run of an OBJ needs neither
     assert done.returncode == 0, done.stderr
     # The module: a RuntimeError with the same message.
-    child = ("import hyvox\n"
-             "try:\n    hyvox.voxelize([[0.,0,0],[1.,0,0],[0.,1,0]], [[0,1,2]], method='tessellation')\n"
-             "except RuntimeError as e:\n    print(e)\n")
-    done = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True, timeout=120,
-                          env={**env, "PYTHONPATH": PYTHONPATH})
-    assert "the tessellation method needs libhyvox_gl_methods.so, which is not installed" in done.stdout, \
+    child = (
+        "import hyvox\n"
+        "try:\n    hyvox.voxelize([[0.,0,0],[1.,0,0],[0.,1,0]], [[0,1,2]], method='tessellation')\n"
+        "except RuntimeError as e:\n    print(e)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", child],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env={**env, "PYTHONPATH": PYTHONPATH},
+    )
+    assert "the tessellation method needs libhyvox_gl_methods.so, which is not installed" in done.stdout, (
         done.stdout + done.stderr
+    )
 
 
 def test_a_plugin_that_does_not_load_says_why(cli, tetra_obj, tmp_path):
@@ -154,9 +205,22 @@ def test_a_plugin_that_does_not_load_says_why(cli, tetra_obj, tmp_path):
     folder = tmp_path / "damaged"
     folder.mkdir()
     (folder / "libhyvox_gl_methods.so").write_bytes(b"not a shared object\n" * 64)
-    done = subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q",
-                           "--resolution=8", "--method=hybrid"],
-                          capture_output=True, text=True, timeout=120, env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)})
+    done = subprocess.run(
+        [
+            str(cli),
+            "voxelize",
+            str(tetra_obj),
+            "-o",
+            str(tmp_path / "o.vdb"),
+            "-q",
+            "--resolution=8",
+            "--method=hybrid",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)},
+    )
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
     assert f"needs {folder}/libhyvox_gl_methods.so, which cannot be loaded: " in done.stderr, done.stderr
     assert "invalid ELF header" in done.stderr, done.stderr
@@ -175,22 +239,37 @@ def test_a_plugin_from_another_build_is_refused(cli, tetra_obj, tmp_path):
     prefix = b"hyvox-plugin-build-id="
     assert data.count(prefix) == 1
     at = data.index(prefix) + len(prefix)
-    own = data[at:at + 32].decode()
+    own = data[at : at + 32].decode()
     assert len(own) == 32 and all(c in "0123456789abcdef" for c in own), own
     other = ("1" if own[0] != "1" else "2") + own[1:]
-    run = lambda folder: subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q",
-                                         "--resolution=8", "--method=hybrid"], capture_output=True, text=True,
-                                        timeout=120, env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)})
+    run = lambda folder: subprocess.run(
+        [
+            str(cli),
+            "voxelize",
+            str(tetra_obj),
+            "-o",
+            str(tmp_path / "o.vdb"),
+            "-q",
+            "--resolution=8",
+            "--method=hybrid",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)},
+    )
     done = run(plugin_copy(tmp_path / "same", data))
     assert done.returncode == 0 and (tmp_path / "o.vdb").exists(), done.stderr
     (tmp_path / "o.vdb").unlink()
 
-    folder = plugin_copy(tmp_path / "other", data[:at] + other.encode() + data[at + 32:])
+    folder = plugin_copy(tmp_path / "other", data[:at] + other.encode() + data[at + 32 :])
     done = run(folder)
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
-    assert (f"the hybrid method needs {folder}/libhyvox_gl_methods.so, which is from another hyvox build "
-            f"(hyvox-plugin-build-id={other}; this hyvox is hyvox-plugin-build-id={own}): install hyvox and its "
-            "plugins from one build") in done.stderr, done.stderr
+    assert (
+        f"the hybrid method needs {folder}/libhyvox_gl_methods.so, which is from another hyvox build "
+        f"(hyvox-plugin-build-id={other}; this hyvox is hyvox-plugin-build-id={own}): install hyvox and its "
+        "plugins from one build"
+    ) in done.stderr, done.stderr
 
 
 def test_a_shared_library_without_a_build_id_is_no_plugin(cli, tetra_obj, tmp_path):
@@ -198,12 +277,28 @@ def test_a_shared_library_without_a_build_id_is_no_plugin(cli, tetra_obj, tmp_pa
     with open("/proc/self/maps") as maps:
         tbb = next(line.split()[5] for line in maps if len(line.split()) >= 6 and "/libtbb.so" in line.split()[5])
     folder = plugin_copy(tmp_path / "tbb", pathlib.Path(tbb).read_bytes())
-    done = subprocess.run([str(cli), "voxelize", str(tetra_obj), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=8",
-                           "--method=hybrid"], capture_output=True, text=True, timeout=120,
-                          env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)})
+    done = subprocess.run(
+        [
+            str(cli),
+            "voxelize",
+            str(tetra_obj),
+            "-o",
+            str(tmp_path / "o.vdb"),
+            "-q",
+            "--resolution=8",
+            "--method=hybrid",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)},
+    )
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
-    assert (f"the hybrid method needs {folder}/libhyvox_gl_methods.so, which has no hyvox build id "
-            "(not a hyvox plugin)") in done.stderr, done.stderr
+    assert (
+        f"the hybrid method needs {folder}/libhyvox_gl_methods.so, which has no hyvox build id (not a hyvox plugin)"
+    ) in done.stderr, done.stderr
+
+
 def test_a_reader_program_that_does_not_start_says_why(cli, tetrahedron, tmp_path):
     folder = tmp_path / "damaged"
     folder.mkdir()
@@ -213,8 +308,13 @@ def test_a_reader_program_that_does_not_start_says_why(cli, tetrahedron, tmp_pat
     for mode, reason in ((0o755, "Exec format error"), (0o644, "not executable, and not an ELF program")):
         reader.write_bytes(b"not a program\n" * 64)
         reader.chmod(mode)
-        done = subprocess.run([str(cli), "voxelize", str(model), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=8"],
-                              capture_output=True, text=True, timeout=120, env=env)
+        done = subprocess.run(
+            [str(cli), "voxelize", str(model), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=8"],
+            capture_output=True,
+            text=True,
+            timeout=120,
+            env=env,
+        )
         assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
         assert f"reading '{model}' needs the assimp reader process: cannot start {reader}" in done.stderr, done.stderr
         assert reason in done.stderr, done.stderr
@@ -230,7 +330,12 @@ def test_a_reader_program_without_its_execute_bit_still_reads(cli, tetrahedron, 
     (folder / "hyvox_assimp_reader").chmod(0o644)
     assert not os.access(folder / "hyvox_assimp_reader", os.X_OK)
     model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
-    done = subprocess.run([str(cli), "voxelize", str(model), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=16"],
-                          capture_output=True, text=True, timeout=120, env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)})
+    done = subprocess.run(
+        [str(cli), "voxelize", str(model), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=16"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)},
+    )
     assert done.returncode == 0, done.stderr
     assert voxels_of(tmp_path / "o.vdb")

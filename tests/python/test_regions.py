@@ -4,6 +4,7 @@
 the one-machine file. The oracles: pyopenvdb reading both files (every grid's values and active
 voxels, tiles included, the transform and the metadata), the files' own bytes (equal but for the
 random UUID), and the box each part must keep to, computed here from the grid's dims."""
+
 import json
 import math
 import os
@@ -57,7 +58,9 @@ def assert_same_vdb(whole_path, merged_path, dims):
     assert [g.name for g in merged] == [g.name for g in whole]
     assert merged_meta == whole_meta
     for a, b in zip(whole, merged):
-        assert b.gridClass == a.gridClass and b.valueTypeName == a.valueTypeName and b.background == a.background, a.name
+        assert b.gridClass == a.gridClass and b.valueTypeName == a.valueTypeName and b.background == a.background, (
+            a.name
+        )
         for count in ("activeVoxelCount", "activeLeafVoxelCount", "leafCount", "nonLeafCount", "memUsage"):
             assert getattr(b, count)() == getattr(a, count)(), (a.name, count)
         assert b.evalActiveVoxelBoundingBox() == a.evalActiveVoxelBoundingBox(), a.name
@@ -100,8 +103,9 @@ def cli_job(cli, mesh, count, tmp_path, *options):
     parts = []
     for k in range(count):
         part, part_stats = tmp_path / f"part{k}.vdb", tmp_path / f"part{k}.json"
-        done = run_cli(cli, "voxelize", mesh, "-o", part, "-q", "--stats-json", part_stats, "--region", f"{k}/{count}",
-                       *options)
+        done = run_cli(
+            cli, "voxelize", mesh, "-o", part, "-q", "--stats-json", part_stats, "--region", f"{k}/{count}", *options
+        )
         assert done.returncode == 0, done.stderr
         check_part(part, json.loads(part_stats.read_text()), dims, k, count)
         parts.append(part)
@@ -114,7 +118,9 @@ def cli_job(cli, mesh, count, tmp_path, *options):
 
 def test_dragon_surface_in_four_regions_is_the_whole_run(cli, mesh_dir, tmp_path):
     # 300 voxels along x: 38 leaves, the last cut by the grid's end; 9 or 10 leaves a region.
-    whole, parts, merged, dims = cli_job(cli, mesh_dir / "dragon_stanford_871k.ply.gz", 4, tmp_path, "--resolution", "300")
+    whole, parts, merged, dims = cli_job(
+        cli, mesh_dir / "dragon_stanford_871k.ply.gz", 4, tmp_path, "--resolution", "300"
+    )
     counts = [vdb.read(str(p), "density").activeVoxelCount() for p in parts]
     assert all(counts) and sum(counts) == vdb.read(str(whole), "density").activeVoxelCount()
     assert_same_vdb(whole, merged, dims)
@@ -150,16 +156,27 @@ def test_sponza_solid_in_four_regions_is_the_whole_run(sponza, tmp_path):
 def test_colour_and_normal_grids_in_regions(mesh_dir, tmp_path, cli):
     # Spot's texture through the CLI; Sponza's vertex colours through the module.
     spot = mesh_dir / "spot_uv.ply"
-    whole, _, merged, dims = cli_job(cli, spot, 3, tmp_path, "--resolution", "96", "--attributes", "color,normal",
-                                     "--texture", mesh_dir / "spot_texture.png")
+    whole, _, merged, dims = cli_job(
+        cli,
+        spot,
+        3,
+        tmp_path,
+        "--resolution",
+        "96",
+        "--attributes",
+        "color,normal",
+        "--texture",
+        mesh_dir / "spot_texture.png",
+    )
     assert sorted(g.name for g in vdb.readAll(str(merged))[0]) == ["color", "density", "normal"]
     assert_same_vdb(whole, merged, dims)
 
 
 def test_vertex_colours_in_regions(sponza, tmp_path):
     vertices, triangles, attrs = sponza
-    whole, _, merged, dims = module_job((vertices, triangles, attrs), 5, tmp_path, resolution=160,
-                                        colors=attrs["colors"], attributes="color,normal")
+    whole, _, merged, dims = module_job(
+        (vertices, triangles, attrs), 5, tmp_path, resolution=160, colors=attrs["colors"], attributes="color,normal"
+    )
     assert sorted(g.name for g in vdb.readAll(str(merged))[0]) == ["alpha", "color", "density", "normal"]
     assert_same_vdb(whole, merged, dims)
 
@@ -186,8 +203,9 @@ def test_a_region_with_no_voxels_writes_its_grids(mesh_dir, tmp_path, cli):
     far = high.copy()
     far[0] += high[0] - low[0] + 1.0
     bounds = f"{low[0]},{low[1]},{low[2]},{far[0]},{far[1]},{far[2]}"
-    whole, parts, merged, dims = cli_job(cli, mesh_dir / "spot_uv.ply", 4, tmp_path, "--resolution", "64", "--bounds",
-                                         bounds, "--attributes", "normal")
+    whole, parts, merged, dims = cli_job(
+        cli, mesh_dir / "spot_uv.ply", 4, tmp_path, "--resolution", "64", "--bounds", bounds, "--attributes", "normal"
+    )
     empty, _ = vdb.readAll(str(parts[3]))
     assert sorted(g.name for g in empty) == ["density", "normal"] and all(g.activeVoxelCount() == 0 for g in empty)
     corner = vdb.read(str(whole), "density").transform.indexToWorld((-0.5, -0.5, -0.5))
@@ -199,8 +217,11 @@ def test_more_regions_than_leaves_along_the_axis_are_refused(tetrahedron, tetra_
     vertices, triangles = tetrahedron
     # 20 voxels a side: 3 leaves along x (the first of the equal sides), so at most 3 regions.
     assert hyvox.voxelize(vertices, triangles, resolution=20, region="2/3").stats["region"]["lo"] == [16, 0, 0]
-    with pytest.raises(ValueError, match=r"region 3/4: the 20x20x20 grid has 3 leaves .* along its longest side \(x\), "
-                                         r"so it can be cut into at most 3 regions"):
+    with pytest.raises(
+        ValueError,
+        match=r"region 3/4: the 20x20x20 grid has 3 leaves .* along its longest side \(x\), "
+        r"so it can be cut into at most 3 regions",
+    ):
         hyvox.voxelize(vertices, triangles, resolution=20, region="3/4")
     out = tmp_path / "part.vdb"
     done = run_cli(cli, "voxelize", tetra_obj, "-o", out, "--resolution", "20", "--region", "0/4")
@@ -250,19 +271,22 @@ def bunny_parts(bunny, tmp_path_factory):
     return made
 
 
-@pytest.mark.parametrize("names, message", [
-    (["0of3", "2of3"], "cannot merge a job of 3 regions without region 1/3"),
-    (["0of3"], "cannot merge a job of 3 regions without regions 1/3, 2/3"),
-    (["0of3", "1of3", "1of3", "2of3"], "region 1/3 is also"),
-    (["0of3", "1of3", "2of3", "0of2"], "it is region 0/2, of a job of 2 regions"),
-    (["0of3", "1of3_at_49", "2of3"], "its voxel size is"),
-    (["0of3", "1of3_padded", "2of3"], "its grid origin is"),
-    (["0of3", "1of3_solid", "2of3"], "its mode is solid"),
-    (["0of3", "1of3_thin", "2of3"], "its mode is thin"),
-    (["0of3", "1of3_normal", "2of3"], "its grids are density, normal"),
-    (["whole", "1of3"], "it is region 1/3 of a job, and"),
-    (["whole", "whole"], "both hold voxels of the leaf at"),
-])
+@pytest.mark.parametrize(
+    "names, message",
+    [
+        (["0of3", "2of3"], "cannot merge a job of 3 regions without region 1/3"),
+        (["0of3"], "cannot merge a job of 3 regions without regions 1/3, 2/3"),
+        (["0of3", "1of3", "1of3", "2of3"], "region 1/3 is also"),
+        (["0of3", "1of3", "2of3", "0of2"], "it is region 0/2, of a job of 2 regions"),
+        (["0of3", "1of3_at_49", "2of3"], "its voxel size is"),
+        (["0of3", "1of3_padded", "2of3"], "its grid origin is"),
+        (["0of3", "1of3_solid", "2of3"], "its mode is solid"),
+        (["0of3", "1of3_thin", "2of3"], "its mode is thin"),
+        (["0of3", "1of3_normal", "2of3"], "its grids are density, normal"),
+        (["whole", "1of3"], "it is region 1/3 of a job, and"),
+        (["whole", "whole"], "both hold voxels of the leaf at"),
+    ],
+)
 def test_merge_refuses_parts_that_do_not_fit(bunny_parts, names, message, tmp_path, cli):
     out = tmp_path / "merged.vdb"
     paths = [bunny_parts[n] for n in names]
@@ -309,8 +333,12 @@ def test_a_part_holds_only_its_box(dragon):
     assert peak() > budget_mib << 20, (peak(), parts)
     with pytest.raises(hyvox.ResourceError, match=f"memory budget of {budget_mib} MiB"):
         hyvox.voxelize(vertices, triangles, resolution=1200, memory_budget_mib=budget_mib)
-    leaves = [hyvox.voxelize(vertices, triangles, resolution=1200, region=f"{k}/4",
-                             memory_budget_mib=budget_mib).stats["leaves"] for k in range(4)]
+    leaves = [
+        hyvox.voxelize(vertices, triangles, resolution=1200, region=f"{k}/4", memory_budget_mib=budget_mib).stats[
+            "leaves"
+        ]
+        for k in range(4)
+    ]
     assert min(leaves) > 0
 
 
@@ -324,7 +352,11 @@ def test_merge_help_lists_its_options(cli):
     assert hyvox.option("durable_write").help in merge.stdout  # the schema's help, not a copy
     assert "--resolution" not in merge.stdout
     done = run_cli(cli, "merge", "a.vdb", "-o", "b.vdb", "--resolution", "8")
-    assert done.returncode == 2 and "--resolution is not a merge option" in done.stderr and "hyvox merge --help" in done.stderr
+    assert (
+        done.returncode == 2
+        and "--resolution is not a merge option" in done.stderr
+        and "hyvox merge --help" in done.stderr
+    )
     done = run_cli(cli, "merge", "a.vdb", "-o", "b.vdb", "--bogus")
     assert done.returncode == 2 and "unknown option '--bogus'" in done.stderr
     sweep = run_cli(cli, "gamma-sweep", "--help")

@@ -5,6 +5,7 @@ against the same run's solid voxels, the .vdb's level set read back by pyopenvdb
 background, transform, values) and meshed by OpenVDB (watertight, on the source), the
 front doors' spellings, every method and mode giving the same sdf, and Sponza's inside kept
 where OpenVDB's own level set (its flood fill, what Blender's Mesh to SDF Grid runs) loses it."""
+
 import subprocess
 
 import numpy as np
@@ -21,14 +22,14 @@ def closest_distance(points, a, b, c):
     out = np.empty(len(points))
     step = max(1, 400_000 // len(a))  # points at a time: about 400k point-triangle pairs
     for first in range(0, len(points), step):
-        out[first:first + step] = _closest_distance(points[first:first + step], a, b, c)
+        out[first : first + step] = _closest_distance(points[first : first + step], a, b, c)
     return out
 
 
 def _closest_distance(points, a, b, c):
     best = np.full(len(points), np.inf)
     for start in range(0, len(a), 400_000):
-        A, B, C = a[start:start + 400_000], b[start:start + 400_000], c[start:start + 400_000]
+        A, B, C = a[start : start + 400_000], b[start : start + 400_000], c[start : start + 400_000]
         p = points[:, None, :]
         ab, ac, ap = B - A, C - A, p - A
         d1, d2 = np.einsum("tk,ptk->pt", ab, ap), np.einsum("tk,ptk->pt", ac, ap)
@@ -42,13 +43,18 @@ def _closest_distance(points, a, b, c):
             v, w = vb * denom, vc * denom
             q = A + ab * v[..., None] + ac * w[..., None]  # inside the face
             regions = [
-                (d1 <= 0) & (d2 <= 0), (d3 >= 0) & (d4 <= d3), (vc <= 0) & (d1 >= 0) & (d3 <= 0),
-                (d6 >= 0) & (d5 <= d6), (vb <= 0) & (d2 >= 0) & (d6 <= 0),
+                (d1 <= 0) & (d2 <= 0),
+                (d3 >= 0) & (d4 <= d3),
+                (vc <= 0) & (d1 >= 0) & (d3 <= 0),
+                (d6 >= 0) & (d5 <= d6),
+                (vb <= 0) & (d2 >= 0) & (d6 <= 0),
                 (va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0),
             ]
             targets = [
-                np.broadcast_to(A, q.shape), np.broadcast_to(B, q.shape),
-                A + ab * (d1 / (d1 - d3))[..., None], np.broadcast_to(C, q.shape),
+                np.broadcast_to(A, q.shape),
+                np.broadcast_to(B, q.shape),
+                A + ab * (d1 / (d1 - d3))[..., None],
+                np.broadcast_to(C, q.shape),
                 A + ac * (d2 / (d2 - d6))[..., None],
                 B + (C - B) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))[..., None],
             ]
@@ -111,8 +117,14 @@ def test_signs_are_the_solid_runs_inside(name, spot, elephant):
 
 def test_the_vdb_holds_an_openvdb_level_set(spot, tmp_path):
     vertices, triangles = spot
-    grid = hyvox.voxelize(vertices, triangles, resolution=40, mode="solid", attributes=("color", "sdf"),
-                          colors=np.ones((len(vertices), 3)))
+    grid = hyvox.voxelize(
+        vertices,
+        triangles,
+        resolution=40,
+        mode="solid",
+        attributes=("color", "sdf"),
+        colors=np.ones((len(vertices), 3)),
+    )
     path = tmp_path / "spot.vdb"
     grid.write_vdb(path)
     grids = {g.name: g for g in vdb.readAll(str(path))[0]}
@@ -152,7 +164,9 @@ def test_openvdb_meshes_it_watertight_on_the_source(spot, tmp_path):
     sdf = vdb.read(str(path), "sdf")
     points, tris, quads = sdf.convertToPolygons(0.0, 0.0)  # volumeToMesh, as Grid to Mesh runs it
     assert len(quads) > 1000
-    edges = np.concatenate([quads[:, [k, (k + 1) % 4]] for k in range(4)] + [tris[:, [k, (k + 1) % 3]] for k in range(3)])
+    edges = np.concatenate(
+        [quads[:, [k, (k + 1) % 4]] for k in range(4)] + [tris[:, [k, (k + 1) % 3]] for k in range(3)]
+    )
     _, uses = np.unique(np.sort(edges, axis=1), axis=0, return_counts=True)
     assert np.all(uses == 2)  # closed
     off = closest_distance(np.asarray(points[::20], np.float64), *triangles_of(vertices, triangles)) / grid.voxel_size
@@ -161,8 +175,24 @@ def test_openvdb_meshes_it_watertight_on_the_source(spot, tmp_path):
 
 def test_band_option_and_padding_from_the_cli(cli, mesh_dir, tmp_path):
     out = tmp_path / "spot.vdb"
-    done = subprocess.run([str(cli), "voxelize", str(mesh_dir / "spot_vcolor.ply"), "-o", str(out), "--resolution", "32",
-                           "--attributes", "sdf", "--sdf-band", "2"], capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [
+            str(cli),
+            "voxelize",
+            str(mesh_dir / "spot_vcolor.ply"),
+            "-o",
+            str(out),
+            "--resolution",
+            "32",
+            "--attributes",
+            "sdf",
+            "--sdf-band",
+            "2",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     v, t = hyvox.read_mesh(mesh_dir / "spot_vcolor.ply")
     plain = hyvox.voxelize(v, t, resolution=32)
@@ -201,8 +231,12 @@ def winding_numbers(points, a, b, c):
         x, y, z = a - p, b - p, c - p
         lx, ly, lz = (np.linalg.norm(v, axis=1) for v in (x, y, z))
         det = np.einsum("ij,ij->i", x, np.cross(y, z))
-        div = lx * ly * lz + np.einsum("ij,ij->i", x, y) * lz + np.einsum("ij,ij->i", y, z) * lx + \
-            np.einsum("ij,ij->i", z, x) * ly
+        div = (
+            lx * ly * lz
+            + np.einsum("ij,ij->i", x, y) * lz
+            + np.einsum("ij,ij->i", y, z) * lx
+            + np.einsum("ij,ij->i", z, x) * ly
+        )
         out[n] = np.arctan2(det, div).sum() / (2 * np.pi)
     return out
 
@@ -217,8 +251,9 @@ def test_sponza_keeps_its_inside_where_openvdb_level_set_loses_it(mesh_dir):
     s = grid.voxel_size
     transform = vdb.createLinearTransform(s)
     transform.translate(tuple(float(o + s / 2) for o in grid.origin))  # index (i, j, k): voxel (i, j, k)'s centre
-    theirs = vdb.FloatGrid.createLevelSetFromPolygons(np.asarray(vertices, np.float32), triangles=np.asarray(triangles, np.int32),
-                                                       transform=transform, halfWidth=3.0)
+    theirs = vdb.FloatGrid.createLevelSetFromPolygons(
+        np.asarray(vertices, np.float32), triangles=np.asarray(triangles, np.int32), transform=transform, halfWidth=3.0
+    )
     ijk, distance = grid.sdf()
     dense = np.empty(grid.dims, np.float32)
     theirs.copyToArray(dense, ijk=(0, 0, 0))  # every voxel of the grid, its band's or ±background

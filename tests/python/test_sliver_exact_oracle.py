@@ -14,16 +14,23 @@ import pytest
 import hyvox
 from exact_sat import EPS, HALF, cross, exact_overlap, exact_voxels_near, sub, unexplained, voxel_space_corners
 
-SEED = np.array([[-2.50451951e+33, 2.11894795e-33, -2.50448284e+33],
-                 [8.85928915e-41, 0.0, -1.91017832e-37],
-                 [-9.40395481e-38, 2.1019477e-44, 8.0]], np.float32)
+SEED = np.array(
+    [
+        [-2.50451951e33, 2.11894795e-33, -2.50448284e33],
+        [8.85928915e-41, 0.0, -1.91017832e-37],
+        [-9.40395481e-38, 2.1019477e-44, 8.0],
+    ],
+    np.float32,
+)
 TRIANGLES = np.array([[1, 0, 2]], np.uint32)
 
 
 @pytest.fixture(scope="module")
 def runs():
-    return {method: hyvox.voxelize(SEED, TRIANGLES, resolution=30, method=method)
-            for method in ("cpu", "reference", "triangle", "fragment", "hybrid")}
+    return {
+        method: hyvox.voxelize(SEED, TRIANGLES, resolution=30, method=method)
+        for method in ("cpu", "reference", "triangle", "fragment", "hybrid")
+    }
 
 
 def test_the_seed_is_this_triangle():
@@ -47,4 +54,3 @@ def test_every_exact_method_sets_the_exact_slivers_voxels(runs):
     assert len(exact) >= 30  # one voxel per slab along x at least
     for method, voxels in found.items():
         assert not unexplained(corners, voxels, exact), (method, len(voxels), len(exact))
-

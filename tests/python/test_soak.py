@@ -39,13 +39,16 @@ def one_round(vertices, triangles, tmp: pathlib.Path):
     counts = {}
     for method in ("cpu", "reference") + GL_METHODS:
         for mode in ("conservative", "solid"):
-            grid = hyvox.voxelize(vertices, triangles, resolution=48 if method != "reference" else 24,
-                                  method=method, mode=mode, threads=2)
+            grid = hyvox.voxelize(
+                vertices, triangles, resolution=48 if method != "reference" else 24, method=method, mode=mode, threads=2
+            )
             counts[method, mode] = grid.voxel_count
             assert grid.coords().shape == (grid.voxel_count, 3)
     counts["tessellation"] = hyvox.voxelize(vertices, triangles, resolution=48, method="tessellation").voxel_count
     colors = np.abs(vertices).astype(np.float32)
-    grid = hyvox.voxelize(vertices, triangles, resolution=32, method="cpu", colors=colors, attributes=("color", "normal"))
+    grid = hyvox.voxelize(
+        vertices, triangles, resolution=32, method="cpu", colors=colors, attributes=("color", "normal")
+    )
     assert grid.attributes()["color"].shape == (grid.voxel_count, 3)
     out = tmp / "sphere.vdb"
     grid.write_vdb(str(out))
@@ -82,8 +85,10 @@ def one_round(vertices, triangles, tmp: pathlib.Path):
     with pytest.raises((OSError, RuntimeError, ValueError)):
         grid.write_vdb(str(tmp))  # a folder, not a file
     damaged = tmp / "damaged.ply"
-    damaged.write_bytes(b"ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\n"
-                        b"property float y\nproperty float z\nend_header\n" + bytes(100))
+    damaged.write_bytes(
+        b"ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\n"
+        b"property float y\nproperty float z\nend_header\n" + bytes(100)
+    )
     with pytest.raises(ValueError):
         hyvox.read_mesh(damaged)
     return counts
@@ -103,7 +108,9 @@ def test_soak_memory_descriptors_and_gl_objects_stay_flat(tmp_path):
     assert open_fds() == fds
     assert hyvox._core.gl_live_objects() == gl
     grown = resident_mib() - rss
-    print(f"soak: {MEASURED_ROUNDS} rounds, resident {rss:.1f} MiB -> {rss + grown:.1f} MiB, {len(fds)} fds, GL objects {gl}")
+    print(
+        f"soak: {MEASURED_ROUNDS} rounds, resident {rss:.1f} MiB -> {rss + grown:.1f} MiB, {len(fds)} fds, GL objects {gl}"
+    )
     assert grown < RSS_SLACK_MIB, f"resident memory grew {grown:.1f} MiB over {MEASURED_ROUNDS} rounds"
     # The counts are real: the sphere covers voxels in every mode, solid more than surface.
     for method in ("cpu", "reference") + GL_METHODS:

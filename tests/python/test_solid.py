@@ -8,6 +8,7 @@ us, a brute-force double-precision winding number must side with us, and such vo
 rare. Open and messy meshes: the inside voxels equal a brute-force double-precision winding
 number >= 0.5 computed here in numpy, away from |w - 0.5| < 0.05. Also: count = surface +
 inside, whole bricks are tiles in the OpenVDB tree, and the front doors take the options."""
+
 import json
 import subprocess
 
@@ -25,15 +26,38 @@ SAMPLES = 800  # centres the brute force checks per mesh file (all of them for t
 
 # --- meshes made here -------------------------------------------------------------------
 
-CUBE_FACES = np.array([[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
-                       [2, 3, 7], [2, 7, 6], [1, 2, 6], [1, 6, 5], [0, 4, 7], [0, 7, 3]], np.uint32)
+CUBE_FACES = np.array(
+    [
+        [0, 2, 1],
+        [0, 3, 2],
+        [4, 5, 6],
+        [4, 6, 7],
+        [0, 1, 5],
+        [0, 5, 4],
+        [2, 3, 7],
+        [2, 7, 6],
+        [1, 2, 6],
+        [1, 6, 5],
+        [0, 4, 7],
+        [0, 7, 3],
+    ],
+    np.uint32,
+)
 
 
 def cube(lo=(0, 0, 0), hi=(1, 1, 1)):
     """A closed cube with outward-facing (counter-clockwise seen from outside) triangles."""
     (x0, y0, z0), (x1, y1, z1) = lo, hi
-    corners = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0),
-               (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
+    corners = [
+        (x0, y0, z0),
+        (x1, y0, z0),
+        (x1, y1, z0),
+        (x0, y1, z0),
+        (x0, y0, z1),
+        (x1, y0, z1),
+        (x1, y1, z1),
+        (x0, y1, z1),
+    ]
     return np.array(corners, np.float32), CUBE_FACES.copy()
 
 
@@ -60,13 +84,15 @@ def messy_shapes():
         # Two cubes sharing one edge: used four times, twice each way (non-manifold, balanced).
         "cubes_sharing_an_edge": (join(cube(), cube((1, 1, 0), (2, 2, 1))), "balanced"),
         # A cube inside a cube whose faces are flipped: a hollow box (winding number 0 inside).
-        "nested_cube_flipped": (join(cube((0, 0, 0), (2, 2, 2)),
-                                     (cube((0.5, 0.6, 0.7), (1.5, 1.4, 1.3))[0], CUBE_FACES[:, ::-1].copy())),
-                                "closed"),
+        "nested_cube_flipped": (
+            join(cube((0, 0, 0), (2, 2, 2)), (cube((0.5, 0.6, 0.7), (1.5, 1.4, 1.3))[0], CUBE_FACES[:, ::-1].copy())),
+            "closed",
+        ),
     }
 
 
 # --- oracles -----------------------------------------------------------------------------
+
 
 def brute_force_winding(vertices, triangles, points):
     """Sum of the triangles' solid angles (van Oosterom & Strackee) over 4 pi, in float64."""
@@ -76,13 +102,17 @@ def brute_force_winding(vertices, triangles, points):
     out = np.empty(len(points))
     chunk = max(1, 4_000_000 // max(len(triangles), 1))
     for s in range(0, len(points), chunk):
-        p = points[s:s + chunk, None, :]
+        p = points[s : s + chunk, None, :]
         a, b, c = a0 - p, b0 - p, c0 - p
         la, lb, lc = (np.linalg.norm(x, axis=2) for x in (a, b, c))
         det = np.einsum("ijk,ijk->ij", a, np.cross(b, c))
-        den = (la * lb * lc + np.einsum("ijk,ijk->ij", a, b) * lc + np.einsum("ijk,ijk->ij", b, c) * la
-               + np.einsum("ijk,ijk->ij", c, a) * lb)
-        out[s:s + chunk] = 2 * np.arctan2(det, den).sum(axis=1) / (4 * np.pi)
+        den = (
+            la * lb * lc
+            + np.einsum("ijk,ijk->ij", a, b) * lc
+            + np.einsum("ijk,ijk->ij", b, c) * la
+            + np.einsum("ijk,ijk->ij", c, a) * lb
+        )
+        out[s : s + chunk] = 2 * np.arctan2(det, den).sum(axis=1) / (4 * np.pi)
     return out
 
 
@@ -93,11 +123,13 @@ def centres(grid, ijk):
 def openvdb_negative(vertices, triangles, grid):
     """Whether OpenVDB's level set of the mesh is negative at each voxel centre of `grid`."""
     import pyopenvdb as vdb
+
     h = grid.voxel_size
     transform = vdb.createLinearTransform(voxelSize=h)
     transform.translate(tuple(np.array(grid.origin) + h / 2))
-    level_set = vdb.FloatGrid.createLevelSetFromPolygons(vertices.astype(np.float32), triangles=triangles.astype(np.uint32),
-                                                         transform=transform, halfWidth=2.0)
+    level_set = vdb.FloatGrid.createLevelSetFromPolygons(
+        vertices.astype(np.float32), triangles=triangles.astype(np.uint32), transform=transform, halfWidth=2.0
+    )
     values = np.zeros(grid.dims, np.float32)
     level_set.copyToArray(values, ijk=(0, 0, 0))
     return values < 0
@@ -111,6 +143,7 @@ def solid_and_surface(vertices, triangles, resolution, **options):
 
 
 # --- closed meshes against OpenVDB ----------------------------------------------------------
+
 
 def check_against_openvdb(vertices, triangles, **options):
     solid, surface = solid_and_surface(vertices, triangles, RESOLUTION, **options)
@@ -156,6 +189,7 @@ def test_a_gl_method_fills_like_openvdb(mesh_dir, inside):
 
 
 # --- open and messy meshes against the brute-force winding number ---------------------------
+
 
 def check_against_brute_force(vertices, triangles, resolution, samples=None, seed=0):
     solid, surface = solid_and_surface(vertices, triangles, resolution, inside="winding")
@@ -217,7 +251,9 @@ def atrium(leaves=300, seed=7):
     w = np.cross(u, rng.normal(size=(leaves, 3)))
     w /= np.linalg.norm(w, axis=1, keepdims=True)
     size = rng.uniform(0.03, 0.15, (leaves, 1))
-    quad_v = np.concatenate([centres_ + size * (sa * u + sb * w) for sa, sb in [(-1, -1), (1, -1), (1, 1), (-1, 1)]], axis=1)
+    quad_v = np.concatenate(
+        [centres_ + size * (sa * u + sb * w) for sa, sb in [(-1, -1), (1, -1), (1, 1), (-1, 1)]], axis=1
+    )
     quad_v = quad_v.reshape(-1, 3)
     base = 4 * np.arange(leaves)[:, None]
     quad_t = np.concatenate([base + [0, 1, 2], base + [0, 2, 3]])
@@ -256,8 +292,10 @@ def test_overlap_is_filled_and_the_hollow_stays_empty():
 
 # --- counts, tiles, front doors -----------------------------------------------------------
 
+
 def test_count_is_surface_plus_inside_and_interiors_are_tiles(tmp_path):
     import pyopenvdb as vdb
+
     vertices, triangles = icosphere(3)
     solid, surface = solid_and_surface(vertices, triangles, 96)
     stats = solid.stats
@@ -281,17 +319,40 @@ def test_count_is_surface_plus_inside_and_interiors_are_tiles(tmp_path):
 def test_cli_takes_the_solid_options(cli, tmp_path):
     vertices, triangles = cube()
     mesh = tmp_path / "cube.obj"
-    mesh.write_text("".join(f"v {x} {y} {z}\n" for x, y, z in vertices) +
-                    "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in triangles))
+    mesh.write_text(
+        "".join(f"v {x} {y} {z}\n" for x, y, z in vertices)
+        + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in triangles)
+    )
     stats_path = tmp_path / "stats.json"
-    subprocess.run([str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "cube.vdb"), "--resolution", "32",
-                    "--mode", "solid", "--inside", "winding", "--winding-beta", "3", "--stats-json", str(stats_path),
-                    "-q"], check=True)
+    subprocess.run(
+        [
+            str(cli),
+            "voxelize",
+            str(mesh),
+            "-o",
+            str(tmp_path / "cube.vdb"),
+            "--resolution",
+            "32",
+            "--mode",
+            "solid",
+            "--inside",
+            "winding",
+            "--winding-beta",
+            "3",
+            "--stats-json",
+            str(stats_path),
+            "-q",
+        ],
+        check=True,
+    )
     stats = json.loads(stats_path.read_text())
-    assert stats["mode"] == "solid" and stats["voxel_count"] == 32 ** 3
+    assert stats["mode"] == "solid" and stats["voxel_count"] == 32**3
     assert stats["solid"]["inside_rule"] == "winding" and stats["options"]["winding_beta"] == 3
-    bad = subprocess.run([str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "x.vdb"), "--inside", "sometimes"],
-                         capture_output=True, text=True)
+    bad = subprocess.run(
+        [str(cli), "voxelize", str(mesh), "-o", str(tmp_path / "x.vdb"), "--inside", "sometimes"],
+        capture_output=True,
+        text=True,
+    )
     assert bad.returncode != 0 and "parity, winding" in bad.stderr
 
 
@@ -310,9 +371,18 @@ def test_tiled_and_tessellation_runs_fill_the_same_inside(bunny):
     assert np.array_equal(tess.to_dense(), expected)
     # Tiled, with PN triangles (points reach past their triangle's box): the barrier's cpu
     # pass bins the triangles for itself.
-    tess_tiled = hyvox.voxelize(vertices, triangles, resolution=48, mode="solid", method="tessellation",
-                                gl_device="software", tile_size=16, pn_triangles=True)
-    tess_tiled_surface = hyvox.voxelize(vertices, triangles, resolution=48, method="tessellation",
-                                        gl_device="software", pn_triangles=True)
+    tess_tiled = hyvox.voxelize(
+        vertices,
+        triangles,
+        resolution=48,
+        mode="solid",
+        method="tessellation",
+        gl_device="software",
+        tile_size=16,
+        pn_triangles=True,
+    )
+    tess_tiled_surface = hyvox.voxelize(
+        vertices, triangles, resolution=48, method="tessellation", gl_device="software", pn_triangles=True
+    )
     assert tess_tiled.stats["tiles"] > 1
     assert np.array_equal(tess_tiled.to_dense(), tess_tiled_surface.to_dense() | (whole.to_dense() & ~cpu_surface))

@@ -94,11 +94,11 @@ def tile_oracle(tiles, valued, values, normal):
     for box in boxes:
         lo, hi = np.array(box[0]), np.array(box[1])
         a, b = np.maximum(lo - 1, 0), hi + 2
-        shell = valued[a[0]:b[0], a[1]:b[1], a[2]:b[2]].copy()
+        shell = valued[a[0] : b[0], a[1] : b[1], a[2] : b[2]].copy()
         inner_lo, inner_hi = lo - a, hi - a + 1
-        shell[inner_lo[0]:inner_hi[0], inner_lo[1]:inner_hi[1], inner_lo[2]:inner_hi[2]] = False
+        shell[inner_lo[0] : inner_hi[0], inner_lo[1] : inner_hi[1], inner_lo[2] : inner_hi[2]] = False
         if shell.any():
-            chosen = values[a[0]:b[0], a[1]:b[1], a[2]:b[2]][shell]
+            chosen = values[a[0] : b[0], a[1] : b[1], a[2] : b[2]][shell]
             value[box] = mean_of(chosen.sum(axis=0), len(chosen), normal)
 
     def touching(p, q):
@@ -152,7 +152,7 @@ def check_solid_attributes(v, t, tmp_path, *, method, resolution, **colour):
     # Tile voxels (whole bricks of the .vdb) and leaf voxels.
     tile_mask = np.zeros(dims, bool)
     for lo, hi in density_tiles:
-        tile_mask[lo[0]:hi[0] + 1, lo[1]:hi[1] + 1, lo[2]:hi[2] + 1] = True
+        tile_mask[lo[0] : hi[0] + 1, lo[1] : hi[1] + 1, lo[2] : hi[2] + 1] = True
     assert not (tile_mask & surface_mask).any(), "surface voxels lie in leaves"
     leaf = solid_mask & ~tile_mask
     values, valued, layers = leaf_layers(surface_mask, surface_values, leaf, normal)
@@ -175,9 +175,9 @@ def check_solid_attributes(v, t, tmp_path, *, method, resolution, **colour):
         start = sum(1 if n == "alpha" else 3 for n in names[:at])
         tiles, _ = read_tiles(path, name)
         for box, value in expected.items():
-            np.testing.assert_allclose(tiles[box], value[start:start + width], rtol=0, atol=1e-5, err_msg=name)
+            np.testing.assert_allclose(tiles[box], value[start : start + width], rtol=0, atol=1e-5, err_msg=name)
     for (lo, hi), value in expected.items():
-        block = solid_values[lo[0]:hi[0] + 1, lo[1]:hi[1] + 1, lo[2]:hi[2] + 1]
+        block = solid_values[lo[0] : hi[0] + 1, lo[1] : hi[1] + 1, lo[2] : hi[2] + 1]
         np.testing.assert_allclose(block.reshape(-1, block.shape[-1]) - value, 0, atol=1e-5)
     return solid, density_tiles, tile_layers
 
@@ -252,8 +252,23 @@ def test_a_128_node_wholly_inside_is_one_tile_in_every_grid(tmp_path):
     # density's bricks there into one level-2 tile, and the colour and normal grids must hold
     # the same tile (one value), not 4096 tiles or 2 million voxels.
     v = np.array([(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)], np.float32)
-    t = np.array([(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1), (2, 3, 7), (2, 7, 6),
-                  (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)], np.uint32)
+    t = np.array(
+        [
+            (0, 1, 3),
+            (0, 3, 2),
+            (4, 6, 7),
+            (4, 7, 5),
+            (0, 4, 5),
+            (0, 5, 1),
+            (2, 3, 7),
+            (2, 7, 6),
+            (0, 2, 6),
+            (0, 6, 4),
+            (1, 5, 7),
+            (1, 7, 3),
+        ],
+        np.uint32,
+    )
     colors = np.tile(np.float32([0.3, 0.6, 0.1]), (8, 1))
     solid = hyvox.voxelize(v, t, resolution=264, method="cpu", mode="solid", colors=colors, attributes="color,normal")
     path = tmp_path / "cube.vdb"
@@ -274,8 +289,10 @@ def test_a_128_node_wholly_inside_is_one_tile_in_every_grid(tmp_path):
 def test_open_cube_inside_follows_the_rule_too(tmp_path):
     # A cube without one face (winding number): the inside's boundary there is no surface.
     v = np.array([(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)], np.float32)
-    t = np.array([(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1), (2, 3, 7), (2, 7, 6),
-                  (0, 2, 6), (0, 6, 4)], np.uint32)  # x = 1 face removed
+    t = np.array(
+        [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1), (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4)],
+        np.uint32,
+    )  # x = 1 face removed
     colors = np.random.default_rng(3).random((8, 3)).astype(np.float32)
     solid, tiles, _ = check_solid_attributes(v, t, tmp_path, method="cpu", resolution=48, colors=colors)
     assert solid.stats["solid"]["inside_rule"] == "winding"

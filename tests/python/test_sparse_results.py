@@ -2,6 +2,7 @@
 """Sparse results from Python: a thin triangle in a 16384 x 16384 grid runs within a small
 memory budget, its voxels (coords, the .vdb) are exact against the plane's inequality
 computed in numpy, and to_dense() refuses the 256 MiB box instead of allocating it."""
+
 import numpy as np
 import pytest
 
@@ -44,6 +45,7 @@ def test_to_dense_refuses_a_box_over_the_budget(strip):
 
 def test_the_vdb_holds_the_sparse_voxels(strip, tmp_path):
     import pyopenvdb as vdb
+
     path = tmp_path / "strip.vdb"
     strip.write_vdb(path)
     grid = vdb.read(str(path), "density")
@@ -71,4 +73,3 @@ def test_write_reports_progress_and_can_be_cancelled(strip, tmp_path):
     with pytest.raises(hyvox.Cancelled):
         strip.write_vdb(tmp_path / "b.vdb", cancel=token)
     assert not (tmp_path / "b.vdb").exists() and sorted(p.name for p in tmp_path.iterdir()) == ["a.vdb"]
-

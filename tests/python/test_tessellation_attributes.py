@@ -97,8 +97,14 @@ def uv_sphere(rings=24, segments=48):
     """Unit sphere, outward-wound, with its exact vertex normals (= positions)."""
     theta = np.linspace(0, np.pi, rings + 1)[1:-1]
     phi = np.linspace(0, 2 * np.pi, segments, endpoint=False)
-    ring = np.stack([np.outer(np.sin(theta), np.cos(phi)), np.outer(np.sin(theta), np.sin(phi)),
-                     np.repeat(np.cos(theta)[:, None], segments, 1)], axis=-1).reshape(-1, 3)
+    ring = np.stack(
+        [
+            np.outer(np.sin(theta), np.cos(phi)),
+            np.outer(np.sin(theta), np.sin(phi)),
+            np.repeat(np.cos(theta)[:, None], segments, 1),
+        ],
+        axis=-1,
+    ).reshape(-1, 3)
     v = np.vstack([[0, 0, 1], ring, [0, 0, -1]])
     at = lambda r, s: 1 + r * segments + s % segments  # noqa: E731
     tris = [[0, at(0, s), at(0, s + 1)] for s in range(segments)]
@@ -144,8 +150,19 @@ def test_values_are_the_same_on_every_run_and_tiling(spot_vcolor):
     # Integer sums commute: neither the order the GPU runs the points in nor the tiling
     # (each tile draws its own points of the same triangles) changes a bit.
     v, t, colors = spot_vcolor
-    whole, again, tiled = (hyvox.voxelize(v, t, resolution=48, method="tessellation", tess_gamma=2, tile_size=size,
-                                          colors=colors, attributes="color,normal") for size in (0, 0, 16))
+    whole, again, tiled = (
+        hyvox.voxelize(
+            v,
+            t,
+            resolution=48,
+            method="tessellation",
+            tess_gamma=2,
+            tile_size=size,
+            colors=colors,
+            attributes="color,normal",
+        )
+        for size in (0, 0, 16)
+    )
     assert whole.stats["tiles"] == 1 and tiled.stats["tiles"] > 1
     for other in (again, tiled):
         assert np.array_equal(whole.coords(), other.coords())

@@ -145,8 +145,10 @@ def test_read_mesh_stops_when_its_token_is_cancelled(mesh_dir, tmp_path):
     # read_mesh with hyvox.Cancelled for our readers and for assimp's formats, and a fresh
     # one reads the same arrays as no token.
     stl = tmp_path / "tri.stl"
-    stl.write_text("solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
-                   "endloop\nendfacet\nendsolid t\n")
+    stl.write_text(
+        "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+        "endloop\nendfacet\nendsolid t\n"
+    )
     model = tmp_path / "tri.3mf"  # read by the assimp process
     model.write_bytes(mesh_writers.three_mf(np.eye(3, dtype=np.float32), np.array([[0, 1, 2]], np.uint32)))
     for path in (mesh_dir / "bunny_stanford_69k.ply", mesh_dir / "dragon_stanford_res2_203k.ply.gz", stl, model):

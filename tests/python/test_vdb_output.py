@@ -74,7 +74,9 @@ def test_write_vdb_budget_is_its_own_and_the_voxelizations_when_unset(bunny, tmp
         hyvox.voxelize(vertices, triangles, resolution=512, memory_budget_mib=1)
     grid = hyvox.voxelize(vertices, triangles, resolution=512, memory_budget_mib=need_mib + 1)
     leaves = grid.stats["leaves"]
-    with pytest.raises(hyvox.ResourceError, match=rf"{leaves} leaves needs about \d+ MiB, more than the memory budget of 1 MiB"):
+    with pytest.raises(
+        hyvox.ResourceError, match=rf"{leaves} leaves needs about \d+ MiB, more than the memory budget of 1 MiB"
+    ):
         grid.write_vdb(path, memory_budget_mib=1)
     assert not path.exists()
     grid.write_vdb(path)  # unset: the voxelization's budget, which its estimate of the write fits

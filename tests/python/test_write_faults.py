@@ -38,31 +38,64 @@ def assert_untouched(old: pathlib.Path, *others: str):
 
 
 def run_child(script: str, **kw):
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([os.path.dirname(os.path.dirname(hyvox.__file__)),
-                                                       str(REPO / "addon")]))
-    return subprocess.run([sys.executable, "-c", textwrap.dedent(script)], capture_output=True, text=True,
-                          timeout=300, env=env, **kw)
+    env = dict(
+        os.environ, PYTHONPATH=os.pathsep.join([os.path.dirname(os.path.dirname(hyvox.__file__)), str(REPO / "addon")])
+    )
+    return subprocess.run(
+        [sys.executable, "-c", textwrap.dedent(script)], capture_output=True, text=True, timeout=300, env=env, **kw
+    )
 
 
 def test_cli_with_a_full_disk_keeps_the_old_file(cli, mesh_dir, tmp_path):
     old = previous_file(tmp_path)
-    done = subprocess.run([os.path.abspath(cli), "voxelize", str(mesh_dir / "bunny_stanford_69k.ply"), "-o", "out.vdb",
-                           "--resolution", "64"], capture_output=True, text=True, timeout=300, cwd=tmp_path,
-                          preexec_fn=with_file_limit)
+    done = subprocess.run(
+        [
+            os.path.abspath(cli),
+            "voxelize",
+            str(mesh_dir / "bunny_stanford_69k.ply"),
+            "-o",
+            "out.vdb",
+            "--resolution",
+            "64",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        cwd=tmp_path,
+        preexec_fn=with_file_limit,
+    )
     assert done.returncode == 1
     assert done.stderr == "hyvox: error: writing 'out.vdb' failed: File too large\n"
     assert_untouched(old)
     # Without the limit the same command writes the file (the limit was the only cause).
-    done = subprocess.run([os.path.abspath(cli), "voxelize", str(mesh_dir / "bunny_stanford_69k.ply"), "-o", "out.vdb",
-                           "--resolution", "64", "-q"], capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    done = subprocess.run(
+        [
+            os.path.abspath(cli),
+            "voxelize",
+            str(mesh_dir / "bunny_stanford_69k.ply"),
+            "-o",
+            "out.vdb",
+            "--resolution",
+            "64",
+            "-q",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        cwd=tmp_path,
+    )
     assert done.returncode == 0, done.stderr
     assert old.stat().st_size > FILE_LIMIT and stat.S_IMODE(old.stat().st_mode) == 0o640
 
 
 def test_cli_into_an_unwritable_folder_is_a_clear_error(cli, mesh_dir):
     # /proc refuses new files even to root (who ignores a folder's mode bits).
-    done = subprocess.run([str(cli), "voxelize", str(mesh_dir / "bunny_stanford_69k.ply"), "-o", "/proc/out.vdb",
-                           "--resolution", "16"], capture_output=True, text=True, timeout=300)
+    done = subprocess.run(
+        [str(cli), "voxelize", str(mesh_dir / "bunny_stanford_69k.ply"), "-o", "/proc/out.vdb", "--resolution", "16"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert done.returncode == 1
     assert done.stderr.startswith("hyvox: error: cannot write '/proc/out.vdb': cannot create a file in folder '/proc'")
     assert not os.path.exists("/proc/out.vdb")
@@ -70,7 +103,8 @@ def test_cli_into_an_unwritable_folder_is_a_clear_error(cli, mesh_dir):
 
 def test_module_write_vdb_with_a_full_disk_raises_resource_error(tmp_path):
     old = previous_file(tmp_path)
-    done = run_child(f"""
+    done = run_child(
+        f"""
         import hyvox, numpy as np
         grid = hyvox.voxelize(np.random.default_rng(1).random((300, 3), np.float32),
                               np.arange(300, dtype=np.uint32).reshape(100, 3), resolution=64)
@@ -78,7 +112,9 @@ def test_module_write_vdb_with_a_full_disk_raises_resource_error(tmp_path):
             grid.write_vdb({str(old)!r})
         except hyvox.ResourceError as e:
             print("ResourceError:", e)
-    """, preexec_fn=with_file_limit)
+    """,
+        preexec_fn=with_file_limit,
+    )
     assert done.returncode == 0, done.stderr
     assert done.stdout.startswith("ResourceError: writing ") and "File too large" in done.stdout, done.stdout
     assert_untouched(old)
@@ -86,7 +122,8 @@ def test_module_write_vdb_with_a_full_disk_raises_resource_error(tmp_path):
 
 def test_addon_pipeline_with_a_full_disk_reports_and_leaves_no_file(tmp_path):
     old = previous_file(tmp_path)
-    done = run_child(f"""
+    done = run_child(
+        f"""
         import numpy as np, hyvox
         from hyvox_blender.core.errors import HyvoxError
         from hyvox_blender.core.pipeline import Group, GroupMesh, Pipeline
@@ -99,7 +136,9 @@ def test_addon_pipeline_with_a_full_disk_reports_and_leaves_no_file(tmp_path):
             pipeline.run()
         except HyvoxError as e:
             print("HyvoxError:", e)
-    """, preexec_fn=with_file_limit)
+    """,
+        preexec_fn=with_file_limit,
+    )
     assert done.returncode == 0, done.stderr
     assert done.stdout.startswith("HyvoxError:") and "File too large" in done.stdout, done.stdout
     assert_untouched(old)

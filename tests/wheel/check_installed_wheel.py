@@ -19,6 +19,7 @@
   binary and of the plugins inside the wheel or in that base set (libEGL: the system's),
   and of the assimp reader program, and the installed CLI finds the plugin and the reader
   (a 3MF file, a GL method)."""
+
 import glob
 import json
 import os
@@ -36,9 +37,18 @@ BUILD_DIR, VENV, MESH = sys.argv[1:4] if len(sys.argv) >= 4 else ("", "", "")
 # The GL driver stack (glvnd): always the machine's own, never in the wheel.
 GL_STACK = ("libEGL.so", "libGL.so", "libOpenGL.so", "libGLX.so", "libGLdispatch.so")
 # What a manylinux wheel may take from the system (auditwheel's policy) and this one needs.
-BASE_SYSTEM = ("libc.so.6", "libm.so.6", "libdl.so.2", "librt.so.1", "libpthread.so.0",
-               "libstdc++.so.6", "libgcc_s.so.1", "libz.so.1", "ld-linux-x86-64.so.2",
-               "linux-vdso.so.1")
+BASE_SYSTEM = (
+    "libc.so.6",
+    "libm.so.6",
+    "libdl.so.2",
+    "librt.so.1",
+    "libpthread.so.0",
+    "libstdc++.so.6",
+    "libgcc_s.so.1",
+    "libz.so.1",
+    "ld-linux-x86-64.so.2",
+    "linux-vdso.so.1",
+)
 
 
 def soname_of(path):
@@ -57,10 +67,24 @@ class InstalledWheelTest(unittest.TestCase):
     def setUpClass(cls):
         (cls.wheel,) = glob.glob(os.path.join(BUILD_DIR, "wheel", "hyvox-*.whl"))
         cls.python = os.path.join(VENV, "bin", "python")
-        run([cls.python, "-m", "pip", "install", "--disable-pip-version-check", "--no-index",
-             "--no-deps", "--force-reinstall", "-q", cls.wheel])
-        cls.site = run([cls.python, "-c", "import sysconfig; print(sysconfig.get_paths()['platlib'])"],
-                       env={"PATH": "/usr/bin:/bin"}).stdout.strip()
+        run(
+            [
+                cls.python,
+                "-m",
+                "pip",
+                "install",
+                "--disable-pip-version-check",
+                "--no-index",
+                "--no-deps",
+                "--force-reinstall",
+                "-q",
+                cls.wheel,
+            ]
+        )
+        cls.site = run(
+            [cls.python, "-c", "import sysconfig; print(sysconfig.get_paths()['platlib'])"],
+            env={"PATH": "/usr/bin:/bin"},
+        ).stdout.strip()
         cls.tmp = tempfile.TemporaryDirectory(prefix="hyvox-wheel-")
         # An empty environment: nothing points the loader or Python at the build or -dev files.
         cls.clean_env = {"PATH": os.path.join(VENV, "bin") + ":/usr/bin:/bin", "HOME": cls.tmp.name}
@@ -73,8 +97,10 @@ class InstalledWheelTest(unittest.TestCase):
         cls.tmp.cleanup()
 
     def in_wheel(self, path):
-        return any(os.path.realpath(path).startswith(os.path.realpath(os.path.join(self.site, d)) + os.sep)
-                   for d in ("hyvox", "hyvox.libs"))
+        return any(
+            os.path.realpath(path).startswith(os.path.realpath(os.path.join(self.site, d)) + os.sep)
+            for d in ("hyvox", "hyvox.libs")
+        )
 
     def test_tags_contents_and_licences(self):
         cp = "cp%d%d" % sys.version_info[:2]
@@ -87,8 +113,10 @@ class InstalledWheelTest(unittest.TestCase):
             listed = whl.read(record[0]).decode().split("\n")
         self.assertIn("hyvox/bin/hyvox", names)
         for stack in GL_STACK:
-            self.assertFalse([n for n in bundled if os.path.basename(n).startswith(stack.split(".")[0] + "-")],
-                             f"{stack} must not be bundled")
+            self.assertFalse(
+                [n for n in bundled if os.path.basename(n).startswith(stack.split(".")[0] + "-")],
+                f"{stack} must not be bundled",
+            )
         # Every library the build tree's module takes from this machine (ldd), other than
         # the base system and the GL stack, is bundled.
         (core,) = glob.glob(os.path.join(BUILD_DIR, "python", "hyvox", "_core*.so"))
@@ -108,17 +136,22 @@ class InstalledWheelTest(unittest.TestCase):
 
     def test_import_and_cpu_use_only_the_wheel(self):
         self.assertTrue(self.in_wheel(self.child["core_file"]), self.child["core_file"])
-        outside = [p for p in self.child["loaded_by_import_and_cpu"]
-                   if not self.in_wheel(p) and soname_of(p) not in BASE_SYSTEM]
+        outside = [
+            p
+            for p in self.child["loaded_by_import_and_cpu"]
+            if not self.in_wheel(p) and soname_of(p) not in BASE_SYSTEM
+        ]
         self.assertEqual(outside, [], "libraries loaded from outside the wheel")
         self.assertTrue(any("/hyvox.libs/libtbb-" in p for p in self.child["loaded_by_import_and_cpu"]))
-        plugins = [p for p in self.child["loaded_by_import_and_cpu"]
-                   if re.search(r"/(libhyvox_|libassimp|libepoxy|libEGL)", p)]
+        plugins = [
+            p for p in self.child["loaded_by_import_and_cpu"] if re.search(r"/(libhyvox_|libassimp|libepoxy|libEGL)", p)
+        ]
         self.assertEqual(plugins, [], "a cpu run loaded a plugin or what it brings")
 
     def test_plugins_load_from_the_wheel_when_needed(self):
         def loaded(step, prefix):
             return [p for p in self.child[step] if os.path.basename(p).startswith(prefix)]
+
         (gl_plugin,) = loaded("loaded_by_gl", "libhyvox_gl_methods.so")
         self.assertTrue(self.in_wheel(gl_plugin), gl_plugin)
         self.assertTrue(all(self.in_wheel(p) for p in loaded("loaded_by_gl", "libepoxy")), self.child["loaded_by_gl"])
@@ -137,22 +170,29 @@ class InstalledWheelTest(unittest.TestCase):
         got = np.load(os.path.join(self.tmp.name, "cpu_coords.npy"))
         sys.path.insert(0, os.path.join(BUILD_DIR, "python"))
         import hyvox  # the build tree's (Debian's python, PYTHONPATH-free import)
+
         vertices, triangles = hyvox.read_mesh(MESH)
         expected = hyvox.voxelize(vertices, triangles, resolution=128, method="cpu")
-        np.testing.assert_array_equal(np.sort(got.view("i4,i4,i4"), axis=0),
-                                      np.sort(expected.coords().view("i4,i4,i4"), axis=0))
+        np.testing.assert_array_equal(
+            np.sort(got.view("i4,i4,i4"), axis=0), np.sort(expected.coords().view("i4,i4,i4"), axis=0)
+        )
         self.assertEqual(self.child["voxel_size"], expected.voxel_size)
 
     def test_cli_writes_the_same_voxels(self):
         out = os.path.join(self.tmp.name, "bunny.vdb")
-        run([os.path.join(VENV, "bin", "hyvox"), "voxelize", MESH, "-o", out,
-             "--resolution", "128", "--method", "cpu"], env=self.clean_env)
+        run(
+            [os.path.join(VENV, "bin", "hyvox"), "voxelize", MESH, "-o", out, "--resolution", "128", "--method", "cpu"],
+            env=self.clean_env,
+        )
         sys.path.insert(0, os.path.join(HERE, "..", "blender"))
         import vdb_dump  # pyopenvdb: an independent reader of the file
+
         coords, size, zero, _ = vdb_dump.read(out)
         centres = zero + coords * size
-        expected = np.asarray(self.child["origin"]) + (np.load(os.path.join(self.tmp.name, "cpu_coords.npy")) + 0.5) \
-            * self.child["voxel_size"]
+        expected = (
+            np.asarray(self.child["origin"])
+            + (np.load(os.path.join(self.tmp.name, "cpu_coords.npy")) + 0.5) * self.child["voxel_size"]
+        )
         self.assertEqual(len(centres), len(expected))
         key = lambda a: a[np.lexsort(np.round(a, 6).T[::-1])]
         np.testing.assert_allclose(key(centres), key(expected), atol=1e-6 * self.child["voxel_size"])
@@ -176,8 +216,10 @@ class InstalledWheelTest(unittest.TestCase):
         model = os.path.join(self.tmp.name, "triangle.3mf")  # written by wheel_child.py
         for args in ([model], [MESH, "--method", "hybrid"]):
             out = os.path.join(self.tmp.name, "plugin.vdb")
-            run([os.path.join(VENV, "bin", "hyvox"), "voxelize", *args, "-o", out, "-q", "--resolution", "32"],
-                env=self.clean_env)
+            run(
+                [os.path.join(VENV, "bin", "hyvox"), "voxelize", *args, "-o", out, "-q", "--resolution", "32"],
+                env=self.clean_env,
+            )
             self.assertGreater(os.path.getsize(out), 0)
             os.remove(out)
 

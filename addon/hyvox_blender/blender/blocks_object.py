@@ -7,6 +7,7 @@ Flat shading is set on every face: a new face is flat in Blender 3.x but smooth 
 (no `sharp_face` attribute means smooth), and smooth blocks show dark triangles at every
 step. A kept material (a re-run) gets or loses the add-on's colour node with the grids, as
 the volume's does (volume_material.py): a missing "Col" attribute would read black."""
+
 from typing import Optional, Tuple
 
 import bpy
@@ -32,8 +33,9 @@ def sync_material(material, colored: bool) -> None:
     tree = material.node_tree
     socket = shader.inputs["Base Color"]
     source = socket.links[0].from_node if socket.links else None
-    ours = source is not None and (source.name == COLOR_NODE or (
-        source.type == "ATTRIBUTE" and source.attribute_name == COLOR_ATTRIBUTE))  # or an earlier version's
+    ours = source is not None and (
+        source.name == COLOR_NODE or (source.type == "ATTRIBUTE" and source.attribute_name == COLOR_ATTRIBUTE)
+    )  # or an earlier version's
     at_default = source is None and all(abs(a - b) < 1e-6 for a, b in zip(socket.default_value, DEFAULT_BASE_COLOR))
     if colored and at_default:
         attribute = tree.nodes.get(COLOR_NODE) or tree.nodes.new("ShaderNodeAttribute")
@@ -54,8 +56,9 @@ def _material(name: str, colored: bool) -> bpy.types.Material:
     return material
 
 
-def make_blocks_object(group_name: str, result: GroupResult,
-                       material: Optional[bpy.types.Material]) -> Tuple[bpy.types.Object, tuple]:
+def make_blocks_object(
+    group_name: str, result: GroupResult, material: Optional[bpy.types.Material]
+) -> Tuple[bpy.types.Object, tuple]:
     """(a new, unlinked mesh object of the result's blocks, the location the add-on gives it:
     none, the vertices are in world space)."""
     blocks = result.blocks

@@ -5,6 +5,7 @@ each time, so replaced results leave theirs behind). It looks in the folders hyv
 folders of hyvox volumes) and only at files named as hyvox names them. It keeps the files of
 the open file's volumes and results (a result's .vox with its .vdb) and those an undo or redo
 could bring back (file_history.py); those go once the file is opened again."""
+
 import os
 
 import bpy
@@ -37,6 +38,7 @@ def unused_voxel_files(context, keep_undo_reachable=True):
 class WM_OT_hyvox_clean_voxel_files(bpy.types.Operator):
     """Delete the voxel files (.vdb, .vox) nothing uses any more: those of replaced or deleted
     results that undo cannot bring back either"""
+
     bl_idname = "wm.hyvox_clean_voxel_files"
     bl_label = "Clean Unused Voxel Files"
 
@@ -55,8 +57,9 @@ class WM_OT_hyvox_clean_voxel_files(bpy.types.Operator):
             self.report({"WARNING"}, "Could not delete " + ", ".join(failed[:3]))
         kept = len(unused_voxel_files(context, keep_undo_reachable=False))
         more = f"; kept {kept} that undo could bring back (they go once the file is opened again)" if kept else ""
-        self.report({"INFO"}, f"Deleted {removed} unused voxel file{'s' * (removed != 1)} "
-                              f"({size / 2**20:.1f} MiB){more}")
+        self.report(
+            {"INFO"}, f"Deleted {removed} unused voxel file{'s' * (removed != 1)} ({size / 2**20:.1f} MiB){more}"
+        )
         return {"FINISHED"}
 
 

@@ -10,6 +10,7 @@ from the first of:
    material's viewport colour when it has no nodes; no material: Blender's default grey.
 An image's pixels are handed over as Blender holds them: bytes of an sRGB image stay
 sRGB-encoded (uint8, hyvox decodes them), float or non-sRGB images are linear floats."""
+
 from typing import Dict, Optional, Tuple
 
 import bpy
@@ -52,7 +53,7 @@ def _image_pixels(image: bpy.types.Image) -> np.ndarray:
     channels = image.channels
     pixels = np.empty(width * height * channels, np.float32)
     image.pixels.foreach_get(pixels)
-    pixels = pixels.reshape(height, width, channels)[::-1, :, :min(channels, 4)]
+    pixels = pixels.reshape(height, width, channels)[::-1, :, : min(channels, 4)]
     if channels < 3:  # grey: repeat into RGB
         pixels = np.repeat(pixels[..., :1], 3, axis=-1)
     elif channels == 4 and np.all(pixels[..., 3] == 1.0):

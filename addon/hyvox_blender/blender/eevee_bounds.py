@@ -10,6 +10,7 @@ The corners come from the evaluated Volume (Bounding Box node), so a frame seque
 bounds change from frame to frame is covered on every frame.
 
 One node group serves every volume; each modifier passes its voxel size."""
+
 import bpy
 
 from .node_groups import geometry_group
@@ -111,6 +112,8 @@ def add_bounds_modifier(obj: bpy.types.Object, voxel_size: float) -> bpy.types.M
 
 def unavailable_message(object_name: str, reason: BoundsUnavailable) -> str:
     """The operator's warning, for the artist."""
-    return (f"{object_name}: EEVEE may not draw the last voxel layer on the +X/+Y/+Z side "
-            f"(Cycles draws it): the \"{MODIFIER_NAME}\" modifier that fixes this could not "
-            f"be added ({reason})")
+    return (
+        f"{object_name}: EEVEE may not draw the last voxel layer on the +X/+Y/+Z side "
+        f'(Cycles draws it): the "{MODIFIER_NAME}" modifier that fixes this could not '
+        f"be added ({reason})"
+    )

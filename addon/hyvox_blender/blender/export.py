@@ -3,6 +3,7 @@
 world space as numpy arrays. foreach_get with buffers of the exact RNA types (float32 co, uint32 indices)
 takes Blender's raw-copy path; other dtypes fall back to per-element RNA access, 5x
 slower. The triangles: mesh_triangles.py."""
+
 from typing import Dict, List, Optional, Tuple
 
 import bpy
@@ -114,8 +115,9 @@ def pick_sources(objects, warn=None) -> List[bpy.types.Object]:
     sources = [o for o in objects if voxelizable(o)]
     skipped = [o.name for o in objects if not voxelizable(o)]
     if not sources:
-        raise SelectionError("Nothing to voxelize: " + ", ".join(
-            f"{o.name} ({o.type.lower()}) has no geometry" for o in objects[:3]))
+        raise SelectionError(
+            "Nothing to voxelize: " + ", ".join(f"{o.name} ({o.type.lower()}) has no geometry" for o in objects[:3])
+        )
     if skipped and warn is not None:
         warn("Skipped objects without geometry: " + ", ".join(skipped))
     return sources
@@ -123,6 +125,7 @@ def pick_sources(objects, warn=None) -> List[bpy.types.Object]:
 
 def make_groups(sources, separate: bool, active: Optional[bpy.types.Object]) -> List[Group]:
     from ..core import naming
+
     names = [o.name for o in sources]
     if separate or len(names) == 1:
         return [Group(name, [name]) for name in names]
@@ -149,8 +152,14 @@ def check_parts(parts: Dict[str, List[tuple]], warn=None) -> None:
                 warn(warning)
 
 
-def export_groups(groups: List[Group], depsgraph, warn=None, fallback_depsgraph=None,
-                  colour: bool = False, images: Optional[dict] = None) -> List[GroupMesh]:
+def export_groups(
+    groups: List[Group],
+    depsgraph,
+    warn=None,
+    fallback_depsgraph=None,
+    colour: bool = False,
+    images: Optional[dict] = None,
+) -> List[GroupMesh]:
     """One GroupMesh per group; objects without faces are skipped with a warning, and a
     group left without triangles is an error (the scene stays unchanged). An object the
     depsgraph leaves out (hidden in renders) is taken from fallback_depsgraph (the

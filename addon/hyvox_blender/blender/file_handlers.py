@@ -14,6 +14,7 @@ the move happens in save_post, and the file is written once more with the new pa
 The session's folder also goes on quit when empty; with results of an unsaved file in it, it
 stays for File > Recover (core/session_folder.py), and a later session removes it once its
 owner has ended and it is stale."""
+
 import atexit
 import os
 import shutil
@@ -43,8 +44,9 @@ def move_unsaved_results() -> int:
         return 0
     target = naming.default_output_dir(bpy.data.filepath)
     kept = file_history.kept_keys()
-    names = sorted(n for n in os.listdir(unsaved)
-                   if naming.is_voxel_file(n) and cleanup.file_key(os.path.join(unsaved, n)) in kept)
+    names = sorted(
+        n for n in os.listdir(unsaved) if naming.is_voxel_file(n) and cleanup.file_key(os.path.join(unsaved, n)) in kept
+    )
     if names:
         os.makedirs(target, exist_ok=True)
     for name in names:
@@ -65,8 +67,10 @@ def keep_results_with_the_blend(*_args):
     if not bpy.data.filepath:
         unsaved = naming.unsaved_output_dir(create=False)
         if unsaved and any(_inside(bpy.path.abspath(v.filepath), unsaved) for v in bpy.data.volumes if v.filepath):
-            print(f"hyvox: saved a copy; the voxel files of this unsaved session stay in {unsaved} "
-                  "(save the file itself to keep them next to it)")
+            print(
+                f"hyvox: saved a copy; the voxel files of this unsaved session stay in {unsaved} "
+                "(save the file itself to keep them next to it)"
+            )
         return
     if move_unsaved_results():
         _saving_again = True

@@ -9,6 +9,7 @@ every file a volume used when the file was opened or after an undo or redo. Open
 starts a new history: then only what that file uses is reachable. A save that moves results
 next to the .blend records where each file went; an undo or redo that brings back a volume
 pointing at the old place is pointed at the new one."""
+
 import os
 from typing import Dict, Iterable, Set
 

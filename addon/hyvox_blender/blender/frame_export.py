@@ -3,6 +3,7 @@
 viewport's are asked for (or the render would show the same), with colour if asked. The
 operator exports each frame this way; a farm task also exports the job's first frame to
 take its voxel size (farm_task.py)."""
+
 import bpy
 
 from . import export, render_depsgraph, render_equivalence
@@ -15,8 +16,12 @@ def export_meshes(groups, evaluation: str, colour: bool, warn):
     if evaluation == "VIEWPORT" or render_equivalence.same_in_renders(names, bpy.context.view_layer):
         return export.export_groups(groups, viewport, warn=warn, colour=colour)
     try:
-        return render_depsgraph.with_render_depsgraph(bpy.context, lambda depsgraph: export.export_groups(
-            groups, depsgraph, warn=warn, fallback_depsgraph=viewport, colour=colour))
+        return render_depsgraph.with_render_depsgraph(
+            bpy.context,
+            lambda depsgraph: export.export_groups(
+                groups, depsgraph, warn=warn, fallback_depsgraph=viewport, colour=colour
+            ),
+        )
     except render_depsgraph.RenderEvaluationUnavailable as exc:
         warn(f"Modifiers evaluated at viewport settings: no render evaluation ({exc})")
         return export.export_groups(groups, viewport, warn=warn, colour=colour)

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Gather one VoxelizeSettings per run from the scene's settings, the operator's keyword
 arguments (those a script set win) and the add-on preferences."""
+
 import os
 
 import bpy
@@ -52,9 +53,16 @@ def settings_from_used(context, used: dict):
     if prefs is not None:
         options["gl_device"] = prefs.gl_device_string
         options.update({name: getattr(prefs, name) for name in PREFERENCE_OPTIONS})
-    settings = VoxelizeSettings(method=used["method"], separate=used["separate"], frames=frames,
-                                blocks=used["output"] == "BLOCKS", export_vox=used["export_vox"],
-                                color=used["color"], sdf=used["signed_distance"], **options)
+    settings = VoxelizeSettings(
+        method=used["method"],
+        separate=used["separate"],
+        frames=frames,
+        blocks=used["output"] == "BLOCKS",
+        export_vox=used["export_vox"],
+        color=used["color"],
+        sdf=used["signed_distance"],
+        **options,
+    )
     folder = used["output_dir"]
     folder = bpy.path.abspath(folder) if folder else naming.default_output_dir(bpy.data.filepath)
     override = prefs.alignment_fix if prefs is not None else "AUTO"

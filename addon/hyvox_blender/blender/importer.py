@@ -12,6 +12,7 @@ and the artist's location, rotation and scale (relative to the source when paren
 from an overlapping one only the material and collections. By default the new volume is
 parented to its source (the active object of a group), so moving the source moves it; a
 frame sequence is not parented, as its voxels already follow the animation."""
+
 from typing import Callable, Dict, List, Optional
 
 import bpy
@@ -68,8 +69,9 @@ class _Kept:
         if "hyvox_offset" in old:
             self.offset = Vector(old["hyvox_offset"])
         else:
-            self.offset = Vector(alignment.object_offset(self.voxel_size, bpy.app.version)
-                                 if old.type == "VOLUME" else (0, 0, 0))
+            self.offset = Vector(
+                alignment.object_offset(self.voxel_size, bpy.app.version) if old.type == "VOLUME" else (0, 0, 0)
+            )
         self.location = Vector(old.location)
         self.rotation_mode = old.rotation_mode
         self.rotation = (tuple(old.rotation_euler), tuple(old.rotation_quaternion), tuple(old.rotation_axis_angle))
@@ -99,9 +101,13 @@ def _parent_to(obj: bpy.types.Object, source: Optional[bpy.types.Object]) -> Non
     obj.matrix_parent_inverse = source.matrix_world.inverted()
 
 
-def import_results(context, results: Dict[str, GroupResult], alignment_override: str = "AUTO",
-                   parent_to_source: bool = True,
-                   warn: Callable[[str], None] = print) -> List[bpy.types.Object]:
+def import_results(
+    context,
+    results: Dict[str, GroupResult],
+    alignment_override: str = "AUTO",
+    parent_to_source: bool = True,
+    warn: Callable[[str], None] = print,
+) -> List[bpy.types.Object]:
     """Create one Volume object per result, replacing earlier ones (see the module's
     docstring); returns them. warn(text): what the artist should know (the operator
     reports it), e.g. a volume left without its EEVEE bounds."""
@@ -127,8 +133,11 @@ def import_results(context, results: Dict[str, GroupResult], alignment_override:
             _configure_volume(volume, result)
             material = donor.material if donor is not None and donor.kind == "VOLUME" else None
             density = volume_look.result_density(result.stats, result.voxel_size, result.dims)
-            volume.materials.append(volume_material.for_result(material, name, result.has_color, density,
-                                                               donor.voxel_size if material is not None else 0.0))
+            volume.materials.append(
+                volume_material.for_result(
+                    material, name, result.has_color, density, donor.voxel_size if material is not None else 0.0
+                )
+            )
             obj = bpy.data.objects.new(name, volume)
             offset = alignment.object_offset(result.voxel_size, bpy.app.version, alignment_override)
             if alignment.eevee_clips_last_voxel_layer(bpy.app.version):

@@ -7,6 +7,7 @@ saved before that carries no SETTINGS_VERSION stamp in its Scene settings; when 
 becomes Solid where Fill Interior was on (stored, or left at its default), else the Mode it
 had (stored, or that version's default, Conservative), and the old switch is dropped. Every
 save stamps the settings, so a file saved by this version is read as it is."""
+
 import bpy
 from bpy.app.handlers import persistent
 
@@ -48,7 +49,9 @@ def register():
 
 
 def unregister():
-    for handlers, handler in ((bpy.app.handlers.load_post, upgrade_loaded_file),
-                              (bpy.app.handlers.save_pre, stamp_before_save)):
+    for handlers, handler in (
+        (bpy.app.handlers.load_post, upgrade_loaded_file),
+        (bpy.app.handlers.save_pre, stamp_before_save),
+    ):
         if handler in handlers:
             handlers.remove(handler)

@@ -17,6 +17,7 @@ main thread; the worker touches no Blender data. In background mode (`blender -b
 module) there is no event loop: the run happens inside the handler, and the swap in the
 handler is evaluated by Blender's second pass over what handlers changed, so when
 view_layer.update() or frame_set() returns the volume shows the voxels of the new state."""
+
 import atexit
 import os
 import sys
@@ -39,16 +40,17 @@ SHADING_TYPES = {"Material", "Image", "ShaderNodeTree", "Texture", "World"}
 
 class _Live:
     """The session's Live state: one scheduler and cache, what the main thread last saw."""
+
     scheduler = LiveScheduler(threaded=not bpy.app.background)
-    shown = frozenset()      # files shown by volumes, refreshed on the main thread (cache.in_use)
-    kept_by_saves = set()    # files a saved .blend refers to: never deleted by the cache
+    shown = frozenset()  # files shown by volumes, refreshed on the main thread (cache.in_use)
+    kept_by_saves = set()  # files a saved .blend refers to: never deleted by the cache
     cache = LiveCache(in_use=lambda: _Live.shown | _Live.kept_by_saves)
     rendering = False
-    status = {}              # live id -> the line the panel shows
-    timings = {}             # live id -> the last run's stage timings (ms), swap and main thread included
-    started = {}             # live id -> the main thread's (wall, CPU) ms of starting the run
-    warnings = {}            # live id -> the running run's export warnings
-    runs_started = {}        # live id -> runs started (tests and the bench read it)
+    status = {}  # live id -> the line the panel shows
+    timings = {}  # live id -> the last run's stage timings (ms), swap and main thread included
+    started = {}  # live id -> the main thread's (wall, CPU) ms of starting the run
+    warnings = {}  # live id -> the running run's export warnings
+    runs_started = {}  # live id -> runs started (tests and the bench read it)
 
 
 def scheduler() -> LiveScheduler:
@@ -109,8 +111,11 @@ def _apply(obj, ident, outcome):
         _refresh_shown()
         was_error = _Live.status.get(ident, "").startswith("Error")
         timings = dict(outcome.output.timings_ms, swap=swap_ms)
-        _Live.status[ident] = ("Up to date (from the cache)" if outcome.output.cached
-                               else f"Up to date ({sum(timings.get(s, 0.0) for s in STAGES):.0f} ms)")
+        _Live.status[ident] = (
+            "Up to date (from the cache)"
+            if outcome.output.cached
+            else f"Up to date ({sum(timings.get(s, 0.0) for s in STAGES):.0f} ms)"
+        )
         warnings = _Live.warnings.pop(ident, [])
         if warnings:  # what the export had to say (objects without faces, colour sources)
             _Live.status[ident] += f"; {warnings[0]}"
@@ -146,8 +151,12 @@ def _start(obj, ident, depsgraph, synchronous):
         start = time.perf_counter()
         meshes = live_volumes.export_meshes(obj, group, depsgraph, settings.color, warnings.append)
         export_ms = (time.perf_counter() - start) * 1000.0
-        run = LiveRun(LiveInput(meshes, settings, folder, fingerprint, owner=ident,
-                                frame=scene.frame_current, export_ms=export_ms), _Live.cache)
+        run = LiveRun(
+            LiveInput(
+                meshes, settings, folder, fingerprint, owner=ident, frame=scene.frame_current, export_ms=export_ms
+            ),
+            _Live.cache,
+        )
     except SourcesUnavailable as exc:
         _Live.scheduler.fail(ident, str(exc))
         _Live.status[ident] = f"Waiting: {exc}"
@@ -196,6 +205,7 @@ def _tick():
         drive(bpy.context.scene, synchronous=False)
     except Exception:  # a timer that raises is dropped by Blender: keep Live alive
         import traceback
+
         traceback.print_exc()
     return POLL_SECONDS if _Live.scheduler.active() else None
 
@@ -408,6 +418,7 @@ def prepare_run(settings, used) -> dict:
     evaluated as Live evaluates while editing (the viewport's depsgraph), not parented.
     Returns the values the run uses."""
     from ..core.errors import SettingsError
+
     if settings.is_sequence:
         raise SettingsError("Live volumes follow the animation by themselves: turn off the frame range")
     settings.fixed_lattice = True
@@ -424,6 +435,7 @@ def recording(export_frame, digests):
         for mesh in meshes:
             digests[mesh.group.key] = live_key.geometry_digest([mesh])
         return meshes
+
     return export
 
 
@@ -439,6 +451,7 @@ def make_live(objects, results, digests) -> None:
     until something changes."""
     from ..core import live_key
     from ..core.live_cache import CacheEntry
+
     for obj, result in zip(objects, results.values()):
         settings, _, fingerprint = live_volumes.settings_of(bpy.context, obj)
         digest = digests.get(result.group.key)
@@ -472,9 +485,12 @@ HANDLERS = (
 
 def register():
     bpy.types.Object.hyvox_live = bpy.props.BoolProperty(
-        name="Live", default=False, update=_switched,
+        name="Live",
+        default=False,
+        update=_switched,
         description="Update the voxels by themselves when the sources change (edits, modifiers, transforms, "
-                    "materials, frames); off: they stay as they are")
+        "materials, frames); off: they stay as they are",
+    )
     for name, handler in HANDLERS:
         getattr(bpy.app.handlers, name).append(handler)
     atexit.register(_at_exit)

@@ -8,6 +8,7 @@ renders (the usual set-up: only the voxels render) is otherwise not evaluated fo
 rendered frame at all, and Live would voxelize it as it was when last evaluated. With the
 relation Blender evaluates it for every rendered frame, at render settings, and Live's
 render-time run (live.py) exports it from the render's own evaluation."""
+
 import bpy
 
 from .node_groups import geometry_group
@@ -47,8 +48,9 @@ def _source_identifier(tree) -> str:
 
 
 def _ours(obj):
-    return [m for m in obj.modifiers if m.type == "NODES" and m.node_group is not None
-            and m.node_group.name == GROUP_NAME]
+    return [
+        m for m in obj.modifiers if m.type == "NODES" and m.node_group is not None and m.node_group.name == GROUP_NAME
+    ]
 
 
 def follow(obj, sources) -> None:

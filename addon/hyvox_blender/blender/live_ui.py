@@ -3,6 +3,7 @@
 and what its updates are doing, or the setting for new volumes when no volume is active)
 and Esc, which cancels the Live runs going on and passes the key on to whatever else uses
 it (stopping playback, closing a menu)."""
+
 import bpy
 
 from . import live, live_volumes
@@ -35,6 +36,7 @@ class VIEW3D_PT_hyvox_live(_HyvoxSubPanel, bpy.types.Panel):
 
 class WM_OT_hyvox_live_cancel(bpy.types.Operator):
     """Cancel the Live updates going on (the volumes keep their last voxels)"""
+
     bl_idname = "wm.hyvox_live_cancel"
     bl_label = "Cancel Live Updates"
     bl_options = {"INTERNAL"}

@@ -13,6 +13,7 @@ undo and redo keep them with the object):
 And the two things done to a live volume on the main thread: its export (the sources'
 evaluated triangles and colours) and its swap (the new file shown, or the Blocks mesh
 refilled in place)."""
+
 import json
 import os
 import time
@@ -70,8 +71,11 @@ def remember(obj, used: dict, group: Group, files: List[str] = ()) -> None:
     obj[LIVE_SETTINGS] = json.dumps(dict(used, use_frame_range=False, live=True), sort_keys=True)
     # The lead by its place among the sources: a rename keeps it.
     obj[LIVE_GROUP] = json.dumps({"name": group.name, "lead": group.sources.index(group.lead)})
-    obj[LIVE_SOURCES] = {str(i): bpy.data.objects.get(name) for i, name in enumerate(group.sources)
-                         if bpy.data.objects.get(name) is not None}
+    obj[LIVE_SOURCES] = {
+        str(i): bpy.data.objects.get(name)
+        for i, name in enumerate(group.sources)
+        if bpy.data.objects.get(name) is not None
+    }
     obj[LIVE_FILES] = list(files)
     obj[LIVE_ID] = obj.get(LIVE_ID) or uuid.uuid4().hex
 
@@ -84,7 +88,7 @@ def prepare_for_live(obj, context) -> None:
         names = [n for n in str(obj[RESULT_KEY]).split("\n") if n]
         name = obj.name
         for suffix in (naming.VOXELS_SUFFIX, blocks_object.BLOCKS_SUFFIX):
-            name = name[:-len(suffix)] if name.endswith(suffix) else name
+            name = name[: -len(suffix)] if name.endswith(suffix) else name
         remember(obj, used_values(context), Group(name, names))
     obj[LIVE_ID] = obj.get(LIVE_ID) or uuid.uuid4().hex
     if obj.parent is not None:
@@ -152,9 +156,16 @@ def settings_of(context, obj):
 
 
 def fingerprint(settings) -> str:
-    return live_key.options_fingerprint(dict(settings.voxelize_options(), method=settings.method,
-                                             color=settings.color, sdf=settings.sdf, blocks=settings.blocks,
-                                             export_vox=settings.export_vox))
+    return live_key.options_fingerprint(
+        dict(
+            settings.voxelize_options(),
+            method=settings.method,
+            color=settings.color,
+            sdf=settings.sdf,
+            blocks=settings.blocks,
+            export_vox=settings.export_vox,
+        )
+    )
 
 
 # -- main thread: export and swap -------------------------------------------------------
@@ -163,13 +174,21 @@ class ImagePixels:
     than exporting 100k triangles). An image's pixels are read again when Blender reports it
     changed (forget(), from a depsgraph update of the Image) or when what they were read
     with changes (its file, size, colour space, float or not, unsaved edits)."""
-    pixels: dict = {}       # image name -> (key, pixels), colour_export.ImageCache
-    signatures: dict = {}   # image name -> what the pixels were read with
+
+    pixels: dict = {}  # image name -> (key, pixels), colour_export.ImageCache
+    signatures: dict = {}  # image name -> what the pixels were read with
 
     @staticmethod
     def _signature(image):
-        return (image.filepath_raw, tuple(image.size), image.is_float, image.colorspace_settings.name,
-                image.source, image.is_dirty, image.channels)
+        return (
+            image.filepath_raw,
+            tuple(image.size),
+            image.is_float,
+            image.colorspace_settings.name,
+            image.source,
+            image.is_dirty,
+            image.channels,
+        )
 
     @classmethod
     def current(cls) -> dict:
@@ -203,8 +222,9 @@ def export_meshes(obj, group: Group, depsgraph, colour: bool, warn) -> List[Grou
         evaluated = source.evaluated_get(depsgraph)
         if not evaluated.is_evaluated:
             raise SourcesUnavailable(f"{source.name} is not evaluated here (disabled in viewports?)")
-    meshes = export.export_groups([group], depsgraph, warn=warn, colour=colour,
-                                  images=ImagePixels.current() if colour else None)
+    meshes = export.export_groups(
+        [group], depsgraph, warn=warn, colour=colour, images=ImagePixels.current() if colour else None
+    )
     ImagePixels.record()
     return meshes
 

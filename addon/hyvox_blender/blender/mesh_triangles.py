@@ -18,6 +18,7 @@ cost more than their `vertices` (30 ms), which quads and n-gons keep reading the
 Quads are not split here: which diagonal Blender takes depends on a float32 test (and, in
 3.4, on whether face normals were cached), and the other diagonal of a non-planar quad is
 another surface."""
+
 import bpy
 import numpy as np
 

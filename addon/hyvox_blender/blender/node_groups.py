@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The add-on's own Geometry Nodes groups, one per purpose, shared by every object that uses it."""
+
 import bpy
 
 

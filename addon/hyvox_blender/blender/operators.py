@@ -3,6 +3,7 @@
 polled by a modal timer, with a progress bar, a status bar message and Esc to cancel.
 execute() runs synchronously: background mode, scripts, and redo from the Adjust panel.
 Every HyvoxError becomes a report and {'CANCELLED'} with the scene unchanged."""
+
 import time
 import traceback
 
@@ -45,8 +46,9 @@ class _Run:
         # New file names per run, so that undo never brings back a volume whose file a later
         # run overwrote (farm chunks ask for fixed names to assemble one sequence).
         run_tag = naming.new_run_tag() if op.unique_file_names else None
-        export_frame = self.export_frame if self.live_digests is None else live.recording(self.export_frame,
-                                                                                           self.live_digests)
+        export_frame = (
+            self.export_frame if self.live_digests is None else live.recording(self.export_frame, self.live_digests)
+        )
         self.pipeline = Pipeline(settings, folder, export_frame, run_tag=run_tag)  # validates the settings
         if self.pipeline.ignored_options:
             op.report({"INFO"}, backend.ignored_message(self.pipeline.ignored_options, self.pipeline.method))
@@ -92,9 +94,9 @@ class _Run:
         pipeline = self.pipeline
         pipeline.commit()
         start = time.perf_counter()
-        objects = importer.import_results(context, pipeline.results, self.override,
-                                          parent_to_source=self.used["parent_to_source"],
-                                          warn=self.warn)
+        objects = importer.import_results(
+            context, pipeline.results, self.override, parent_to_source=self.used["parent_to_source"], warn=self.warn
+        )
         pipeline.timings.import_ms += (time.perf_counter() - start) * 1000.0
         self.show_results(context, objects)
         live.remember_results(objects, pipeline.results, self.used)  # for its Live switch, now or later
@@ -113,6 +115,7 @@ class _Run:
 
 class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
     """Voxelize the selected meshes into OpenVDB volumes aligned with them"""
+
     bl_idname = "object.hyvox_voxelize"
     bl_label = "Voxelize"
     bl_options = {"REGISTER", "UNDO"}
@@ -123,8 +126,12 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
     __annotations__ = dict(
         properties.scene_and_operator_properties(operator=True),
         unique_file_names=bpy.props.BoolProperty(
-            name="New File Names", default=True, options={"HIDDEN", "SKIP_SAVE"},
-            description="Write this run's files under new names (off: rewrite the same names each run)"))
+            name="New File Names",
+            default=True,
+            options={"HIDDEN", "SKIP_SAVE"},
+            description="Write this run's files under new names (off: rewrite the same names each run)",
+        ),
+    )
 
     _active = None  # the running modal operator's _Run: one run at a time
 

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Register every class and hook of the bpy layer, in dependency order."""
+
 import bpy
 
 from . import clean_files, file_handlers, file_history, legacy_settings, live, live_ui, operators, properties, ui

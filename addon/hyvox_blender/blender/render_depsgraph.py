@@ -7,6 +7,7 @@ only inside a render engine's render(). So for one run a tiny engine is register
 is "rendered" with it (it draws nothing; no compositing), its render() hands the depsgraph to
 the caller's function, and engine and settings are put back. It costs a few milliseconds
 plus the render-level evaluation itself. Render handlers of other add-ons do run."""
+
 from typing import Callable, Optional, TypeVar
 
 import bpy
@@ -17,6 +18,7 @@ ENGINE_ID = "HYVOX_RENDER_EVALUATION"
 
 class _Call:
     """What the engine should do and what came out; one call at a time (main thread)."""
+
     function: Optional[Callable] = None
     result = None
     error: Optional[BaseException] = None

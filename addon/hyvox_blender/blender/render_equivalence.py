@@ -10,6 +10,7 @@ surfaces and metaballs (their render resolutions), instancing (instanced objects
 visibility) and visibility (hidden in renders, or in the viewport). So the answer is yes
 only for plain mesh objects without modifiers, not instancing nor instanced by a parent,
 shown both in the viewport and in renders; anything else keeps the render evaluation."""
+
 from typing import Iterable, Set
 
 import bpy
@@ -41,8 +42,9 @@ def _instanced_by_parent(obj: bpy.types.Object) -> bool:
 
 
 def _plain_mesh(obj: bpy.types.Object) -> bool:
-    return (obj.type == "MESH" and len(obj.modifiers) == 0 and obj.instance_type == "NONE"
-            and not _instanced_by_parent(obj))
+    return (
+        obj.type == "MESH" and len(obj.modifiers) == 0 and obj.instance_type == "NONE" and not _instanced_by_parent(obj)
+    )
 
 
 def same_in_renders(names: Iterable[str], view_layer: bpy.types.ViewLayer) -> bool:

@@ -3,6 +3,7 @@
 to Volume panels: the main choices first, then the sub-panels Output, Animation and
 Advanced (closed by default), short labels (the tooltips say the rest), options that do
 not apply to the chosen method hidden, and the last run's summary in short lines."""
+
 import bpy
 
 from ..core import backend, panel_rules
@@ -53,6 +54,7 @@ class _HyvoxPanel:
 
 class _HyvoxSubPanel(_HyvoxPanel):
     """Output, Animation, Advanced: under the main panel, closed until opened."""
+
     bl_parent_id = "VIEW3D_PT_hyvox_voxelize"
     bl_options = {"DEFAULT_CLOSED"}
 
@@ -137,5 +139,4 @@ class VIEW3D_PT_hyvox_advanced(_HyvoxSubPanel, bpy.types.Panel):
             col.prop(settings, "hybrid_cutoff", text="Cutoff")
 
 
-CLASSES = (VIEW3D_PT_hyvox_voxelize, VIEW3D_PT_hyvox_output, VIEW3D_PT_hyvox_animation,
-           VIEW3D_PT_hyvox_advanced)
+CLASSES = (VIEW3D_PT_hyvox_voxelize, VIEW3D_PT_hyvox_output, VIEW3D_PT_hyvox_animation, VIEW3D_PT_hyvox_advanced)

@@ -15,6 +15,7 @@ nodes when the grids gained a `color` grid (the Color socket still the add-on's 
 takes them out when they lost it (a missing grid would read black), and upgrades a material
 made by an earlier version of the add-on (its density the 1 / voxel size it set, its colour
 the `color` attribute linked straight in). Whatever else the artist changed or linked stays."""
+
 from typing import Optional
 
 import bpy
@@ -146,8 +147,12 @@ def _color_source(shader):
 
 def _is_legacy_color(node) -> bool:
     """An earlier version's colour: the `color` attribute linked straight to Color."""
-    return node is not None and node.type == "ATTRIBUTE" and node.attribute_name == "color" \
+    return (
+        node is not None
+        and node.type == "ATTRIBUTE"
+        and node.attribute_name == "color"
         and not node.name.startswith(NODE_PREFIX)
+    )
 
 
 def _remove_color_nodes(tree) -> None:
@@ -167,8 +172,10 @@ def sync(material, has_color: bool, density: float, legacy_voxel_size: float = 0
     tree = material.node_tree
     socket = shader.inputs["Density"]
     ours = material.get(DENSITY_KEY)
-    if not socket.links and ((ours is not None and _close(socket.default_value, float(ours))) or (
-            ours is None and legacy_voxel_size > 0 and _close(socket.default_value, 1.0 / legacy_voxel_size))):
+    if not socket.links and (
+        (ours is not None and _close(socket.default_value, float(ours)))
+        or (ours is None and legacy_voxel_size > 0 and _close(socket.default_value, 1.0 / legacy_voxel_size))
+    ):
         _set_density(material, shader, density)
 
     source = _color_source(shader)
@@ -192,8 +199,7 @@ def sync(material, has_color: bool, density: float, legacy_voxel_size: float = 0
         shader.inputs["Color"].default_value = GREY
 
 
-def for_result(kept, name: str, has_color: bool, density: float,
-               legacy_voxel_size: float = 0.0) -> bpy.types.Material:
+def for_result(kept, name: str, has_color: bool, density: float, legacy_voxel_size: float = 0.0) -> bpy.types.Material:
     """The material a new volume gets: the replaced volume's (kept, brought in line by
     sync), or a new one."""
     if kept is None:

@@ -7,6 +7,7 @@ Blender 3.4's Cycles and EEVEE sample voxel i over [i, i+1) in index space, i.e.
 every voxel half a voxel towards +x+y+z. We leave the file standard (other tools read it
 right) and move the Volume object by -s/2 on each axis for the Blender versions that
 need it. The headless render test measures this on the Blender it runs in."""
+
 from typing import Sequence, Tuple
 
 # First Blender version that renders voxel centres where OpenVDB puts them. Measured by
@@ -26,14 +27,12 @@ def needs_half_voxel_shift(version: Sequence[int], override: str = "AUTO") -> bo
     return tuple(version[:3]) < FIRST_CENTRED_VERSION
 
 
-def object_offset(voxel_size: float, version: Sequence[int], override: str = "AUTO"
-                  ) -> Tuple[float, float, float]:
+def object_offset(voxel_size: float, version: Sequence[int], override: str = "AUTO") -> Tuple[float, float, float]:
     """World-space translation for the Volume object (its only transform)."""
     if not needs_half_voxel_shift(version, override):
         return (0.0, 0.0, 0.0)
     half = -0.5 * float(voxel_size)
     return (half, half, half)
-
 
 
 # EEVEE Next (Blender 4.2-4.5) draws a Volume only inside the object's bounds, and those

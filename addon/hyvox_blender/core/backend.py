@@ -4,6 +4,7 @@ method, calling voxelize with a cancel token, turning its errors into HyvoxError
 
 `settings` below is a run's core.settings.VoxelizeSettings; this module does not import
 that one (settings imports this), so the add-on's imports have no cycle."""
+
 import importlib
 import importlib.util
 import os
@@ -118,9 +119,17 @@ def token_progress(token) -> float:
     return min(max(float(token.progress), 0.0) / 100.0, 1.0)
 
 
-def voxelize(module, vertices: np.ndarray, triangles: np.ndarray, settings,
-             method: str, voxel_size: Optional[float] = None, token=None, colour: Optional[dict] = None,
-             origin: Optional[Tuple[float, float, float]] = None):
+def voxelize(
+    module,
+    vertices: np.ndarray,
+    triangles: np.ndarray,
+    settings,
+    method: str,
+    voxel_size: Optional[float] = None,
+    token=None,
+    colour: Optional[dict] = None,
+    origin: Optional[Tuple[float, float, float]] = None,
+):
     """hyvox.voxelize with the run's settings; voxel_size (when given) wins over the
     settings, so every frame of a sequence shares the first frame's voxel size, and origin
     (when given) puts voxel (0,0,0) there (core/lattice.py). colour:

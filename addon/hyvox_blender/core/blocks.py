@@ -5,6 +5,7 @@ taken from its voxel. numpy only; no bpy.
 
 Voxel (i,j,k) covers [origin + (i,j,k)*s, origin + (i+1,j+1,k+1)*s] (docs/design.md), so the
 blocks sit exactly where the voxels are, with no half-voxel shift."""
+
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
@@ -13,23 +14,26 @@ import numpy as np
 # The six sides: the direction to the neighbour, and the side's corners on the unit cube
 # in counter-clockwise order seen from outside (so normals point out of the solid).
 DIRECTIONS = np.array([(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)], np.int64)
-SIDE_CORNERS = np.array([
-    [(1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1)],
-    [(0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 1, 0)],
-    [(0, 1, 0), (0, 1, 1), (1, 1, 1), (1, 1, 0)],
-    [(0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1)],
-    [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)],
-    [(0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0)],
-], np.int64)
+SIDE_CORNERS = np.array(
+    [
+        [(1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1)],
+        [(0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 1, 0)],
+        [(0, 1, 0), (0, 1, 1), (1, 1, 1), (1, 1, 0)],
+        [(0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1)],
+        [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)],
+        [(0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0)],
+    ],
+    np.int64,
+)
 
 
 @dataclass
 class BlocksMesh:
-    vertices: np.ndarray                 # (V,3) float32, world space
-    faces: np.ndarray                    # (F,4) int32 vertex indices, normals outwards
-    face_voxels: np.ndarray              # (F,) int64: index of the voxel (row of ijk) a face belongs to
-    face_sides: np.ndarray               # (F,) int8: index into DIRECTIONS
-    face_colors: Optional[np.ndarray]    # (F,3) float32 linear RGB, or None
+    vertices: np.ndarray  # (V,3) float32, world space
+    faces: np.ndarray  # (F,4) int32 vertex indices, normals outwards
+    face_voxels: np.ndarray  # (F,) int64: index of the voxel (row of ijk) a face belongs to
+    face_sides: np.ndarray  # (F,) int8: index into DIRECTIONS
+    face_colors: Optional[np.ndarray]  # (F,3) float32 linear RGB, or None
 
 
 def _keys(ijk: np.ndarray, low: np.ndarray, extent: np.ndarray) -> np.ndarray:
@@ -44,9 +48,9 @@ def exposed_faces(ijk: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
     ijk = np.asarray(ijk, dtype=np.int64).reshape(-1, 3)
     if len(ijk) == 0:
         return np.zeros(0, np.int64), np.zeros(0, np.int8)
-    low = ijk.min(axis=0) - 1                       # room for the neighbours outside
+    low = ijk.min(axis=0) - 1  # room for the neighbours outside
     extent = ijk.max(axis=0) - low + 2
-    if float(np.prod(extent.astype(np.float64))) >= 2.0 ** 62:
+    if float(np.prod(extent.astype(np.float64))) >= 2.0**62:
         raise ValueError("the voxels span too large a box to index")
     keys = _keys(ijk, low, extent)
     order = np.argsort(keys)
@@ -64,8 +68,9 @@ def exposed_faces(ijk: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
     return np.concatenate(voxels), np.concatenate(sides)
 
 
-def blocks_mesh(ijk: np.ndarray, voxel_size: float, origin=(0.0, 0.0, 0.0),
-                colors: Optional[np.ndarray] = None) -> BlocksMesh:
+def blocks_mesh(
+    ijk: np.ndarray, voxel_size: float, origin=(0.0, 0.0, 0.0), colors: Optional[np.ndarray] = None
+) -> BlocksMesh:
     """The blocks of the voxels ijk (K,3) of a grid (voxel_size, origin); colors (K,3), per
     voxel, become per-face colours."""
     ijk = np.asarray(ijk, dtype=np.int64).reshape(-1, 3)
@@ -74,7 +79,7 @@ def blocks_mesh(ijk: np.ndarray, voxel_size: float, origin=(0.0, 0.0, 0.0),
         if len(colors) != len(ijk):
             raise ValueError(f"{len(colors)} colours for {len(ijk)} voxels")
     face_voxels, face_sides = exposed_faces(ijk)
-    corners = ijk[face_voxels][:, None, :] + SIDE_CORNERS[face_sides]      # (F,4,3) lattice points
+    corners = ijk[face_voxels][:, None, :] + SIDE_CORNERS[face_sides]  # (F,4,3) lattice points
     flat = corners.reshape(-1, 3)
     if len(flat):
         low = flat.min(axis=0)

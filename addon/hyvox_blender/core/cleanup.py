@@ -3,6 +3,7 @@
 (naming.new_run_tag) so that undo never meets an overwritten one; the files of replaced
 results therefore stay until this clean-up removes them. A result's .vdb and .vox count as
 used together."""
+
 import os
 import re
 from typing import Iterable, List, Set
@@ -46,8 +47,13 @@ def used_keys(used_files: Iterable[str], used_sequences: Iterable[str]) -> Set[s
     return used
 
 
-def unused_files(folders: Iterable[str], used_files: Iterable[str], used_sequences: Iterable[str],
-                 is_voxel_file, keep: Iterable[str] = ()) -> List[str]:
+def unused_files(
+    folders: Iterable[str],
+    used_files: Iterable[str],
+    used_sequences: Iterable[str],
+    is_voxel_file,
+    keep: Iterable[str] = (),
+) -> List[str]:
     """The files in `folders` (not below them) that is_voxel_file(name) accepts and nothing
     uses (used_keys) and that are not among `keep` (keys: what the undo history may reach).
     Sorted."""

@@ -17,6 +17,7 @@ code samples the image inside each voxel (nothing lost). Otherwise every part be
 per-corner colours: attribute and per-slot colours lose nothing that way, while a texture
 is sampled at the corners only (its detail inside a triangle is lost); combine() says so
 in its warning."""
+
 from dataclasses import dataclass
 from typing import Optional, Sequence, Tuple
 
@@ -28,10 +29,10 @@ DEFAULT_GREY = (0.8, 0.8, 0.8, 1.0)  # what Blender renders an object without ma
 @dataclass
 class PartColour:
     corner_colors: Optional[np.ndarray] = None  # (3M,4) float32 linear
-    uvs: Optional[np.ndarray] = None            # (3M,2) float32, with texture
-    texture: Optional[np.ndarray] = None        # (H,W,3|4) uint8 sRGB or float32 linear
-    texture_key: str = ""                       # which image (the same key: the same pixels)
-    textured: Optional[np.ndarray] = None       # (M,) bool: triangles that take the texture
+    uvs: Optional[np.ndarray] = None  # (3M,2) float32, with texture
+    texture: Optional[np.ndarray] = None  # (H,W,3|4) uint8 sRGB or float32 linear
+    texture_key: str = ""  # which image (the same key: the same pixels)
+    textured: Optional[np.ndarray] = None  # (M,) bool: triangles that take the texture
 
     def fully_textured(self) -> bool:
         return self.texture is not None and self.textured is not None and bool(self.textured.all())
@@ -48,8 +49,11 @@ def texture_linear(texture: np.ndarray) -> np.ndarray:
     texture = np.asarray(texture)
     if texture.dtype.kind == "u":
         rgb = srgb_to_linear(texture[..., :3] / float(np.iinfo(texture.dtype).max))
-        alpha = (texture[..., 3:4] / float(np.iinfo(texture.dtype).max)
-                 if texture.shape[-1] == 4 else np.ones(texture.shape[:2] + (1,)))
+        alpha = (
+            texture[..., 3:4] / float(np.iinfo(texture.dtype).max)
+            if texture.shape[-1] == 4
+            else np.ones(texture.shape[:2] + (1,))
+        )
     else:
         rgb = texture[..., :3].astype(np.float64)
         alpha = texture[..., 3:4].astype(np.float64) if texture.shape[-1] == 4 else np.ones(texture.shape[:2] + (1,))
@@ -73,8 +77,11 @@ def sample_bilinear(texture: np.ndarray, uvs: np.ndarray) -> np.ndarray:
 
 
 def _as_corner_colors(part: PartColour, triangle_count: int) -> np.ndarray:
-    colors = (np.array(part.corner_colors, np.float32) if part.corner_colors is not None
-              else np.tile(np.float32(DEFAULT_GREY), (3 * triangle_count, 1)))
+    colors = (
+        np.array(part.corner_colors, np.float32)
+        if part.corner_colors is not None
+        else np.tile(np.float32(DEFAULT_GREY), (3 * triangle_count, 1))
+    )
     if part.texture is not None and part.textured is not None and part.textured.any():
         corners = np.repeat(part.textured, 3)
         colors[corners] = sample_bilinear(part.texture, part.uvs[corners]).astype(np.float32)
@@ -87,6 +94,7 @@ def combine(parts: Sequence[Tuple[np.ndarray, np.ndarray, Optional[PartColour]]]
     colour arguments. The vertices and triangles are merged like pipeline.merge_meshes; in
     the texture form they are unshared (one vertex per corner) so each corner keeps its UV."""
     from .pipeline import merge_meshes
+
     vertices, triangles = merge_meshes([(v, t) for v, t, _ in parts])
     colours = [c for _, _, c in parts]
     if all(c is None for c in colours):
@@ -97,12 +105,15 @@ def combine(parts: Sequence[Tuple[np.ndarray, np.ndarray, Optional[PartColour]]]
         corners = vertices[triangles.reshape(-1)]
         unshared = np.arange(len(corners), dtype=np.uint32).reshape(-1, 3)
         return corners, unshared, {"uvs": uvs, "texture": colours[0].texture}, ""
-    corner_colors = np.concatenate([
-        _as_corner_colors(c if c is not None else PartColour(), len(t)) for _, t, c in parts])
+    corner_colors = np.concatenate(
+        [_as_corner_colors(c if c is not None else PartColour(), len(t)) for _, t, c in parts]
+    )
     warning = ""
     if keys:
-        warning = ("Color: textures sampled at the triangle corners (objects with different color "
-                   "sources or images voxelized together); one object at a time keeps the texture's detail")
+        warning = (
+            "Color: textures sampled at the triangle corners (objects with different color "
+            "sources or images voxelized together); one object at a time keeps the texture's detail"
+        )
     if np.all(corner_colors[:, 3] == 1.0):
         corner_colors = np.ascontiguousarray(corner_colors[:, :3])  # opaque: no `alpha` grid
     return vertices, triangles, {"colors": corner_colors}, warning

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The add-on's own exceptions. The operator turns every HyvoxError into
 self.report({'ERROR'}, ...) + {'CANCELLED'}; anything else is a bug."""
+
 from .messages import in_addon_words
 
 

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Frame lists as render farms write them: "1-250", "1-9:2", "1,3,7-20:2", "12" (Open Job
 Description range expressions and Flamenco's chunks)."""
+
 from typing import List
 
 from .errors import SettingsError
@@ -13,4 +14,3 @@ def parse_frames(text: str) -> List[int]:
     if not parts:
         raise SettingsError(f"no frames in {text!r}")
     return sorted({frame for part in parts for frame in parse_frame_range(part)})
-

@@ -5,6 +5,7 @@ a whole multiple of it, so a part of the scene that does not move keeps exactly 
 while another part moves or deforms and the bounds change. Left to itself the module puts
 the origin at each frame's bounds minimum, and every voxel of the static part shifts by
 that frame's fraction of a voxel (the voxels swim)."""
+
 import math
 from dataclasses import dataclass
 from typing import Optional, Tuple
@@ -51,8 +52,7 @@ def snapped_origin(low: np.ndarray, voxel_size: float) -> Tuple[float, float, fl
     return tuple(origin)
 
 
-def fixed_lattice(vertices: np.ndarray, triangles: np.ndarray, resolution: int,
-                  voxel_size: Optional[float]) -> Lattice:
+def fixed_lattice(vertices: np.ndarray, triangles: np.ndarray, resolution: int, voxel_size: Optional[float]) -> Lattice:
     """The lattice for this evaluation: voxel_size when given (kept from the first
     evaluation), else the resolution's; the origin snapped to it."""
     low, high = used_bounds(vertices, triangles)

@@ -7,6 +7,7 @@ Blocks mesh). The cache is bounded twice: the bytes of its files on disk and the
 holds in memory; past either bound the least recently used entries go, and their files are
 deleted, except files still in use (shown by a volume, or referenced by a saved .blend),
 which the caller names at each eviction. Files the cache did not write are never deleted."""
+
 import os
 import threading
 from collections import OrderedDict
@@ -36,9 +37,9 @@ def _delete(path: str) -> bool:
 @dataclass
 class CacheEntry:
     key: str
-    result: GroupResult               # files, voxel size, origin, counts, the Blocks mesh
-    owner: str = ""                   # the live volume that made it
-    frame: Optional[int] = None       # the frame it was made at
+    result: GroupResult  # files, voxel size, origin, counts, the Blocks mesh
+    owner: str = ""  # the live volume that made it
+    frame: Optional[int] = None  # the frame it was made at
     disk_bytes: int = 0
     memory_bytes: int = 0
     files: List[str] = field(default_factory=list)
@@ -50,13 +51,18 @@ class CacheEntry:
             self.disk_bytes = sum(os.path.getsize(p) for p in self.files if os.path.exists(p))
         if not self.memory_bytes and self.result.blocks is not None:
             blocks = self.result.blocks
-            self.memory_bytes = sum(a.nbytes for a in (blocks.vertices, blocks.faces, blocks.face_colors)
-                                    if a is not None)
+            self.memory_bytes = sum(
+                a.nbytes for a in (blocks.vertices, blocks.faces, blocks.face_colors) if a is not None
+            )
 
 
 class LiveCache:
-    def __init__(self, max_disk_bytes: int = DEFAULT_DISK_BYTES, max_memory_bytes: int = DEFAULT_MEMORY_BYTES,
-                 in_use: Callable[[], Iterable[str]] = lambda: ()):
+    def __init__(
+        self,
+        max_disk_bytes: int = DEFAULT_DISK_BYTES,
+        max_memory_bytes: int = DEFAULT_MEMORY_BYTES,
+        in_use: Callable[[], Iterable[str]] = lambda: (),
+    ):
         """in_use(): the paths that must not be deleted now (asked on the caller's thread at
         each eviction: the main thread's view of what volumes show)."""
         self.max_disk_bytes = max_disk_bytes

@@ -5,6 +5,7 @@ the voxel size the volume keeps included). Equal keys give equal voxels, so a ke
 the cache is looked up by and how an update that changed nothing is told apart from one
 that did: a frame of a static scene, an undo step back to a state seen before, a material
 edit that the colour does not show."""
+
 import hashlib
 import json
 from typing import Any, Iterable, Mapping

@@ -4,6 +4,7 @@ their voxels. It runs on a worker thread in the UI (on the caller's in backgroun
 while rendering) and never touches Blender data: the key of the input (core/live_key.py),
 the cache (core/live_cache.py) when the key was seen, else the run pipeline (voxelize,
 write to staging files, rename into place: a cancelled or failed run leaves no file)."""
+
 import time
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional
@@ -18,11 +19,12 @@ from .settings import VoxelizeSettings
 @dataclass
 class LiveInput:
     """What the main thread exported for one run of one live volume."""
-    meshes: List[GroupMesh]          # one group: the volume's sources, world space
-    settings: VoxelizeSettings       # the volume's own: its voxel size, a fixed lattice, no frames
-    folder: str                      # where the files go
-    fingerprint: str                 # the options as text (live_key.options_fingerprint)
-    owner: str = ""                  # the volume (cache entries are dropped with it)
+
+    meshes: List[GroupMesh]  # one group: the volume's sources, world space
+    settings: VoxelizeSettings  # the volume's own: its voxel size, a fixed lattice, no frames
+    folder: str  # where the files go
+    fingerprint: str  # the options as text (live_key.options_fingerprint)
+    owner: str = ""  # the volume (cache entries are dropped with it)
     frame: Optional[int] = None
     export_ms: float = 0.0
 
@@ -31,7 +33,7 @@ class LiveInput:
 class LiveOutput:
     key: str
     result: GroupResult
-    cached: bool                     # shown from the cache: nothing voxelized
+    cached: bool  # shown from the cache: nothing voxelized
     timings_ms: Dict[str, float] = field(default_factory=dict)  # export, key, voxelize, write
 
     @property
@@ -45,8 +47,7 @@ class LiveRun:
         self.cache = cache
         self.key: Optional[str] = None
         # Made here, on the caller's thread: it validates the settings and resolves Auto.
-        self.pipeline = Pipeline(job.settings, job.folder, self._export, module=module,
-                                 run_tag=naming.new_run_tag())
+        self.pipeline = Pipeline(job.settings, job.folder, self._export, module=module, run_tag=naming.new_run_tag())
         self._cancelled = False
 
     def _export(self, frame):
@@ -83,6 +84,5 @@ class LiveRun:
         timings["voxelize"] = self.pipeline.timings.voxelize_ms
         timings["write"] = self.pipeline.timings.write_ms
         output = LiveOutput(self.key, result, False, timings)
-        self.cache.put(CacheEntry(self.key, result, owner=self.job.owner, frame=self.job.frame),
-                       keep=output.files)
+        self.cache.put(CacheEntry(self.key, result, owner=self.job.owner, frame=self.job.frame), keep=output.files)
         return output

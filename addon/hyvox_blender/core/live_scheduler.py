@@ -18,6 +18,7 @@
 - Threaded (the UI: the caller polls collect() from a timer) or synchronous (background
   mode and renders: start() returns when the run has ended).
 Nothing here imports bpy; the Blender side (blender/live.py) exports, swaps and reports."""
+
 import threading
 import traceback
 from dataclasses import dataclass
@@ -31,7 +32,7 @@ SHOWN, DROPPED, FAILED = "shown", "dropped", "failed"
 
 @dataclass
 class Outcome:
-    kind: str                          # SHOWN: swap it in; DROPPED: not to be shown; FAILED: error
+    kind: str  # SHOWN: swap it in; DROPPED: not to be shown; FAILED: error
     run: LiveRun
     output: Optional[LiveOutput] = None  # a dropped run may have finished all the same
     error: str = ""
@@ -42,16 +43,16 @@ class LiveVolume:
 
     def __init__(self, ident: str):
         self.ident = ident
-        self.dirty = False                 # an edit came after the last export
+        self.dirty = False  # an edit came after the last export
         self.run: Optional[LiveRun] = None  # started and not yet collected
         self.thread: Optional[threading.Thread] = None
-        self.generation = 0                # of the last run started
-        self.shown_generation = 0          # of the last run shown
-        self.dropping = False              # the current run was cancelled: drop its result
-        self.error = ""                    # the last run's error, until one succeeds
+        self.generation = 0  # of the last run started
+        self.shown_generation = 0  # of the last run shown
+        self.dropping = False  # the current run was cancelled: drop its result
+        self.error = ""  # the last run's error, until one succeeds
         self.runs_started = 0
         self.last_output: Optional[LiveOutput] = None
-        self.finished = None               # (output, error) set when the run has ended
+        self.finished = None  # (output, error) set when the run has ended
 
     @property
     def state(self) -> str:
@@ -129,8 +130,9 @@ class LiveScheduler:
             volume.run, volume.finished, volume.dropping = run, None, False
             generation = volume.generation
             if not synchronous:
-                volume.thread = threading.Thread(target=self._work, args=(volume, run),
-                                                 name=f"hyvox-live-{generation}", daemon=True)
+                volume.thread = threading.Thread(
+                    target=self._work, args=(volume, run), name=f"hyvox-live-{generation}", daemon=True
+                )
                 volume.thread.start()
         if synchronous:
             self._work(volume, run)

@@ -7,15 +7,16 @@
   too, as the native check counts it.
 - A few vertices far from the rest make the grid span mostly empty space (one stray vertex
   500 units away turns a 128 grid into 128x1x1): a warning names the object and how many."""
+
 from typing import Optional
 
 import numpy as np
 
-NOT_A_COORDINATE = 3.4e38   # |x| at or above: Inf as Blender stores it (float max, 3.4028235e38)
-FEW_FRACTION = 0.001        # "a few" vertices: at most this share of the object's ...
-FEW_AT_LEAST = 3            # ... or this many
-MOSTLY_EMPTY_RATIO = 4.0    # the object spans at least this many times what the rest spans
-MARGIN = 0.25               # of the rest's longest side: vertices this close to it are not far
+NOT_A_COORDINATE = 3.4e38  # |x| at or above: Inf as Blender stores it (float max, 3.4028235e38)
+FEW_FRACTION = 0.001  # "a few" vertices: at most this share of the object's ...
+FEW_AT_LEAST = 3  # ... or this many
+MOSTLY_EMPTY_RATIO = 4.0  # the object spans at least this many times what the rest spans
+MARGIN = 0.25  # of the rest's longest side: vertices this close to it are not far
 
 
 def first_bad_vertex(vertices: np.ndarray) -> Optional[int]:
@@ -41,11 +42,11 @@ def used_vertices(vertices: np.ndarray, triangles: np.ndarray) -> np.ndarray:
 def _core_interval(values: np.ndarray, drop: int):
     """The shortest interval holding all but `drop` of the values (sorted ends only)."""
     n = len(values)
-    low = np.sort(np.partition(values, drop)[:drop + 1]) if drop + 1 < n else np.sort(values)
-    high = np.sort(np.partition(values, n - drop - 1)[n - drop - 1:]) if drop + 1 < n else np.sort(values)
+    low = np.sort(np.partition(values, drop)[: drop + 1]) if drop + 1 < n else np.sort(values)
+    high = np.sort(np.partition(values, n - drop - 1)[n - drop - 1 :]) if drop + 1 < n else np.sort(values)
     # Dropping i from below and drop - i from above: the interval [low[i], high[i]] (high is
     # the drop + 1 largest, ascending, so high[i] leaves drop - i above it).
-    widths = high[:drop + 1] - low[:drop + 1]
+    widths = high[: drop + 1] - low[: drop + 1]
     best = int(np.argmin(widths))
     return low[best], high[best]
 
@@ -68,6 +69,8 @@ def far_vertices_warning(name: str, vertices: np.ndarray) -> str:
     count = int(far.sum())
     if not 0 < count <= few:
         return ""
-    return (f"{name}: {count} vertex{'es' if count != 1 else ''} far from the rest (the object spans "
-            f"{float(span.max()):.4g} units, the rest of it {core_side:.4g}): the grid is mostly empty "
-            f"space. Move or delete {'them' if count != 1 else 'it'} to voxelize the object finely")
+    return (
+        f"{name}: {count} vertex{'es' if count != 1 else ''} far from the rest (the object spans "
+        f"{float(span.max()):.4g} units, the rest of it {core_side:.4g}): the grid is mostly empty "
+        f"space. Move or delete {'them' if count != 1 else 'it'} to voxelize the object finely"
+    )

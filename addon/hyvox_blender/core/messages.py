@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The module's messages in the add-on's words: a setting named where the artist finds it
 (the add-on's preferences), not by the module's option name."""
+
 import re
 
 # Where the add-on shows the module's options that are not in the panel (blender/properties.py:

@@ -8,6 +8,7 @@ so this looks at the files: the extension's name says the Python it was built fo
 asking the system loader to open it (ctypes, no Python init) gives the loader's own
 message, e.g. "libopenvdb.so.10.0: cannot open shared object file"; ldd lists every
 library it cannot find."""
+
 import ctypes
 import glob
 import importlib.machinery
@@ -62,16 +63,17 @@ def explain(package_dir: str, error: BaseException) -> str:
     lines = ["hyvox could not load its compiled module."]
     modules = sorted(glob.glob(os.path.join(package_dir, "_core*.so")))
     if not modules:
-        lines.append(f"No compiled module (_core*.so) is in {package_dir}: "
-                     "install a hyvox build that includes it.")
+        lines.append(f"No compiled module (_core*.so) is in {package_dir}: install a hyvox build that includes it.")
     suffixes = importlib.machinery.EXTENSION_SUFFIXES
     for path in modules:
         lines.append(f"File: {path}")
         lines.append(f"Built for: {built_for(path)}; this Blender runs {running_python()}.")
         # Python imports _core only from _core + one of its suffixes, exactly.
-        if os.path.basename(path)[len("_core"):] not in suffixes:
-            lines.append(f"This Python cannot load it (it loads {', '.join(suffixes)}): install the "
-                         f"hyvox build made for {running_python()}.")
+        if os.path.basename(path)[len("_core") :] not in suffixes:
+            lines.append(
+                f"This Python cannot load it (it loads {', '.join(suffixes)}): install the "
+                f"hyvox build made for {running_python()}."
+            )
             continue
         message = loader_error(path) or ""
         missing = libraries_not_found(path)
@@ -79,12 +81,16 @@ def explain(package_dir: str, error: BaseException) -> str:
         if match and match.group(1) not in missing:
             missing.insert(0, match.group(1))
         if missing:
-            lines.append("Missing libraries: " + ", ".join(missing) + ". They are not installed "
-                         "here (or not where the loader looks); the Blender 4.2+ extension and the "
-                         "pip wheel bundle them.")
+            lines.append(
+                "Missing libraries: " + ", ".join(missing) + ". They are not installed "
+                "here (or not where the loader looks); the Blender 4.2+ extension and the "
+                "pip wheel bundle them."
+            )
         elif _UNDEFINED.search(message):
-            lines.append(f"A library it needs is a different version than it was built against "
-                         f"({_UNDEFINED.search(message).group(0)}).")
+            lines.append(
+                f"A library it needs is a different version than it was built against "
+                f"({_UNDEFINED.search(message).group(0)})."
+            )
         elif message:
             lines.append(f"The system loader says: {message}")
     lines.append(f"(Python's error: {type(error).__name__}: {error})")

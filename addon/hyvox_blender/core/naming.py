@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Names of output files and Blender objects, in one place so that re-running finds
 and replaces its previous result instead of piling up copies."""
+
 import os
 import re
 import secrets

@@ -2,6 +2,7 @@
 """What the sidebar panel shows, decided without bpy: how the GL methods are marked with the
 device they would run on, and the result summary in short lines that fit the sidebar. (Which
 options apply to a method is the schema's rule: OptionSpec.applies_to.)"""
+
 import os
 from typing import Dict, List, Optional, Sequence
 

@@ -3,6 +3,7 @@
 voxelize and write every group (main thread in background mode, a worker thread in the
 UI). Files go to staging paths and are renamed into place only when the whole run
 succeeds, so a cancelled or failed run leaves the previous results untouched."""
+
 import os
 import threading
 import time
@@ -20,6 +21,7 @@ from .settings import VoxelizeSettings
 @dataclass
 class Group:
     """What becomes one Volume object: one source object, or the whole selection."""
+
     name: str
     sources: List[str]
     lead: str = ""  # the source the volume is parented to (default: the first)
@@ -35,7 +37,7 @@ class Group:
 @dataclass
 class GroupMesh:
     group: Group
-    vertices: np.ndarray   # (N,3) float32, world space
+    vertices: np.ndarray  # (N,3) float32, world space
     triangles: np.ndarray  # (M,3) uint32 (what the module uses natively)
     colour: Dict[str, np.ndarray] = field(default_factory=dict)  # colour.combine's keyword arguments
 
@@ -60,6 +62,7 @@ class GroupResult:
 @dataclass
 class Timings:
     """Milliseconds per stage, summed over frames and groups."""
+
     export_ms: float = 0.0
     voxelize_ms: float = 0.0
     write_ms: float = 0.0
@@ -76,8 +79,7 @@ def merge_meshes(parts: Sequence[Tuple[np.ndarray, np.ndarray]]) -> Tuple[np.nda
         return parts[0]
     offsets = np.cumsum([0] + [len(v) for v, _ in parts[:-1]])
     vertices = np.concatenate([v for v, _ in parts]).astype(np.float32, copy=False)
-    triangles = np.concatenate([t.astype(np.uint32, copy=False) + np.uint32(o)
-                                for (_, t), o in zip(parts, offsets)])
+    triangles = np.concatenate([t.astype(np.uint32, copy=False) + np.uint32(o) for (_, t), o in zip(parts, offsets)])
     return vertices, triangles
 
 
@@ -85,8 +87,14 @@ ExportFrame = Callable[[Optional[int]], List[GroupMesh]]
 
 
 class Pipeline:
-    def __init__(self, settings: VoxelizeSettings, output_dir: str, export_frame: ExportFrame,
-                 module=None, run_tag: Optional[str] = None):
+    def __init__(
+        self,
+        settings: VoxelizeSettings,
+        output_dir: str,
+        export_frame: ExportFrame,
+        module=None,
+        run_tag: Optional[str] = None,
+    ):
         """run_tag (naming.new_run_tag): this run's files get new names, never an earlier
         run's; None: fixed names, rewritten by each run (farm chunks that assemble)."""
         self.settings = settings.validate()
@@ -133,8 +141,7 @@ class Pipeline:
             return False
         meshes = self._export_next()
         self._error = None
-        self._thread = threading.Thread(target=self._work_guarded, args=(meshes,),
-                                        name="hyvox-voxelize", daemon=True)
+        self._thread = threading.Thread(target=self._work_guarded, args=(meshes,), name="hyvox-voxelize", daemon=True)
         self._worker_running = True
         self._thread.start()
         return True
@@ -178,8 +185,11 @@ class Pipeline:
         groups = max(self._groups_in_frame, 1)
         done_frames = max(self._frame_index - 1, 0) if self.worker_busy() else self._frame_index
         # Each group: voxelizing is the first 80% of its share, writing the last 20%.
-        stage_share = (0.8 * backend.token_progress(self._token) if self._stage == 0
-                       else 0.8 + 0.2 * backend.token_progress(self._token))
+        stage_share = (
+            0.8 * backend.token_progress(self._token)
+            if self._stage == 0
+            else 0.8 + 0.2 * backend.token_progress(self._token)
+        )
         within = (self._group_index + stage_share) / groups
         if not self.worker_busy():
             within = 0.0
@@ -250,8 +260,7 @@ class Pipeline:
                 raise CancelledError("voxelization cancelled")
             result = self.results.get(mesh.group.key)
             if result is None:
-                result = GroupResult(mesh.group, frames=[] if frame is not None else None,
-                                     method=self.method)
+                result = GroupResult(mesh.group, frames=[] if frame is not None else None, method=self.method)
                 self.results[mesh.group.key] = result
             # Every frame of a sequence uses the first frame's voxel size: the Volume
             # object's half-voxel correction and the look must not change per frame.
@@ -265,9 +274,17 @@ class Pipeline:
             # Solid runs too: the inside voxels take their colour from the surface inward
             # (the module's solid-mode attributes).
             colour = mesh.colour if self.settings.color else None
-            grid = backend.voxelize(self.module, mesh.vertices, mesh.triangles, self.settings,
-                                    self.method, voxel_size=fixed_size, token=self._token, colour=colour,
-                                    origin=origin)
+            grid = backend.voxelize(
+                self.module,
+                mesh.vertices,
+                mesh.triangles,
+                self.settings,
+                self.method,
+                voxel_size=fixed_size,
+                token=self._token,
+                colour=colour,
+                origin=origin,
+            )
             self.timings.voxelize_ms += (time.perf_counter() - start) * 1000.0
             if self._cancelled:
                 raise CancelledError("voxelization cancelled")
@@ -312,11 +329,11 @@ class Pipeline:
         options = self.settings.voxelize_options()
         resolution = options.get("resolution", backend.load_module().option("resolution").default)
         try:
-            return lattice.fixed_lattice(mesh.vertices, mesh.triangles, int(resolution),
-                                         voxel_size or options.get("voxel_size"))
+            return lattice.fixed_lattice(
+                mesh.vertices, mesh.triangles, int(resolution), voxel_size or options.get("voxel_size")
+            )
         except ValueError as exc:
             raise HyvoxError(f"{mesh.group.name}: {exc}") from exc
-
 
     def _blocks_and_vox(self, grid, result: GroupResult, final_vdb: str) -> None:
         """The other outputs of the same voxels: the blocks mesh (imported on the main

@@ -13,6 +13,7 @@ made it, and their removal once no session needs them.
   time to recover that session. A folder whose owner runs, or cannot be told, stays; one
   without OWNER_FILE (made by an earlier version) goes only when empty; one holding a file
   hyvox did not write stays. So no running session ever loses a file."""
+
 import json
 import os
 import shutil
@@ -44,7 +45,7 @@ def process_identity(pid: int) -> Optional[dict]:
         return None
     # The fields after the command name (which may hold spaces) in parentheses; field 22
     # of the line is the start time in clock ticks after boot.
-    fields = stat[stat.rindex(")") + 2:].split()
+    fields = stat[stat.rindex(")") + 2 :].split()
     return {"boot": boot.strip(), "start": fields[19]}
 
 
@@ -129,8 +130,12 @@ def remove_if_empty(folder: Optional[str]) -> bool:
     return remove(folder)
 
 
-def sweep(is_voxel_file: Callable[[str], bool], own: Optional[str] = None,
-          parent: Optional[str] = None, now: Optional[float] = None) -> List[str]:
+def sweep(
+    is_voxel_file: Callable[[str], bool],
+    own: Optional[str] = None,
+    parent: Optional[str] = None,
+    now: Optional[float] = None,
+) -> List[str]:
     """Remove the removable session folders in the temporary folder (not `own`); returns
     the folders removed."""
     parent = parent or tempfile.gettempdir()

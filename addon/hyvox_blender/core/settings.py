@@ -2,6 +2,7 @@
 """One settings object per run, gathered once from the scene, the operator's keyword
 arguments and the add-on preferences (the glTF exporter's pattern), then validated by the
 native options schema."""
+
 from typing import Any, Dict, List, Optional
 
 from . import backend
@@ -13,19 +14,28 @@ class VoxelizeSettings:
     """method (a hyvox method or "auto"), separate, frames, and the hyvox.voxelize options
     by their schema names (hyvox.OPTIONS); an option left out takes the native default."""
 
-    def __init__(self, method: str = AUTO_METHOD, separate: bool = False,
-                 frames: Optional[List[int]] = None, blocks: bool = False, export_vox: bool = False,
-                 color: bool = False, sdf: bool = False, fixed_lattice: bool = False, **options: Any):
+    def __init__(
+        self,
+        method: str = AUTO_METHOD,
+        separate: bool = False,
+        frames: Optional[List[int]] = None,
+        blocks: bool = False,
+        export_vox: bool = False,
+        color: bool = False,
+        sdf: bool = False,
+        fixed_lattice: bool = False,
+        **options: Any,
+    ):
         self.method = method
-        self.separate = separate          # one volume per object instead of one for the selection
-        self.frames = frames              # None: the current frame only, no sequence
-        self.blocks = blocks              # also build the blocks mesh (core/blocks.py)
-        self.export_vox = export_vox      # also write a MagicaVoxel .vox beside each .vdb
-        self.color = color                # also a `color` grid, from what the materials show
+        self.separate = separate  # one volume per object instead of one for the selection
+        self.frames = frames  # None: the current frame only, no sequence
+        self.blocks = blocks  # also build the blocks mesh (core/blocks.py)
+        self.export_vox = export_vox  # also write a MagicaVoxel .vox beside each .vdb
+        self.color = color  # also a `color` grid, from what the materials show
         # The grid on a lattice fixed in world space (core/lattice.py): always for sequences;
         # for Live, whose every run must land on the voxels of the one before.
         self.fixed_lattice = fixed_lattice or frames is not None
-        self.sdf = sdf                    # also an `sdf` level set, for Blender 5's SDF nodes
+        self.sdf = sdf  # also an `sdf` level set, for Blender 5's SDF nodes
         self.options: Dict[str, Any] = options
 
     @property
@@ -79,7 +89,7 @@ def parse_frame_range(text: str) -> List[int]:
     try:
         if "-" in text[1:]:
             cut = text.index("-", 1)
-            start, end = int(text[:cut]), int(text[cut + 1:])
+            start, end = int(text[:cut]), int(text[cut + 1 :])
         else:
             start = end = int(text)
     except ValueError:

@@ -50,8 +50,9 @@ def material_density(mode: str, voxel_size: float, dims, padding: int = 0) -> fl
 def result_density(stats: dict, voxel_size: float, dims) -> float:
     """material_density of a run's result, from the module's stats (mode and padding)."""
     options = stats.get("options", {}) if isinstance(stats, dict) else {}
-    return material_density(str(stats.get("mode", options.get("mode", ""))), voxel_size, dims,
-                            int(options.get("padding", 0)))
+    return material_density(
+        str(stats.get("mode", options.get("mode", ""))), voxel_size, dims, int(options.get("padding", 0))
+    )
 
 
 def surface_albedo(color: float) -> float:

@@ -7,14 +7,15 @@ model's size is made even, so its translation (MagicaVoxel places a model by its
 size/2) is a whole number and voxel (x,y,z) of a model lies at translation - size/2 + (x,y,z).
 The palette holds at most 255 colours (sRGB, 8 bits): the voxels' linear colours are
 converted to sRGB and, when there are more than 255 distinct ones, quantised by median cut."""
+
 import os
 import struct
 from typing import List, Optional, Tuple
 
 import numpy as np
 
-MODEL_LIMIT = 256      # voxels per side of one model (the format stores coordinates as bytes)
-PALETTE_SIZE = 255     # index 0 means empty
+MODEL_LIMIT = 256  # voxels per side of one model (the format stores coordinates as bytes)
+PALETTE_SIZE = 255  # index 0 means empty
 DEFAULT_COLOR = (204, 204, 204)
 
 
@@ -71,8 +72,9 @@ def _dict(pairs: dict) -> bytes:
 
 def _transform(node: int, child: int, layer: int, translation: Optional[Tuple[int, int, int]]) -> bytes:
     frame = {"_t": " ".join(str(int(t)) for t in translation)} if translation is not None else {}
-    return _chunk(b"nTRN", struct.pack("<i", node) + _dict({}) + struct.pack("<iiii", child, -1, layer, 1)
-                  + _dict(frame))
+    return _chunk(
+        b"nTRN", struct.pack("<i", node) + _dict({}) + struct.pack("<iiii", child, -1, layer, 1) + _dict(frame)
+    )
 
 
 def split_models(ijk: np.ndarray):
@@ -111,14 +113,25 @@ def vox_bytes(ijk: np.ndarray, colors: Optional[np.ndarray] = None) -> Tuple[byt
     # Scene graph: root transform 0 -> group 1 -> (transform 2+2m -> shape 3+2m -> model m).
     shape_ids = [3 + 2 * m for m in range(len(models))]
     children.append(_transform(0, 1, -1, None))
-    children.append(_chunk(b"nGRP", struct.pack("<i", 1) + _dict({}) + struct.pack("<i", len(models))
-                           + b"".join(struct.pack("<i", s - 1) for s in shape_ids)))
+    children.append(
+        _chunk(
+            b"nGRP",
+            struct.pack("<i", 1)
+            + _dict({})
+            + struct.pack("<i", len(models))
+            + b"".join(struct.pack("<i", s - 1) for s in shape_ids),
+        )
+    )
     for m, (corner, size, _) in enumerate(models):
         children.append(_transform(shape_ids[m] - 1, shape_ids[m], 0, tuple(corner + size // 2)))
-        children.append(_chunk(b"nSHP", struct.pack("<i", shape_ids[m]) + _dict({}) + struct.pack("<i", 1)
-                               + struct.pack("<i", m) + _dict({})))
+        children.append(
+            _chunk(
+                b"nSHP",
+                struct.pack("<i", shape_ids[m]) + _dict({}) + struct.pack("<i", 1) + struct.pack("<i", m) + _dict({}),
+            )
+        )
     rgba = np.zeros((256, 4), np.uint8)
-    rgba[:len(palette), :3] = palette
+    rgba[: len(palette), :3] = palette
     rgba[:, 3] = 255
     children.append(_chunk(b"RGBA", rgba.tobytes()))
     return b"VOX " + struct.pack("<i", 150) + _chunk(b"MAIN", b"", b"".join(children)), len(models)

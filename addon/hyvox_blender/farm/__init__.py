@@ -10,12 +10,14 @@ COMMAND is
     assemble   check every frame's file and save a .blend with the volume sequence (task.py)
     serve      keep this Blender for the tasks of a worker session (session.py)
 Exits non-zero with the reason on failure; SIGTERM cancels and leaves no partial file."""
+
 import os
 import sys
 
 
 def main(argv):
     from . import session, task
+
     if argv[:1] == ["serve"]:
         session.serve(argv[1:])
         return

@@ -7,6 +7,7 @@ one the session's Blender reports):
 
 SIGTERM (the farm cancelling the task) is passed on to Blender, which cancels the task and
 leaves no partial file. Standard library only: this file is not imported with the add-on."""
+
 import json
 import os
 import signal
@@ -47,8 +48,10 @@ def main(argv):
             sys.stderr.flush()
         elif "exit" in message:
             return int(message["exit"])
-    print("hyvox: error: the session's Blender stopped during the task (its log is in the session folder)",
-          file=sys.stderr)
+    print(
+        "hyvox: error: the session's Blender stopped during the task (its log is in the session folder)",
+        file=sys.stderr,
+    )
     return 1
 
 

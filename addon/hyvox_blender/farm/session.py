@@ -13,6 +13,7 @@ job's onEnter action waits on that pipe, so it returns as soon as Blender is rea
 with Blender's log if it died first. Each task opens its .blend afresh (--blend). The
 server also ends when its socket or the session's folder is gone (a session that ended
 without its onExit action)."""
+
 import json
 import os
 import signal
@@ -46,11 +47,13 @@ class _Stream:
 
 def _announce(fd, socket_path):
     client = os.path.join(os.path.dirname(os.path.abspath(__file__)), "client.py")
-    lines = [f"openjd_env: HYVOX_FARM_SOCKET={socket_path}",
-             f"openjd_env: HYVOX_FARM_PYTHON={sys.executable}",
-             f"openjd_env: HYVOX_FARM_CLIENT={client}",
-             f"openjd_env: HYVOX_FARM_PID={os.getpid()}",
-             f"hyvox: session Blender {os.getpid()} ready on {socket_path}"]
+    lines = [
+        f"openjd_env: HYVOX_FARM_SOCKET={socket_path}",
+        f"openjd_env: HYVOX_FARM_PYTHON={sys.executable}",
+        f"openjd_env: HYVOX_FARM_CLIENT={client}",
+        f"openjd_env: HYVOX_FARM_PID={os.getpid()}",
+        f"hyvox: session Blender {os.getpid()} ready on {socket_path}",
+    ]
     os.write(fd, ("\n".join(lines) + "\n").encode())
     os.close(fd)
 
@@ -83,6 +86,7 @@ def _serve_one(connection):
 
 def serve(argv):
     import argparse
+
     parser = argparse.ArgumentParser(prog="hyvox farm serve")
     parser.add_argument("--socket", required=True)
     parser.add_argument("--announce-fd", type=int, required=True)

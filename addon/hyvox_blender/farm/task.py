@@ -15,6 +15,7 @@ own operator run, renamed into place when it is written, so a chunk stopped half
 the frames it finished and a re-run rewrites only its own. --voxel-size 0 means unset (a
 farm parameter always has a value). --blend: open this file first (a session's Blender
 runs task after task; each starts from the file as saved)."""
+
 import argparse
 import contextlib
 import importlib
@@ -101,8 +102,9 @@ def job_voxel_size(args, group):
     current = scene.frame_current
     scene.frame_set(first)
     try:
-        (mesh,) = frame_export.export_meshes([group], "VIEWPORT" if args.viewport else "RENDER", False,
-                                             lambda text: None)
+        (mesh,) = frame_export.export_meshes(
+            [group], "VIEWPORT" if args.viewport else "RENDER", False, lambda text: None
+        )
     finally:
         scene.frame_set(current)
     plan = backend.load_module().plan_grid(mesh.vertices, mesh.triangles, resolution=resolution)
@@ -123,9 +125,11 @@ def run_frames(args, rest):
         _cli().main(rest + fixed + ["--frames", f"{frame}-{frame}"])
         (volume,) = operators.last_run_record["volumes"]
         ms = operators.last_run_record["timings_ms"]
-        print(f"hyvox: frame {frame}: {volume['voxel_counts'][0]:,} voxels in {time.perf_counter() - start:.2f} s "
-              f"(voxelize {ms['voxelize'] / 1000:.2f} s, write {ms['write'] / 1000:.2f} s) -> {volume['files'][0]}",
-              flush=True)
+        print(
+            f"hyvox: frame {frame}: {volume['voxel_counts'][0]:,} voxels in {time.perf_counter() - start:.2f} s "
+            f"(voxelize {ms['voxelize'] / 1000:.2f} s, write {ms['write'] / 1000:.2f} s) -> {volume['files'][0]}",
+            flush=True,
+        )
         print(f"openjd_progress: {100.0 * (done + 1) / len(frames):.1f}", flush=True)
 
 
@@ -160,14 +164,21 @@ def assemble(args):
     frames, files = _frame_files(args, group)
     missing = [frame for frame, path in zip(frames, files) if not os.path.isfile(path)]
     if missing:
-        raise FarmError(f"{len(missing)} of {len(frames)} frames have no file in {args.output} "
-                        f"(frames {', '.join(map(str, missing[:20]))}{' ...' if len(missing) > 20 else ''})")
+        raise FarmError(
+            f"{len(missing)} of {len(frames)} frames have no file in {args.output} "
+            f"(frames {', '.join(map(str, missing[:20]))}{' ...' if len(missing) > 20 else ''})"
+        )
     grids = [_check_volume_file(path, size) for path in files]
     has_color = "color" in grids[0]
     if any(("color" in names) != has_color for names in grids):
         raise FarmError("some frames have a color grid and others not: the chunks ran with different options")
-    save = os.path.abspath(args.save or os.path.join(
-        args.output, os.path.splitext(os.path.basename(bpy.data.filepath) or "scene")[0] + naming.VOXELS_SUFFIX + ".blend"))
+    save = os.path.abspath(
+        args.save
+        or os.path.join(
+            args.output,
+            os.path.splitext(os.path.basename(bpy.data.filepath) or "scene")[0] + naming.VOXELS_SUFFIX + ".blend",
+        )
+    )
     filepaths = bpy.context.preferences.filepaths
     versions, filepaths.save_version = filepaths.save_version, 0  # no .blend1 beside it
     try:
@@ -175,8 +186,12 @@ def assemble(args):
         bpy.ops.wm.save_as_mainfile(filepath=save)
         result = GroupResult(group, files=files, frames=frames, voxel_size=size, has_color=has_color)
         prefs = properties.preferences(bpy.context)
-        importer.import_results(bpy.context, {group.key: result},
-                                prefs.alignment_fix if prefs is not None else "AUTO", parent_to_source=False)
+        importer.import_results(
+            bpy.context,
+            {group.key: result},
+            prefs.alignment_fix if prefs is not None else "AUTO",
+            parent_to_source=False,
+        )
         bpy.ops.wm.save_as_mainfile(filepath=save)
     finally:
         filepaths.save_version = versions
@@ -220,15 +235,21 @@ def run_command(argv) -> int:
         return 0
     except Cancelled as exc:
         reason = str(exc)
-        print(f"hyvox: error: {reason[len('hyvox: '):] if reason.startswith('hyvox: ') else reason}",
-              file=sys.stderr, flush=True)
+        print(
+            f"hyvox: error: {reason[len('hyvox: ') :] if reason.startswith('hyvox: ') else reason}",
+            file=sys.stderr,
+            flush=True,
+        )
         return 143
     except (Exception, SystemExit) as exc:  # every failure: its reason and a non-zero exit
         if isinstance(exc, SystemExit) and exc.code in (0, None):
             return 0
         reason = str(exc)
-        print(f"hyvox: error: {reason[len('hyvox: '):] if reason.startswith('hyvox: ') else reason}",
-              file=sys.stderr, flush=True)
+        print(
+            f"hyvox: error: {reason[len('hyvox: ') :] if reason.startswith('hyvox: ') else reason}",
+            file=sys.stderr,
+            flush=True,
+        )
         return 143 if _cancelled else 1
     finally:
         if output:

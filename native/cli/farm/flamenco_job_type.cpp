@@ -87,11 +87,14 @@ std::string argumentTable(const std::vector<Argument>& args) {
 
 std::string flamencoJobType() {
     std::string settings =
-        "        { key: \"frames\", type: \"string\", required: true, eval: \"f'{C.scene.frame_start}-{C.scene.frame_end}'\",\n"
+        "        { key: \"frames\", type: \"string\", required: true, eval: "
+        "\"f'{C.scene.frame_start}-{C.scene.frame_end}'\",\n"
         "          description: \"The frames to voxelize, e.g. '1-250', '1-10, 20-30'\" },\n"
-        "        { key: \"chunk_size\", type: \"int32\", default: 10, propargs: { min: 1 }, description: \"Frames per task\" },\n"
+        "        { key: \"chunk_size\", type: \"int32\", default: 10, propargs: { min: 1 }, description: \"Frames per "
+        "task\" },\n"
         "        { key: \"output_dir\", type: \"string\", subtype: \"dir_path\", required: true,\n"
-        "          description: \"Folder of the .vdb files (Name_voxels_0001.vdb ...) and of the assembled .blend\" },\n"
+        "          description: \"Folder of the .vdb files (Name_voxels_0001.vdb ...) and of the assembled .blend\" "
+        "},\n"
         "        { key: \"objects\", type: \"string\", default: \"\",\n"
         "          description: \"Comma-separated names of the objects to voxelize into one volume; empty: the file's "
         "selection, or every visible mesh when nothing is selected\" },\n"
@@ -100,24 +103,32 @@ std::string flamencoJobType() {
     for (const OptionSpec* spec : blenderJobOptions()) settings += "        " + optionSetting(*spec) + ",\n";
 
     return "// SPDX-License-Identifier: GPL-3.0-or-later\n"
-           "// hyvox " + std::string(version()) + " Flamenco job type: voxelize a .blend's animation, a frame chunk per task,\n"
-           "// then assemble the volume sequence. Generated from the options schema by `hyvox job-template\n"
-           "// flamenco`; put it in the Manager's scripts/ folder as hyvox.js (docs/farm.md).\n"
-           "\n"
-           "const JOB_TYPE = {\n"
-           "    label: \"hyvox Voxelize\",\n"
-           "    description: \"Voxelizes the animation of a .blend into one OpenVDB file per frame (hyvox add-on)\",\n"
-           "    settings: [\n" + settings +
-           "    ],\n"
-           "};\n"
-           "\n"
-           "// Blender's arguments after the .blend: find the worker's hyvox add-on and run its farm command.\n"
-           "const HYVOX_AFTER_BLENDFILE = " + array(blenderArgsAfterFile()) + ";\n"
-           "\n"
-           "// The farm commands' arguments: [flag, setting key]; \"@chunk\" is the task's frames.\n"
-           "const HYVOX_RUN_ARGS = " + argumentTable(runArguments()) + ";\n"
-           "const HYVOX_ASSEMBLE_ARGS = " + argumentTable(assembleArguments()) + ";\n" +
-           R"js(
+           "// hyvox " +
+        std::string(version()) +
+        " Flamenco job type: voxelize a .blend's animation, a frame chunk per task,\n"
+        "// then assemble the volume sequence. Generated from the options schema by `hyvox job-template\n"
+        "// flamenco`; put it in the Manager's scripts/ folder as hyvox.js (docs/farm.md).\n"
+        "\n"
+        "const JOB_TYPE = {\n"
+        "    label: \"hyvox Voxelize\",\n"
+        "    description: \"Voxelizes the animation of a .blend into one OpenVDB file per frame (hyvox add-on)\",\n"
+        "    settings: [\n" +
+        settings +
+        "    ],\n"
+        "};\n"
+        "\n"
+        "// Blender's arguments after the .blend: find the worker's hyvox add-on and run its farm command.\n"
+        "const HYVOX_AFTER_BLENDFILE = " +
+        array(blenderArgsAfterFile()) +
+        ";\n"
+        "\n"
+        "// The farm commands' arguments: [flag, setting key]; \"@chunk\" is the task's frames.\n"
+        "const HYVOX_RUN_ARGS = " +
+        argumentTable(runArguments()) +
+        ";\n"
+        "const HYVOX_ASSEMBLE_ARGS = " +
+        argumentTable(assembleArguments()) + ";\n" +
+        R"js(
 function farmArgs(command, table, settings, chunk) {
     const args = [command];
     for (const [flag, key] of table) {

@@ -11,7 +11,8 @@ const std::string& blenderBootstrap() {
     static const std::string expression = [] {
         const std::string text =
             "import addon_utils, importlib, sys; "
-            "found = [m.__name__ for m in addon_utils.modules() if m.__name__.rpartition(\".\")[2] == \"hyvox_blender\"]; "
+            "found = [m.__name__ for m in addon_utils.modules() if m.__name__.rpartition(\".\")[2] == "
+            "\"hyvox_blender\"]; "
             "found or sys.exit(\"hyvox: error: this Blender has no hyvox add-on (install the extension, or the "
             "add-on in $BLENDER_USER_SCRIPTS/addons/)\"); "
             "addon_utils.enable(found[0], default_set=False, handle_error=None) or "
@@ -50,8 +51,8 @@ std::vector<Argument> runArguments() {
 
 std::vector<Argument> assembleArguments() {
     // The voxel size is checked against the job's: the size options are the job's too.
-    return withOptions({{"--job-frames", Source::JobFrames}, {"--output", Source::OutputDir}, {"--objects", Source::Objects}},
-                       true);
+    return withOptions(
+        {{"--job-frames", Source::JobFrames}, {"--output", Source::OutputDir}, {"--objects", Source::Objects}}, true);
 }
 
 }  // namespace hyvox::farm

@@ -23,7 +23,7 @@ std::vector<std::string> blenderArgsAfterFile();  // --python-exit-code 1 --pyth
 enum class Source { TaskFrames, JobFrames, OutputDir, Objects, Option };
 
 struct Argument {
-    std::string flag;                  // "--frames", "--resolution"
+    std::string flag;  // "--frames", "--resolution"
     Source source;
     const OptionSpec* option = nullptr;  // Source::Option
 };

@@ -23,10 +23,11 @@ std::string headlessScript() {
            "blender=$1 scene=$2\n"
            "shift 2\n"
            "if [ -n \"${HYVOX_FARM_SOCKET:-}\" ]; then\n"
-           "  exec \"$HYVOX_FARM_PYTHON\" \"$HYVOX_FARM_CLIENT\" \"$HYVOX_FARM_SOCKET\" \"$1\" --blend \"$scene\" \"${@:2}\"\n"
+           "  exec \"$HYVOX_FARM_PYTHON\" \"$HYVOX_FARM_CLIENT\" \"$HYVOX_FARM_SOCKET\" \"$1\" --blend \"$scene\" "
+           "\"${@:2}\"\n"
            "fi\n"
            "exec \"$blender\" -b \"$scene\" --python-exit-code 1 --python-expr '" +
-           blenderBootstrap() + "' -- \"$@\"\n";
+        blenderBootstrap() + "' -- \"$@\"\n";
 }
 
 // Enter.sh BLENDER KEEP SESSION_DIR: starts the session's Blender and waits (on a pipe, not
@@ -44,17 +45,17 @@ std::string enterScript() {
            "# A short folder for the socket: a socket's path may hold only about 100 bytes.\n"
            "sockets=$(mktemp -d \"${TMPDIR:-/tmp}/hyvox.XXXXXX\")\n"
            "exec 4< <(exec setsid \"$blender\" -b --python-exit-code 1 --python-expr '" +
-           blenderBootstrap() +
-           "' -- serve --socket \"$sockets/blender\" --announce-fd 3 --session-dir \"$session\" "
-           "3>&1 >>\"$log\" 2>&1 </dev/null)\n"
-           "announced=$(cat <&4)\n"
-           "if ! grep -q '^openjd_env: HYVOX_FARM_SOCKET=' <<<\"$announced\"; then\n"
-           "  echo \"hyvox: error: the session's Blender did not start; its log:\" >&2\n"
-           "  tail -n 40 \"$log\" >&2\n"
-           "  rm -rf \"$sockets\"\n"
-           "  exit 1\n"
-           "fi\n"
-           "echo \"$announced\"\n";
+        blenderBootstrap() +
+        "' -- serve --socket \"$sockets/blender\" --announce-fd 3 --session-dir \"$session\" "
+        "3>&1 >>\"$log\" 2>&1 </dev/null)\n"
+        "announced=$(cat <&4)\n"
+        "if ! grep -q '^openjd_env: HYVOX_FARM_SOCKET=' <<<\"$announced\"; then\n"
+        "  echo \"hyvox: error: the session's Blender did not start; its log:\" >&2\n"
+        "  tail -n 40 \"$log\" >&2\n"
+        "  rm -rf \"$sockets\"\n"
+        "  exit 1\n"
+        "fi\n"
+        "echo \"$announced\"\n";
 }
 
 std::string exitScript() {
@@ -122,7 +123,8 @@ Yaml optionParameter(const OptionSpec& spec) {
     switch (spec.type) {
         case OptionType::Integer:
             out.add("type", Yaml::text("INT")).add("default", Yaml::integer(std::get<std::int64_t>(def)));
-            out.add("minValue", Yaml::integer(std::int64_t(spec.min))).add("maxValue", Yaml::integer(std::int64_t(spec.max)));
+            out.add("minValue", Yaml::integer(std::int64_t(spec.min)))
+                .add("maxValue", Yaml::integer(std::int64_t(spec.max)));
             break;
         case OptionType::Number:
             out.add("type", Yaml::text("FLOAT"))
@@ -149,7 +151,8 @@ Yaml optionParameter(const OptionSpec& spec) {
         case OptionType::Box: break;  // job_options.cpp offers none
     }
     out.add("description", Yaml::text(parameterDescription(spec)));
-    out.add("userInterface", Yaml::map().add("label", Yaml::text(spec.label)).add("groupLabel", Yaml::text("Voxelize Options")));
+    out.add("userInterface",
+            Yaml::map().add("label", Yaml::text(spec.label)).add("groupLabel", Yaml::text("Voxelize Options")));
     return out;
 }
 
@@ -177,7 +180,7 @@ std::vector<std::string> concat(std::vector<std::string> a, const std::vector<st
 
 std::string header(const std::string& what) {
     return std::string("# hyvox ") + version() + " " + what +
-           ", generated from the options schema by `hyvox job-template`; see docs/farm.md.\n";
+        ", generated from the options schema by `hyvox job-template`; see docs/farm.md.\n";
 }
 
 }  // namespace
@@ -187,7 +190,8 @@ std::string blenderJobTemplate() {
     params.push(pathParameter("BlendFile", "FILE", "IN", "The .blend to voxelize (its animation, at render settings)"));
     params.push(pathParameter("OutputDir", "DIRECTORY", "OUT",
                               "Folder of the .vdb files (Name_voxels_0001.vdb ...) and of the assembled .blend"));
-    params.push(textParameter("Frames", "1-250", "The frames to voxelize: a range such as 1-250, or 1-250:2, or 1,5,9-20"));
+    params.push(
+        textParameter("Frames", "1-250", "The frames to voxelize: a range such as 1-250, or 1-250:2, or 1,5,9-20"));
     params.push(textParameter("Objects", "",
                               "Comma-separated names of the objects to voxelize into one volume; empty: the "
                               "file's selection, or every visible mesh when nothing is selected"));
@@ -203,60 +207,66 @@ std::string blenderJobTemplate() {
                     .add("type", Yaml::text("STRING"))
                     .add("default", Yaml::text("true"))
                     .add("allowedValues", Yaml::texts({"true", "false"}))
-                    .add("description", Yaml::text("true: one Blender per worker session runs task after task "
-                                                   "(Blender starts once); false: a Blender of its own per task")));
+                    .add("description",
+                         Yaml::text("true: one Blender per worker session runs task after task "
+                                    "(Blender starts once); false: a Blender of its own per task")));
     for (const OptionSpec* spec : blenderJobOptions()) params.push(optionParameter(*spec));
 
     const std::vector<std::string> headless_head{"{{Task.File.Run}}", param("BlenderExecutable"), param("BlendFile")};
     Yaml session = Yaml::map()
                        .add("name", Yaml::text("HyvoxSessionBlender"))
                        .add("description", Yaml::text("Keeps one Blender for the session's tasks"))
-                       .add("script", Yaml::map()
-                                          .add("actions", Yaml::map()
-                                                              .add("onEnter", action({"{{Env.File.Enter}}",
-                                                                                      param("BlenderExecutable"),
-                                                                                      param("SessionBlender"),
-                                                                                      "{{Session.WorkingDirectory}}"},
-                                                                                     true))
-                                                              .add("onExit", action({"{{Env.File.Exit}}"}, true)))
-                                          .add("embeddedFiles", Yaml::list()
-                                                                    .push(embeddedFile("Enter", enterScript()))
-                                                                    .push(embeddedFile("Exit", exitScript()))));
+                       .add("script",
+                            Yaml::map()
+                                .add("actions",
+                                     Yaml::map()
+                                         .add("onEnter",
+                                              action({"{{Env.File.Enter}}", param("BlenderExecutable"),
+                                                      param("SessionBlender"), "{{Session.WorkingDirectory}}"},
+                                                     true))
+                                         .add("onExit", action({"{{Env.File.Exit}}"}, true)))
+                                .add("embeddedFiles",
+                                     Yaml::list()
+                                         .push(embeddedFile("Enter", enterScript()))
+                                         .push(embeddedFile("Exit", exitScript()))));
     Yaml frame = Yaml::map()
                      .add("name", Yaml::text("Frame"))
                      .add("type", Yaml::text("CHUNK[INT]"))
                      .add("range", Yaml::text(param("Frames")))
-                     .add("chunks", Yaml::map()
-                                        .add("defaultTaskCount", Yaml::text(param("ChunkSize")))
-                                        .add("targetRuntimeSeconds", Yaml::text(param("ChunkSeconds")))
-                                        .add("rangeConstraint", Yaml::text("NONCONTIGUOUS")));
+                     .add("chunks",
+                          Yaml::map()
+                              .add("defaultTaskCount", Yaml::text(param("ChunkSize")))
+                              .add("targetRuntimeSeconds", Yaml::text(param("ChunkSeconds")))
+                              .add("rangeConstraint", Yaml::text("NONCONTIGUOUS")));
     Yaml voxelize =
         Yaml::map()
             .add("name", Yaml::text("Voxelize"))
             .add("parameterSpace", Yaml::map().add("taskParameterDefinitions", Yaml::list().push(frame)))
             .add("stepEnvironments", Yaml::list().push(session))
-            .add("script", Yaml::map()
-                               .add("actions", Yaml::map().add("onRun", action(concat(headless_head,
-                                                                                       farmArgs("run", runArguments())),
-                                                                                true)))
-                               .add("embeddedFiles", Yaml::list().push(embeddedFile("Run", headlessScript()))));
+            .add(
+                "script",
+                Yaml::map()
+                    .add("actions",
+                         Yaml::map().add("onRun", action(concat(headless_head, farmArgs("run", runArguments())), true)))
+                    .add("embeddedFiles", Yaml::list().push(embeddedFile("Run", headlessScript()))));
     Yaml assemble =
         Yaml::map()
             .add("name", Yaml::text("Assemble"))
             .add("dependencies", Yaml::list().push(Yaml::map().add("dependsOn", Yaml::text("Voxelize"))))
             .add("script",
                  Yaml::map()
-                     .add("actions", Yaml::map().add("onRun", action(concat(headless_head,
-                                                                             farmArgs("assemble", assembleArguments())),
-                                                                      true)))
+                     .add("actions",
+                          Yaml::map().add(
+                              "onRun", action(concat(headless_head, farmArgs("assemble", assembleArguments())), true)))
                      .add("embeddedFiles", Yaml::list().push(embeddedFile("Run", headlessScript()))));
     Yaml job = Yaml::map()
                    .add("specificationVersion", Yaml::text("jobtemplate-2023-09"))
                    .add("extensions", Yaml::texts({"TASK_CHUNKING"}))
                    .add("name", Yaml::text("hyvox: voxelize {{RawParam.BlendFile}} frames {{Param.Frames}}"))
-                   .add("description", Yaml::text("Voxelizes the animation of a .blend into one OpenVDB file per "
-                                                  "frame with the hyvox add-on, then saves a .blend that plays "
-                                                  "them back as one volume sequence."))
+                   .add("description",
+                        Yaml::text("Voxelizes the animation of a .blend into one OpenVDB file per "
+                                   "frame with the hyvox add-on, then saves a .blend that plays "
+                                   "them back as one volume sequence."))
                    .add("parameterDefinitions", params)
                    .add("steps", Yaml::list().push(voxelize).push(assemble));
     return header("job template: voxelize a .blend's animation, a frame chunk per task") + job.render();
@@ -281,7 +291,8 @@ std::string regionScript() {
            "shift\n"
            "mkdir -p \"$output.regions\"\n"
            "k=$((region - 1))\n"
-           "exec \"$hyvox\" voxelize \"$mesh\" -o \"$output.regions/region_${k}_of_${regions}.vdb\" --region \"$k/$regions\" "
+           "exec \"$hyvox\" voxelize \"$mesh\" -o \"$output.regions/region_${k}_of_${regions}.vdb\" --region "
+           "\"$k/$regions\" "
            "--progress \"${given[@]}\" \"$@\"\n";
 }
 
@@ -305,7 +316,8 @@ std::string regionJobTemplate() {
     params.push(pathParameter("MeshFile", "FILE", "IN", "The mesh to voxelize (PLY, PLY.GZ, OBJ, ...)"));
     params.push(pathParameter("OutputFile", "FILE", "OUT",
                               "The merged .vdb; the regions' parts go to OUTPUT.regions/region_K_of_N.vdb"));
-    params.push(intParameter("Regions", 4, 1, 4096, "Boxes the grid is split into along its longest axis, one task each"));
+    params.push(
+        intParameter("Regions", 4, 1, 4096, "Boxes the grid is split into along its longest axis, one task each"));
     params.push(textParameter("HyvoxExecutable", "hyvox",
                               "The worker's hyvox command (pip install hyvox); a name on PATH or a full path"));
     std::vector<std::string> unset_pairs, options;
@@ -332,11 +344,12 @@ std::string regionJobTemplate() {
             .add("script",
                  Yaml::map()
                      .add("actions",
-                          Yaml::map().add("onRun", action(concat({"{{Task.File.Region}}", param("HyvoxExecutable"),
-                                                                  param("MeshFile"), param("OutputFile"),
-                                                                  param("Regions"), "{{Task.Param.Region}}"},
-                                                                 concat(unset_pairs, options)),
-                                                          true)))
+                          Yaml::map().add(
+                              "onRun",
+                              action(concat({"{{Task.File.Region}}", param("HyvoxExecutable"), param("MeshFile"),
+                                             param("OutputFile"), param("Regions"), "{{Task.Param.Region}}"},
+                                            concat(unset_pairs, options)),
+                                     true)))
                      .add("embeddedFiles", Yaml::list().push(embeddedFile("Region", regionScript()))));
     Yaml merge_step =
         Yaml::map()
@@ -344,15 +357,18 @@ std::string regionJobTemplate() {
             .add("dependencies", Yaml::list().push(Yaml::map().add("dependsOn", Yaml::text("VoxelizeRegions"))))
             .add("script",
                  Yaml::map()
-                     .add("actions", Yaml::map().add("onRun", action({"{{Task.File.Merge}}", param("HyvoxExecutable"),
-                                                                      param("OutputFile"), param("Regions")},
-                                                                     true)))
+                     .add("actions",
+                          Yaml::map().add("onRun",
+                                          action({"{{Task.File.Merge}}", param("HyvoxExecutable"), param("OutputFile"),
+                                                  param("Regions")},
+                                                 true)))
                      .add("embeddedFiles", Yaml::list().push(embeddedFile("Merge", mergeScript()))));
     Yaml job = Yaml::map()
                    .add("specificationVersion", Yaml::text("jobtemplate-2023-09"))
                    .add("name", Yaml::text("hyvox: {{RawParam.MeshFile}} in {{Param.Regions}} regions"))
-                   .add("description", Yaml::text("Voxelizes one mesh's grid as regions of the same global grid, "
-                                                  "a task each, then merges them into one .vdb (hyvox CLI)."))
+                   .add("description",
+                        Yaml::text("Voxelizes one mesh's grid as regions of the same global grid, "
+                                   "a task each, then merges them into one .vdb (hyvox CLI)."))
                    .add("parameterDefinitions", params)
                    .add("steps", Yaml::list().push(region_step).push(merge_step));
     return header("job template: one grid as region tasks and a merge") + job.render();

@@ -11,11 +11,11 @@ namespace hyvox::farm {
 
 class Yaml {
 public:
-    static Yaml text(const std::string& value);         // "a \"quoted\" string"
+    static Yaml text(const std::string& value);  // "a \"quoted\" string"
     static Yaml integer(std::int64_t value);
-    static Yaml number(double value);                    // shortest text that reads back the same
+    static Yaml number(double value);  // shortest text that reads back the same
     static Yaml boolean(bool value);
-    static Yaml block(const std::string& lines);         // |  (a script; kept line for line)
+    static Yaml block(const std::string& lines);  // |  (a script; kept line for line)
     static Yaml map();
     static Yaml list();
     static Yaml texts(const std::vector<std::string>& values);  // a list of text scalars

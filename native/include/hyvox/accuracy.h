@@ -10,18 +10,18 @@
 #include <vector>
 
 #include "hyvox/bit_grid.h"
-#include "hyvox/sparse_grid.h"
 #include "hyvox/grid.h"
 #include "hyvox/mesh.h"
+#include "hyvox/sparse_grid.h"
 
 namespace hyvox {
 
 /// How an approximate voxelization differs from an exact one.
 struct AccuracyReport {
     std::uint64_t reference_voxels = 0;  ///< voxels of the reference
-    std::uint64_t missed_voxels = 0;  ///< in the reference, not in the result
-    std::uint64_t false_voxels = 0;   ///< in the result, not in the reference
-    double bias = 0;                  ///< missed / reference (0 for an empty reference)
+    std::uint64_t missed_voxels = 0;     ///< in the reference, not in the result
+    std::uint64_t false_voxels = 0;      ///< in the result, not in the reference
+    double bias = 0;                     ///< missed / reference (0 for an empty reference)
 };
 /// Compares `result` with `reference`, voxel by voxel. The SparseGrid forms (voxelize()
 /// results) make both dense first (accuracy is measured at the sizes of tests and benchmarks).
@@ -68,8 +68,8 @@ WatertightReport rayMarchWatertightness(const SparseGrid& result, const SparseGr
 
 /// What floodFromOutside() found.
 struct SealReport {
-    std::uint64_t enclosed = 0;  ///< voxels the exact voxels enclose
-    std::uint64_t leaked = 0;    ///< ... that the flood over the result's empty voxels reaches
+    std::uint64_t enclosed = 0;                  ///< voxels the exact voxels enclose
+    std::uint64_t leaked = 0;                    ///< ... that the flood over the result's empty voxels reaches
     bool sealed() const { return leaked == 0; }  ///< no enclosed voxel reached
 };
 /// The flood test, independent of the rays: a 6-connected flood from outside the grid over
@@ -85,8 +85,8 @@ SealReport floodFromOutside(const SparseGrid& result, const SparseGrid& exact);
 
 /// Eq. 3: γ = -B · ln(A · p) for the bias p.
 struct GammaBiasFit {
-    double A = 0;  ///< Eq. 3's A
-    double B = 0;  ///< Eq. 3's B
+    double A = 0;                        ///< Eq. 3's A
+    double B = 0;                        ///< Eq. 3's B
     double gammaFor(double bias) const;  ///< Eq. 3
     double biasFor(double gamma) const;  ///< its inverse: p = exp(-γ / B) / A
 };

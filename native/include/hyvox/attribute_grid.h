@@ -20,8 +20,8 @@ namespace hyvox {
 /// tiles), holding one attribute value (src/attributes/inside_values.h defines it).
 struct AttributeTile {
     std::array<std::int32_t, 3> origin{0, 0, 0};  ///< first voxel, a multiple of the region's side
-    int level = 1;                  ///< 1, 2 or 3 (side() voxels a side)
-    std::array<float, 7> values{};  ///< channels() used
+    int level = 1;                                ///< 1, 2 or 3 (side() voxels a side)
+    std::array<float, 7> values{};                ///< channels() used
     /// Voxels along a side of the region.
     std::int32_t side() const { return level == 1 ? 8 : level == 2 ? 128 : 4096; }
 };
@@ -48,7 +48,7 @@ struct AttributeGrid {
     bool empty() const { return channels() == 0; }
     /// Voxels with values of their own (tile regions apart).
     std::size_t valuedVoxelCount() const { return empty() ? 0 : values.size() / std::size_t(channels()); }
-    int colorOffset() const { return 0; }  ///< the first colour channel in a voxel's values
+    int colorOffset() const { return 0; }              ///< the first colour channel in a voxel's values
     int alphaOffset() const { return color ? 3 : 0; }  ///< the alpha channel's place
     int normalOffset() const { return (color ? 3 : 0) + (alpha ? 1 : 0); }  ///< the first normal channel
 };

@@ -24,15 +24,16 @@ class BitGrid {
 public:
     static constexpr int kWordsPerBrick = 8;  ///< 512 bits
     /// The words of a brick whose 512 voxels are all set (a tile brick written as a leaf).
-    static constexpr std::uint64_t kFullBrick[kWordsPerBrick] = {~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull};
+    static constexpr std::uint64_t kFullBrick[kWordsPerBrick] = {~0ull, ~0ull, ~0ull, ~0ull,
+                                                                 ~0ull, ~0ull, ~0ull, ~0ull};
 
     BitGrid() = default;
     /// An empty box of `dims` voxels (its bricks padded to whole 8³; zero pages, not written).
     explicit BitGrid(std::array<std::int32_t, 3> dims);
 
-    const std::array<std::int32_t, 3>& dims() const { return dims_; }  ///< voxels along x, y, z
-    const BrickLayout& bricks() const { return bricks_; }              ///< the bricks over dims
-    std::size_t brickCount() const { return bricks_.total(); }         ///< bricks held
+    const std::array<std::int32_t, 3>& dims() const { return dims_; }               ///< voxels along x, y, z
+    const BrickLayout& bricks() const { return bricks_; }                           ///< the bricks over dims
+    std::size_t brickCount() const { return bricks_.total(); }                      ///< bricks held
     std::size_t byteSize() const { return words_.size() * sizeof(std::uint64_t); }  ///< memory of the bits
 
     ///@{

@@ -19,8 +19,8 @@ namespace hyvox {
 /// The 8³ bricks (OpenVDB leaves) that cover a grid of voxels, in the order of the bit
 /// layout (hyvox/bit_grid.h): brick (bx,by,bz) is number (bx·ny + by)·nz + bz.
 struct BrickLayout {
-    static constexpr int kLog2 = 3;  ///< log2 of kSide
-    static constexpr int kSide = 8;  ///< voxels along a brick's side
+    static constexpr int kLog2 = 3;               ///< log2 of kSide
+    static constexpr int kSide = 8;               ///< voxels along a brick's side
     std::array<std::int32_t, 3> counts{0, 0, 0};  ///< bricks per axis: ceil(dims / 8)
 
     /// The bricks over a grid of `dims` voxels.
@@ -47,8 +47,8 @@ struct BrickLayout {
 /// A laid-out grid (makeGrid): voxel (i,j,k) covers the closed box
 /// [origin + (i,j,k)·voxel_size, origin + (i+1,j+1,k+1)·voxel_size], world units.
 struct GridSpec {
-    std::array<double, 3> origin{0, 0, 0};  ///< world position of voxel (0,0,0)'s min corner
-    double voxel_size = 1.0;                 ///< world units per voxel edge
+    std::array<double, 3> origin{0, 0, 0};      ///< world position of voxel (0,0,0)'s min corner
+    double voxel_size = 1.0;                    ///< world units per voxel edge
     std::array<std::int32_t, 3> dims{1, 1, 1};  ///< voxels along x, y, z
 
     /// Voxels in the whole box.
@@ -79,11 +79,11 @@ struct GridSpec {
 
 /// How voxelize() lays out its grid (the schema's "grid" options).
 struct GridOptions {
-    int resolution = 256;                   ///< voxels along the longest side (ignored if voxel_size)
-    std::optional<double> voxel_size;       ///< world units; overrides resolution
+    int resolution = 256;                         ///< voxels along the longest side (ignored if voxel_size)
+    std::optional<double> voxel_size;             ///< world units; overrides resolution
     std::optional<std::array<double, 3>> origin;  ///< default: mesh bounds min (minus padding)
-    std::optional<Bounds> bounds;           ///< default: mesh bounds; geometry outside is clipped
-    int padding = 0;                        ///< empty voxels added on every side
+    std::optional<Bounds> bounds;                 ///< default: mesh bounds; geometry outside is clipped
+    int padding = 0;                              ///< empty voxels added on every side
 };
 
 /// The most voxels along any axis of a grid.

@@ -27,10 +27,10 @@ struct LevelSetGrid {
     float background = 0;  ///< w·s, world units; 0: no sdf was asked for
     /// One 8³ brick of the level set.
     struct Leaf {
-        std::uint64_t brick;                             ///< BrickLayout index of the run's grid
-        std::uint64_t active[BitGrid::kWordsPerBrick];   ///< the band's voxels (OpenVDB NodeMask<3> words)
-        std::uint64_t inside[BitGrid::kWordsPerBrick];   ///< voxels whose centre is inside, active or not
-        std::size_t first;                               ///< index in `values` of the first active voxel's
+        std::uint64_t brick;                            ///< BrickLayout index of the run's grid
+        std::uint64_t active[BitGrid::kWordsPerBrick];  ///< the band's voxels (OpenVDB NodeMask<3> words)
+        std::uint64_t inside[BitGrid::kWordsPerBrick];  ///< voxels whose centre is inside, active or not
+        std::size_t first;                              ///< index in `values` of the first active voxel's
     };
     /// Bricks with band voxels, and bricks with inside and outside voxels but no band voxel
     /// (where an open mesh's inside ends away from its triangles); ascending.
@@ -42,12 +42,12 @@ struct LevelSetGrid {
     /// -background. Runs of BrickLayout indices [begin, end), ascending.
     std::vector<SparseGrid::TileRun> inside_runs;
 
-    bool empty() const { return background == 0; }                 ///< no sdf was asked for
+    bool empty() const { return background == 0; }               ///< no sdf was asked for
     std::uint64_t activeCount() const { return values.size(); }  ///< voxels within the band
     /// The bytes it holds.
     std::size_t byteSize() const {
         return leaves.capacity() * sizeof(Leaf) + values.capacity() * sizeof(float) +
-               inside_runs.capacity() * sizeof(SparseGrid::TileRun);
+            inside_runs.capacity() * sizeof(SparseGrid::TileRun);
     }
 };
 

@@ -21,10 +21,10 @@ struct Texture;  // hyvox/texture.h
 /// unchanged while a call that takes the view runs (hyvox copies none of them). Positions in
 /// world units; every array is row-major, one row per vertex, triangle or corner.
 struct MeshView {
-    const float* positions = nullptr;    ///< vertex_count * 3 floats, world units
-    std::size_t vertex_count = 0;        ///< rows of positions (and of per-vertex arrays)
+    const float* positions = nullptr;          ///< vertex_count * 3 floats, world units
+    std::size_t vertex_count = 0;              ///< rows of positions (and of per-vertex arrays)
     const std::uint32_t* triangles = nullptr;  ///< triangle_count * 3 vertex indices
-    std::size_t triangle_count = 0;      ///< rows of triangles
+    std::size_t triangle_count = 0;            ///< rows of triangles
     // Optional per-vertex attributes (the tessellation method's PN-triangles and
     // displacement use them); null = absent. Normals need not be unit length.
     const float* uvs = nullptr;      ///< vertex_count * 2 (Blender UV: v = 0 is the image's bottom row)
@@ -32,16 +32,16 @@ struct MeshView {
 
     // Surface attributes for attribute voxels (docs/design.md, "Attributes"); null = absent.
     // Colour comes from the first source present: texture (at uvs), colors, palette.
-    const float* colors = nullptr;    ///< color_channels per vertex, or per corner (triangle_count * 3 rows)
-    int color_channels = 0;           ///< 3 (RGB) or 4 (RGBA)
-    int color_stride = 0;             ///< floats per row; 0 = color_channels
-    bool colors_per_corner = false;   ///< colors has a row per triangle corner, not per vertex
-    bool colors_srgb = false;         ///< sRGB-encoded values (bytes / 255, as in files): decoded to linear
+    const float* colors = nullptr;     ///< color_channels per vertex, or per corner (triangle_count * 3 rows)
+    int color_channels = 0;            ///< 3 (RGB) or 4 (RGBA)
+    int color_stride = 0;              ///< floats per row; 0 = color_channels
+    bool colors_per_corner = false;    ///< colors has a row per triangle corner, not per vertex
+    bool colors_srgb = false;          ///< sRGB-encoded values (bytes / 255, as in files): decoded to linear
     const Texture* texture = nullptr;  ///< linear texels, sampled at uvs
     const std::uint32_t* material_ids = nullptr;  ///< triangle_count indices into palette
     const float* palette = nullptr;               ///< palette_count * palette_channels, linear
     std::size_t palette_count = 0;                ///< rows of palette
-    int palette_channels = 0;  ///< 3 or 4
+    int palette_channels = 0;                     ///< 3 or 4
     /// Optional, with the palette: palette_count textures (null = that material's flat colour),
     /// each sampled at uvs on its material's triangles instead of the palette colour (OBJ+MTL
     /// map_Kd, as Blender's importer takes it: the image replaces Kd).
@@ -63,7 +63,7 @@ struct ValidatedMesh {
     MeshView view;                      ///< the mesh checked (its arrays are not copied)
     std::vector<std::uint32_t> usable;  ///< indices of non-degenerate triangles, ascending
     std::size_t degenerate_count = 0;   ///< triangles skipped as degenerate
-    Bounds bounds;  ///< of the vertices referenced by usable triangles, world units
+    Bounds bounds;                      ///< of the vertices referenced by usable triangles, world units
 
     /// The position of corner `corner` (0, 1, 2) of triangle `triangle` (an index into the
     /// view's triangles), world units; no checks.

@@ -20,33 +20,33 @@ namespace hyvox {
 
 /// A mesh read from a file, owning its arrays (view() gives the MeshView voxelize() takes).
 struct Mesh {
-    std::vector<float> positions;           ///< vertex_count × 3, world units
-    std::vector<std::uint32_t> triangles;   ///< triangle_count × 3 vertex indices
-    std::vector<float> colors;              ///< empty, or vertex_count × 4 (RGBA, 0..1, colour sRGB-encoded)
-    bool colors_alpha = false;              ///< the file gave alpha (else alpha is 1)
-    std::vector<float> uvs;                 ///< empty, or vertex_count × 2
+    std::vector<float> positions;          ///< vertex_count × 3, world units
+    std::vector<std::uint32_t> triangles;  ///< triangle_count × 3 vertex indices
+    std::vector<float> colors;             ///< empty, or vertex_count × 4 (RGBA, 0..1, colour sRGB-encoded)
+    bool colors_alpha = false;             ///< the file gave alpha (else alpha is 1)
+    std::vector<float> uvs;                ///< empty, or vertex_count × 2
     /// Materials (OBJ "usemtl", with its MTL files): empty, or one id per triangle into the
     /// material lists. Their colours are the mesh's colour source when it has no vertex
     /// colours (and no other texture is given).
     std::vector<std::uint32_t> material_ids;
-    std::vector<std::string> material_names;     ///< in order of first use; "" = faces before any usemtl
-    std::vector<float> material_colors;          ///< 3 per material, linear RGB (MTL Kd; 0.8 grey without)
-    std::vector<std::string> material_textures;  ///< per material: its image file (MTL map_Kd), or ""
+    std::vector<std::string> material_names;      ///< in order of first use; "" = faces before any usemtl
+    std::vector<float> material_colors;           ///< 3 per material, linear RGB (MTL Kd; 0.8 grey without)
+    std::vector<std::string> material_textures;   ///< per material: its image file (MTL map_Kd), or ""
     std::vector<std::string> material_libraries;  ///< OBJ "mtllib" files as written (readMesh reads them)
     /// What the reader could not use and left out (a missing .mtl or image, an unknown
     /// material): the front doors show these as warnings.
     std::vector<std::string> warnings;
 
-    std::size_t vertexCount() const { return positions.size() / 3; }      ///< rows of positions
-    std::size_t triangleCount() const { return triangles.size() / 3; }    ///< rows of triangles
-    bool hasColors() const { return !colors.empty(); }                    ///< the file gave vertex colours
-    bool hasUvs() const { return !uvs.empty(); }                          ///< the file gave UVs
-    bool hasMaterials() const { return !material_ids.empty(); }           ///< the file named materials
+    std::size_t vertexCount() const { return positions.size() / 3; }    ///< rows of positions
+    std::size_t triangleCount() const { return triangles.size() / 3; }  ///< rows of triangles
+    bool hasColors() const { return !colors.empty(); }                  ///< the file gave vertex colours
+    bool hasUvs() const { return !uvs.empty(); }                        ///< the file gave UVs
+    bool hasMaterials() const { return !material_ids.empty(); }         ///< the file named materials
     /// A view for voxelize(); valid while this mesh lives and is not modified.
     MeshView view() const {
         MeshView v{positions.data(), vertexCount(), triangles.data(), triangleCount()};
         v.uvs = hasUvs() ? uvs.data() : nullptr;  // the tessellation method's displacement reads them
-        if (hasColors()) {  // attribute voxels read them (options.attributes)
+        if (hasColors()) {                        // attribute voxels read them (options.attributes)
             v.colors = colors.data();
             v.color_stride = 4;
             v.color_channels = colors_alpha ? 4 : 3;

@@ -41,31 +41,31 @@ using OptionValue =
 /// One option of the schema. The schema (optionSchema()) is built once and never changes:
 /// reading it is thread-safe.
 struct OptionSpec {
-    const char* name;   ///< Python keyword; the CLI flag is "--" + name with '-' for '_'
-    OptionType type;    ///< the kind of its value
-    const char* group;  ///< "grid", "run", "output", "solid", "gl", "hybrid", "tessellation"
-    const char* label;  ///< a short title for a UI ("Resolution", "Tessellation γ")
-    const char* unit;   ///< "voxels", "world units", "MiB", "bytes", "" ...
-    const char* help;   ///< one line
-    bool nullable = false;        ///< may be unset (then a derived value is used; see help)
-    double min = 0;               ///< Integer, Number: the least value (see min_exclusive)
-    double max = 0;               ///< Integer, Number: the largest value
-    bool min_exclusive = false;   ///< Number: value must be > min
+    const char* name;                      ///< Python keyword; the CLI flag is "--" + name with '-' for '_'
+    OptionType type;                       ///< the kind of its value
+    const char* group;                     ///< "grid", "run", "output", "solid", "gl", "hybrid", "tessellation"
+    const char* label;                     ///< a short title for a UI ("Resolution", "Tessellation γ")
+    const char* unit;                      ///< "voxels", "world units", "MiB", "bytes", "" ...
+    const char* help;                      ///< one line
+    bool nullable = false;                 ///< may be unset (then a derived value is used; see help)
+    double min = 0;                        ///< Integer, Number: the least value (see min_exclusive)
+    double max = 0;                        ///< Integer, Number: the largest value
+    bool min_exclusive = false;            ///< Number: value must be > min
     std::vector<const char*> choices;      ///< Choice, Choices
     std::vector<const char*> cli_aliases;  ///< further CLI spellings ("--gamma")
     const char* env = nullptr;             ///< environment variable the front doors read, or null
     // The field behind the option (no checks: setOption checks first): in VoxelizeOptions,
     // in WriteOptions, or in both (threads, memory_budget_mib); null where a struct has none.
-    OptionValue (*get)(const VoxelizeOptions&) = nullptr;          ///< reads the VoxelizeOptions field
-    void (*put)(VoxelizeOptions&, const OptionValue&) = nullptr;   ///< stores it
+    OptionValue (*get)(const VoxelizeOptions&) = nullptr;            ///< reads the VoxelizeOptions field
+    void (*put)(VoxelizeOptions&, const OptionValue&) = nullptr;     ///< stores it
     OptionValue (*get_write)(const WriteOptions&) = nullptr;         ///< reads the WriteOptions field
     void (*put_write)(WriteOptions&, const OptionValue&) = nullptr;  ///< stores it
     // Text of a form of its own (the region's "K/N"); null = any text.
-    const char* text_form = nullptr;  ///< the form, for a usage line
-    const char* text_rule = nullptr;  ///< what a valid text is, for messages
+    const char* text_form = nullptr;                        ///< the form, for a usage line
+    const char* text_rule = nullptr;                        ///< what a valid text is, for messages
     bool (*text_valid)(const std::string& text) = nullptr;  ///< whether a text has the form
 
-    std::string cliFlag() const;  ///< "--voxel-size"
+    std::string cliFlag() const;                                 ///< "--voxel-size"
     bool isVoxelizeOption() const { return get != nullptr; }     ///< a field of VoxelizeOptions
     bool isWriteOption() const { return get_write != nullptr; }  ///< a field of WriteOptions
     /// The default: the field of a default-constructed struct (monostate for nullable options).

@@ -73,9 +73,9 @@ struct AttributeSet {
     /// A narrow-band signed distance level set (hyvox/level_set.h), signed by the inside test
     /// of solid mode in every mode.
     bool sdf = false;
-    bool any() const { return color || normal || sdf; }  ///< whether anything is asked for
+    bool any() const { return color || normal || sdf; }     ///< whether anything is asked for
     bool surfaceValues() const { return color || normal; }  ///< the per-voxel values of the surface
-    bool operator==(const AttributeSet& other) const {  ///< the same names asked for
+    bool operator==(const AttributeSet& other) const {      ///< the same names asked for
         return color == other.color && normal == other.normal && sdf == other.sdf;
     }
 };
@@ -117,9 +117,9 @@ struct HybridOptions {
 /// A grey height image in memory: width × height values, row 0 = the image's top row (as in
 /// a PNG file), typically 0..1. Data, not an option: passed beside the schema's options.
 struct HeightImage {
-    int width = 0;              ///< values per row
-    int height = 0;             ///< rows
-    std::vector<float> values;  ///< width * height heights, rows top first
+    int width = 0;                                 ///< values per row
+    int height = 0;                                ///< rows
+    std::vector<float> values;                     ///< width * height heights, rows top first
     bool empty() const { return values.empty(); }  ///< no image
 };
 
@@ -138,10 +138,10 @@ struct TessellationOptions {
     /// The grid is laid out from the undisplaced mesh: points that leave it are dropped and
     /// counted (TessellationStats::points_clipped); give GridOptions bounds or padding for room.
     std::string displacement_image;
-    HeightImage displacement_pixels;  ///< used when displacement_image is empty
+    HeightImage displacement_pixels;     ///< used when displacement_image is empty
     double displacement_strength = 1.0;  ///< world units of displacement per unit of height
     double displacement_midlevel = 0.5;  ///< the height that stays in place
-    bool counts = true;  ///< also fill VoxelizeResult::counts (points per voxel)
+    bool counts = true;                  ///< also fill VoxelizeResult::counts (points per voxel)
 };
 
 /// Options of the `sdf` attribute (src/sdf/).
@@ -166,8 +166,8 @@ struct SolidOptions {
 /// voxelizes box `index` (from 0) of the whole grid only, for a farm's tasks whose .vdb files
 /// `hyvox merge` joins. count 1 = the whole grid.
 struct RegionOptions {
-    int index = 0;  ///< the box, from 0
-    int count = 1;  ///< the boxes the grid is cut into
+    int index = 0;                             ///< the box, from 0
+    int count = 1;                             ///< the boxes the grid is cut into
     bool whole() const { return count == 1; }  ///< the whole grid
 };
 
@@ -185,7 +185,7 @@ struct VoxelizeOptions {
     RegionOptions region;            ///< the box of the grid a farm task voxelizes (all of it by default)
     Mode mode = Mode::Conservative;  ///< which voxels are set
     Method method = Method::Cpu;     ///< which backend sets them
-    int threads = 0;                        ///< CPU threads; 0 = all cores
+    int threads = 0;                 ///< CPU threads; 0 = all cores
     /// What the run may hold beside the mesh it is given (MiB): every buffer of the passes it
     /// runs and of the .vdb it writes; a run estimated to need more is refused before any work.
     /// 0 = defaultMemoryBudgetMib().
@@ -193,7 +193,7 @@ struct VoxelizeOptions {
     /// Side of the boxes the grid is voxelized in, one after the other (rounded up to a
     /// multiple of 8); 0 = from the memory budget (the whole grid when it fits).
     int tile_size = 0;
-    AttributeSet attributes;  ///< what to compute beside the occupancy
+    AttributeSet attributes;           ///< what to compute beside the occupancy
     GlOptions gl;                      ///< the GL methods' options
     HybridOptions hybrid;              ///< the hybrid method's
     TessellationOptions tessellation;  ///< the tessellation's

@@ -22,9 +22,9 @@ constexpr int kMaxRegions = kMaxResolution / BrickLayout::kSide;
 /// of equal ones) the leaves floor(K·B/N) .. floor((K+1)·B/N) - 1 of the B leaves along it (the
 /// last cut by the grid's end), every voxel of the other two axes.
 struct RegionBox {
-    int axis = 0;                               ///< the axis the grid is cut along: 0 x, 1 y, 2 z
-    std::array<std::int32_t, 3> lo{0, 0, 0};  ///< the box's first voxel
-    std::array<std::int32_t, 3> hi{0, 0, 0};  ///< one past its last voxel
+    int axis = 0;                                 ///< the axis the grid is cut along: 0 x, 1 y, 2 z
+    std::array<std::int32_t, 3> lo{0, 0, 0};      ///< the box's first voxel
+    std::array<std::int32_t, 3> hi{0, 0, 0};      ///< one past its last voxel
     std::array<std::int32_t, 3> brickLo() const;  ///< the box's first brick: lo / 8
     std::array<std::int32_t, 3> brickHi() const;  ///< one past its last brick: ceil(hi / 8)
 };

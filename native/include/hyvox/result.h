@@ -49,13 +49,13 @@ struct ReferenceStats {
 
 /// Methods triangle, fragment and hybrid (JCGT 2013: Pass 1 = compute, Pass 2 = raster).
 struct HybridStats {
-    double pass1_gpu_ms = 0;  ///< triangle-parallel compute, or hybrid classify + small triangles
-    double pass2_gpu_ms = 0;  ///< fragment-parallel raster, or hybrid's large triangles
-    double upload_ms = 0;    ///< the mesh to the GPU, milliseconds
-    double readback_ms = 0;  ///< the bits back from the GPU, milliseconds
-    std::uint64_t tiles = 0;            ///< slabs the grid ran in
-    double cutoff = 0;                  ///< voxel units² used (triangle: inf, fragment: 0)
-    std::uint64_t large_triangles = 0;  ///< hybrid: triangles sent to pass 2 (summed over tiles)
+    double pass1_gpu_ms = 0;               ///< triangle-parallel compute, or hybrid classify + small triangles
+    double pass2_gpu_ms = 0;               ///< fragment-parallel raster, or hybrid's large triangles
+    double upload_ms = 0;                  ///< the mesh to the GPU, milliseconds
+    double readback_ms = 0;                ///< the bits back from the GPU, milliseconds
+    std::uint64_t tiles = 0;               ///< slabs the grid ran in
+    double cutoff = 0;                     ///< voxel units² used (triangle: inf, fragment: 0)
+    std::uint64_t large_triangles = 0;     ///< hybrid: triangles sent to pass 2 (summed over tiles)
     std::uint64_t cutoff_search_runs = 0;  ///< timed runs of the auto-cutoff search (0: given or cached)
     /// Calls f(name, value) for every figure, in declaration order.
     template <typename F>
@@ -76,18 +76,18 @@ struct TessellationStats {
     double gamma = 0;  ///< the safety factor γ used
     /// Summed over tiles (a triangle reaching k tiles is drawn in each): points - points_clipped
     /// is the number of points that landed in the grid.
-    std::uint64_t points = 0;          ///< micro-triangles drawn, one point each
-    std::uint64_t points_clipped = 0;  ///< of which outside the tile they were drawn for
+    std::uint64_t points = 0;           ///< micro-triangles drawn, one point each
+    std::uint64_t points_clipped = 0;   ///< of which outside the tile they were drawn for
     std::uint64_t triangles_whole = 0;  ///< small enough for one point (compute pass)
     std::uint64_t patches_direct = 0;   ///< tessellated as they are
     std::uint64_t patches_split = 0;    ///< pieces of pre-split triangles
     std::uint64_t split_triangles = 0;  ///< triangles pre-split (factor over the GL limit)
     std::uint64_t largest_split = 0;    ///< most pieces one triangle was cut into
     std::uint64_t max_tess_level = 0;   ///< GL_MAX_TESS_GEN_LEVEL
-    double pass0_gpu_ms = 0;  ///< whole triangles (compute)
-    double pass1_gpu_ms = 0;  ///< tessellated triangles
-    double pass2_gpu_ms = 0;  ///< pre-split triangles
-    std::uint64_t gpu_runs = 0;  ///< 2 when the count pool had to grow
+    double pass0_gpu_ms = 0;            ///< whole triangles (compute)
+    double pass1_gpu_ms = 0;            ///< tessellated triangles
+    double pass2_gpu_ms = 0;            ///< pre-split triangles
+    std::uint64_t gpu_runs = 0;         ///< 2 when the count pool had to grow
     /// Calls f(name, value) for every figure, in declaration order.
     template <typename F>
     void visit(F&& f) const {
@@ -140,18 +140,19 @@ struct SolidStats {
     /// "ray crossings" (parity, or the winding number of a closed mesh as their signed sum) or
     /// "fast winding numbers" (Barill et al. 2018)
     std::string evaluation;
-    std::string reason;       ///< why (the option, or auto's finding)
+    std::string reason;  ///< why (the option, or auto's finding)
     /// Edges after welding identical positions: used by one triangle, by more than two, or by
     /// two triangles running the same way. All 0 = closed and consistently oriented.
     std::uint64_t boundary_edges = 0;
-    std::uint64_t nonmanifold_edges = 0;  ///< edges of more than two triangles
-    std::uint64_t misoriented_edges = 0;  ///< edges two triangles run the same way
-    std::uint64_t inside_voxels = 0;       ///< set for being inside, not already on the surface
-    std::uint64_t tile_bricks = 0;         ///< 8³ bricks of the result held as whole active tiles
-    std::uint64_t uniform_regions = 0;     ///< surface-free boxes decided by one evaluation
-    std::uint64_t component_decisions = 0; ///< connected empty parts of surface bricks decided by one evaluation
-    std::uint64_t point_evaluations = 0;   ///< inside tests run (winding numbers or ray parities)
-    std::uint64_t interpolated_voxels = 0; ///< open meshes: voxels decided from the winding number's interpolated smooth part
+    std::uint64_t nonmanifold_edges = 0;    ///< edges of more than two triangles
+    std::uint64_t misoriented_edges = 0;    ///< edges two triangles run the same way
+    std::uint64_t inside_voxels = 0;        ///< set for being inside, not already on the surface
+    std::uint64_t tile_bricks = 0;          ///< 8³ bricks of the result held as whole active tiles
+    std::uint64_t uniform_regions = 0;      ///< surface-free boxes decided by one evaluation
+    std::uint64_t component_decisions = 0;  ///< connected empty parts of surface bricks decided by one evaluation
+    std::uint64_t point_evaluations = 0;    ///< inside tests run (winding numbers or ray parities)
+    std::uint64_t interpolated_voxels =
+        0;  ///< open meshes: voxels decided from the winding number's interpolated smooth part
     /// With attributes (attributes/inside_values.h): inside voxels held in leaves valued by layers
     /// from the surface, the layers that took; tile regions (one value each) and the region
     /// layers after those valued from their shell; leaf voxels valued beside regions; voxels and
@@ -218,8 +219,8 @@ struct Stats {
     /// Stage name -> milliseconds, in the order the stages first ran (validate, voxelize, ...),
     /// summed over the tiles of a tiled run.
     std::vector<std::pair<std::string, double>> timings_ms;
-    std::uint64_t tiles = 0;   ///< boxes of the grid voxelized one after the other
-    std::uint64_t leaves = 0;  ///< non-empty, not wholly set 8³ leaves of the result (tiles apart)
+    std::uint64_t tiles = 0;      ///< boxes of the grid voxelized one after the other
+    std::uint64_t leaves = 0;     ///< non-empty, not wholly set 8³ leaves of the result (tiles apart)
     std::uint64_t vdb_bytes = 0;  ///< the OpenVDB grids' memory, when a front door wrote them
     /// Attribute voxels (options.attributes): clipped (triangle, voxel) pieces averaged; leaves
     /// where a set voxel's touch was lost to rounding in the clip and found again with a 1e-9
@@ -239,7 +240,7 @@ struct Stats {
     /// Solid mode, and any mode with the sdf attribute (its sign is the inside test), beside
     /// the backend's section.
     std::optional<SolidStats> solid;
-    std::optional<SdfStats> sdf;  ///< with the sdf attribute
+    std::optional<SdfStats> sdf;                         ///< with the sdf attribute
     std::optional<MemoryEstimateStats> memory_estimate;  ///< every run of voxelize()
 
     /// Adds `ms` milliseconds to `stage` (a new stage goes last).
@@ -278,10 +279,10 @@ struct Stats {
 
 /// A voxel with a value (multi-valued output such as the tessellation method's point counts).
 struct VoxelCount {
-    std::int32_t i;        ///< the voxel's x index
-    std::int32_t j;        ///< y index
-    std::int32_t k;        ///< z index
-    std::uint32_t count;   ///< its value (points that landed in it)
+    std::int32_t i;       ///< the voxel's x index
+    std::int32_t j;       ///< y index
+    std::int32_t k;       ///< z index
+    std::uint32_t count;  ///< its value (points that landed in it)
 };
 
 /// The result of voxelize().

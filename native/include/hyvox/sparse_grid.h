@@ -31,8 +31,8 @@ class SparseGrid {
 public:
     /// One non-empty, not wholly set brick.
     struct Leaf {
-        std::uint64_t brick;                                ///< BrickLayout::index of the whole grid
-        std::uint64_t words[BitGrid::kWordsPerBrick];       ///< OpenVDB NodeMask<3> words
+        std::uint64_t brick;                           ///< BrickLayout::index of the whole grid
+        std::uint64_t words[BitGrid::kWordsPerBrick];  ///< OpenVDB NodeMask<3> words
     };
     static constexpr std::size_t kLeafBytes = sizeof(Leaf);  ///< memory of one leaf
     /// Consecutive wholly set bricks.
@@ -52,7 +52,7 @@ public:
     const std::vector<Leaf>& leaves() const { return leaves_; }        ///< in brick order once finished
     std::size_t leafCount() const { return leaves_.size(); }           ///< leaves held
     const std::vector<TileRun>& tileRuns() const { return tiles_; }    ///< sorted, disjoint, not adjacent
-    std::uint64_t tileCount() const;  ///< bricks held as tiles
+    std::uint64_t tileCount() const;                                   ///< bricks held as tiles
     /// Memory of the leaves and tiles, bytes.
     std::size_t byteSize() const { return leaves_.capacity() * kLeafBytes + tiles_.capacity() * sizeof(TileRun); }
 
@@ -103,7 +103,7 @@ private:
 
     std::array<std::int32_t, 3> dims_{0, 0, 0};
     BrickLayout bricks_;
-    std::vector<Leaf> leaves_;  // sorted by brick once finished
+    std::vector<Leaf> leaves_;    // sorted by brick once finished
     std::vector<TileRun> tiles_;  // sorted and merged once finished
     bool sorted_ = true;
 };

@@ -17,9 +17,9 @@ struct Texture {
     /// Largest image accepted (texels): 8192² RGBA floats are 1 GiB.
     static constexpr std::uint64_t kMaxTexels = std::uint64_t(8192) * 8192;
 
-    int width = 0;             ///< texels per row
-    int height = 0;            ///< rows
-    int channels = 0;          ///< 3 (RGB) or 4 (RGBA; alpha linear)
+    int width = 0;              ///< texels per row
+    int height = 0;             ///< rows
+    int channels = 0;           ///< 3 (RGB) or 4 (RGBA; alpha linear)
     std::vector<float> texels;  ///< width * height * channels, linear
 
     /// Bilinear between texel centres ((x + 0.5) / width), repeat wrap; RGBA (alpha 1 for RGB).

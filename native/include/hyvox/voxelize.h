@@ -27,8 +27,7 @@ namespace hyvox {
 ///         budget (refused before allocating) or a GPU limit
 /// @throws BackendError the method cannot run here (no GL 4.5 device, no GL plugin)
 /// @throws Cancelled the interrupter asked to stop; nothing is returned
-VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options,
-                        Interrupter* interrupter = nullptr);
+VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, Interrupter* interrupter = nullptr);
 
 /// voxelize() for a mesh validate() already checked (the CLI lays out the grid first, to
 /// refuse a voxel size its output cannot hold before the work). Throws as voxelize() does.

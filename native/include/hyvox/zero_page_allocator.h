@@ -49,9 +49,13 @@ struct ZeroPageAllocator {
     ///@{
     /// Stateless: all equal.
     template <typename U>
-    bool operator==(const ZeroPageAllocator<U>&) const noexcept { return true; }
+    bool operator==(const ZeroPageAllocator<U>&) const noexcept {
+        return true;
+    }
     template <typename U>
-    bool operator!=(const ZeroPageAllocator<U>&) const noexcept { return false; }
+    bool operator!=(const ZeroPageAllocator<U>&) const noexcept {
+        return false;
+    }
     ///@}
 };
 

@@ -14,6 +14,7 @@ file the whole grid gives.
 Voxel (i, j, k) covers the closed box [origin + (i, j, k) * s, origin + (i+1, j+1, k+1) * s]
 with s = grid.voxel_size; the .vdb's index space is voxel centres.
 """
+
 from __future__ import annotations
 
 import os
@@ -52,6 +53,7 @@ def option(name: str) -> OptionSpec:
 
 METHODS: Tuple[str, ...] = tuple(option("method").choices)
 MODES: Tuple[str, ...] = tuple(option("mode").choices)
+
 
 class IgnoredOptionWarning(UserWarning):
     """voxelize() was given an option the chosen method does not use (the CLI prints the
@@ -212,7 +214,11 @@ def voxelize(
     if colors is not None:
         colors = np.asarray(colors)
         colors_srgb = colors.dtype == np.uint8
-        colors = colors.astype(np.float32) / 255.0 if colors_srgb else _as_float_rows(colors, "colors", colors.shape[-1] if colors.ndim == 2 else 3)
+        colors = (
+            colors.astype(np.float32) / 255.0
+            if colors_srgb
+            else _as_float_rows(colors, "colors", colors.shape[-1] if colors.ndim == 2 else 3)
+        )
     texture_path = None
     if isinstance(texture, (str, os.PathLike)):
         texture_path, texture = os.fspath(texture), None
@@ -281,8 +287,12 @@ def plan_grid(vertices, triangles, **options) -> dict:
     return _core.plan_grid(_as_vertices(vertices), _as_triangles(triangles), native_options)
 
 
-def read_mesh(path: Union[str, os.PathLike], attributes: bool = False, cancel: Optional[CancelToken] = None,
-              memory_budget_mib: int = 0):
+def read_mesh(
+    path: Union[str, os.PathLike],
+    attributes: bool = False,
+    cancel: Optional[CancelToken] = None,
+    memory_budget_mib: int = 0,
+):
     """Read a mesh file: PLY, OBJ, STL, OFF and glTF/GLB (also gzipped, as mesh.ply.gz) by
     hyvox's own strict readers; binary FBX and 3MF through assimp, in a process of
     its own, so that no file can crash or hang the caller (docs/mesh-formats.md).
@@ -302,8 +312,9 @@ def read_mesh(path: Union[str, os.PathLike], attributes: bool = False, cancel: O
     """
     if cancel is not None and not isinstance(cancel, CancelToken):
         raise TypeError("cancel must be a hyvox.CancelToken or None")
-    vertices, triangles, colors, uvs, materials, problems = _core.read_mesh(os.fspath(path), cancel=cancel,
-                                                                            memory_budget_mib=memory_budget_mib)
+    vertices, triangles, colors, uvs, materials, problems = _core.read_mesh(
+        os.fspath(path), cancel=cancel, memory_budget_mib=memory_budget_mib
+    )
     if not attributes:
         return vertices, triangles
     for problem in problems:

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The `hyvox` console command of the wheel: runs the CLI binary installed inside the
 package (hyvox/bin/hyvox), so pip's script and the native tool are one program."""
+
 import os
 import sys
 

@@ -34,10 +34,10 @@ void bindMeshIo(py::module_& m) {
                 py::list textures;
                 for (const std::string& image : mesh.material_textures)
                     textures.append(image.empty() ? py::object(py::none()) : py::object(py::str(image)));
-                materials = py::dict(py::arg("material_ids") = arrayFromVector(std::move(mesh.material_ids), {t}),
-                                     py::arg("palette") = arrayFromVector(std::move(mesh.material_colors), {count, 3}),
-                                     py::arg("textures") = textures,
-                                     py::arg("material_names") = py::cast(mesh.material_names));
+                materials =
+                    py::dict(py::arg("material_ids") = arrayFromVector(std::move(mesh.material_ids), {t}),
+                             py::arg("palette") = arrayFromVector(std::move(mesh.material_colors), {count, 3}),
+                             py::arg("textures") = textures, py::arg("material_names") = py::cast(mesh.material_names));
             }
             return py::make_tuple(arrayFromVector(std::move(mesh.positions), {n, 3}),
                                   arrayFromVector(std::move(mesh.triangles), {t, 3}), colors, uvs, materials,
@@ -55,8 +55,8 @@ void bindMeshIo(py::module_& m) {
         [] {
             py::list devices;
             for (const auto& d : listGlDevices())
-                devices.append(py::dict(py::arg("index") = d.index, py::arg("name") = d.name,
-                                        py::arg("software") = d.software));
+                devices.append(
+                    py::dict(py::arg("index") = d.index, py::arg("name") = d.name, py::arg("software") = d.software));
             return devices;
         },
         "The EGL devices the GL methods can use: [{'index', 'name', 'software'}]. Creates no context.");

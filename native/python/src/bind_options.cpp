@@ -37,7 +37,7 @@ const char* typeName(OptionType type) {
 
 bool isNumber(const py::handle& v) {
     return !py::isinstance<py::bool_>(v) && !py::isinstance<py::str>(v) &&
-           (py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v) || py::hasattr(v, "__float__"));
+        (py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v) || py::hasattr(v, "__float__"));
 }
 
 [[noreturn]] void refuseValue(const OptionSpec& spec, const py::handle& value) {
@@ -170,8 +170,9 @@ WriteOptions writeOptions(const VoxelizeOptions& voxelized, const py::dict& give
 void bindOptions(py::module_& m) {
     py::class_<OptionSpec>(m, "OptionSpec", "One entry of the options schema (read-only).")
         .def_property_readonly("name", [](const OptionSpec& s) { return s.name; })
-        .def_property_readonly("type", [](const OptionSpec& s) { return typeName(s.type); },
-                               "int, float, bool, str, choice, choices (a comma list), vector3 or box")
+        .def_property_readonly(
+            "type", [](const OptionSpec& s) { return typeName(s.type); },
+            "int, float, bool, str, choice, choices (a comma list), vector3 or box")
         .def_property_readonly("group", [](const OptionSpec& s) { return s.group; })
         .def_property_readonly("label", [](const OptionSpec& s) { return s.label; })
         .def_property_readonly("unit", [](const OptionSpec& s) { return s.unit; })
@@ -180,17 +181,21 @@ void bindOptions(py::module_& m) {
         .def_property_readonly("min", [](const OptionSpec& s) { return s.min; })
         .def_property_readonly("max", [](const OptionSpec& s) { return s.max; })
         .def_property_readonly("min_exclusive", [](const OptionSpec& s) { return s.min_exclusive; })
-        .def_property_readonly("choices",
-                               [](const OptionSpec& s) { return std::vector<std::string>(s.choices.begin(), s.choices.end()); })
+        .def_property_readonly(
+            "choices", [](const OptionSpec& s) { return std::vector<std::string>(s.choices.begin(), s.choices.end()); })
         .def_property_readonly("cli_flag", &OptionSpec::cliFlag)
         .def_property_readonly(
-            "cli_aliases", [](const OptionSpec& s) { return std::vector<std::string>(s.cli_aliases.begin(), s.cli_aliases.end()); })
-        .def_property_readonly("env", [](const OptionSpec& s) { return s.env ? py::object(py::str(s.env)) : py::none(); })
-        .def_property_readonly("default", [](const OptionSpec& s) { return toPython(s.defaultValue()); },
-                               "The native default (None for nullable options: derived at run time).")
+            "cli_aliases",
+            [](const OptionSpec& s) { return std::vector<std::string>(s.cli_aliases.begin(), s.cli_aliases.end()); })
+        .def_property_readonly("env",
+                               [](const OptionSpec& s) { return s.env ? py::object(py::str(s.env)) : py::none(); })
+        .def_property_readonly(
+            "default", [](const OptionSpec& s) { return toPython(s.defaultValue()); },
+            "The native default (None for nullable options: derived at run time).")
         .def_property_readonly("requirement", &describeOption, "What a valid value is, as error messages say it.")
         .def(
-            "applies_to", [](const OptionSpec& s, const std::string& method) { return optionAppliesTo(s, parseMethod(method)); },
+            "applies_to",
+            [](const OptionSpec& s, const std::string& method) { return optionAppliesTo(s, parseMethod(method)); },
             py::arg("method"),
             "Whether the option changes what `method` does (the rule behind the CLI's and voxelize()'s "
             "'does not apply' warnings); ValueError for an unknown method.")
@@ -211,11 +216,12 @@ void bindOptions(py::module_& m) {
              "Set one option; ValueError out of its limits, TypeError for another kind of value or an "
              "unknown name. None restores the default.")
         .def("get", [](const VoxelizeOptions& o, const std::string& name) { return toPython(specNamed(name).get(o)); })
-        .def("apply_environment",
-             [](VoxelizeOptions& o) {
-                 applyEnvironment(o, [](const char* variable) -> const char* { return std::getenv(variable); });
-             },
-             "Set the options whose environment variable (OptionSpec.env) is set.")
+        .def(
+            "apply_environment",
+            [](VoxelizeOptions& o) {
+                applyEnvironment(o, [](const char* variable) -> const char* { return std::getenv(variable); });
+            },
+            "Set the options whose environment variable (OptionSpec.env) is set.")
         .def("to_dict", [](const VoxelizeOptions& o) {
             py::dict out;
             for (const OptionSpec& spec : optionSchema())

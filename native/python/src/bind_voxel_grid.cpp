@@ -9,12 +9,12 @@
 
 #include "bindings.h"
 #include "cancel_token.h"
-#include "python_interrupter.h"
 #include "hyvox/errors.h"
 #include "hyvox/options.h"
 #include "hyvox/result.h"
 #include "hyvox/stats_json.h"
 #include "hyvox/vdb.h"
+#include "python_interrupter.h"
 
 namespace hyvox::python {
 namespace {
@@ -106,7 +106,8 @@ py::dict attributeArrays(const Grid& g) {
     auto take = [&](int offset, int width) {
         std::vector<float> values(count * std::size_t(width));
         for (std::size_t v = 0; v < count; ++v)
-            for (int c = 0; c < width; ++c) values[v * std::size_t(width) + std::size_t(c)] = all[v * channels + std::size_t(offset + c)];
+            for (int c = 0; c < width; ++c)
+                values[v * std::size_t(width) + std::size_t(c)] = all[v * channels + std::size_t(offset + c)];
         return values;
     };
     const auto k = py::ssize_t(count);
@@ -203,24 +204,29 @@ The voxels of one voxelization. Voxel (i, j, k) covers the closed box
             "threads and memory_budget_mib unset or None take the values the voxelization used. "
             "cancel (a CancelToken) stops it until the file is being written (hyvox.Cancelled); "
             "progress(percent) is called as in voxelize. Returns {grid_bytes, build_ms, write_ms}.")
-        .def_property_readonly("origin", [](const Grid& g) { return py::make_tuple(g->grid.origin[0], g->grid.origin[1], g->grid.origin[2]); },
-                               "World position of voxel (0, 0, 0)'s min corner.")
-        .def_property_readonly("voxel_size", [](const Grid& g) { return g->grid.voxel_size; }, "Voxel edge length, world units.")
-        .def_property_readonly("dims", [](const Grid& g) { return py::make_tuple(g->grid.dims[0], g->grid.dims[1], g->grid.dims[2]); },
-                               "Voxels along x, y, z.")
-        .def_property_readonly("voxel_count", [](const Grid& g) { return g->stats.voxel_count; }, "Occupied voxels.")
+        .def_property_readonly(
+            "origin",
+            [](const Grid& g) { return py::make_tuple(g->grid.origin[0], g->grid.origin[1], g->grid.origin[2]); },
+            "World position of voxel (0, 0, 0)'s min corner.")
+        .def_property_readonly(
+            "voxel_size", [](const Grid& g) { return g->grid.voxel_size; }, "Voxel edge length, world units.")
+        .def_property_readonly(
+            "dims", [](const Grid& g) { return py::make_tuple(g->grid.dims[0], g->grid.dims[1], g->grid.dims[2]); },
+            "Voxels along x, y, z.")
+        .def_property_readonly(
+            "voxel_count", [](const Grid& g) { return g->stats.voxel_count; }, "Occupied voxels.")
         .def_property_readonly("method", [](const Grid& g) { return g->stats.method; })
         .def_property_readonly("mode", [](const Grid& g) { return g->stats.mode; })
         .def_property_readonly(
-            "stats",
-            [](const Grid& g) { return py::module_::import("json").attr("loads")(statsToJson(*g)); },
+            "stats", [](const Grid& g) { return py::module_::import("json").attr("loads")(statsToJson(*g)); },
             "The stats as a dict, the same as the CLI's --stats-json: origin, voxel_size, dims, "
             "voxel_count, triangles {input, used, degenerate}, timings_ms {stage: ms}, total_ms, metrics.")
         .def("__len__", [](const Grid& g) { return g->stats.voxel_count; })
         .def("__repr__", [](const Grid& g) {
             const auto& d = g->grid.dims;
-            return "<hyvox.VoxelGrid " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]) +
-                   ", " + std::to_string(g->stats.voxel_count) + " voxels, " + g->stats.mode + ", " + g->stats.method + ">";
+            return "<hyvox.VoxelGrid " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
+                std::to_string(d[2]) + ", " + std::to_string(g->stats.voxel_count) + " voxels, " + g->stats.mode +
+                ", " + g->stats.method + ">";
         });
 }
 

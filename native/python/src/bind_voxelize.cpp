@@ -12,11 +12,11 @@
 
 #include "bindings.h"
 #include "cancel_token.h"
-#include "python_interrupter.h"
 #include "hyvox/errors.h"
 #include "hyvox/texture.h"
 #include "hyvox/voxelize.h"
 #include "hyvox/zero_page_allocator.h"
+#include "python_interrupter.h"
 
 namespace hyvox::python {
 namespace {
@@ -135,17 +135,16 @@ ColorRows colorRows(const std::optional<py::array>& array, std::size_t vertex_co
     return out;
 }
 
-std::shared_ptr<VoxelizeResult> voxelizeArrays(const py::array& vertices, const py::array& triangles,
-                                               VoxelizeOptions options, const std::optional<py::array>& uvs,
-                                               const std::optional<py::array>& normals,
-                                               const std::optional<py::array>& displacement_pixels,
-                                               const std::optional<py::array>& colors, bool colors_srgb,
-                                               const std::optional<py::array>& texture, std::optional<std::string> texture_path,
-                                               std::optional<py::array> material_ids, std::optional<py::array> palette,
-                                               const std::optional<py::list>& textures, std::optional<py::array> face_normals,
-                                               std::shared_ptr<CancelToken> cancel, py::object progress) {
+std::shared_ptr<VoxelizeResult> voxelizeArrays(
+    const py::array& vertices, const py::array& triangles, VoxelizeOptions options, const std::optional<py::array>& uvs,
+    const std::optional<py::array>& normals, const std::optional<py::array>& displacement_pixels,
+    const std::optional<py::array>& colors, bool colors_srgb, const std::optional<py::array>& texture,
+    std::optional<std::string> texture_path, std::optional<py::array> material_ids, std::optional<py::array> palette,
+    const std::optional<py::list>& textures, std::optional<py::array> face_normals, std::shared_ptr<CancelToken> cancel,
+    py::object progress) {
     options.tessellation.displacement_pixels = heightImage(displacement_pixels);
-    if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw py::type_error("progress must be callable or None");
+    if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+        throw py::type_error("progress must be callable or None");
 
     const PrivateRows<float> positions = copyRows<float>(vertices, "vertices", "float32");
     const PrivateRows<std::uint32_t> indices = copyRows<std::uint32_t>(triangles, "triangles", "uint32");
@@ -174,7 +173,8 @@ std::shared_ptr<VoxelizeResult> voxelizeArrays(const py::array& vertices, const 
                                                 "material_ids", "uint32", 1);
         if (material_rows.size() != view.triangle_count)
             throw py::value_error("material_ids must have one entry per triangle (" +
-                                  std::to_string(view.triangle_count) + "), got " + std::to_string(material_rows.size()));
+                                  std::to_string(view.triangle_count) + "), got " +
+                                  std::to_string(material_rows.size()));
         view.material_ids = material_rows.data();
     }
     PrivateRows<float> palette_rows;
@@ -198,7 +198,8 @@ std::shared_ptr<VoxelizeResult> voxelizeArrays(const py::array& vertices, const 
     if (face_normals) {
         face_normal_rows = copyRows<float>(*face_normals, "face_normals", "float32", 3);
         if (face_normal_rows.size() != 3 * view.triangle_count)
-            throw py::value_error("face_normals must have one row per triangle (" + std::to_string(view.triangle_count) + ")");
+            throw py::value_error("face_normals must have one row per triangle (" +
+                                  std::to_string(view.triangle_count) + ")");
         view.face_normals = face_normal_rows.data();
     }
 
@@ -222,8 +223,8 @@ void bindVoxelize(py::module_& m) {
           py::arg("uvs") = py::none(), py::arg("normals") = py::none(), py::arg("displacement_pixels") = py::none(),
           py::arg("colors") = py::none(), py::arg("colors_srgb") = false, py::arg("texture") = py::none(),
           py::arg("texture_path") = py::none(), py::arg("material_ids") = py::none(), py::arg("palette") = py::none(),
-          py::arg("textures") = py::none(), py::arg("face_normals") = py::none(),
-          py::arg("cancel") = py::none(), py::arg("progress") = py::none(),
+          py::arg("textures") = py::none(), py::arg("face_normals") = py::none(), py::arg("cancel") = py::none(),
+          py::arg("progress") = py::none(),
           "Voxelize float32 (N,3) vertices and uint32 (M,3) triangles (exact dtypes; hyvox.voxelize "
           "converts) with an Options object. Releases the GIL while it runs.");
 }

@@ -23,7 +23,7 @@ Reading or setting it needs no lock and never waits for the voxelization.)doc")
         .def_property_readonly("running", &CancelToken::running, "True while a voxelization uses this token.")
         .def("__repr__", [](const CancelToken& t) {
             return "<hyvox.CancelToken cancelled=" + std::string(t.cancelled() ? "True" : "False") +
-                   " progress=" + std::to_string(t.progress()) + ">";
+                " progress=" + std::to_string(t.progress()) + ">";
         });
 }
 

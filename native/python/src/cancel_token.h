@@ -21,8 +21,7 @@ public:
     // Worker threads report out of order; keep the highest percent seen.
     void raiseProgress(int percent) {
         int seen = progress_.load(std::memory_order_relaxed);
-        while (percent > seen && !progress_.compare_exchange_weak(seen, percent, std::memory_order_relaxed)) {
-        }
+        while (percent > seen && !progress_.compare_exchange_weak(seen, percent, std::memory_order_relaxed)) {}
     }
     void begin() {
         progress_.store(0, std::memory_order_relaxed);

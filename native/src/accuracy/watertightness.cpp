@@ -27,7 +27,8 @@ void castColumns(const ValidatedMesh& mesh, const GridSpec& grid, int axis, std:
         const std::array<std::array<double, 3>, 3> p{grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)),
                                                      grid.toVoxel(mesh.vertex(t, 2))};
         // Signed doubled area in the (a1, a2) projection; edge-on triangles meet no centre line.
-        const double area = (p[1][a1] - p[0][a1]) * (p[2][a2] - p[0][a2]) - (p[2][a1] - p[0][a1]) * (p[1][a2] - p[0][a2]);
+        const double area =
+            (p[1][a1] - p[0][a1]) * (p[2][a2] - p[0][a2]) - (p[2][a1] - p[0][a1]) * (p[1][a2] - p[0][a2]);
         if (area == 0.0) continue;
         const double lo1 = std::min({p[0][a1], p[1][a1], p[2][a1]}), hi1 = std::max({p[0][a1], p[1][a1], p[2][a1]});
         const double lo2 = std::min({p[0][a2], p[1][a2], p[2][a2]}), hi2 = std::max({p[0][a2], p[1][a2], p[2][a2]});

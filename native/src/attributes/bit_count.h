@@ -14,6 +14,8 @@ inline int popcount(std::uint64_t word) {
 }
 
 // The set bits of `word` below bit `bit & 63`.
-inline int popcountBelow(std::uint64_t word, int bit) { return popcount(word & ((std::uint64_t(1) << (bit & 63)) - 1)); }
+inline int popcountBelow(std::uint64_t word, int bit) {
+    return popcount(word & ((std::uint64_t(1) << (bit & 63)) - 1));
+}
 
 }  // namespace hyvox::attributes

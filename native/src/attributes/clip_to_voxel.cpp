@@ -46,7 +46,7 @@ const Polygon& clipSlabAlong(const Polygon& in, Polygon& scratch, double lo, dou
         scratch.n = 0;
         return scratch;
     }
-    const bool cut_lo = from < lo, cut_hi = to > hi;
+    const bool cut_lo = from<lo, cut_hi = to> hi;
     if (cut_lo && cut_hi) {
         Polygon between;
         clipPlane<Axis>(in, between, lo, 1.0);
@@ -128,7 +128,8 @@ void measurePiece(const Polygon& a, int u, int v, double scale, ClippedPiece& ou
                 best_j = j;
             }
         }
-    for (std::size_t d = 0; d < 3; ++d) out.centroid[d] = 0.5 * (a.p[std::size_t(best_i)][d] + a.p[std::size_t(best_j)][d]);
+    for (std::size_t d = 0; d < 3; ++d)
+        out.centroid[d] = 0.5 * (a.p[std::size_t(best_i)][d] + a.p[std::size_t(best_j)][d]);
 }
 
 TriangleFrame::TriangleFrame(const std::array<Point, 3>& corners) : origin_(corners[0]) {

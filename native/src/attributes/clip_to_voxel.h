@@ -17,8 +17,8 @@ constexpr double kTouchArea = 1e-14;
 constexpr double kAreaEpsilon = 1e-6;
 
 struct ClippedPiece {
-    double area = 0;    // voxel units²
-    Point centroid{};   // the area centroid; a touch: the midpoint of its two farthest points
+    double area = 0;   // voxel units²
+    Point centroid{};  // the area centroid; a touch: the midpoint of its two farthest points
 };
 
 // A voxel's box grown by this on every side finds the touches that clipping to the exact box

@@ -17,9 +17,9 @@ namespace hyvox::attributes {
 
 // A triangle's plane over the (a, b) lattice, with its dominant axis last (|n[2]| largest).
 struct LiftedPlane {
-    Point origin;               // a corner of the triangle
-    double slope_a, slope_b;    // dh/da, dh/db (each within [-1, 1])
-    double area_scale;          // area on the plane per area in (a, b)
+    Point origin;             // a corner of the triangle
+    double slope_a, slope_b;  // dh/da, dh/db (each within [-1, 1])
+    double area_scale;        // area on the plane per area in (a, b)
 
     // The height over lattice point (a, b): the same expression wherever it is asked, so
     // columns that share a lattice edge cut it at the same points.
@@ -51,7 +51,8 @@ public:
         double from = -1e300, to = 1e300;  // the b range the squares' corners may take
         for (const Edge& e : edges_) {
             // Inside: along_a * (b - q_b) - along_b * (a - q_a) >= margin at the four corners.
-            const double need = e.margin + std::max(e.along_b * (double(a) - e.q_a), e.along_b * (double(a) + 1.0 - e.q_a));
+            const double need =
+                e.margin + std::max(e.along_b * (double(a) - e.q_a), e.along_b * (double(a) + 1.0 - e.q_a));
             if (e.along_a > 0) {
                 from = std::max(from, e.q_b + need * e.inverse_a);
             } else if (e.along_a < 0) {
@@ -171,7 +172,8 @@ void innerColumnPieces(const LiftedPlane& plane, int a, int b, int lo, int hi, V
         }
         Polygon touch;  // a touch, or a sliver rounding left without area: as the sweep measures it
         touch.n = part.n;
-        for (int c = 0; c < part.n; ++c) touch.p[std::size_t(c)] = {double(a) + part.a[c], double(b) + part.b[c], part.h[c]};
+        for (int c = 0; c < part.n; ++c)
+            touch.p[std::size_t(c)] = {double(a) + part.a[c], double(b) + part.b[c], part.h[c]};
         measurePiece(touch, 0, 1, 0.5 * plane.area_scale, piece);
     };
     const auto touchAt = [&](double level) {  // the corners on plane h = level (f_min or f_max)

@@ -35,8 +35,8 @@ struct LeafVoxels {
     std::vector<Mask> set, valued;
     std::vector<std::array<std::uint32_t, BitGrid::kWordsPerBrick>> before;  // set voxels in the words before
     std::vector<std::size_t> first;                                          // voxel number of the first
-    std::vector<std::array<std::int32_t, 27>> near;  // the 27 bricks around, index here or -1
-    std::vector<float> values;                       // channels per set voxel
+    std::vector<std::array<std::int32_t, 27>> near;                          // the 27 bricks around, index here or -1
+    std::vector<float> values;                                               // channels per set voxel
     std::size_t channels = 0;
 
     std::int64_t find(std::uint64_t b) const {
@@ -51,7 +51,8 @@ struct LeafVoxels {
     const float* value(std::size_t n, int bit) const { return values.data() + offset(n, bit); }
     std::uint64_t pending(std::size_t n) const {
         std::uint64_t count = 0;
-        for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) count += std::uint64_t(popcount(set[n][std::size_t(w)] & ~valued[n][std::size_t(w)]));
+        for (int w = 0; w < BitGrid::kWordsPerBrick; ++w)
+            count += std::uint64_t(popcount(set[n][std::size_t(w)] & ~valued[n][std::size_t(w)]));
         return count;
     }
 };
@@ -62,7 +63,6 @@ struct RegionValues {
     std::vector<std::int32_t> layer;  // -1: none yet
 };
 
-
 // The 26-neighbourhood dilation of a brick's mask, one axis at a time (a 3x3x3 box is the
 // product of three 3-taps): along z (bit z of each 8-bit row; the rows' ends from the bricks
 // before and after), along y (rows of a word), along x (words). `before`/`after`: the masks of
@@ -72,12 +72,13 @@ Mask dilateZ(const Mask& m, const Mask& before, const Mask& after) {
     Mask out;
     for (std::size_t x = 0; x < 8; ++x)
         out[x] = m[x] | ((m[x] << 1) & ~kRowStart) | ((m[x] >> 1) & ~kRowEnd) | ((before[x] >> 7) & kRowStart) |
-                 ((after[x] << 7) & kRowEnd);
+            ((after[x] << 7) & kRowEnd);
     return out;
 }
 Mask dilateY(const Mask& m, const Mask& before, const Mask& after) {
     Mask out;
-    for (std::size_t x = 0; x < 8; ++x) out[x] = m[x] | (m[x] << 8) | (m[x] >> 8) | (before[x] >> 56) | (after[x] << 56);
+    for (std::size_t x = 0; x < 8; ++x)
+        out[x] = m[x] | (m[x] << 8) | (m[x] >> 8) | (before[x] >> 56) | (after[x] << 56);
     return out;
 }
 Mask dilateX(const Mask& m, const Mask& before, const Mask& after) {
@@ -106,9 +107,18 @@ const NeighbourTable& neighbourTable() {
                     for (int dz = -1; dz <= 1; ++dz) {
                         if (dx == 0 && dy == 0 && dz == 0) continue;
                         const int nx = x + dx, ny = y + dy, nz = z + dz;
-                        const int ox = nx < 0 ? -1 : nx > 7 ? 1 : 0, oy = ny < 0 ? -1 : ny > 7 ? 1 : 0, oz = nz < 0 ? -1 : nz > 7 ? 1 : 0;
-                        t.steps[std::size_t(bit)][std::size_t(m++)] = {std::uint8_t(nearIndex(ox, oy, oz)),
-                                                                       std::uint16_t(((nx & 7) << 6) | ((ny & 7) << 3) | (nz & 7))};
+                        const int ox = nx < 0 ? -1
+                            : nx > 7          ? 1
+                                              : 0,
+                                  oy = ny < 0 ? -1
+                            : ny > 7          ? 1
+                                              : 0,
+                                  oz = nz < 0 ? -1
+                            : nz > 7          ? 1
+                                              : 0;
+                        t.steps[std::size_t(bit)][std::size_t(m++)] = {
+                            std::uint8_t(nearIndex(ox, oy, oz)),
+                            std::uint16_t(((nx & 7) << 6) | ((ny & 7) << 3) | (nz & 7))};
                     }
         }
         return t;
@@ -166,13 +176,15 @@ std::pair<std::uint64_t, std::uint64_t> leafLayers(LeafVoxels& leaf, const Attri
                     for (int dx = -1; dx <= 1; ++dx) {
                         Mask column[3];
                         for (int dy = -1; dy <= 1; ++dy)
-                            column[dy + 1] = dilateZ(around(leaf.valued, n, dx, dy, 0), around(leaf.valued, n, dx, dy, -1),
-                                                     around(leaf.valued, n, dx, dy, 1));
+                            column[dy + 1] =
+                                dilateZ(around(leaf.valued, n, dx, dy, 0), around(leaf.valued, n, dx, dy, -1),
+                                        around(leaf.valued, n, dx, dy, 1));
                         slab[dx + 1] = dilateY(column[1], column[0], column[2]);
                     }
                     const Mask reach = dilateX(slab[1], slab[0], slab[2]);
                     for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) {
-                        const std::uint64_t word_fresh = leaf.set[n][std::size_t(w)] & ~leaf.valued[n][std::size_t(w)] & reach[std::size_t(w)];
+                        const std::uint64_t word_fresh =
+                            leaf.set[n][std::size_t(w)] & ~leaf.valued[n][std::size_t(w)] & reach[std::size_t(w)];
                         fresh[a][std::size_t(w)] = word_fresh;
                         for (std::uint64_t word = word_fresh; word; word &= word - 1) {
                             const int bit = w * 64 + __builtin_ctzll(word);
@@ -185,10 +197,13 @@ std::pair<std::uint64_t, std::uint64_t> leafLayers(LeafVoxels& leaf, const Attri
                             for (const NeighbourTable::Step& step : table.steps[std::size_t(bit)]) {
                                 const std::int32_t other = leaf.near[n][step.brick];
                                 if (other >= 0) {
-                                    if (testBit(leaf.valued[std::size_t(other)], step.bit)) add(leaf.value(std::size_t(other), step.bit));
+                                    if (testBit(leaf.valued[std::size_t(other)], step.bit))
+                                        add(leaf.value(std::size_t(other), step.bit));
                                 } else if ((region_around[n] >> step.brick) & 1u) {
-                                    add(region_values->tiles[std::size_t(regions->at(at[0] + step.brick / 9 - 1, at[1] + (step.brick / 3) % 3 - 1,
-                                                                                     at[2] + step.brick % 3 - 1))]
+                                    add(region_values
+                                            ->tiles[std::size_t(regions->at(at[0] + step.brick / 9 - 1,
+                                                                            at[1] + (step.brick / 3) % 3 - 1,
+                                                                            at[2] + step.brick % 3 - 1))]
                                             .values.data());
                                 }
                             }
@@ -268,7 +283,8 @@ void shellValues(const LeafVoxels& leaf, const AttributeGrid& layout, const Tile
         all.insert(all.end(), list.begin(), list.end());
         std::vector<Contribution>().swap(list);
     }
-    std::stable_sort(all.begin(), all.end(), [](const Contribution& a, const Contribution& b) { return a.region < b.region; });
+    std::stable_sort(all.begin(), all.end(),
+                     [](const Contribution& a, const Contribution& b) { return a.region < b.region; });
     for (std::size_t n = 0; n < all.size();) {
         std::array<double, kMaxChannels> sums{};
         std::uint64_t count = 0;
@@ -283,7 +299,8 @@ void shellValues(const LeafVoxels& leaf, const AttributeGrid& layout, const Tile
 }
 
 // Region layers after layer 0; returns how many valued something.
-std::uint64_t regionLayers(const AttributeGrid& layout, const TileRegions& regions, RegionValues& out, tbb::task_arena& arena) {
+std::uint64_t regionLayers(const AttributeGrid& layout, const TileRegions& regions, RegionValues& out,
+                           tbb::task_arena& arena) {
     const int channels = layout.channels();
     std::vector<std::int64_t> frontier;
     for (std::size_t r = 0; r < out.layer.size(); ++r)
@@ -309,7 +326,8 @@ std::uint64_t regionLayers(const AttributeGrid& layout, const TileRegions& regio
                 int count = 0;
                 for (std::int64_t r : regions.neighbours(candidates[c])) {
                     if (out.layer[std::size_t(r)] < 0) continue;
-                    for (int ch = 0; ch < channels; ++ch) sums[ch] += double(out.tiles[std::size_t(r)].values[std::size_t(ch)]);
+                    for (int ch = 0; ch < channels; ++ch)
+                        sums[ch] += double(out.tiles[std::size_t(r)].values[std::size_t(ch)]);
                     ++count;
                 }
                 meanOfSums(layout, sums, double(count), value[c].data());
@@ -406,7 +424,8 @@ AttributeGrid valueInside(const SparseGrid& surface, const AttributeGrid& surfac
                 while (word) {
                     const int bit = w * 64 + __builtin_ctzll(word);
                     word &= word - 1;
-                    if (!testBit(leaf.set[std::size_t(n)], bit)) throw std::logic_error("valueInside: a surface voxel is not in the solid");
+                    if (!testBit(leaf.set[std::size_t(n)], bit))
+                        throw std::logic_error("valueInside: a surface voxel is not in the solid");
                     const float* value = surface_values.values.data() + voxel++ * channels;
                     std::copy(value, value + channels, leaf.value(std::size_t(n), bit));
                     setBit(leaf.valued[std::size_t(n)], bit);

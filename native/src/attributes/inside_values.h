@@ -38,12 +38,12 @@
 namespace hyvox::attributes {
 
 struct InsideValueCounts {
-    std::uint64_t voxels = 0;        // inside leaf voxels valued by the leaf layers
-    std::uint64_t layers = 0;        // leaf layers run (the deepest leaf voxel's layer)
-    std::uint64_t regions = 0;       // tile regions (one value each)
-    std::uint64_t region_layers = 0; // region layers after layer 0
+    std::uint64_t voxels = 0;           // inside leaf voxels valued by the leaf layers
+    std::uint64_t layers = 0;           // leaf layers run (the deepest leaf voxel's layer)
+    std::uint64_t regions = 0;          // tile regions (one value each)
+    std::uint64_t region_layers = 0;    // region layers after layer 0
     std::uint64_t through_regions = 0;  // leaf voxels valued next to regions (second leaf pass)
-    std::uint64_t fallback = 0;      // leaf voxels and regions given the mesh's mean
+    std::uint64_t fallback = 0;         // leaf voxels and regions given the mesh's mean
 };
 
 // `surface`: the surface pass's voxels (finished); `surface_values`: their values, every brick

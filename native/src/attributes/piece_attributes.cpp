@@ -42,7 +42,8 @@ TileAttributeCounts computePieceAttributes(const BackendJob& job, const BitGrid&
     tbb::task_arena arena(threads);
 
     std::vector<KeyedPiece> sorted(pieces.size());
-    if (pieces.size() > 0xffffffffu) throw ResourceError("more than 2^32 clipped pieces in one tile; use smaller tiles");
+    if (pieces.size() > 0xffffffffu)
+        throw ResourceError("more than 2^32 clipped pieces in one tile; use smaller tiles");
     for (std::size_t n = 0; n < pieces.size(); ++n)
         sorted[n] = {voxelKey(tile_bricks, pieces[n].voxel), pieces[n].triangle, std::uint32_t(n)};
     arena.execute([&] { tbb::parallel_sort(sorted.begin(), sorted.end()); });
@@ -70,7 +71,8 @@ TileAttributeCounts computePieceAttributes(const BackendJob& job, const BitGrid&
                                              [](const KeyedPiece& p, std::uint64_t key) { return p.voxel < key; });
                 const std::array<std::int32_t, 3> at = tile_bricks.at(b);
                 AttributeLeaf& result = out[first + s];
-                result.brick = grid_bricks.index((offset[0] >> 3) + at[0], (offset[1] >> 3) + at[1], (offset[2] >> 3) + at[2]);
+                result.brick =
+                    grid_bricks.index((offset[0] >> 3) + at[0], (offset[1] >> 3) + at[1], (offset[2] >> 3) + at[2]);
                 bool leaf_rounded = false;
                 for (int v = 0; v < 512; ++v) {
                     if (!((words[v >> 6] >> (v & 63)) & 1u)) continue;

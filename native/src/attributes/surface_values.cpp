@@ -73,7 +73,8 @@ SurfaceValues::SurfaceValues(const MeshView& mesh, const AttributeSet& wanted) :
             if (mesh.material_textures && !mesh.uvs)
                 for (std::size_t m = 0; m < mesh.palette_count; ++m)
                     if (mesh.material_textures[m])
-                        throw InvalidInput("material " + std::to_string(m) + " has a texture, which needs the mesh's UVs");
+                        throw InvalidInput("material " + std::to_string(m) +
+                                           " has a texture, which needs the mesh's UVs");
         } else {
             throw InvalidInput(
                 "attributes: color needs a colour source: vertex or corner colours, UVs and a texture, or material "
@@ -89,8 +90,9 @@ SurfaceValues::SurfaceValues(const MeshView& mesh, const AttributeSet& wanted) :
 }
 
 const float* SurfaceValues::colorRow(std::uint32_t triangle, int corner) const {
-    const std::size_t row = mesh_.colors_per_corner ? 3 * std::size_t(triangle) + std::size_t(corner)
-                                                    : std::size_t(mesh_.triangles[3 * std::size_t(triangle) + std::size_t(corner)]);
+    const std::size_t row = mesh_.colors_per_corner
+        ? 3 * std::size_t(triangle) + std::size_t(corner)
+        : std::size_t(mesh_.triangles[3 * std::size_t(triangle) + std::size_t(corner)]);
     return colors_ + row * std::size_t(color_stride_);
 }
 
@@ -131,7 +133,7 @@ void SurfaceValues::prepare(std::uint32_t triangle, const std::array<double, 3>&
             double* normal = &out.at[c][offset];
             for (std::size_t a = 0; a < 3; ++a)
                 normal[a] = mesh_.face_normals ? double(mesh_.face_normals[3 * std::size_t(triangle) + a])
-                            : mesh_.normals    ? double(mesh_.normals[3 * std::size_t(index[c]) + a])
+                    : mesh_.normals            ? double(mesh_.normals[3 * std::size_t(index[c]) + a])
                                                : unit_normal[a];
         }
 }
@@ -167,7 +169,7 @@ void meanOfSums(const AttributeGrid& layout, const double* sums, double weight, 
     const double* n = sums + layout.normalOffset();
     const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     const bool direction = length > kCancelledNormalLength * weight;  // the mean's length over the line
-    const double inverse_length = direction ? 1.0 / length : 0.0;  // one division, as for the weight
+    const double inverse_length = direction ? 1.0 / length : 0.0;     // one division, as for the weight
     for (int a = 0; a < 3; ++a) mean[layout.normalOffset() + a] = direction ? float(n[a] * inverse_length) : 0.0f;
 }
 

@@ -24,7 +24,6 @@ struct CornerValues {
     double at[3][kMaxChannels];        // each channel at each corner
     const Texture* texture = nullptr;  // set: the colour channels come from it instead, at the
     double uv[3][2];                   //   UV interpolated from these
-
 };
 
 // Final: the exact methods' calls through a SurfaceValues are direct; the tessellation's go
@@ -54,7 +53,8 @@ public:
     }
     // sums[n] += weight * the interpolated value of channel n: the weight goes into the
     // barycentrics, and the values go straight into the sums (no array in between).
-    void addWeighted(const CornerValues& corners, const std::array<double, 3>& bary, double weight, double* sums) const {
+    void addWeighted(const CornerValues& corners, const std::array<double, 3>& bary, double weight,
+                     double* sums) const {
         const int channels = layout_.channels();
         if (corners.texture) {
             double value[kMaxChannels];
@@ -63,7 +63,8 @@ public:
             return;
         }
         const double w0 = weight * bary[0], w1 = weight * bary[1], w2 = weight * bary[2];
-        for (int n = 0; n < channels; ++n) sums[n] += w0 * corners.at[0][n] + w1 * corners.at[1][n] + w2 * corners.at[2][n];
+        for (int n = 0; n < channels; ++n)
+            sums[n] += w0 * corners.at[0][n] + w1 * corners.at[1][n] + w2 * corners.at[2][n];
     }
 
 private:

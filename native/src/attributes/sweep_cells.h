@@ -92,14 +92,14 @@ void splitAtPlane(const TracedPolygon& in, double at, SweepLines& lines, bool re
             if (cut != SweepLines::kNone) onPlane(cur);
             continue;
         }
-        if (dc < 0) push(below, nb, cur, line);
-        else push(above, na, cur, line);
+        if (dc < 0)
+            push(below, nb, cur, line);
+        else
+            push(above, na, cur, line);
         if ((dc < 0 && dn > 0) || (dc > 0 && dn < 0)) {
             const Point& nxt = in.shape.p[std::size_t(next)];
             Point crossing;
-            const double span = line != SweepLines::kNone
-                                    ? lines.b[line][Axis] - lines.a[line][Axis]
-                                    : 0.0;
+            const double span = line != SweepLines::kNone ? lines.b[line][Axis] - lines.a[line][Axis] : 0.0;
             if (span != 0) {
                 const Point& from = lines.a[line];
                 const Point& to = lines.b[line];

@@ -43,9 +43,9 @@ VoxelRange candidates(const Corners& c, const std::array<int, 3>& clip_lo, const
 // and swept once per region it reaches rather than once per leaf (half as many times on
 // Sponza at 512), and its sweep cuts fewer leaf boundaries.
 constexpr int kRegionLog2 = 2;
-constexpr int kRegionSide = 1 << kRegionLog2;               // leaves per region side
+constexpr int kRegionSide = 1 << kRegionLog2;  // leaves per region side
 constexpr int kRegionLeaves = kRegionSide * kRegionSide * kRegionSide;
-constexpr int kRegionVoxels = kRegionSide * 8;               // voxels per region side
+constexpr int kRegionVoxels = kRegionSide * 8;  // voxels per region side
 
 // Leaf number within its region of tile brick `at`.
 int leafInRegion(const std::array<std::int32_t, 3>& at) {
@@ -62,9 +62,9 @@ struct TileBins {
         std::size_t slot;  // in occupied
         int number;        // leafInRegion
     };
-    std::vector<std::size_t> occupied;                // tile brick indices
+    std::vector<std::size_t> occupied;                 // tile brick indices
     std::vector<std::array<std::int32_t, 3>> regions;  // region coordinates in the tile
-    std::vector<std::size_t> leaves_first;            // regions.size() + 1 offsets into leaves
+    std::vector<std::size_t> leaves_first;             // regions.size() + 1 offsets into leaves
     std::vector<Leaf> leaves;
     std::vector<std::size_t> first;  // regions.size() + 1 offsets into triangles
     std::vector<std::uint32_t> triangles;
@@ -177,7 +177,8 @@ public:
         for (int leaf = 0; leaf < kRegionLeaves; ++leaf) {
             const std::uint64_t* w = words[std::size_t(leaf)];
             if (!w) continue;
-            const std::array<int, 3> corner{8 * (leaf >> (2 * kRegionLog2)), 8 * ((leaf >> kRegionLog2) & (kRegionSide - 1)),
+            const std::array<int, 3> corner{8 * (leaf >> (2 * kRegionLog2)),
+                                            8 * ((leaf >> kRegionLog2) & (kRegionSide - 1)),
                                             8 * (leaf & (kRegionSide - 1))};
             const std::array<std::uint64_t, 3> leaf_columns = columnsOfLeaf(w);
             for (int d = 0; d < 3; ++d) {
@@ -204,7 +205,7 @@ public:
     // The leaf number and the place in its sums of a voxel of the region.
     int leafOf(const Voxel& v) const {
         return (((v[0] - base_[0]) >> 3) << (2 * kRegionLog2)) | (((v[1] - base_[1]) >> 3) << kRegionLog2) |
-               ((v[2] - base_[2]) >> 3);
+            ((v[2] - base_[2]) >> 3);
     }
 
 private:
@@ -221,7 +222,10 @@ public:
     // `sums`: kRegionLeaves * 512 * (channels + 1) zeros, the thread's, handed back zero
     // (takeMeans() clears the set voxels', the only ones written).
     RegionAccumulator(const BackendJob& job, const SurfaceValues& values, bool brute_force, std::vector<double>& sums)
-        : job_(job), values_(values), brute_force_(brute_force), stride_(std::size_t(values.channels() + 1)),
+        : job_(job),
+          values_(values),
+          brute_force_(brute_force),
+          stride_(std::size_t(values.channels() + 1)),
           sums_(sums) {}
 
     void start(const std::array<int, 3>& lo, const std::array<int, 3>& hi,
@@ -370,7 +374,8 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
     for (std::size_t s = 0; s < bins.occupied.size(); ++s) {
         const std::uint64_t* words = bits.data() + bins.occupied[s] * BitGrid::kWordsPerBrick;
         std::size_t count = 0;
-        for (int word = 0; word < BitGrid::kWordsPerBrick; ++word) count += std::size_t(__builtin_popcountll(words[word]));
+        for (int word = 0; word < BitGrid::kWordsPerBrick; ++word)
+            count += std::size_t(__builtin_popcountll(words[word]));
         const std::array<std::int32_t, 3> at = tile_bricks.at(bins.occupied[s]);
         AttributeLeaf& leaf = out[first + s];
         leaf.brick = grid_bricks.index((offset[0] >> 3) + at[0], (offset[1] >> 3) + at[1], (offset[2] >> 3) + at[2]);
@@ -399,9 +404,8 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
                     words[std::size_t(bins.leaves[l].number)] =
                         bits.data() + bins.occupied[bins.leaves[l].slot] * BitGrid::kWordsPerBrick;
                 region.start(lo, hi, words);
-                local_rounded += brute_force
-                                     ? region.accumulate(AllTriangles{std::uint32_t(job.mesh.usable.size())})
-                                     : region.accumulate(bins.of(r));
+                local_rounded += brute_force ? region.accumulate(AllTriangles{std::uint32_t(job.mesh.usable.size())})
+                                             : region.accumulate(bins.of(r));
                 for (std::size_t l = bins.leaves_first[r]; l != bins.leaves_first[r + 1]; ++l) {
                     const TileBins::Leaf& leaf = bins.leaves[l];
                     region.takeMeans(leaf.number, words[std::size_t(leaf.number)],
@@ -417,16 +421,17 @@ TileAttributeCounts computeTileAttributes(const BackendJob& job, const BitGrid& 
 }
 
 void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid, int threads) {
-    std::sort(leaves.begin(), leaves.end(), [](const AttributeLeaf& a, const AttributeLeaf& b) { return a.brick < b.brick; });
+    std::sort(leaves.begin(), leaves.end(),
+              [](const AttributeLeaf& a, const AttributeLeaf& b) { return a.brick < b.brick; });
     // Each leaf's place in the result.
     std::vector<std::size_t> start(leaves.size() + 1, 0);
     for (std::size_t n = 0; n < leaves.size(); ++n) start[n + 1] = start[n] + leaves[n].size();
     // One block with every leaf's values in brick order (the cpu method's, one tile) is the
     // result as it is.
     const bool one_block = !leaves.empty() && leaves[0].block && leaves[0].block->size() == start.back() &&
-                           std::all_of(leaves.begin(), leaves.end(), [&](const AttributeLeaf& leaf) {
-                               return leaf.block == leaves[0].block && leaf.offset == start[std::size_t(&leaf - leaves.data())];
-                           });
+        std::all_of(leaves.begin(), leaves.end(), [&](const AttributeLeaf& leaf) {
+            return leaf.block == leaves[0].block && leaf.offset == start[std::size_t(&leaf - leaves.data())];
+        });
     if (one_block) {
         grid.values = std::move(*leaves[0].block);
         leaves.clear();
@@ -439,7 +444,8 @@ void assembleAttributes(std::vector<AttributeLeaf>& leaves, AttributeGrid& grid,
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 64), [&](const auto& range) {
             for (std::size_t n = range.begin(); n != range.end(); ++n) {
-                std::copy(leaves[n].data(), leaves[n].data() + leaves[n].size(), grid.values.begin() + std::ptrdiff_t(start[n]));
+                std::copy(leaves[n].data(), leaves[n].data() + leaves[n].size(),
+                          grid.values.begin() + std::ptrdiff_t(start[n]));
                 std::vector<float>().swap(leaves[n].values);
             }
         });

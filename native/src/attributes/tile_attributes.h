@@ -7,15 +7,15 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/attribute_leaf.h"
 #include "attributes/clip_to_voxel.h"
 #include "attributes/surface_values.h"
+#include "core/attribute_leaf.h"
 #include "core/backends.h"
 
 namespace hyvox::attributes {
 
 struct TileAttributeCounts {
-    std::uint64_t pieces = 0;          // (triangle, voxel) pairs clipped to a non-empty piece
+    std::uint64_t pieces = 0;            // (triangle, voxel) pairs clipped to a non-empty piece
     std::uint64_t voxels_unreached = 0;  // set voxels no clipped piece reached, even with the margin (value 0)
     std::uint64_t leaves_rounded = 0;    // leaves where the kTouchMargin fallback ran
 };

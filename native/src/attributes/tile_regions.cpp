@@ -9,7 +9,7 @@ namespace hyvox::attributes {
 using Int3 = std::array<std::int32_t, 3>;
 
 TileRegions::TileRegions(const SparseGrid& solid, const std::vector<std::uint64_t>& valued_tile_bricks)
-: bricks_(solid.bricks()) {
+    : bricks_(solid.bricks()) {
     for (int a = 0; a < 3; ++a) nodes_[a] = (bricks_.counts[a] + kNodeBricks - 1) / kNodeBricks;
     node_of_.assign(std::size_t(nodes_[0]) * std::size_t(nodes_[1]) * std::size_t(nodes_[2]), -1);
     std::size_t v = 0;
@@ -64,7 +64,8 @@ TileRegions::TileRegions(const SparseGrid& solid, const std::vector<std::uint64_
                 word &= word - 1;
                 regions_.push_back({{n[0] * kNodeBricks + (bit >> 8), n[1] * kNodeBricks + ((bit >> 4) & 15),
                                      n[2] * kNodeBricks + (bit & 15)},
-                                    1, 1});
+                                    1,
+                                    1});
             }
         }
     });

@@ -19,8 +19,8 @@ class TileRegions {
 public:
     struct Region {
         std::array<std::int32_t, 3> lo;  // first brick
-        std::int32_t side;  // bricks: 1, 16 or 512
-        int level;          // 1, 2, 3
+        std::int32_t side;               // bricks: 1, 16 or 512
+        int level;                       // 1, 2, 3
     };
 
     // The tile bricks of `solid` (finished) but `valued_tile_bricks` (sorted).
@@ -63,9 +63,10 @@ private:
         return ((at[0] % kNodeBricks) << 8) | ((at[1] % kNodeBricks) << 4) | (at[2] % kNodeBricks);
     }
     std::uint64_t topKey(const std::array<std::int32_t, 3>& n) const {
-        const std::uint64_t tops_y = std::uint64_t(nodes_[1] / kTopNodes + 1), tops_z = std::uint64_t(nodes_[2] / kTopNodes + 1);
+        const std::uint64_t tops_y = std::uint64_t(nodes_[1] / kTopNodes + 1),
+                            tops_z = std::uint64_t(nodes_[2] / kTopNodes + 1);
         return (std::uint64_t(n[0] / kTopNodes) * tops_y + std::uint64_t(n[1] / kTopNodes)) * tops_z +
-               std::uint64_t(n[2] / kTopNodes);
+            std::uint64_t(n[2] / kTopNodes);
     }
     template <typename F>
     void forEachNode(F&& f) {
@@ -83,6 +84,5 @@ private:
     std::vector<Node> node_;
     std::vector<Region> regions_;
 };
-
 
 }  // namespace hyvox::attributes

@@ -54,7 +54,8 @@ std::vector<float> valuesInCoordsOrder(const SparseGrid& occupancy, const Attrib
         }
         for (std::int32_t x = lo[0]; x < hi[0]; ++x)
             for (std::int32_t y = lo[1]; y < hi[1]; ++y)
-                for (std::int32_t z = lo[2]; z < hi[2]; ++z) region_of.emplace_back(bricks.index(x, y, z), std::uint32_t(r));
+                for (std::int32_t z = lo[2]; z < hi[2]; ++z)
+                    region_of.emplace_back(bricks.index(x, y, z), std::uint32_t(r));
     }
     std::sort(region_of.begin(), region_of.end());
     const std::vector<ValuedBrick> valued = valuedBricks(occupancy, attributes);

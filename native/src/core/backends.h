@@ -37,7 +37,7 @@ struct BackendJob {
     // The whole mesh (usable: every usable triangle), for per-vertex attributes that average
     // over a vertex's triangles (the tessellation's normals): the same in every tile.
     const ValidatedMesh& whole_mesh;
-    const GridSpec& grid;       // the whole grid
+    const GridSpec& grid;  // the whole grid
     const Tile& tile;
     const VoxelizeOptions& options;
     Interrupter* interrupter;  // may be null; percent is the tile's own 0..100
@@ -49,16 +49,16 @@ struct BackendJob {
 };
 
 struct TileOutput {
-    BitGrid bits;                    // dims = tile.dims
-    std::vector<VoxelCount> counts;  // multi-valued methods, grid coordinates
-    std::vector<AttributeLeaf> attributes;  // with job.attributes: every set voxel's values
-    std::uint64_t attribute_voxels_unreached = 0;        // set voxels given no value (0)
-    std::vector<VoxelPiece> pieces;          // with job.clip_pieces: every pair's piece
+    BitGrid bits;                                  // dims = tile.dims
+    std::vector<VoxelCount> counts;                // multi-valued methods, grid coordinates
+    std::vector<AttributeLeaf> attributes;         // with job.attributes: every set voxel's values
+    std::uint64_t attribute_voxels_unreached = 0;  // set voxels given no value (0)
+    std::vector<VoxelPiece> pieces;                // with job.clip_pieces: every pair's piece
 };
 
-void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats);           // src/cpu/
-void runReferenceBackend(const BackendJob& job, TileOutput& out, Stats& stats);     // src/reference/
-void runHybridBackend(const BackendJob& job, TileOutput& out, Stats& stats);        // src/hybrid/: triangle|fragment|hybrid
+void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats);        // src/cpu/
+void runReferenceBackend(const BackendJob& job, TileOutput& out, Stats& stats);  // src/reference/
+void runHybridBackend(const BackendJob& job, TileOutput& out, Stats& stats);  // src/hybrid/: triangle|fragment|hybrid
 void runTessellationBackend(const BackendJob& job, TileOutput& out, Stats& stats);  // src/tessellation/
 
 }  // namespace hyvox

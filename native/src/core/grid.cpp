@@ -42,7 +42,8 @@ void refuseSpeckMesh(double longest_mesh_side, double voxel_size, bool from_boun
     throw InvalidInput(why + " is more than " + shortNumber(kMaxVoxelsPerMeshSide) +
                        " times the mesh's longest side (" + shortNumber(longest_mesh_side) +
                        "): the mesh would be a speck in one voxel, below what the GPU methods resolve; use a "
-                       "voxel size of at most " + shortNumber(kMaxVoxelsPerMeshSide * longest_mesh_side));
+                       "voxel size of at most " +
+                       shortNumber(kMaxVoxelsPerMeshSide * longest_mesh_side));
 }
 
 }  // namespace
@@ -65,12 +66,12 @@ GridSpec makeGrid(const Bounds& mesh_bounds, const GridOptions& options) {
     if (options.voxel_size) {
         grid.voxel_size = *options.voxel_size;
     } else {
-        if (!(longest > 0.0))
-            throw InvalidInput("the mesh has zero extent; give a voxel size instead of a resolution");
+        if (!(longest > 0.0)) throw InvalidInput("the mesh has zero extent; give a voxel size instead of a resolution");
         grid.voxel_size = longest / options.resolution;
     }
     double longest_mesh_side = 0;
-    for (int a = 0; a < 3; ++a) longest_mesh_side = std::max(longest_mesh_side, mesh_bounds.max[a] - mesh_bounds.min[a]);
+    for (int a = 0; a < 3; ++a)
+        longest_mesh_side = std::max(longest_mesh_side, mesh_bounds.max[a] - mesh_bounds.min[a]);
     refuseSpeckMesh(longest_mesh_side, grid.voxel_size, !options.voxel_size);
     const std::array<double, 3> origin = options.origin.value_or(bounds.min);
     for (int a = 0; a < 3; ++a) {

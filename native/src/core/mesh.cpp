@@ -78,25 +78,27 @@ std::string coordinateText(float x) {
 
 void checkVerticesFinite(const MeshView& mesh) {
     std::vector<std::string> problems(chunkCount(mesh.vertex_count));
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, problems.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
-            const std::size_t end = std::min(mesh.vertex_count, (chunk + 1) * kChunk);
-            // The cheap test over the whole chunk first; the per-vertex search runs only on
-            // chunks where it fails.
-            bool all_usable = true;
-            for (std::size_t i = 3 * chunk * kChunk; i < 3 * end; ++i) all_usable &= usableCoordinate(mesh.positions[i]);
-            if (all_usable) continue;
-            for (std::size_t v = chunk * kChunk; v < end && problems[chunk].empty(); ++v)
-                for (int a = 0; a < 3; ++a)
-                    if (!usableCoordinate(mesh.positions[3 * v + a])) {
-                        const float x = mesh.positions[3 * v + a];
-                        problems[chunk] = "vertex " + std::to_string(v) + " has a non-finite coordinate (" +
-                                          coordinateText(x) +
-                                          (std::isfinite(x) ? ", the largest float: Inf as Blender stores it)" : ")");
-                        break;
-                    }
-        }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, problems.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
+                const std::size_t end = std::min(mesh.vertex_count, (chunk + 1) * kChunk);
+                // The cheap test over the whole chunk first; the per-vertex search runs only on
+                // chunks where it fails.
+                bool all_usable = true;
+                for (std::size_t i = 3 * chunk * kChunk; i < 3 * end; ++i)
+                    all_usable &= usableCoordinate(mesh.positions[i]);
+                if (all_usable) continue;
+                for (std::size_t v = chunk * kChunk; v < end && problems[chunk].empty(); ++v)
+                    for (int a = 0; a < 3; ++a)
+                        if (!usableCoordinate(mesh.positions[3 * v + a])) {
+                            const float x = mesh.positions[3 * v + a];
+                            problems[chunk] = "vertex " + std::to_string(v) + " has a non-finite coordinate (" +
+                                coordinateText(x) +
+                                (std::isfinite(x) ? ", the largest float: Inf as Blender stores it)" : ")");
+                            break;
+                        }
+            }
+        });
     throwFirstProblem(problems);
 }
 
@@ -109,7 +111,8 @@ struct TriangleChunk {
     std::string problem;
 };
 
-void checkTriangles(const MeshView& mesh, std::size_t begin, std::size_t end, std::uint32_t* usable, TriangleChunk& out) {
+void checkTriangles(const MeshView& mesh, std::size_t begin, std::size_t end, std::uint32_t* usable,
+                    TriangleChunk& out) {
     const double inf = std::numeric_limits<double>::infinity();
     double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};
     for (std::size_t t = begin; t < end; ++t) {
@@ -123,7 +126,7 @@ void checkTriangles(const MeshView& mesh, std::size_t begin, std::size_t end, st
         for (int c = 0; c < 3; ++c)
             if (idx[c] >= mesh.vertex_count) {
                 out.problem = "triangle " + std::to_string(t) + " refers to vertex " + std::to_string(idx[c]) +
-                              ", but the mesh has only " + std::to_string(mesh.vertex_count) + " vertices";
+                    ", but the mesh has only " + std::to_string(mesh.vertex_count) + " vertices";
                 return;
             }
         const float* a = mesh.positions + 3 * std::size_t(idx[0]);
@@ -169,14 +172,15 @@ ValidatedMesh validate(const MeshView& mesh, Interrupter* interrupter) {
     adviseHugePages(out.usable.data(), mesh.triangle_count * sizeof(std::uint32_t));
     out.usable.resize(mesh.triangle_count);
     std::vector<TriangleChunk> chunks(chunkCount(mesh.triangle_count));
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
-            throwIfInterrupted(interrupter);
-            const std::size_t begin = chunk * kChunk;
-            checkTriangles(mesh, begin, std::min(mesh.triangle_count, begin + kChunk), out.usable.data() + begin,
-                           chunks[chunk]);
-        }
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
+                              throwIfInterrupted(interrupter);
+                              const std::size_t begin = chunk * kChunk;
+                              checkTriangles(mesh, begin, std::min(mesh.triangle_count, begin + kChunk),
+                                             out.usable.data() + begin, chunks[chunk]);
+                          }
+                      });
     for (const TriangleChunk& chunk : chunks)
         if (!chunk.problem.empty()) throw InvalidInput(chunk.problem);
 
@@ -187,7 +191,8 @@ ValidatedMesh validate(const MeshView& mesh, Interrupter* interrupter) {
     for (std::size_t c = 0; c < chunks.size(); ++c) {
         const TriangleChunk& chunk = chunks[c];
         if (kept != c * kChunk && chunk.usable_count > 0)
-            std::memmove(out.usable.data() + kept, out.usable.data() + c * kChunk, chunk.usable_count * sizeof(std::uint32_t));
+            std::memmove(out.usable.data() + kept, out.usable.data() + c * kChunk,
+                         chunk.usable_count * sizeof(std::uint32_t));
         kept += chunk.usable_count;
         out.degenerate_count += chunk.degenerate_count;
         if (chunk.usable_count == 0) continue;

@@ -48,8 +48,9 @@ std::vector<std::string> searchFolders() {
 void checkBuildId(void* handle, const std::string& path, const std::string& purpose) {
     const auto* id = static_cast<const char*>(::dlsym(handle, "hyvox_plugin_build_id"));
     if (id && std::strcmp(id, HYVOX_BUILD_ID) == 0) return;
-    const std::string what = id ? std::string("is from another hyvox build (") + id + "; this hyvox is " + HYVOX_BUILD_ID + ")"
-                                : std::string("has no hyvox build id (not a hyvox plugin)");
+    const std::string what = id
+        ? std::string("is from another hyvox build (") + id + "; this hyvox is " + HYVOX_BUILD_ID + ")"
+        : std::string("has no hyvox build id (not a hyvox plugin)");
     ::dlclose(handle);
     throw BackendError(purpose + " needs " + path + ", which " + what +
                        ": install hyvox and its plugins from one build");

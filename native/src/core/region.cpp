@@ -27,7 +27,8 @@ bool parse(const std::string& text, RegionOptions& region) {
     const std::size_t slash = text.find('/');
     if (slash == std::string::npos) return false;
     int index = 0, count = 0;
-    if (!smallWholeNumber(text.substr(0, slash), index) || !smallWholeNumber(text.substr(slash + 1), count)) return false;
+    if (!smallWholeNumber(text.substr(0, slash), index) || !smallWholeNumber(text.substr(slash + 1), count))
+        return false;
     if (count < 1 || count > kMaxRegions || index >= count) return false;
     region.index = index;
     region.count = count;
@@ -56,8 +57,7 @@ RegionBox regionBox(const GridSpec& grid, const RegionOptions& region) {
     if (region.count > leaves)
         throw InvalidInput("region " + formatRegion(region) + ": the " + grid.dimsText() + " grid has " +
                            std::to_string(leaves) + " leaves (8 voxels each) along its longest side (" +
-                           kAxes[box.axis] + "), so it can be cut into at most " + std::to_string(leaves) +
-                           " regions");
+                           kAxes[box.axis] + "), so it can be cut into at most " + std::to_string(leaves) + " regions");
     const std::int64_t first = std::int64_t(region.index) * leaves / region.count;
     const std::int64_t end = std::int64_t(region.index + 1) * leaves / region.count;
     box.lo[box.axis] = std::int32_t(first * BrickLayout::kSide);

@@ -25,7 +25,8 @@ bool byBrick(const SparseGrid::Leaf& a, const SparseGrid::Leaf& b) { return a.br
 // Each voxel of a set tile brick, in the leaf layout.
 void forEachVoxelOfBrick(const std::array<std::int32_t, 3>& at, std::vector<std::array<std::int32_t, 3>>& out) {
     for (int x = 0; x < 8; ++x)
-        for (int bit = 0; bit < 64; ++bit) out.push_back({at[0] * 8 + x, at[1] * 8 + (bit >> 3), at[2] * 8 + (bit & 7)});
+        for (int bit = 0; bit < 64; ++bit)
+            out.push_back({at[0] * 8 + x, at[1] * 8 + (bit >> 3), at[2] * 8 + (bit & 7)});
 }
 
 }  // namespace

@@ -28,7 +28,8 @@ Texture decoded(const Pixel* pixels, int width, int height, int channels, double
     out.texels.resize(count);
     // 256 or 65536 levels: one table instead of a pow per texel.
     std::vector<float> table(std::size_t(maximum) + 1);
-    for (std::size_t level = 0; level < table.size(); ++level) table[level] = float(srgbToLinear(double(level) / maximum));
+    for (std::size_t level = 0; level < table.size(); ++level)
+        table[level] = float(srgbToLinear(double(level) / maximum));
     // Texel by texel, channel by channel (no n % channels per value).
     const std::size_t stride = std::size_t(channels);
     for (std::size_t texel = 0; texel < count; texel += stride) {
@@ -74,7 +75,8 @@ std::array<float, 4> Texture::sample(double u, double v) const {
     const int xa = wrap(x0, width), ya = wrap(y0, height);
     const int xb = xa + 1 == width ? 0 : xa + 1, yb = ya + 1 == height ? 0 : ya + 1;  // no integer division
     auto texel = [&](int tx, int ty, int c) {
-        return double(texels[(std::size_t(ty) * std::size_t(width) + std::size_t(tx)) * std::size_t(channels) + std::size_t(c)]);
+        return double(
+            texels[(std::size_t(ty) * std::size_t(width) + std::size_t(tx)) * std::size_t(channels) + std::size_t(c)]);
     };
     std::array<float, 4> out{0, 0, 0, 1};
     for (int c = 0; c < channels; ++c) {

@@ -15,13 +15,13 @@
 
 #include "core/backends.h"
 #include "core/stopwatch.h"
-#include "hyvox/zero_page_allocator.h"
 #include "cpu/mark_voxels.h"
 #include "cpu/rasterize_planeless.h"
 #include "cpu/rasterize_small.h"
 #include "cpu/rasterize_triangle.h"
 #include "cpu/triangle_setup.h"
 #include "cpu/vertex_cells.h"
+#include "hyvox/zero_page_allocator.h"
 
 namespace hyvox {
 namespace {
@@ -252,8 +252,18 @@ void runCpuBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     tbb::task_arena arena(threads);
     arena.execute([&] {
         const VertexCache cache = vertexCache(mesh, spec);
-        const TileWork work{job, mesh, spec, grid, offset, last, mode, cache.cells.get(), cache.voxel.get(),
-                            done, split_triangles, already_covered};
+        const TileWork work{job,
+                            mesh,
+                            spec,
+                            grid,
+                            offset,
+                            last,
+                            mode,
+                            cache.cells.get(),
+                            cache.voxel.get(),
+                            done,
+                            split_triangles,
+                            already_covered};
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(0, usable.size(), kTrianglesPerChunk),
             [&](const tbb::blocked_range<std::size_t>& chunk) { voxelizeChunk(work, chunk.begin(), chunk.end()); });

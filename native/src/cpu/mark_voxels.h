@@ -56,7 +56,8 @@ public:
             const std::uint64_t rows = (~std::uint64_t(0) >> (56 - 8 * (jz - ja))) << (8 * ja);
             for (int kb = k0 >> 3; kb <= k1 >> 3; ++kb) {
                 const int ka = std::max(k0, kb << 3) & 7, kz = std::min(k1, (kb << 3) + 7) & 7;
-                const std::uint64_t columns = ((std::uint64_t(2) << kz) - (std::uint64_t(1) << ka)) * 0x0101010101010101ull;
+                const std::uint64_t columns =
+                    ((std::uint64_t(2) << kz) - (std::uint64_t(1) << ka)) * 0x0101010101010101ull;
                 const std::uint64_t mask = rows & columns;
                 for (int i = i0; i <= i1; ++i) {
                     const std::uint64_t* word = grid_.data() + grid_.wordIndex(i, jb << 3, kb << 3);

@@ -71,8 +71,8 @@ __attribute__((always_inline)) inline std::uint64_t acceptedFixed(const Triangle
         const Ints w0 = ceilToInts(clampCoords(splat(ow) - (d + splat(t.depth_lo_offset)) * splat(inv_nw))) - 1;
         const Ints w1 = floorToInts(clampCoords(splat(ow) - (d + splat(t.depth_hi_offset)) * splat(inv_nw)));
         // Each lane's bit of the answer (smallBoxBit in grid order) at dw = 0.
-        const Masks lane_bits = Masks{1, 1, 1, 1} << (Masks{du(0), du(1), du(2), du(3)} * u_step +
-                                                       Masks{dv(0), dv(1), dv(2), dv(3)} * v_step);
+        const Masks lane_bits = Masks{1, 1, 1, 1}
+            << (Masks{du(0), du(1), du(2), du(3)} * u_step + Masks{dv(0), dv(1), dv(2), dv(3)} * v_step);
         Doubles vw_row[3], wu_col[3];
         for (int i = 0; i < 3; ++i) {
             vw_row[i] = splat(t.vw[i].na) * (pv - splat(t.vw[i].va)) + splat(t.vw[i].offset);
@@ -100,7 +100,8 @@ __attribute__((always_inline)) inline std::uint64_t acceptedFixed(const Triangle
 #if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("avx2", "default")))
 #endif
-std::uint64_t acceptedSmallCandidates(const TriangleSetup& t) {
+std::uint64_t
+acceptedSmallCandidates(const TriangleSetup& t) {
     // One instance per candidate count along each axis (1 to 4): a triangle that lies within
     // one voxel's range along one axis tests half the voxels a 2 x 2 x 2 one does.
 #define HYVOX_SIZE(NU, NV, NW) \

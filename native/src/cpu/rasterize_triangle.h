@@ -52,8 +52,7 @@ inline void rasterizeRows(const TriangleSetup& t, int row_begin, int row_end, Wo
         for (int pu = pu0; pu <= pu1; ++pu) {
             const double pud = pu;
             if (t.uv[0].na * (pud - t.uv[0].va) + uv_row[0] < 0.0 ||
-                t.uv[1].na * (pud - t.uv[1].va) + uv_row[1] < 0.0 ||
-                t.uv[2].na * (pud - t.uv[2].va) + uv_row[2] < 0.0)
+                t.uv[1].na * (pud - t.uv[1].va) + uv_row[1] < 0.0 || t.uv[2].na * (pud - t.uv[2].va) + uv_row[2] < 0.0)
                 continue;
             // Depth range: the voxels of this column that the plane meets (thin: the one or,
             // on a voxel plane, two voxels holding the plane's depth at the column centre).

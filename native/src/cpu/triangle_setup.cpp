@@ -156,8 +156,9 @@ SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mod
 #if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("avx2", "default")))
 #endif
-SetupKind setupTriangle(const Corner3& c0, const Corner3& c1, const Corner3& c2, Mode mode, const CandidateRange& range,
-                        TriangleSetup& out) {
+SetupKind
+setupTriangle(const Corner3& c0, const Corner3& c1, const Corner3& c2, Mode mode, const CandidateRange& range,
+              TriangleSetup& out) {
     return mode == Mode::Thin ? setup<true>(c0, c1, c2, range, out) : setup<false>(c0, c1, c2, range, out);
 }
 

@@ -17,7 +17,7 @@
 namespace hyvox::cpu {
 
 struct VertexCell {
-    std::int32_t first[3];  // per axis: ceil(x) - 1, the lowest voxel whose closed box holds x
+    std::int32_t first[3];   // per axis: ceil(x) - 1, the lowest voxel whose closed box holds x
     std::uint32_t on_plane;  // bit a: x[a] is a whole number, so voxel first[a] + 1 holds it too
 };
 
@@ -33,13 +33,14 @@ inline VertexCell vertexCell(const std::array<double, 3>& voxel) {
 
 // The triangle's candidate range (triangle_setup.h), from its corners' cells.
 inline CandidateRange cellRange(const VertexCell& a, const VertexCell& b, const VertexCell& c,
-                                const std::array<std::int32_t, 3>& clip_lo, const std::array<std::int32_t, 3>& clip_hi) {
+                                const std::array<std::int32_t, 3>& clip_lo,
+                                const std::array<std::int32_t, 3>& clip_hi) {
     CandidateRange r;
     for (int axis = 0; axis < 3; ++axis) {
         const int first = std::min(std::min(a.first[axis], b.first[axis]), c.first[axis]);
-        const int last = std::max(std::max(a.first[axis] + int(a.on_plane >> axis & 1u),
-                                           b.first[axis] + int(b.on_plane >> axis & 1u)),
-                                  c.first[axis] + int(c.on_plane >> axis & 1u));
+        const int last = std::max(
+            std::max(a.first[axis] + int(a.on_plane >> axis & 1u), b.first[axis] + int(b.on_plane >> axis & 1u)),
+            c.first[axis] + int(c.on_plane >> axis & 1u));
         r.lo[axis] = std::max(clip_lo[axis], first);
         r.hi[axis] = std::min(clip_hi[axis], last);
         r.single[axis] = first == last;

@@ -50,8 +50,7 @@ double BitTiling::run(const Buffer& bits, BitGrid* out, const std::function<void
     double readback_ms = 0;
     for (const BitTile& tile : tiles_) {
         work(tile);
-        if (out)
-            readback_ms += readBack(bits, tile, *out);
+        if (out) readback_ms += readBack(bits, tile, *out);
     }
     return readback_ms;
 }

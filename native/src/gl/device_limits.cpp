@@ -7,8 +7,7 @@
 namespace hyvox::gl {
 
 std::uint64_t maxStorageBlockBytes(const std::string& device) {
-    return GlWorker::get(device).run(
-        [] { return std::uint64_t(glLimit(GL_MAX_SHADER_STORAGE_BLOCK_SIZE)); });
+    return GlWorker::get(device).run([] { return std::uint64_t(glLimit(GL_MAX_SHADER_STORAGE_BLOCK_SIZE)); });
 }
 
 }  // namespace hyvox::gl

@@ -15,25 +15,20 @@ std::vector<EGLDeviceEXT> queryDevices() {
     if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") &&
         !epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base"))
         return {};
-    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device"))
-        return {};
+    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) return {};
     EGLint count = 0;
-    if (!eglQueryDevicesEXT(0, nullptr, &count) || count <= 0)
-        return {};
+    if (!eglQueryDevicesEXT(0, nullptr, &count) || count <= 0) return {};
     std::vector<EGLDeviceEXT> devices(static_cast<std::size_t>(count));
-    if (!eglQueryDevicesEXT(count, devices.data(), &count))
-        return {};
+    if (!eglQueryDevicesEXT(count, devices.data(), &count)) return {};
     devices.resize(static_cast<std::size_t>(count));
     return devices;
 }
 
 bool hasToken(const char* list, const char* token) {
-    if (!list)
-        return false;
+    if (!list) return false;
     const std::size_t n = std::strlen(token);
     for (const char* p = list; (p = std::strstr(p, token)) != nullptr; p += n)
-        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0'))
-            return true;
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
     return false;
 }
 
@@ -44,21 +39,18 @@ EglDeviceInfo describe(EGLDeviceEXT device, int index) {
     info.software = hasToken(extensions, "EGL_MESA_device_software");
     if (hasToken(extensions, "EGL_EXT_device_drm")) {
         const char* node = eglQueryDeviceStringEXT(device, EGL_DRM_DEVICE_FILE_EXT);
-        if (node)
-            info.name = node;
+        if (node) info.name = node;
     }
-    if (info.name.empty())
-        info.name = info.software ? "software" : "unnamed";
+    if (info.name.empty()) info.name = info.software ? "software" : "unnamed";
     return info;
 }
 
 std::string deviceList(const std::vector<EglDeviceInfo>& devices) {
-    if (devices.empty())
-        return "no EGL devices (is EGL_EXT_platform_device available?)";
+    if (devices.empty()) return "no EGL devices (is EGL_EXT_platform_device available?)";
     std::string text;
     for (const auto& d : devices)
         text += (text.empty() ? "" : ", ") + std::to_string(d.index) + ": " + d.name +
-                (d.software ? " (software)" : " (hardware)");
+            (d.software ? " (software)" : " (hardware)");
     return text;
 }
 
@@ -115,26 +107,22 @@ bool tryCreate(EGLDeviceEXT device, EGLDisplay& display, EGLContext& context, st
 std::vector<EglDeviceInfo> listEglDevices() {
     std::vector<EglDeviceInfo> out;
     const auto devices = queryDevices();
-    for (std::size_t i = 0; i < devices.size(); ++i)
-        out.push_back(describe(devices[i], int(i)));
+    for (std::size_t i = 0; i < devices.size(); ++i) out.push_back(describe(devices[i], int(i)));
     return out;
 }
 
 EglContext::EglContext(const std::string& selection) {
     const auto devices = queryDevices();
     std::vector<EglDeviceInfo> infos;
-    for (std::size_t i = 0; i < devices.size(); ++i)
-        infos.push_back(describe(devices[i], int(i)));
+    for (std::size_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], int(i)));
 
     // The order to try: an explicit index alone; otherwise hardware first, then software.
     std::vector<int> order;
     if (selection.empty() || selection == "auto" || selection == "software") {
         for (const auto& d : infos)
-            if (!d.software && selection != "software")
-                order.push_back(d.index);
+            if (!d.software && selection != "software") order.push_back(d.index);
         for (const auto& d : infos)
-            if (d.software)
-                order.push_back(d.index);
+            if (d.software) order.push_back(d.index);
     } else {
         char* end = nullptr;
         const long index = std::strtol(selection.c_str(), &end, 10);
@@ -177,8 +165,7 @@ EglContext::EglContext(const std::string& selection) {
 }
 
 EglContext::~EglContext() {
-    if (!context_)
-        return;
+    if (!context_) return;
     eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(display_, context_);
     eglReleaseThread();

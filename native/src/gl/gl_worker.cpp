@@ -41,8 +41,7 @@ GlWorker& GlWorker::get(const std::string& device) {
     const std::string selection = device.empty() ? "auto" : device;  // one worker for both spellings
     std::lock_guard<std::mutex> lock(registry_mutex);
     auto found = registry->find(selection);
-    if (found != registry->end())
-        return *found->second;
+    if (found != registry->end()) return *found->second;
     // Set before the first context is made: a fork while it is being made is refused too.
     pid_t none = 0;
     g_gl_process.compare_exchange_strong(none, ::getpid());

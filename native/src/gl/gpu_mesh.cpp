@@ -23,8 +23,7 @@ std::uint64_t fingerprintOf(const void* data, std::size_t bytes, std::uint64_t h
         std::memcpy(&word, p + i, 8);
         h = mix(h, word);
     }
-    for (; i < bytes; ++i)
-        h = mix(h, p[i]);
+    for (; i < bytes; ++i) h = mix(h, p[i]);
     return h;
 }
 
@@ -48,8 +47,7 @@ GpuMesh makeGpuMesh(const ValidatedMesh& mesh, const GridSpec& grid, const std::
     }
     out.triangles.reserve(mesh.usable.size() * 3);
     for (std::uint32_t t : mesh.usable)
-        for (int c = 0; c < 3; ++c)
-            out.triangles.push_back(view.triangles[3 * std::size_t(t) + c]);
+        for (int c = 0; c < 3; ++c) out.triangles.push_back(view.triangles[3 * std::size_t(t) + c]);
     // Of the whole mesh (not the tile's triangles): every tile of one run shares it.
     std::uint64_t h = mix(view.vertex_count, view.triangle_count);
     h = fingerprintOf(view.positions, view.vertex_count * 3 * sizeof(float), h);
@@ -61,8 +59,7 @@ TriangleCorners triangleCorners(const GpuMesh& mesh, std::size_t t) {
     TriangleCorners p;
     for (int c = 0; c < 3; ++c) {
         const GpuVertex& v = mesh.vertices[mesh.triangles[3 * t + c]];
-        for (int a = 0; a < 3; ++a)
-            p[c][a] = double(v.cell[a]) + double(v.fraction[a]);
+        for (int a = 0; a < 3; ++a) p[c][a] = double(v.cell[a]) + double(v.fraction[a]);
     }
     return p;
 }
@@ -70,8 +67,7 @@ TriangleCorners triangleCorners(const GpuMesh& mesh, std::size_t t) {
 double projectedArea(const TriangleCorners& p) {
     const double e0[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
     const double e1[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
-    const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2],
-                         e0[0] * e1[1] - e0[1] * e1[0]};
+    const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
     return 0.5 * std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
 }
 

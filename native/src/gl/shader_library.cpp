@@ -12,10 +12,8 @@ namespace {
 
 void appendResolved(const std::string& name, const std::string& dir, ResolvedSource& out, std::set<std::string>& seen,
                     int depth) {
-    if (depth > 16)
-        throw BackendError("shader include depth exceeded at '" + name + "'");
-    if (!seen.insert(name).second)
-        return;  // include once
+    if (depth > 16) throw BackendError("shader include depth exceeded at '" + name + "'");
+    if (!seen.insert(name).second) return;  // include once
     const int number = int(out.files.size());
     out.files.push_back(name);
     std::istringstream in(shaderText(name, dir));
@@ -41,27 +39,19 @@ void appendResolved(const std::string& name, const std::string& dir, ResolvedSou
 
 std::string stageName(GLenum stage) {
     switch (stage) {
-        case GL_COMPUTE_SHADER:
-            return "compute";
-        case GL_VERTEX_SHADER:
-            return "vertex";
-        case GL_TESS_CONTROL_SHADER:
-            return "tessellation control";
-        case GL_TESS_EVALUATION_SHADER:
-            return "tessellation evaluation";
-        case GL_GEOMETRY_SHADER:
-            return "geometry";
-        case GL_FRAGMENT_SHADER:
-            return "fragment";
-        default:
-            return "shader";
+        case GL_COMPUTE_SHADER: return "compute";
+        case GL_VERTEX_SHADER: return "vertex";
+        case GL_TESS_CONTROL_SHADER: return "tessellation control";
+        case GL_TESS_EVALUATION_SHADER: return "tessellation evaluation";
+        case GL_GEOMETRY_SHADER: return "geometry";
+        case GL_FRAGMENT_SHADER: return "fragment";
+        default: return "shader";
     }
 }
 
 std::string fileList(const std::vector<std::string>& files) {
     std::string text;
-    for (std::size_t i = 0; i < files.size(); ++i)
-        text += (i ? ", " : "") + std::to_string(i) + "=" + files[i];
+    for (std::size_t i = 0; i < files.size(); ++i) text += (i ? ", " : "") + std::to_string(i) + "=" + files[i];
     return text;
 }
 
@@ -71,14 +61,12 @@ std::string shaderText(const std::string& name, const std::string& dir) {
     if (dir.empty()) {
         const auto& embedded = embeddedShaders();
         const auto found = embedded.find(name);
-        if (found == embedded.end())
-            throw BackendError("shader '" + name + "' is not embedded in this build");
+        if (found == embedded.end()) throw BackendError("shader '" + name + "' is not embedded in this build");
         return found->second;
     }
     const std::string path = dir + "/" + name;
     std::ifstream file(path, std::ios::binary);
-    if (!file)
-        throw BackendError("cannot read shader '" + path + "' (shader folder from GlOptions::shader_dir)");
+    if (!file) throw BackendError("cannot read shader '" + path + "' (shader folder from GlOptions::shader_dir)");
     std::ostringstream text;
     text << file.rdbuf();
     return text.str();
@@ -119,16 +107,14 @@ Program buildProgram(const std::vector<ShaderStage>& stages, const std::string& 
     glLinkProgram(program.id());
     GLint ok = GL_FALSE;
     glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
-    for (const auto& shader : shaders)
-        glDetachShader(program.id(), shader.id());
+    for (const auto& shader : shaders) glDetachShader(program.id(), shader.id());
     if (!ok) {
         GLint length = 0;
         glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
         std::string log(std::size_t(length > 0 ? length : 1), '\0');
         glGetProgramInfoLog(program.id(), GLsizei(log.size()), nullptr, log.data());
         std::string names;
-        for (const auto& s : stages)
-            names += (names.empty() ? "" : " + ") + folder + "/" + s.file;
+        for (const auto& s : stages) names += (names.empty() ? "" : " + ") + folder + "/" + s.file;
         throw BackendError("linking " + names + " failed:\n" + log.c_str());
     }
     return program;
@@ -137,13 +123,10 @@ Program buildProgram(const std::vector<ShaderStage>& stages, const std::string& 
 const Program& ProgramCache::get(const std::vector<ShaderStage>& stages, const std::string& defines,
                                  const std::string& dir) {
     std::string key = defines;
-    for (const auto& s : stages)
-        key += "|" + std::to_string(s.stage) + ":" + s.file;
-    if (!dir.empty())
-        return uncached_[key] = buildProgram(stages, defines, dir);
+    for (const auto& s : stages) key += "|" + std::to_string(s.stage) + ":" + s.file;
+    if (!dir.empty()) return uncached_[key] = buildProgram(stages, defines, dir);
     auto found = programs_.find(key);
-    if (found != programs_.end())
-        return found->second;
+    if (found != programs_.end()) return found->second;
     return programs_.emplace(key, buildProgram(stages, defines, dir)).first->second;
 }
 

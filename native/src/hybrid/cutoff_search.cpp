@@ -43,8 +43,7 @@ CutoffSearch cachedCutoff(const std::string& key, const std::function<CutoffSear
     {
         std::lock_guard<std::mutex> lock(mutex);
         const auto found = cache.find(key);
-        if (found != cache.end())
-            return {found->second, 0, true};
+        if (found != cache.end()) return {found->second, 0, true};
     }
     CutoffSearch result = search();  // unlocked: the GL worker serializes the runs anyway
     std::lock_guard<std::mutex> lock(mutex);

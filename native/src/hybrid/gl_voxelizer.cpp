@@ -32,9 +32,9 @@ std::string clipConstants() {
 template <typename Output>
 std::string definesFor(Mode mode, Output output, bool from_large_list) {
     return std::string("#define HYVOX_THIN ") + (mode == Mode::Thin ? "1" : "0") + "\n#define HYVOX_VOXEL_LIST " +
-           (output == Output::VoxelList ? "1" : "0") + "\n#define HYVOX_ATTRIBUTE_PAIRS " +
-           (output == Output::AttributePairs ? "1" : "0") + "\n#define HYVOX_FROM_LARGE_LIST " +
-           (from_large_list ? "1" : "0") + "\n";
+        (output == Output::VoxelList ? "1" : "0") + "\n#define HYVOX_ATTRIBUTE_PAIRS " +
+        (output == Output::AttributePairs ? "1" : "0") + "\n#define HYVOX_FROM_LARGE_LIST " +
+        (from_large_list ? "1" : "0") + "\n";
 }
 
 // std430 layout of Piece in shaders/hybrid/clip_pieces.comp.
@@ -44,7 +44,7 @@ struct GpuPiece {
     std::uint32_t kind;
 };
 static_assert(sizeof(GpuPiece) == 20, "must match the GLSL struct");
-constexpr std::size_t kPairBytes = 16;  // uvec4: x, y, z, triangle
+constexpr std::size_t kPairBytes = 16;   // uvec4: x, y, z, triangle
 constexpr std::size_t kPairHeader = 16;  // the count, padded
 
 // Per triangle: the largest side of its bounding box and its area projected on its dominant
@@ -111,8 +111,7 @@ GlVoxelizer::GlVoxelizer(const gl::GpuMesh& mesh, const GridSpec& grid, Mode mod
 
 const GlVoxelizer::Programs& GlVoxelizer::programsFor(Output output) {
     Programs& p = programs_by_output_[int(output)];
-    if (p.built)
-        return p;
+    if (p.built) return p;
     if (method_ == Method::Triangle)
         p.triangle = gl::ActiveProgram(programs_.get({{GL_COMPUTE_SHADER, "hybrid/triangle_parallel.comp"}},
                                                      definesFor(mode_, output, false), shader_dir_));
@@ -123,8 +122,7 @@ const GlVoxelizer::Programs& GlVoxelizer::programsFor(Output output) {
         p.raster = gl::ActiveProgram(programs_.get({{GL_VERTEX_SHADER, "hybrid/fragment_parallel.vert"},
                                                     {GL_GEOMETRY_SHADER, "hybrid/fragment_parallel.geom"},
                                                     {GL_FRAGMENT_SHADER, "hybrid/fragment_parallel.frag"}},
-                                                   definesFor(mode_, output, method_ == Method::Hybrid),
-                                                   shader_dir_));
+                                                   definesFor(mode_, output, method_ == Method::Hybrid), shader_dir_));
     if (output == Output::AttributePairs)
         p.clip = gl::ActiveProgram(
             programs_.get({{GL_COMPUTE_SHADER, "hybrid/clip_pieces.comp"}}, clipConstants(), shader_dir_));
@@ -177,8 +175,7 @@ void GlVoxelizer::runTile(const Programs& p, double cutoff, PassTimes& times) {
         glViewport(0, 0, grid_.maxSide(), grid_.maxSide());
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_CULL_FACE);
-        for (int i = 0; i < 4; ++i)
-            glEnable(GL_CLIP_DISTANCE0 + i);
+        for (int i = 0; i < 4; ++i) glEnable(GL_CLIP_DISTANCE0 + i);
         glBindVertexArray(empty_vao_.id());
         timer2.begin();
         if (method_ == Method::Hybrid) {
@@ -192,10 +189,8 @@ void GlVoxelizer::runTile(const Programs& p, double cutoff, PassTimes& times) {
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    if (pass1)
-        times.pass1_gpu_ms += timer1.milliseconds();
-    if (pass2)
-        times.pass2_gpu_ms += timer2.milliseconds();
+    if (pass1) times.pass1_gpu_ms += timer1.milliseconds();
+    if (pass2) times.pass2_gpu_ms += timer2.milliseconds();
     if (method_ == Method::Hybrid) {
         std::uint32_t vertex_count = 0;
         draw_.download(0, 4, &vertex_count);
@@ -223,8 +218,7 @@ PassTimes GlVoxelizer::run(double cutoff, BitGrid* out, const std::function<void
     setRunUniforms(programs, cutoff);
     PassTimes times;
     times.readback_ms = tiling_.run(bits_, out, [&](const gl::BitTile& tile) {
-        if (before_tile)
-            before_tile();
+        if (before_tile) before_tile();
         setTileUniforms(programs, tile);
         runTile(programs, cutoff, times);
     });
@@ -242,9 +236,9 @@ std::vector<std::array<std::int32_t, 3>> GlVoxelizer::runVoxelList(double cutoff
     const std::uint32_t max_capacity = std::uint32_t(std::min<std::uint64_t>((block_bytes - 16) / 12, 1u << 30));
     // A first guess of the list's length; a tile that overflows is run again with room for
     // the count it reported (the count keeps rising past the capacity).
-    std::uint32_t capacity = std::min(
-        max_capacity,
-        std::uint32_t(std::clamp<std::uint64_t>(std::uint64_t(triangle_count_) * 4u, 1u << 16, 1u << 24)));
+    std::uint32_t capacity =
+        std::min(max_capacity,
+                 std::uint32_t(std::clamp<std::uint64_t>(std::uint64_t(triangle_count_) * 4u, 1u << 16, 1u << 24)));
     for (const gl::BitTile& tile : tiling_.tiles()) {
         setTileUniforms(programs, tile);
         for (;;) {
@@ -265,8 +259,7 @@ std::vector<std::array<std::int32_t, 3>> GlVoxelizer::runVoxelList(double cutoff
             times.large_triangles += attempt.large_triangles;
             times.tiles += attempt.tiles;
             std::vector<std::uint32_t> entries(std::size_t(count) * 3);
-            if (count)
-                voxel_list_.download(16, entries.size() * 4, entries.data());
+            if (count) voxel_list_.download(16, entries.size() * 4, entries.data());
             for (std::size_t i = 0; i < count; ++i)
                 voxels.push_back(
                     {std::int32_t(entries[3 * i]), std::int32_t(entries[3 * i + 1]), std::int32_t(entries[3 * i + 2])});
@@ -274,8 +267,7 @@ std::vector<std::array<std::int32_t, 3>> GlVoxelizer::runVoxelList(double cutoff
         }
     }
     gl::checkGl("reading back the voxel list");
-    if (times_out)
-        *times_out = times;
+    if (times_out) *times_out = times;
     return voxels;
 }
 
@@ -285,8 +277,7 @@ std::uint32_t GlVoxelizer::runTileIntoList(const Programs& programs, double cuto
     const std::uint32_t zero = 0;
     list.upload(0, 4, &zero);
     list.bindBase(GL_SHADER_STORAGE_BUFFER, binding);
-    programs.setUniform(capacity_location,
-                        [&](GLuint id) { glProgramUniform1ui(id, capacity_location, capacity); });
+    programs.setUniform(capacity_location, [&](GLuint id) { glProgramUniform1ui(id, capacity_location, capacity); });
     runTile(programs, cutoff, attempt);
     times.pass1_gpu_ms += attempt.pass1_gpu_ms;  // a retried run's work took time too
     times.pass2_gpu_ms += attempt.pass2_gpu_ms;
@@ -301,18 +292,18 @@ std::optional<std::uint32_t> GlVoxelizer::runTilePairs(const Programs& programs,
     // The pairs and their pieces are one storage block each; the shader's 32-bit count and
     // indices allow at most 2^31 besides.
     std::uint64_t block_bytes = std::uint64_t(std::max<GLint64>(glLimit(GL_MAX_SHADER_STORAGE_BLOCK_SIZE), 64));
-    if (pair_list_bytes_ > 0)
-        block_bytes = std::max<std::uint64_t>(std::min(block_bytes, pair_list_bytes_), 64);
+    if (pair_list_bytes_ > 0) block_bytes = std::max<std::uint64_t>(std::min(block_bytes, pair_list_bytes_), 64);
     const std::uint32_t max_capacity = std::uint32_t(
         std::min<std::uint64_t>({(block_bytes - kPairHeader) / kPairBytes, block_bytes / sizeof(GpuPiece), 1u << 31}));
     if (pair_capacity_ == 0)  // a first guess; a tile that overflows is run again with room for its count
-        pair_capacity_ = std::min(
-            max_capacity,
-            std::uint32_t(std::clamp<std::uint64_t>(std::uint64_t(triangle_count_) * 8u, 1u << 16, 1u << 24)));
+        pair_capacity_ =
+            std::min(max_capacity,
+                     std::uint32_t(std::clamp<std::uint64_t>(std::uint64_t(triangle_count_) * 8u, 1u << 16, 1u << 24)));
     std::uint32_t count = 0;
     for (;;) {
         if (pairs_.size() < kPairHeader + std::size_t(pair_capacity_) * kPairBytes) {
-            pairs_ = gl::Buffer(kPairHeader + std::size_t(pair_capacity_) * kPairBytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+            pairs_ =
+                gl::Buffer(kPairHeader + std::size_t(pair_capacity_) * kPairBytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
             pieces_ = gl::Buffer(std::size_t(pair_capacity_) * sizeof(GpuPiece), nullptr, 0);
         }
         PassTimes attempt;
@@ -324,8 +315,7 @@ std::optional<std::uint32_t> GlVoxelizer::runTilePairs(const Programs& programs,
             break;
         }
         if (count > max_capacity) {
-            if (tile.brick_x1 - tile.brick_x0 > 1)
-                return std::nullopt;  // the caller halves the tile
+            if (tile.brick_x1 - tile.brick_x0 > 1) return std::nullopt;  // the caller halves the tile
             throw ResourceError("colour and normal voxels need " + std::to_string(count) +
                                 " triangle/voxel pairs in one 8-voxel slab, more than the " +
                                 std::to_string(max_capacity) + " that fit the pair list's " +
@@ -335,13 +325,11 @@ std::optional<std::uint32_t> GlVoxelizer::runTilePairs(const Programs& programs,
         }
         pair_capacity_ = count;
     }
-    if (count == 0)
-        return 0;
+    if (count == 0) return 0;
     pieces_.bindBase(GL_SHADER_STORAGE_BUFFER, HYVOX_SSBO_PIECES);
     const gl::Program& clip = *programs.clip.program();
     clip.use();
-    if (programs.clip.uses(HYVOX_LOC_PAIR_COUNT))
-        glProgramUniform1ui(clip.id(), HYVOX_LOC_PAIR_COUNT, count);
+    if (programs.clip.uses(HYVOX_LOC_PAIR_COUNT)) glProgramUniform1ui(clip.id(), HYVOX_LOC_PAIR_COUNT, count);
     gl::PassTimer timer(tuning_.wall_timing);
     timer.begin();
     gl::dispatchPerItem(clip, count, 1);
@@ -363,8 +351,7 @@ PassTimes GlVoxelizer::runPieces(double cutoff, BitGrid* out, std::vector<VoxelP
     while (!todo.empty()) {
         const gl::BitTile tile = todo.back();
         todo.pop_back();
-        if (before_tile)
-            before_tile();
+        if (before_tile) before_tile();
         const std::optional<std::uint32_t> count = runTilePairs(programs, tile, cutoff, times);
         if (!count) {
             const int middle = (tile.brick_x0 + tile.brick_x1) / 2;
@@ -372,8 +359,7 @@ PassTimes GlVoxelizer::runPieces(double cutoff, BitGrid* out, std::vector<VoxelP
             todo.push_back({tile.brick_x0, middle});
             continue;
         }
-        if (out)
-            times.readback_ms += tiling_.readBack(bits_, tile, *out);
+        if (out) times.readback_ms += tiling_.readBack(bits_, tile, *out);
         pair_words.resize(std::size_t(*count) * 4);
         clipped.resize(*count);
         if (*count) {
@@ -384,8 +370,7 @@ PassTimes GlVoxelizer::runPieces(double cutoff, BitGrid* out, std::vector<VoxelP
         pieces.reserve(pieces.size() + *count);
         for (std::size_t i = 0; i < *count; ++i) {
             const GpuPiece& g = clipped[i];
-            if (g.kind == HYVOX_PIECE_NONE)
-                continue;
+            if (g.kind == HYVOX_PIECE_NONE) continue;
             const std::uint32_t* w = &pair_words[4 * i];
             pieces.push_back({{std::int32_t(w[0]), std::int32_t(w[1]), std::int32_t(w[2])},
                               w[3],

@@ -103,12 +103,10 @@ void runHybridBackend(const BackendJob& job, TileOutput& out, Stats& stats) {
     const hybrid::HybridRun run = hybrid::runHybrid(job, &out.bits, nullptr, job.clip_pieces ? &out.pieces : nullptr);
     stats.addTiming("gl_prepare", run.prepare_ms);
     stats.addTiming("gl_upload", run.upload_ms);
-    if (run.search_runs)
-        stats.addTiming("gl_cutoff_search", run.search_ms);
+    if (run.search_runs) stats.addTiming("gl_cutoff_search", run.search_ms);
     stats.addTiming("gl_voxelize", run.voxelize_ms);
     stats.addTiming("gl_readback", run.times.readback_ms);
-    if (job.clip_pieces)
-        stats.addTiming("gl_clip_pieces", run.times.clip_gpu_ms);
+    if (job.clip_pieces) stats.addTiming("gl_clip_pieces", run.times.clip_gpu_ms);
     // Summed over the dispatcher's tiles. The automatic cutoff is cached per whole mesh and
     // grid, so the first tile searches it and the others reuse it.
     HybridStats& figures = stats.hybrid ? *stats.hybrid : stats.hybrid.emplace();

@@ -22,8 +22,7 @@ struct HybridRun {
 // grid into `out` (dims = job.grid.dims) or, when voxel_list is given, fills that instead
 // (each set voxel once, unordered; `out` is then untouched). With `pieces`, also appends the
 // clipped piece of every (voxel, triangle) pair (GlVoxelizer::runPieces).
-HybridRun runHybrid(const BackendJob& job, BitGrid* out,
-                    std::vector<std::array<std::int32_t, 3>>* voxel_list = nullptr,
+HybridRun runHybrid(const BackendJob& job, BitGrid* out, std::vector<std::array<std::int32_t, 3>>* voxel_list = nullptr,
                     std::vector<VoxelPiece>* pieces = nullptr);
 
 }  // namespace hyvox::hybrid

@@ -7,10 +7,10 @@
 #include "io/assimp_import.h"
 
 #include <assimp/BaseImporter.h>
-#include <assimp/Importer.hpp>
-#include <assimp/ProgressHandler.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
+#include <assimp/ProgressHandler.hpp>
 
 #include <algorithm>
 #include <cctype>

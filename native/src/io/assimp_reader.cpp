@@ -65,8 +65,9 @@ public:
         std::unique_ptr<ChildProcess> child;
         try {
             child = std::make_unique<ChildProcess>(
-                program, std::vector<std::string>{program, wire::kProtocol, std::to_string(::getpid()),
-                                                  std::to_string(limits_.memory_bytes), extension, source, path_});
+                program,
+                std::vector<std::string>{program, wire::kProtocol, std::to_string(::getpid()),
+                                         std::to_string(limits_.memory_bytes), extension, source, path_});
         } catch (const std::runtime_error& e) {
             throw BackendError("reading '" + path_ + "' needs the assimp reader process: " + e.what());
         }
@@ -88,7 +89,8 @@ public:
             if (!ended && seconds > limits_.seconds) {
                 child->kill();
                 char text[160];
-                std::snprintf(text, sizeof text, "the assimp reader did not finish within %.3g s (a damaged file that makes it loop?)",
+                std::snprintf(text, sizeof text,
+                              "the assimp reader did not finish within %.3g s (a damaged file that makes it loop?)",
                               limits_.seconds);
                 failMeshFile(path_, text);
             }
@@ -114,7 +116,8 @@ private:
             if (!fds[f].revents) continue;
             const int fd = fds[f].fd;
             if (fd == child.input()) {
-                const ssize_t sent = ::send(fd, input_, std::min<std::size_t>(input_left_, 1 << 20), MSG_NOSIGNAL | MSG_DONTWAIT);
+                const ssize_t sent =
+                    ::send(fd, input_, std::min<std::size_t>(input_left_, 1 << 20), MSG_NOSIGNAL | MSG_DONTWAIT);
                 if (sent > 0) {
                     input_ += sent;
                     input_left_ -= std::size_t(sent);
@@ -149,15 +152,17 @@ private:
             // check it: a peak at the limit says which it was.
             if (double(peak_bytes) >= 0.9 * double(limits_.memory_bytes)) outOfMemory();
             const std::string said = lastLine(errors_);
-            failMeshFile(path_, "the assimp reader crashed on it (" + signalName(WTERMSIG(status)) +
-                                    (said.empty() ? "" : ": " + said) + ")");
+            failMeshFile(path_,
+                         "the assimp reader crashed on it (" + signalName(WTERMSIG(status)) +
+                             (said.empty() ? "" : ": " + said) + ")");
         }
         const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
         if (code == wire::kExitOutOfMemory) outOfMemory();
         if (code != 0) {
             const std::string said = lastLine(errors_);
-            failMeshFile(path_, "the assimp reader failed on it (exit status " + std::to_string(code) +
-                                    (said.empty() ? "" : ": " + said) + ")");
+            failMeshFile(path_,
+                         "the assimp reader failed on it (exit status " + std::to_string(code) +
+                             (said.empty() ? "" : ": " + said) + ")");
         }
         if (decoder_.error()) throw InvalidInput(*decoder_.error());
         try {
@@ -168,8 +173,9 @@ private:
     }
 
     [[noreturn]] void outOfMemory() const {
-        failMeshFile(path_, "reading it through assimp needs more than the memory budget of " + mib(limits_.memory_bytes) +
-                                " (memory_budget_mib)");
+        failMeshFile(path_,
+                     "reading it through assimp needs more than the memory budget of " + mib(limits_.memory_bytes) +
+                         " (memory_budget_mib)");
     }
 
     std::string path_;
@@ -186,8 +192,9 @@ private:
 AssimpReadLimits assimpReadLimits(const MeshReadOptions& options, std::uint64_t file_bytes) {
     VoxelizeOptions budget;
     budget.memory_budget_mib = options.memory_budget_mib;
-    const double seconds = options.time_limit_s > 0 ? options.time_limit_s
-                                                    : kBaseSeconds + kSecondsPerMiB * double(file_bytes) / double(1 << 20);
+    const double seconds = options.time_limit_s > 0
+        ? options.time_limit_s
+        : kBaseSeconds + kSecondsPerMiB * double(file_bytes) / double(1 << 20);
     return {budget.memoryBudgetBytes(), seconds};
 }
 

@@ -91,8 +91,8 @@ Destination checkDestination(const std::string& destination) {
     // names the system's reason.
     const std::string folder = folderOf(out.target);
     struct stat folder_st {};
-    const bool missing = ::stat(folder.c_str(), &folder_st) == 0 ? !S_ISDIR(folder_st.st_mode)
-                                                                  : errno == ENOENT || errno == ENOTDIR;
+    const bool missing =
+        ::stat(folder.c_str(), &folder_st) == 0 ? !S_ISDIR(folder_st.st_mode) : errno == ENOENT || errno == ENOTDIR;
     if (missing) throw InvalidInput("cannot write '" + destination + "': folder '" + folder + "' does not exist");
     return out;
 }
@@ -112,7 +112,7 @@ AtomicFile::AtomicFile(std::string destination, Durability durability)
     const std::string target_base = baseOf(target_).substr(0, 200);
     for (int attempt = 0; attempt < 100; ++attempt) {
         std::string candidate = folder + "/." + target_base + ".tmp-" + std::to_string(::getpid()) + "-" +
-                                std::to_string(counter.fetch_add(1));
+            std::to_string(counter.fetch_add(1));
         // 0666 and the umask give the permissions a plain fopen would give a new file.
         const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd >= 0) {
@@ -121,8 +121,8 @@ AtomicFile::AtomicFile(std::string destination, Durability durability)
             ::close(fd);
             if (!mode_kept) {
                 std::remove(candidate.c_str());
-                throw ResourceError("cannot write '" + destination_ + "': cannot keep its permissions: " +
-                                    std::strerror(error));
+                throw ResourceError("cannot write '" + destination_ +
+                                    "': cannot keep its permissions: " + std::strerror(error));
             }
             temp_ = std::move(candidate);
             return;
@@ -130,7 +130,7 @@ AtomicFile::AtomicFile(std::string destination, Durability durability)
         const int error = errno;
         if (error == EEXIST) continue;
         const std::string message = "cannot write '" + destination_ + "': cannot create a file in folder '" + folder +
-                                    "': " + std::strerror(error);
+            "': " + std::strerror(error);
         if (isPathError(error)) throw InvalidInput(message);
         throw ResourceError(message);
     }
@@ -155,11 +155,13 @@ void AtomicFile::commit() {
 void AtomicFile::syncPath(const std::string& path, const char* what) const {
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0)
-        throw ResourceError("cannot write '" + destination_ + "': opening " + what + " to sync it failed: " + errnoText());
+        throw ResourceError("cannot write '" + destination_ + "': opening " + what +
+                            " to sync it failed: " + errnoText());
     const bool synced = ::fsync(fd) == 0;
     const std::string sync_error = synced ? "" : errnoText();
     ::close(fd);
-    if (!synced) throw ResourceError("cannot write '" + destination_ + "': fsync of " + what + " failed: " + sync_error);
+    if (!synced)
+        throw ResourceError("cannot write '" + destination_ + "': fsync of " + what + " failed: " + sync_error);
 }
 
 void AtomicFile::writeWith(const std::function<void(std::ostream&)>& write) {
@@ -172,7 +174,8 @@ void AtomicFile::writeWith(const std::function<void(std::ostream&)>& write) {
             write(os);
             os.close();
         } catch (const std::ios_base::failure&) {
-            throw ResourceError("writing '" + destination_ + "' failed: " + (errno ? std::strerror(errno) : "I/O error"));
+            throw ResourceError("writing '" + destination_ +
+                                "' failed: " + (errno ? std::strerror(errno) : "I/O error"));
         }
     }
     commit();

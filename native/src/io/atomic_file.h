@@ -56,7 +56,7 @@ private:
     std::string destination_;  // as the caller gave it (for messages)
     std::string target_;       // the file replaced: destination_ with a symlink resolved
     std::string temp_;
-    long keep_mode_ = -1;      // the replaced file's permission bits, or -1 for a new file
+    long keep_mode_ = -1;  // the replaced file's permission bits, or -1 for a new file
     Durability durability_;
     bool committed_ = false;
 };

@@ -36,8 +36,7 @@ public:
         wide_ = version >= 7500;
         std::uint64_t at = kHeaderBytes;
         // The top-level records, closed by a null record; what follows (the footer) is not read.
-        while (!record(at, size_, 0)) {
-        }
+        while (!record(at, size_, 0)) {}
     }
 
 private:
@@ -75,19 +74,20 @@ private:
         }
         // Past its own header (or the subtractions below would wrap), and inside its parent.
         if (record_end < at || record_end > end)
-            failAt(start, "a record ends at " + std::to_string(record_end) + ", outside its parent (which ends at " +
-                              std::to_string(end) + ") or inside its own header");
+            failAt(start,
+                   "a record ends at " + std::to_string(record_end) + ", outside its parent (which ends at " +
+                       std::to_string(end) + ") or inside its own header");
         if (name_length > record_end - at) failAt(start, "a record's name runs past its end");
         at += name_length;
         if (property_bytes > record_end - at) failAt(start, "a record's properties run past its end");
         const std::uint64_t properties_end = at + property_bytes;
         for (std::uint64_t p = 0; p < properties; ++p) property(at, properties_end);
         if (at != properties_end)
-            failAt(start, "a record's properties take " + std::to_string(at - (properties_end - property_bytes)) +
-                              " bytes, its header says " + std::to_string(property_bytes));
+            failAt(start,
+                   "a record's properties take " + std::to_string(at - (properties_end - property_bytes)) +
+                       " bytes, its header says " + std::to_string(property_bytes));
         if (at < record_end) {
-            while (!record(at, record_end, depth + 1)) {
-            }
+            while (!record(at, record_end, depth + 1)) {}
             if (at != record_end) failAt(start, "a record's children end before the record does");
         }
         return false;
@@ -100,12 +100,24 @@ private:
             if (end - at < n) failAt(at, std::string("a '") + type + "' property runs past its record's properties");
         };
         switch (type) {
-            case 'C': need(1); at += 1; return;
-            case 'Y': need(2); at += 2; return;
+            case 'C':
+                need(1);
+                at += 1;
+                return;
+            case 'Y':
+                need(2);
+                at += 2;
+                return;
             case 'I':
-            case 'F': need(4); at += 4; return;
+            case 'F':
+                need(4);
+                at += 4;
+                return;
             case 'D':
-            case 'L': need(8); at += 8; return;
+            case 'L':
+                need(8);
+                at += 8;
+                return;
             case 'S':
             case 'R': {
                 need(4);
@@ -121,7 +133,8 @@ private:
             case 'l': array(at, end, 8); return;
             case 'b':
             case 'c': array(at, end, 1); return;
-            default: failAt(at - 1, "a property of unknown type " + std::to_string(int(static_cast<unsigned char>(type))));
+            default:
+                failAt(at - 1, "a property of unknown type " + std::to_string(int(static_cast<unsigned char>(type))));
         }
     }
 
@@ -135,8 +148,9 @@ private:
         const std::uint64_t bytes = std::uint64_t(count) * element;
         if (encoding == 0) {
             if (stored != bytes)
-                failAt(header, "an array of " + std::to_string(count) + " values holds " + std::to_string(stored) +
-                                   " bytes, not " + std::to_string(bytes));
+                failAt(header,
+                       "an array of " + std::to_string(count) + " values holds " + std::to_string(stored) +
+                           " bytes, not " + std::to_string(bytes));
         } else if (encoding == 1) {
             inflateExactly(data_ + at, stored, bytes, header);
         } else {

@@ -61,8 +61,9 @@ std::vector<char> readFileBytes(const std::string& path, std::size_t max_bytes) 
     struct stat st {};
     const Fd file = openRegular(path, st);
     if (std::uint64_t(st.st_size) > max_bytes)
-        failMeshFile(path, "is " + std::to_string(st.st_size) + " bytes, more than the " + std::to_string(max_bytes) +
-                               " this reader accepts");
+        failMeshFile(path,
+                     "is " + std::to_string(st.st_size) + " bytes, more than the " + std::to_string(max_bytes) +
+                         " this reader accepts");
     std::vector<char> bytes = readUpTo(file, path, std::size_t(st.st_size));
     if (bytes.size() != std::size_t(st.st_size)) failMeshFile(path, "changed size while it was read");
     return bytes;

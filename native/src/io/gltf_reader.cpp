@@ -66,8 +66,8 @@ struct Accessor {
     const char* base = nullptr;  // the first element's first byte
     std::size_t stride = 0;      // bytes from one element to the next
     std::uint64_t count = 0;
-    int components = 0;          // 1 (SCALAR) to 4 (VEC4)
-    int component_type = 0;      // 5120 ... 5126
+    int components = 0;      // 1 (SCALAR) to 4 (VEC4)
+    int component_type = 0;  // 5120 ... 5126
     bool normalized = false;
 };
 
@@ -153,14 +153,16 @@ private:
     const JsonValue& object(const char* key, std::uint64_t index, const std::string& by) const {
         const std::vector<JsonValue>& all = array(key);
         if (index >= all.size())
-            fail(by + " names " + key + "[" + std::to_string(index) + "], but the file has " + std::to_string(all.size()));
+            fail(by + " names " + key + "[" + std::to_string(index) + "], but the file has " +
+                 std::to_string(all.size()));
         if (!all[index].isObject()) fail(std::string(key) + "[" + std::to_string(index) + "] is not an object");
         return all[index];
     }
 
     // A whole number in [0, max] held by `value` (which `what` names in errors).
     std::uint64_t whole(const JsonValue& value, const std::string& what, double max = 9007199254740992.0) const {
-        if (!value.isNumber() || value.number() < 0 || value.number() > max || value.number() != std::floor(value.number()))
+        if (!value.isNumber() || value.number() < 0 || value.number() > max ||
+            value.number() != std::floor(value.number()))
             fail(what + " is not a whole number from 0 to " + std::to_string(std::uint64_t(max)));
         return std::uint64_t(value.number());
     }
@@ -266,10 +268,14 @@ private:
                     fail(what + ": only base64 data URIs are read");
                 loaded.owned = decodeBase64(std::string_view(text).substr(comma + 1), what);
             } else {
-                if (text.find("://") != std::string::npos) fail(what + ": its uri names another place (" + text.substr(0, 60) + "), not a file beside this one");
+                if (text.find("://") != std::string::npos)
+                    fail(what + ": its uri names another place (" + text.substr(0, 60) +
+                         "), not a file beside this one");
                 const std::string path = folder() + "/" + percentDecoded(text, what);
                 try {
-                    loaded.owned = readFileBytes(path, std::size_t(std::min<std::uint64_t>(max_bytes_, std::numeric_limits<std::size_t>::max())));
+                    loaded.owned = readFileBytes(
+                        path,
+                        std::size_t(std::min<std::uint64_t>(max_bytes_, std::numeric_limits<std::size_t>::max())));
                 } catch (const InvalidInput& e) {
                     fail(what + ": " + e.what());
                 }
@@ -292,7 +298,8 @@ private:
         Accessor out;
         out.component_type = int(member(a, "componentType", what, -1, 1e9));
         const std::size_t component = componentBytes(out.component_type);
-        if (component == 0) fail(what + ".componentType " + std::to_string(out.component_type) + " is no glTF component type");
+        if (component == 0)
+            fail(what + ".componentType " + std::to_string(out.component_type) + " is no glTF component type");
         const JsonValue* type = a.find("type");
         if (!type || !type->isString()) fail(what + " has no type");
         const std::string& t = type->string();
@@ -312,7 +319,8 @@ private:
         const std::uint64_t view_length = member(view, "byteLength", view_what, -1);
         const std::uint64_t element = component * std::uint64_t(out.components);
         out.stride = std::size_t(member(view, "byteStride", view_what, std::int64_t(element), 252));
-        if (out.stride < element) fail(view_what + ".byteStride " + std::to_string(out.stride) + " is less than an element of " + what);
+        if (out.stride < element)
+            fail(view_what + ".byteStride " + std::to_string(out.stride) + " is less than an element of " + what);
         const LoadedBuffer& b = buffer(member(view, "buffer", view_what, -1), view_what);
         if (view_offset > b.size || view_length > b.size - view_offset)
             fail(view_what + " (bytes " + std::to_string(view_offset) + " + " + std::to_string(view_length) +
@@ -335,9 +343,12 @@ private:
             return v;
         };
         switch (a.component_type) {
-            case 5120: return a.normalized ? std::max(double(load(std::int8_t{})) / 127.0, -1.0) : double(load(std::int8_t{}));
+            case 5120:
+                return a.normalized ? std::max(double(load(std::int8_t{})) / 127.0, -1.0) : double(load(std::int8_t{}));
             case 5121: return a.normalized ? double(load(std::uint8_t{})) / 255.0 : double(load(std::uint8_t{}));
-            case 5122: return a.normalized ? std::max(double(load(std::int16_t{})) / 32767.0, -1.0) : double(load(std::int16_t{}));
+            case 5122:
+                return a.normalized ? std::max(double(load(std::int16_t{})) / 32767.0, -1.0)
+                                    : double(load(std::int16_t{}));
             case 5123: return a.normalized ? double(load(std::uint16_t{})) / 65535.0 : double(load(std::uint16_t{}));
             case 5125: return double(load(std::uint32_t{}));
             default: return double(load(float{}));
@@ -350,7 +361,8 @@ private:
         auto numbers = [&](const char* key, std::size_t n) -> std::vector<double> {
             const JsonValue* value = node.find(key);
             if (!value) return {};
-            if (!value->isArray() || value->items().size() != n) fail(what + "." + key + " is not " + std::to_string(n) + " numbers");
+            if (!value->isArray() || value->items().size() != n)
+                fail(what + "." + key + " is not " + std::to_string(n) + " numbers");
             std::vector<double> out;
             for (const JsonValue& x : value->items()) {
                 if (!x.isNumber()) fail(what + "." + key + " is not " + std::to_string(n) + " numbers");
@@ -402,7 +414,8 @@ private:
             // No scene: every node that is no node's child.
             std::vector<bool> child(nodes.size(), false);
             for (std::size_t n = 0; n < nodes.size(); ++n)
-                for (std::uint64_t c : indexList(object("nodes", n, "the file"), "children", "nodes[" + std::to_string(n) + "]"))
+                for (std::uint64_t c :
+                     indexList(object("nodes", n, "the file"), "children", "nodes[" + std::to_string(n) + "]"))
                     if (c < child.size()) child[c] = true;
             for (std::size_t n = 0; n < nodes.size(); ++n)
                 if (!child[n]) roots.push_back(n);
@@ -464,7 +477,8 @@ private:
             corners = indices.count;
         }
         const std::uint64_t triangles = mode == 4 ? corners / 3 : corners >= 3 ? corners - 2 : 0;
-        if (mode == 4 && corners % 3 != 0) fail(what + ": " + std::to_string(corners) + " corners is no whole number of triangles");
+        if (mode == 4 && corners % 3 != 0)
+            fail(what + ": " + std::to_string(corners) + " corners is no whole number of triangles");
         // What this instance adds, against the budget: a small file may instance a mesh often.
         const double adds = double(positions.count) * (12.0 + 16.0 + 8.0) + double(triangles) * 12.0;
         made_bytes_ += adds;
@@ -478,7 +492,8 @@ private:
             if (i % kInterruptEvery == 0) throwIfInterrupted(interrupter_);
             const std::uint64_t v = indexed ? std::uint64_t(value(indices, i, 0)) : i;
             if (v >= positions.count)
-                fail(what + ": index " + std::to_string(v) + " names none of its " + std::to_string(positions.count) + " vertices");
+                fail(what + ": index " + std::to_string(v) + " names none of its " + std::to_string(positions.count) +
+                     " vertices");
             return std::uint32_t(first + v);
         };
         for (std::uint64_t t = 0; t < triangles; ++t) {
@@ -494,14 +509,16 @@ private:
         }
     }
 
-    void appendVertices(const JsonValue& attributes, const Accessor& positions, const Matrix& world, const std::string& what) {
+    void appendVertices(const JsonValue& attributes, const Accessor& positions, const Matrix& world,
+                        const std::string& what) {
         const bool identity = world == kIdentity;
         for (std::uint64_t i = 0; i < positions.count; ++i) {
             if (i % kInterruptEvery == 0) throwIfInterrupted(interrupter_);
             const double p[3] = {value(positions, i, 0), value(positions, i, 1), value(positions, i, 2)};
             for (int r = 0; r < 3; ++r)
-                mesh_.positions.push_back(identity ? float(p[r])
-                                                   : float(world[r] * p[0] + world[4 + r] * p[1] + world[8 + r] * p[2] + world[12 + r]));
+                mesh_.positions.push_back(
+                    identity ? float(p[r])
+                             : float(world[r] * p[0] + world[4 + r] * p[1] + world[8 + r] * p[2] + world[12 + r]));
         }
         const JsonValue* color = attributes.find("COLOR_0");
         if (color) {
@@ -513,9 +530,10 @@ private:
             any_colors_ = true;
             mesh_.colors_alpha |= c.components == 4;
             for (std::uint64_t i = 0; i < c.count; ++i)
-                mesh_.colors.insert(mesh_.colors.end(), {srgbEncoded(value(c, i, 0)), srgbEncoded(value(c, i, 1)),
-                                                         srgbEncoded(value(c, i, 2)),
-                                                         c.components == 4 ? float(std::min(1.0, std::max(0.0, value(c, i, 3)))) : 1.0f});
+                mesh_.colors.insert(
+                    mesh_.colors.end(),
+                    {srgbEncoded(value(c, i, 0)), srgbEncoded(value(c, i, 1)), srgbEncoded(value(c, i, 2)),
+                     c.components == 4 ? float(std::min(1.0, std::max(0.0, value(c, i, 3)))) : 1.0f});
         } else {
             mesh_.colors.insert(mesh_.colors.end(), 4 * positions.count, 1.0f);
         }

@@ -49,12 +49,13 @@ std::vector<char> gunzip(const std::vector<char>& input, const std::string& path
         left -= consumed;
         const std::size_t produced = chunk.size() - stream.avail_out;
         if (output.size() + produced > max_output)
-            failMeshFile(path, "decompresses to more than " + std::to_string(max_output >> 20) +
-                                   " MiB, the limit for a file of this size (a damaged file or a gzip bomb)");
+            failMeshFile(path,
+                         "decompresses to more than " + std::to_string(max_output >> 20) +
+                             " MiB, the limit for a file of this size (a damaged file or a gzip bomb)");
         // Grown by doubling, but never past the limit: a refused bomb never held more.
         if (output.size() + produced > output.capacity())
-            output.reserve(std::size_t(std::min<std::uint64_t>(max_output, std::max(2 * output.capacity(),
-                                                                                    output.size() + produced))));
+            output.reserve(std::size_t(
+                std::min<std::uint64_t>(max_output, std::max(2 * output.capacity(), output.size() + produced))));
         output.insert(output.end(), chunk.data(), chunk.data() + produced);
         if (status == Z_STREAM_END) {
             if (left == 0) break;
@@ -64,8 +65,9 @@ std::vector<char> gunzip(const std::vector<char>& input, const std::string& path
         // Z_BUF_ERROR means no progress was possible: with all input used, the stream was cut.
         if (status == Z_OK || (status == Z_BUF_ERROR && (consumed > 0 || produced > 0))) continue;
         if (status == Z_BUF_ERROR)
-            failMeshFile(path, "the gzip data ends early (the file is truncated after " + std::to_string(input.size()) +
-                                   " bytes)");
+            failMeshFile(
+                path,
+                "the gzip data ends early (the file is truncated after " + std::to_string(input.size()) + " bytes)");
         failMeshFile(path, std::string("is not valid gzip data: ") + (stream.msg ? stream.msg : "inflate failed"));
     }
     if (output.empty()) failMeshFile(path, "is empty after decompression");
@@ -76,7 +78,8 @@ namespace {
 
 // The compressed file itself is bounded by what it may expand to.
 std::vector<char> readCompressed(const std::string& path, std::uint64_t max_output) {
-    return readFileBytes(path, std::size_t(std::min<std::uint64_t>(max_output, std::numeric_limits<std::size_t>::max())));
+    return readFileBytes(path,
+                         std::size_t(std::min<std::uint64_t>(max_output, std::numeric_limits<std::size_t>::max())));
 }
 
 }  // namespace

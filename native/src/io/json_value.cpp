@@ -69,9 +69,7 @@ private:
             case 'n':
                 if (!literal("null")) fail("not a JSON value");
                 break;
-            default:
-                value.type_ = JsonValue::Type::Number;
-                value.number_ = parseNumber();
+            default: value.type_ = JsonValue::Type::Number; value.number_ = parseNumber();
         }
         return value;
     }
@@ -181,7 +179,10 @@ private:
         std::uint32_t code = 0;
         for (int i = 0; i < 4; ++i, ++pos_) {
             const char c = *pos_;
-            const int digit = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+            const int digit = c >= '0' && c <= '9' ? c - '0'
+                : c >= 'a' && c <= 'f'             ? c - 'a' + 10
+                : c >= 'A' && c <= 'F'             ? c - 'A' + 10
+                                                   : -1;
             if (digit < 0) fail("a \\u escape needs four hexadecimal digits");
             code = code * 16 + std::uint32_t(digit);
         }
@@ -191,7 +192,11 @@ private:
     // One UTF-8 sequence at pos_, checked (no overlong forms, no surrogates, at most U+10FFFF).
     void copyUtf8(std::string& out) {
         const auto lead = static_cast<unsigned char>(*pos_);
-        const int length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xE ? 3 : (lead >> 3) == 0x1E ? 4 : 0;
+        const int length = lead < 0x80 ? 1
+            : (lead >> 5) == 0x6       ? 2
+            : (lead >> 4) == 0xE       ? 3
+            : (lead >> 3) == 0x1E      ? 4
+                                       : 0;
         if (length == 0 || end_ - pos_ < length) fail("a string that is not valid UTF-8");
         std::uint32_t code = length == 1 ? lead : lead & (0x7F >> length);
         for (int i = 1; i < length; ++i) {
@@ -236,7 +241,8 @@ private:
                 case 'u': {
                     std::uint32_t code = hex4();
                     if (code >= 0xD800 && code <= 0xDBFF) {  // a high surrogate: its low one must follow
-                        if (end_ - pos_ < 2 || pos_[0] != '\\' || pos_[1] != 'u') fail("a lone surrogate in a \\u escape");
+                        if (end_ - pos_ < 2 || pos_[0] != '\\' || pos_[1] != 'u')
+                            fail("a lone surrogate in a \\u escape");
                         pos_ += 2;
                         const std::uint32_t low = hex4();
                         if (low < 0xDC00 || low > 0xDFFF) fail("a lone surrogate in a \\u escape");

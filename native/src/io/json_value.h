@@ -30,7 +30,7 @@ public:
     double number() const { return number_; }
     bool boolean() const { return boolean_; }
     const std::string& string() const { return string_; }
-    const std::vector<JsonValue>& items() const { return items_; }                       // an array's
+    const std::vector<JsonValue>& items() const { return items_; }                              // an array's
     const std::vector<std::pair<std::string, JsonValue>>& members() const { return members_; }  // an object's
 
     // An object's member, or null when it has none of that name (or is not an object).

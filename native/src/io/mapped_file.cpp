@@ -98,8 +98,9 @@ MappedFile::MappedFile(const std::string& path, std::size_t max_bytes) {
     if (!S_ISREG(st.st_mode))
         throw InvalidInput("mesh path '" + path + "' is not a regular file (a device, FIFO or socket is not read)");
     if (std::uint64_t(st.st_size) > max_bytes)
-        failMeshFile(path, "is " + std::to_string(st.st_size) + " bytes, more than the " + std::to_string(max_bytes) +
-                               " this reader accepts");
+        failMeshFile(path,
+                     "is " + std::to_string(st.st_size) + " bytes, more than the " + std::to_string(max_bytes) +
+                         " this reader accepts");
     size_ = std::size_t(st.st_size);
     if (size_ == 0) return;
     installGuard();

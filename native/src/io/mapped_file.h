@@ -31,7 +31,7 @@ public:
 private:
     const char* data_ = nullptr;
     std::size_t size_ = 0;
-    int slot_ = -1;  // its entry in the SIGBUS guard's table (-1: not mapped)
+    int slot_ = -1;           // its entry in the SIGBUS guard's table (-1: not mapped)
     std::vector<char> copy_;  // the bytes read instead, when every entry of the table is taken
 };
 

@@ -5,14 +5,10 @@ namespace hyvox::io {
 
 const std::vector<MeshFormat>& meshFormats() {
     static const std::vector<MeshFormat> formats{
-        {"ply", MeshReader::Ply, "PLY"},
-        {"obj", MeshReader::Obj, "Wavefront OBJ"},
-        {"stl", MeshReader::Stl, "STL"},
-        {"off", MeshReader::Off, "OFF"},
-        {"gltf", MeshReader::Gltf, "glTF 2.0"},
-        {"glb", MeshReader::Gltf, "glTF 2.0 binary"},
-        {"fbx", MeshReader::Fbx, "FBX (binary)"},
-        {"3mf", MeshReader::Assimp, "3MF"},
+        {"ply", MeshReader::Ply, "PLY"},          {"obj", MeshReader::Obj, "Wavefront OBJ"},
+        {"stl", MeshReader::Stl, "STL"},          {"off", MeshReader::Off, "OFF"},
+        {"gltf", MeshReader::Gltf, "glTF 2.0"},   {"glb", MeshReader::Gltf, "glTF 2.0 binary"},
+        {"fbx", MeshReader::Fbx, "FBX (binary)"}, {"3mf", MeshReader::Assimp, "3MF"},
     };
     return formats;
 }

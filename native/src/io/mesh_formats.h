@@ -18,7 +18,7 @@ inline bool readByAssimp(MeshReader reader) { return reader == MeshReader::Fbx |
 struct MeshFormat {
     const char* extension;  // lower case, without the dot
     MeshReader reader;
-    const char* name;       // for messages and the docs
+    const char* name;  // for messages and the docs
 };
 
 const std::vector<MeshFormat>& meshFormats();

@@ -53,8 +53,8 @@ std::string errorMessage(const std::string& what) {
 
 std::string meshMessage(const Mesh& mesh) {
     std::string out = "M";
-    const std::uint8_t flags = std::uint8_t((mesh.hasColors() ? kColors : 0) | (mesh.colors_alpha ? kAlpha : 0) |
-                                            (mesh.hasUvs() ? kUvs : 0));
+    const std::uint8_t flags =
+        std::uint8_t((mesh.hasColors() ? kColors : 0) | (mesh.colors_alpha ? kAlpha : 0) | (mesh.hasUvs() ? kUvs : 0));
     put(out, std::uint64_t(mesh.vertexCount()));
     put(out, std::uint64_t(mesh.triangleCount()));
     put(out, flags);
@@ -82,14 +82,16 @@ bool Decoder::take(char* into, std::size_t want, const char*& data, std::size_t&
 void Decoder::startArrays() {
     // Sizes in doubles first: 2^64 vertices must not wrap into a small product.
     const bool colors = flags_ & kColors, uvs = flags_ & kUvs;
-    const double bytes = double(vertices_) * (12.0 + (colors ? 16.0 : 0.0) + (uvs ? 8.0 : 0.0)) + double(triangles_) * 12.0;
+    const double bytes =
+        double(vertices_) * (12.0 + (colors ? 16.0 : 0.0) + (uvs ? 8.0 : 0.0)) + double(triangles_) * 12.0;
     check(bytes + double(accepted_bytes_) <= double(max_mesh_bytes_), "a mesh larger than the memory budget");
     check(vertices_ <= std::numeric_limits<std::uint32_t>::max(), "more vertices than 32-bit indices can name");
     check(vertices_ > 0 && triangles_ > 0, "a mesh without triangles");
     mesh_.positions.resize(3 * vertices_);
     mesh_.triangles.resize(3 * triangles_);
     arrays_[array_count_++] = {reinterpret_cast<char*>(mesh_.positions.data()), mesh_.positions.size() * sizeof(float)};
-    arrays_[array_count_++] = {reinterpret_cast<char*>(mesh_.triangles.data()), mesh_.triangles.size() * sizeof(std::uint32_t)};
+    arrays_[array_count_++] = {reinterpret_cast<char*>(mesh_.triangles.data()),
+                               mesh_.triangles.size() * sizeof(std::uint32_t)};
     if (colors) {
         mesh_.colors.resize(4 * vertices_);
         mesh_.colors_alpha = flags_ & kAlpha;
@@ -108,10 +110,14 @@ void Decoder::feed(const char* data, std::size_t size) {
             case State::Tag: {
                 const char tag = *data++;
                 --size;
-                if (tag == 'P') state_ = State::Percent;
-                else if (tag == 'E') state_ = State::ErrorSize;
-                else if (tag == 'M') state_ = State::Header;
-                else throw StreamError{"a message of no known kind"};
+                if (tag == 'P')
+                    state_ = State::Percent;
+                else if (tag == 'E')
+                    state_ = State::ErrorSize;
+                else if (tag == 'M')
+                    state_ = State::Header;
+                else
+                    throw StreamError{"a message of no known kind"};
                 break;
             }
             case State::Percent:
@@ -139,8 +145,10 @@ void Decoder::feed(const char* data, std::size_t size) {
                     check((flags_ & ~(kColors | kAlpha | kUvs)) == 0 && (!(flags_ & kAlpha) || (flags_ & kColors)),
                           "a mesh with unknown attributes");
                     check(warnings_left_ <= kMaxWarnings, "more warnings than any reader writes");
-                    if (warnings_left_ > 0) state_ = State::WarningSize;
-                    else startArrays();
+                    if (warnings_left_ > 0)
+                        state_ = State::WarningSize;
+                    else
+                        startArrays();
                 }
                 break;
             case State::Arrays:
@@ -160,8 +168,10 @@ void Decoder::feed(const char* data, std::size_t size) {
                 state_ = State::Done;
             } else {
                 mesh_.warnings.push_back(std::move(text_));
-                if (--warnings_left_ > 0) state_ = State::WarningSize;
-                else startArrays();
+                if (--warnings_left_ > 0)
+                    state_ = State::WarningSize;
+                else
+                    startArrays();
             }
             text_.clear();
         }

@@ -59,7 +59,8 @@ std::vector<MtlMaterial> readMtl(const char* data, std::size_t size, const std::
                     fail(quoteWord(word) + " is not a number ('Kd spectral' and 'Kd xyz' are not read)");
                 ++n;
             }
-            if (n != 1 && n != 3) fail("'Kd' has r g b (or one grey value), this one " + std::to_string(n) + " numbers");
+            if (n != 1 && n != 3)
+                fail("'Kd' has r g b (or one grey value), this one " + std::to_string(n) + " numbers");
             m.diffuse = std::array<float, 3>{values[0], values[n == 3 ? 1 : 0], values[n == 3 ? 2 : 0]};
         } else if (keyword == "map_Kd") {
             MtlMaterial& m = current(keyword);

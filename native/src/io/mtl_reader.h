@@ -16,7 +16,7 @@ namespace hyvox::io {
 struct MtlMaterial {
     std::string name;
     std::optional<std::array<float, 3>> diffuse;  // Kd
-    std::string diffuse_map;  // map_Kd's file as written (slashes normalised to '/'), or ""
+    std::string diffuse_map;                      // map_Kd's file as written (slashes normalised to '/'), or ""
 };
 
 // Reads the MTL held in [data, data + size); `name` is quoted in errors. Materials are in file

@@ -30,7 +30,8 @@ std::string imageProblem(const std::string& path) {
     static const unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     try {
         const std::vector<char> head = readFilePrefix(path, 8);
-        if (head.size() < 8 || std::memcmp(head.data(), kPngSignature, 8) != 0) return "is not a PNG (only PNG is read)";
+        if (head.size() < 8 || std::memcmp(head.data(), kPngSignature, 8) != 0)
+            return "is not a PNG (only PNG is read)";
         return "";
     } catch (const InvalidInput&) {
         return "cannot be opened as a file";
@@ -56,7 +57,8 @@ void readObjMaterials(Mesh& mesh, const std::string& obj_path) {
                 defined.emplace(std::move(name), Found{std::move(m), folderOf(path)});  // the first definition wins
             }
         } catch (const InvalidInput& error) {
-            mesh.warnings.push_back("material file '" + library + "' of '" + obj_path + "' is not used: " + error.what());
+            mesh.warnings.push_back("material file '" + library + "' of '" + obj_path +
+                                    "' is not used: " + error.what());
         }
     }
     for (std::size_t m = 0; m < mesh.material_names.size(); ++m) {

@@ -52,8 +52,7 @@ private:
     bool wordOnLine(std::string_view& word) {
         if (!scanner_.wordOnLine(word)) return false;
         if (word[0] != '#') return true;
-        while (scanner_.wordOnLine(word)) {
-        }
+        while (scanner_.wordOnLine(word)) {}
         return false;
     }
 
@@ -83,7 +82,8 @@ private:
                 prefix.remove_prefix(1);
             }
             if (!prefix.empty())
-                fail("the keyword " + quoteWord(word) + " is an OFF of another dimension (4OFF, nOFF), which hyvox does not read");
+                fail("the keyword " + quoteWord(word) +
+                     " is an OFF of another dimension (4OFF, nOFF), which hyvox does not read");
             if (wordOnLine(word)) {
                 if (word == "BINARY") fail("binary OFF is not read; write the file as ASCII OFF");
                 fail("unexpected " + quoteWord(word) + " after the keyword");
@@ -106,7 +106,8 @@ private:
         const double need = 6.0 * double(vertices_) + 8.0 * double(faces_);
         if (need > double(left) + 1.0)
             fail("the counts declare " + std::to_string(vertices_) + " vertices and " + std::to_string(faces_) +
-                 " faces, more than the " + std::to_string(left) + " bytes after them can hold (the file is truncated or a count is wrong)");
+                 " faces, more than the " + std::to_string(left) +
+                 " bytes after them can hold (the file is truncated or a count is wrong)");
         if (vertices_ > 0xFFFFFFFFull) fail("more vertices than 32-bit indices can number");
     }
 
@@ -117,7 +118,8 @@ private:
         std::string_view word;
         for (std::uint64_t v = 0; v < vertices_; ++v) {
             if (v % kInterruptEvery == 0) throwIfInterrupted(interrupter_);
-            if (!nextLineWord(word)) fail("the file ends after " + std::to_string(v) + " of its " + std::to_string(vertices_) + " vertices");
+            if (!nextLineWord(word))
+                fail("the file ends after " + std::to_string(v) + " of its " + std::to_string(vertices_) + " vertices");
             float values[12];
             int n = 0;
             do {
@@ -128,9 +130,9 @@ private:
             // Colours: 3 or 4 channels, integers 0..255 or numbers 0..1 (as Geomview reads them).
             const int channels = colors_ ? n - want - (uvs_ ? 2 : 0) : 0;
             if (n != want + (colors_ ? channels : 0) + (uvs_ ? 2 : 0) || (colors_ && channels != 3 && channels != 4))
-                fail("vertex " + std::to_string(v) + " has " + std::to_string(n) + " values; this OFF's vertices have " +
-                     std::to_string(want) + (colors_ ? " and 3 or 4 colour channels" : "") +
-                     (uvs_ ? " and 2 texture coordinates" : ""));
+                fail("vertex " + std::to_string(v) + " has " + std::to_string(n) +
+                     " values; this OFF's vertices have " + std::to_string(want) +
+                     (colors_ ? " and 3 or 4 colour channels" : "") + (uvs_ ? " and 2 texture coordinates" : ""));
             mesh_.positions.insert(mesh_.positions.end(), values, values + 3);
             if (colors_) {
                 const float* c = values + want;
@@ -150,17 +152,20 @@ private:
         std::vector<std::uint32_t> corners;
         for (std::uint64_t f = 0; f < faces_; ++f) {
             if (f % kInterruptEvery == 0) throwIfInterrupted(interrupter_);
-            if (!nextLineWord(word)) fail("the file ends after " + std::to_string(f) + " of its " + std::to_string(faces_) + " faces");
+            if (!nextLineWord(word))
+                fail("the file ends after " + std::to_string(f) + " of its " + std::to_string(faces_) + " faces");
             const std::uint64_t n = number<std::uint64_t>(word, "a face's corner count");
-            if (n < 3) fail("face " + std::to_string(f) + " has " + std::to_string(n) + " corners; a face needs at least 3");
+            if (n < 3)
+                fail("face " + std::to_string(f) + " has " + std::to_string(n) + " corners; a face needs at least 3");
             corners.clear();
             for (std::uint64_t c = 0; c < n; ++c) {
                 if (!wordOnLine(word))
-                    fail("face " + std::to_string(f) + " declares " + std::to_string(n) + " corners but lists " + std::to_string(c));
+                    fail("face " + std::to_string(f) + " declares " + std::to_string(n) + " corners but lists " +
+                         std::to_string(c));
                 const std::uint64_t index = number<std::uint64_t>(word, "a vertex index");
                 if (index >= vertices_)
-                    fail("face " + std::to_string(f) + ": vertex index " + std::to_string(index) + " names none of the " +
-                         std::to_string(vertices_) + " vertices");
+                    fail("face " + std::to_string(f) + ": vertex index " + std::to_string(index) +
+                         " names none of the " + std::to_string(vertices_) + " vertices");
                 corners.push_back(std::uint32_t(index));
             }
             // A face colour (a colour-map index, or 3 or 4 channels) may follow; nothing more.

@@ -9,8 +9,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -49,12 +49,11 @@ bool parseType(std::string_view word, Type& type) {
     static const struct {
         const char* name;
         Type type;
-    } kTypes[] = {{"char", Type::Int8},     {"int8", Type::Int8},       {"uchar", Type::Uint8},
-                  {"uint8", Type::Uint8},   {"short", Type::Int16},     {"int16", Type::Int16},
-                  {"ushort", Type::Uint16}, {"uint16", Type::Uint16},   {"int", Type::Int32},
-                  {"int32", Type::Int32},   {"uint", Type::Uint32},     {"uint32", Type::Uint32},
-                  {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64},
-                  {"float64", Type::Float64}};
+    } kTypes[] = {
+        {"char", Type::Int8},     {"int8", Type::Int8},       {"uchar", Type::Uint8},    {"uint8", Type::Uint8},
+        {"short", Type::Int16},   {"int16", Type::Int16},     {"ushort", Type::Uint16},  {"uint16", Type::Uint16},
+        {"int", Type::Int32},     {"int32", Type::Int32},     {"uint", Type::Uint32},    {"uint32", Type::Uint32},
+        {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64}, {"float64", Type::Float64}};
     for (const auto& t : kTypes)
         if (word == t.name) {
             type = t.type;
@@ -117,7 +116,9 @@ Header readHeader(const char* data, std::size_t size, const std::string& name) {
         ++line_number;
         return true;
     };
-    auto fail = [&](const std::string& what) { failMeshFile(name, what + " (header line " + std::to_string(line_number) + ")"); };
+    auto fail = [&](const std::string& what) {
+        failMeshFile(name, what + " (header line " + std::to_string(line_number) + ")");
+    };
 
     std::string_view line;
     if (!nextLine(line) || line != "ply") failMeshFile(name, "not a PLY file (the first line is not 'ply')");
@@ -364,8 +365,9 @@ public:
             if (e.name == "vertex" && !vertices) vertices = &e;
         if (!vertices) failMeshFile(name_, "the PLY header declares no 'vertex' element");
         if (vertices->count > std::numeric_limits<std::uint32_t>::max())
-            failMeshFile(name_, "declares " + std::to_string(vertices->count) +
-                                    " vertices; at most 4294967295 fit 32-bit indices");
+            failMeshFile(
+                name_,
+                "declares " + std::to_string(vertices->count) + " vertices; at most 4294967295 fit 32-bit indices");
         vertex_count_ = vertices->count;
         bool faces_read = false;
         for (const Element& e : header_.elements) {
@@ -382,10 +384,12 @@ public:
         // Records the header does not count (a count lowered by damage, pieces of another file)
         // would be dropped without a word: only whitespace may follow the last element.
         const char* rest = source.end() - source.remaining();
-        const char* other = std::find_if(rest, source.end(), [](char c) { return !std::isspace(static_cast<unsigned char>(c)); });
+        const char* other =
+            std::find_if(rest, source.end(), [](char c) { return !std::isspace(static_cast<unsigned char>(c)); });
         if (other != source.end())
-            failMeshFile(name_, std::to_string(source.end() - rest) + " bytes follow the last element the header declares (" +
-                                    header_.elements.back().name + "): a count is wrong, or the file holds pieces of another");
+            failMeshFile(name_,
+                         std::to_string(source.end() - rest) + " bytes follow the last element the header declares (" +
+                             header_.elements.back().name + "): a count is wrong, or the file holds pieces of another");
         if (std::is_same_v<Source, AsciiSource> && endsInsideAWord(source.end() - 1, source.end()))
             failMeshFile(name_, kCutInsideTheLastLine);
     }
@@ -408,17 +412,18 @@ private:
         }
         const std::uint64_t room = (std::uint64_t(source.remaining()) + 1) / min_bytes;  // +1: no final newline
         if (e.count > room)
-            failMeshFile(name_, "the header declares " + std::to_string(e.count) + " '" + e.name +
-                                    "' elements but the " + std::to_string(source.remaining()) +
-                                    " bytes after it hold at most " + std::to_string(room) +
-                                    " (the file is truncated or the count is wrong)");
+            failMeshFile(name_,
+                         "the header declares " + std::to_string(e.count) + " '" + e.name + "' elements but the " +
+                             std::to_string(source.remaining()) + " bytes after it hold at most " +
+                             std::to_string(room) + " (the file is truncated or the count is wrong)");
     }
 
     int faceListIndex(const Element& e) const {
         for (const char* n : {"vertex_indices", "vertex_index"})
             for (std::size_t p = 0; p < e.properties.size(); ++p)
                 if (e.properties[p].name == n) {
-                    if (!e.properties[p].list) failMeshFile(name_, "the face property '" + std::string(n) + "' is not a list");
+                    if (!e.properties[p].list)
+                        failMeshFile(name_, "the face property '" + std::string(n) + "' is not a list");
                     return int(p);
                 }
         failMeshFile(name_, "the 'face' element has no 'vertex_indices' list");
@@ -426,7 +431,8 @@ private:
 
     [[noreturn]] void failRecord(const Element& e, std::uint64_t index, const std::string& what,
                                  const std::string& where) const {
-        failMeshFile(name_, e.name + " " + std::to_string(index) + " of " + std::to_string(e.count) + where + ": " + what);
+        failMeshFile(name_,
+                     e.name + " " + std::to_string(index) + " of " + std::to_string(e.count) + where + ": " + what);
     }
 
     template <class Source>
@@ -441,10 +447,12 @@ private:
         const int x = findProperty(e, {"x"}), y = findProperty(e, {"y"}), z = findProperty(e, {"z"});
         for (const auto& [slot, axis] : {std::pair{x, "x"}, {y, "y"}, {z, "z"}})
             if (slot < 0) failMeshFile(name_, "the vertex element has no '" + std::string(axis) + "' property");
-        const int r = findProperty(e, {"red", "r", "diffuse_red"}), g = findProperty(e, {"green", "g", "diffuse_green"}),
+        const int r = findProperty(e, {"red", "r", "diffuse_red"}),
+                  g = findProperty(e, {"green", "g", "diffuse_green"}),
                   b = findProperty(e, {"blue", "b", "diffuse_blue"}), a = findProperty(e, {"alpha", "a"});
         int u = -1, v = -1;
-        for (const auto& [un, vn] : {std::pair{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}}) {
+        for (const auto& [un, vn] :
+             {std::pair{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}}) {
             u = findProperty(e, {un});
             v = findProperty(e, {vn});
             if (u >= 0 && v >= 0) break;
@@ -461,10 +469,12 @@ private:
         if constexpr (std::is_same_v<Source, BinarySource>) {
             // Records of float32 and uint8 scalars (positions, and 8-bit colours if any):
             // copied straight from the bytes.
-            bool plain = !uvs && (!colors || (e.properties[std::size_t(r)].type == Type::Uint8 &&
-                                              e.properties[std::size_t(g)].type == Type::Uint8 &&
-                                              e.properties[std::size_t(b)].type == Type::Uint8 &&
-                                              (a < 0 || e.properties[std::size_t(a)].type == Type::Uint8)));
+            bool plain = !uvs &&
+                (!colors ||
+                 (e.properties[std::size_t(r)].type == Type::Uint8 &&
+                  e.properties[std::size_t(g)].type == Type::Uint8 &&
+                  e.properties[std::size_t(b)].type == Type::Uint8 &&
+                  (a < 0 || e.properties[std::size_t(a)].type == Type::Uint8)));
             for (int axis : {x, y, z}) plain &= e.properties[std::size_t(axis)].type == Type::Float32;
             std::vector<std::size_t> offset(e.properties.size());
             std::size_t stride = 0;
@@ -476,10 +486,12 @@ private:
             }
             if (plain) {
                 const std::size_t xyz[3] = {offset[std::size_t(x)], offset[std::size_t(y)], offset[std::size_t(z)]};
-                const int rgba[4] = {colors ? int(offset[std::size_t(r)]) : -1, colors ? int(offset[std::size_t(g)]) : -1,
-                                     colors ? int(offset[std::size_t(b)]) : -1, a >= 0 ? int(offset[std::size_t(a)]) : -1};
+                const int rgba[4] = {
+                    colors ? int(offset[std::size_t(r)]) : -1, colors ? int(offset[std::size_t(g)]) : -1,
+                    colors ? int(offset[std::size_t(b)]) : -1, a >= 0 ? int(offset[std::size_t(a)]) : -1};
                 i = inChunks(e.count, [&](std::uint64_t chunk) {
-                    return source.vertexRecords(chunk, stride, xyz, colors ? rgba : nullptr, mesh_.positions, mesh_.colors);
+                    return source.vertexRecords(chunk, stride, xyz, colors ? rgba : nullptr, mesh_.positions,
+                                                mesh_.colors);
                 });
             }
         }
@@ -498,7 +510,8 @@ private:
             }
             mesh_.positions.insert(mesh_.positions.end(), {float(values[x]), float(values[y]), float(values[z])});
             if (colors)
-                mesh_.colors.insert(mesh_.colors.end(), {channel(r), channel(g), channel(b), a >= 0 ? channel(a) : 1.0f});
+                mesh_.colors.insert(mesh_.colors.end(),
+                                    {channel(r), channel(g), channel(b), a >= 0 ? channel(a) : 1.0f});
             if (uvs) mesh_.uvs.insert(mesh_.uvs.end(), {float(values[u]), float(values[v])});
         }
     }
@@ -517,8 +530,9 @@ private:
             if (e.properties.size() == 1 && list.count_type == Type::Uint8 &&
                 (list.type == Type::Int32 || list.type == Type::Uint32)) {
                 const auto vertex_limit = std::uint32_t(std::min<std::uint64_t>(vertex_count_, 1u << 31));
-                f = inChunks(e.count,
-                             [&](std::uint64_t chunk) { return source.triangles(chunk, vertex_limit, mesh_.triangles); });
+                f = inChunks(e.count, [&](std::uint64_t chunk) {
+                    return source.triangles(chunk, vertex_limit, mesh_.triangles);
+                });
             }
         }
         for (; f < e.count; ++f) {
@@ -558,8 +572,8 @@ private:
     std::uint32_t index(const Property& property, Source& source) {
         const double i = source.scalar(property.type);
         if (!(i >= 0 && i < double(vertex_count_)) || i != std::floor(i))
-            throw RecordError{"vertex index " + formatIndex(i) + " is not one of the " +
-                              std::to_string(vertex_count_) + " vertices"};
+            throw RecordError{"vertex index " + formatIndex(i) + " is not one of the " + std::to_string(vertex_count_) +
+                              " vertices"};
         return std::uint32_t(i);
     }
 

@@ -57,9 +57,10 @@ Texture readPngTexture(const std::string& path) {
         if (alpha)
             for (std::size_t p = 0; p < samples; p += 4)
                 for (std::size_t c = 0; c < 3; ++c)
-                    pixels[p + c] = pixels[p + 3] ? std::uint16_t(std::min<std::uint32_t>(
-                                                        65535u, (std::uint32_t(pixels[p + c]) * 65535u + pixels[p + 3] / 2) / pixels[p + 3]))
-                                                  : 0;
+                    pixels[p + c] = pixels[p + 3]
+                        ? std::uint16_t(std::min<std::uint32_t>(
+                              65535u, (std::uint32_t(pixels[p + c]) * 65535u + pixels[p + 3] / 2) / pixels[p + 3]))
+                        : 0;
         return textureFromWords(pixels.data(), int(image.width), int(image.height), channels);
     }
     image.format = alpha ? PNG_FORMAT_RGBA : PNG_FORMAT_RGB;
@@ -95,7 +96,8 @@ HeightImage readPngHeight(const std::string& path) {
         }
         return true;
     };
-    const bool ok = sixteen ? decode(std::vector<png_uint_16>(count), 65535.0) : decode(std::vector<png_byte>(count), 255.0);
+    const bool ok =
+        sixteen ? decode(std::vector<png_uint_16>(count), 65535.0) : decode(std::vector<png_byte>(count), 255.0);
     if (!ok) throw InvalidInput("displacement image '" + path + "' could not be decoded: " + image.message);
     return out;
 }

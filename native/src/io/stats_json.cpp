@@ -65,8 +65,9 @@ std::string statsToJson(const VoxelizeResult& result) {
     if (s.region) {  // the box a region's run voxelized, voxels [lo, hi) of the grid
         const RegionBox& box = *s.region;
         out << "  \"region\": {\"index\": " << s.options.region.index << ", \"count\": " << s.options.region.count
-            << ", \"axis\": " << io::jsonQuote(std::string(1, "xyz"[box.axis])) << ", \"lo\": [" << box.lo[0] << ", " << box.lo[1]
-            << ", " << box.lo[2] << "], \"hi\": [" << box.hi[0] << ", " << box.hi[1] << ", " << box.hi[2] << "]},\n";
+            << ", \"axis\": " << io::jsonQuote(std::string(1, "xyz"[box.axis])) << ", \"lo\": [" << box.lo[0] << ", "
+            << box.lo[1] << ", " << box.lo[2] << "], \"hi\": [" << box.hi[0] << ", " << box.hi[1] << ", " << box.hi[2]
+            << "]},\n";
     }
     out << "  \"voxel_count\": " << number(s.voxel_count) << ",\n";
     out << "  \"leaves\": " << number(s.leaves) << ",\n";
@@ -111,7 +112,9 @@ std::string statsToJson(const VoxelizeResult& result) {
 }
 
 void writeTextFileAtomic(const std::string& path, const std::string& text, bool durable) {
-    io::AtomicFile(path, durable ? io::Durability::Durable : io::Durability::Atomic).writeWith([&](std::ostream& os) { os << text; });
+    io::AtomicFile(path, durable ? io::Durability::Durable : io::Durability::Atomic).writeWith([&](std::ostream& os) {
+        os << text;
+    });
 }
 
 }  // namespace hyvox

@@ -40,9 +40,10 @@ Mesh readBinary(const char* data, std::size_t size, const std::string& name, Int
     std::memcpy(&count, data + 80, 4);  // little-endian in the file, as on every host hyvox builds for
     const std::uint64_t expected = kHeaderBytes + std::uint64_t(count) * kRecordBytes;
     if (expected != size)
-        failMeshFile(name, "the binary STL header declares " + std::to_string(count) + " triangles (" +
-                               std::to_string(expected) + " bytes) but the file has " + std::to_string(size) +
-                               " bytes (truncated, or the count is wrong)");
+        failMeshFile(name,
+                     "the binary STL header declares " + std::to_string(count) + " triangles (" +
+                         std::to_string(expected) + " bytes) but the file has " + std::to_string(size) +
+                         " bytes (truncated, or the count is wrong)");
     if (count == 0) failMeshFile(name, "contains no triangles");
     Mesh mesh;
     mesh.positions.resize(std::size_t(9) * count);

@@ -38,15 +38,15 @@ constexpr std::uint32_t kLibraryMajor = 10, kLibraryMinor = 0;
 constexpr std::uint32_t kCompressActiveMask = 0x2, kCompressBlosc = 0x4;
 constexpr std::uint32_t kCompression = kCompressActiveMask | kCompressBlosc;
 // The metadata byte before a node's values (io::MaskCompress): which inactive values it holds.
-constexpr std::int8_t kNoMaskOrInactiveVals = 0;    // every inactive value is the background
-constexpr std::int8_t kNoMaskAndMinusBg = 1;        // every inactive value is -background
-constexpr std::int8_t kMaskAndNoInactiveVals = 3;   // both, and a mask that selects +background
+constexpr std::int8_t kNoMaskOrInactiveVals = 0;   // every inactive value is the background
+constexpr std::int8_t kNoMaskAndMinusBg = 1;       // every inactive value is -background
+constexpr std::int8_t kMaskAndNoInactiveVals = 3;  // both, and a mask that selects +background
 
 // Node geometry of Tree_float_5_4_3: a leaf spans 8 voxels per axis, a lower internal node
 // 16 leaves (128 voxels), an upper internal node 32 lower nodes (4096 voxels).
 constexpr int kLeafLog2 = 3, kLowerLog2 = 4, kUpperLog2 = 5;
-constexpr int kLowerTotal = kLeafLog2 + kLowerLog2;  // 7
-constexpr int kUpperTotal = kLowerTotal + kUpperLog2;  // 12
+constexpr int kLowerTotal = kLeafLog2 + kLowerLog2;                             // 7
+constexpr int kUpperTotal = kLowerTotal + kUpperLog2;                           // 12
 constexpr std::size_t kLowerWords = (std::size_t(1) << (3 * kLowerLog2)) / 64;  // 64
 constexpr std::size_t kUpperWords = (std::size_t(1) << (3 * kUpperLog2)) / 64;  // 512
 constexpr std::size_t kLeafMaskBytes = 8 * sizeof(std::uint64_t);
@@ -61,7 +61,9 @@ struct TreeBytes {
 };
 constexpr TreeBytes kFloatTreeBytes{1304, 96 + 512 * 4, 4096 * 8 + 2 * 512 + 12, 32768 * 8 + 2 * 4096 + 12};
 constexpr TreeBytes kVec3fTreeBytes{1320, 96 + 512 * 12, 4096 * 16 + 2 * 512 + 12, 32768 * 16 + 2 * 4096 + 12};
-const TreeBytes& treeBytes(VdbValueType type) { return type == VdbValueType::Float ? kFloatTreeBytes : kVec3fTreeBytes; }
+const TreeBytes& treeBytes(VdbValueType type) {
+    return type == VdbValueType::Float ? kFloatTreeBytes : kVec3fTreeBytes;
+}
 
 // io::writeData with COMPRESS_BLOSC (io::bloscToStream): the compressed size as an int64 and
 // blosc's block, compressed with OpenVDB's settings (level 9, byte shuffle over 4-byte
@@ -151,19 +153,19 @@ struct Placed {
 int tableOffset(const std::array<std::int32_t, 3>& at, int node_total, int child_total, int log2) {
     const int mask = (1 << node_total) - 1;
     return (((at[0] & mask) >> child_total) << (2 * log2)) + (((at[1] & mask) >> child_total) << log2) +
-           ((at[2] & mask) >> child_total);
+        ((at[2] & mask) >> child_total);
 }
 
 Placed place(const std::array<std::int32_t, 3>& o, int level, std::size_t index) {
     static const int kSideLog2[] = {kLeafLog2, kLeafLog2, kLowerTotal, kUpperTotal};
     for (int a = 0; a < 3; ++a)
         if (o[a] < 0 || (o[a] & ((1 << kSideLog2[level]) - 1)) != 0)
-            throw InvalidInput("vdb writer: a " + std::string(level ? "tile" : "leaf") + " at (" + std::to_string(o[0]) +
-                               ", " + std::to_string(o[1]) + ", " + std::to_string(o[2]) +
+            throw InvalidInput("vdb writer: a " + std::string(level ? "tile" : "leaf") + " at (" +
+                               std::to_string(o[0]) + ", " + std::to_string(o[1]) + ", " + std::to_string(o[2]) +
                                ") is below 0 or off its node lattice");
     Placed p;
     p.upper = (std::uint64_t(o[0] >> kUpperTotal) << 42) | (std::uint64_t(o[1] >> kUpperTotal) << 21) |
-              std::uint64_t(o[2] >> kUpperTotal);
+        std::uint64_t(o[2] >> kUpperTotal);
     p.lower = level >= 3 ? 0 : std::uint32_t(tableOffset(o, kUpperTotal, kLowerTotal, kUpperLog2));
     p.leaf = level >= 2 ? 0 : std::uint32_t(tableOffset(o, kLowerTotal, kLeafLog2, kLowerLog2));
     p.level = level;
@@ -213,7 +215,8 @@ void mergeTiles(PlacedTree& tree, int level) {
     const std::vector<Placed>& items = tree.items;
     while (n < items.size()) {
         std::size_t end = n;
-        while (end < items.size() && items[end].upper == items[n].upper && (level == 2 || items[end].lower == items[n].lower))
+        while (end < items.size() && items[end].upper == items[n].upper &&
+               (level == 2 || items[end].lower == items[n].lower))
             ++end;
         if (end - n == std::size_t(slots) && mergeable(tree, n, end - n, level)) {
             Placed up = items[n];
@@ -248,7 +251,8 @@ PlacedTree placeTree(const VdbGrid& grid) {
     // tile sorts first among them).
     for (std::size_t n = 1; n < tree.items.size(); ++n) {
         const Placed &a = tree.items[n - 1], &b = tree.items[n];
-        const bool overlap = inSlot(a, b) || (a.upper == b.upper && (a.level == 3 || (a.level == 2 && a.lower == b.lower)));
+        const bool overlap =
+            inSlot(a, b) || (a.upper == b.upper && (a.level == 3 || (a.level == 2 && a.lower == b.lower)));
         if (overlap) throw InvalidInput("vdb writer: leaves or tiles overlap");
     }
     mergeTiles(tree, 1);
@@ -356,7 +360,8 @@ std::map<std::string, MetaValue> gridMetadata(const VoxelizeResult& result, cons
     meta["hyvox_voxel_size"] = metaDouble(grid.voxel_size);
     meta["hyvox_origin"] = metaOf("vec3d", grid.origin);
     meta["hyvox_dims"] = metaOf("vec3i", grid.dims);
-    if (!result.stats.options.region.whole()) meta["hyvox_region"] = metaString(formatRegion(result.stats.options.region));
+    if (!result.stats.options.region.whole())
+        meta["hyvox_region"] = metaString(formatRegion(result.stats.options.region));
     return meta;
 }
 
@@ -405,7 +410,8 @@ void writeNodeTable(Bytes& out, const PlacedTree& tree, std::size_t first, std::
         } else if (tree.tile_active[p.index]) {
             tiles[slot >> 6] |= bit;
             // In table order: the order writeCompressedValues gathers active values in.
-            values.insert(values.end(), tree.tile_values[p.index].begin(), tree.tile_values[p.index].begin() + channels);
+            values.insert(values.end(), tree.tile_values[p.index].begin(),
+                          tree.tile_values[p.index].begin() + channels);
         } else {
             any_inside = true;
         }
@@ -473,7 +479,8 @@ constexpr std::size_t kLeavesPerBlock = 256;
 
 // LeafNode::writeBuffers for `leaves` [first, last) (indices into grid.leaves in write
 // order): per leaf its mask, the metadata byte and its active values as a blosc block.
-std::string leafBuffers(const VdbGrid& grid, const std::vector<std::size_t>& leaves, std::size_t first, std::size_t last) {
+std::string leafBuffers(const VdbGrid& grid, const std::vector<std::size_t>& leaves, std::size_t first,
+                        std::size_t last) {
     std::string out;
     const std::size_t channels = std::size_t(grid.channels());
     const std::size_t stride = grid.stride ? grid.stride : channels;
@@ -552,7 +559,8 @@ GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const VdbGrid& 
     layout.buffers.resize((leaves.size() + kLeavesPerBlock - 1) / kLeavesPerBlock);
     arena.execute([&] {
         tbb::parallel_for(std::size_t(0), layout.buffers.size(), [&](std::size_t b) {
-            layout.buffers[b] = leafBuffers(grid, leaves, b * kLeavesPerBlock, std::min(leaves.size(), (b + 1) * kLeavesPerBlock));
+            layout.buffers[b] =
+                leafBuffers(grid, leaves, b * kLeavesPerBlock, std::min(leaves.size(), (b + 1) * kLeavesPerBlock));
         });
     });
     layout.end = std::size_t(block_pos);
@@ -573,7 +581,8 @@ VdbGrid resultDensityGrid(const VoxelizeResult& result) {
     if (valued.empty()) return grid;
     const BrickLayout& bricks = result.occupancy.bricks();
     auto brickOf = [&](const std::array<std::int32_t, 3>& origin) {
-        return bricks.index(origin[0] / BrickLayout::kSide, origin[1] / BrickLayout::kSide, origin[2] / BrickLayout::kSide);
+        return bricks.index(origin[0] / BrickLayout::kSide, origin[1] / BrickLayout::kSide,
+                            origin[2] / BrickLayout::kSide);
     };
     std::vector<VdbTile> tiles;
     for (const VdbTile& tile : grid.tiles) {
@@ -602,7 +611,8 @@ VdbGrid attributeGrid(const SparseGrid& occupancy, const AttributeGrid& attribut
     grid.leaves.reserve(valued.size());
     for (const ValuedBrick& brick : valued) {
         const std::array<std::int32_t, 3> b = bricks.at(brick.brick);
-        grid.leaves.push_back({{b[0] * BrickLayout::kSide, b[1] * BrickLayout::kSide, b[2] * BrickLayout::kSide}, brick.mask,
+        grid.leaves.push_back({{b[0] * BrickLayout::kSide, b[1] * BrickLayout::kSide, b[2] * BrickLayout::kSide},
+                               brick.mask,
                                attributes.values.data() + brick.first * channels + std::size_t(offset)});
     }
     const int width = grid.channels();
@@ -617,7 +627,8 @@ VdbGrid attributeGrid(const SparseGrid& occupancy, const AttributeGrid& attribut
 void appendAttributeGrids(std::vector<VdbGrid>& grids, const SparseGrid& occupancy, const AttributeGrid& attributes) {
     if (attributes.empty()) return;
     if (attributes.color)
-        grids.push_back(attributeGrid(occupancy, attributes, attributes.colorOffset(), "color", VdbValueType::Vec3f, "invariant"));
+        grids.push_back(
+            attributeGrid(occupancy, attributes, attributes.colorOffset(), "color", VdbValueType::Vec3f, "invariant"));
     if (attributes.alpha)
         grids.push_back(attributeGrid(occupancy, attributes, attributes.alphaOffset(), "alpha", VdbValueType::Float));
     if (attributes.normal)
@@ -635,7 +646,8 @@ VdbGrid levelSetGrid(const VoxelizeResult& result) {
     const BrickLayout bricks = result.grid.bricks();
     auto originOf = [&](std::uint64_t brick) {
         const std::array<std::int32_t, 3> b = bricks.at(brick);
-        return std::array<std::int32_t, 3>{b[0] * BrickLayout::kSide, b[1] * BrickLayout::kSide, b[2] * BrickLayout::kSide};
+        return std::array<std::int32_t, 3>{b[0] * BrickLayout::kSide, b[1] * BrickLayout::kSide,
+                                           b[2] * BrickLayout::kSide};
     };
     grid.leaves.reserve(sdf.leaves.size());
     for (const LevelSetGrid::Leaf& leaf : sdf.leaves)

@@ -59,7 +59,7 @@ struct VdbTile {
     std::array<std::int32_t, 3> origin;
     int level = 1;
     std::array<float, 3> value{1.0f, 1.0f, 1.0f};  // value[0] alone for a Float grid
-    bool active = true;  // false: a level set's inside, holding -background (`value` unused)
+    bool active = true;                            // false: a level set's inside, holding -background (`value` unused)
 };
 
 // One grid of the file. Leaves and tiles may come in any order and must not overlap. Tiles
@@ -70,13 +70,13 @@ struct VdbGrid {
     std::string name;
     VdbValueType type = VdbValueType::Float;
     std::string grid_class = "fog volume";  // the "class" metadata; "" = none (OpenVDB: unknown)
-    std::string vector_type;  // Vec3f: "invariant", "covariant", "covariant normalize", ...; "" = none
+    std::string vector_type;                // Vec3f: "invariant", "covariant", "covariant normalize", ...; "" = none
     VdbLeafValues layout = VdbLeafValues::Fill;
     std::array<float, 3> fill{1.0f, 1.0f, 1.0f};  // Fill's value
     // The tree's background (Float grids). A level set's is its band's half-width, and its
     // inactive voxels and tiles hold +background outside and -background inside; 0 otherwise.
     float background = 0.0f;
-    std::size_t stride = 0;                        // floats between voxels; 0 = channels()
+    std::size_t stride = 0;       // floats between voxels; 0 = channels()
     std::vector<VdbLeaf> leaves;  // they and their values must outlive serializeVdbGrids()
     std::vector<VdbTile> tiles;
 

@@ -93,7 +93,8 @@ openvdb::FloatGrid::Ptr makeDensityGrid(const GridSpec& grid, const SparseGrid& 
             const SparseGrid::Leaf& from = source[n];
             const std::array<std::int32_t, 3> at = bricks.at(from.brick);
             const int side = BrickLayout::kSide;
-            auto leaf = std::make_unique<FloatLeaf>(openvdb::Coord(at[0] * side, at[1] * side, at[2] * side), 0.0f, false);
+            auto leaf =
+                std::make_unique<FloatLeaf>(openvdb::Coord(at[0] * side, at[1] * side, at[2] * side), 0.0f, false);
             auto& mask = leaf->getValueMask();
             for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) mask.template getWord<std::uint64_t>(w) = from.words[w];
             float* values = leaf->buffer().data();
@@ -148,13 +149,15 @@ openvdb::FloatGrid::Ptr makeLevelSetGrid(const VoxelizeResult& result) {
         for (std::size_t n = range.begin(); n != range.end(); ++n) {
             const LevelSetGrid::Leaf& from = sdf.leaves[n];
             const std::array<std::int32_t, 3> at = bricks.at(from.brick);
-            auto leaf = std::make_unique<FloatLeaf>(openvdb::Coord(at[0] * side, at[1] * side, at[2] * side), background, false);
+            auto leaf = std::make_unique<FloatLeaf>(openvdb::Coord(at[0] * side, at[1] * side, at[2] * side),
+                                                    background, false);
             auto& mask = leaf->getValueMask();
             for (int w = 0; w < BitGrid::kWordsPerBrick; ++w) mask.template getWord<std::uint64_t>(w) = from.active[w];
             float* values = leaf->buffer().data();
             std::size_t next = from.first;
             for (int v = 0; v < 512; ++v) {
-                const bool active = (from.active[v >> 6] >> (v & 63)) & 1, inside = (from.inside[v >> 6] >> (v & 63)) & 1;
+                const bool active = (from.active[v >> 6] >> (v & 63)) & 1,
+                           inside = (from.inside[v >> 6] >> (v & 63)) & 1;
                 values[v] = active ? sdf.values[next++] : inside ? -background : background;
             }
             leaves[n] = std::move(leaf);

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "hyvox/sparse_grid.h"
 #include "hyvox/grid.h"
 #include "hyvox/result.h"
+#include "hyvox/sparse_grid.h"
 #include "io/vdb_direct_writer.h"  // densityGridBytes, checkGridBudget
 
 namespace hyvox::io {

@@ -42,10 +42,23 @@ struct PartRun {
 // The metadata the writer writes again, from the merged grids or the parts' run: a part with
 // any other entry is refused, so that nothing is dropped unnoticed.
 const std::set<std::string>& carriedMetadata() {
-    static const std::set<std::string> names{
-        "class",          "vector_type",     "creator",      "name",          "file_bbox_min",    "file_bbox_max",
-        "file_compression", "file_mem_bytes", "file_voxel_count", "file_delayed_load", "hyvox_version", "hyvox_method",
-        "hyvox_mode",     "hyvox_voxel_size", "hyvox_origin", "hyvox_dims",    "hyvox_region"};
+    static const std::set<std::string> names{"class",
+                                             "vector_type",
+                                             "creator",
+                                             "name",
+                                             "file_bbox_min",
+                                             "file_bbox_max",
+                                             "file_compression",
+                                             "file_mem_bytes",
+                                             "file_voxel_count",
+                                             "file_delayed_load",
+                                             "hyvox_version",
+                                             "hyvox_method",
+                                             "hyvox_mode",
+                                             "hyvox_voxel_size",
+                                             "hyvox_origin",
+                                             "hyvox_dims",
+                                             "hyvox_region"};
     return names;
 }
 
@@ -56,7 +69,9 @@ const std::set<std::string>& carriedMetadata() {
 template <typename T, std::size_t N>
 std::array<T, N> metaArray(const Part& part, const VdbReadGrid& grid, const char* name, const char* type) {
     const io::VdbMetaEntry* entry = grid.meta(name);
-    if (!entry) refuse(part, "grid '" + grid.name + "' has no " + name + " metadata: hyvox merge joins the .vdb files hyvox writes");
+    if (!entry)
+        refuse(part,
+               "grid '" + grid.name + "' has no " + name + " metadata: hyvox merge joins the .vdb files hyvox writes");
     if (entry->type != type || entry->bytes.size() != sizeof(T) * N)
         refuse(part, "grid '" + grid.name + "' has " + name + " metadata of type " + entry->type + ", not " + type);
     std::array<T, N> out;
@@ -67,17 +82,23 @@ std::array<T, N> metaArray(const Part& part, const VdbReadGrid& grid, const char
 std::string metaString(const Part& part, const VdbReadGrid& grid, const char* name) {
     const io::VdbMetaEntry* entry = grid.meta(name);
     if (!entry || entry->type != "string")
-        refuse(part, "grid '" + grid.name + "' has no " + name + " text metadata: hyvox merge joins the .vdb files hyvox writes");
+        refuse(part,
+               "grid '" + grid.name + "' has no " + name +
+                   " text metadata: hyvox merge joins the .vdb files hyvox writes");
     return entry->bytes;
 }
 
 PartRun partRun(const Part& part) {
     if (part.file.grids.empty()) refuse(part, "it holds no grid");
-    if (!part.file.metadata.empty()) refuse(part, "it has file metadata ('" + part.file.metadata[0].name + "'), which hyvox merge does not carry over");
+    if (!part.file.metadata.empty())
+        refuse(part,
+               "it has file metadata ('" + part.file.metadata[0].name + "'), which hyvox merge does not carry over");
     for (const VdbReadGrid& grid : part.file.grids)
         for (const io::VdbMetaEntry& entry : grid.metadata)
             if (!carriedMetadata().count(entry.name))
-                refuse(part, "grid '" + grid.name + "' has metadata '" + entry.name + "', which hyvox merge does not carry over");
+                refuse(part,
+                       "grid '" + grid.name + "' has metadata '" + entry.name +
+                           "', which hyvox merge does not carry over");
     const VdbReadGrid& first = part.file.grids[0];
     PartRun run;
     run.grid.voxel_size = metaArray<double, 1>(part, first, "hyvox_voxel_size", "double")[0];
@@ -90,7 +111,8 @@ PartRun partRun(const Part& part) {
     run.mode = metaString(part, first, "hyvox_mode");
     if (first.meta("hyvox_region")) {
         const std::string text = metaString(part, first, "hyvox_region");
-        if (!isRegionText(text) || parseRegion(text).whole()) refuse(part, "its hyvox_region '" + text + "' is not K/N");
+        if (!isRegionText(text) || parseRegion(text).whole())
+            refuse(part, "its hyvox_region '" + text + "' is not K/N");
         run.region = parseRegion(text);
     }
     return run;
@@ -102,23 +124,28 @@ int checkRegions(const std::vector<Part>& parts, const std::vector<PartRun>& run
     const bool job = !runs[0].region.whole();
     for (std::size_t p = 1; p < parts.size(); ++p)
         if (runs[p].region.whole() != !job)
-            refuse(parts[p], job ? "it is not a region of a job, and '" + parts[0].path + "' is"
-                                 : "it is region " + formatRegion(runs[p].region) + " of a job, and '" + parts[0].path + "' is not");
+            refuse(
+                parts[p],
+                job ? "it is not a region of a job, and '" + parts[0].path + "' is"
+                    : "it is region " + formatRegion(runs[p].region) + " of a job, and '" + parts[0].path + "' is not");
     if (!job) return 0;
     const int count = runs[0].region.count;
     std::vector<int> given(std::size_t(count), -1);
     for (std::size_t p = 0; p < parts.size(); ++p) {
         const RegionOptions& region = runs[p].region;
         if (region.count != count)
-            refuse(parts[p], "it is region " + formatRegion(region) + ", of a job of " + std::to_string(region.count) +
-                                 " regions; '" + parts[0].path + "' is of a job of " + std::to_string(count));
+            refuse(parts[p],
+                   "it is region " + formatRegion(region) + ", of a job of " + std::to_string(region.count) +
+                       " regions; '" + parts[0].path + "' is of a job of " + std::to_string(count));
         int& seen = given[std::size_t(region.index)];
-        if (seen >= 0) refuse(parts[p], "region " + formatRegion(region) + " is also '" + parts[std::size_t(seen)].path + "'");
+        if (seen >= 0)
+            refuse(parts[p], "region " + formatRegion(region) + " is also '" + parts[std::size_t(seen)].path + "'");
         seen = int(p);
     }
     std::string missing;
     for (int k = 0; k < count; ++k)
-        if (given[std::size_t(k)] < 0) missing += (missing.empty() ? "" : ", ") + std::to_string(k) + "/" + std::to_string(count);
+        if (given[std::size_t(k)] < 0)
+            missing += (missing.empty() ? "" : ", ") + std::to_string(k) + "/" + std::to_string(count);
     if (!missing.empty())
         throw InvalidInput("cannot merge a job of " + std::to_string(count) + " regions without region" +
                            (missing.find(',') == std::string::npos ? " " : "s ") + missing);
@@ -129,10 +156,13 @@ void checkSameRun(const Part& part, const PartRun& run, const Part& first, const
     auto differs = [&](const std::string& what, const std::string& here, const std::string& there) {
         refuse(part, "its " + what + " is " + here + ", and '" + first.path + "''s is " + there);
     };
-    auto vec = [](const auto& v) { return "(" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")"; };
+    auto vec = [](const auto& v) {
+        return "(" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
+    };
     if (run.grid.voxel_size != expected.grid.voxel_size)
         differs("voxel size", std::to_string(run.grid.voxel_size), std::to_string(expected.grid.voxel_size));
-    if (run.grid.origin != expected.grid.origin) differs("grid origin", vec(run.grid.origin), vec(expected.grid.origin));
+    if (run.grid.origin != expected.grid.origin)
+        differs("grid origin", vec(run.grid.origin), vec(expected.grid.origin));
     if (run.grid.dims != expected.grid.dims) differs("grid", run.grid.dimsText(), expected.grid.dimsText());
     if (run.method != expected.method) differs("method", run.method, expected.method);
     if (run.mode != expected.mode) differs("mode", run.mode, expected.mode);
@@ -150,22 +180,29 @@ std::string gridNames(const VdbFile& file) {
 void checkGrid(const Part& part, const VdbReadGrid& grid, const Part& first, const VdbReadGrid& expected,
                const std::string& transform) {
     if (grid.name != expected.name)
-        refuse(part, "its grids are " + gridNames(part.file) + ", and '" + first.path + "''s are " + gridNames(first.file));
+        refuse(part,
+               "its grids are " + gridNames(part.file) + ", and '" + first.path + "''s are " + gridNames(first.file));
     const std::string what = "grid '" + grid.name + "'";
-    if (grid.type != expected.type) refuse(part, what + " holds other values than in '" + first.path + "' (float, Vec3f)");
+    if (grid.type != expected.type)
+        refuse(part, what + " holds other values than in '" + first.path + "' (float, Vec3f)");
     if (grid.metaText("class") != expected.metaText("class"))
-        refuse(part, what + " is of class '" + grid.metaText("class") + "', in '" + first.path + "' of class '" +
-                         expected.metaText("class") + "'");
+        refuse(part,
+               what + " is of class '" + grid.metaText("class") + "', in '" + first.path + "' of class '" +
+                   expected.metaText("class") + "'");
     if (grid.metaText("vector_type") != expected.metaText("vector_type"))
-        refuse(part, what + " has vector type '" + grid.metaText("vector_type") + "', in '" + first.path + "' '" +
-                         expected.metaText("vector_type") + "'");
+        refuse(part,
+               what + " has vector type '" + grid.metaText("vector_type") + "', in '" + first.path + "' '" +
+                   expected.metaText("vector_type") + "'");
     if (grid.transform != transform)
-        refuse(part, what + "'s transform is not the uniform scale and translation of its hyvox_voxel_size and hyvox_origin");
+        refuse(part,
+               what + "'s transform is not the uniform scale and translation of its hyvox_voxel_size and hyvox_origin");
     const bool zero_background = std::all_of(grid.background.begin(), grid.background.begin() + grid.channels(),
                                              [](float v) { return v == 0.0f; });
     if (!zero_background || !grid.inactive_tiles.empty() || !grid.inactive_values.empty())
-        refuse(part, what + " holds inactive values other than a background of 0 (a level set?), which hyvox merge "
-                            "does not write");
+        refuse(part,
+               what +
+                   " holds inactive values other than a background of 0 (a level set?), which hyvox merge "
+                   "does not write");
 }
 
 // Leaf origins (and level-1 tiles) held by two parts.
@@ -186,10 +223,12 @@ void checkDisjoint(const std::vector<Part>& parts, std::size_t g) {
     for (std::size_t n = 1; n < items.size(); ++n)
         if (items[n].origin == items[n - 1].origin) {
             const auto& o = items[n].origin;
-            const std::size_t a = std::min(items[n].part, items[n - 1].part), b = std::max(items[n].part, items[n - 1].part);
-            refuse(parts[b], "it and '" + parts[a].path + "' both hold voxels of the leaf at (" + std::to_string(o[0]) + ", " +
-                                 std::to_string(o[1]) + ", " + std::to_string(o[2]) + ") of grid '" +
-                                 parts[a].file.grids[g].name + "' (the regions of one job never overlap)");
+            const std::size_t a = std::min(items[n].part, items[n - 1].part),
+                              b = std::max(items[n].part, items[n - 1].part);
+            refuse(parts[b],
+                   "it and '" + parts[a].path + "' both hold voxels of the leaf at (" + std::to_string(o[0]) + ", " +
+                       std::to_string(o[1]) + ", " + std::to_string(o[2]) + ") of grid '" +
+                       parts[a].file.grids[g].name + "' (the regions of one job never overlap)");
         }
 }
 
@@ -202,12 +241,12 @@ void checkInsideBox(const Part& part, const PartRun& run) {
         auto outside = [&](std::int32_t lo, std::int32_t side) { return lo < box.lo[a] || lo + side > end; };
         bool any = false;
         for (const VdbReadGrid::Leaf& leaf : grid.leaves) any = any || outside(leaf.origin[a], 8);
-        for (const VdbTile& tile : grid.tiles)
-            any = any || outside(tile.origin[a], tileSide(tile));
+        for (const VdbTile& tile : grid.tiles) any = any || outside(tile.origin[a], tileSide(tile));
         if (any)
-            refuse(part, "grid '" + grid.name + "' holds voxels outside the box of its region " + formatRegion(run.region) +
-                             " (voxels " + std::to_string(box.lo[a]) + " to " + std::to_string(box.hi[a] - 1) + " along " +
-                             "xyz"[a] + ")");
+            refuse(part,
+                   "grid '" + grid.name + "' holds voxels outside the box of its region " + formatRegion(run.region) +
+                       " (voxels " + std::to_string(box.lo[a]) + " to " + std::to_string(box.hi[a] - 1) + " along " +
+                       "xyz"[a] + ")");
     }
 }
 
@@ -232,7 +271,8 @@ io::VdbGrid mergedGrid(const std::vector<Part>& parts, std::size_t g, std::vecto
     for (const Part& part : parts) {
         const VdbReadGrid& grid = part.file.grids[g];
         if (grid.activeLeafVoxels() == 0) continue;
-        if (!grid.uniform || (seen && !std::equal(fill.begin(), fill.begin() + long(width), grid.uniform_value.begin())))
+        if (!grid.uniform ||
+            (seen && !std::equal(fill.begin(), fill.begin() + long(width), grid.uniform_value.begin())))
             uniform = false;
         fill = grid.uniform_value;
         seen = true;
@@ -246,7 +286,8 @@ io::VdbGrid mergedGrid(const std::vector<Part>& parts, std::size_t g, std::vecto
         if (!uniform && grid.uniform) {
             storage.emplace_back();
             for (std::uint64_t v = 0; v < grid.activeLeafVoxels(); ++v)
-                storage.back().insert(storage.back().end(), grid.uniform_value.begin(), grid.uniform_value.begin() + long(width));
+                storage.back().insert(storage.back().end(), grid.uniform_value.begin(),
+                                      grid.uniform_value.begin() + long(width));
             values = storage.back().data();
         }
         for (const VdbReadGrid::Leaf& leaf : grid.leaves)
@@ -285,14 +326,17 @@ MergeReport mergeVdbFiles(const std::vector<std::string>& paths, const std::stri
     for (std::size_t p = 1; p < parts.size(); ++p) checkSameRun(parts[p], runs[p], parts[0], runs[0]);
     report.regions = checkRegions(parts, runs);
     if (runs[0].version != version())
-        refuse(parts[0], "it was written by hyvox " + runs[0].version + ", and this is hyvox " + version() +
-                             ": merge the parts with the hyvox that voxelized them");
+        refuse(parts[0],
+               "it was written by hyvox " + runs[0].version + ", and this is hyvox " + version() +
+                   ": merge the parts with the hyvox that voxelized them");
     const std::string transform = io::vdbTransformBytes(runs[0].grid);
     const VdbFile& first = parts[0].file;
     for (const Part& part : parts) {
         if (part.file.grids.size() != first.grids.size())
-            refuse(part, "its grids are " + gridNames(part.file) + ", and '" + parts[0].path + "''s are " + gridNames(first));
-        for (std::size_t g = 0; g < first.grids.size(); ++g) checkGrid(part, part.file.grids[g], parts[0], first.grids[g], transform);
+            refuse(part,
+                   "its grids are " + gridNames(part.file) + ", and '" + parts[0].path + "''s are " + gridNames(first));
+        for (std::size_t g = 0; g < first.grids.size(); ++g)
+            checkGrid(part, part.file.grids[g], parts[0], first.grids[g], transform);
     }
     for (std::size_t p = 0; p < parts.size(); ++p)
         if (!runs[p].region.whole()) checkInsideBox(parts[p], runs[p]);

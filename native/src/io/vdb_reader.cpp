@@ -20,19 +20,19 @@
 namespace hyvox::io {
 namespace {
 
-constexpr std::int64_t kMagic = 0x56444220;               // OPENVDB_MAGIC
-constexpr std::uint32_t kFirstVersion = 222;              // OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION
+constexpr std::int64_t kMagic = 0x56444220;   // OPENVDB_MAGIC
+constexpr std::uint32_t kFirstVersion = 222;  // OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION
 constexpr std::uint32_t kCompressZip = 0x1, kCompressActiveMask = 0x2, kCompressBlosc = 0x4;
 
 // io::readCompressedValues' metadata byte: how a node's inactive values are stored.
 enum InactiveValues : std::int8_t {
-    kNoMaskOrInactiveVals = 0,    // all the background
-    kNoMaskAndMinusBg = 1,        // all -background
+    kNoMaskOrInactiveVals = 0,     // all the background
+    kNoMaskAndMinusBg = 1,         // all -background
     kNoMaskAndOneInactiveVal = 2,  // all one other value (stored)
-    kMaskAndNoInactiveVals = 3,   // background or -background, by a selection mask
-    kMaskAndOneInactiveVal = 4,   // background or one other value, by a selection mask
-    kMaskAndTwoInactiveVals = 5,  // two other values, by a selection mask
-    kNoMaskAndAllVals = 6,        // every value stored
+    kMaskAndNoInactiveVals = 3,    // background or -background, by a selection mask
+    kMaskAndOneInactiveVal = 4,    // background or one other value, by a selection mask
+    kMaskAndTwoInactiveVals = 5,   // two other values, by a selection mask
+    kNoMaskAndAllVals = 6,         // every value stored
 };
 
 // Node geometry of the 5-4-3 trees (vdb_direct_writer.cpp has the same).
@@ -147,8 +147,9 @@ struct ValueCodec {
         }
         const auto stored = in.pod<std::int64_t>();
         if (stored <= 0) {  // stored uncompressed (too small to compress)
-            if (std::uint64_t(-stored) != want) in.fail("a block of " + std::to_string(-stored) + " bytes where " +
-                                                        std::to_string(want) + " were expected");
+            if (std::uint64_t(-stored) != want)
+                in.fail("a block of " + std::to_string(-stored) + " bytes where " + std::to_string(want) +
+                        " were expected");
             in.bytes(out, want);
             return;
         }
@@ -161,13 +162,13 @@ struct ValueCodec {
             if (blosc_cbuffer_validate(packed.get(), std::size_t(stored), &raw) != 0 || raw != want)
                 in.fail("a blosc block that does not hold " + std::to_string(want) + " bytes");
             blosc_cbuffer_sizes(packed.get(), &raw, &compressed, &block);
-            if (compressed != std::size_t(stored) ||
-                blosc_decompress_ctx(packed.get(), out, want, 1) != int(want))
+            if (compressed != std::size_t(stored) || blosc_decompress_ctx(packed.get(), out, want, 1) != int(want))
                 in.fail("a blosc block that does not decompress");
         } else {
             uLongf size = uLongf(want);
             if (uncompress(reinterpret_cast<Bytef*>(out), &size, reinterpret_cast<const Bytef*>(packed.get()),
-                           uLong(stored)) != Z_OK || size != want)
+                           uLong(stored)) != Z_OK ||
+                size != want)
                 in.fail("a zip block that does not decompress to " + std::to_string(want) + " bytes");
         }
     }
@@ -176,7 +177,8 @@ struct ValueCodec {
     // (count bits), inactive ones restored, into `out` (count × channels floats).
     void readValues(Input& in, const std::uint64_t* mask, std::size_t count, float* out) const {
         const auto kind = in.pod<std::int8_t>();
-        if (kind < kNoMaskOrInactiveVals || kind > kNoMaskAndAllVals) in.fail("an unknown value encoding " + std::to_string(kind));
+        if (kind < kNoMaskOrInactiveVals || kind > kNoMaskAndAllVals)
+            in.fail("an unknown value encoding " + std::to_string(kind));
         std::array<float, 3> outside = background, inside = background;
         if (kind != kNoMaskOrInactiveVals)
             for (int c = 0; c < channels; ++c) inside[std::size_t(c)] = -background[std::size_t(c)];
@@ -200,8 +202,9 @@ struct ValueCodec {
         const std::size_t width = std::size_t(channels);
         for (std::size_t n = 0, next = 0; n < count; ++n) {
             const bool on = (mask[n >> 6] >> (n & 63)) & 1;
-            const float* from = on ? &values[width * next++]
-                                   : (!selection.empty() && ((selection[n >> 6] >> (n & 63)) & 1) ? outside.data() : inside.data());
+            const float* from = on
+                ? &values[width * next++]
+                : (!selection.empty() && ((selection[n >> 6] >> (n & 63)) & 1) ? outside.data() : inside.data());
             std::copy(from, from + width, out + width * n);
         }
     }
@@ -221,7 +224,8 @@ void addTile(VdbReadGrid& grid, const std::array<std::int32_t, 3>& origin, int l
 
 // Slot n of an internal node whose children are 2^child_total voxels a side and which has
 // 2^log2 slots a side: the child's origin.
-std::array<std::int32_t, 3> slotOrigin(const std::array<std::int32_t, 3>& node, std::size_t n, int log2, int child_total) {
+std::array<std::int32_t, 3> slotOrigin(const std::array<std::int32_t, 3>& node, std::size_t n, int log2,
+                                       int child_total) {
     const std::size_t side = std::size_t(1) << log2;
     return {node[0] + std::int32_t((n >> (2 * log2)) << child_total),
             node[1] + std::int32_t(((n >> log2) & (side - 1)) << child_total),
@@ -230,8 +234,8 @@ std::array<std::int32_t, 3> slotOrigin(const std::array<std::int32_t, 3>& node, 
 
 // InternalNode::readTopology: child and value masks, every slot's value, then the children
 // (lower nodes, or for a lower node the leaves' masks), in slot order.
-void readInternalTopology(Input& in, const ValueCodec& codec, VdbReadGrid& grid, const std::array<std::int32_t, 3>& origin,
-                          int log2) {
+void readInternalTopology(Input& in, const ValueCodec& codec, VdbReadGrid& grid,
+                          const std::array<std::int32_t, 3>& origin, int log2) {
     const std::size_t slots = std::size_t(1) << (3 * log2);
     const int child_total = log2 == kUpperLog2 ? kLowerTotal : kLeafLog2;
     std::vector<std::uint64_t> children(slots / 64), tiles(slots / 64);
@@ -265,7 +269,8 @@ void readTopology(Input& in, const ValueCodec& codec, VdbReadGrid& grid) {
     in.bytes(grid.background.data(), codec.valueBytes());
     const auto root_tiles = in.pod<std::uint32_t>();
     const auto uppers = in.pod<std::uint32_t>();
-    if (root_tiles > kMaxEntries || uppers > kMaxEntries) in.fail("a root of " + std::to_string(root_tiles + 0ull + uppers) + " entries");
+    if (root_tiles > kMaxEntries || uppers > kMaxEntries)
+        in.fail("a root of " + std::to_string(root_tiles + 0ull + uppers) + " entries");
     ValueCodec with_background = codec;
     with_background.background = grid.background;
     for (std::uint32_t t = 0; t < root_tiles; ++t) {
@@ -308,7 +313,8 @@ void readLeafBuffers(Input& in, const ValueCodec& codec, VdbReadGrid& grid, Inte
                 grid.uniform = false;
                 grid.values.reserve(std::size_t(active_so_far + 1) * width);
                 for (std::uint64_t k = 0; k < active_so_far; ++k)
-                    grid.values.insert(grid.values.end(), grid.uniform_value.begin(), grid.uniform_value.begin() + long(width));
+                    grid.values.insert(grid.values.end(), grid.uniform_value.begin(),
+                                       grid.uniform_value.begin() + long(width));
             }
             if (!grid.uniform) grid.values.insert(grid.values.end(), value, value + width);
             ++active_so_far;
@@ -320,7 +326,8 @@ void readLeafBuffers(Input& in, const ValueCodec& codec, VdbReadGrid& grid, Inte
     }
 }
 
-VdbReadGrid readGrid(Input& in, const std::string& unique_name, const std::string& tree_type, Interrupter* interrupter) {
+VdbReadGrid readGrid(Input& in, const std::string& unique_name, const std::string& tree_type,
+                     Interrupter* interrupter) {
     VdbReadGrid grid;
     // GridDescriptor: "name\x1e<n>" for the second and later grids of one name.
     grid.name = unique_name.substr(0, unique_name.find('\x1e'));
@@ -392,7 +399,8 @@ VdbFile readVdbFile(const std::string& path, Interrupter* interrupter) {
         const auto end_pos = in.pod<std::int64_t>();
         in.seek(grid_pos);
         file.grids.push_back(readGrid(in, unique_name, tree_type, interrupter));
-        if (std::int64_t(in.at()) != end_pos) in.fail("grid '" + unique_name + "' does not end where its descriptor says");
+        if (std::int64_t(in.at()) != end_pos)
+            in.fail("grid '" + unique_name + "' does not end where its descriptor says");
         in.seek(end_pos);
     }
     return file;

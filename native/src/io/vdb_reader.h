@@ -33,8 +33,8 @@ struct VdbMetaEntry {
 struct VdbReadGrid {
     struct Leaf {
         std::array<std::int32_t, 3> origin;
-        std::uint64_t mask[8];      // OpenVDB's NodeMask<3> words
-        std::uint64_t first = 0;    // its first active value, in voxels, in `values`
+        std::uint64_t mask[8];       // OpenVDB's NodeMask<3> words
+        std::uint64_t first = 0;     // its first active value, in voxels, in `values`
         std::int64_t inactive = -1;  // its 512 inactive-or-not values in `inactive_values`, or -1: all background
     };
 
@@ -49,7 +49,7 @@ struct VdbReadGrid {
     std::vector<float> values;
     bool uniform = true;
     std::array<float, 3> uniform_value{};
-    std::vector<float> inactive_values;  // 512 × channels() floats per leaf with Leaf::inactive >= 0
+    std::vector<float> inactive_values;   // 512 × channels() floats per leaf with Leaf::inactive >= 0
     std::vector<VdbTile> tiles;           // active tiles
     std::vector<VdbTile> inactive_tiles;  // inactive tiles whose value is not the background
 

@@ -28,11 +28,11 @@ void checkGridBudget(const VoxelizeResult& result, const WriteOptions& options) 
     const double sdf_leaves = double(result.sdf.leaves.size());
     const double need = vdbWriterBytes(leaves, double(result.occupancy.tileCount()), double(a.valuedVoxelCount()),
                                        double(a.channels())) +
-                        (sdf_leaves > 0 ? vdbWriterBytes(sdf_leaves, 0, sdf_leaves * 512.0, 1.0) : 0.0);
+        (sdf_leaves > 0 ? vdbWriterBytes(sdf_leaves, 0, sdf_leaves * 512.0, 1.0) : 0.0);
     if (need > double(options.memoryBudgetBytes()))
-        throw ResourceError("writing the .vdb of " + std::to_string(result.occupancy.leafCount()) + " leaves needs about " +
-                            std::to_string(std::uint64_t(need / double(1 << 20)) + 1) + " MiB, more than the memory budget of " +
-                            std::to_string(options.memoryBudgetMib()) +
+        throw ResourceError("writing the .vdb of " + std::to_string(result.occupancy.leafCount()) +
+                            " leaves needs about " + std::to_string(std::uint64_t(need / double(1 << 20)) + 1) +
+                            " MiB, more than the memory budget of " + std::to_string(options.memoryBudgetMib()) +
                             " MiB; raise the budget (memory_budget_mib) or use a larger voxel size");
 }
 
@@ -53,7 +53,8 @@ CountLeaves countLeaves(const std::vector<VoxelCount>& counts) {
     std::vector<const VoxelCount*> sorted(counts.size());
     for (std::size_t n = 0; n < counts.size(); ++n) sorted[n] = &counts[n];
     auto brickOf = [](const VoxelCount& c) { return std::array<std::int32_t, 3>{c.i >> 3, c.j >> 3, c.k >> 3}; };
-    std::sort(sorted.begin(), sorted.end(), [&](const VoxelCount* a, const VoxelCount* b) { return brickOf(*a) < brickOf(*b); });
+    std::sort(sorted.begin(), sorted.end(),
+              [&](const VoxelCount* a, const VoxelCount* b) { return brickOf(*a) < brickOf(*b); });
     CountLeaves out;
     for (std::size_t n = 0; n < sorted.size(); ++n) {
         const VoxelCount& c = *sorted[n];

@@ -12,7 +12,7 @@ double vdbWriterBytes(double leaves, double tile_bricks, double valued_voxels, d
     constexpr double kDensityLeaf = 220, kMask = 64, kValue = 4;
     const double grids = channels > 0 ? 2.0 : 1.0;  // the attribute grids share one set of leaves
     const double file = kDensityLeaf * leaves + 2.0 * tile_bricks +
-                        (channels > 0 ? kMask * leaves + valued_voxels * channels * kValue : 0.0);
+        (channels > 0 ? kMask * leaves + valued_voxels * channels * kValue : 0.0);
     return kListedLeaf * leaves * grids + kListedTile * tile_bricks + 2.0 * file;
 }
 

@@ -121,7 +121,8 @@ BandBins binBand(const ValidatedMesh& mesh, const GridSpec& grid, double band, s
         checked(range.begin());
         for (std::size_t u = range.begin(); u != range.end(); ++u) {
             std::uint64_t at = offsets[u];
-            forEachBlock(mesh, grid, blocks, band, usable[u], [&](std::uint64_t block) { all[at++] = {block, usable[u]}; });
+            forEachBlock(mesh, grid, blocks, band, usable[u],
+                         [&](std::uint64_t block) { all[at++] = {block, usable[u]}; });
         }
     });
     std::vector<std::uint64_t>().swap(offsets);

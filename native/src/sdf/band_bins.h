@@ -26,7 +26,8 @@ struct BlockLayout {
         for (int a = 0; a < 3; ++a) counts[a] = (grid.dims[a] + kSide - 1) >> kLog2;
     }
     std::uint64_t index(int x, int y, int z) const {
-        return (std::uint64_t(x) * std::uint64_t(counts[1]) + std::uint64_t(y)) * std::uint64_t(counts[2]) + std::uint64_t(z);
+        return (std::uint64_t(x) * std::uint64_t(counts[1]) + std::uint64_t(y)) * std::uint64_t(counts[2]) +
+            std::uint64_t(z);
     }
     std::array<std::int32_t, 3> at(std::uint64_t index) const {
         const std::uint64_t nz = std::uint64_t(counts[2]), ny = std::uint64_t(counts[1]);
@@ -38,9 +39,7 @@ struct BandBins {
     std::vector<std::uint64_t> blocks;     // BlockLayout indices, ascending
     std::vector<std::uint64_t> start;      // blocks.size() + 1 offsets into `triangles`
     std::vector<std::uint32_t> triangles;  // mesh triangle indices, block by block
-    std::size_t byteSize() const {
-        return blocks.capacity() * 8 + start.capacity() * 8 + triangles.capacity() * 4;
-    }
+    std::size_t byteSize() const { return blocks.capacity() * 8 + start.capacity() * 8 + triangles.capacity() * 4; }
 };
 
 // The voxel-space corners of triangle t.

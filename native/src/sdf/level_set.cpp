@@ -98,11 +98,12 @@ LevelSetGrid makeLevelSet(const ValidatedMesh& mesh, const GridSpec& grid, const
     const std::uint64_t budget = options.memoryBudgetBytes();
     const std::uint64_t left = budget > held_bytes ? budget - held_bytes : 0;
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-    const BandBins bins = arena.execute(
-        [&] { return binBand(mesh, grid, band, left, options.memoryBudgetMib(), interrupter); });
+    const BandBins bins =
+        arena.execute([&] { return binBand(mesh, grid, band, left, options.memoryBudgetMib(), interrupter); });
     // Every brick of a reached block a leaf of 512 floats: an upper bound of the grid as OpenVDB
     // (and Blender) will hold it.
-    const std::uint64_t reached_bricks = std::uint64_t(bins.blocks.size()) * kBricksPerBlock * kBricksPerBlock * kBricksPerBlock;
+    const std::uint64_t reached_bricks =
+        std::uint64_t(bins.blocks.size()) * kBricksPerBlock * kBricksPerBlock * kBricksPerBlock;
     const std::uint64_t need = reached_bricks * (sizeof(Leaf) + 512 * sizeof(float)) + bins.byteSize();
     if (need > left)
         throw ResourceError("the sdf's band needs about " + mib(need) + " beside " + mib(held_bytes) +
@@ -157,7 +158,9 @@ LevelSetGrid makeLevelSet(const ValidatedMesh& mesh, const GridSpec& grid, const
     // The inside beyond the band: the inside pass's leaves off the band's bricks become leaves
     // of inactive voxels, its tiles off them inside tiles. (Every surface voxel lies in the band:
     // a voxel the surface touches has its centre within √3/2 voxel of it.)
-    auto inBand = [&](std::uint64_t brick) { return std::binary_search(band_bricks.begin(), band_bricks.end(), brick); };
+    auto inBand = [&](std::uint64_t brick) {
+        return std::binary_search(band_bricks.begin(), band_bricks.end(), brick);
+    };
     std::vector<Leaf> beyond;
     for (const SparseGrid::Leaf& from : centres.inside.leaves()) {
         if (inBand(from.brick)) continue;

@@ -89,7 +89,8 @@ public:
         const double v0 = dot(q, v_axis), vz = v_axis[2];
         const double h0 = dot(q, h_axis), hz = h_axis[2];
         const double bu = flat_u[1], cu = flat_u[2], cv = flat_v[2];
-        const double e0u = edge_u[0], e0v = edge_v[0], e1u = edge_u[1], e1v = edge_v[1], e2u = edge_u[2], e2v = edge_v[2];
+        const double e0u = edge_u[0], e0v = edge_v[0], e1u = edge_u[1], e1v = edge_v[1], e2u = edge_u[2],
+                     e2v = edge_v[2];
         const double l0 = inverse_length2[0], l1 = inverse_length2[1], l2 = inverse_length2[2];
         const double turn = orientation;
         for (int n = 0; n < count; ++n) {
@@ -103,10 +104,11 @@ public:
             const double r0u = p0u - t0 * e0u, r0v = p0v - t0 * e0v;
             const double r1u = p1u - t1 * e1u, r1v = p1v - t1 * e1v;
             const double r2u = p2u - t2 * e2u, r2v = p2v - t2 * e2v;
-            const double edges = std::min(r0u * r0u + r0v * r0v, std::min(r1u * r1u + r1v * r1v, r2u * r2u + r2v * r2v));
+            const double edges =
+                std::min(r0u * r0u + r0v * r0v, std::min(r1u * r1u + r1v * r1v, r2u * r2u + r2v * r2v));
             // Left of edge c: its cross product with the point's offset is positive.
             const bool inside = (turn * (e0u * p0v - e0v * p0u) > 0) & (turn * (e1u * p1v - e1v * p1u) > 0) &
-                                (turn * (e2u * p2v - e2v * p2u) > 0);
+                (turn * (e2u * p2v - e2v * p2u) > 0);
             best[n] = std::min(best[n], h * h + (inside ? 0.0 : edges));
         }
     }
@@ -118,9 +120,9 @@ public:
     }
 
     std::array<Vec3, 3> corner;
-    Vec3 centre;    // of a sphere holding the triangle
+    Vec3 centre;  // of a sphere holding the triangle
     double radius;
-    Vec3 h_axis;    // the unit normal (any unit vector across a triangle without a plane)
+    Vec3 h_axis;  // the unit normal (any unit vector across a triangle without a plane)
 
 private:
     static double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }

@@ -41,7 +41,7 @@ double distance(const Vec3& a, const Vec3& b) {
 struct BoxScratch {
     LocalExpansion expansion;
     std::array<std::vector<float>, 9> near;  // the near triangles, coordinate 3 c + k of corner c, from the centre
-    std::vector<std::int32_t> small;          // clusters each point walks
+    std::vector<std::int32_t> small;         // clusters each point walks
     std::vector<std::int32_t> stack;
 };
 
@@ -82,7 +82,8 @@ void FastWinding::atBox(const Vec3* points, std::size_t count, double* out) cons
                 const double r = std::max({distance(a, centroid), distance(b, centroid), distance(c, centroid)});
                 if (far(distance(centroid, centre), r)) {
                     const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-                    const Vec3 area{0.5 * (u[1] * v[2] - u[2] * v[1]), 0.5 * (u[2] * v[0] - u[0] * v[2]), 0.5 * (u[0] * v[1] - u[1] * v[0])};
+                    const Vec3 area{0.5 * (u[1] * v[2] - u[2] * v[1]), 0.5 * (u[2] * v[0] - u[0] * v[2]),
+                                    0.5 * (u[0] * v[1] - u[1] * v[0])};
                     expansion.add(centroid, area, nullptr);
                 } else {
                     for (std::size_t n = 0; n < 9; ++n)
@@ -100,7 +101,8 @@ void FastWinding::atBox(const Vec3* points, std::size_t count, double* out) cons
     for (std::size_t n = 0; n < 9; ++n) near.corners[n] = scratch.near[n].data();
     const std::size_t near_count = scratch.near[0].size();
     for (std::size_t i = 0; i < count; ++i) {
-        const std::array<float, 3> q{float(points[i][0] - centre[0]), float(points[i][1] - centre[1]), float(points[i][2] - centre[2])};
+        const std::array<float, 3> q{float(points[i][0] - centre[0]), float(points[i][1] - centre[1]),
+                                     float(points[i][2] - centre[2])};
         double sum = near_count > 0 ? solidAngleSum(near, near_count, q) : 0.0;
         double expanded = 0;
         for (const std::int32_t id : scratch.small) walk(id, points[i], sum, expanded);

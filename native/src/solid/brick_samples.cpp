@@ -79,9 +79,12 @@ bool BrickSamples::find(const Int3& p, double& value) const {
         corner = corner && corner_index[std::size_t(d)] >= 0;
         middle = middle && middle_index[std::size_t(d)] >= 0;
     }
-    if (corner) index = corner_index;
-    else if (middle) index = middle_index, slot_base = kSlots / 2;
-    else return false;
+    if (corner)
+        index = corner_index;
+    else if (middle)
+        index = middle_index, slot_base = kSlots / 2;
+    else
+        return false;
     const Block& b = block({index[0] / kBlock, index[1] / kBlock, index[2] / kBlock});
     const int slot = slot_base + ((index[0] % kBlock) * kBlock + index[1] % kBlock) * kBlock + index[2] % kBlock;
     value = b.values[slot];
@@ -108,7 +111,8 @@ const BrickSamples::Block& BrickSamples::block(const Int3& b) const {
     auto mine = std::make_unique<Block>();
     evaluate(b, *mine);
     // Another thread may have stored the same block meanwhile: its values equal these.
-    if (!entry.compare_exchange_strong(found, mine.get(), std::memory_order_acq_rel, std::memory_order_acquire)) return *found;
+    if (!entry.compare_exchange_strong(found, mine.get(), std::memory_order_acq_rel, std::memory_order_acquire))
+        return *found;
     evaluations_.fetch_add(mine->evaluated, std::memory_order_relaxed);  // the stored block's alone
     return *mine.release();
 }

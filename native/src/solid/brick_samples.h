@@ -53,10 +53,10 @@ public:
     std::uint64_t evaluations() const { return evaluations_.load(std::memory_order_relaxed); }
 
 private:
-    static constexpr int kBlock = 4;  // bricks per block side
+    static constexpr int kBlock = 4;                             // bricks per block side
     static constexpr int kSlots = 2 * kBlock * kBlock * kBlock;  // corners, then middles
     struct Block {
-        double values[kSlots];  // NaN where the block has no such point
+        double values[kSlots];        // NaN where the block has no such point
         std::uint64_t evaluated = 0;  // its points
     };
     // Along one axis: the corner coordinates 8k (k < bricks) and the last voxel (index

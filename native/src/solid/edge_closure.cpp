@@ -96,9 +96,12 @@ EdgeClosure checkEdges(const ValidatedMesh& mesh, const GridSpec& grid) {
             std::uint32_t forward = 0, backward = 0;
             for (; last < end && uses[last].high == high; ++last) (uses[last].forward ? forward : backward) += 1;
             const std::uint32_t count = forward + backward;
-            if (count == 1) ++out.boundary_edges;
-            else if (count > 2) ++out.nonmanifold_edges;
-            else if (forward != backward) ++out.misoriented_edges;
+            if (count == 1)
+                ++out.boundary_edges;
+            else if (count > 2)
+                ++out.nonmanifold_edges;
+            else if (forward != backward)
+                ++out.misoriented_edges;
             if (forward != backward) {
                 // Oriented the way the surplus uses run: the open edges then form closed loops
                 // (gradient_bound.cpp relies on that for its far-field bound).

@@ -49,7 +49,9 @@ void cutLongEdges(const Vec3& a, const Vec3& b, const Vec3& c, double longest2, 
         out.push_back({a, b, c});
         return;
     }
-    auto mid = [](const Vec3& x, const Vec3& y) { return Vec3{0.5 * (x[0] + y[0]), 0.5 * (x[1] + y[1]), 0.5 * (x[2] + y[2])}; };
+    auto mid = [](const Vec3& x, const Vec3& y) {
+        return Vec3{0.5 * (x[0] + y[0]), 0.5 * (x[1] + y[1]), 0.5 * (x[2] + y[2])};
+    };
     if (top == ab) {
         const Vec3 m = mid(a, b);
         cutLongEdges(a, m, c, longest2, out);
@@ -91,7 +93,8 @@ FastWinding::FastWinding(const ValidatedMesh& mesh, const GridSpec& grid, double
                                       grid.toVoxel(mesh.vertex(t, 2))};
         whole.push_back(tri);
         double top = 0;
-        for (int e = 0; e < 3; ++e) top = std::max(top, dot(sub(tri[e], tri[(e + 1) % 3]), sub(tri[e], tri[(e + 1) % 3])));
+        for (int e = 0; e < 3; ++e)
+            top = std::max(top, dot(sub(tri[e], tri[(e + 1) % 3]), sub(tri[e], tri[(e + 1) % 3])));
         longest2.push_back(top);
     }
     double limit = kPieceVoxels;
@@ -130,7 +133,8 @@ FastWinding::FastWinding(const ValidatedMesh& mesh, const GridSpec& grid, double
     // vectorised sum of their solid angles.
     for (int n = 0; n < 9; ++n) {
         corner_arrays_[std::size_t(n)].resize(triangles_.size());
-        for (std::size_t t = 0; t < triangles_.size(); ++t) corner_arrays_[std::size_t(n)][t] = triangles_[t][std::size_t(n / 3)][std::size_t(n % 3)];
+        for (std::size_t t = 0; t < triangles_.size(); ++t)
+            corner_arrays_[std::size_t(n)][t] = triangles_[t][std::size_t(n / 3)][std::size_t(n % 3)];
     }
 }
 
@@ -166,15 +170,18 @@ void FastWinding::build(std::int32_t id, std::uint32_t first, std::uint32_t coun
         node.radius = std::max(node.radius, norm(sub(p, node.centre)));
     }
     if (count > kLeafTriangles) {
-        const std::uint32_t half = splitAtMedian(triangles_, first, count, lo, hi, [](const std::array<Vec3, 3>& t, int axis) {
-            return t[0][axis] + t[1][axis] + t[2][axis];  // three times the centroid
-        });
+        const std::uint32_t half =
+            splitAtMedian(triangles_, first, count, lo, hi, [](const std::array<Vec3, 3>& t, int axis) {
+                return t[0][axis] + t[1][axis] + t[2][axis];  // three times the centroid
+            });
         node.left = id + 1;
         node.right = id + 1 + std::int32_t(treeNodes(half));
         auto left = [&] { build(node.left, first, half); };
         auto right = [&] { build(node.right, first + half, count - half); };
-        if (count >= kParallelTriangles) tbb::parallel_invoke(left, right);
-        else left(), right();
+        if (count >= kParallelTriangles)
+            tbb::parallel_invoke(left, right);
+        else
+            left(), right();
     }
     nodes_[std::size_t(id)] = node;
 }
@@ -256,7 +263,8 @@ void FastWinding::atMany(const Vec3* points, std::size_t count, double* out) con
         }
         if (near_count == 0) return;
         if (node.left < 0) {
-            for (std::size_t k = 0; k < near_count; ++k) out[near[k]] += solidAngleSum(arrays, node.first, node.count, points[near[k]]);
+            for (std::size_t k = 0; k < near_count; ++k)
+                out[near[k]] += solidAngleSum(arrays, node.first, node.count, points[near[k]]);
             return;
         }
         self(self, node.right, depth + 1, near_count);

@@ -35,10 +35,10 @@ public:
 
 private:
     struct Node {
-        Vec3 centre{};                     // area-weighted centroid of the cluster
-        double radius = 0;                 // farthest corner of its box from centre
-        Vec3 area{};                       // sum of area vectors (normal times area)
-        std::array<double, 9> moment{};    // sum of area_i * (centroid - centre)_j
+        Vec3 centre{};                       // area-weighted centroid of the cluster
+        double radius = 0;                   // farthest corner of its box from centre
+        Vec3 area{};                         // sum of area vectors (normal times area)
+        std::array<double, 9> moment{};      // sum of area_i * (centroid - centre)_j
         std::uint32_t first = 0, count = 0;  // triangles [first, first + count) when a leaf
         std::int32_t left = -1, right = -1;
     };
@@ -47,22 +47,22 @@ private:
     // at()'s walk of the subtree under `root` for q: adds the exact parts to `sum` and the
     // expansions (times 4π) to `far`.
     void walk(std::int32_t root, const Vec3& q, double& sum, double& far) const;
-    struct Visit {           // per node, what deciding to expand or open it reads
+    struct Visit {  // per node, what deciding to expand or open it reads
         Vec3 centre;
-        double far2;         // (beta radius)²: expanded from farther than this
+        double far2;  // (beta radius)²: expanded from farther than this
         std::uint32_t first, count;
         std::int32_t left, right;
     };
-    struct Expansion {       // per node, what expanding it reads
+    struct Expansion {  // per node, what expanding it reads
         Vec3 area;
-        double trace;        // of the moment
+        double trace;  // of the moment
         std::array<double, 9> moment;
     };
 
     double beta_;
-    std::vector<std::array<Vec3, 3>> triangles_;  // voxel space, in tree order
+    std::vector<std::array<Vec3, 3>> triangles_;        // voxel space, in tree order
     std::array<std::vector<double>, 9> corner_arrays_;  // the same, coordinate 3 c + k of corner c
-    std::vector<Node> nodes_;  // while building, depth first
+    std::vector<Node> nodes_;                           // while building, depth first
     std::vector<Visit> visits_;
     std::vector<Expansion> expansions_;
     std::uint32_t levels_ = 1;  // nodes on the longest path from the root, plus one

@@ -106,7 +106,10 @@ class InsideFill {
 public:
     // `centres_on_surface`: also decide the surface voxels' centres (Output::surface_leaves).
     InsideFill(const GridSpec& grid, const InsideField& field, Interrupter* interrupter, bool centres_on_surface)
-        : grid_(grid), bricks_(grid.bricks()), field_(field), interrupter_(interrupter),
+        : grid_(grid),
+          bricks_(grid.bricks()),
+          field_(field),
+          interrupter_(interrupter),
           centres_on_surface_(centres_on_surface) {}
 
     // The bricks [lo, hi): the whole grid, or a region's box (whose surface bricks are all there).
@@ -162,7 +165,8 @@ private:
             std::vector<SurfaceBrick*> finer;
             for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
                 finer.push_back(cuts[c]);
-                finer.push_back(std::partition(cuts[c], cuts[c + 1], [&](const SurfaceBrick& b) { return b.at[a] < mid[a]; }));
+                finer.push_back(
+                    std::partition(cuts[c], cuts[c + 1], [&](const SurfaceBrick& b) { return b.at[a] < mid[a]; }));
             }
             finer.push_back(last);
             cuts = std::move(finer);
@@ -174,7 +178,8 @@ private:
             child.last = cuts[std::size_t(n) + 1];
             children.push_back(child);
         }
-        const std::uint64_t volume = std::uint64_t(hi[0] - lo[0]) * std::uint64_t(hi[1] - lo[1]) * std::uint64_t(hi[2] - lo[2]);
+        const std::uint64_t volume =
+            std::uint64_t(hi[0] - lo[0]) * std::uint64_t(hi[1] - lo[1]) * std::uint64_t(hi[2] - lo[2]);
         if (last - first > 64 || volume > 512) {
             tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t c) {
                 node(children[c].lo, children[c].hi, children[c].first, children[c].last);
@@ -346,7 +351,9 @@ private:
             });
         } else {
             out.centres.clear();
-            forEachWanted([&](int x, int y, int z) { out.centres.push_back({lo[0] + x + 0.5, lo[1] + y + 0.5, lo[2] + z + 0.5}); });
+            forEachWanted([&](int x, int y, int z) {
+                out.centres.push_back({lo[0] + x + 0.5, lo[1] + y + 0.5, lo[2] + z + 0.5});
+            });
             out.windings.resize(out.centres.size());
             field_.winding->atBox(out.centres.data(), out.centres.size(), out.windings.data());
             out.point_evaluations += out.centres.size();
@@ -449,14 +456,14 @@ private:
 
 std::string edgeFinding(const EdgeClosure& c) {
     return std::to_string(c.boundary_edges) + " boundary, " + std::to_string(c.nonmanifold_edges) +
-           " non-manifold and " + std::to_string(c.misoriented_edges) + " misoriented edges";
+        " non-manifold and " + std::to_string(c.misoriented_edges) + " misoriented edges";
 }
 
 }  // namespace
 
 bool insideByRays(const EdgeClosure& closure, const VoxelizeOptions& options) {
     return options.solid.inside == InsideRule::Parity ||
-           (options.solid.inside == InsideRule::Auto && closure.open_edges.empty());
+        (options.solid.inside == InsideRule::Auto && closure.open_edges.empty());
 }
 
 SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
@@ -514,13 +521,15 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
             });
     });
     if (winding && rays) smooth = std::make_unique<SmoothWinding>(*winding, *rays, bound, grid.dims);
-    const InsideField field{winding.get(), winding ? nullptr : rays.get(), rule == InsideRule::Parity, &bound, smooth.get()};
+    const InsideField field{winding.get(), winding ? nullptr : rays.get(), rule == InsideRule::Parity, &bound,
+                            smooth.get()};
 
     // The surface's bricks, tiles included (every voxel of a tile is surface).
     static const std::uint64_t kAllSet[8] = {~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull};
     std::vector<SurfaceBrick> bricks;
     bricks.reserve(surface.leafCount() + surface.tileCount());
-    for (const SparseGrid::Leaf& leaf : surface.leaves()) bricks.push_back({surface.bricks().at(leaf.brick), leaf.words});
+    for (const SparseGrid::Leaf& leaf : surface.leaves())
+        bricks.push_back({surface.bricks().at(leaf.brick), leaf.words});
     for (const SparseGrid::TileRun& run : surface.tileRuns())
         for (std::uint64_t b = run.begin; b < run.end; ++b) bricks.push_back({surface.bricks().at(b), kAllSet});
 

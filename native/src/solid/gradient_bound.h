@@ -51,7 +51,7 @@ public:
 private:
     struct Node {
         Box box;
-        double weight = 0;  // Σ excess · length
+        double weight = 0;                      // Σ excess · length
         std::array<double, 3> centre{}, net{};  // the box's centre; Σ excess · (b - a)
         double radius = 0;                      // from centre to the farthest edge end
         std::uint32_t first = 0, count = 0;

@@ -110,7 +110,8 @@ void LocalExpansion::flush() {
         const double *x2 = b[kTables.minus2[n][0]], *y2 = b[kTables.minus2[n][1]], *z2 = b[kTables.minus2[n][2]];
         double* out = b[n];
         for (int j = 0; j < kBatch; ++j)
-            out[j] = (c1 * (r_[0][j] * x1[j] + r_[1][j] * y1[j] + r_[2][j] * z1[j]) - c2 * (x2[j] + y2[j] + z2[j])) * inverse_r2[j];
+            out[j] = (c1 * (r_[0][j] * x1[j] + r_[1][j] * y1[j] + r_[2][j] * z1[j]) - c2 * (x2[j] + y2[j] + z2[j])) *
+                inverse_r2[j];
     }
     for (int n = 0; n < kTerms; ++n) {
         const int* k = kTables.k[n];
@@ -118,17 +119,19 @@ void LocalExpansion::flush() {
         // A's rows and factors, then M's: the diagonal (k + 2 e_i) and, doubled for the
         // symmetric pair, xy, xz, yz.
         const double fa[3] = {k[0] + 1.0, k[1] + 1.0, k[2] + 1.0};
-        const double fm[6] = {(k[0] + 1.0) * (k[0] + 2.0), (k[1] + 1.0) * (k[1] + 2.0), (k[2] + 1.0) * (k[2] + 2.0),
-                              2.0 * (k[0] + 1.0) * (k[1] + 1.0), 2.0 * (k[0] + 1.0) * (k[2] + 1.0),
-                              2.0 * (k[1] + 1.0) * (k[2] + 1.0)};
+        const double fm[6] = {(k[0] + 1.0) * (k[0] + 2.0),       (k[1] + 1.0) * (k[1] + 2.0),
+                              (k[2] + 1.0) * (k[2] + 2.0),       2.0 * (k[0] + 1.0) * (k[1] + 1.0),
+                              2.0 * (k[0] + 1.0) * (k[2] + 1.0), 2.0 * (k[1] + 1.0) * (k[2] + 1.0)};
         const double *ax = b[up[0]], *ay = b[up[1]], *az = b[up[2]];
-        const double *mxx = b[kTables.plus1[up[0]][0]], *myy = b[kTables.plus1[up[1]][1]], *mzz = b[kTables.plus1[up[2]][2]];
-        const double *mxy = b[kTables.plus1[up[0]][1]], *mxz = b[kTables.plus1[up[0]][2]], *myz = b[kTables.plus1[up[1]][2]];
+        const double *mxx = b[kTables.plus1[up[0]][0]], *myy = b[kTables.plus1[up[1]][1]],
+                     *mzz = b[kTables.plus1[up[2]][2]];
+        const double *mxy = b[kTables.plus1[up[0]][1]], *mxz = b[kTables.plus1[up[0]][2]],
+                     *myz = b[kTables.plus1[up[1]][2]];
         double* lane = lanes_[n];
         for (int j = 0; j < kBatch; ++j) {
             const double dipole = a_[0][j] * fa[0] * ax[j] + a_[1][j] * fa[1] * ay[j] + a_[2][j] * fa[2] * az[j];
             const double moment = m_[0][j] * fm[0] * mxx[j] + m_[1][j] * fm[1] * myy[j] + m_[2][j] * fm[2] * mzz[j] +
-                                  m_[3][j] * fm[3] * mxy[j] + m_[4][j] * fm[4] * mxz[j] + m_[5][j] * fm[5] * myz[j];
+                m_[3][j] * fm[3] * mxy[j] + m_[4][j] * fm[4] * mxz[j] + m_[5][j] * fm[5] * myz[j];
             lane[j] += dipole - moment;
         }
     }
@@ -151,7 +154,8 @@ double LocalExpansion::at(const Vec3& q) {
     }
     double value = 0;
     for (int n = 0; n < kTerms; ++n)
-        value += coefficients_[std::size_t(n)] * powers[0][kTables.k[n][0]] * powers[1][kTables.k[n][1]] * powers[2][kTables.k[n][2]];
+        value += coefficients_[std::size_t(n)] * powers[0][kTables.k[n][0]] * powers[1][kTables.k[n][1]] *
+            powers[2][kTables.k[n][2]];
     return value;
 }
 

@@ -107,8 +107,8 @@ RayCrossings::RayCrossings(const ValidatedMesh& mesh, const GridSpec& grid) {
     auto columnRange = [&](const Triangle& tri, std::array<std::int32_t, 4>& r) {
         const std::int64_t half = std::int64_t(1) << (kFractionBits - 1);
         auto first = [&](std::int64_t lo, std::int32_t n) {
-            return std::int32_t(std::clamp<std::int64_t>((lo - half + (std::int64_t(1) << kFractionBits) - 1) >>
-                                                             kFractionBits >> 3, 0, n - 1));
+            return std::int32_t(std::clamp<std::int64_t>(
+                (lo - half + (std::int64_t(1) << kFractionBits) - 1) >> kFractionBits >> 3, 0, n - 1));
         };
         auto last = [&](std::int64_t hi, std::int32_t n) {
             return std::int32_t(std::clamp<std::int64_t>(((hi - half) >> kFractionBits) >> 3, 0, n - 1));
@@ -122,7 +122,8 @@ RayCrossings::RayCrossings(const ValidatedMesh& mesh, const GridSpec& grid) {
     for (const Triangle& tri : triangles_) {
         columnRange(tri, r);
         for (std::int32_t cx = r[0]; cx <= r[1]; ++cx)
-            for (std::int32_t cy = r[2]; cy <= r[3]; ++cy) ++column_start_[std::size_t(cx) * std::size_t(columns_[1]) + std::size_t(cy) + 1];
+            for (std::int32_t cy = r[2]; cy <= r[3]; ++cy)
+                ++column_start_[std::size_t(cx) * std::size_t(columns_[1]) + std::size_t(cy) + 1];
     }
     for (std::size_t c = 0; c < column_count; ++c) column_start_[c + 1] += column_start_[c];
     column_triangles_.resize(column_start_.back());
@@ -141,7 +142,8 @@ RayCrossings::RayCrossings(const ValidatedMesh& mesh, const GridSpec& grid) {
                 auto offset = [](std::int64_t ray, std::int32_t bucket) {
                     return std::uint8_t(std::clamp<std::int64_t>(ray - 8 * std::int64_t(bucket), -1, 8) + 1);
                 };
-                column_rays_[slot] = {offset(rays_x[0], cx), offset(rays_x[1], cx), offset(rays_y[0], cy), offset(rays_y[1], cy)};
+                column_rays_[slot] = {offset(rays_x[0], cx), offset(rays_x[1], cx), offset(rays_y[0], cy),
+                                      offset(rays_y[1], cy)};
             }
     }
 }
@@ -174,7 +176,6 @@ void RayCrossings::crossing(const Triangle& t, std::int64_t px, std::int64_t py,
     const double total = w0 + w1 + w2;
     visit((w0 * t.z[0] + w1 * t.z[1] + w2 * t.z[2]) / total, t.sign);
 }
-
 
 template <typename Visit>
 void RayCrossings::forEachCrossing(int i, int j, Visit visit) const {

@@ -51,9 +51,9 @@ private:
         int sign;                          // +1 when the face looks down (xy order clockwise)
         std::int64_t x_lo, x_hi, y_lo, y_hi;
     };
-    std::array<std::int32_t, 2> columns_{0, 0};     // 8×8-ray columns along x and y
-    std::vector<Triangle> triangles_;               // those whose projection is not a line
-    std::vector<std::uint32_t> column_start_;       // CSR: triangles of column (cx, cy)
+    std::array<std::int32_t, 2> columns_{0, 0};  // 8×8-ray columns along x and y
+    std::vector<Triangle> triangles_;            // those whose projection is not a line
+    std::vector<std::uint32_t> column_start_;    // CSR: triangles of column (cx, cy)
     std::vector<std::uint32_t> column_triangles_;
     // Beside each entry of column_triangles_: the bucket's rays in the triangle's xy box, as
     // (first x, last x, first y, last y), each the ray's offset in the bucket plus 1, clamped

@@ -36,8 +36,8 @@ inline LineParts lineParts(float up, float vx, float vy, float ex, float ey, flo
     // The nearest point of the edge to q in xy, a + t e.
     const float t = std::min(std::max(-(vx * ex + vy * ey) * inverse_length2, 0.0f), 1.0f);
     const float dx = vx + t * ex, dy = vy + t * ey;
-    return {ux * ux + uy * uy, vx * vx + vy * vy, ux * vx + uy * vy, up * (ex * uy - ey * ux), up * (ex * vy - ey * vx),
-            dx * dx + dy * dy < kTie * kTie ? NAN : 0.0f};
+    return {ux * ux + uy * uy,        vx * vx + vy * vy,        ux * vx + uy * vy,
+            up * (ex * uy - ey * ux), up * (ex * vy - ey * vx), dx * dx + dy * dy < kTie * kTie ? NAN : 0.0f};
 }
 
 // The sheet's term, weight · Ω / 4π (+ the poison), at v_z = a_z - q_z, from its line parts.
@@ -63,7 +63,8 @@ inline double laneSum(const float* terms, std::size_t n) {
 
 }  // namespace
 
-void SheetSum::assign(const std::vector<GradientBound::Sheet>& sheets, bool upward, const std::array<double, 3>& origin) {
+void SheetSum::assign(const std::vector<GradientBound::Sheet>& sheets, bool upward,
+                      const std::array<double, 3>& origin) {
     count_ = sheets.size();
     up_ = upward ? -1.0f : 1.0f;
     origin_ = origin;
@@ -95,7 +96,8 @@ void SheetSum::assign(const std::vector<GradientBound::Sheet>& sheets, bool upwa
 #if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("avx2", "default")))
 #endif
-double SheetSum::at(const std::array<double, 3>& point) const {
+double
+SheetSum::at(const std::array<double, 3>& point) const {
     const float qx = float(point[0] - origin_[0]), qy = float(point[1] - origin_[1]), qz = float(point[2] - origin_[2]);
     const float up = up_;
     const std::size_t n = ax_.size();

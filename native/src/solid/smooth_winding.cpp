@@ -31,7 +31,7 @@ using Int3 = std::array<std::int32_t, 3>;
 // A brick's columns' crossings (the rays' columns [i0, i0 + ni) × [j0, j0 + nj)), as the rays
 // give them, and their heights sorted, with the signed counts below each.
 struct ColumnBlock {
-    std::array<int, 4> key{-1, -1, -1, -1};  // {i0, j0, ni, nj}; none yet
+    std::array<int, 4> key{-1, -1, -1, -1};              // {i0, j0, ni, nj}; none yet
     std::vector<RayCrossings::Crossing> columns[9 * 9];  // no allocation per brick once grown
     std::vector<double> heights[9 * 9];  // the crossings' heights (NaN left out: below no centre), ascending
     std::vector<int> prefix[9 * 9];      // prefix[m]: the signed crossings of the lowest m
@@ -141,8 +141,10 @@ public:
         out.resize(voxels.size());
         // Enough of them, and one walk of the tree for the box pays (FastWinding::atBox);
         // the choice depends on the brick alone, never on the threads.
-        if (voxels.size() >= kSharedFarField) winding_.atBox(centres_.data(), centres_.size(), out.data());
-        else winding_.atMany(centres_.data(), centres_.size(), out.data());
+        if (voxels.size() >= kSharedFarField)
+            winding_.atBox(centres_.data(), centres_.size(), out.data());
+        else
+            winding_.atMany(centres_.data(), centres_.size(), out.data());
     }
 
 private:
@@ -159,7 +161,8 @@ private:
             for (int n = 0; n < ni * nj; ++n) {
                 const std::vector<double>& heights = block_->heights[n];
                 const std::vector<int>& prefix = block_->prefix[n];
-                std::size_t m = std::size_t(std::lower_bound(heights.begin(), heights.end(), lo_[2] + 0.5) - heights.begin());
+                std::size_t m =
+                    std::size_t(std::lower_bound(heights.begin(), heights.end(), lo_[2] + 0.5) - heights.begin());
                 for (int k = 0; k < nz; ++k) {
                     while (m < heights.size() && heights[m] < lo_[2] + k + 0.5) ++m;
                     below_[n][k] = prefix[m];
@@ -176,7 +179,7 @@ private:
     Int3 lo_, top_;
     SmoothWinding::Counters& counters_;
     const ColumnBlock* block_ = nullptr;  // the brick's columns, in the window
-    int below_[9 * 9][9];  // per column, the signed crossings below each of the brick's centres
+    int below_[9 * 9][9];                 // per column, the signed crossings below each of the brick's centres
     std::vector<Vec3> centres_;
     double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
 };
@@ -189,7 +192,11 @@ struct SmoothWinding::ColumnWindows {
 
 SmoothWinding::SmoothWinding(const FastWinding& winding, const RayCrossings& rays, const GradientBound& bound,
                              const std::array<std::int32_t, 3>& dims)
-    : winding_(winding), rays_(rays), bound_(bound), dims_(dims), samples_(winding, rays, dims),
+    : winding_(winding),
+      rays_(rays),
+      bound_(bound),
+      dims_(dims),
+      samples_(winding, rays, dims),
       windows_(std::make_unique<ColumnWindows>()) {}
 
 SmoothWinding::~SmoothWinding() = default;
@@ -260,7 +267,8 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
         // and w - c_down + C = -Σ sheets below them (the rays up see C - c_down crossings, of
         // the other sign).
         const double reach = kNearSides * side;
-        const Box near{{a[0] - reach, a[1] - reach, a[2] - reach}, {b[0] + 1.0 + reach, b[1] + 1.0 + reach, b[2] + 1.0 + reach}};
+        const Box near{{a[0] - reach, a[1] - reach, a[2] - reach},
+                       {b[0] + 1.0 + reach, b[1] + 1.0 + reach, b[2] + 1.0 + reach}};
         bound_.sheetsMeeting(near, sheets, sheets_up);
         const bool upward = sheets_up.size() < sheets.size();
         if (upward) std::swap(sheets, sheets_up);
@@ -310,8 +318,10 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
                         steps[count] = dz;
                         heights[count++] = p[2] + 0.5;
                     }
-                    if (sheet_sum.size() > 0) sheet_sum.atColumn(i + 0.5, j + 0.5, heights, count, sheet_sums);
-                    else std::fill(sheet_sums, sheet_sums + count, 0.0);  // at()'s sum of no sheets
+                    if (sheet_sum.size() > 0)
+                        sheet_sum.atColumn(i + 0.5, j + 0.5, heights, count, sheet_sums);
+                    else
+                        std::fill(sheet_sums, sheet_sums + count, 0.0);  // at()'s sum of no sheets
                     for (int q = 0; q < count; ++q) {
                         const Int3 p{i, j, a[2] + steps[q]};
                         const double interpolated = bottom + (top_value - bottom) * t[2][steps[q]];
@@ -332,8 +342,10 @@ void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std
             bool skip = false;
             for (int d = 0; d < 3; ++d) {
                 const bool upper = (part >> d) & 1;
-                if (b[d] - a[d] < 2) skip = skip || upper;
-                else (upper ? ca : cb)[d] = m[d];
+                if (b[d] - a[d] < 2)
+                    skip = skip || upper;
+                else
+                    (upper ? ca : cb)[d] = m[d];
             }
             if (!skip) self(self, ca, cb);
         }

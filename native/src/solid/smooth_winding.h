@@ -38,8 +38,8 @@ namespace hyvox::solid {
 class SmoothWinding {
 public:
     struct Counters {
-        std::uint64_t point_evaluations = 0;   // fast winding numbers evaluated
-        std::uint64_t interpolated_voxels = 0; // voxels decided from the interpolated smooth part
+        std::uint64_t point_evaluations = 0;    // fast winding numbers evaluated
+        std::uint64_t interpolated_voxels = 0;  // voxels decided from the interpolated smooth part
     };
     SmoothWinding(const FastWinding& winding, const RayCrossings& rays, const GradientBound& bound,
                   const std::array<std::int32_t, 3>& dims);
@@ -55,8 +55,8 @@ private:
     const FastWinding& winding_;
     const RayCrossings& rays_;
     const GradientBound& bound_;
-    std::array<std::int32_t, 3> dims_;       // the grid's
-    BrickSamples samples_;                   // the bricks' boxes' corners and middles, shared by the threads
+    std::array<std::int32_t, 3> dims_;  // the grid's
+    BrickSamples samples_;              // the bricks' boxes' corners and middles, shared by the threads
     // The ray columns each thread keeps from brick to brick (smooth_winding.cpp): this
     // object's alone, made per thread on first use and released with it.
     struct ColumnWindows;

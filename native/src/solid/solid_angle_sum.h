@@ -18,7 +18,8 @@ struct TriangleArrays {
 };
 
 // Σ solid angle / 4π of triangles [first, first + count) seen from q.
-double solidAngleSum(const TriangleArrays& triangles, std::size_t first, std::size_t count, const std::array<double, 3>& q);
+double solidAngleSum(const TriangleArrays& triangles, std::size_t first, std::size_t count,
+                     const std::array<double, 3>& q);
 
 // The same in float, twice the lanes, for a box's near triangles (solid/box_winding.cpp):
 // corners and q relative to a point near them all (the box's centre, so that the coordinates

@@ -68,9 +68,9 @@ struct Pools {
     gl::Buffer values;
 };
 
-Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const PatchLists& lists, const gl::Buffer& bits,
-                 const gl::Buffer& counters, const gl::Buffer& table, const Pools& pools, std::uint32_t pool_blocks,
-                 bool prefilled, const gl::GlTuning& tuning, GpuTessellationOutput& out) {
+Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const PatchLists& lists,
+                 const gl::Buffer& bits, const gl::Buffer& counters, const gl::Buffer& table, const Pools& pools,
+                 std::uint32_t pool_blocks, bool prefilled, const gl::GlTuning& tuning, GpuTessellationOutput& out) {
     bits.clearToZero();
     counters.clearToZero();
     if (in.counts) {
@@ -156,8 +156,10 @@ Counters drawAll(const GpuTessellationInput& in, const Programs& programs, const
             setDrawUniform(HYVOX_TESS_LOC_PATCH_BASE,
                            [&](GLuint id) { glProgramUniform1ui(id, HYVOX_TESS_LOC_PATCH_BASE, GLuint(base)); });
             // One instance per patch where plain patch draws are assembled wrongly (GlTuning).
-            if (tuning.tess_instanced) glDrawArraysInstanced(GL_PATCHES, 0, 3, GLsizei(count));
-            else glDrawArrays(GL_PATCHES, 0, GLsizei(3 * count));
+            if (tuning.tess_instanced)
+                glDrawArraysInstanced(GL_PATCHES, 0, 3, GLsizei(count));
+            else
+                glDrawArrays(GL_PATCHES, 0, GLsizei(3 * count));
             GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
             if (previous) {
                 cancelled = !waitFor(previous);
@@ -199,8 +201,9 @@ GpuTessellationOutput runGpuTessellation(const GpuTessellationInput& in, BitGrid
         const gl::GlTuning tuning = gl::GlTuning::forDevice(worker.device().software, in.gl);
         const GLint64 max_ssbo = gl::glLimit(GL_MAX_SHADER_STORAGE_BLOCK_SIZE);
         if (GLint64(bits.byteSize()) > max_ssbo)
-            throw ResourceError("the " + std::to_string(bits.byteSize() >> 20) + " MiB bit grid exceeds this GL device's " +
-                                std::to_string(max_ssbo >> 20) + " MiB storage-buffer limit; lower the resolution");
+            throw ResourceError("the " + std::to_string(bits.byteSize() >> 20) +
+                                " MiB bit grid exceeds this GL device's " + std::to_string(max_ssbo >> 20) +
+                                " MiB storage-buffer limit; lower the resolution");
         const std::string defines = definesFor(in);
         const Programs programs{
             gl::ActiveProgram(worker.programs().get({{GL_COMPUTE_SHADER, "tessellation/whole_triangles.comp"}}, defines,
@@ -223,8 +226,8 @@ GpuTessellationOutput runGpuTessellation(const GpuTessellationInput& in, BitGrid
         const gl::Buffer corner_values = upload(in.values ? in.values->corners : no_values);
         const Texture* texture = in.values ? in.values->texture : nullptr;
         const gl::Buffer texels = upload(texture ? texture->texels : no_values);
-        for (const auto& [buffer, what] : {std::pair{&corner_values, "the triangles' corner attributes"},
-                                           std::pair{&texels, "the texture"}})
+        for (const auto& [buffer, what] :
+             {std::pair{&corner_values, "the triangles' corner attributes"}, std::pair{&texels, "the texture"}})
             if (GLint64(buffer->size()) > max_ssbo)
                 throw ResourceError(std::string(what) + " (" + std::to_string(buffer->size() >> 20) +
                                     " MiB) exceed this GL device's " + std::to_string(max_ssbo >> 20) +
@@ -283,12 +286,13 @@ GpuTessellationOutput runGpuTessellation(const GpuTessellationInput& in, BitGrid
         cap_blocks = std::max<std::uint64_t>(cap_blocks, 1);
         auto poolFor = [&](std::uint64_t blocks) {
             if (blocks > cap_blocks)
-                throw ResourceError(std::string(in.values ? "the point counts and attribute sums" : "the point counts") +
-                                    " need " + std::to_string((blocks * block_bytes) >> 20) +
-                                    " MiB, more than this GL device and the memory budget allow (" +
-                                    std::to_string((cap_blocks * block_bytes) >> 20) + " MiB); " +
-                                    (in.values ? "lower tile_size (a tile's sums take blocks only for its own bricks) or the resolution"
-                                               : "turn counts off or lower the resolution"));
+                throw ResourceError(
+                    std::string(in.values ? "the point counts and attribute sums" : "the point counts") + " need " +
+                    std::to_string((blocks * block_bytes) >> 20) +
+                    " MiB, more than this GL device and the memory budget allow (" +
+                    std::to_string((cap_blocks * block_bytes) >> 20) + " MiB); " +
+                    (in.values ? "lower tile_size (a tile's sums take blocks only for its own bricks) or the resolution"
+                               : "turn counts off or lower the resolution"));
             return Pools{gl::Buffer(in.counts ? blocks * 512 * sizeof(std::uint32_t) : 0, nullptr),
                          gl::Buffer(blocks * value_words * sizeof(std::uint32_t), nullptr)};
         };

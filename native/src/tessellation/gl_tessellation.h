@@ -23,7 +23,7 @@ struct GpuTessellationInput {
     const std::vector<float>& normals;  // per vertex, unit
     const std::vector<float>& uvs;      // per vertex
     const PatchPlan& plan;
-    int max_level;                      // GL_MAX_TESS_GEN_LEVEL the plan was made for
+    int max_level;  // GL_MAX_TESS_GEN_LEVEL the plan was made for
     std::array<std::int32_t, 3> dims;
     double gamma;
     bool pn_triangles;
@@ -31,16 +31,16 @@ struct GpuTessellationInput {
     const std::vector<float>& heights;  // rows bottom-up
     int height_width, height_height;
     double strength_voxels, midlevel;
-    bool counts;                         // per-voxel counts (forced on with values)
-    const PointValues* values;           // attribute sums per voxel; null = none
-    std::uint64_t memory_budget_bytes;   // what the count and value pools may take
-    const GlOptions& gl;                 // device, shader folder, timing and draw choices
+    bool counts;                        // per-voxel counts (forced on with values)
+    const PointValues* values;          // attribute sums per voxel; null = none
+    std::uint64_t memory_budget_bytes;  // what the count and value pools may take
+    const GlOptions& gl;                // device, shader folder, timing and draw choices
     Interrupter* interrupter;
 };
 
 struct GpuTessellationOutput {
-    std::uint64_t points = 0;   // micro-triangles (points) generated
-    std::uint64_t clipped = 0;  // of which outside the grid
+    std::uint64_t points = 0;                 // micro-triangles (points) generated
+    std::uint64_t clipped = 0;                // of which outside the grid
     std::vector<std::uint32_t> brick_blocks;  // per brick: 0 or 1 + block (when counting)
     std::vector<std::uint32_t> count_pool;    // 512 counts per block
     std::vector<std::uint32_t> value_pool;    // valueWordsPerBlock() words per block (with values)

@@ -90,8 +90,10 @@ PatchPlan planPatches(const ValidatedMesh& mesh, const GridSpec& grid, const std
             continue;
         }
         if (plan.split_patches + n * n > (1ull << 31))
-            throw ResourceError("the tessellation pre-split would need more than 2^31 patches; lower gamma or the resolution");
-        plan.splits.insert(plan.splits.end(), {std::uint32_t(u), std::uint32_t(n), std::uint32_t(plan.split_patches), 0u});
+            throw ResourceError(
+                "the tessellation pre-split would need more than 2^31 patches; lower gamma or the resolution");
+        plan.splits.insert(plan.splits.end(),
+                           {std::uint32_t(u), std::uint32_t(n), std::uint32_t(plan.split_patches), 0u});
         plan.split_patches += n * n;
         plan.largest_split = std::max(plan.largest_split, std::uint32_t(n));
     }

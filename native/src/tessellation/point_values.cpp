@@ -9,9 +9,10 @@ namespace hyvox::tessellation {
 
 std::string PointValues::defines() const {
     std::string text = "#define ATTRIBUTES 1\n#define ATTRIBUTE_CHANNELS " + std::to_string(channels()) +
-                       "\n#define VALUE_SCALE " + std::to_string(kValueScale) + "\n#define VALUE_LIMIT " +
-                       std::to_string(kValueLimit) + "\n";
-    if (texture) text += "#define TEXTURE_COLOR 1\n#define COLOR_CHANNELS " + std::string(layout.alpha ? "4" : "3") + "\n";
+        "\n#define VALUE_SCALE " + std::to_string(kValueScale) + "\n#define VALUE_LIMIT " +
+        std::to_string(kValueLimit) + "\n";
+    if (texture)
+        text += "#define TEXTURE_COLOR 1\n#define COLOR_CHANNELS " + std::string(layout.alpha ? "4" : "3") + "\n";
     return text;
 }
 
@@ -22,8 +23,9 @@ PointValues makePointValues(const ValidatedMesh& mesh, const GridSpec& grid, con
     if (out.layout.color && mesh.view.material_textures && !mesh.view.texture && !mesh.view.colors)
         for (std::size_t m = 0; m < mesh.view.palette_count; ++m)
             if (mesh.view.material_textures[m])
-                throw InvalidInput("the tessellation method samples one texture, not one per material: use the cpu "
-                                   "method for these materials' images");
+                throw InvalidInput(
+                    "the tessellation method samples one texture, not one per material: use the cpu "
+                    "method for these materials' images");
     // SurfaceValues takes the texture first whenever the mesh has one (it refuses one without UVs).
     if (out.layout.color && mesh.view.texture) out.texture = mesh.view.texture;
     const std::size_t channels = std::size_t(out.channels());
@@ -51,9 +53,9 @@ PointValues makePointValues(const ValidatedMesh& mesh, const GridSpec& grid, con
     return out;
 }
 
-std::uint64_t meansFromSums(const std::vector<std::uint32_t>& brick_blocks, const std::vector<std::uint32_t>& count_pool,
-                            const std::vector<std::uint32_t>& value_pool, const BitGrid& bits,
-                            const std::array<std::int32_t, 3>& tile_offset, const GridSpec& grid,
+std::uint64_t meansFromSums(const std::vector<std::uint32_t>& brick_blocks,
+                            const std::vector<std::uint32_t>& count_pool, const std::vector<std::uint32_t>& value_pool,
+                            const BitGrid& bits, const std::array<std::int32_t, 3>& tile_offset, const GridSpec& grid,
                             const AttributeGrid& layout, std::vector<AttributeLeaf>& out) {
     const BrickLayout& tile_bricks = bits.bricks();
     const BrickLayout grid_bricks = grid.bricks();
@@ -69,8 +71,8 @@ std::uint64_t meansFromSums(const std::vector<std::uint32_t>& brick_blocks, cons
         leaf.brick = grid_bricks.index((tile_offset[0] >> 3) + at[0], (tile_offset[1] >> 3) + at[1],
                                        (tile_offset[2] >> 3) + at[2]);
         const std::uint64_t block = brick < brick_blocks.size() ? brick_blocks[brick] : 0;
-        const bool held = block != 0 && block * 512 <= count_pool.size() &&
-                          block * valueWordsPerBlock(channels) <= value_pool.size();
+        const bool held =
+            block != 0 && block * 512 <= count_pool.size() && block * valueWordsPerBlock(channels) <= value_pool.size();
         for (int n = 0; n < 512; ++n) {
             if (!((words[n >> 6] >> (n & 63)) & 1u)) continue;
             const std::uint32_t count = held ? count_pool[(block - 1) * 512 + std::size_t(n)] : 0;
@@ -78,7 +80,8 @@ std::uint64_t meansFromSums(const std::vector<std::uint32_t>& brick_blocks, cons
             if (count == 0) {
                 ++unreached;
             } else {
-                const std::uint32_t* sum = &value_pool[((block - 1) * 512 + std::size_t(n)) * 2 * std::size_t(channels)];
+                const std::uint32_t* sum =
+                    &value_pool[((block - 1) * 512 + std::size_t(n)) * 2 * std::size_t(channels)];
                 for (int c = 0; c < channels; ++c) {
                     const std::uint64_t bits64 = (std::uint64_t(sum[2 * c + 1]) << 32) | sum[2 * c];
                     exact[c] = double(std::int64_t(bits64)) / kValueScale;

@@ -51,17 +51,17 @@ inline std::uint64_t valueWordsPerBlock(int channels) { return 512ull * 2ull * s
 // however much of the tile the surface reaches.
 inline std::uint64_t tileBitBytesForSums(std::uint64_t storage_block, std::uint64_t budget, int channels) {
     const std::uint64_t value_bytes = valueWordsPerBlock(channels) * 4, count_bytes = 512 * 4;
-    const std::uint64_t bricks = std::min({storage_block / value_bytes, storage_block / count_bytes,
-                                           budget / (value_bytes + count_bytes)});
+    const std::uint64_t bricks =
+        std::min({storage_block / value_bytes, storage_block / count_bytes, budget / (value_bytes + count_bytes)});
     return std::max<std::uint64_t>(bricks, 1) * 64;
 }
 
 // The means of every set voxel of the tile, one leaf per non-empty brick (bit order), from
 // the blocks' counts and sums: colours are sum / count, normals the direction of the sum
 // (zero when it cancels: attributes::meanOfSums). Returns the set voxels that had no count (given zeros; none expected).
-std::uint64_t meansFromSums(const std::vector<std::uint32_t>& brick_blocks, const std::vector<std::uint32_t>& count_pool,
-                            const std::vector<std::uint32_t>& value_pool, const BitGrid& bits,
-                            const std::array<std::int32_t, 3>& tile_offset, const GridSpec& grid,
+std::uint64_t meansFromSums(const std::vector<std::uint32_t>& brick_blocks,
+                            const std::vector<std::uint32_t>& count_pool, const std::vector<std::uint32_t>& value_pool,
+                            const BitGrid& bits, const std::array<std::int32_t, 3>& tile_offset, const GridSpec& grid,
                             const AttributeGrid& layout, std::vector<AttributeLeaf>& out);
 
 }  // namespace hyvox::tessellation

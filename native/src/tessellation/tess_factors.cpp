@@ -8,7 +8,8 @@ namespace hyvox::tessellation {
 
 double edgeFactor(const Vec3f& a, const Vec3f& b, double gamma) {
     double squared = 0;
-    for (int axis = 0; axis < 3; ++axis) squared += (double(a[axis]) - double(b[axis])) * (double(a[axis]) - double(b[axis]));
+    for (int axis = 0; axis < 3; ++axis)
+        squared += (double(a[axis]) - double(b[axis])) * (double(a[axis]) - double(b[axis]));
     return gamma * std::sqrt(squared);
 }
 

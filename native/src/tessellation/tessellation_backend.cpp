@@ -61,18 +61,16 @@ void runTessellationBackend(const BackendJob& job, TileOutput& result, Stats& st
     const int max_level = tessellation::maxTessellationLevel(job.options.gl.device);
     // How far points may leave the flat triangles: the displacement's largest offset, and
     // for PN-triangles a share of each triangle's size (a cubic patch bulges well under half).
-    const double displacement_reach =
-        map.empty() ? 0.0
-                    : std::max(std::abs(map.maxValue() - options.displacement_midlevel),
-                               std::abs(map.minValue() - options.displacement_midlevel)) *
-                          std::abs(options.displacement_strength) / job.grid.voxel_size;
+    const double displacement_reach = map.empty() ? 0.0
+                                                  : std::max(std::abs(map.maxValue() - options.displacement_midlevel),
+                                                             std::abs(map.minValue() - options.displacement_midlevel)) *
+            std::abs(options.displacement_strength) / job.grid.voxel_size;
     // Attribute means divide per-voxel sums by the per-voxel counts, so they need the counts.
     std::optional<tessellation::PointValues> values;
     if (job.attributes) values.emplace(tessellation::makePointValues(job.mesh, job.grid, *job.attributes));
     const bool counts = options.counts || values;
     const tessellation::PatchPlan plan =
-        tessellation::planPatches(job.mesh, job.grid, job.tile.offset, job.tile.dims, options.gamma, max_level,
-                                  counts,
+        tessellation::planPatches(job.mesh, job.grid, job.tile.offset, job.tile.dims, options.gamma, max_level, counts,
                                   displacement_reach + 1.0, options.pn_triangles ? 0.5 : 0.0);
     stats.addTiming("plan", watch.restart());
     throwIfInterrupted(job.interrupter, 10);
@@ -105,9 +103,9 @@ void runTessellationBackend(const BackendJob& job, TileOutput& result, Stats& st
         stats.addTiming("counts", watch.restart());
     }
     if (values) {
-        result.attribute_voxels_unreached += tessellation::meansFromSums(
-            out.brick_blocks, out.count_pool, out.value_pool, result.bits, job.tile.offset, job.grid, values->layout,
-            result.attributes);
+        result.attribute_voxels_unreached +=
+            tessellation::meansFromSums(out.brick_blocks, out.count_pool, out.value_pool, result.bits, job.tile.offset,
+                                        job.grid, values->layout, result.attributes);
         stats.addTiming("attributes", watch.restart());
     }
     // Summed over tiles: a triangle reaching k tiles is drawn k times, and its points outside

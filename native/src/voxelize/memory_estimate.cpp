@@ -57,8 +57,8 @@ Measures measure(const ValidatedMesh& mesh, const GridSpec& grid, const tiling::
         [&](const tbb::blocked_range<std::size_t>& range, Measures m) {
             for (std::size_t n = range.begin(); n != range.end(); ++n) {
                 const std::uint32_t t = mesh.usable[n];
-                const std::array<std::array<double, 3>, 3> p{grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)),
-                                                             grid.toVoxel(mesh.vertex(t, 2))};
+                const std::array<std::array<double, 3>, 3> p{
+                    grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)), grid.toVoxel(mesh.vertex(t, 2))};
                 const double e0[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
                 const double e1[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
                 const double c[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2],
@@ -67,7 +67,7 @@ Measures measure(const ValidatedMesh& mesh, const GridSpec& grid, const tiling::
                 bool in_box = true;
                 for (int a = 0; plan.region && a < 3; ++a)
                     in_box = in_box && std::max({p[0][a], p[1][a], p[2][a]}) >= plan.lo[a] - 1 &&
-                             std::min({p[0][a], p[1][a], p[2][a]}) <= plan.hi[a];
+                        std::min({p[0][a], p[1][a], p[2][a]}) <= plan.hi[a];
                 if (in_box) {
                     m.area += 0.5 * twice_area;
                     m.crossed_area += 0.5 * (std::fabs(c[0]) + std::fabs(c[1]) + std::fabs(c[2]));
@@ -76,13 +76,14 @@ Measures measure(const ValidatedMesh& mesh, const GridSpec& grid, const tiling::
                 double span[2], longest2 = 0;
                 for (int a = 0; a < 2; ++a)
                     span[a] = std::floor(std::max({p[0][a], p[1][a], p[2][a]}) / 8) -
-                              std::floor(std::min({p[0][a], p[1][a], p[2][a]}) / 8) + 1;
+                        std::floor(std::min({p[0][a], p[1][a], p[2][a]}) / 8) + 1;
                 m.ray_entries += span[0] * span[1];
                 for (int e = 0; e < 3; ++e) {
                     const auto& u = p[std::size_t(e)];
                     const auto& v = p[std::size_t((e + 1) % 3)];
-                    longest2 = std::max(longest2, (u[0] - v[0]) * (u[0] - v[0]) + (u[1] - v[1]) * (u[1] - v[1]) +
-                                                      (u[2] - v[2]) * (u[2] - v[2]));
+                    longest2 = std::max(
+                        longest2,
+                        (u[0] - v[0]) * (u[0] - v[0]) + (u[1] - v[1]) * (u[1] - v[1]) + (u[2] - v[2]) * (u[2] - v[2]));
                 }
                 // Halving the longest edge until it is short: pieces come in powers of two,
                 // about (l / kPieceVoxels)² of them, up to twice that.
@@ -106,10 +107,11 @@ double windingBytes(double triangles, double pieces) {
     const double nodes = pieces / 2;
     // The pieces' list is reserved for the triangles; past that it doubles, and holds its old
     // buffer and the new one (1.5 times the new) while it moves.
-    const double capacity = pieces > triangles ? triangles * std::exp2(std::ceil(std::log2(pieces / triangles))) : pieces;
+    const double capacity =
+        pieces > triangles ? triangles * std::exp2(std::ceil(std::log2(pieces / triangles))) : pieces;
     const double cut = kPiece * (pieces > triangles ? 1.5 * capacity : pieces);
-    return kWholeTriangle * triangles + std::max({cut, kPiece * pieces + kNodeBuild * nodes,
-                                                  2 * kPiece * pieces + kNodeKept * nodes});
+    return kWholeTriangle * triangles +
+        std::max({cut, kPiece * pieces + kNodeBuild * nodes, 2 * kPiece * pieces + kNodeKept * nodes});
 }
 
 std::string mib(double bytes) { return std::to_string(std::uint64_t(std::ceil(bytes / double(1 << 20)))) + " MiB"; }
@@ -170,8 +172,8 @@ Estimate estimate(const ValidatedMesh& mesh, const GridSpec& grid, const Voxeliz
         // The trees are built side by side, then the inside is found with them held.
         const double trees = by_rays ? rays : rays + windingBytes(triangles, pieces);
         const double trees_held = by_rays ? rays_held : rays_held + 2 * kPiece * pieces + kNodeKept * pieces / 2;
-        const double found = (by_rays ? kInsidePerLeaf : kOpenInsidePerLeaf) * inside_leaves + 24.0 * L +
-                             16.0 * kGrowing * runs;
+        const double found =
+            (by_rays ? kInsidePerLeaf : kOpenInsidePerLeaf) * inside_leaves + 24.0 * L + 16.0 * kGrowing * runs;
         const double held = kLeaf * L + (channels > 0 ? kLeaf * L + values : 0.0);
         e.solid = held + std::max({kEdgesPerTriangle * triangles, trees, trees_held + found});
         // The inside merged into the surface: both sets of leaves while the result grows; after,
@@ -183,8 +185,9 @@ Estimate estimate(const ValidatedMesh& mesh, const GridSpec& grid, const Voxeliz
             // layer inward (attributes/inside_values.h): about the inner half of each brick,
             // the surface's own voxels counted once; about 400 bytes a brick beside them.
             voxels = std::min(512.0 * L, V + kInsideValuedPerLeaf * L);
-            e.attributes = std::max(e.attributes, kLeaf * 2 * L + values + voxels * channels * 4.0 +
-                                                      400.0 * (L + std::min(tile_bricks, L)));
+            e.attributes =
+                std::max(e.attributes,
+                         kLeaf * 2 * L + values + voxels * channels * 4.0 + 400.0 * (L + std::min(tile_bricks, L)));
         }
     }
 
@@ -197,7 +200,7 @@ Estimate estimate(const ValidatedMesh& mesh, const GridSpec& grid, const Voxeliz
         const double band_leaves = std::min(L * (1.0 + 2.0 * std::ceil(band / 8.0)), bricks);
         const double band_voxels = std::min(V * (2.0 * band + 1.0), 512.0 * band_leaves);
         e.sdf = e.solid + kGrowing * (band_leaves * (2 * kLeaf + 8) + band_voxels * 4.0) +
-                io::vdbWriterBytes(band_leaves, 0, 512.0 * band_leaves, 1.0);
+            io::vdbWriterBytes(band_leaves, 0, 512.0 * band_leaves, 1.0);
     }
 
     // The .vdb writer beside the result (its leaves, tile runs and values).
@@ -205,7 +208,7 @@ Estimate estimate(const ValidatedMesh& mesh, const GridSpec& grid, const Voxeliz
     // while a grid's leaves are filled (measured: Spot solid with colour at 512 peaks about 15%
     // of the values above one copy).
     e.write = kLeaf * leaves + 16.0 * tile_bricks / 64.0 + 1.15 * voxels * channels * 4.0 +
-              io::vdbWriterBytes(leaves, tile_bricks, voxels, channels);
+        io::vdbWriterBytes(leaves, tile_bricks, voxels, channels);
     return e;
 }
 

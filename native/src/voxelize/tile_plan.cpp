@@ -55,7 +55,8 @@ TilePlan planTiles(const GridSpec& grid, const VoxelizeOptions& options, std::ui
             if (denseBytes(dims) > limit) {
                 // The largest cube of whole bricks whose bits fit the limit (side³ / 8 bytes).
                 const double voxels = std::cbrt(double(limit) * 8.0);
-                side = std::max<std::int32_t>(BrickLayout::kSide, std::int32_t(voxels) / BrickLayout::kSide * BrickLayout::kSide);
+                side = std::max<std::int32_t>(BrickLayout::kSide,
+                                              std::int32_t(voxels) / BrickLayout::kSide * BrickLayout::kSide);
             }
         }
     }
@@ -74,7 +75,8 @@ PointReach pointReach(const GridSpec& grid, const VoxelizeOptions& options) {
     if (tess.pn_triangles) reach.relative = 0.5;
     double height = 0;  // the largest |height - midlevel| the map holds (a file was read into its pixels)
     if (!tess.displacement_pixels.empty()) {
-        const auto [low, high] = std::minmax_element(tess.displacement_pixels.values.begin(), tess.displacement_pixels.values.end());
+        const auto [low, high] =
+            std::minmax_element(tess.displacement_pixels.values.begin(), tess.displacement_pixels.values.end());
         height = std::max(std::fabs(*low - tess.displacement_midlevel), std::fabs(*high - tess.displacement_midlevel));
     }
     if (height > 0) reach.fixed = height * std::fabs(tess.displacement_strength) / grid.voxel_size + 1.0;
@@ -82,15 +84,15 @@ PointReach pointReach(const GridSpec& grid, const VoxelizeOptions& options) {
 }
 
 std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, const GridSpec& grid,
-                                                      const TilePlan& plan, const PointReach& reach,
-                                                      Interrupter* interrupter) {
+                                                     const TilePlan& plan, const PointReach& reach,
+                                                     Interrupter* interrupter) {
     std::vector<std::vector<std::uint32_t>> bins(plan.total());
     for (std::size_t n = 0; n < mesh.usable.size(); ++n) {
         if (n % kInterruptCheckTriangles == 0) throwIfInterrupted(interrupter);
         const std::uint32_t t = mesh.usable[n];
         std::array<int, 3> first{}, last{};
-        const std::array<std::array<double, 3>, 3> corners{grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)),
-                                                           grid.toVoxel(mesh.vertex(t, 2))};
+        const std::array<std::array<double, 3>, 3> corners{
+            grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)), grid.toVoxel(mesh.vertex(t, 2))};
         std::array<double, 3> lows{}, highs{};
         double extent = 0;
         for (int a = 0; a < 3; ++a) {

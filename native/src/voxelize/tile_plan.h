@@ -48,7 +48,7 @@ PointReach pointReach(const GridSpec& grid, const VoxelizeOptions& options);
 // ascending. Triangles that reach no tile (outside a region's box) are in none.
 // `interrupter` (may be null) is asked every kInterruptCheckTriangles triangles.
 std::vector<std::vector<std::uint32_t>> binTriangles(const ValidatedMesh& mesh, const GridSpec& grid,
-                                                      const TilePlan& plan, const PointReach& reach,
-                                                      Interrupter* interrupter = nullptr);
+                                                     const TilePlan& plan, const PointReach& reach,
+                                                     Interrupter* interrupter = nullptr);
 
 }  // namespace hyvox::tiling

@@ -15,13 +15,13 @@
 #include "core/backends.h"
 #include "core/gl_methods.h"
 #include "core/stopwatch.h"
-#include "sdf/level_set.h"
-#include "solid/fill_inside.h"
 #include "hyvox/option_schema.h"
 #include "hyvox/region.h"
 #include "hyvox/texture.h"
 #include "memory_estimate.h"
+#include "sdf/level_set.h"
 #include "solid/edge_closure.h"
+#include "solid/fill_inside.h"
 #include "tile_plan.h"
 
 #include <tbb/task_arena.h>
@@ -41,7 +41,8 @@ void checkDisplacementReach(const GridSpec& grid, const VoxelizeOptions& options
     char text[400];
     std::snprintf(text, sizeof text,
                   "displacement_strength %.6g with displacement_midlevel %.6g moves points up to %.6g voxels "
-                  "(%.6g world units); at most %.0f voxels can be computed: lower displacement_strength or bring displacement_midlevel into the image's height range",
+                  "(%.6g world units); at most %.0f voxels can be computed: lower displacement_strength or bring "
+                  "displacement_midlevel into the image's height range",
                   options.tessellation.displacement_strength, options.tessellation.displacement_midlevel,
                   reach.fixed - 1.0, (reach.fixed - 1.0) * grid.voxel_size, kMaxDisplacementVoxels);
     throw InvalidInput(text);
@@ -130,8 +131,9 @@ void checkInsideValuesBudget(const SparseGrid& surface, const VoxelizeResult& re
     const SparseGrid& solid = result.occupancy;
     const double tiles = double(solid.tileCount());
     const double leaf_voxels = double(solid.count()) - 512.0 * tiles +
-                               512.0 * std::min(tiles, double(surface.leafCount() + surface.tileCount()));
-    const double bricks = double(solid.leafCount()) + std::min(tiles, double(surface.leafCount() + surface.tileCount()));
+        512.0 * std::min(tiles, double(surface.leafCount() + surface.tileCount()));
+    const double bricks =
+        double(solid.leafCount()) + std::min(tiles, double(surface.leafCount() + surface.tileCount()));
     const double held = double(result.attributes.values.size()) * 4.0 + double(surface.byteSize() + solid.byteSize());
     const double need = leaf_voxels * double(result.attributes.channels()) * 4.0 + bricks * 400.0;
     if (held + need > double(options.memoryBudgetBytes()))
@@ -164,41 +166,45 @@ struct Surface {
         std::vector<std::vector<std::uint32_t>> bins;
         // The reach of this pass's method: the solid barrier's cpu pass bins without the
         // tessellation's displacement and patch bulge.
-        if (!plan.whole()) bins = tiling::binTriangles(validated, grid, plan, tiling::pointReach(grid, options), interrupter);
+        if (!plan.whole())
+            bins = tiling::binTriangles(validated, grid, plan, tiling::pointReach(grid, options), interrupter);
         stats.addTiming("tiles", watch.restart());
 
         // The tessellation averages its own points' values; the GL methods clip their pieces on
         // the GPU and the cpu and reference methods clip here, both summed after.
         const bool own_attributes = values && options.method == Method::Tessellation;
-        const bool gl_pieces = values && (options.method == Method::Triangle || options.method == Method::Fragment ||
-                                          options.method == Method::Hybrid);
+        const bool gl_pieces = values &&
+            (options.method == Method::Triangle || options.method == Method::Fragment ||
+             options.method == Method::Hybrid);
         TileProgress progress(interrupter, plan.total());
         for (std::size_t t = 0; t < plan.total(); ++t) {
             if (!plan.whole() && bins[t].empty()) continue;
             const Tile tile = plan.tile(t);
             ValidatedMesh part;
-            if (!plan.whole()) part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds};
+            if (!plan.whole())
+                part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds};
             const ValidatedMesh& tile_mesh = plan.whole() ? validated : part;
             progress.setTile(t);
             TileOutput out{BitGrid(tile.dims), {}, {}, 0, {}};
             stats.addTiming("allocate", watch.restart());
-            const BackendJob job{tile_mesh, validated, grid, tile, options, &progress,
-                                 own_attributes ? values : nullptr, gl_pieces};
+            const BackendJob job{
+                tile_mesh, validated, grid, tile, options, &progress, own_attributes ? values : nullptr, gl_pieces};
             runBackend(job, out, stats);
             watch.restart();
             if (own_attributes) {
                 std::move(out.attributes.begin(), out.attributes.end(), std::back_inserter(*attribute_leaves));
                 stats.attribute_voxels_unreached += out.attribute_voxels_unreached;
             } else if (gl_pieces) {
-                const auto counted = attributes::computePieceAttributes(job, out.bits, *values, out.pieces, *attribute_leaves);
+                const auto counted =
+                    attributes::computePieceAttributes(job, out.bits, *values, out.pieces, *attribute_leaves);
                 std::vector<VoxelPiece>().swap(out.pieces);
                 stats.attribute_pieces += counted.pieces;
                 stats.attribute_voxels_unreached += counted.voxels_unreached;
                 stats.attribute_leaves_rounded += counted.leaves_rounded;
                 stats.addTiming("attributes", watch.restart());
             } else if (values) {
-                const auto counted = attributes::computeTileAttributes(job, out.bits, *values,
-                                                                       options.method == Method::Reference, *attribute_leaves);
+                const auto counted = attributes::computeTileAttributes(
+                    job, out.bits, *values, options.method == Method::Reference, *attribute_leaves);
                 stats.attribute_pieces += counted.pieces;
                 stats.attribute_voxels_unreached += counted.voxels_unreached;
                 stats.attribute_leaves_rounded += counted.leaves_rounded;
@@ -247,8 +253,12 @@ struct InsidePass {
                                    options.attributes.sdf ? &surface_inside : nullptr);
         stats.addTiming("solid_inside", watch.restart());
     }
-    const SparseGrid& barrier(const VoxelizeResult& result) const { return own_barrier ? exact.occupancy : result.occupancy; }
-    std::uint64_t byteSize() const { return exact.occupancy.byteSize() + inside.byteSize() + surface_inside.byteSize(); }
+    const SparseGrid& barrier(const VoxelizeResult& result) const {
+        return own_barrier ? exact.occupancy : result.occupancy;
+    }
+    std::uint64_t byteSize() const {
+        return exact.occupancy.byteSize() + inside.byteSize() + surface_inside.byteSize();
+    }
 };
 }  // namespace
 
@@ -274,8 +284,8 @@ VoxelizeOptions withImagesRead(const VoxelizeOptions& given) {
 }
 
 // voxelize() after its options were checked and its interrupter started.
-VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeOptions& given,
-                                 Interrupter* interrupter, double validate_ms) {
+VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeOptions& given, Interrupter* interrupter,
+                                 double validate_ms) {
     const MeshView& mesh = validated.view;
     const VoxelizeOptions options = withImagesRead(given);
 
@@ -291,11 +301,11 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     // The tessellation holds a tile's bits in one storage buffer (the hybrid methods cut theirs
     // into slabs themselves), and its attribute sums take a block per brick the points reach:
     // its tiles also follow the device's limit.
-    const std::uint64_t device_limit =
-        options.method == Method::Tessellation
-            ? glMethods("the tessellation method")
-                  .tessellation_tile_bytes(options.gl.device, options.memoryBudgetBytes() / 2, surface ? surface->channels() : 0)
-            : 0;
+    const std::uint64_t device_limit = options.method == Method::Tessellation
+        ? glMethods("the tessellation method")
+              .tessellation_tile_bytes(options.gl.device, options.memoryBudgetBytes() / 2,
+                                       surface ? surface->channels() : 0)
+        : 0;
     const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
     if (plan.region) stats.region = regionBox(grid, options.region);
     // The inside test's edge check first (solid mode, and the sdf's sign): it decides the solid
@@ -307,10 +317,10 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     }
     const memory::Estimate need = memory::estimate(validated, grid, options, plan, surface ? surface->channels() : 0,
                                                    closure ? &*closure : nullptr);
-    stats.memory_estimate = MemoryEstimateStats{
-        std::uint64_t(need.surface), std::uint64_t(need.solid),          std::uint64_t(need.attributes),
-        std::uint64_t(need.write),   std::uint64_t(need.peak()),         std::uint64_t(need.surface_leaves),
-        std::uint64_t(need.surface_voxels), std::uint64_t(need.inside_bricks)};
+    stats.memory_estimate = MemoryEstimateStats{std::uint64_t(need.surface),        std::uint64_t(need.solid),
+                                                std::uint64_t(need.attributes),     std::uint64_t(need.write),
+                                                std::uint64_t(need.peak()),         std::uint64_t(need.surface_leaves),
+                                                std::uint64_t(need.surface_voxels), std::uint64_t(need.inside_bricks)};
     memory::checkBudget(need, grid, options);
     const tiling::PointReach reach = tiling::pointReach(grid, options);
     checkDisplacementReach(grid, options, reach);
@@ -349,7 +359,7 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
         inside.run(validated, grid, surface_pass, options, *closure, result, stats, interrupter, watch);
         if (options.attributes.sdf) {
             const std::uint64_t held = result.occupancy.byteSize() + inside.byteSize() + solid_surface.byteSize() +
-                                       result.attributes.values.size() * sizeof(float);
+                result.attributes.values.size() * sizeof(float);
             const sdf::InsideCentres centres{inside.barrier(result), inside.surface_inside, inside.inside};
             result.sdf = sdf::makeLevelSet(validated, grid, centres, options, held, interrupter, stats.sdf.emplace());
             stats.addTiming("sdf", watch.restart());
@@ -362,8 +372,9 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     if (surface && solid) {
         checkInsideValuesBudget(solid_surface, result, options);
         attributes::InsideValueCounts counted;
-        result.attributes = attributes::valueInside(solid_surface, result.attributes, result.occupancy,
-                                                    attributes::meshMeanValue(validated, *surface), options.threads, counted);
+        result.attributes =
+            attributes::valueInside(solid_surface, result.attributes, result.occupancy,
+                                    attributes::meshMeanValue(validated, *surface), options.threads, counted);
         SolidStats& s = *stats.solid;
         s.attribute_inside_voxels = counted.voxels;
         s.attribute_layers = counted.layers;

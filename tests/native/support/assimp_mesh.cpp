@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "support/assimp_mesh.h"
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <zlib.h>
+#include <assimp/Importer.hpp>
 
 #include <stdexcept>
 #include <string>

@@ -22,11 +22,12 @@ Mesh midpointSubdivide(const MeshView& view, int levels) {
             auto [it, inserted] = midpoints.try_emplace(key, std::uint32_t(mesh.positions.size() / 3));
             if (inserted) {
                 for (int axis = 0; axis < 3; ++axis)
-                    mesh.positions.push_back(0.5f * (mesh.positions[3 * std::size_t(a) + axis] +
-                                                     mesh.positions[3 * std::size_t(b) + axis]));
+                    mesh.positions.push_back(
+                        0.5f * (mesh.positions[3 * std::size_t(a) + axis] + mesh.positions[3 * std::size_t(b) + axis]));
                 if (!mesh.uvs.empty())
                     for (int k = 0; k < 2; ++k)
-                        mesh.uvs.push_back(0.5f * (mesh.uvs[2 * std::size_t(a) + k] + mesh.uvs[2 * std::size_t(b) + k]));
+                        mesh.uvs.push_back(0.5f *
+                                           (mesh.uvs[2 * std::size_t(a) + k] + mesh.uvs[2 * std::size_t(b) + k]));
             }
             return it->second;
         };
@@ -52,8 +53,8 @@ Mesh subdivideAndDisplace(const ValidatedMesh& mesh, const GridSpec& grid, const
     // Lattice point (i, j) of a triangle: barycentric (1 - (i+j)/n, i/n, j/n).
     auto vertex = [&](std::uint32_t t, int i, int j) {
         const double u = double(i) / pieces, v = double(j) / pieces;
-        const SurfacePoint p =
-            surface.evaluate(t, {1.0 - u - v, u, v}, options.pn_triangles, map, strength, options.displacement_midlevel);
+        const SurfacePoint p = surface.evaluate(t, {1.0 - u - v, u, v}, options.pn_triangles, map, strength,
+                                                options.displacement_midlevel);
         for (int axis = 0; axis < 3; ++axis)
             out.positions.push_back(float(grid.origin[axis] + p.position[axis] * grid.voxel_size));  // back to world
         return std::uint32_t(out.positions.size() / 3 - 1);

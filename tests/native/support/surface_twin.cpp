@@ -60,7 +60,7 @@ SurfacePoint SurfaceTwin::evaluate(std::uint32_t t, const Vec3d& w, bool pn) con
     SurfacePoint out;
     for (int k = 0; k < 2; ++k)
         out.uv[k] = w[0] * uvs[2 * std::size_t(idx[0]) + k] + w[1] * uvs[2 * std::size_t(idx[1]) + k] +
-                    w[2] * uvs[2 * std::size_t(idx[2]) + k];
+            w[2] * uvs[2 * std::size_t(idx[2]) + k];
     if (!pn) {
         out.position = add(add(mul(p[0], w[0]), mul(p[1], w[1])), mul(p[2], w[2]));
         out.normal = normalized(add(add(mul(n[0], w[0]), mul(n[1], w[1])), mul(n[2], w[2])));

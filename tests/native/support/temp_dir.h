@@ -17,8 +17,8 @@ struct TempDir {
     std::filesystem::path path;
     TempDir() {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path = std::filesystem::temp_directory_path() / ("hyvox-test-" + std::to_string(::getpid()) + "-" +
-                                                         info->test_suite_name() + "-" + info->name());
+        path = std::filesystem::temp_directory_path() /
+            ("hyvox-test-" + std::to_string(::getpid()) + "-" + info->test_suite_name() + "-" + info->name());
         std::filesystem::remove_all(path);
         std::filesystem::create_directories(path);
     }

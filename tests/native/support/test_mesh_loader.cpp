@@ -3,11 +3,11 @@
 
 #include <zlib.h>
 
+#include <dirent.h>
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
-#include <dirent.h>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -20,8 +20,7 @@ struct GzCloser {
 };
 
 std::size_t sizeOfType(const std::string& type) {
-    if (type == "float" || type == "float32" || type == "int" || type == "int32" || type == "uint" ||
-        type == "uint32")
+    if (type == "float" || type == "float32" || type == "int" || type == "int32" || type == "uint" || type == "uint32")
         return 4;
     if (type == "uchar" || type == "uint8" || type == "char" || type == "int8") return 1;
     if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
@@ -123,11 +122,20 @@ std::vector<std::string> listMeshFiles() {
 
 const std::vector<std::string>& sharedMeshFiles() {
     static const std::vector<std::string> files = {
-        "armadillo_52k.ply",          "bunny_stanford_69k.ply",   "dragon_stanford_871k.ply.gz",
-        "dragon_stanford_res2_203k.ply.gz", "dragon_stanford_res3_48k.ply", "elephant_holes.ply",
-        "happy_buddha_100k.ply",      "igea_cyberware_268k.ply.gz", "shark_holes.ply",
-        "spider_messy.ply",           "sponza_crytek_262k_vcolor.ply.gz", "spot_uv.ply",
-        "spot_vcolor.ply",            "teapot_utah.ply",
+        "armadillo_52k.ply",
+        "bunny_stanford_69k.ply",
+        "dragon_stanford_871k.ply.gz",
+        "dragon_stanford_res2_203k.ply.gz",
+        "dragon_stanford_res3_48k.ply",
+        "elephant_holes.ply",
+        "happy_buddha_100k.ply",
+        "igea_cyberware_268k.ply.gz",
+        "shark_holes.ply",
+        "spider_messy.ply",
+        "sponza_crytek_262k_vcolor.ply.gz",
+        "spot_uv.ply",
+        "spot_vcolor.ply",
+        "teapot_utah.ply",
     };
     return files;
 }

@@ -22,7 +22,8 @@ namespace hyvox::test {
 namespace {
 
 std::uint64_t key(const Voxel& v) {
-    return (std::uint64_t(std::uint32_t(v[0])) << 42) | (std::uint64_t(std::uint32_t(v[1])) << 21) | std::uint32_t(v[2]);
+    return (std::uint64_t(std::uint32_t(v[0])) << 42) | (std::uint64_t(std::uint32_t(v[1])) << 21) |
+        std::uint32_t(v[2]);
 }
 
 }  // namespace
@@ -46,8 +47,8 @@ Touch overlapWithin(const reference::Triangle& triangle, const Voxel& voxel, Mod
     return {reference::overlaps(triangle, voxel, mode, eps), reference::overlaps(triangle, voxel, mode, -eps)};
 }
 
-Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult& result,
-                          const VoxelizeResult& oracle, double eps) {
+Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult& result, const VoxelizeResult& oracle,
+                          double eps) {
     // XOR-ing the bit words below is only meaningful (and in bounds) on the same grid.
     if (result.grid.dims != oracle.grid.dims || result.grid.origin != oracle.grid.origin ||
         result.grid.voxel_size != oracle.grid.voxel_size)
@@ -159,7 +160,8 @@ std::uint64_t countHoles(const MeshView& mesh, const VoxelizeResult& result, std
                               double longest = 0;
                               for (int c = 0; c < 3; ++c) {
                                   double len2 = 0;
-                                  for (int a = 0; a < 3; ++a) len2 += (v[(c + 1) % 3][a] - v[c][a]) * (v[(c + 1) % 3][a] - v[c][a]);
+                                  for (int a = 0; a < 3; ++a)
+                                      len2 += (v[(c + 1) % 3][a] - v[c][a]) * (v[(c + 1) % 3][a] - v[c][a]);
                                   longest = std::max(longest, std::sqrt(len2));
                               }
                               // Spacing <= 1/2 voxel along every edge direction of the lattice.
@@ -171,7 +173,7 @@ std::uint64_t countHoles(const MeshView& mesh, const VoxelizeResult& result, std
                                       std::array<double, 3> p;
                                       for (int x = 0; x < 3; ++x)
                                           p[x] = v[0][x] + (double(a) / n) * (v[1][x] - v[0][x]) +
-                                                 (double(b) / n) * (v[2][x] - v[0][x]);
+                                              (double(b) / n) * (v[2][x] - v[0][x]);
                                       // Samples outside the grid are clipped geometry: nothing to cover.
                                       bool in_grid = true;
                                       for (int x = 0; x < 3; ++x)
@@ -208,7 +210,8 @@ std::vector<char> insideByParity(const MeshView& mesh, const GridSpec& grid) {
         const double ymin = std::min({p[0][1], p[1][1], p[2][1]}), ymax = std::max({p[0][1], p[1][1], p[2][1]});
         const double zmin = std::min({p[0][2], p[1][2], p[2][2]}), zmax = std::max({p[0][2], p[1][2], p[2][2]});
         for (int j = std::max(0, int(std::floor(ymin - oy))); j <= std::min(ny - 1, int(std::ceil(ymax - oy))); ++j)
-            for (int k = std::max(0, int(std::floor(zmin - oz))); k <= std::min(nz - 1, int(std::ceil(zmax - oz))); ++k) {
+            for (int k = std::max(0, int(std::floor(zmin - oz))); k <= std::min(nz - 1, int(std::ceil(zmax - oz)));
+                 ++k) {
                 const double y = j + oy, z = k + oz;
                 // Point in the projected (y,z) triangle: all edge functions of one sign.
                 double e[3];

@@ -30,10 +30,10 @@ Touch overlapWithin(const reference::Triangle& triangle, const Voxel& voxel, Mod
 // the `cpu` thin voxelizer in thin mode, or any other trusted set).
 struct Comparison {
     std::uint64_t result_voxels = 0, oracle_voxels = 0;
-    std::uint64_t result_only = 0, oracle_only = 0;  // disagreements
-    std::uint64_t touches = 0;                       // disagreements proven to be touches within eps
-    std::vector<Voxel> unexplained;                  // disagreements that are not touches (must be empty)
-    std::uint64_t unexplained_result_only = 0;       // of those, voxels only the result has
+    std::uint64_t result_only = 0, oracle_only = 0;     // disagreements
+    std::uint64_t touches = 0;                          // disagreements proven to be touches within eps
+    std::vector<Voxel> unexplained;                     // disagreements that are not touches (must be empty)
+    std::uint64_t unexplained_result_only = 0;          // of those, voxels only the result has
     double result_ms = 0, oracle_ms = 0, check_ms = 0;  // 0 where the caller ran the voxelizers
     std::string summary() const;
 };
@@ -42,8 +42,8 @@ struct Comparison {
 // is checked with the reference's eps-grown / eps-shrunk rule for `mode` over all triangles
 // (double precision): it is a touch iff some triangle meets the grown voxel and no triangle
 // meets the shrunk one.
-Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult& result,
-                          const VoxelizeResult& oracle, double eps = 1e-5);
+Comparison compareResults(const MeshView& mesh, Mode mode, const VoxelizeResult& result, const VoxelizeResult& oracle,
+                          double eps = 1e-5);
 
 // Runs `cpu` and `reference` with the same options (method ignored) and compares them
 // (`cpu` is the result, `reference` the oracle; both timed).
@@ -81,7 +81,6 @@ Separation floodFromBoundary(const BitGrid& bits, const std::vector<char>& insid
 // reaches empty voxels, more than `min_inside_empty` empty voxels are inside, and none of
 // them is reached. Negative control: with the slab x = dims/2 of the surface removed, the
 // same check must find a leak (otherwise it would prove nothing). Returns the flood's counts.
-Separation expectSixSeparating(const MeshView& mesh, const VoxelizeResult& result,
-                               std::uint64_t min_inside_empty = 0);
+Separation expectSixSeparating(const MeshView& mesh, const VoxelizeResult& result, std::uint64_t min_inside_empty = 0);
 
 }  // namespace hyvox::test
