@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # The project's linters, in check mode over the tree; any finding fails:
-#   ruff check     the Python (ruff.toml)
-#   clang-tidy     every C++ source of BUILD/compile_commands.json (.clang-tidy), headers with them
-# and, with HYVOX_LINT_FORMAT=1, the format checks (off until the tree has been formatted once):
-#   ruff format --check           the Python
-#   clang-format --dry-run        the C++ (.clang-format)
+#   ruff check               the Python (ruff.toml)
+#   clang-tidy               every C++ source of BUILD/compile_commands.json (.clang-tidy), headers with them
+#   ruff format --check      the Python's format
+#   clang-format --dry-run   the C++'s format (.clang-format)
+# To format what a check refuses: build/venv/lint/bin/ruff format . and
+# build/venv/lint/bin/clang-format -i FILE...
 #
 #   scripts/lint.sh [BUILD]       BUILD: a configured build folder (default build); the tools come
 #                                 pinned (scripts/requirements/pyXY/lint.txt) in BUILD/venv/lint,
@@ -14,7 +15,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
-format=${HYVOX_LINT_FORMAT:-0}
 venvs=${HYVOX_LINT_VENV_DIR:-$build/venv}
 bash scripts/setup_venvs.sh "$venvs" lint >/dev/null
 bin="$venvs/lint/bin"
@@ -46,11 +46,7 @@ PY
 tidy() { printf '%s\n' "${sources[@]}" | xargs -P "$(nproc)" -n 4 "$bin/clang-tidy" -p "$build" --quiet; }
 step "clang-tidy (${#sources[@]} sources)" tidy
 
-if [ "$format" = 1 ]; then
-  step "ruff format --check" "$bin/ruff" format --check --no-cache .
-  mapfile -t cxx < <(git ls-files '*.cpp' '*.h')
-  step "clang-format (${#cxx[@]} files)" "$bin/clang-format" --dry-run --Werror "${cxx[@]}"
-else
-  echo "== lint: format checks off (HYVOX_LINT_FORMAT=1 turns them on)"
-fi
+step "ruff format --check" "$bin/ruff" format --check --no-cache .
+mapfile -t cxx < <(git ls-files '*.cpp' '*.h')
+step "clang-format (${#cxx[@]} files)" "$bin/clang-format" --dry-run --Werror "${cxx[@]}"
 exit $status

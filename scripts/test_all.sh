@@ -6,7 +6,7 @@
 #      official Blender releases from PyPI for the machine's Python (pinned venvs under
 #      build/venv/: 4.5 LTS and 5.0 with Python 3.11 on Debian 12, 5.1 and 5.3 with 3.13 on 13);
 #   2. an AddressSanitizer + UndefinedBehaviorSanitizer build of the native code: the native tests;
-#   3. the linters (scripts/lint.sh: ruff, clang-tidy; the format checks behind HYVOX_LINT_FORMAT).
+#   3. the linters and format checks (scripts/lint.sh: ruff, clang-tidy, clang-format).
 # GL tests run on whatever EGL device is there (Mesa llvmpipe without a GPU); none skip.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -36,10 +36,8 @@ cmake --build build-asan -j "$jobs"
 ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$jobs"
 
-echo "== Linters: ruff check and clang-tidy (any finding fails)"
-# The format checks (ruff format, clang-format) stay off until the tree is formatted once;
-# then HYVOX_LINT_FORMAT=1 here turns them on.
-HYVOX_LINT_FORMAT=0 bash scripts/lint.sh build
+echo "== Linters and format checks: ruff, clang-tidy, clang-format (any finding fails)"
+bash scripts/lint.sh build
 
 echo "== libFuzzer (clang, ASan + UBSan): the PLY and OBJ readers 60 s each, STL, OFF, glTF and the FBX check 20 s, the assimp formats, gzip input and voxelize 30 s, solid 45 s; any finding fails"
 bash scripts/fuzz_readers.sh
