@@ -10,7 +10,10 @@
 # GL tests run on whatever EGL device is there (Mesa llvmpipe without a GPU); none skip.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# section TITLE: a heading with the seconds since the start, so a log shows where the time went.
+section() { echo "== [${SECONDS} s] $1"; }
 
+section "Debian packages and the pinned venvs"
 bash scripts/install_deps.sh
 bash scripts/setup_venvs.sh build/venv
 # Debian's cmake/ctest and python3 first: a pyenv (or other) python3 earlier on PATH would
@@ -18,7 +21,7 @@ bash scripts/setup_venvs.sh build/venv
 export PATH="/usr/bin:/bin:$PATH"
 
 jobs=$(nproc)
-echo "== Release build (-Werror)"
+section "Release build (-Werror)"
 # ccache with the source root as base: the wheel's own CMake build (build-wheel/) compiles
 # the same sources with the same flags and, relative to its folder, the same paths, so it
 # takes the Release build's objects from the cache instead of compiling them again.
@@ -26,18 +29,21 @@ export CCACHE_BASEDIR="$PWD"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DHYVOX_WERROR=ON -DHYVOX_WHEEL=ON \
   -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
 cmake --build build -j "$jobs"
+section "Release tests"
 ctest --test-dir build --output-on-failure -j "$jobs"
 
-echo "== ASan + UBSan build of the native code (-Werror)"
+section "ASan + UBSan build of the native code (-Werror)"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Release -DHYVOX_SANITIZE=ON -DHYVOX_WERROR=ON \
   -DHYVOX_BUILD_PYTHON=OFF -DHYVOX_BUILD_BENCH=OFF
 cmake --build build-asan -j "$jobs"
+section "ASan + UBSan tests"
 # Mesa's drivers are not instrumented and keep process-lifetime allocations: leak checks off.
 ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j "$jobs"
 
-echo "== Linters and format checks: ruff, clang-tidy, clang-format (any finding fails)"
+section "Linters and format checks: ruff, clang-tidy, clang-format (any finding fails)"
 bash scripts/lint.sh build
 
-echo "== libFuzzer (clang, ASan + UBSan): the PLY and OBJ readers 60 s each, STL, OFF, glTF and the FBX check 20 s, the assimp formats, gzip input and voxelize 30 s, solid 45 s; any finding fails"
+section "libFuzzer (clang, ASan + UBSan): the PLY and OBJ readers 60 s each, STL, OFF, glTF and the FBX check 20 s, the assimp formats, gzip input and voxelize 30 s, solid 45 s; any finding fails"
 bash scripts/fuzz_readers.sh
+section "done"

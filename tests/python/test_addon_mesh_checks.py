@@ -68,3 +68,53 @@ def test_used_vertices_leave_out_loose_ones():
     vertices = np.concatenate([CUBE, [(1e6, 0, 0)]])
     triangles = np.array([[0, 1, 2], [5, 6, 7]], np.uint32)
     np.testing.assert_array_equal(mesh_checks.used_vertices(vertices, triangles), CUBE[[0, 1, 2, 5, 6, 7]])
+
+
+def fan(vertices):
+    """Triangles using every vertex (a fan from vertex 0; the last ones repeat to fill)."""
+    n = len(vertices)
+    rest = np.arange(1, n - 1)
+    return np.stack([np.zeros(len(rest), np.int64), rest, rest + 1], -1).astype(np.uint32)
+
+
+def test_the_quick_object_check_answers_as_the_whole_check(mesh_dir):
+    """object_far_vertices_warning (a bound first) gives exactly far_vertices_warning of the used
+    vertices: on real meshes, meshes with strays, loose far vertices and objects of two parts."""
+    import hyvox
+
+    bunny, bunny_triangles = hyvox.read_mesh(str(mesh_dir / "bunny_stanford_69k.ply"))
+    rng = np.random.default_rng(7)
+    cases = [[(bunny, bunny_triangles)]]
+    for strays in (1, 2, 3, 40, 200):  # a few, and more than a few, of 8,000
+        points = np.concatenate([grid_points(20), rng.uniform(-1, 1, (strays, 3)) * 1e3])
+        cases.append([(points, fan(points))])
+    loose = np.concatenate([bunny, [(1e4, 0, 0)]])  # far, but no triangle uses it
+    cases.append([(loose, bunny_triangles)])
+    stray = np.concatenate([bunny, [(1e4, 0, 0)]])
+    stray_triangles = np.concatenate([bunny_triangles, [[0, 1, len(bunny)]]]).astype(np.uint32)
+    cases.append([(stray, stray_triangles)])
+    cases.append([(bunny, bunny_triangles), (CUBE * 1e-3 + (40.0, 0, 0), fan(CUBE))])  # a far part of 8
+    for _ in range(20):  # random clouds with random far points
+        points = rng.normal(size=(int(rng.integers(50, 5000)), 3)) * rng.uniform(0.1, 10, 3)
+        far = rng.normal(size=(int(rng.integers(0, 8)), 3)) * 10 ** rng.uniform(0, 4)
+        points = np.concatenate([points, far])
+        cases.append([(points, fan(points))])
+    warned = 0
+    for parts in cases:
+        used = np.concatenate([mesh_checks.used_vertices(v, t) for v, t in parts])
+        expected = mesh_checks.far_vertices_warning("Mesh", used)
+        assert mesh_checks.object_far_vertices_warning("Mesh", parts) == expected
+        warned += bool(expected)
+    assert warned >= 5  # the cases include warnings, not only silences
+
+
+def test_the_bound_never_exceeds_the_core(mesh_dir):
+    import hyvox
+
+    rng = np.random.default_rng(3)
+    for name in ("bunny_stanford_69k.ply", "spot_vcolor.ply", "teapot_utah.ply"):
+        vertices, triangles = hyvox.read_mesh(str(mesh_dir / name))
+        used = mesh_checks.used_vertices(vertices, triangles).astype(np.float64)
+        for few in (3, 10, int(rng.integers(11, 200))):
+            core = max(float(np.subtract(*mesh_checks._core_interval(used[:, a], few)[::-1])) for a in range(3))
+            assert mesh_checks._core_side_lower_bound([(vertices, triangles)], few) <= core

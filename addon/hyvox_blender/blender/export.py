@@ -146,8 +146,7 @@ def check_parts(parts: Dict[str, List[tuple]], warn=None) -> None:
             if index is not None:
                 raise HyvoxError(mesh_checks.bad_vertex_message(name, index, vertices[index]))
         if warn is not None and found:
-            used = np.concatenate([mesh_checks.used_vertices(v, t) for v, t, _ in found])
-            warning = mesh_checks.far_vertices_warning(name, used)
+            warning = mesh_checks.object_far_vertices_warning(name, [(v, t) for v, t, _ in found])
             if warning:
                 warn(warning)
 

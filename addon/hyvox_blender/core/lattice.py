@@ -12,6 +12,8 @@ from typing import Optional, Tuple
 
 import numpy as np
 
+from .mesh_checks import box
+
 
 @dataclass(frozen=True)
 class Lattice:
@@ -27,7 +29,7 @@ def used_bounds(vertices: np.ndarray, triangles: np.ndarray) -> Tuple[np.ndarray
     used = np.zeros(len(vertices), bool)
     used[triangles.ravel()] = True
     points = vertices if used.all() else vertices[used]
-    low, high = points.min(axis=0).astype(np.float64), points.max(axis=0).astype(np.float64)
+    low, high = box(points)
     if not (np.isfinite(low).all() and np.isfinite(high).all()):  # min and max carry a NaN through
         raise ValueError("a vertex has a non-finite coordinate (NaN or Inf)")
     return low, high
