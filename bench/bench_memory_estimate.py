@@ -9,18 +9,20 @@ when base + estimate is at least the peak and at most 1.5 times it.
     python3 bench/bench_memory_estimate.py --cli BUILD/hyvox [--resolutions 1024,2048,4096,8192]
         [--meshes ../shared/data/meshes] [--out bench/results] [--only dragon,sponza]
 
-Writes OUT/memory_estimate.json and OUT/memory_estimate.md."""
+Writes OUT/memory_estimate.json and .md (bench_results.py); exits 1 when a row's estimate does
+not hold."""
 
 import argparse
 import json
 import os
-import platform
 import subprocess
 import sys
 import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from bench_results import Column, Table, add_out_argument  # noqa: E402
 
 # (label, file, colour runs too, the highest resolution of its solid runs): closed and open
 # meshes, small and large, with vertex colour. Sponza's solid (an open scene: fast winding
@@ -83,7 +85,7 @@ def main():
     parser.add_argument("--cli", required=True)
     parser.add_argument("--meshes", default=os.path.join(HERE, "..", "..", "shared", "data", "meshes"))
     parser.add_argument("--resolutions", default="1024,2048,4096,8192")
-    parser.add_argument("--out", default=os.path.join(HERE, "results"))
+    add_out_argument(parser)
     parser.add_argument("--only", default="", help="comma list of mesh labels")
     args = parser.parse_args()
     only = set(args.only.split(",")) if args.only else None
@@ -128,37 +130,49 @@ def main():
                             )
                         rows.append(row)
                         print(json.dumps(row), flush=True)
-    header = (
-        f"Memory estimate against the peak resident memory of `hyvox voxelize` (cpu, writing the .vdb), "
-        f"{platform.node()}, {os.cpu_count()} cores, `python3 bench/bench_memory_estimate.py "
-        f"--resolutions {args.resolutions}`. base: the mesh at resolution 8, conservative (process and mesh); "
-        f"ratio: (base + estimate) / peak, which should lie in [1, 1.5]."
+    table = Table(
+        "memory_estimate",
+        "The memory estimate against the memory used",
+        [
+            Column("mesh"),
+            Column("mode"),
+            Column("colour"),
+            Column("res"),
+            Column("peak MiB", 0),
+            Column("base MiB", 0),
+            Column("estimate MiB", 0),
+            Column("(base + estimate) / peak", 2),
+            Column("largest pass"),
+            Column("leaves"),
+            Column("leaves estimated"),
+            Column("s", 1),
+        ],
     )
-    lines = [
-        "| mesh | mode | colour | res | peak MiB | base MiB | estimate MiB | ratio | largest pass | "
-        "leaves (est.) | s |",
-        "|---|---|---|---:|---:|---:|---:|---:|---|---|---:|",
-    ]
     for r in rows:
-        if "refused" in r:
-            lines.append(
-                f"| {r['mesh']} | {r['mode']} | {'yes' if r['colour'] else 'no'} | {r['resolution']} | "
-                f"{r['peak_mib']:.0f} | {r['base_mib']:.0f} | refused | | | | {r['seconds']:.1f} |"
-            )
-            continue
-        largest = max(r["passes_mib"], key=r["passes_mib"].get)
-        lines.append(
-            f"| {r['mesh']} | {r['mode']} | {'yes' if r['colour'] else 'no'} | {r['resolution']} | "
-            f"{r['peak_mib']:.0f} | {r['base_mib']:.0f} | {r['estimate_mib']:.0f} | {r['ratio']:.2f} | "
-            f"{largest} | {r['leaves']} ({r['leaves_estimated']}) | {r['seconds']:.1f} |"
+        largest = max(r["passes_mib"], key=r["passes_mib"].get) if "passes_mib" in r else "refused"
+        table.add(
+            [
+                r["mesh"],
+                r["mode"],
+                "yes" if r["colour"] else "no",
+                r["resolution"],
+                r["peak_mib"],
+                r["base_mib"],
+                r.get("estimate_mib"),
+                r.get("ratio"),
+                largest,
+                r.get("leaves"),
+                int(r["leaves_estimated"]) if "leaves_estimated" in r else None,
+                r["seconds"],
+            ]
         )
-    text = header + "\n\n" + "\n".join(lines) + "\n"
-    print(text)
-    os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "memory_estimate.md"), "w") as f:
-        f.write(text)
-    with open(os.path.join(args.out, "memory_estimate.json"), "w") as f:
-        json.dump({"command": " ".join(sys.argv), "rows": rows}, f, indent=1)
+    table.note(
+        "`hyvox voxelize`, cpu, writing the .vdb, one process per row; peak: its peak resident memory "
+        "(`/usr/bin/time -f %M`); base: the same mesh at resolution 8, conservative (the process, its "
+        "libraries and the mesh, which the estimate leaves out); the estimate is the largest of its passes, "
+        "made before any work. It holds when (base + estimate) / peak lies in [1, 1.5]."
+    )
+    table.write(args.out)
     bad = [r for r in rows if "ratio" in r and not 1.0 <= r["ratio"] <= 1.5]
     return 1 if bad else 0
 

@@ -17,6 +17,7 @@ import os
 import pathlib
 import platform
 import shlex
+import shutil
 import subprocess
 import sys
 
@@ -108,6 +109,20 @@ def source_version():
     return {"version": version, "commit": commit, "dirty": dirty}
 
 
+def _interpreter():
+    """This Python as one would type it: relative to the checkout when it lives there (a venv of
+    build/venv/), its bare name when that is what PATH finds, else its full path."""
+    executable = pathlib.Path(sys.executable)
+    try:
+        return str(executable.absolute().relative_to(ROOT))  # a venv's python: not resolved past its link
+    except ValueError:
+        pass
+    found = shutil.which(executable.name)
+    if found and pathlib.Path(found).resolve() == executable.resolve():
+        return executable.name
+    return str(executable)
+
+
 def command_line(argv=None):
     """The command as typed from the repository root: this interpreter, the script's path
     relative to the root, its arguments."""
@@ -117,7 +132,7 @@ def command_line(argv=None):
         argv[0] = str(script.relative_to(ROOT))
     except ValueError:
         pass
-    prefix = [sys.executable] if script.suffix == ".py" else []
+    prefix = [_interpreter()] if script.suffix == ".py" else []
     path = os.environ.get("PYTHONPATH")
     env = [f"PYTHONPATH={os.path.relpath(path, ROOT) if os.path.isabs(path) else path}"] if path else []
     return shlex.join(env + prefix + argv)

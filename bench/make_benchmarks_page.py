@@ -53,6 +53,13 @@ SECTIONS = [
         ["sparse_scale", "sparse_scale_hybrid"],
     ),
     (
+        "The memory estimate",
+        "What a run is estimated to hold before any work (the memory budget refuses a run on it, "
+        "[mesh-formats.md](mesh-formats.md#the-memory-budget)) against the peak resident memory it then takes, "
+        "over shared meshes from 1024 to 8192 voxels, surface and solid, with and without colour.",
+        ["memory_estimate"],
+    ),
+    (
         "The price of colour",
         '`hyvox.voxelize` binary, with `attributes="color"` and with `"color,normal"`, interleaved in one run: '
         "Sponza (vertex colours) and Spot (a texture), surface and solid.",

@@ -68,6 +68,8 @@ if [ "$QUICK" = 1 ]; then
   run sdf "$B/bench_sdf" --runs 1 --res 64 --out "$OUT" spot_vcolor.ply bunny_stanford_69k.ply
   run sparse_scale $PY bench/bench_sparse_scale.py --build "$BUILD" --res 128,256 --out "$OUT" \
     "$M/bunny_stanford_69k.ply"
+  run memory_estimate $PY bench/bench_memory_estimate.py --cli "$BUILD/hyvox" --resolutions 256 --only spot,bunny \
+    --out "$OUT"
   run attributes $PY bench/bench_attributes.py --resolutions 64 --repeats 1 --out "$OUT"
   run attributes_solid $PY bench/bench_attributes.py --resolutions 64 --repeats 1 --mode solid --out "$OUT"
   run tessellation "$B/bench_tessellation" --res 64 --repeat 1 --gammas 2 --out "$OUT" \
@@ -92,6 +94,7 @@ else
   run sdf "$B/bench_sdf" --out "$OUT"
   run sparse_scale $PY bench/bench_sparse_scale.py --build "$BUILD" --res 1024,2048,4096,8192 --out "$OUT" \
     "$M/dragon_stanford_871k.ply.gz" "$M/sponza_crytek_262k_vcolor.ply.gz"
+  run memory_estimate $PY bench/bench_memory_estimate.py --cli "$BUILD/hyvox" --out "$OUT"
   run attributes $PY bench/bench_attributes.py --resolutions 256,512 --repeats 3 --out "$OUT"
   run attributes_solid $PY bench/bench_attributes.py --resolutions 256,512 --repeats 3 --mode solid --out "$OUT"
   run tessellation "$B/bench_tessellation" --res 256 --repeat 2 --gammas 1,2,4 --out "$OUT" \

@@ -235,6 +235,8 @@ void mergeTiles(PlacedTree& tree, int level) {
 PlacedTree placeTree(const VdbGrid& grid) {
     PlacedTree tree;
     tree.items.reserve(grid.leaves.size() + grid.tiles.size());
+    tree.tile_values.reserve(grid.tiles.size());
+    tree.tile_active.reserve(grid.tiles.size());
     for (std::size_t n = 0; n < grid.leaves.size(); ++n) tree.items.push_back(place(grid.leaves[n].origin, 0, n));
     for (std::size_t n = 0; n < grid.tiles.size(); ++n) {
         const VdbTile& tile = grid.tiles[n];

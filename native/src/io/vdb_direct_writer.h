@@ -171,6 +171,10 @@ VdbGrid densityGrid(const Occupancy& occupancy) {
     };
     grid.leaves.reserve(occupancy.leaves().size());
     for (const auto& leaf : occupancy.leaves()) grid.leaves.push_back({originOf(leaf.brick), leaf.words});
+    // Reserved exactly: a solid's millions of tile bricks would otherwise grow the list by doubling.
+    std::size_t tile_bricks = 0;
+    for (const auto& run : occupancy.tileRuns()) tile_bricks += run.end - run.begin;
+    grid.tiles.reserve(tile_bricks);
     for (const auto& run : occupancy.tileRuns())
         for (std::uint64_t b = run.begin; b < run.end; ++b) grid.tiles.push_back({originOf(b), 1});
     return grid;

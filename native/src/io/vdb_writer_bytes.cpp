@@ -6,9 +6,10 @@
 namespace hyvox::io {
 
 double vdbWriterBytes(double leaves, double tile_bricks, double valued_voxels, double channels) {
-    // A VdbLeaf and its node in the placed tree; the density's tile bricks listed one by one
-    // (VdbTile, grown by doubling) and placed (the attribute grids list their regions instead).
-    constexpr double kListedLeaf = 32 + 24, kListedTile = 2 * 32 + 8;
+    // A VdbLeaf and its node in the placed tree; the density's tile bricks listed one by one (a
+    // VdbTile), placed (a Placed, its value and flag) and placed again while tiles merge into
+    // larger ones (a Placed), the attribute grids listing their regions instead.
+    constexpr double kListedLeaf = 32 + 24, kListedTile = 32 + 2 * 32 + 13;
     constexpr double kDensityLeaf = 220, kMask = 64, kValue = 4;
     const double grids = channels > 0 ? 2.0 : 1.0;  // the attribute grids share one set of leaves
     const double file = kDensityLeaf * leaves + 2.0 * tile_bricks +
