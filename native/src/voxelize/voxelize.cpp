@@ -397,8 +397,11 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
 // glibc keeps what the passes freed (hundreds of MiB of trees and leaf lists at 2048 and up) in
 // its heap, where the .vdb writer's larger buffers do not fit: without this the write's memory
 // comes on top of it (the bunny's solid at 2048 peaked 37% above the estimate), and in Blender
-// the artist's session keeps it. Handing it back costs a walk over the heap's free lists.
-void returnFreedMemory() {
+// the artist's session keeps it. Only for large runs: handing memory back costs a walk over the
+// heap, and the next run's faults to take it again, which Live's small repeated runs would pay.
+void returnFreedMemory(const VoxelizeResult& result) {
+    constexpr std::uint64_t kLargeRun = std::uint64_t(256) << 20;
+    if (!result.stats.memory_estimate || result.stats.memory_estimate->peak < kLargeRun) return;
 #if defined(__GLIBC__)
     malloc_trim(0);
 #endif
@@ -413,7 +416,7 @@ VoxelizeResult voxelize(const MeshView& mesh, const VoxelizeOptions& options, In
     Stopwatch watch;
     const ValidatedMesh validated = validate(mesh, options, interrupter);
     VoxelizeResult result = voxelizeValidated(validated, options, interrupter, watch.elapsedMs());
-    returnFreedMemory();
+    returnFreedMemory(result);
     return result;
 }
 
@@ -423,7 +426,7 @@ VoxelizeResult voxelize(const ValidatedMesh& validated, const VoxelizeOptions& o
     checkRegionAttributes(options);
     const InterrupterRun run(interrupter, "hyvox voxelize");
     VoxelizeResult result = voxelizeValidated(validated, options, interrupter, validate_ms);
-    returnFreedMemory();
+    returnFreedMemory(result);
     return result;
 }
 
