@@ -12,7 +12,7 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from .mesh_checks import box
+from .mesh_checks import box, used_vertices
 
 
 @dataclass(frozen=True)
@@ -26,10 +26,7 @@ def used_bounds(vertices: np.ndarray, triangles: np.ndarray) -> Tuple[np.ndarray
     vertex no triangle uses would only widen the grid)."""
     if len(vertices) == 0 or len(triangles) == 0:
         raise ValueError("a lattice needs triangles")
-    used = np.zeros(len(vertices), bool)
-    used[triangles.ravel()] = True
-    points = vertices if used.all() else vertices[used]
-    low, high = box(points)
+    low, high = box(used_vertices(vertices, triangles))
     if not (np.isfinite(low).all() and np.isfinite(high).all()):  # min and max carry a NaN through
         raise ValueError("a vertex has a non-finite coordinate (NaN or Inf)")
     return low, high

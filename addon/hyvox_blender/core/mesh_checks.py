@@ -52,7 +52,7 @@ def used_vertices(vertices: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     """The vertices some triangle uses (loose ones do not change the grid)."""
     used = np.zeros(len(vertices), bool)
     used[np.asarray(triangles).reshape(-1)] = True
-    return np.asarray(vertices)[used]
+    return np.asarray(vertices) if used.all() else np.asarray(vertices)[used]
 
 
 def _core_interval(values: np.ndarray, drop: int):
