@@ -274,13 +274,13 @@ hyvox::VoxelizeResult largeResult() {
     hyvox::VoxelizeResult r;
     r.grid.origin = {0.0, 0.0, 0.0};
     r.grid.voxel_size = 1.0;
-    r.grid.dims = {192, 192, 192};
+    r.grid.dims = {256, 256, 256};  // 32768 leaves: eight of the writer's batches
     r.occupancy = hyvox::SparseGrid(r.grid.dims);
     std::mt19937 rng(3);
     std::bernoulli_distribution on(0.1);
-    for (int i = 0; i < 192; ++i)
-        for (int j = 0; j < 192; ++j)
-            for (int k = 0; k < 192; ++k)
+    for (int i = 0; i < 256; ++i)
+        for (int j = 0; j < 256; ++j)
+            for (int k = 0; k < 256; ++k)
                 if (on(rng)) r.occupancy.set(i, j, k);
     r.stats.method = "cpu";
     r.stats.mode = "conservative";
@@ -313,16 +313,18 @@ TEST(IoVdb, TheFileWriteReportsProgressAndCanBeCancelled) {
     ProgressRecorder follow(101);
     hyvox::writeVdb(result, path.string(), {}, &follow);
     EXPECT_EQ(readGrid(path.string(), "density")->activeVoxelCount(), result.occupancy.count());
-    // Past the grid build (90) the bytes going out are followed, and the end is 100.
-    EXPECT_TRUE(std::any_of(follow.seen.begin(), follow.seen.end(), [](int p) { return p > 90 && p < 100; }));
+    // The batches going out are followed (progress 11-98: the first batch's end lies between),
+    // and the end is 100.
+    const auto between = std::find_if(follow.seen.begin(), follow.seen.end(), [](int p) { return p > 11 && p < 98; });
+    ASSERT_NE(between, follow.seen.end());
     EXPECT_EQ(follow.seen.back(), 100);
 
-    // Asked to stop while the bytes go out: Cancelled, and the earlier file stays as it was.
+    // Asked to stop after the first batch, half the file written: Cancelled, and the earlier
+    // file stays as it was.
     const std::string before = slurp(path);
-    ProgressRecorder stop(90);
+    ProgressRecorder stop(*between - 1);  // stops at *between
     EXPECT_THROW(hyvox::writeVdb(result, path.string(), {}, &stop), hyvox::Cancelled);
-    EXPECT_GT(stop.seen.back(), 90);
-    EXPECT_LT(stop.seen.back(), 100);
+    EXPECT_EQ(stop.seen.back(), *between);
     EXPECT_TRUE(slurp(path) == before);                           // (not EXPECT_EQ: a mismatch would print megabytes)
     EXPECT_EQ(dir.names(), std::vector<std::string>{"big.vdb"});  // no temporary left
 }

@@ -27,7 +27,8 @@ using hyvox::test::TempDir;
 
 // Bits scattered with probability `fill` over a small grid, plus voxels far apart in a large
 // one (several 4096³ upper nodes and 128³ lower nodes), origin off the lattice.
-hyvox::VoxelizeResult makeResult(std::array<std::int32_t, 3> dims, double fill, std::uint32_t seed) {
+hyvox::VoxelizeResult makeResult(std::array<std::int32_t, 3> dims, double fill, std::uint32_t seed,
+                                 int scattered = 300) {
     hyvox::VoxelizeResult r;
     r.grid.origin = {-1.25, 0.5, 3.0};
     r.grid.voxel_size = 0.1;
@@ -41,7 +42,7 @@ hyvox::VoxelizeResult makeResult(std::array<std::int32_t, 3> dims, double fill, 
                 if (on(rng)) r.occupancy.set(i, j, k);
     std::uniform_int_distribution<int> x(0, dims[0] - 1), y(0, dims[1] - 1), z(0, dims[2] - 1);
     if (fill > 0)
-        for (int n = 0; n < 300; ++n) r.occupancy.set(x(rng), y(rng), z(rng));
+        for (int n = 0; n < scattered; ++n) r.occupancy.set(x(rng), y(rng), z(rng));
     r.stats.method = "cpu";
     r.stats.mode = "thin";
     r.stats.voxel_count = r.occupancy.count();
@@ -117,6 +118,17 @@ TEST(IoVdbDirect, CountGridEqualsOpenVdbsFile) {
     for (const auto& ijk : r.occupancy.coords()) r.counts.push_back({ijk[0], ijk[1], ijk[2], count(rng)});
     std::shuffle(r.counts.begin(), r.counts.end(), rng);  // any order
     checkAgainstOpenVdb(r, 0);
+}
+
+TEST(IoVdbDirect, LeavesOverSeveralWriteBatchesEqualOpenVdbsFile) {
+    // Leaves scattered one voxel each, more than two batches of the writer (it compresses and
+    // writes kVdbLeavesPerBatch at a time and puts each grid's end position in afterwards),
+    // with a count grid after them.
+    const int scattered = int(2 * hyvox::io::kVdbLeavesPerBatch + 1000);
+    auto r = makeResult({6000, 2000, 3000}, 0.1, 6, scattered);
+    ASSERT_GT(r.occupancy.leafCount(), 2 * hyvox::io::kVdbLeavesPerBatch);
+    for (const auto& ijk : r.occupancy.coords()) r.counts.push_back({ijk[0], ijk[1], ijk[2], 7u});
+    checkAgainstOpenVdb(r, 2);
 }
 
 TEST(IoVdbDirect, EmptyGridEqualsOpenVdbsFile) { checkAgainstOpenVdb(makeResult({5, 6, 7}, 0.0, 1), 0); }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 
 #include "hyvox/errors.h"
@@ -43,9 +44,17 @@ hyvox::VoxelizeResult makeResult(std::array<std::int32_t, 3> dims, double fill, 
     return r;
 }
 
-void writeFile(const std::string& path, const hyvox::io::VdbBytes& bytes) {
+void writeFile(const std::string& path, const hyvox::VoxelizeResult& r, const std::vector<VdbGrid>& grids,
+               int threads) {
     std::ofstream out(path, std::ios::binary);
-    out.write(bytes.data.get(), std::streamsize(bytes.size));
+    hyvox::io::writeVdbGrids(out, r, grids, threads);
+}
+
+// The direct writer's bytes of `grids`, in memory (a string stream is seekable, as the writer needs).
+std::string writtenBytes(const hyvox::VoxelizeResult& r, const std::vector<VdbGrid>& grids) {
+    std::ostringstream out;
+    hyvox::io::writeVdbGrids(out, r, grids, 1);
+    return out.str();
 }
 
 // An empty density grid from makeGrids: the transform and hyvox metadata OpenVDB's writer
@@ -92,7 +101,7 @@ TEST(IoVdbDirectGrids, LeavesAndTilesEqualOpenVdbsPrunedTree) {
     TempDir dir;
     const std::string direct_path = (dir.path / "direct.vdb").string(),
                       reference_path = (dir.path / "openvdb.vdb").string();
-    writeFile(direct_path, hyvox::io::serializeVdbGrids(r, {density}, 0));
+    writeFile(direct_path, r, {density}, 0);
 
     // OpenVDB: the leaves, every brick as a level-1 tile, then prune(), as the solid mode does.
     auto reference = referenceShell(r);
@@ -154,7 +163,7 @@ TEST(IoVdbDirectGrids, TilesOfOtherValuesAndLevelsEqualOpenVdbs) {
     TempDir dir;
     const std::string direct_path = (dir.path / "direct.vdb").string(),
                       reference_path = (dir.path / "openvdb.vdb").string();
-    writeFile(direct_path, hyvox::io::serializeVdbGrids(r, {grid, vectors}, 2));
+    writeFile(direct_path, r, {grid, vectors}, 2);
     hyvox::io::writeGridsAtomic({reference, reference_vectors}, reference_path);
     const auto direct = hyvox::test::readVdbGrid<openvdb::FloatGrid>(direct_path, "density");
     const auto read_reference = hyvox::test::readVdbGrid<openvdb::FloatGrid>(reference_path, "density");
@@ -338,13 +347,13 @@ TEST(IoVdbDirectGrids, OverlapsAndOffLatticeTilesAreRefused) {
     hyvox::VoxelizeResult r = makeResult({64, 64, 64}, 0.5, 2, {8, 8, 8});
     VdbGrid grid = hyvox::io::densityGrid(r.occupancy);
     grid.tiles = {{{0, 0, 0}, 1}};  // on the leaf at 0
-    EXPECT_THROW(hyvox::io::serializeVdbGrids(r, {grid}, 1), hyvox::InvalidInput);
+    EXPECT_THROW(writtenBytes(r, {grid}), hyvox::InvalidInput);
     grid.tiles = {{{0, 0, 0}, 2}};  // over the lower node that holds that leaf
-    EXPECT_THROW(hyvox::io::serializeVdbGrids(r, {grid}, 1), hyvox::InvalidInput);
+    EXPECT_THROW(writtenBytes(r, {grid}), hyvox::InvalidInput);
     grid.tiles = {{{12, 0, 0}, 1}};  // off the 8-voxel lattice
-    EXPECT_THROW(hyvox::io::serializeVdbGrids(r, {grid}, 1), hyvox::InvalidInput);
+    EXPECT_THROW(writtenBytes(r, {grid}), hyvox::InvalidInput);
     grid.tiles = {{{16, 0, 0}, 1}, {{16, 0, 0}, 1}};  // twice
-    EXPECT_THROW(hyvox::io::serializeVdbGrids(r, {grid}, 1), hyvox::InvalidInput);
+    EXPECT_THROW(writtenBytes(r, {grid}), hyvox::InvalidInput);
     grid.tiles = {{{16, 0, 0}, 1}};
-    EXPECT_NO_THROW(hyvox::io::serializeVdbGrids(r, {grid}, 1));
+    EXPECT_NO_THROW(writtenBytes(r, {grid}));
 }

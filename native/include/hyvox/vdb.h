@@ -30,8 +30,8 @@ namespace hyvox {
 /// What writeVdb() did.
 struct VdbWriteReport {
     std::uint64_t grid_bytes = 0;  ///< the OpenVDB grids' own memory (Grid::memUsage), bytes
-    double build_ms = 0;           ///< building the grids (leaf values, compression), milliseconds
-    double write_ms = 0;           ///< writing the bytes to the file and renaming it, milliseconds
+    double build_ms = 0;           ///< listing the grids' leaves and tiles, milliseconds
+    double write_ms = 0;           ///< compressing and writing the grids and renaming the file, milliseconds
 };
 
 /// Refuses a voxel size no .vdb file can hold. OpenVDB refuses a transform whose scale

@@ -228,73 +228,75 @@ std::pair<std::uint64_t, std::uint64_t> leafLayers(LeafVoxels& leaf, const Attri
     return {layers, voxels};
 }
 
-// Region layer 0: each region's shell mean over the valued leaf voxels. Contributions are
-// found brick by brick in parallel and summed per region in brick order.
+// Region layer 0: each region's shell mean over the valued leaf voxels. Each brick's
+// contributions are found in parallel and added to their regions' sums in brick order (the
+// sums do not depend on threads), a window of bricks at a time: memory for one window's
+// contributions, not for every brick's.
 void shellValues(const LeafVoxels& leaf, const AttributeGrid& layout, const TileRegions& regions, RegionValues& out,
                  tbb::task_arena& arena) {
     struct Contribution {
         std::int64_t region;
-        std::uint32_t brick;
         std::uint32_t count;
         std::array<double, kMaxChannels> sums;
     };
-    const int channels = int(leaf.channels);
-    std::vector<std::vector<Contribution>> per_brick(leaf.brick.size());
-    arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaf.brick.size(), 64), [&](const auto& range) {
-            for (std::size_t n = range.begin(); n != range.end(); ++n) {
-                const Int3& at = leaf.at[n];
-                std::int64_t touching[26];
-                int count = 0;
-                for (int dx = -1; dx <= 1; ++dx)
-                    for (int dy = -1; dy <= 1; ++dy)
-                        for (int dz = -1; dz <= 1; ++dz) {
-                            if (dx == 0 && dy == 0 && dz == 0) continue;
-                            const std::int64_t r = regions.at(at[0] + dx, at[1] + dy, at[2] + dz);
-                            if (r >= 0) touching[count++] = r;
-                        }
-                std::sort(touching, touching + count);
-                count = int(std::unique(touching, touching + count) - touching);
-                for (int t = 0; t < count; ++t) {
-                    const TileRegions::Region& region = regions.regions()[std::size_t(touching[t])];
-                    Contribution c{touching[t], std::uint32_t(n), 0, {}};
-                    // The brick's voxels within one voxel of the region's box: a face, edge or corner.
-                    int lo[3], hi[3];
-                    for (int a = 0; a < 3; ++a) {
-                        lo[a] = std::max(region.lo[a] * 8 - 1 - at[a] * 8, 0);
-                        hi[a] = std::min((region.lo[a] + region.side) * 8 - at[a] * 8, 7);
-                    }
-                    for (int x = lo[0]; x <= hi[0]; ++x)
-                        for (int y = lo[1]; y <= hi[1]; ++y)
-                            for (int z = lo[2]; z <= hi[2]; ++z) {
-                                const int bit = (x << 6) | (y << 3) | z;
-                                if (!testBit(leaf.valued[n], bit)) continue;
-                                const float* value = leaf.value(n, bit);
-                                for (int ch = 0; ch < channels; ++ch) c.sums[std::size_t(ch)] += double(value[ch]);
-                                ++c.count;
+    const std::size_t channels = leaf.channels, bricks = leaf.brick.size();
+    std::vector<double> sums(regions.regions().size() * channels, 0.0);
+    std::vector<std::uint64_t> counts(regions.regions().size(), 0);
+    constexpr std::size_t kWindow = 16384;
+    std::vector<std::vector<Contribution>> per_brick(std::min(bricks, kWindow));
+    for (std::size_t begin = 0; begin < bricks; begin += kWindow) {
+        const std::size_t end = std::min(bricks, begin + kWindow);
+        arena.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 64), [&](const auto& range) {
+                for (std::size_t n = range.begin(); n != range.end(); ++n) {
+                    std::vector<Contribution>& found = per_brick[n - begin];
+                    found.clear();
+                    const Int3& at = leaf.at[n];
+                    std::int64_t touching[26];
+                    int count = 0;
+                    for (int dx = -1; dx <= 1; ++dx)
+                        for (int dy = -1; dy <= 1; ++dy)
+                            for (int dz = -1; dz <= 1; ++dz) {
+                                if (dx == 0 && dy == 0 && dz == 0) continue;
+                                const std::int64_t r = regions.at(at[0] + dx, at[1] + dy, at[2] + dz);
+                                if (r >= 0) touching[count++] = r;
                             }
-                    if (c.count) per_brick[n].push_back(c);
+                    std::sort(touching, touching + count);
+                    count = int(std::unique(touching, touching + count) - touching);
+                    for (int t = 0; t < count; ++t) {
+                        const TileRegions::Region& region = regions.regions()[std::size_t(touching[t])];
+                        Contribution c{touching[t], 0, {}};
+                        // The brick's voxels within one voxel of the region's box: a face, edge or corner.
+                        int lo[3], hi[3];
+                        for (int a = 0; a < 3; ++a) {
+                            lo[a] = std::max(region.lo[a] * 8 - 1 - at[a] * 8, 0);
+                            hi[a] = std::min((region.lo[a] + region.side) * 8 - at[a] * 8, 7);
+                        }
+                        for (int x = lo[0]; x <= hi[0]; ++x)
+                            for (int y = lo[1]; y <= hi[1]; ++y)
+                                for (int z = lo[2]; z <= hi[2]; ++z) {
+                                    const int bit = (x << 6) | (y << 3) | z;
+                                    if (!testBit(leaf.valued[n], bit)) continue;
+                                    const float* value = leaf.value(n, bit);
+                                    for (std::size_t ch = 0; ch < channels; ++ch) c.sums[ch] += double(value[ch]);
+                                    ++c.count;
+                                }
+                        if (c.count) found.push_back(c);
+                    }
                 }
-            }
+            });
         });
-    });
-    std::vector<Contribution> all;
-    for (auto& list : per_brick) {
-        all.insert(all.end(), list.begin(), list.end());
-        std::vector<Contribution>().swap(list);
+        for (std::size_t n = begin; n != end; ++n)
+            for (const Contribution& c : per_brick[n - begin]) {
+                double* to = sums.data() + std::size_t(c.region) * channels;
+                for (std::size_t ch = 0; ch < channels; ++ch) to[ch] += c.sums[ch];
+                counts[std::size_t(c.region)] += c.count;
+            }
     }
-    std::stable_sort(all.begin(), all.end(),
-                     [](const Contribution& a, const Contribution& b) { return a.region < b.region; });
-    for (std::size_t n = 0; n < all.size();) {
-        std::array<double, kMaxChannels> sums{};
-        std::uint64_t count = 0;
-        const std::int64_t r = all[n].region;
-        for (; n < all.size() && all[n].region == r; ++n) {
-            for (int ch = 0; ch < channels; ++ch) sums[std::size_t(ch)] += all[n].sums[std::size_t(ch)];
-            count += all[n].count;
-        }
-        meanOfSums(layout, sums.data(), double(count), out.tiles[std::size_t(r)].values.data());
-        out.layer[std::size_t(r)] = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r) {
+        if (counts[r] == 0) continue;
+        meanOfSums(layout, sums.data() + r * channels, double(counts[r]), out.tiles[r].values.data());
+        out.layer[r] = 0;
     }
 }
 
@@ -372,7 +374,14 @@ AttributeGrid valueInside(const SparseGrid& surface, const AttributeGrid& surfac
     LeafVoxels leaf;
     leaf.layout = solid.bricks();
     leaf.channels = channels;
-    for (const ValuedBrick& b : valuedBricks(solid, out)) {
+    const std::vector<ValuedBrick> solid_bricks = valuedBricks(solid, out);
+    // Reserved exactly: a solid's leaves at 2048 and above number hundreds of thousands.
+    leaf.brick.reserve(solid_bricks.size());
+    leaf.at.reserve(solid_bricks.size());
+    leaf.set.reserve(solid_bricks.size());
+    leaf.before.reserve(solid_bricks.size());
+    leaf.first.reserve(solid_bricks.size());
+    for (const ValuedBrick& b : solid_bricks) {
         leaf.brick.push_back(b.brick);
         leaf.at.push_back(leaf.layout.at(b.brick));
         Mask mask;

@@ -18,6 +18,7 @@
 #include <climits>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <random>
 #include <string>
@@ -83,31 +84,45 @@ void appendBlosc(std::string& out, const void* data, std::size_t bytes) {
     out.resize(at + 8 + std::size_t(packed > 0 ? packed : std::int64_t(bytes)));
 }
 
-// Appends to a growing byte string (the small parts: header, metadata, topology) that
-// will start at file position `base`: size() is the file position of the next byte.
+// Appends to a growing byte string (the parts before the leaf buffers: header, metadata,
+// topology) that starts at file position `base`: size() is the file position of the next byte.
+// With a `sink`, the bytes go to it whenever a MiB has gathered (a grid's topology holds every
+// leaf's mask: 64 bytes a leaf) and at flush(); without, str() holds them all.
 class Bytes {
 public:
-    explicit Bytes(std::size_t base = 0) : base_(base) {}
+    explicit Bytes(std::size_t base = 0, std::ostream* sink = nullptr) : base_(base), sink_(sink) {}
     template <typename T>
     void pod(const T& value) {
-        out_.append(reinterpret_cast<const char*>(&value), sizeof value);
+        raw(&value, sizeof value);
     }
-    void raw(const void* data, std::size_t size) { out_.append(static_cast<const char*>(data), size); }
+    void raw(const void* data, std::size_t size) {
+        out_.append(static_cast<const char*>(data), size);
+        spillIfFull();
+    }
     // io::writeString: a 32-bit length, then the characters.
     void string(const std::string& text) {
         pod(std::uint32_t(text.size()));
-        out_ += text;
+        raw(text.data(), text.size());
     }
-    void blosc(const void* data, std::size_t bytes) { appendBlosc(out_, data, bytes); }
+    void blosc(const void* data, std::size_t bytes) {
+        appendBlosc(out_, data, bytes);
+        spillIfFull();
+    }
     std::size_t size() const { return base_ + out_.size(); }
     const std::string& str() const { return out_; }
-    template <typename T>
-    void patch(std::size_t at, const T& value) {
-        std::memcpy(&out_[at - base_], &value, sizeof value);
+    void flush() {  // with a sink only
+        sink_->write(out_.data(), std::streamsize(out_.size()));
+        base_ += out_.size();
+        out_.clear();
     }
 
 private:
+    void spillIfFull() {
+        if (sink_ && out_.size() >= kSpillBytes) flush();
+    }
+    static constexpr std::size_t kSpillBytes = std::size_t(1) << 20;
     std::size_t base_;
+    std::ostream* sink_;
     std::string out_;
 };
 
@@ -518,33 +533,41 @@ std::string leafBuffers(const VdbGrid& grid, const std::vector<std::size_t>& lea
     return out;
 }
 
-// One grid as Archive::writeGrid lays it out: `head` gets the descriptor, compression,
-// metadata, transform and topology; `buffers` the leaf buffers that follow them, compressed
-// in parallel in blocks of kLeavesPerBlock leaves.
-struct GridLayout {
-    std::uint64_t mem_usage = 0;
-    std::vector<std::string> buffers;
-    std::size_t end = 0;  // file position after the grid
-};
+// Blocks compressed side by side and then written, one batch after another: the write holds
+// one batch's bytes, not the file's.
+constexpr std::size_t kBlocksPerBatch = kVdbLeavesPerBatch / kLeavesPerBlock;
 
-// `tree`: placeTree(grid).
-GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const VdbGrid& grid, const PlacedTree& tree,
-                      tbb::task_arena& arena) {
+// Writes `bytes` to `out`; `at` follows the file position.
+void put(std::ostream& out, const std::string& bytes, std::size_t& at) {
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+    at += bytes.size();
+}
+
+// One grid as Archive::writeGrid lays it out, written to `out` from file position `at` (left
+// at the grid's end): the descriptor, compression, metadata, transform and topology, then the
+// leaf buffers, compressed in parallel in blocks of kLeavesPerBlock leaves. The descriptor's
+// end position is known only after the buffers: it is written then, in place. `tree`:
+// placeTree(grid). `done(fraction)` is called between batches. Returns Grid::memUsage().
+std::uint64_t writeGrid(std::ostream& out, std::size_t& at, const VoxelizeResult& result, const VdbGrid& grid,
+                        const PlacedTree& tree, tbb::task_arena& arena, const std::function<void(double)>& done) {
     if (grid.layout != VdbLeafValues::Fill)
         for (const VdbLeaf& leaf : grid.leaves)
             if (!leaf.values && activeCount(leaf.mask))
                 throw InvalidInput("vdb writer: grid '" + grid.name + "' has a leaf without values");
-    GridLayout layout;
-    // GridDescriptor::writeHeader and writeStreamPos (patched below).
+    Bytes head(at, &out);
+    // GridDescriptor::writeHeader and writeStreamPos: the grid's position (right after the three
+    // positions), then where its buffers begin and where it ends, known only once they are
+    // written and then written in place.
     head.string(grid.name);
     head.string(grid.type == VdbValueType::Float ? "Tree_float_5_4_3" : "Tree_vec3s_5_4_3");
     head.string("");  // not an instance
     const std::size_t stream_pos_at = head.size();
-    for (int i = 0; i < 3; ++i) head.pod(std::int64_t(0));
-    const std::int64_t grid_pos = std::int64_t(head.size());
+    head.pod(std::int64_t(stream_pos_at + 3 * sizeof(std::int64_t)));
+    head.pod(std::int64_t(0));
+    head.pod(std::int64_t(0));
     head.pod(kCompression);
-    layout.mem_usage = memUsage(tree, grid.type);
-    const std::map<std::string, MetaValue> meta = gridMetadata(result, grid, tree, layout.mem_usage);
+    const std::uint64_t mem_usage = memUsage(tree, grid.type);
+    const std::map<std::string, MetaValue> meta = gridMetadata(result, grid, tree, mem_usage);
     head.pod(std::uint32_t(meta.size()));
     for (const auto& [name, value] : meta) {
         head.string(name);
@@ -554,23 +577,32 @@ GridLayout layOutGrid(Bytes& head, const VoxelizeResult& result, const VdbGrid& 
     const std::string transform = vdbTransformBytes(result.grid);
     head.raw(transform.data(), transform.size());
     writeTopology(head, grid, tree);
-    const std::int64_t block_pos = std::int64_t(head.size());
+    head.flush();
+    at = head.size();
+    const std::int64_t buffers_begin = std::int64_t(at);
+
     std::vector<std::size_t> leaves;
+    leaves.reserve(grid.leaves.size());
     for (const Placed& p : tree.items)
         if (p.level == 0) leaves.push_back(p.index);
-    layout.buffers.resize((leaves.size() + kLeavesPerBlock - 1) / kLeavesPerBlock);
-    arena.execute([&] {
-        tbb::parallel_for(std::size_t(0), layout.buffers.size(), [&](std::size_t b) {
-            layout.buffers[b] =
-                leafBuffers(grid, leaves, b * kLeavesPerBlock, std::min(leaves.size(), (b + 1) * kLeavesPerBlock));
+    const std::size_t blocks = (leaves.size() + kLeavesPerBlock - 1) / kLeavesPerBlock;
+    std::vector<std::string> batch;
+    for (std::size_t first = 0; first < blocks; first += kBlocksPerBatch) {
+        batch.assign(std::min(kBlocksPerBatch, blocks - first), std::string());
+        arena.execute([&] {
+            tbb::parallel_for(std::size_t(0), batch.size(), [&](std::size_t b) {
+                const std::size_t from = (first + b) * kLeavesPerBlock;
+                batch[b] = leafBuffers(grid, leaves, from, std::min(leaves.size(), from + kLeavesPerBlock));
+            });
         });
-    });
-    layout.end = std::size_t(block_pos);
-    for (const std::string& buffer : layout.buffers) layout.end += buffer.size();
-    head.patch(stream_pos_at, grid_pos);
-    head.patch(stream_pos_at + 8, block_pos);
-    head.patch(stream_pos_at + 16, std::int64_t(layout.end));
-    return layout;
+        for (const std::string& buffers : batch) put(out, buffers, at);
+        done(double(first + batch.size()) / double(blocks));
+    }
+    const std::array<std::int64_t, 2> positions{buffers_begin, std::int64_t(at)};
+    out.seekp(std::streamoff(stream_pos_at + sizeof(std::int64_t)));
+    out.write(reinterpret_cast<const char*>(positions.data()), sizeof positions);
+    out.seekp(std::streamoff(at));
+    return mem_usage;
 }
 
 }  // namespace
@@ -668,8 +700,9 @@ std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves) {
     return std::uint64_t(double(leaves) * double(kFloatTreeBytes.leaf) * 1.05);
 }
 
-VdbBytes serializeVdbGrids(const VoxelizeResult& result, const std::vector<VdbGrid>& grids, int threads) {
-    Bytes head;
+std::uint64_t writeVdbGrids(std::ostream& out, const VoxelizeResult& result, const std::vector<VdbGrid>& grids,
+                            int threads, Interrupter* interrupter, int progress_from, int progress_to) {
+    Bytes head(0, &out);
     // Archive::writeHeader.
     head.pod(kMagic);
     head.pod(kFileVersion);
@@ -679,31 +712,20 @@ VdbBytes serializeVdbGrids(const VoxelizeResult& result, const std::vector<VdbGr
     head.raw(randomUuid().data(), 36);
     head.pod(std::uint32_t(0));  // file-level metadata: none
     head.pod(std::int32_t(grids.size()));
-    // Each grid's header parts follow the previous grid's buffers: lay them out one after
-    // the other, each `head` shifted by the bytes before it.
+    head.flush();
+    std::size_t at = head.size();
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-    std::vector<GridLayout> layouts;
-    std::vector<Bytes> heads;
-    std::size_t offset = head.size();
+    std::uint64_t mem_usage = 0;
     PlacedTree tree;
     for (std::size_t g = 0; g < grids.size(); ++g) {
         // The attribute grids share one set of leaves: they are placed (and sorted) once.
         if (g == 0 || !sameLeavesNoTiles(grids[g], grids[g - 1])) tree = placeTree(grids[g]);
-        heads.emplace_back(offset);
-        layouts.push_back(layOutGrid(heads.back(), result, grids[g], tree, arena));
-        offset = layouts.back().end;
+        mem_usage += writeGrid(out, at, result, grids[g], tree, arena, [&](double fraction) {
+            const double done = (double(g) + fraction) / double(grids.size());
+            throwIfInterrupted(interrupter, progress_from + int(double(progress_to - progress_from) * done));
+        });
     }
-    VdbBytes file;
-    for (const GridLayout& layout : layouts) file.mem_usage += layout.mem_usage;
-    file.size = offset;
-    file.data.reset(new char[file.size]);
-    char* at = file.data.get();
-    at = std::copy(head.str().begin(), head.str().end(), at);
-    for (std::size_t g = 0; g < grids.size(); ++g) {
-        at = std::copy(heads[g].str().begin(), heads[g].str().end(), at);
-        for (const std::string& buffer : layouts[g].buffers) at = std::copy(buffer.begin(), buffer.end(), at);
-    }
-    return file;
+    return mem_usage;
 }
 
 }  // namespace hyvox::io

@@ -21,7 +21,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <memory>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -77,32 +77,37 @@ struct VdbGrid {
     // inactive voxels and tiles hold +background outside and -background inside; 0 otherwise.
     float background = 0.0f;
     std::size_t stride = 0;       // floats between voxels; 0 = channels()
-    std::vector<VdbLeaf> leaves;  // they and their values must outlive serializeVdbGrids()
+    std::vector<VdbLeaf> leaves;  // they and their values must outlive writeVdbGrids()
     std::vector<VdbTile> tiles;
 
     int channels() const { return type == VdbValueType::Float ? 1 : 3; }
 };
 
-struct VdbBytes {
-    std::unique_ptr<char[]> data;
-    std::size_t size = 0;
-    std::uint64_t mem_usage = 0;  // the grids' Grid::memUsage() summed (see vdbTreeMemUsage)
-};
+// Writes the file holding `grids` in order to `out`, from its start (`out` must be seekable:
+// each grid's end position is written in place after its buffers), each grid with the
+// hyvox_* metadata of `result` and its grid transform. Leaf buffers are compressed in parallel a batch at a time
+// and written as each batch is done, so the write holds one batch's bytes, never the file's.
+// `interrupter` (may be null) is asked between batches, with progress from `progress_from` to
+// `progress_to`. `threads`: 0 = all cores. Returns the grids' Grid::memUsage() summed (see
+// vdbTreeMemUsage). Throws InvalidInput for a leaf or tile off its lattice, below 0, or
+// overlapping another.
+// The leaves whose buffers writeVdbGrids compresses side by side before writing them.
+inline constexpr std::size_t kVdbLeavesPerBatch = 4096;
 
-// The whole file holding `grids` in order, each with the hyvox_* metadata of `result` and its
-// grid transform. The caller writes it atomically. `threads`: 0 = all cores. Throws
-// InvalidInput for a leaf or tile off its lattice, below 0, or overlapping another.
-VdbBytes serializeVdbGrids(const VoxelizeResult& result, const std::vector<VdbGrid>& grids, int threads);
+std::uint64_t writeVdbGrids(std::ostream& out, const VoxelizeResult& result, const std::vector<VdbGrid>& grids,
+                            int threads, Interrupter* interrupter = nullptr, int progress_from = 0,
+                            int progress_to = 0);
+
+// writeVdbGrids to `path` atomically (io/atomic_file.h; durable: synced): a large file's
+// write can be followed and cancelled (hyvox::Cancelled; the temporary is removed, an earlier
+// file stays). Returns the grids' memory use.
+std::uint64_t writeVdbFile(const std::string& path, const VoxelizeResult& result, const std::vector<VdbGrid>& grids,
+                           int threads, bool durable, Interrupter* interrupter, int progress_from, int progress_to);
 
 // Transform::write of the grid's transform (uniform scale voxel_size, translation to the first
 // voxel's centre, as createLinearTransform + postTranslate make it): the bytes every grid of
 // the file holds.
 std::string vdbTransformBytes(const GridSpec& grid);
-
-// Writes `file` to `path` atomically (io/atomic_file.h), in chunks between which
-// `interrupter` (may be null) is asked, with progress 91-98: a large file's write can be
-// followed and cancelled (hyvox::Cancelled; the temporary is removed, an earlier file stays).
-void writeVdbBytes(const VdbBytes& file, const std::string& path, bool durable, Interrupter* interrupter);
 
 // OpenVDB's Grid::memUsage() of the tree `grid` makes (its "file_mem_bytes" metadata).
 std::uint64_t vdbTreeMemUsage(const VdbGrid& grid);
@@ -150,8 +155,8 @@ std::uint64_t densityGridBytes(const SparseGrid& occupancy);
 // held as tiles, with `valued_voxels` voxels of `channels` attribute channels: the grids'
 // leaves and tiles as the writer lists them, and the serialized grids (a density leaf is its
 // mask and its compressed active values, about 220 bytes; an attribute value 4 bytes a
-// channel) twice, the writer's buffers and the file's bytes. voxelize() estimates the write
-// with it before any work (voxelize/memory_estimate.h).
+// channel) of one batch (writeVdbGrids). voxelize() estimates the write with it before any
+// work (voxelize/memory_estimate.h).
 double vdbWriterBytes(double leaves, double tile_bricks, double valued_voxels, double channels);
 // ResourceError before anything is built when that grid and the result it is made from
 // would not fit the write's memory budget.

@@ -353,9 +353,7 @@ MergeReport mergeVdbFiles(const std::vector<std::string>& paths, const std::stri
     std::vector<std::vector<float>> storage;
     std::vector<io::VdbGrid> grids;
     for (std::size_t g = 0; g < first.grids.size(); ++g) grids.push_back(mergedGrid(parts, g, storage));
-    const io::VdbBytes bytes = io::serializeVdbGrids(described, grids, options.threads);
-    throwIfInterrupted(interrupter, 90);
-    io::writeVdbBytes(bytes, output, options.durable, interrupter);
+    io::writeVdbFile(output, described, grids, options.threads, options.durable, interrupter, 81, 98);
     report.write_ms = msSince(start);
 
     std::size_t counted = 0;

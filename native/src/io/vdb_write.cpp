@@ -76,16 +76,13 @@ CountLeaves countLeaves(const std::vector<VoxelCount>& counts) {
 
 }  // namespace
 
-void writeVdbBytes(const VdbBytes& file, const std::string& path, bool durable, Interrupter* interrupter) {
+std::uint64_t writeVdbFile(const std::string& path, const VoxelizeResult& result, const std::vector<VdbGrid>& grids,
+                           int threads, bool durable, Interrupter* interrupter, int progress_from, int progress_to) {
+    std::uint64_t mem_usage = 0;
     io::AtomicFile(path, durable ? io::Durability::Durable : io::Durability::Atomic).writeWith([&](std::ostream& out) {
-        constexpr std::size_t kChunk = 256 * 1024;
-        for (std::size_t at = 0; at < file.size;) {
-            const std::size_t n = std::min(kChunk, file.size - at);
-            out.write(file.data.get() + at, std::streamsize(n));
-            at += n;
-            if (at < file.size) throwIfInterrupted(interrupter, 91 + int(8 * at / file.size));
-        }
+        mem_usage = writeVdbGrids(out, result, grids, threads, interrupter, progress_from, progress_to);
     });
+    return mem_usage;
 }
 
 bool writesCountGrid(const VoxelizeResult& result) {
@@ -129,12 +126,9 @@ VdbWriteReport writeVdb(const VoxelizeResult& result, const std::string& path, c
     io::appendAttributeGrids(grids, result.occupancy, result.attributes);  // color, alpha, normal
     if (!result.sdf.empty()) grids.push_back(io::levelSetGrid(result));
     throwIfInterrupted(interrupter, 10);
-    const io::VdbBytes file = io::serializeVdbGrids(result, grids, options.threads);
-    report.grid_bytes = file.mem_usage;
-    throwIfInterrupted(interrupter, 90);
     auto now = std::chrono::steady_clock::now();
     report.build_ms = std::chrono::duration<double, std::milli>(now - start).count();
-    io::writeVdbBytes(file, path, options.durable, interrupter);
+    report.grid_bytes = io::writeVdbFile(path, result, grids, options.threads, options.durable, interrupter, 11, 98);
     report.write_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - now).count();
     if (interrupter) interrupter->wasInterrupted(100);  // progress only: the file is in place
     return report;

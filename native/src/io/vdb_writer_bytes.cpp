@@ -3,18 +3,27 @@
 // memory estimate takes it without the writer (and the fuzz targets build it so).
 #include "io/vdb_direct_writer.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace hyvox::io {
 
 double vdbWriterBytes(double leaves, double tile_bricks, double valued_voxels, double channels) {
-    // A VdbLeaf and its node in the placed tree; the density's tile bricks listed one by one (a
-    // VdbTile), placed (a Placed, its value and flag) and placed again while tiles merge into
-    // larger ones (a Placed), the attribute grids listing their regions instead.
-    constexpr double kListedLeaf = 32 + 24, kListedTile = 32 + 2 * 32 + 13;
+    // Each grid's VdbLeaf per leaf (the density's and the attribute grids': colour, alpha and
+    // normal, up to three channels each, all listed before the write); the placed tree's node
+    // per leaf, twice while its tiles merge, and the leaf's index in write order; the density's
+    // tile bricks listed one by one (a VdbTile), placed (a Placed, its value and flag) and placed
+    // again while tiles merge into larger ones (a Placed), the attribute grids listing their
+    // regions instead.
+    constexpr double kListedLeaf = 40, kPlacedLeaf = 2 * 32 + 8, kListedTile = 32 + 2 * 32 + 13;
     constexpr double kDensityLeaf = 220, kMask = 64, kValue = 4;
-    const double grids = channels > 0 ? 2.0 : 1.0;  // the attribute grids share one set of leaves
-    const double file = kDensityLeaf * leaves + 2.0 * tile_bricks +
-        (channels > 0 ? kMask * leaves + valued_voxels * channels * kValue : 0.0);
-    return kListedLeaf * leaves * grids + kListedTile * tile_bricks + 2.0 * file;
+    const double grids = 1.0 + std::ceil(channels / 3.0);
+    // One batch of leaf buffers: a density leaf's, or an attribute leaf's mask and values
+    // (uncompressed: colour need not compress), whichever grid is larger.
+    const double per_leaf = leaves > 0 ? valued_voxels / leaves : 0.0;
+    const double batch = std::min(leaves, double(kVdbLeavesPerBatch)) *
+        std::max(kDensityLeaf, channels > 0 ? kMask + per_leaf * channels * kValue : 0.0);
+    return (kListedLeaf * grids + kPlacedLeaf) * leaves + kListedTile * tile_bricks + batch;
 }
 
 }  // namespace hyvox::io

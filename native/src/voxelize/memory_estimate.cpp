@@ -33,9 +33,17 @@ constexpr double kEdgesPerTriangle = 48;
 constexpr double kRayTriangle = 112, kRayEntry = 8, kRayVertex = 25;
 constexpr double kWholeTriangle = 80, kPiece = 72, kNodeBuild = 144 + 48 + 104, kNodeKept = 48 + 104 + 4;
 constexpr double kInsidePerLeaf = kGrowing * kLeaf + 24, kOpenInsidePerLeaf = 600;
-// The attribute evaluator's per-triangle data and a leaf's record of its values; in solid
-// mode the inside voxels of a surface brick that take values (beyond its surface voxels).
-constexpr double kAttributesPerTriangle = 64, kAttributeLeaf = 48, kInsideValuedPerLeaf = 96;
+// The attribute evaluator's per-triangle data and a leaf's record of its values (with what
+// gathering the values beside them holds: Spot's coloured surface at 4096 and 8192 holds 74-78
+// bytes a leaf); in solid
+// mode the inside voxels of a surface brick that take values beyond its surface voxels (the
+// surface cuts a brick about in half: 242-252 measured on Spot at 512-2048), a leaf brick's
+// record while they are valued (attributes/inside_values.cpp: its masks, neighbours and
+// offsets), and a tile region's (its box, value, layer and sums: 112 bytes and 8 a channel).
+// Regions of one brick lie within a 128³ node of the surface: about 8 per leaf of surface
+// (measured: 2.8 at 512, 4.8 at 1024, 6.2 at 2048).
+constexpr double kAttributesPerTriangle = 64, kAttributeLeaf = 96, kInsideValuedPerLeaf = 256;
+constexpr double kInsideValuingLeaf = 400, kRegion = 112, kRegionChannel = 8, kRegionsPerLeaf = 8;
 // fast_winding.cpp's cut: pieces of at most 4 voxels, at most 3 a triangle plus 100000.
 constexpr double kPieceVoxels = 4, kPieceBudget = 3, kPieceFloor = 100000;
 
@@ -183,11 +191,12 @@ Estimate estimate(const ValidatedMesh& mesh, const GridSpec& grid, const Voxeliz
         if (channels > 0) {
             // The inside's voxels in the surface's bricks take the surface's values layer by
             // layer inward (attributes/inside_values.h): about the inner half of each brick,
-            // the surface's own voxels counted once; about 400 bytes a brick beside them.
+            // the surface's own voxels counted once; each leaf's and region's record beside them.
             voxels = std::min(512.0 * L, V + kInsideValuedPerLeaf * L);
-            e.attributes =
-                std::max(e.attributes,
-                         kLeaf * 2 * L + values + voxels * channels * 4.0 + 400.0 * (L + std::min(tile_bricks, L)));
+            const double regions = std::min(tile_bricks, kRegionsPerLeaf * L);
+            e.attributes = std::max(e.attributes,
+                                    kLeaf * 2 * L + values + voxels * channels * 4.0 + kInsideValuingLeaf * L +
+                                        (kRegion + kRegionChannel * channels) * regions);
         }
     }
 

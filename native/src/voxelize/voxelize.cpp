@@ -394,13 +394,15 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     return result;
 }
 
-// glibc keeps what the passes freed (hundreds of MiB of trees and leaf lists at 2048 and up) in
-// its heap, where the .vdb writer's larger buffers do not fit: without this the write's memory
-// comes on top of it (the bunny's solid at 2048 peaked 37% above the estimate), and in Blender
-// the artist's session keeps it. Only for large runs: handing memory back costs a walk over the
-// heap, and the next run's faults to take it again, which Live's small repeated runs would pay.
+// glibc keeps what the passes freed (the solid pass's trees and leaf lists) in its heap, where
+// the .vdb writer's buffers, made on other threads' heaps, do not go: without this the write's
+// memory comes on top of it (the bunny's solid peaked 17% above the estimate at 1024, in one
+// run of three, and 37% at 2048), and in Blender the artist's session keeps it. Only for runs
+// estimated at 64 MiB or more: handing memory back walks the heap (5-15 ms for 16-256 MiB
+// measured here), and the next run faults to take it again, which Live's small repeated runs
+// (the bunny's solid at 256: 31 MiB) would pay.
 void returnFreedMemory(const VoxelizeResult& result) {
-    constexpr std::uint64_t kLargeRun = std::uint64_t(256) << 20;
+    constexpr std::uint64_t kLargeRun = std::uint64_t(64) << 20;
     if (!result.stats.memory_estimate || result.stats.memory_estimate->peak < kLargeRun) return;
 #if defined(__GLIBC__)
     malloc_trim(0);
