@@ -228,66 +228,73 @@ std::pair<std::uint64_t, std::uint64_t> leafLayers(LeafVoxels& leaf, const Attri
     return {layers, voxels};
 }
 
-// Region layer 0: each region's shell mean over the valued leaf voxels. Each brick's
+// What leaf brick `n`'s valued voxels add to a region's shell mean: their values summed and counted.
+struct ShellContribution {
+    std::int64_t region;
+    std::uint32_t count;
+    std::array<double, kMaxChannels> sums;
+};
+
+// The contributions of brick `n` to the regions it touches (by a face, edge or corner), in
+// region order, into `found`.
+void shellContributions(const LeafVoxels& leaf, const TileRegions& regions, std::size_t n,
+                        std::vector<ShellContribution>& found) {
+    found.clear();
+    const Int3& at = leaf.at[n];
+    std::int64_t touching[26];
+    int count = 0;
+    for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dz = -1; dz <= 1; ++dz) {
+                if (dx == 0 && dy == 0 && dz == 0) continue;
+                const std::int64_t r = regions.at(at[0] + dx, at[1] + dy, at[2] + dz);
+                if (r >= 0) touching[count++] = r;
+            }
+    std::sort(touching, touching + count);
+    count = int(std::unique(touching, touching + count) - touching);
+    for (int t = 0; t < count; ++t) {
+        const TileRegions::Region& region = regions.regions()[std::size_t(touching[t])];
+        ShellContribution c{touching[t], 0, {}};
+        // The brick's voxels within one voxel of the region's box: a face, edge or corner.
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::max(region.lo[a] * 8 - 1 - at[a] * 8, 0);
+            hi[a] = std::min((region.lo[a] + region.side) * 8 - at[a] * 8, 7);
+        }
+        for (int x = lo[0]; x <= hi[0]; ++x)
+            for (int y = lo[1]; y <= hi[1]; ++y)
+                for (int z = lo[2]; z <= hi[2]; ++z) {
+                    const int bit = (x << 6) | (y << 3) | z;
+                    if (!testBit(leaf.valued[n], bit)) continue;
+                    const float* value = leaf.value(n, bit);
+                    for (std::size_t ch = 0; ch < leaf.channels; ++ch) c.sums[ch] += double(value[ch]);
+                    ++c.count;
+                }
+        if (c.count) found.push_back(c);
+    }
+}
+
+// Region layer 0: each region's shell mean over the valued leaf voxels. The bricks'
 // contributions are found in parallel and added to their regions' sums in brick order (the
 // sums do not depend on threads), a window of bricks at a time: memory for one window's
 // contributions, not for every brick's.
 void shellValues(const LeafVoxels& leaf, const AttributeGrid& layout, const TileRegions& regions, RegionValues& out,
                  tbb::task_arena& arena) {
-    struct Contribution {
-        std::int64_t region;
-        std::uint32_t count;
-        std::array<double, kMaxChannels> sums;
-    };
     const std::size_t channels = leaf.channels, bricks = leaf.brick.size();
     std::vector<double> sums(regions.regions().size() * channels, 0.0);
     std::vector<std::uint64_t> counts(regions.regions().size(), 0);
     constexpr std::size_t kWindow = 16384;
-    std::vector<std::vector<Contribution>> per_brick(std::min(bricks, kWindow));
+    std::vector<std::vector<ShellContribution>> per_brick(std::min(bricks, kWindow));
     for (std::size_t begin = 0; begin < bricks; begin += kWindow) {
         const std::size_t end = std::min(bricks, begin + kWindow);
         arena.execute([&] {
             tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 64), [&](const auto& range) {
-                for (std::size_t n = range.begin(); n != range.end(); ++n) {
-                    std::vector<Contribution>& found = per_brick[n - begin];
-                    found.clear();
-                    const Int3& at = leaf.at[n];
-                    std::int64_t touching[26];
-                    int count = 0;
-                    for (int dx = -1; dx <= 1; ++dx)
-                        for (int dy = -1; dy <= 1; ++dy)
-                            for (int dz = -1; dz <= 1; ++dz) {
-                                if (dx == 0 && dy == 0 && dz == 0) continue;
-                                const std::int64_t r = regions.at(at[0] + dx, at[1] + dy, at[2] + dz);
-                                if (r >= 0) touching[count++] = r;
-                            }
-                    std::sort(touching, touching + count);
-                    count = int(std::unique(touching, touching + count) - touching);
-                    for (int t = 0; t < count; ++t) {
-                        const TileRegions::Region& region = regions.regions()[std::size_t(touching[t])];
-                        Contribution c{touching[t], 0, {}};
-                        // The brick's voxels within one voxel of the region's box: a face, edge or corner.
-                        int lo[3], hi[3];
-                        for (int a = 0; a < 3; ++a) {
-                            lo[a] = std::max(region.lo[a] * 8 - 1 - at[a] * 8, 0);
-                            hi[a] = std::min((region.lo[a] + region.side) * 8 - at[a] * 8, 7);
-                        }
-                        for (int x = lo[0]; x <= hi[0]; ++x)
-                            for (int y = lo[1]; y <= hi[1]; ++y)
-                                for (int z = lo[2]; z <= hi[2]; ++z) {
-                                    const int bit = (x << 6) | (y << 3) | z;
-                                    if (!testBit(leaf.valued[n], bit)) continue;
-                                    const float* value = leaf.value(n, bit);
-                                    for (std::size_t ch = 0; ch < channels; ++ch) c.sums[ch] += double(value[ch]);
-                                    ++c.count;
-                                }
-                        if (c.count) found.push_back(c);
-                    }
-                }
+                for (std::size_t n = range.begin(); n != range.end(); ++n)
+                    shellContributions(leaf, regions, n, per_brick[n - begin]);
             });
         });
         for (std::size_t n = begin; n != end; ++n)
-            for (const Contribution& c : per_brick[n - begin]) {
+            for (const ShellContribution& c : per_brick[n - begin]) {
                 double* to = sums.data() + std::size_t(c.region) * channels;
                 for (std::size_t ch = 0; ch < channels; ++ch) to[ch] += c.sums[ch];
                 counts[std::size_t(c.region)] += c.count;

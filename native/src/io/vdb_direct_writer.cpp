@@ -115,6 +115,21 @@ public:
         base_ += out_.size();
         out_.clear();
     }
+    // `bytes` straight to the sink, after what has gathered (a block of leaf buffers).
+    void write(const std::string& bytes) {
+        flush();
+        sink_->write(bytes.data(), std::streamsize(bytes.size()));
+        base_ += bytes.size();
+    }
+    // Writes `value` at file position `at`, before what has gathered (a position known only
+    // after the bytes that follow it).
+    template <typename T>
+    void writeAt(std::size_t at, const T& value) {
+        flush();
+        sink_->seekp(std::streamoff(at));
+        sink_->write(reinterpret_cast<const char*>(&value), sizeof value);
+        sink_->seekp(std::streamoff(base_));
+    }
 
 private:
     void spillIfFull() {
@@ -537,49 +552,39 @@ std::string leafBuffers(const VdbGrid& grid, const std::vector<std::size_t>& lea
 // one batch's bytes, not the file's.
 constexpr std::size_t kBlocksPerBatch = kVdbLeavesPerBatch / kLeavesPerBlock;
 
-// Writes `bytes` to `out`; `at` follows the file position.
-void put(std::ostream& out, const std::string& bytes, std::size_t& at) {
-    out.write(bytes.data(), std::streamsize(bytes.size()));
-    at += bytes.size();
-}
-
-// One grid as Archive::writeGrid lays it out, written to `out` from file position `at` (left
-// at the grid's end): the descriptor, compression, metadata, transform and topology, then the
-// leaf buffers, compressed in parallel in blocks of kLeavesPerBlock leaves. The descriptor's
-// end position is known only after the buffers: it is written then, in place. `tree`:
-// placeTree(grid). `done(fraction)` is called between batches. Returns Grid::memUsage().
-std::uint64_t writeGrid(std::ostream& out, std::size_t& at, const VoxelizeResult& result, const VdbGrid& grid,
-                        const PlacedTree& tree, tbb::task_arena& arena, const std::function<void(double)>& done) {
+// One grid as Archive::writeGrid lays it out, appended to `file`: the descriptor, compression,
+// metadata, transform and topology, then the leaf buffers, compressed in parallel in blocks of
+// kLeavesPerBlock leaves. The descriptor's positions of the buffers and of the grid's end are
+// known only once they are written, and are then written in place. `tree`: placeTree(grid).
+// `done(fraction)` is called between batches. Returns Grid::memUsage().
+std::uint64_t writeGrid(Bytes& file, const VoxelizeResult& result, const VdbGrid& grid, const PlacedTree& tree,
+                        tbb::task_arena& arena, const std::function<void(double)>& done) {
     if (grid.layout != VdbLeafValues::Fill)
         for (const VdbLeaf& leaf : grid.leaves)
             if (!leaf.values && activeCount(leaf.mask))
                 throw InvalidInput("vdb writer: grid '" + grid.name + "' has a leaf without values");
-    Bytes head(at, &out);
     // GridDescriptor::writeHeader and writeStreamPos: the grid's position (right after the three
-    // positions), then where its buffers begin and where it ends, known only once they are
-    // written and then written in place.
-    head.string(grid.name);
-    head.string(grid.type == VdbValueType::Float ? "Tree_float_5_4_3" : "Tree_vec3s_5_4_3");
-    head.string("");  // not an instance
-    const std::size_t stream_pos_at = head.size();
-    head.pod(std::int64_t(stream_pos_at + 3 * sizeof(std::int64_t)));
-    head.pod(std::int64_t(0));
-    head.pod(std::int64_t(0));
-    head.pod(kCompression);
+    // positions), then where its buffers begin and where it ends (written in place below).
+    file.string(grid.name);
+    file.string(grid.type == VdbValueType::Float ? "Tree_float_5_4_3" : "Tree_vec3s_5_4_3");
+    file.string("");  // not an instance
+    const std::size_t stream_pos_at = file.size();
+    file.pod(std::int64_t(stream_pos_at + 3 * sizeof(std::int64_t)));
+    file.pod(std::int64_t(0));
+    file.pod(std::int64_t(0));
+    file.pod(kCompression);
     const std::uint64_t mem_usage = memUsage(tree, grid.type);
     const std::map<std::string, MetaValue> meta = gridMetadata(result, grid, tree, mem_usage);
-    head.pod(std::uint32_t(meta.size()));
+    file.pod(std::uint32_t(meta.size()));
     for (const auto& [name, value] : meta) {
-        head.string(name);
-        head.string(value.type);
-        head.string(value.bytes);  // Metadata::write: 32-bit size, then the value's bytes
+        file.string(name);
+        file.string(value.type);
+        file.string(value.bytes);  // Metadata::write: 32-bit size, then the value's bytes
     }
     const std::string transform = vdbTransformBytes(result.grid);
-    head.raw(transform.data(), transform.size());
-    writeTopology(head, grid, tree);
-    head.flush();
-    at = head.size();
-    const std::int64_t buffers_begin = std::int64_t(at);
+    file.raw(transform.data(), transform.size());
+    writeTopology(file, grid, tree);
+    file.writeAt(stream_pos_at + sizeof(std::int64_t), std::int64_t(file.size()));
 
     std::vector<std::size_t> leaves;
     leaves.reserve(grid.leaves.size());
@@ -595,13 +600,10 @@ std::uint64_t writeGrid(std::ostream& out, std::size_t& at, const VoxelizeResult
                 batch[b] = leafBuffers(grid, leaves, from, std::min(leaves.size(), from + kLeavesPerBlock));
             });
         });
-        for (const std::string& buffers : batch) put(out, buffers, at);
+        for (const std::string& buffers : batch) file.write(buffers);
         done(double(first + batch.size()) / double(blocks));
     }
-    const std::array<std::int64_t, 2> positions{buffers_begin, std::int64_t(at)};
-    out.seekp(std::streamoff(stream_pos_at + sizeof(std::int64_t)));
-    out.write(reinterpret_cast<const char*>(positions.data()), sizeof positions);
-    out.seekp(std::streamoff(at));
+    file.writeAt(stream_pos_at + 2 * sizeof(std::int64_t), std::int64_t(file.size()));
     return mem_usage;
 }
 
@@ -702,29 +704,28 @@ std::uint64_t fogGridMemUsageForLeaves(std::uint64_t leaves) {
 
 std::uint64_t writeVdbGrids(std::ostream& out, const VoxelizeResult& result, const std::vector<VdbGrid>& grids,
                             int threads, Interrupter* interrupter, int progress_from, int progress_to) {
-    Bytes head(0, &out);
+    Bytes file(0, &out);
     // Archive::writeHeader.
-    head.pod(kMagic);
-    head.pod(kFileVersion);
-    head.pod(kLibraryMajor);
-    head.pod(kLibraryMinor);
-    head.pod(char(1));  // has grid offsets (a seekable file)
-    head.raw(randomUuid().data(), 36);
-    head.pod(std::uint32_t(0));  // file-level metadata: none
-    head.pod(std::int32_t(grids.size()));
-    head.flush();
-    std::size_t at = head.size();
+    file.pod(kMagic);
+    file.pod(kFileVersion);
+    file.pod(kLibraryMajor);
+    file.pod(kLibraryMinor);
+    file.pod(char(1));  // has grid offsets (a seekable file)
+    file.raw(randomUuid().data(), 36);
+    file.pod(std::uint32_t(0));  // file-level metadata: none
+    file.pod(std::int32_t(grids.size()));
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     std::uint64_t mem_usage = 0;
     PlacedTree tree;
     for (std::size_t g = 0; g < grids.size(); ++g) {
         // The attribute grids share one set of leaves: they are placed (and sorted) once.
         if (g == 0 || !sameLeavesNoTiles(grids[g], grids[g - 1])) tree = placeTree(grids[g]);
-        mem_usage += writeGrid(out, at, result, grids[g], tree, arena, [&](double fraction) {
+        mem_usage += writeGrid(file, result, grids[g], tree, arena, [&](double fraction) {
             const double done = (double(g) + fraction) / double(grids.size());
             throwIfInterrupted(interrupter, progress_from + int(double(progress_to - progress_from) * done));
         });
     }
+    file.flush();
     return mem_usage;
 }
 

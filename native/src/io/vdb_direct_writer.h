@@ -83,17 +83,18 @@ struct VdbGrid {
     int channels() const { return type == VdbValueType::Float ? 1 : 3; }
 };
 
+// The leaves whose buffers writeVdbGrids compresses side by side before writing them.
+inline constexpr std::size_t kVdbLeavesPerBatch = 4096;
+
 // Writes the file holding `grids` in order to `out`, from its start (`out` must be seekable:
-// each grid's end position is written in place after its buffers), each grid with the
-// hyvox_* metadata of `result` and its grid transform. Leaf buffers are compressed in parallel a batch at a time
-// and written as each batch is done, so the write holds one batch's bytes, never the file's.
+// each grid's positions of its buffers and of its end are written in place once known), each
+// grid with the hyvox_* metadata of `result` and its grid transform. Leaf buffers are
+// compressed in parallel a batch at a time and written as each batch is done, and the topology
+// goes out as it is made, so the write holds one batch's bytes, never the file's.
 // `interrupter` (may be null) is asked between batches, with progress from `progress_from` to
 // `progress_to`. `threads`: 0 = all cores. Returns the grids' Grid::memUsage() summed (see
 // vdbTreeMemUsage). Throws InvalidInput for a leaf or tile off its lattice, below 0, or
 // overlapping another.
-// The leaves whose buffers writeVdbGrids compresses side by side before writing them.
-inline constexpr std::size_t kVdbLeavesPerBatch = 4096;
-
 std::uint64_t writeVdbGrids(std::ostream& out, const VoxelizeResult& result, const std::vector<VdbGrid>& grids,
                             int threads, Interrupter* interrupter = nullptr, int progress_from = 0,
                             int progress_to = 0);

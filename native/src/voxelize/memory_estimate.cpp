@@ -41,7 +41,7 @@ constexpr double kInsidePerLeaf = kGrowing * kLeaf + 24, kOpenInsidePerLeaf = 60
 // record while they are valued (attributes/inside_values.cpp: its masks, neighbours and
 // offsets), and a tile region's (its box, value, layer and sums: 112 bytes and 8 a channel).
 // Regions of one brick lie within a 128³ node of the surface: about 8 per leaf of surface
-// (measured: 2.8 at 512, 4.8 at 1024, 6.2 at 2048).
+// (Spot: 2.8 at 512, 4.8 at 1024, 6.2 at 2048).
 constexpr double kAttributesPerTriangle = 64, kAttributeLeaf = 96, kInsideValuedPerLeaf = 256;
 constexpr double kInsideValuingLeaf = 400, kRegion = 112, kRegionChannel = 8, kRegionsPerLeaf = 8;
 // fast_winding.cpp's cut: pieces of at most 4 voxels, at most 3 a triangle plus 100000.

@@ -398,9 +398,8 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
 // the .vdb writer's buffers, made on other threads' heaps, do not go: without this the write's
 // memory comes on top of it (the bunny's solid peaked 17% above the estimate at 1024, in one
 // run of three, and 37% at 2048), and in Blender the artist's session keeps it. Only for runs
-// estimated at 64 MiB or more: handing memory back walks the heap (5-15 ms for 16-256 MiB
-// measured here), and the next run faults to take it again, which Live's small repeated runs
-// (the bunny's solid at 256: 31 MiB) would pay.
+// estimated at 64 MiB or more: handing memory back walks the heap, and the next run faults to
+// take it again, which Live's small repeated runs (the bunny's solid at 256: 31 MiB) would pay.
 void returnFreedMemory(const VoxelizeResult& result) {
     constexpr std::uint64_t kLargeRun = std::uint64_t(64) << 20;
     if (!result.stats.memory_estimate || result.stats.memory_estimate->peak < kLargeRun) return;
