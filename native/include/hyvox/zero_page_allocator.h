@@ -17,6 +17,10 @@ void* allocateZeroPages(std::size_t bytes);
 void freeZeroPages(void* p, std::size_t bytes);
 }  // namespace detail
 
+/// The bytes allocateZeroPages maps for `bytes`: large arrays take whole 2 MiB pages (each one
+/// touched is resident whole under THP), so the memory estimate counts what is mapped.
+std::size_t zeroPagesMapped(std::size_t bytes) noexcept;
+
 /// Asks for huge pages under [p, p + bytes) (the 2 MiB-aligned part of it) before its pages are
 /// first written: each 4 KiB first touch is a page fault, and arrays of millions of triangles
 /// spend more time in those faults than in filling them. A hint: without THP it does nothing.

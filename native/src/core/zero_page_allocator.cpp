@@ -59,6 +59,10 @@ void freeZeroPages(void* p, std::size_t bytes) {
 
 namespace hyvox {
 
+std::size_t zeroPagesMapped(std::size_t bytes) noexcept {
+    return bytes < detail::kMapThreshold ? bytes : detail::roundUpToHugePages(bytes);
+}
+
 void adviseHugePages(void* p, std::size_t bytes) noexcept {
 #ifdef MADV_HUGEPAGE
     constexpr std::uintptr_t kHuge = std::uintptr_t(1) << 21;

@@ -12,6 +12,7 @@
 
 #include "hyvox/errors.h"
 #include "hyvox/sparse_grid.h"
+#include "hyvox/zero_page_allocator.h"
 #include "io/vdb_direct_writer.h"
 #include "solid/fill_inside.h"
 
@@ -19,9 +20,18 @@ namespace hyvox::memory {
 namespace {
 
 // A leaf of a SparseGrid (brick index and 64 bytes of bits), and what a vector of them holds at
-// most while it grows by doubling (the old buffer and the new one twice its size).
+// most while it grows by doubling (the old buffer and the new one twice its size): the bound
+// the passes whose lists are estimated loosely take (the surface's list has its own model,
+// surfaceListBytes).
 constexpr double kLeaf = double(SparseGrid::kLeafBytes);
 constexpr double kGrowing = 3.0;
+// glibc maps every block of 32 MiB or more on its own and unmaps it when freed; a freed smaller
+// block can stay in the heap, resident (its mmap threshold rises up to that size as blocks are
+// freed).
+constexpr double kHeapKeptBelow = 32.0 * (1 << 20);
+// What the surface pass holds beyond its tile and its list of leaves (the tile's triangle lists,
+// the allocator's partly used pages): up to 4 MiB over the shared meshes at 1024-8192.
+constexpr double kSurfaceSlack = 4.0 * (1 << 20);
 // The solid pass (solid/): the edge check's sort (every edge once with its vertices); the ray
 // columns (a snapped triangle, and per 8×8 column its box reaches an entry and its rays'
 // offsets, beside a snapped position per vertex); the fast winding numbers' tree over the
@@ -122,6 +132,26 @@ double windingBytes(double triangles, double pieces) {
         std::max({cut, kPiece * pieces + kNodeBuild * nodes, 2 * kPiece * pieces + kNodeKept * nodes});
 }
 
+// The most the surface's leaves hold resident while SparseGrid::addTile appends them, one
+// push_back at a time from empty (capacities 1, 2, 4, ...), and once SparseGrid::finish has
+// shrunk the list to its size (a copy beside the old one; the tile is freed by then). At each
+// doubling the old buffer and its copy are resident, beside the old buffers the heap kept; the
+// new buffer's untouched pages are not. `leaves` is taken 10% over the estimate, which is within
+// 0.2% for conservative surfaces: a count just past a power of two doubles once more.
+struct ListBytes {
+    double growing = 0, shrinking = 0;
+};
+ListBytes surfaceListBytes(double leaves) {
+    const double count = 1.1 * leaves;
+    double kept = 0, growing = 0;
+    for (double capacity = 1; capacity < count; capacity *= 2) {
+        growing = std::max(growing, 2 * kLeaf * capacity + kept);
+        if (kLeaf * capacity < kHeapKeptBelow) kept += kLeaf * capacity;
+    }
+    growing = std::max(growing, kLeaf * count + kept);
+    return {growing, 2 * kLeaf * count + kept};
+}
+
 std::string mib(double bytes) { return std::to_string(std::uint64_t(std::ceil(bytes / double(1 << 20)))) + " MiB"; }
 
 }  // namespace
@@ -151,10 +181,13 @@ Estimate estimate(const ValidatedMesh& mesh, const GridSpec& grid, const Voxeliz
     const double L = e.surface_leaves, V = e.surface_voxels;
     const double channels = attribute_channels;
 
-    // The surface pass: one tile's bits, the triangles binned to the tiles, the leaves growing,
-    // and with attributes each leaf's values (in one block a tile) and the evaluator.
+    // The surface pass: one tile's bits (whole pages of them: a surface crosses nearly every
+    // one), the triangles binned to the tiles, the leaves growing, and with attributes each
+    // leaf's values (in one block a tile) and the evaluator.
     const double bins = plan.whole() ? 0.0 : 4.0 * triangles * 1.5;
-    e.surface = double(plan.tileBytes()) + bins + kGrowing * kLeaf * L;
+    const ListBytes list = surfaceListBytes(L);
+    e.surface =
+        std::max(double(zeroPagesMapped(plan.tileBytes())) + bins + list.growing, list.shrinking) + kSurfaceSlack;
     if (channels > 0) e.surface += triangles * kAttributesPerTriangle + L * kAttributeLeaf + V * channels * 4.0;
 
     // The attribute values of the surface, gathered once the surface pass is done (the leaves'
