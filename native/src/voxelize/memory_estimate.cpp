@@ -29,8 +29,9 @@ constexpr double kGrowing = 3.0;
 // block can stay in the heap, resident (its mmap threshold rises up to that size as blocks are
 // freed).
 constexpr double kHeapKeptBelow = 32.0 * (1 << 20);
-// What the surface pass holds beyond its tile and its list of leaves (the tile's triangle lists,
-// the allocator's partly used pages): up to 4 MiB over the shared meshes at 1024-8192.
+// A margin for what the surface pass holds beyond its tile and its list of leaves (the tiles'
+// triangle lists, the allocator's partly used pages): without it the model comes within a few
+// MiB of the peak of the surface runs in bench/results/memory_estimate, on either side.
 constexpr double kSurfaceSlack = 4.0 * (1 << 20);
 // The solid pass (solid/): the edge check's sort (every edge once with its vertices); the ray
 // columns (a snapped triangle, and per 8×8 column its box reaches an entry and its rays'

@@ -9,12 +9,12 @@
 //
 // The sizes come from the structures: a leaf is 72 bytes (brick index and 64 bytes of bits),
 // a vector grown by doubling holds up to three times its final size while it moves (the
-// surface's list of leaves, whose size is known closely, by a model of the allocator's pages),
-// a tile's bits are all touched (a surface crosses nearly every 2 MiB page of them), and the solid pass's
-// trees take per triangle what their nodes do (fast winding numbers, ray columns). What the
-// surface and the solid hold is unknown until they are made: the surface's leaves and voxels
-// are estimated from the triangles' area in voxel units, the inside's bricks from the
-// mesh's enclosed volume.
+// surface's list of leaves, whose size is known closely, by a model of the allocator), a
+// tile's bits are all touched (a surface crosses nearly every 2 MiB page of them), and the
+// solid pass's trees take per triangle what their nodes do (fast winding numbers, ray
+// columns). What the surface and the solid hold is unknown until they are made: the surface's
+// leaves and voxels are estimated from the triangles' area in voxel units, the inside's bricks
+// from the mesh's enclosed volume.
 #include <cstdint>
 #include <string>
 
