@@ -143,32 +143,9 @@ void FastWinding::build(std::int32_t id, std::uint32_t first, std::uint32_t coun
     node.first = first;
     node.count = count;
     Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    Vec3 weighted{0, 0, 0};
-    double total_area = 0;
-    for (std::uint32_t t = first; t < first + count; ++t) {
-        const auto& [a, b, c] = triangles_[t];
-        for (const Vec3* p : {&a, &b, &c})
-            for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], (*p)[k]), hi[k] = std::max(hi[k], (*p)[k]);
-        const Vec3 n = cross(sub(b, a), sub(c, a));
-        const double area = 0.5 * norm(n);
-        for (int k = 0; k < 3; ++k) {
-            node.area[k] += 0.5 * n[k];
-            weighted[k] += area * (a[k] + b[k] + c[k]) / 3.0;
-        }
-        total_area += area;
-    }
-    for (int k = 0; k < 3; ++k) node.centre[k] = total_area > 0 ? weighted[k] / total_area : 0.5 * (lo[k] + hi[k]);
-    for (std::uint32_t t = first; t < first + count; ++t) {
-        const auto& [a, b, c] = triangles_[t];
-        const Vec3 n = cross(sub(b, a), sub(c, a));
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                node.moment[3 * i + j] += 0.5 * n[i] * ((a[j] + b[j] + c[j]) / 3.0 - node.centre[j]);
-    }
-    for (int corner = 0; corner < 8; ++corner) {
-        const Vec3 p{corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1], corner & 4 ? hi[2] : lo[2]};
-        node.radius = std::max(node.radius, norm(sub(p, node.centre)));
-    }
+    for (std::uint32_t t = first; t < first + count; ++t)
+        for (const Vec3& p : triangles_[t])
+            for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
     if (count > kLeafTriangles) {
         const std::uint32_t half =
             splitAtMedian(triangles_, first, count, lo, hi, [](const std::array<Vec3, 3>& t, int axis) {
@@ -182,6 +159,48 @@ void FastWinding::build(std::int32_t id, std::uint32_t first, std::uint32_t coun
             tbb::parallel_invoke(left, right);
         else
             left(), right();
+        // A cluster's sums from its two halves' (each level would otherwise read all the
+        // triangles again): the area vectors and areas add; the centre is the halves' centres
+        // weighted by their areas; a half's moment moves to the new centre by its area vector
+        // times the shift, since sum area_i (x_j - c_j) = sum area_i (x_j - h_j) + A_i (h_j - c_j).
+        const Node& l = nodes_[std::size_t(node.left)];
+        const Node& r = nodes_[std::size_t(node.right)];
+        node.total_area = l.total_area + r.total_area;
+        for (int k = 0; k < 3; ++k) {
+            node.area[k] = l.area[k] + r.area[k];
+            node.centre[k] = node.total_area > 0
+                ? (l.total_area * l.centre[k] + r.total_area * r.centre[k]) / node.total_area
+                : 0.5 * (lo[k] + hi[k]);
+        }
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                node.moment[3 * i + j] = l.moment[3 * i + j] + l.area[i] * (l.centre[j] - node.centre[j]) +
+                    r.moment[3 * i + j] + r.area[i] * (r.centre[j] - node.centre[j]);
+    } else {
+        Vec3 weighted{0, 0, 0};
+        for (std::uint32_t t = first; t < first + count; ++t) {
+            const auto& [a, b, c] = triangles_[t];
+            const Vec3 n = cross(sub(b, a), sub(c, a));
+            const double area = 0.5 * norm(n);
+            for (int k = 0; k < 3; ++k) {
+                node.area[k] += 0.5 * n[k];
+                weighted[k] += area * (a[k] + b[k] + c[k]) / 3.0;
+            }
+            node.total_area += area;
+        }
+        for (int k = 0; k < 3; ++k)
+            node.centre[k] = node.total_area > 0 ? weighted[k] / node.total_area : 0.5 * (lo[k] + hi[k]);
+        for (std::uint32_t t = first; t < first + count; ++t) {
+            const auto& [a, b, c] = triangles_[t];
+            const Vec3 n = cross(sub(b, a), sub(c, a));
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                    node.moment[3 * i + j] += 0.5 * n[i] * ((a[j] + b[j] + c[j]) / 3.0 - node.centre[j]);
+        }
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p{corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1], corner & 4 ? hi[2] : lo[2]};
+        node.radius = std::max(node.radius, norm(sub(p, node.centre)));
     }
     nodes_[std::size_t(id)] = node;
 }

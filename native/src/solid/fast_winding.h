@@ -38,11 +38,13 @@ private:
         Vec3 centre{};                       // area-weighted centroid of the cluster
         double radius = 0;                   // farthest corner of its box from centre
         Vec3 area{};                         // sum of area vectors (normal times area)
+        double total_area = 0;               // sum of the triangles' areas (the centre's weights)
         std::array<double, 9> moment{};      // sum of area_i * (centroid - centre)_j
         std::uint32_t first = 0, count = 0;  // triangles [first, first + count) when a leaf
         std::int32_t left = -1, right = -1;
     };
-    // Node `id` and its subtree over triangles [first, first + count).
+    // Node `id` and its subtree over triangles [first, first + count): split top down, its
+    // sums (area, centre, moment) gathered bottom up from its children's.
     void build(std::int32_t id, std::uint32_t first, std::uint32_t count);
     // at()'s walk of the subtree under `root` for q: adds the exact parts to `sum` and the
     // expansions (times 4π) to `far`.

@@ -30,9 +30,9 @@ constexpr double kGrowing = 3.0;
 // freed).
 constexpr double kHeapKeptBelow = 32.0 * (1 << 20);
 // A margin for what the surface pass holds beyond its tile and its list of leaves (the tiles'
-// triangle lists, the allocator's partly used pages): without it the model comes within a few
-// MiB of the peak of the surface runs in bench/results/memory_estimate, on either side.
-constexpr double kSurfaceSlack = 4.0 * (1 << 20);
+// triangle lists, the allocator's partly used pages): without it the model comes within 1% of
+// the peak of the surface runs in bench/results/memory_estimate, on either side.
+constexpr double kSurfaceMargin = 1.02;
 // The solid pass (solid/): the edge check's sort (every edge once with its vertices); the ray
 // columns (a snapped triangle, and per 8×8 column its box reaches an entry and its rays'
 // offsets, beside a snapped position per vertex); the fast winding numbers' tree over the
@@ -42,7 +42,7 @@ constexpr double kSurfaceSlack = 4.0 * (1 << 20);
 // numbers near its open edges, measured over the shared meshes, take more).
 constexpr double kEdgesPerTriangle = 48;
 constexpr double kRayTriangle = 112, kRayEntry = 8, kRayVertex = 25;
-constexpr double kWholeTriangle = 80, kPiece = 72, kNodeBuild = 144 + 48 + 104, kNodeKept = 48 + 104 + 4;
+constexpr double kWholeTriangle = 80, kPiece = 72, kNodeBuild = 152 + 48 + 104, kNodeKept = 48 + 104 + 4;
 constexpr double kInsidePerLeaf = kGrowing * kLeaf + 24, kOpenInsidePerLeaf = 600;
 // The attribute evaluator's per-triangle data and a leaf's record of its values (with what
 // gathering the values beside them holds: Spot's coloured surface at 4096 and 8192 holds 74-78
@@ -188,7 +188,7 @@ Estimate estimate(const ValidatedMesh& mesh, const GridSpec& grid, const Voxeliz
     const double bins = plan.whole() ? 0.0 : 4.0 * triangles * 1.5;
     const ListBytes list = surfaceListBytes(L);
     e.surface =
-        std::max(double(zeroPagesMapped(plan.tileBytes())) + bins + list.growing, list.shrinking) + kSurfaceSlack;
+        kSurfaceMargin * std::max(double(zeroPagesMapped(plan.tileBytes())) + bins + list.growing, list.shrinking);
     if (channels > 0) e.surface += triangles * kAttributesPerTriangle + L * kAttributeLeaf + V * channels * 4.0;
 
     // The attribute values of the surface, gathered once the surface pass is done (the leaves'
