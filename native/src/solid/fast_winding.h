@@ -43,6 +43,12 @@ private:
         std::uint32_t first = 0, count = 0;  // triangles [first, first + count) when a leaf
         std::int32_t left = -1, right = -1;
     };
+
+public:
+    // What the build holds per node beside the traversal's records (the memory estimate's).
+    static constexpr std::size_t kBuildNodeBytes = sizeof(Node);
+
+private:
     // Node `id` and its subtree over triangles [first, first + count): split top down, its
     // sums (area, centre, moment) gathered bottom up from its children's.
     void build(std::int32_t id, std::uint32_t first, std::uint32_t count);

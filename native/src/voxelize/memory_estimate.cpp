@@ -14,6 +14,7 @@
 #include "hyvox/sparse_grid.h"
 #include "hyvox/zero_page_allocator.h"
 #include "io/vdb_direct_writer.h"
+#include "solid/fast_winding.h"
 #include "solid/fill_inside.h"
 
 namespace hyvox::memory {
@@ -42,7 +43,8 @@ constexpr double kSurfaceMargin = 1.02;
 // numbers near its open edges, measured over the shared meshes, take more).
 constexpr double kEdgesPerTriangle = 48;
 constexpr double kRayTriangle = 112, kRayEntry = 8, kRayVertex = 25;
-constexpr double kWholeTriangle = 80, kPiece = 72, kNodeBuild = 152 + 48 + 104, kNodeKept = 48 + 104 + 4;
+constexpr double kWholeTriangle = 80, kPiece = 72, kNodeBuild = double(solid::FastWinding::kBuildNodeBytes) + 48 + 104,
+                 kNodeKept = 48 + 104 + 4;
 constexpr double kInsidePerLeaf = kGrowing * kLeaf + 24, kOpenInsidePerLeaf = 600;
 // The attribute evaluator's per-triangle data and a leaf's record of its values (with what
 // gathering the values beside them holds: Spot's coloured surface at 4096 and 8192 holds 74-78
