@@ -256,10 +256,10 @@ def close_splash():
     window.event_simulate("LEFTMOUSE", "RELEASE", x=20, y=window.height // 2)
 
 
-def press_key(key):
+def press_key(key, ctrl=False):
     window = bpy.context.window_manager.windows[0]
-    window.event_simulate(key, "PRESS")
-    window.event_simulate(key, "RELEASE")
+    window.event_simulate(key, "PRESS", ctrl=ctrl)
+    window.event_simulate(key, "RELEASE", ctrl=ctrl)
 
 
 def hide_viewports():

@@ -209,6 +209,27 @@ class LiveEditsTest(LiveTestCase):
         self.assert_holds_the_state(volume, cube)
         self.assertEqual(len([m for m in volume.modifiers if m.name.startswith("hyvox Live Source")]), 1)
 
+    def test_the_scene_is_followed_only_while_a_live_volume_exists(self):
+        """Blender may call these handlers on its render thread, where Python can crash it:
+        with no live volume they are not in Blender's lists at all."""
+        following = live().FOLLOWING
+
+        def registered():
+            return [name for name, handler in following if handler in getattr(bpy.app.handlers, name)]
+
+        live().follow_live_volumes()
+        self.assertEqual(registered(), [], "no live volume in the scene yet")
+        cube = helpers.cube(size=1.0)
+        volume = self.make_live(cube)
+        self.assertEqual(registered(), [name for name, _ in following])
+        volume.hyvox_live = False
+        self.assertEqual(registered(), [])
+        volume.hyvox_live = True
+        self.assertEqual(registered(), [name for name, _ in following])
+        cube.location.x = 0.4  # and they still follow the edits
+        bpy.context.view_layer.update()
+        self.assert_holds_the_state(volume, cube)
+
     def test_a_frame_range_is_refused_with_live(self):
         helpers.select_only(helpers.cube())
         with self.assertRaises(RuntimeError) as caught:

@@ -13,14 +13,21 @@ Triggers, all on the thread Blender calls them on:
 - load_pre, unregister and the end of the session: every run cancelled, the cache's files
   deleted except those shown or kept by a saved .blend (save_post).
 In the UI a timer (bpy.app.timers) polls the worker and does every export and swap on the
-main thread; the worker touches no Blender data. In background mode (`blender -b`, the bpy
-module) there is no event loop: the run happens inside the handler, and the swap in the
-handler is evaluated by Blender's second pass over what handlers changed, so when
-view_layer.update() or frame_set() returns the volume shows the voxels of the new state."""
+main thread; the worker touches no Blender data. A render in the window calls its handlers
+on Blender's render thread: there Live registers no timer and touches no window (the
+timer, kept while live volumes exist, does that on the main thread), and it swaps a
+frame's voxels in only while the interface is locked (Render > Lock Interface, which
+turning Live on sets). That is Blender's documented condition for handlers that change
+data while it renders: unlocked, the main thread evaluates the same volume meanwhile.
+In background mode (`blender -b`, the bpy module) there is no event loop: the run happens
+inside the handler, and the swap in the handler is evaluated by Blender's second pass over
+what handlers changed, so when view_layer.update() or frame_set() returns the volume shows
+the voxels of the new state."""
 
 import atexit
 import os
 import sys
+import threading
 import time
 
 import bpy
@@ -34,6 +41,12 @@ from . import live_dependencies, live_volumes, render_depsgraph
 from .live_volumes import LIVE_ID, SourcesUnavailable
 
 POLL_SECONDS = 0.01  # the timer's interval while a run is on (Blender's loop sleeps ~5 ms)
+IDLE_POLL_SECONDS = 0.2  # while live volumes exist and nothing runs (the tick reads flags only)
+RENDER_POLL_SECONDS = 0.05  # while a render owns the volumes
+UNLOCKED_RENDER = (
+    "hyvox Live: this render shows the viewport's voxels: Render > Lock Interface is off, and Blender "
+    "cannot swap a volume's file safely while it renders with the interface unlocked"
+)
 # Updates of these ID types may change what a coloured volume shows.
 SHADING_TYPES = {"Material", "Image", "ShaderNodeTree", "Texture", "World"}
 
@@ -46,11 +59,14 @@ class _Live:
     kept_by_saves = set()  # files a saved .blend refers to: never deleted by the cache
     cache = LiveCache(in_use=lambda: _Live.shown | _Live.kept_by_saves)
     rendering = False
+    unlocked_render_said = False  # this render's frames were left as they are, and it was said
     status = {}  # live id -> the line the panel shows
     timings = {}  # live id -> the last run's stage timings (ms), swap and main thread included
     started = {}  # live id -> the main thread's (wall, CPU) ms of starting the run
     warnings = {}  # live id -> the running run's export warnings
     runs_started = {}  # live id -> runs started (tests and the bench read it)
+    status_bar_text = None  # the last text given to the status bar (tests read it)
+    status_bar_later = []  # a text given off the main thread: the next tick shows it
 
 
 def scheduler() -> LiveScheduler:
@@ -69,11 +85,22 @@ def status_line(obj) -> str:
     return _Live.status.get(ident, "Up to date" if obj.get(live_volumes.LIVE_KEY) else "Waiting for an edit")
 
 
+def _on_main_thread() -> bool:
+    """False in the handlers of a render in the window (Blender's render thread)."""
+    return threading.current_thread() is threading.main_thread()
+
+
 # -- the status bar -------------------------------------------------------------------
 def _status_bar(text):
+    _Live.status_bar_text = text
     if bpy.app.background:
         if text:
             print(text)
+        return
+    if not _on_main_thread():  # windows are the main thread's
+        if text:
+            print(text)
+        _Live.status_bar_later[:] = [text]
         return
     window_manager = bpy.context.window_manager
     for window in window_manager.windows if window_manager is not None else ():
@@ -198,20 +225,30 @@ def drive(scene, depsgraph=None, synchronous=None):
 
 
 def _tick():
-    """The UI's timer: polls the workers; ends itself when nothing is left to do."""
-    if _Live.rendering:
-        return 0.05
-    try:
-        drive(bpy.context.scene, synchronous=False)
-    except Exception:  # a timer that raises is dropped by Blender: keep Live alive
-        import traceback
+    """The UI's timer: polls the workers, and does on the main thread what a render's
+    handlers left for it (a status text, the viewport's voxels back after the render).
+    It ends itself when no live volume is left."""
+    if _Live.rendering:  # nothing here while it renders: not even a context override
+        return RENDER_POLL_SECONDS
+    if _Live.status_bar_later:
+        _status_bar(_Live.status_bar_later.pop())
+    if _Live.scheduler.active():
+        try:
+            drive(bpy.context.scene, synchronous=False)
+        except Exception:  # a timer that raises is dropped by Blender: keep Live alive
+            import traceback
 
-        traceback.print_exc()
-    return POLL_SECONDS if _Live.scheduler.active() else None
+            traceback.print_exc()
+    if _Live.scheduler.active():
+        return POLL_SECONDS
+    return IDLE_POLL_SECONDS if _Live.scheduler.idents() else None
 
 
 def _wake():
-    if bpy.app.background:
+    """Make sure the timer runs. Off the main thread (a render's handlers) Blender's timer
+    list must not be touched: the timer, which keeps ticking while live volumes exist,
+    sees what the handler marked."""
+    if bpy.app.background or not _on_main_thread():
         return
     if not bpy.app.timers.is_registered(_tick):
         bpy.app.timers.register(_tick, first_interval=0.0)
@@ -292,6 +329,11 @@ def _on_frame_change(scene, depsgraph=None):
     if depsgraph is None or _evaluating_for_the_operator(scene):
         return
     if depsgraph.mode == "RENDER":
+        if not _on_main_thread() and not scene.render.use_lock_interface:
+            if not _Live.unlocked_render_said:
+                _Live.unlocked_render_said = True
+                _status_bar(UNLOCKED_RENDER)
+            return
         # Before this frame renders: every live volume of the scene gets this frame's voxels
         # from the render's evaluation, now (a cache hit when nothing changed).
         for ident in live_volumes.live_objects(scene):
@@ -307,6 +349,7 @@ def _on_frame_change(scene, depsgraph=None):
 def _on_render_init(scene, *_args):
     if not _evaluating_for_the_operator(scene):
         _Live.rendering = True
+        _Live.unlocked_render_said = False
 
 
 @persistent
@@ -325,6 +368,7 @@ def _on_render_end(scene, *_args):
 def _on_undo_redo(*_args):
     """The runs belong to the state left: cancelled; the state returned to gets its voxels
     (its volume's file is the one it showed then, when the cache still has it)."""
+    follow_live_volumes()  # the state returned to may have live volumes, or none
     scene = bpy.context.scene
     for ident in live_volumes.live_objects(scene):
         _Live.scheduler.cancel(ident)
@@ -346,11 +390,13 @@ def _on_load_pre(*_args):
 def _on_load_post(*_args):
     """A volume whose file is missing (the cache was not saved with the .blend) gets a run."""
     _refresh_shown()
+    follow_live_volumes()
     scene = bpy.context.scene
     for ident, obj in live_volumes.live_objects(scene).items():
+        _Live.scheduler.volume(ident)  # known: the timer keeps ticking for it
         if not all(os.path.exists(p) for p in live_volumes.shown_files(obj)):
             _Live.scheduler.mark_dirty(ident)
-    if _Live.scheduler.active() and not bpy.app.background:
+    if not bpy.app.background:
         _wake()
 
 
@@ -404,13 +450,20 @@ _quiet = []  # set while the operator turns Live on for volumes whose voxels are
 def _switched(obj, context):
     if obj.hyvox_live:
         live_volumes.prepare_for_live(obj, context)
+        follow_live_volumes()
+        # Renders in the window then lock it, so that Live may swap each frame's voxels in.
+        context.scene.render.use_lock_interface = True
+        _Live.scheduler.volume(obj[LIVE_ID])  # known: the timer keeps ticking for it
         if not _quiet:
             request(obj)
+        else:
+            _wake()
         return
     live_dependencies.unfollow(obj)
     ident = obj.get(LIVE_ID)
     if ident:  # the last voxels stay as a baked result
         _forget(ident)
+    follow_live_volumes()
 
 
 def prepare_run(settings, used) -> dict:
@@ -469,18 +522,44 @@ def make_live(objects, results, digests) -> None:
     _refresh_shown()
 
 
-HANDLERS = (
+# The handlers that follow the scene. Blender may call them on its render thread (a render
+# in the window), where Python can crash Blender 3.4 (Python 3.11) while its main thread is
+# inside an operator that Python called (bench/bench_window_render.py counts it). So they
+# are registered only while a live volume exists: a session without one renders as if
+# hyvox were not installed.
+FOLLOWING = (
     ("depsgraph_update_post", _on_depsgraph_update),
     ("frame_change_post", _on_frame_change),
     ("render_init", _on_render_init),
     ("render_complete", _on_render_end),
     ("render_cancel", _on_render_end),
+)
+# The session's handlers, always registered (the main thread only).
+SESSION = (
     ("undo_post", _on_undo_redo),
     ("redo_post", _on_undo_redo),
     ("load_pre", _on_load_pre),
     ("load_post", _on_load_post),
     ("save_post", _on_save_post),
 )
+
+
+def follow_live_volumes() -> bool:
+    """Registers the FOLLOWING handlers while a live volume exists, removes them when none
+    does; returns whether they are registered. Called where volumes go live or stop
+    (the switch, undo and redo, a file loaded), never from inside a FOLLOWING handler:
+    Blender walks those lists while it calls them."""
+    try:
+        wanted = any(obj.hyvox_live for obj in bpy.data.objects)
+    except AttributeError:  # bpy.data is closed while add-ons register: follow until the next
+        wanted = True  # load_post (Blender's start, a file opened) or switch decides
+    for name, handler in FOLLOWING:
+        handlers = getattr(bpy.app.handlers, name)
+        if wanted and handler not in handlers:
+            handlers.append(handler)
+        elif not wanted and handler in handlers:
+            handlers.remove(handler)
+    return wanted
 
 
 def register():
@@ -491,8 +570,9 @@ def register():
         description="Update the voxels by themselves when the sources change (edits, modifiers, transforms, "
         "materials, frames); off: they stay as they are",
     )
-    for name, handler in HANDLERS:
+    for name, handler in SESSION:
         getattr(bpy.app.handlers, name).append(handler)
+    follow_live_volumes()
     atexit.register(_at_exit)
 
 
@@ -501,7 +581,7 @@ def unregister():
     shutdown(session_ends=_quitting())
     if bpy.app.timers.is_registered(_tick):
         bpy.app.timers.unregister(_tick)
-    for name, handler in HANDLERS:
+    for name, handler in FOLLOWING + SESSION:
         handlers = getattr(bpy.app.handlers, name)
         if handler in handlers:
             handlers.remove(handler)
