@@ -95,7 +95,7 @@ struct Output {
     std::vector<SparseGrid::Leaf> leaves;
     std::vector<SparseGrid::Leaf> surface_leaves;  // the surface's voxels whose centre is inside
     std::vector<SparseGrid::TileRun> runs;
-    std::vector<RayCrossings::Crossing> columns[64];  // a brick's rays (surfaceCentres)
+    std::vector<RayCrossings::Crossing> columns[64];  // a column of bricks' rays (decideColumn)
     std::vector<Vec3> centres;
     std::vector<double> windings;
     std::uint64_t uniform_regions = 0, component_decisions = 0, point_evaluations = 0;
@@ -114,6 +114,7 @@ public:
 
     // The bricks [lo, hi): the whole grid, or a region's box (whose surface bricks are all there).
     void run(std::vector<SurfaceBrick>& surface, const Int3& lo, const Int3& hi) {
+        if (field_.rays) decideSurfaceByColumns(surface);
         node(lo, hi, surface.data(), surface.data() + surface.size());
     }
     tbb::enumerable_thread_specific<Output>& outputs() { return outputs_; }
@@ -150,7 +151,7 @@ private:
                 return;
             }
         } else if (single) {
-            decideBrick(lo, first->words);
+            if (!field_.rays) decideBrick(lo, first->words);  // else decided by columns, before
             return;
         }
         // Split every side longer than one brick in half; the surface bricks follow.
@@ -321,9 +322,8 @@ private:
         if (any) into.push_back(leaf);
     }
 
-    // The surface voxels of brick b whose centre is inside, by the rule's own evaluation at each
-    // centre: the signed crossings below it from the brick's 64 rays at once, or the winding
-    // numbers of all of them in one walk of the tree.
+    // The surface voxels of brick b whose centre is inside, by the winding numbers of all of
+    // them in one walk of the tree (by rays: decideSurfaceByColumns).
     void surfaceCentres(const Int3& b, const std::uint64_t surface[8], Output& out) {
         Int3 lo, hi;
         brickVoxels(b, lo, hi);
@@ -339,30 +339,74 @@ private:
                     f(x, n >> 3, n & 7);
                 }
         };
-        if (field_.rays) {
-            const int ni = hi[0] - lo[0], nj = hi[1] - lo[1];
-            field_.rays->columns(lo[0], lo[1], ni, nj, out.columns);
-            forEachWanted([&](int x, int y, int z) {
-                const double centre = lo[2] + z + 0.5;
-                int crossings = 0;
-                for (const RayCrossings::Crossing& c : out.columns[x * nj + y]) crossings += c.z < centre ? c.sign : 0;
-                const double value = field_.parity ? double(crossings & 1) : double(crossings);
-                if (value >= 0.5) leaf.words[x] |= BitGrid::bitMask(y, z);
-            });
-        } else {
-            out.centres.clear();
-            forEachWanted([&](int x, int y, int z) {
-                out.centres.push_back({lo[0] + x + 0.5, lo[1] + y + 0.5, lo[2] + z + 0.5});
-            });
-            out.windings.resize(out.centres.size());
-            field_.winding->atBox(out.centres.data(), out.centres.size(), out.windings.data());
-            out.point_evaluations += out.centres.size();
-            std::size_t n = 0;
-            forEachWanted([&](int x, int y, int z) {
-                if (out.windings[n++] >= 0.5) leaf.words[x] |= BitGrid::bitMask(y, z);
-            });
-        }
+        out.centres.clear();
+        forEachWanted([&](int x, int y, int z) { out.centres.push_back({lo[0] + x + 0.5, lo[1] + y + 0.5, lo[2] + z + 0.5}); });
+        out.windings.resize(out.centres.size());
+        field_.winding->atBox(out.centres.data(), out.centres.size(), out.windings.data());
+        out.point_evaluations += out.centres.size();
+        std::size_t n = 0;
+        forEachWanted([&](int x, int y, int z) {
+            if (out.windings[n++] >= 0.5) leaf.words[x] |= BitGrid::bitMask(y, z);
+        });
         keep(leaf, out.surface_leaves);
+    }
+
+    // The surface bricks by ray crossings: every voxel from the crossings of its own ray below
+    // its centre (exactly the value the rule gives it), the 64 rays of a column of bricks traced
+    // once for all of that column's surface bricks (a ray's crossings do not depend on where it
+    // starts; the rays of one brick would be traced again for every brick above it).
+    void decideSurfaceByColumns(std::vector<SurfaceBrick>& surface) {
+        std::sort(surface.begin(), surface.end(), [](const SurfaceBrick& a, const SurfaceBrick& b) {
+            return a.at[0] != b.at[0] ? a.at[0] < b.at[0] : a.at[1] != b.at[1] ? a.at[1] < b.at[1] : a.at[2] < b.at[2];
+        });
+        std::vector<std::size_t> starts;  // of each column's run of bricks
+        for (std::size_t n = 0; n < surface.size(); ++n)
+            if (n == 0 || surface[n].at[0] != surface[n - 1].at[0] || surface[n].at[1] != surface[n - 1].at[1])
+                starts.push_back(n);
+        starts.push_back(surface.size());
+        tbb::parallel_for(std::size_t(0), starts.size() - 1, [&](std::size_t c) {
+            throwIfInterrupted(interrupter_);
+            decideColumn(surface.data() + starts[c], surface.data() + starts[c + 1]);
+        });
+    }
+
+    // The bricks [first, last) of one column of bricks, ascending in z.
+    void decideColumn(const SurfaceBrick* first, const SurfaceBrick* last) {
+        Output& out = outputs_.local();
+        Int3 lo, hi;
+        brickVoxels(first->at, lo, hi);
+        const int ni = hi[0] - lo[0], nj = hi[1] - lo[1];
+        field_.rays->columns(lo[0], lo[1], ni, nj, out.columns);
+        for (int n = 0; n < ni * nj; ++n)
+            std::sort(out.columns[n].begin(), out.columns[n].end(),
+                      [](const RayCrossings::Crossing& a, const RayCrossings::Crossing& b) { return a.z < b.z; });
+        // Per ray: the next crossing not yet passed, and the signed crossings below it.
+        std::size_t next[64] = {};
+        int below[64] = {};
+        for (const SurfaceBrick* brick = first; brick != last; ++brick) {
+            brickVoxels(brick->at, lo, hi);
+            std::uint64_t inside[8] = {};
+            for (int x = 0; x < ni; ++x)
+                for (int y = 0; y < nj; ++y) {
+                    const int ray = x * nj + y;
+                    const std::vector<RayCrossings::Crossing>& crossings = out.columns[ray];
+                    for (int z = 0; z < hi[2] - lo[2]; ++z) {
+                        const double centre = lo[2] + z + 0.5;
+                        for (; next[ray] < crossings.size() && crossings[next[ray]].z < centre; ++next[ray])
+                            below[ray] += crossings[next[ray]].sign;
+                        const double value = field_.parity ? double(below[ray] & 1) : double(below[ray]);
+                        if (value >= 0.5) inside[x] |= BitGrid::bitMask(y, z);
+                    }
+                }
+            SparseGrid::Leaf off_surface{}, on_surface{};
+            off_surface.brick = on_surface.brick = bricks_.index(brick->at[0], brick->at[1], brick->at[2]);
+            for (int x = 0; x < 8; ++x) {
+                off_surface.words[x] = inside[x] & ~brick->words[x];
+                on_surface.words[x] = inside[x] & brick->words[x];
+            }
+            keep(off_surface, out.leaves);
+            if (centres_on_surface_) keep(on_surface, out.surface_leaves);
+        }
     }
 
     void decideBrick(const Int3& b, const std::uint64_t surface[8]) {
