@@ -210,6 +210,23 @@ TEST(SdfDistances, FacesOnVoxelPlanesAndCentresSlivers) {
     expectExactBand(soup, options, "a wider band");
 }
 
+TEST(SdfDistances, BoundsThatCutTheMeshKeepTheBandInTheGrid) {
+    // Bounds below the mesh's top: triangles reach past the grid's end, where the band's rows
+    // are computed in whole quads; every active voxel lies in the grid and matches the brute
+    // force over the whole mesh. The cuts take the grid's depth through every remainder of 4.
+    const test::TriangleSoup soup = soupOf(test::loadTestMesh(test::meshPath("spot_vcolor.ply")));
+    const Bounds box = validate(soup.view()).bounds;
+    for (int cut = 0; cut < 4; ++cut) {
+        VoxelizeOptions options = sdfOptions(1, Mode::Conservative);
+        const double voxel = (box.max[1] - box.min[1]) / 40.0;
+        options.grid.voxel_size = voxel;
+        Bounds bounds = box;
+        bounds.max[2] = box.min[2] + (17.0 + cut) * voxel;
+        options.grid.bounds = bounds;
+        expectExactBand(soup, options, ("cut after " + std::to_string(17 + cut) + " voxels").c_str());
+    }
+}
+
 // The signs: off the conservative surface, the solid run's own occupancy; on it, the exact
 // winding number at the centre (>= 0.5 inside), where that is not within `margin` of 0.5 (the
 // fast winding numbers' accuracy on open meshes) nor the centre within 1e-3 voxel of the mesh.

@@ -26,56 +26,47 @@ constexpr int kSide = BlockLayout::kSide;
 // One triangle against the rows of a block.
 struct Sweep {
     const DistanceTriangle& t;
-    double reach2;                 // (radius + band)²: rows farther from the centre in xy miss its sphere
-    double radius2, four_radius2;  // the bounding sphere's radius², 4 radius²
-    double hx, hy, hz, h0;         // the height above the plane: hx x + hy y + hz z + h0
+    double band;
+    double reach2;              // (radius + band)²: rows farther from the centre in xy miss its sphere
+    double hx, hy, hz, h0;      // the height above the plane: hx x + hy y + hz z + h0
+    double inverse_hz;          // 1 / hz (0 for a plane parallel to z)
 
-    Sweep(const DistanceTriangle& triangle, double band) : t(triangle) {
+    Sweep(const DistanceTriangle& triangle, double band_voxels) : t(triangle), band(band_voxels) {
         reach2 = (t.radius + band) * (t.radius + band);
-        radius2 = t.radius * t.radius;
-        four_radius2 = 4 * radius2;
         const Vec3& n = t.h_axis;
         const Vec3& c = t.corner[0];
         hx = n[0], hy = n[1], hz = n[2];
+        inverse_hz = hz != 0 ? 1 / hz : 0;
         h0 = -(n[0] * c[0] + n[1] * c[1] + n[2] * c[2]);
     }
 
-    // Narrows [k_lo, k_hi] of row (x, y), whose voxels' best squared distances so far are
-    // row[k - z0], to the voxels the triangle may lower: those with its plane nearer than their
-    // best (|height| < s, s² = best) and its bounding sphere too (|p - c| - r < s, tested
-    // without a root: false exactly when a = |p - c|² - r² - s² >= 0 and a² >= 4 r² s²). The
-    // sphere grown by the band bounds the whole row first. False when none is left.
-    bool narrow(double x, double y, const double* row, int z0, int& k_lo, int& k_hi) const {
-        const double dx = x - t.centre[0], dy = y - t.centre[1], dxy2 = dx * dx + dy * dy;
-        if (dxy2 >= reach2) return false;
+    // Narrows [k_lo, k_hi] of row (x, y) to the voxels whose centres lie in the slab of
+    // half-width band around the triangle's plane (a stretch of 2 band / |hz| along the row),
+    // solved for rather than tested voxel by voxel; false when the row misses the slab or the
+    // bounding sphere grown by the band.
+    bool narrow(double x, double y, int& k_lo, int& k_hi) const {
+        const double dx = x - t.centre[0], dy = y - t.centre[1];
+        if (dx * dx + dy * dy >= reach2) return false;
         const double height_xy = hx * x + hy * y + h0;
-        double lower[kSide];
-        const int count = k_hi - k_lo + 1;
-        const double* best = row + (k_lo - z0);
-        const double z_first = double(k_lo) + 0.5, dz_first = z_first - t.centre[2];
-        for (int m = 0; m < count; ++m) {
-            const double dz = dz_first + m, s2 = best[m];
-            const double a = dxy2 + dz * dz - radius2 - s2;
-            const double height = height_xy + hz * (z_first + m);
-            const bool in_sphere = (a < 0) | (a * a < four_radius2 * s2);
-            lower[m] = (in_sphere & (height * height < s2)) ? 1.0 : 0.0;
-        }
-        int from = 0, to = count - 1;
-        while (from <= to && lower[from] == 0) ++from;
-        while (to >= from && lower[to] == 0) --to;
-        if (from > to) return false;
-        k_hi = k_lo + to;
-        k_lo += from;
-        return true;
+        if (hz == 0) return std::fabs(height_xy) < band;
+        const double a = (-band - height_xy) * inverse_hz, b = (band - height_xy) * inverse_hz;
+        // Centres k + 0.5 in [min(a, b), max(a, b)], a rounding's width more on each side.
+        constexpr double kSlack = 1e-9;
+        const double first = std::ceil(std::min(a, b) - 0.5 - kSlack);
+        const double last = std::floor(std::max(a, b) - 0.5 + kSlack);
+        if (first > double(k_lo)) k_lo = first > double(k_hi) ? k_hi + 1 : int(first);
+        if (last < double(k_hi)) k_hi = last < double(k_lo) ? k_lo - 1 : int(last);
+        return k_lo <= k_hi;
     }
 };
 
 }  // namespace
 
 HYVOX_SDF_CLONES
-void blockDistances(const ValidatedMesh& mesh, const GridSpec& grid, double band, const BandBins& bins,
-                    std::size_t number, double* d2, std::uint64_t& evaluations) {
+std::uint64_t blockDistances(const ValidatedMesh& mesh, const GridSpec& grid, double band, const BandBins& bins,
+                             std::size_t number, double* d2, std::uint64_t& evaluations) {
     std::fill(d2, d2 + kBlockVoxels, band * band);
+    std::uint64_t touched = 0;
     const std::array<std::int32_t, 3> block = BlockLayout(grid).at(bins.blocks[number]);
     const int x0 = kSide * block[0], y0 = kSide * block[1], z0 = kSide * block[2];
     for (std::uint64_t p = bins.start[number]; p < bins.start[number + 1]; ++p) {
@@ -93,12 +84,21 @@ void blockDistances(const ValidatedMesh& mesh, const GridSpec& grid, double band
             for (int j = lo[1]; j <= hi[1]; ++j) {
                 const double x = i + 0.5, y = j + 0.5;
                 int k_lo = lo[2], k_hi = hi[2];
-                double* row = d2 + blockOffset(i - x0, j - y0, 0);
-                if (!sweep.narrow(x, y, row, z0, k_lo, k_hi)) continue;
-                t.minDistance2Along(x, y, k_lo + 0.5, k_hi - k_lo + 1, row + (k_lo - z0));
-                evaluations += std::uint64_t(k_hi - k_lo + 1);
+                if (!sweep.narrow(x, y, k_lo, k_hi)) continue;
+                // Whole quads of the block's row: the loop then runs whole vectors, never a
+                // scalar remainder. The voxels it adds get their true distance to this triangle
+                // too (a voxel's value is the least over any triangles that include its
+                // nearest); those past the grid's end are left out of the leaves.
+                k_lo = z0 + ((k_lo - z0) & ~3);
+                k_hi = z0 + ((k_hi - z0) | 3);
+                const int quads = (k_hi - k_lo + 1) / 4;  // 4 * quads: the compiler sees no remainder
+                t.minDistance2Along(x, y, k_lo + 0.5, 4 * quads, d2 + blockOffset(i - x0, j - y0, k_lo - z0));
+                evaluations += std::uint64_t(4 * quads);
+                for (int bz = (k_lo - z0) >> 3; bz <= (k_hi - z0) >> 3; ++bz)
+                    touched |= std::uint64_t(1) << brickBit((i - x0) >> 3, (j - y0) >> 3, bz);
             }
     }
+    return touched;
 }
 
 }  // namespace hyvox::sdf

@@ -3,11 +3,10 @@
 // One block's distances: for each of its 32³ voxels, the least squared distance (voxel units)
 // from its centre to the block's triangles (BandBins), where that is below band²; band² where
 // none comes nearer. Each triangle is measured only along the rows of the block its band can
-// reach; along each row only over the voxels inside both the triangle's bounding sphere and
-// the slab around its plane, each grown by the band; and of those only at the voxels it may
-// come nearer to than the nearest triangle found so far (its sphere and its plane bound the
-// distance from below), so that where triangles are small and many most of them cost a bound
-// and not a distance.
+// reach, and along each row over the stretch inside the slab of half-width band around its
+// plane, rounded out to whole quads of the row: every distance of the stretch is computed, four
+// at a time, without a test per voxel (a test that skipped the voxels a nearer triangle had
+// already claimed cost more than the distances it saved, as short rows ran scalar remainders).
 #include <cstdint>
 
 #include "hyvox/grid.h"
@@ -21,9 +20,14 @@ constexpr int kBlockVoxels = BlockLayout::kSide * BlockLayout::kSide * BlockLayo
 // The voxel (x, y, z) of a block (each 0..31) at x * 1024 + y * 32 + z.
 inline int blockOffset(int x, int y, int z) { return (x * BlockLayout::kSide + y) * BlockLayout::kSide + z; }
 
+// The block's bricks (4 along each axis) as the bits of one word, (bx * 4 + by) * 4 + bz.
+constexpr int kBlockBricks = BlockLayout::kSide / BrickLayout::kSide;
+static_assert(kBlockBricks * kBlockBricks * kBlockBricks == 64, "a block's bricks are the bits of one word");
+inline int brickBit(int bx, int by, int bz) { return (bx * kBlockBricks + by) * kBlockBricks + bz; }
+
 // Block `number` of `bins` into `d2` (kBlockVoxels values); adds the distances computed to
-// `evaluations`.
-void blockDistances(const ValidatedMesh& mesh, const GridSpec& grid, double band, const BandBins& bins,
-                    std::size_t number, double* d2, std::uint64_t& evaluations);
+// `evaluations`. Returns the bricks where a distance was computed (elsewhere d2 is band²).
+std::uint64_t blockDistances(const ValidatedMesh& mesh, const GridSpec& grid, double band, const BandBins& bins,
+                             std::size_t number, double* d2, std::uint64_t& evaluations);
 
 }  // namespace hyvox::sdf

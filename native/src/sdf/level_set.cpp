@@ -20,7 +20,6 @@ namespace {
 
 using Leaf = LevelSetGrid::Leaf;
 constexpr int kWords = BitGrid::kWordsPerBrick;
-constexpr int kBricksPerBlock = BlockLayout::kSide / BrickLayout::kSide;  // along each axis
 
 std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
 
@@ -46,34 +45,45 @@ struct Chunk {
     std::uint64_t evaluations = 0;
 };
 
-// The bricks of block `block` that hold band voxels, as leaves, from the block's distances.
-void leavesOf(const std::array<std::int32_t, 3>& block, const double* d2, double band2, const GridSpec& grid,
-              const InsideCentres& centres, Chunk& chunk) {
+// The bricks of block `block` that hold band voxels, as leaves, from the block's distances
+// (`touched`: the bricks where a distance may lie below the band, as blockDistances gives them).
+void leavesOf(const std::array<std::int32_t, 3>& block, const double* d2, std::uint64_t touched, double band2,
+              const GridSpec& grid, const InsideCentres& centres, Chunk& chunk) {
     const BrickLayout bricks = grid.bricks();
-    for (int bx = 0; bx < kBricksPerBlock; ++bx)
-        for (int by = 0; by < kBricksPerBlock; ++by)
-            for (int bz = 0; bz < kBricksPerBlock; ++bz) {
-                const std::array<std::int32_t, 3> b{block[0] * kBricksPerBlock + bx, block[1] * kBricksPerBlock + by,
-                                                    block[2] * kBricksPerBlock + bz};
-                if (8 * b[0] >= grid.dims[0] || 8 * b[1] >= grid.dims[1] || 8 * b[2] >= grid.dims[2]) continue;
-                auto distance2 = [&](int v) {
-                    return d2[blockOffset(8 * bx + (v >> 6), 8 * by + ((v >> 3) & 7), 8 * bz + (v & 7))];
-                };
-                Leaf leaf{};
-                for (int v = 0; v < 512; ++v)
-                    if (distance2(v) < band2) leaf.active[v >> 6] |= std::uint64_t(1) << (v & 63);
-                if (countOf(leaf.active) == 0) continue;  // its inside, if any, is the inside pass's (below)
-                leaf.brick = bricks.index(b[0], b[1], b[2]);
-                leaf.first = chunk.values.size();
-                insideWords(centres, leaf.brick, leaf.inside);
-                for (int w = 0; w < kWords; ++w)
-                    for (std::uint64_t bits = leaf.active[w]; bits; bits &= bits - 1) {
-                        const int v = w * 64 + __builtin_ctzll(bits);
-                        const float distance = float(std::sqrt(distance2(v)) * grid.voxel_size);
-                        chunk.values.push_back((leaf.inside[w] >> (v & 63)) & 1 ? -distance : distance);
-                    }
-                chunk.leaves.push_back(leaf);
+    for (; touched; touched &= touched - 1) {
+        const int bit = __builtin_ctzll(touched);
+        const int bx = bit / (kBlockBricks * kBlockBricks), by = (bit / kBlockBricks) % kBlockBricks,
+                  bz = bit % kBlockBricks;
+        const std::array<std::int32_t, 3> b{block[0] * kBlockBricks + bx, block[1] * kBlockBricks + by,
+                                            block[2] * kBlockBricks + bz};
+        if (8 * b[0] >= grid.dims[0] || 8 * b[1] >= grid.dims[1] || 8 * b[2] >= grid.dims[2]) continue;
+        // Voxel (x, y, z) of the brick: its row of 8 along z is contiguous in the block.
+        auto row = [&](int x, int y) { return d2 + blockOffset(8 * bx + x, 8 * by + y, 8 * bz); };
+        // The distances may reach past the grid's end along z (blockDistances).
+        const int nz = std::min(8, grid.dims[2] - 8 * b[2]);
+        Leaf leaf{};
+        std::uint64_t any = 0;
+        for (int x = 0; x < 8; ++x) {
+            std::uint64_t word = 0;
+            for (int y = 0; y < 8; ++y) {
+                const double* r = row(x, y);
+                for (int z = 0; z < 8; ++z) word |= std::uint64_t(r[z] < band2 && z < nz) << (8 * y + z);
             }
+            leaf.active[x] = word;
+            any |= word;
+        }
+        if (!any) continue;  // its inside, if any, is the inside pass's (below)
+        leaf.brick = bricks.index(b[0], b[1], b[2]);
+        leaf.first = chunk.values.size();
+        insideWords(centres, leaf.brick, leaf.inside);
+        for (int x = 0; x < 8; ++x)
+            for (std::uint64_t bits = leaf.active[x]; bits; bits &= bits - 1) {
+                const int v = __builtin_ctzll(bits);
+                const float distance = float(std::sqrt(row(x, v >> 3)[v & 7]) * grid.voxel_size);
+                chunk.values.push_back((leaf.inside[x] >> v) & 1 ? -distance : distance);
+            }
+        chunk.leaves.push_back(leaf);
+    }
 }
 
 // Sorted runs, adjacent ones joined.
@@ -103,7 +113,7 @@ LevelSetGrid makeLevelSet(const ValidatedMesh& mesh, const GridSpec& grid, const
     // Every brick of a reached block a leaf of 512 floats: an upper bound of the grid as OpenVDB
     // (and Blender) will hold it.
     const std::uint64_t reached_bricks =
-        std::uint64_t(bins.blocks.size()) * kBricksPerBlock * kBricksPerBlock * kBricksPerBlock;
+        std::uint64_t(bins.blocks.size()) * kBlockBricks * kBlockBricks * kBlockBricks;
     const std::uint64_t need = reached_bricks * (sizeof(Leaf) + 512 * sizeof(float)) + bins.byteSize();
     if (need > left)
         throw ResourceError("the sdf's band needs about " + mib(need) + " beside " + mib(held_bytes) +
@@ -117,8 +127,8 @@ LevelSetGrid makeLevelSet(const ValidatedMesh& mesh, const GridSpec& grid, const
         tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t number) {
             throwIfInterrupted(interrupter);
             double* d2 = scratch.local().data();
-            blockDistances(mesh, grid, band, bins, number, d2, chunks[number].evaluations);
-            leavesOf(blocks.at(bins.blocks[number]), d2, band * band, grid, centres, chunks[number]);
+            const std::uint64_t touched = blockDistances(mesh, grid, band, bins, number, d2, chunks[number].evaluations);
+            leavesOf(blocks.at(bins.blocks[number]), d2, touched, band * band, grid, centres, chunks[number]);
         });
     });
     throwIfInterrupted(interrupter);
