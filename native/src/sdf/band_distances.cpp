@@ -27,9 +27,9 @@ constexpr int kSide = BlockLayout::kSide;
 struct Sweep {
     const DistanceTriangle& t;
     double band;
-    double reach2;              // (radius + band)²: rows farther from the centre in xy miss its sphere
-    double hx, hy, hz, h0;      // the height above the plane: hx x + hy y + hz z + h0
-    double inverse_hz;          // 1 / hz (0 for a plane parallel to z)
+    double reach2;          // (radius + band)²: rows farther from the centre in xy miss its sphere
+    double hx, hy, hz, h0;  // the height above the plane: hx x + hy y + hz z + h0
+    double inverse_hz;      // 1 / hz (0 for a plane parallel to z)
 
     Sweep(const DistanceTriangle& triangle, double band_voxels) : t(triangle), band(band_voxels) {
         reach2 = (t.radius + band) * (t.radius + band);

@@ -112,8 +112,7 @@ LevelSetGrid makeLevelSet(const ValidatedMesh& mesh, const GridSpec& grid, const
         arena.execute([&] { return binBand(mesh, grid, band, left, options.memoryBudgetMib(), interrupter); });
     // Every brick of a reached block a leaf of 512 floats: an upper bound of the grid as OpenVDB
     // (and Blender) will hold it.
-    const std::uint64_t reached_bricks =
-        std::uint64_t(bins.blocks.size()) * kBlockBricks * kBlockBricks * kBlockBricks;
+    const std::uint64_t reached_bricks = std::uint64_t(bins.blocks.size()) * kBlockBricks * kBlockBricks * kBlockBricks;
     const std::uint64_t need = reached_bricks * (sizeof(Leaf) + 512 * sizeof(float)) + bins.byteSize();
     if (need > left)
         throw ResourceError("the sdf's band needs about " + mib(need) + " beside " + mib(held_bytes) +
@@ -127,7 +126,8 @@ LevelSetGrid makeLevelSet(const ValidatedMesh& mesh, const GridSpec& grid, const
         tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t number) {
             throwIfInterrupted(interrupter);
             double* d2 = scratch.local().data();
-            const std::uint64_t touched = blockDistances(mesh, grid, band, bins, number, d2, chunks[number].evaluations);
+            const std::uint64_t touched =
+                blockDistances(mesh, grid, band, bins, number, d2, chunks[number].evaluations);
             leavesOf(blocks.at(bins.blocks[number]), d2, touched, band * band, grid, centres, chunks[number]);
         });
     });
