@@ -35,7 +35,7 @@ SECTIONS = [
         "to Volume with Fill Volume) on the same grid, and against libigl's fast winding numbers at every voxel "
         "centre. On open meshes OpenVDB's sign flood has no closed surface to follow; the brute-force winding "
         "number says who is right (the checks table).",
-        ["solid", "solid_three_way", "solid_three_way_checks", "solid_winding", "solid_disagreements"],
+        ["solid", "solid_three_way", "solid_three_way_checks", "solid_winding", "solid_disagreements", "open_sampling"],
     ),
     (
         "The signed distance grid against OpenVDB",

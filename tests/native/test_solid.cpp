@@ -17,10 +17,13 @@
 #include "hyvox/sparse_grid.h"
 #include "hyvox/voxelize.h"
 #include "solid/brick_samples.h"
+#include "solid/edge_closure.h"
 #include "solid/fast_winding.h"
+#include "solid/fill_inside.h"
 #include "solid/local_expansion.h"
 #include "solid/ray_crossings.h"
 #include "solid/sheet_sum.h"
+#include "solid/sheet_winding.h"
 #include "support/mesh_arrays.h"
 #include "support/test_mesh_loader.h"
 
@@ -622,7 +625,8 @@ TEST(SolidWinding, BrickSamplesAreTheBoxesPointsAndMatchTheExactSum) {
     ASSERT_TRUE(grid.dims[1] % 8 != 0 && grid.dims[2] % 8 != 0) << "the test wants bricks cut by the grid's end";
     const solid::FastWinding fast(validated, grid, 2.0);
     const solid::RayCrossings rays(validated, grid);
-    const solid::BrickSamples forward(fast, rays, grid.dims), backward(fast, rays, grid.dims);
+    const solid::TreeLessCrossings less(fast);
+    const solid::BrickSamples forward(less, rays, grid.dims), backward(less, rays, grid.dims);
     using Int3 = std::array<std::int32_t, 3>;
     std::vector<Int3> points;  // every brick box's corners and middle (repeated: shared corners)
     std::vector<Int3> halved;  // corners of a halved box that are neither
@@ -698,7 +702,8 @@ TEST(SolidWinding, BrickSamplesAskedByManyThreadsEqualOneThreads) {
     for (const std::int32_t x : axis[0])
         for (const std::int32_t y : axis[1])
             for (const std::int32_t z : axis[2]) candidates.push_back({x, y, z});
-    const solid::BrickSamples alone(fast, rays, grid.dims), shared(fast, rays, grid.dims);
+    const solid::TreeLessCrossings less(fast);
+    const solid::BrickSamples alone(less, rays, grid.dims), shared(less, rays, grid.dims);
     std::vector<double> expected(candidates.size(), NAN);
     std::vector<char> expected_found(candidates.size());
     for (std::size_t n = 0; n < candidates.size(); ++n) expected_found[n] = alone.find(candidates[n], expected[n]);
@@ -877,6 +882,149 @@ TEST(SolidWinding, OpenRoomMatchesTheExactWindingNumber) {
             }
     EXPECT_GT(inside, 1000);
     EXPECT_GT(outside, 1000);
+}
+
+// An open box of side 24 voxels, each face cut into 32 × 32 squares (10240 triangles), its top
+// left open (128 open edges: the rule samples it from their sheets); `shift` moves it off the
+// lattice of voxel columns, which with shift 0 its rim runs along: the columns through the rim
+// pass through open edges, where the sheets' sum is undefined.
+struct OpenBox {
+    std::vector<float> positions;
+    std::vector<std::uint32_t> triangles;
+    GridOptions grid;
+    explicit OpenBox(double shift) {
+        constexpr int kCuts = 32;
+        constexpr double kSide = 1.0;
+        auto face = [&](const std::array<double, 3>& corner, const std::array<double, 3>& u,
+                        const std::array<double, 3>& v) {
+            const auto base = std::uint32_t(positions.size() / 3);
+            for (int a = 0; a <= kCuts; ++a)
+                for (int b = 0; b <= kCuts; ++b)
+                    for (int k = 0; k < 3; ++k)
+                        positions.push_back(float(corner[k] + (u[k] * a + v[k] * b) * kSide / kCuts));
+            for (int a = 0; a < kCuts; ++a)
+                for (int b = 0; b < kCuts; ++b) {
+                    const std::uint32_t p = base + std::uint32_t(a * (kCuts + 1) + b);
+                    triangles.insert(triangles.end(), {p, p + kCuts + 1, p + kCuts + 2, p, p + kCuts + 2, p + 1});
+                }
+        };
+        face({0, 0, 0}, {0, 1, 0}, {1, 0, 0});  // the bottom, facing down
+        face({0, 0, 0}, {1, 0, 0}, {0, 0, 1});  // y = 0
+        face({0, 1, 0}, {0, 0, 1}, {1, 0, 0});  // y = 1
+        face({0, 0, 0}, {0, 0, 1}, {0, 1, 0});  // x = 0
+        face({1, 0, 0}, {0, 1, 0}, {0, 0, 1});  // x = 1
+        // Voxels of 1/24: with shift 0 the sides' planes run through voxel centres (x and y
+        // 2.5 and 26.5 voxels from the origin).
+        grid.voxel_size = kSide / 24;
+        const double at = -(2.5 + shift) * kSide / 24;
+        grid.origin = std::array<double, 3>{at, at, at};
+    }
+    MeshView view() const { return test::viewOf(positions, triangles); }
+};
+
+// The voxels off the surface (every `stride`-th along the grid's order) against the exact
+// winding number (those within 0.05 of 0.5 left out), sampled from the sheets and from the tree.
+void expectBothSamplingsExact(const MeshView& view, const GridOptions& grid_options, int stride) {
+    VoxelizeOptions options;
+    options.grid = grid_options;
+    const VoxelizeResult surface = voxelize(view, options);
+    options.mode = Mode::Solid;
+    const ValidatedMesh validated = validate(view);
+    const solid::EdgeClosure closure = solid::checkEdges(validated, surface.grid);
+    ASSERT_FALSE(closure.open_edges.empty());
+    const VoxelTriangles exact(validated, surface.grid);
+    const auto dims = surface.grid.dims;
+    std::vector<double> windings;
+    for (int i = 0; i < dims[0]; ++i)
+        for (int j = 0; j < dims[1]; ++j)
+            for (int k = 0; k < dims[2]; ++k) {
+                const bool checked = windings.size() % std::size_t(stride) == 0 && !surface.occupancy.test(i, j, k);
+                windings.push_back(checked ? exact.winding({i + 0.5, j + 0.5, k + 0.5}) : NAN);
+            }
+    for (const auto sampling : {solid::OpenSampling::Tree, solid::OpenSampling::Sheets}) {
+        const bool sheets = sampling == solid::OpenSampling::Sheets;
+        SCOPED_TRACE(sheets ? "sheets" : "tree");
+        SolidStats stats;
+        const SparseGrid inside = solid::fillInside(validated, surface.grid, surface.occupancy, options, closure,
+                                                    nullptr, stats, nullptr, sampling);
+        EXPECT_EQ(stats.evaluation, sheets ? "sheets of the open edges" : "fast winding numbers");
+        int counted[2] = {0, 0};
+        std::size_t n = 0;
+        for (int i = 0; i < dims[0]; ++i)
+            for (int j = 0; j < dims[1]; ++j)
+                for (int k = 0; k < dims[2]; ++k) {
+                    const double w = windings[n++];
+                    if (std::isnan(w) || std::fabs(w - 0.5) < 0.05) continue;
+                    ASSERT_EQ(inside.test(i, j, k), w >= 0.5) << i << "," << j << "," << k << " w " << w;
+                    ++counted[w >= 0.5];
+                }
+        EXPECT_GT(counted[0], 500);
+        EXPECT_GT(counted[1], 500);
+    }
+}
+
+TEST(SolidWinding, SheetsAndTreeBothGiveTheExactWindingNumber) {
+    const test::TestMesh bunny = test::loadTestMesh(test::meshPath("bunny_stanford_69k.ply"));
+    const MeshView bunny_view = test::viewOf(bunny.positions, bunny.triangles);
+    const ValidatedMesh validated = validate(bunny_view);
+    GridOptions bunny_grid;
+    bunny_grid.resolution = 32;
+    {
+        SCOPED_TRACE("bunny");
+        const solid::EdgeClosure closure = solid::checkEdges(validated, makeGrid(validated.bounds, bunny_grid));
+        EXPECT_TRUE(solid::bySheets(closure.open_edges.size(), validated.usable.size()));
+        expectBothSamplingsExact(bunny_view, bunny_grid, 5);
+    }
+    for (const double shift : {0.0, 0.3}) {
+        SCOPED_TRACE("open box, shift " + std::to_string(shift));
+        const OpenBox box(shift);
+        expectBothSamplingsExact(box.view(), box.grid, 1);
+    }
+}
+
+// The sheets' sum at points of the open box's voxel columns against the exact w - c: off the
+// rim every point by the sheets; on the lattice, the columns through the rim undefined, their
+// first points by the exact sum, the rest by the tree, built then; shifted off it, none.
+TEST(SolidWinding, SheetsUndefinedOnTheRimTakeTheExactSumThenTheTree) {
+    for (const double shift : {0.0, 0.3}) {
+        SCOPED_TRACE("shift " + std::to_string(shift));
+        const OpenBox box(shift);
+        const ValidatedMesh validated = validate(box.view());
+        const GridSpec grid = makeGrid(validated.bounds, box.grid);
+        const solid::EdgeClosure closure = solid::checkEdges(validated, grid);
+        ASSERT_EQ(closure.open_edges.size(), 128u);
+        const solid::GradientBound bound(closure.open_edges);
+        const solid::SheetWinding sheets(validated, grid, bound, 2.0);
+        const solid::RayCrossings rays(validated, grid);
+        const VoxelTriangles exact(validated, grid);
+        std::vector<solid::RayCrossings::Crossing> column;
+        double worst = 0;
+        int points = 0;
+        for (int i = 0; i < grid.dims[0]; i += 1)
+            for (int j = 0; j < grid.dims[1]; j += 1) {
+                rays.column(i, j, column);
+                // Heights off the surface: between the bottom (2.5 + shift) and the rim's height
+                // (26.5 + shift), and above it.
+                for (const double z : {9.25, 17.75, 29.25}) {
+                    const solid::Vec3 q{i + 0.5, j + 0.5, z};
+                    const int below = solid::crossingsBelow(column, z);
+                    double less;
+                    sheets.at(&q, &below, 1, false, &less);
+                    worst = std::max(worst, std::fabs(less - (exact.winding(q) - below)));
+                    ++points;
+                }
+            }
+        EXPECT_GT(points, 2000);
+        if (shift == 0.0) {
+            EXPECT_GT(sheets.undefinedPoints(), solid::SheetWinding::kExactPoints);
+            EXPECT_TRUE(sheets.treeBuilt());
+            EXPECT_LT(worst, 0.05);  // the tree's accuracy, where it takes over
+        } else {
+            EXPECT_EQ(sheets.undefinedPoints(), 0u);
+            EXPECT_FALSE(sheets.treeBuilt());
+            EXPECT_LT(worst, 1e-4);  // float sheets
+        }
+    }
 }
 
 }  // namespace

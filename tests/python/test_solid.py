@@ -20,6 +20,9 @@ from shapes import icosphere
 
 CLOSED_FILES = ["happy_buddha_100k.ply", "armadillo_52k.ply", "igea_cyberware_268k.ply.gz", "spot_vcolor.ply"]
 OPEN_FILES = ["bunny_stanford_69k.ply", "shark_holes.ply", "elephant_holes.ply", "spider_messy.ply"]
+# How each open file's winding numbers are sampled: from its open edges' sheets when they are
+# few against its triangles (the bunny: 223 against 69k), else from the fast winding tree.
+OPEN_FILE_SAMPLING = {"bunny_stanford_69k.ply": "sheets of the open edges"}
 RESOLUTION = 64
 SAMPLES = 800  # centres the brute force checks per mesh file (all of them for the small shapes)
 
@@ -212,7 +215,8 @@ def test_open_mesh_files_match_brute_force_winding(mesh_dir, name):
     _, _, w = check_against_brute_force(vertices, triangles, 48, samples=SAMPLES, seed=len(name))
     assert (w >= 0.55).any() and (w <= 0.45).any()  # the sample sees inside and outside
     auto = hyvox.voxelize(vertices, triangles, resolution=48, mode="solid").stats["solid"]
-    assert auto["inside_rule"] == "winding" and auto["evaluation"] == "fast winding numbers"
+    assert auto["inside_rule"] == "winding"
+    assert auto["evaluation"] == OPEN_FILE_SAMPLING.get(name, "fast winding numbers")
     assert auto["reason"].startswith("auto: not closed") and auto["boundary_edges"] > 0
 
 

@@ -137,8 +137,9 @@ struct MemoryEstimateStats {
 /// of the grid was decided per region instead of per voxel.
 struct SolidStats {
     std::string inside_rule;  ///< "parity" or "winding": the rule that ran
-    /// "ray crossings" (parity, or the winding number of a closed mesh as their signed sum) or
-    /// "fast winding numbers" (Barill et al. 2018)
+    /// "ray crossings" (parity, or the winding number of a closed mesh as their signed sum),
+    /// "fast winding numbers" (Barill et al. 2018), or "sheets of the open edges" (an open
+    /// mesh's winding numbers as its ray crossings less the open edges' sheets: few open edges)
     std::string evaluation;
     std::string reason;  ///< why (the option, or auto's finding)
     /// Edges after welding identical positions: used by one triangle, by more than two, or by

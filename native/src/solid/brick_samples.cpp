@@ -46,7 +46,7 @@ std::int32_t BrickSamples::Axis::middleIndex(std::int32_t c) const {
     return middleOf(c / 8) == c ? c / 8 : -1;
 }
 
-BrickSamples::BrickSamples(const FastWinding& winding, const RayCrossings& rays, const Int3& dims)
+BrickSamples::BrickSamples(const WindingLessCrossings& winding, const RayCrossings& rays, const Int3& dims)
     : winding_(winding), rays_(rays) {
     for (int d = 0; d < 3; ++d) {
         axes_[std::size_t(d)].dims = dims[std::size_t(d)];
@@ -148,8 +148,8 @@ void BrickSamples::evaluate(const Int3& b, Block& out) const {
     out.evaluated = points.size();
     if (points.empty()) return;
     std::vector<double> w(points.size());
-    winding_.atBox(points.data(), points.size(), w.data());
-    for (std::size_t n = 0; n < points.size(); ++n) out.values[slots[n]] = w[n] - below[n];
+    winding_.at(points.data(), below.data(), points.size(), true, w.data());
+    for (std::size_t n = 0; n < points.size(); ++n) out.values[slots[n]] = w[n];
 }
 
 }  // namespace hyvox::solid

@@ -23,8 +23,8 @@
 #include <memory>
 #include <vector>
 
-#include "solid/fast_winding.h"
 #include "solid/ray_crossings.h"
+#include "solid/winding_less_crossings.h"
 
 namespace hyvox::solid {
 
@@ -41,7 +41,7 @@ int crossingsBelow(const std::vector<RayCrossings::Crossing>& column, double h);
 class BrickSamples {
 public:
     using Int3 = std::array<std::int32_t, 3>;
-    BrickSamples(const FastWinding& winding, const RayCrossings& rays, const Int3& dims);
+    BrickSamples(const WindingLessCrossings& winding, const RayCrossings& rays, const Int3& dims);
     ~BrickSamples();
     BrickSamples(const BrickSamples&) = delete;
     BrickSamples& operator=(const BrickSamples&) = delete;
@@ -81,7 +81,7 @@ private:
     const Block& block(const Int3& b) const;
     void evaluate(const Int3& b, Block& out) const;
 
-    const FastWinding& winding_;
+    const WindingLessCrossings& winding_;
     const RayCrossings& rays_;
     std::array<Axis, 3> axes_;
     Int3 blocks_{};  // blocks along each axis

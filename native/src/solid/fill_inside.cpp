@@ -16,6 +16,7 @@
 #include "solid/fast_winding.h"
 #include "solid/gradient_bound.h"
 #include "solid/ray_crossings.h"
+#include "solid/sheet_winding.h"
 #include "solid/smooth_winding.h"
 
 namespace hyvox::solid {
@@ -44,20 +45,26 @@ bool octant(const Int3& lo, const Int3& hi, const Int3& mid, int n, Int3& child_
 
 // The inside test of the chosen rule: a value compared with 0.5, and how fast it may change.
 struct InsideField {
-    const FastWinding* winding = nullptr;  // one of these two
+    // By ray crossings: their parity, or their signed sum (a closed mesh's exact winding number).
     const RayCrossings* rays = nullptr;
-    bool parity = false;  // rays: their parity (else their signed sum, the exact winding number)
+    bool parity = false;
+    // Else by winding numbers: a closed mesh's from the tree (the winding rule asked), or an
+    // open mesh's brick by brick.
+    const FastWinding* winding = nullptr;
+    const SmoothWinding* smooth = nullptr;
     const GradientBound* bound = nullptr;
-    const SmoothWinding* smooth = nullptr;  // winding numbers of an open mesh, brick by brick
 
     double value(int i, int j, int k) const {
-        if (winding) return winding->at({i + 0.5, j + 0.5, k + 0.5});
-        const int crossings = rays->at(i, j, k);
-        return parity ? double(crossings & 1) : double(crossings);
+        if (rays) {
+            const int crossings = rays->at(i, j, k);
+            return parity ? double(crossings & 1) : double(crossings);
+        }
+        if (smooth) return smooth->windingAt(i, j, k);
+        return winding->at({i + 0.5, j + 0.5, k + 0.5});
     }
     double slope(const Box& box, double limit) const {
-        if (winding) return bound->windingSlope(box, limit);
-        return bound->parityMayChange(box) ? HUGE_VAL : 0.0;
+        if (rays) return bound->parityMayChange(box) ? HUGE_VAL : 0.0;
+        return bound->windingSlope(box, limit);
     }
     // Whether a value found at one point could hold over the box (holds() below) if it lay
     // kLikelyMargin from 0.5, and then (`slope_bound`) the slope bound over the box. Asked before
@@ -340,7 +347,8 @@ private:
                 }
         };
         out.centres.clear();
-        forEachWanted([&](int x, int y, int z) { out.centres.push_back({lo[0] + x + 0.5, lo[1] + y + 0.5, lo[2] + z + 0.5}); });
+        forEachWanted(
+            [&](int x, int y, int z) { out.centres.push_back({lo[0] + x + 0.5, lo[1] + y + 0.5, lo[2] + z + 0.5}); });
         out.windings.resize(out.centres.size());
         field_.winding->atBox(out.centres.data(), out.centres.size(), out.windings.data());
         out.point_evaluations += out.centres.size();
@@ -505,6 +513,10 @@ std::string edgeFinding(const EdgeClosure& c) {
 
 }  // namespace
 
+// A point costs a term per open edge against a walk of the tree, and the sheets need no
+// build (bench/results/open_sampling: both ways on the shared open meshes).
+bool bySheets(std::size_t open_edges, std::size_t triangles) { return open_edges * 64 <= triangles; }
+
 bool insideByRays(const EdgeClosure& closure, const VoxelizeOptions& options) {
     return options.solid.inside == InsideRule::Parity ||
         (options.solid.inside == InsideRule::Auto && closure.open_edges.empty());
@@ -521,7 +533,7 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
 
 SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
                       const VoxelizeOptions& options, const EdgeClosure& closure, Interrupter* interrupter,
-                      SolidStats& stats, SparseGrid* surface_inside) {
+                      SolidStats& stats, SparseGrid* surface_inside, OpenSampling sampling) {
     // Everything here runs on the options' threads (the sorts and the trees' builds included).
     const int threads = options.threads > 0 ? options.threads : tbb::task_arena::automatic;
     tbb::task_arena arena(threads);
@@ -550,23 +562,41 @@ SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const Spa
         stats.reason = "auto: not closed and consistently oriented (" + edgeFinding(closure) + ")";
 
     const GradientBound bound(closure.open_edges);
+    // An open mesh's winding numbers come from its rays (their integer part) and the smooth rest
+    // (solid/smooth_winding.h), sampled from the open edges' sheets or from the fast winding tree.
+    const bool open = !by_rays && !bound.empty();
+    const bool by_sheets = open &&
+        (sampling == OpenSampling::Rule ? bySheets(bound.edgeCount(), mesh.usable.size())
+                                        : sampling == OpenSampling::Sheets);
+    if (by_sheets) stats.evaluation = "sheets of the open edges";
     std::unique_ptr<FastWinding> winding;
     std::unique_ptr<RayCrossings> rays;
-    std::unique_ptr<SmoothWinding> smooth;
-    // The fast winding tree and the rays (for parity and closed meshes; for the winding numbers
-    // of an open mesh, their integer part) are independent: built side by side.
+    // The fast winding tree and the rays are independent: built side by side.
     arena.execute([&] {
         tbb::parallel_invoke(
             [&] {
-                if (!by_rays) winding = std::make_unique<FastWinding>(mesh, grid, options.solid.winding_beta);
+                if (!by_rays && !by_sheets)
+                    winding = std::make_unique<FastWinding>(mesh, grid, options.solid.winding_beta);
             },
             [&] {
-                if (by_rays || !bound.empty()) rays = std::make_unique<RayCrossings>(mesh, grid);
+                if (by_rays || open) rays = std::make_unique<RayCrossings>(mesh, grid);
             });
     });
-    if (winding && rays) smooth = std::make_unique<SmoothWinding>(*winding, *rays, bound, grid.dims);
-    const InsideField field{winding.get(), winding ? nullptr : rays.get(), rule == InsideRule::Parity, &bound,
-                            smooth.get()};
+    std::unique_ptr<WindingLessCrossings> less;
+    std::unique_ptr<SmoothWinding> smooth;
+    if (open) {
+        if (by_sheets)
+            less = std::make_unique<SheetWinding>(mesh, grid, bound, options.solid.winding_beta);
+        else
+            less = std::make_unique<TreeLessCrossings>(*winding);
+        smooth = std::make_unique<SmoothWinding>(*less, *rays, bound, grid.dims);
+    }
+    InsideField field;
+    field.rays = by_rays ? rays.get() : nullptr;
+    field.parity = rule == InsideRule::Parity;
+    field.winding = winding.get();
+    field.smooth = smooth.get();
+    field.bound = &bound;
 
     // The surface's bricks, tiles included (every voxel of a tile is surface).
     static const std::uint64_t kAllSet[8] = {~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull, ~0ull};

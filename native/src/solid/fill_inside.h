@@ -15,6 +15,8 @@
 //  - everything else is tested voxel by voxel.
 // Decided boxes become tiles (runs of whole bricks), so memory follows the surface.
 // Why it is built this way, and what an open mesh costs: docs/why/solid.md.
+#include <cstddef>
+
 #include "hyvox/interrupter.h"
 #include "hyvox/mesh.h"
 #include "hyvox/options.h"
@@ -34,11 +36,19 @@ namespace hyvox::solid {
 SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
                       const VoxelizeOptions& options, Interrupter* interrupter, SolidStats& stats,
                       SparseGrid* surface_inside = nullptr);
+// How an open mesh's winding numbers are sampled (solid/winding_less_crossings.h): from the
+// open edges' sheets or the fast winding tree, by the rule (bySheets), or forced (the tests
+// and bench/bench_open_sampling compare the two).
+enum class OpenSampling { Rule, Tree, Sheets };
+// Whether the rule samples an open mesh with `open_edges` open edges from their sheets.
+bool bySheets(std::size_t open_edges, std::size_t triangles);
+
 // The same with the mesh's edge check already made (the dispatcher makes it before any work:
 // it decides which trees this pass builds, and so what memory it needs).
 SparseGrid fillInside(const ValidatedMesh& mesh, const GridSpec& grid, const SparseGrid& surface,
                       const VoxelizeOptions& options, const EdgeClosure& closure, Interrupter* interrupter,
-                      SolidStats& stats, SparseGrid* surface_inside = nullptr);
+                      SolidStats& stats, SparseGrid* surface_inside = nullptr,
+                      OpenSampling sampling = OpenSampling::Rule);
 
 // Whether the inside is decided by ray crossings alone (parity, or auto on a mesh whose edges
 // all cancel); else by fast winding numbers (with the rays' integer part near open edges).

@@ -174,4 +174,11 @@ void GradientBound::sheetsMeeting(const Box& box, std::vector<Sheet>& down, std:
     }
 }
 
+std::vector<GradientBound::Sheet> GradientBound::allSheets() const {
+    std::vector<Sheet> sheets;
+    sheets.reserve(edges_.size());
+    for (const Edge& edge : edges_) sheets.push_back({edge.a, edge.b, double(edge.excess)});
+    return sheets;
+}
+
 }  // namespace hyvox::solid

@@ -47,6 +47,9 @@ public:
         double excess;
     };
     void sheetsMeeting(const Box& box, std::vector<Sheet>& down, std::vector<Sheet>& up) const;
+    // Every open edge as a sheet.
+    std::vector<Sheet> allSheets() const;
+    std::size_t edgeCount() const { return edges_.size(); }
 
 private:
     struct Node {

@@ -86,8 +86,8 @@ private:
 class Brick {
 public:
     // The voxels [lo, top] (top at most lo + 8).
-    Brick(const FastWinding& winding, const RayCrossings& rays, ColumnWindow& window, const BrickSamples& shared,
-          const Int3& lo, const Int3& top, SmoothWinding::Counters& counters)
+    Brick(const WindingLessCrossings& winding, const RayCrossings& rays, ColumnWindow& window,
+          const BrickSamples& shared, const Int3& lo, const Int3& top, SmoothWinding::Counters& counters)
         : winding_(winding), rays_(rays), window_(window), shared_(shared), lo_(lo), top_(top), counters_(counters) {
         std::fill(std::begin(samples_), std::end(samples_), NAN);
     }
@@ -102,24 +102,23 @@ public:
     // (one walk of the tree: FastWinding::atMany, equal to at() bit for bit).
     void sample(const Int3* points, int count) {
         Vec3 lifted[9];
-        int wanted[9];
+        int wanted[9], below[9];
         int n = 0;
         for (int q = 0; q < count; ++q) {
             const Int3& p = points[q];
             double& cached = samples_[local(p)];
             if (!std::isnan(cached) || std::find(wanted, wanted + n, local(p)) != wanted + n) continue;
             if (shared_.find(p, cached)) continue;
-            lifted[n] = {p[0] + 0.5, p[1] + 0.5, sampleHeight(columnOf(p), p[2] + 0.5)};
+            const Column& column = columnOf(p);
+            lifted[n] = {p[0] + 0.5, p[1] + 0.5, sampleHeight(column, p[2] + 0.5)};
+            below[n] = crossingsBelow(column, lifted[n][2]);
             wanted[n++] = local(p);
         }
         if (n == 0) return;
         counters_.point_evaluations += std::uint64_t(n);
         double w[9];
-        winding_.atMany(lifted, std::size_t(n), w);
-        for (int q = 0; q < n; ++q) {
-            const Int3 p{lo_[0] + wanted[q] / 81, lo_[1] + wanted[q] / 9 % 9, lo_[2] + wanted[q] % 9};
-            samples_[wanted[q]] = w[q] - crossingsBelow(columnOf(p), lifted[q][2]);
-        }
+        winding_.at(lifted, below, std::size_t(n), false, w);
+        for (int q = 0; q < n; ++q) samples_[wanted[q]] = w[q];
     }
     bool sampled(const Int3& p) const { return !std::isnan(samples_[local(p)]); }
     // The signed crossings below voxel p's centre, and C, those of the whole line (from the
@@ -132,19 +131,21 @@ public:
         columnOf(p);
         return block_->total[column(p)];
     }
-    // The winding numbers at the centres of `voxels`, into `out`, in one walk of the tree.
+    // The winding numbers at the centres of `voxels`, into `out`, together.
     void exactWindings(const std::vector<Int3>& voxels, std::vector<double>& out) {
         counters_.point_evaluations += voxels.size();
         centres_.resize(voxels.size());
-        for (std::size_t n = 0; n < voxels.size(); ++n)
+        below_centres_.resize(voxels.size());
+        for (std::size_t n = 0; n < voxels.size(); ++n) {
             centres_[n] = {voxels[n][0] + 0.5, voxels[n][1] + 0.5, voxels[n][2] + 0.5};
+            below_centres_[n] = crossings(voxels[n]);
+        }
         out.resize(voxels.size());
         // Enough of them, and one walk of the tree for the box pays (FastWinding::atBox);
         // the choice depends on the brick alone, never on the threads.
-        if (voxels.size() >= kSharedFarField)
-            winding_.atBox(centres_.data(), centres_.size(), out.data());
-        else
-            winding_.atMany(centres_.data(), centres_.size(), out.data());
+        winding_.at(centres_.data(), below_centres_.data(), centres_.size(), voxels.size() >= kSharedFarField,
+                    out.data());
+        for (std::size_t n = 0; n < voxels.size(); ++n) out[n] += below_centres_[n];
     }
 
 private:
@@ -172,7 +173,7 @@ private:
         return block_->columns[column(p)];
     }
 
-    const FastWinding& winding_;
+    const WindingLessCrossings& winding_;
     const RayCrossings& rays_;
     ColumnWindow& window_;  // this thread's
     const BrickSamples& shared_;
@@ -181,6 +182,7 @@ private:
     const ColumnBlock* block_ = nullptr;  // the brick's columns, in the window
     int below_[9 * 9][9];                 // per column, the signed crossings below each of the brick's centres
     std::vector<Vec3> centres_;
+    std::vector<int> below_centres_;
     double samples_[9 * 9 * 9];  // w - c; NaN: not sampled
 };
 
@@ -190,7 +192,7 @@ struct SmoothWinding::ColumnWindows {
     tbb::enumerable_thread_specific<ColumnWindow> per_thread;  // made on a thread's first brick
 };
 
-SmoothWinding::SmoothWinding(const FastWinding& winding, const RayCrossings& rays, const GradientBound& bound,
+SmoothWinding::SmoothWinding(const WindingLessCrossings& winding, const RayCrossings& rays, const GradientBound& bound,
                              const std::array<std::int32_t, 3>& dims)
     : winding_(winding),
       rays_(rays),
@@ -200,6 +202,14 @@ SmoothWinding::SmoothWinding(const FastWinding& winding, const RayCrossings& ray
       windows_(std::make_unique<ColumnWindows>()) {}
 
 SmoothWinding::~SmoothWinding() = default;
+
+double SmoothWinding::windingAt(int i, int j, int k) const {
+    const Vec3 centre{i + 0.5, j + 0.5, k + 0.5};
+    const int below = rays_.at(i, j, k);
+    double less;
+    winding_.at(&centre, &below, 1, false, &less);
+    return below + less;
+}
 
 void SmoothWinding::decideBrick(const std::array<std::int32_t, 3>& lo, const std::array<std::int32_t, 3>& hi,
                                 const std::uint64_t wanted[8], std::uint64_t inside[8], Counters& counters) const {

@@ -29,9 +29,9 @@
 #include <memory>
 
 #include "solid/brick_samples.h"
-#include "solid/fast_winding.h"
 #include "solid/gradient_bound.h"
 #include "solid/ray_crossings.h"
+#include "solid/winding_less_crossings.h"
 
 namespace hyvox::solid {
 
@@ -41,7 +41,7 @@ public:
         std::uint64_t point_evaluations = 0;    // fast winding numbers evaluated
         std::uint64_t interpolated_voxels = 0;  // voxels decided from the interpolated smooth part
     };
-    SmoothWinding(const FastWinding& winding, const RayCrossings& rays, const GradientBound& bound,
+    SmoothWinding(const WindingLessCrossings& winding, const RayCrossings& rays, const GradientBound& bound,
                   const std::array<std::int32_t, 3>& dims);
     ~SmoothWinding();
     // Sets in `inside` the voxels of `wanted` (a brick's bits) whose winding number is at least
@@ -50,9 +50,11 @@ public:
                      const std::uint64_t wanted[8], std::uint64_t inside[8], Counters& counters) const;
     // The fast winding numbers the bricks' shared samples took (BrickSamples), all threads'.
     std::uint64_t sampleEvaluations() const { return samples_.evaluations(); }
+    // The winding number at voxel (i, j, k)'s centre (off the surface).
+    double windingAt(int i, int j, int k) const;
 
 private:
-    const FastWinding& winding_;
+    const WindingLessCrossings& winding_;
     const RayCrossings& rays_;
     const GradientBound& bound_;
     std::array<std::int32_t, 3> dims_;  // the grid's
