@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "solid/ray_crossings.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -15,20 +18,11 @@ constexpr double kLimit = 1099511627776.0;  // 2^40 voxels
 
 __extension__ typedef __int128 Wide;  // exact products of two 61-bit differences
 
-std::int64_t snap(double voxel) {
-    if (!(std::fabs(voxel) < kLimit))
-        throw InvalidInput("solid mode: a vertex lies more than 2^40 voxels from the grid; use a larger voxel size");
-    return std::llround(voxel * kScale);
-}
+constexpr const char* kFarVertex =
+    "solid mode: a vertex lies more than 2^40 voxels from the grid; use a larger voxel size";
 
-// Whether snap() takes every corner of triangle t.
-bool snappable(const ValidatedMesh& mesh, std::uint32_t t, const GridSpec& grid) {
-    for (int c = 0; c < 3; ++c) {
-        const std::array<double, 3> p = grid.toVoxel(mesh.vertex(t, c));
-        if (!(std::fabs(p[0]) < kLimit && std::fabs(p[1]) < kLimit)) return false;
-    }
-    return true;
-}
+// A coordinate within kLimit voxels of the grid, in fixed point.
+std::int64_t snap(double voxel) { return std::llround(voxel * kScale); }
 
 // Twice the signed area of (u, v, p) in xy, exactly.
 Wide orient(std::int64_t ux, std::int64_t uy, std::int64_t vx, std::int64_t vy, std::int64_t px, std::int64_t py) {
@@ -60,49 +54,77 @@ std::int64_t lastRay(std::int64_t hi) {
 
 RayCrossings::RayCrossings(const ValidatedMesh& mesh, const GridSpec& grid) {
     columns_ = {(grid.dims[0] + 7) / 8, (grid.dims[1] + 7) / 8};
-    // Snapped per vertex, so all triangles sharing a vertex share its snapped position.
-    std::vector<std::array<std::int64_t, 2>> snapped(mesh.view.vertex_count);
-    std::vector<double> heights(mesh.view.vertex_count);
-    std::vector<bool> done(mesh.view.vertex_count, false);
+    const MeshView& view = mesh.view;
+    // Snapped per vertex, so all triangles sharing a vertex share its snapped position; those
+    // past the snapping's range marked far.
+    std::vector<std::array<std::int64_t, 2>> snapped(view.vertex_count);
+    std::vector<double> heights(view.vertex_count);
+    std::vector<char> far(view.vertex_count);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, view.vertex_count, 16384), [&](const auto& range) {
+        for (std::size_t v = range.begin(); v != range.end(); ++v) {
+            const float* position = view.positions + 3 * v;
+            const std::array<double, 3> p = grid.toVoxel(std::array<float, 3>{position[0], position[1], position[2]});
+            far[v] = !(std::fabs(p[0]) < kLimit && std::fabs(p[1]) < kLimit);
+            snapped[v] =
+                far[v] ? std::array<std::int64_t, 2>{0, 0} : std::array<std::int64_t, 2>{snap(p[0]), snap(p[1])};
+            heights[v] = p[2];
+        }
+    });
     const std::int64_t grid_x = std::int64_t(grid.dims[0]) << kFractionBits;
     const std::int64_t grid_y = std::int64_t(grid.dims[1]) << kFractionBits;
     // Every triangle, the zero-area ones included: the closure check counts their edges, and
-    // snapped they may cover a sliver of the plane that closes the count.
-    std::size_t next_usable = 0;  // mesh.usable is ascending
-    // Reserved: grown by doubling, the list would hold up to three times its size while it
-    // moves (voxelize/memory_estimate.cpp counts it once).
-    triangles_.reserve(mesh.view.triangle_count);
-    for (std::size_t t = 0; t < mesh.view.triangle_count; ++t) {
-        const bool usable = next_usable < mesh.usable.size() && mesh.usable[next_usable] == t;
-        next_usable += usable ? 1 : 0;
-        // The grid bounds only the usable triangles' vertices: a degenerate one may reach far
-        // past it (a needle to 1e30). Past the snapping's range it is left out rather than the
-        // mesh refused: it has no area (a usable triangle at that vertex is refused in its turn).
-        if (!usable && !snappable(mesh, std::uint32_t(t), grid)) continue;
-        Triangle tri{};
-        const std::uint32_t* corners = mesh.view.triangles + 3 * t;
-        for (int c = 0; c < 3; ++c) {
-            const std::uint32_t v = corners[c];
-            if (!done[v]) {
-                const std::array<double, 3> p = grid.toVoxel(mesh.vertex(std::uint32_t(t), c));
-                snapped[v] = {snap(p[0]), snap(p[1])};
-                heights[v] = p[2];
-                done[v] = true;
+    // snapped they may cover a sliver of the plane that closes the count. In chunks side by
+    // side, each writing the triangles it keeps from its own first one on; the gaps closed
+    // after, so the list holds the triangles in the mesh's order (voxelize/memory_estimate.cpp
+    // counts it once, at the mesh's triangle count).
+    constexpr std::size_t kChunk = 16384;
+    const std::size_t chunks = (view.triangle_count + kChunk - 1) / kChunk;
+    std::vector<std::size_t> kept(chunks, 0);
+    std::vector<char> refused(chunks, 0);
+    triangles_.resize(view.triangle_count);
+    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t chunk) {
+        const std::size_t begin = chunk * kChunk, end = std::min(view.triangle_count, begin + kChunk);
+        // mesh.usable is ascending.
+        auto next_usable = std::lower_bound(mesh.usable.begin(), mesh.usable.end(), std::uint32_t(begin));
+        for (std::size_t t = begin; t < end; ++t) {
+            const bool usable = next_usable != mesh.usable.end() && *next_usable == t;
+            next_usable += usable ? 1 : 0;
+            const std::uint32_t* corners = view.triangles + 3 * t;
+            // The grid bounds only the usable triangles' vertices: a degenerate one may reach far
+            // past it (a needle to 1e30). Past the snapping's range it is left out rather than
+            // the mesh refused: it has no area (a usable triangle at that vertex is refused).
+            if (far[corners[0]] || far[corners[1]] || far[corners[2]]) {
+                if (usable) refused[chunk] = 1;
+                continue;
             }
-            tri.x[c] = snapped[v][0];
-            tri.y[c] = snapped[v][1];
-            tri.z[c] = heights[v];
+            Triangle tri{};
+            for (int c = 0; c < 3; ++c) {
+                const std::uint32_t v = corners[c];
+                tri.x[c] = snapped[v][0];
+                tri.y[c] = snapped[v][1];
+                tri.z[c] = heights[v];
+            }
+            const Wide area = orient(tri.x[0], tri.y[0], tri.x[1], tri.y[1], tri.x[2], tri.y[2]);
+            if (area == 0) continue;  // seen edge-on
+            tri.sign = area < 0 ? 1 : -1;
+            tri.x_lo = std::min({tri.x[0], tri.x[1], tri.x[2]});
+            tri.x_hi = std::max({tri.x[0], tri.x[1], tri.x[2]});
+            tri.y_lo = std::min({tri.y[0], tri.y[1], tri.y[2]});
+            tri.y_hi = std::max({tri.y[0], tri.y[1], tri.y[2]});
+            if (tri.x_hi < 0 || tri.y_hi < 0 || tri.x_lo > grid_x || tri.y_lo > grid_y) continue;  // misses every ray
+            triangles_[begin + kept[chunk]++] = tri;
         }
-        const Wide area = orient(tri.x[0], tri.y[0], tri.x[1], tri.y[1], tri.x[2], tri.y[2]);
-        if (area == 0) continue;  // seen edge-on
-        tri.sign = area < 0 ? 1 : -1;
-        tri.x_lo = std::min({tri.x[0], tri.x[1], tri.x[2]});
-        tri.x_hi = std::max({tri.x[0], tri.x[1], tri.x[2]});
-        tri.y_lo = std::min({tri.y[0], tri.y[1], tri.y[2]});
-        tri.y_hi = std::max({tri.y[0], tri.y[1], tri.y[2]});
-        if (tri.x_hi < 0 || tri.y_hi < 0 || tri.x_lo > grid_x || tri.y_lo > grid_y) continue;  // misses every ray
-        triangles_.push_back(tri);
+    });
+    for (const char refuse : refused)
+        if (refuse) throw InvalidInput(kFarVertex);
+    std::size_t size = 0;
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
+        if (size != chunk * kChunk)
+            std::copy(triangles_.begin() + long(chunk * kChunk),
+                      triangles_.begin() + long(chunk * kChunk + kept[chunk]), triangles_.begin() + long(size));
+        size += kept[chunk];
     }
+    triangles_.resize(size);
     // Each column of 8×8 rays lists the triangles whose xy box meets its rays' range.
     auto columnRange = [&](const Triangle& tri, std::array<std::int32_t, 4>& r) {
         const std::int64_t half = std::int64_t(1) << (kFractionBits - 1);
@@ -181,10 +203,13 @@ template <typename Visit>
 void RayCrossings::forEachCrossing(int i, int j, Visit visit) const {
     const std::int64_t px = rayAt(i), py = rayAt(j);
     const std::size_t column = std::size_t(i >> 3) * std::size_t(columns_[1]) + std::size_t(j >> 3);
+    // The ray's offsets in its bucket, plus 1, as column_rays_ keeps the rays of each triangle's
+    // box: a triangle whose box misses the ray is skipped without reading it.
+    const int ray_i = (i & 7) + 1, ray_j = (j & 7) + 1;
     for (std::uint32_t n = column_start_[column]; n < column_start_[column + 1]; ++n) {
-        const Triangle& t = triangles_[column_triangles_[n]];
-        if (px < t.x_lo || px > t.x_hi || py < t.y_lo || py > t.y_hi) continue;
-        crossing(t, px, py, visit);
+        const std::array<std::uint8_t, 4>& rays = column_rays_[n];
+        if (ray_i < rays[0] || ray_i > rays[1] || ray_j < rays[2] || ray_j > rays[3]) continue;
+        crossing(triangles_[column_triangles_[n]], px, py, visit);
     }
 }
 
