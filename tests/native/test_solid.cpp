@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "hyvox/errors.h"
 #include "hyvox/sparse_grid.h"
 #include "hyvox/voxelize.h"
 #include "solid/brick_samples.h"
@@ -166,6 +167,29 @@ TEST(SolidRays, SharedEdgesAndVerticesOnRaysCountOnce) {
                     checked_on_corner_rays += (i == 8 || j == 8);
                 }
         EXPECT_GT(checked_on_corner_rays, 50);  // voxels whose ray runs through an edge or corner
+    }
+}
+
+// A usable triangle with a vertex past the rays' fixed-point range (2^40 voxels: bounds far
+// smaller than the mesh) is refused with the reason, whichever thread's chunk meets it.
+TEST(SolidRays, UsableVertexPastTheFixedPointRangeIsRefused) {
+    Octahedron oct;
+    const auto far = std::uint32_t(oct.positions.size() / 3);
+    oct.positions.insert(oct.positions.end(), {1e30f, 0, 0, 1e30f, 1, 0, 1e30f, 0, 1});
+    // Many triangles before it, so that it lies in a later chunk than the first.
+    for (int n = 0; n < 40000; ++n) oct.triangles.insert(oct.triangles.end(), {0, 1, 2});
+    oct.triangles.insert(oct.triangles.end(), {far, far + 1, far + 2});
+    VoxelizeOptions solid;
+    solid.mode = Mode::Solid;
+    solid.solid.inside = InsideRule::Parity;
+    solid.grid.bounds =
+        Bounds{{oct.c - oct.r, oct.c - oct.r, oct.c - oct.r}, {oct.c + oct.r, oct.c + oct.r, oct.c + oct.r}};
+    solid.grid.resolution = 12;
+    try {
+        voxelize(test::viewOf(oct.positions, oct.triangles), solid);
+        FAIL() << "the far vertex was taken";
+    } catch (const InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("more than 2^40 voxels from the grid"), std::string::npos) << e.what();
     }
 }
 
