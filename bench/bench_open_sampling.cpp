@@ -113,7 +113,7 @@ int main(int argc, char** argv) try {
         hyvox::Mesh mesh = hyvox::readMesh(path);
         if (levels > 0) mesh = hyvox::test::midpointSubdivide(mesh.view(), levels);
         const std::string label =
-            std::filesystem::path(path).filename().string() + (levels ? spec.substr(spec.rfind(":")) : "");
+            std::filesystem::path(path).filename().string() + (levels ? spec.substr(spec.rfind(':')) : "");
         const hyvox::ValidatedMesh validated = hyvox::validate(mesh.view());
         for (const int resolution : args.resolutions) {
             hyvox::VoxelizeOptions options;
