@@ -80,6 +80,16 @@ MeshBenchArgs parseMeshBenchArgs(int argc, char** argv, const char* usage, const
     return args;
 }
 
+// The same with --out DIR as the one option of the benchmark's own, into `out_dir`.
+inline MeshBenchArgs parseMeshBenchArgs(int argc, char** argv, const char* usage, const char* default_mesh_dir,
+                                        std::string& out_dir) {
+    return parseMeshBenchArgs(argc, argv, usage, default_mesh_dir, [&](const std::string& arg, int& a) {
+        if (arg != "--out") return false;
+        out_dir = optionValue(argc, argv, a);
+        return true;
+    });
+}
+
 // "a,b,,c" -> {"a", "b", "c"}: a comma-separated command-line list, empty items dropped.
 inline std::vector<std::string> splitList(const std::string& text) {
     std::vector<std::string> out;

@@ -37,7 +37,7 @@ constexpr const char* kUsage =
     "usage: bench_open_sampling [--runs R] [--res N]... [--mesh-dir DIR] [--out DIR] [MESH[:x4|:x16]...]\n"
     "  an open mesh's inside pass with its winding numbers sampled from the fast winding tree\n"
     "  and from the open edges' sheets\n"
-    "  --runs R       timed runs of each per case, the median printed (default 5)\n"
+    "  --runs R       timed runs of each per case, the median printed (default 3)\n"
     "  --res N        a resolution (repeatable; default 128, 256 and 512)\n"
     "  --mesh-dir DIR where mesh names without a '/' are read (default $HYVOX_MESH_DIR or the\n"
     "                 project's meshes)\n"
@@ -70,18 +70,12 @@ std::uint64_t differing(const hyvox::SparseGrid& a, const hyvox::SparseGrid& b) 
 int main(int argc, char** argv) try {
     std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
     hyvox::bench::MeshBenchArgs args =
-        hyvox::bench::parseMeshBenchArgs(argc, argv, kUsage, HYVOX_BENCH_MESH_DIR, [&](const std::string& arg, int& a) {
-            if (arg != "--out") return false;
-            out_dir = hyvox::bench::optionValue(argc, argv, a);
-            return true;
-        });
+        hyvox::bench::parseMeshBenchArgs(argc, argv, kUsage, HYVOX_BENCH_MESH_DIR, out_dir);
     if (args.resolutions.empty()) args.resolutions = {128, 256, 512};
     if (args.files.empty())
         args.files = {"bunny_stanford_69k.ply", "shark_holes.ply", "elephant_holes.ply", "bunny_stanford_69k.ply:x16",
                       "sponza_crytek_262k_vcolor.ply.gz"};
-    bool runs_given = false;
-    for (int a = 1; a < argc; ++a) runs_given = runs_given || std::string(argv[a]) == "--runs";
-    const int runs = runs_given ? args.runs : 5;
+    const int runs = args.runs;
     hyvox::bench::ResultTable table("open_sampling",
                                     "An open mesh's winding numbers from the fast winding tree and from the open "
                                     "edges' sheets",

@@ -160,11 +160,7 @@ constexpr const char* kUsage =
 int main(int argc, char** argv) try {
     std::string out_dir = HYVOX_BENCH_RESULTS_DIR;
     hyvox::bench::MeshBenchArgs args =
-        hyvox::bench::parseMeshBenchArgs(argc, argv, kUsage, HYVOX_BENCH_MESH_DIR, [&](const std::string& arg, int& a) {
-            if (arg != "--out") return false;
-            out_dir = hyvox::bench::optionValue(argc, argv, a);
-            return true;
-        });
+        hyvox::bench::parseMeshBenchArgs(argc, argv, kUsage, HYVOX_BENCH_MESH_DIR, out_dir);
     if (args.resolutions.empty()) args.resolutions = {128, 256, 512, 1024};
     if (args.files.empty())
         args.files = {"spot_vcolor.ply", "happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz",
