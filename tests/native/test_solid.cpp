@@ -5,10 +5,12 @@
 // winding numbers (one point at a time, and a box of points at once with a local expansion)
 // against the exact sum of solid angles.
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
 #include <thread>
@@ -1007,47 +1009,93 @@ TEST(SolidWinding, SheetsAndTreeBothGiveTheExactWindingNumber) {
 }
 
 // The sheets' sum at points of the open box's voxel columns against the exact w - c: off the
-// rim every point by the sheets; on the lattice, the columns through the rim undefined, their
-// first points by the exact sum, the rest by the tree, built then; shifted off it, none.
-TEST(SolidWinding, SheetsUndefinedOnTheRimTakeTheExactSumThenTheTree) {
-    for (const double shift : {0.0, 0.3}) {
-        SCOPED_TRACE("shift " + std::to_string(shift));
-        const OpenBox box(shift);
-        const ValidatedMesh validated = validate(box.view());
-        const GridSpec grid = makeGrid(validated.bounds, box.grid);
-        const solid::EdgeClosure closure = solid::checkEdges(validated, grid);
-        ASSERT_EQ(closure.open_edges.size(), 128u);
-        const solid::GradientBound bound(closure.open_edges);
-        const solid::SheetWinding sheets(validated, grid, bound, 2.0);
-        const solid::RayCrossings rays(validated, grid);
-        const VoxelTriangles exact(validated, grid);
-        std::vector<solid::RayCrossings::Crossing> column;
-        double worst = 0;
-        int points = 0;
-        for (int i = 0; i < grid.dims[0]; i += 1)
-            for (int j = 0; j < grid.dims[1]; j += 1) {
-                rays.column(i, j, column);
-                // Heights off the surface: between the bottom (2.5 + shift) and the rim's height
-                // (26.5 + shift), and above it.
-                for (const double z : {9.25, 17.75, 29.25}) {
-                    const solid::Vec3 q{i + 0.5, j + 0.5, z};
-                    const int below = solid::crossingsBelow(column, z);
-                    double less;
-                    sheets.at(&q, &below, 1, false, &less);
-                    worst = std::max(worst, std::fabs(less - (exact.winding(q) - below)));
-                    ++points;
+// rim every point by the sheets; on the lattice, the columns through the rim undefined (each
+// counted beforehand), their points by the exact sum, or by the tree, built then, when the
+// budget for the exact sum is 0; shifted off it, none.
+TEST(SolidWinding, SheetsUndefinedOnTheRimTakeTheExactSumOrTheTree) {
+    for (const double shift : {0.0, 0.3})
+        for (const std::uint64_t exact_work : {std::numeric_limits<std::uint64_t>::max(), std::uint64_t(0)}) {
+            SCOPED_TRACE("shift " + std::to_string(shift) + ", exact work " + std::to_string(exact_work));
+            const OpenBox box(shift);
+            const ValidatedMesh validated = validate(box.view());
+            const GridSpec grid = makeGrid(validated.bounds, box.grid);
+            const solid::EdgeClosure closure = solid::checkEdges(validated, grid);
+            ASSERT_EQ(closure.open_edges.size(), 128u);
+            const solid::GradientBound bound(closure.open_edges);
+            const solid::SheetWinding sheets(validated, grid, bound, 2.0, exact_work);
+            const solid::RayCrossings rays(validated, grid);
+            const VoxelTriangles exact(validated, grid);
+            std::vector<solid::RayCrossings::Crossing> column;
+            double worst = 0;
+            int points = 0, undefined_columns = 0;
+            for (int i = 0; i < grid.dims[0]; i += 1)
+                for (int j = 0; j < grid.dims[1]; j += 1) {
+                    rays.column(i, j, column);
+                    const std::uint64_t undefined_before = sheets.undefinedPoints();
+                    // Heights off the surface: between the bottom (2.5 + shift) and the rim's
+                    // height (26.5 + shift), and above it.
+                    for (const double z : {9.25, 17.75, 29.25}) {
+                        const solid::Vec3 q{i + 0.5, j + 0.5, z};
+                        const int below = solid::crossingsBelow(column, z);
+                        double less;
+                        sheets.at(&q, &below, 1, false, &less);
+                        worst = std::max(worst, std::fabs(less - (exact.winding(q) - below)));
+                        ++points;
+                    }
+                    undefined_columns += sheets.undefinedPoints() > undefined_before;
                 }
+            EXPECT_GT(points, 2000);
+            EXPECT_GE(sheets.undefinedColumns(), std::uint64_t(undefined_columns));
+            if (shift == 0.0) {
+                EXPECT_EQ(sheets.exactWhereUndefined(), exact_work > 0);
+                EXPECT_GT(undefined_columns, 90);  // the rim, 4 sides of 24 voxels
+                EXPECT_EQ(sheets.treeBuilt(), exact_work == 0);
+                EXPECT_LT(worst, exact_work > 0 ? 1e-4 : 0.05);  // float sheets; the tree's accuracy
+            } else {
+                EXPECT_EQ(sheets.undefinedColumns(), 0u);
+                EXPECT_EQ(sheets.undefinedPoints(), 0u);
+                EXPECT_FALSE(sheets.treeBuilt());
+                EXPECT_LT(worst, 1e-4);  // float sheets
             }
-        EXPECT_GT(points, 2000);
-        if (shift == 0.0) {
-            EXPECT_GT(sheets.undefinedPoints(), solid::SheetWinding::kExactPoints);
-            EXPECT_TRUE(sheets.treeBuilt());
-            EXPECT_LT(worst, 0.05);  // the tree's accuracy, where it takes over
-        } else {
-            EXPECT_EQ(sheets.undefinedPoints(), 0u);
-            EXPECT_FALSE(sheets.treeBuilt());
-            EXPECT_LT(worst, 1e-4);  // float sheets
         }
+}
+
+// The solid voxels of open meshes sampled from the sheets are the same on one thread and on
+// two: the bunny (no column through an open edge) and the open box on the lattice (its rim's
+// columns undefined, taken by the exact sum or the tree as decided beforehand, not by which
+// thread comes first).
+TEST(SolidWinding, SheetsGiveTheSameVoxelsOnAnyNumberOfThreads) {
+    const test::TestMesh bunny = test::loadTestMesh(test::meshPath("bunny_stanford_69k.ply"));
+    GridOptions bunny_grid;
+    bunny_grid.resolution = 64;
+    const OpenBox box(0.0);
+    const std::vector<std::pair<MeshView, GridOptions>> cases{
+        {test::viewOf(bunny.positions, bunny.triangles), bunny_grid}, {box.view(), box.grid}};
+    for (const auto& [view, grid_options] : cases) {
+        VoxelizeOptions options;
+        options.grid = grid_options;
+        const VoxelizeResult surface = voxelize(view, options);
+        options.mode = Mode::Solid;
+        const ValidatedMesh validated = validate(view);
+        const solid::EdgeClosure closure = solid::checkEdges(validated, surface.grid);
+        auto insideOn = [&](int threads) {
+            tbb::task_arena arena(threads);
+            return arena.execute([&] {
+                SolidStats stats;
+                return solid::fillInside(validated, surface.grid, surface.occupancy, options, closure, nullptr, stats,
+                                         nullptr, solid::OpenSampling::Sheets);
+            });
+        };
+        const SparseGrid one = insideOn(1), two = insideOn(2);
+        std::size_t inside = 0;
+        const auto dims = surface.grid.dims;
+        for (int i = 0; i < dims[0]; ++i)
+            for (int j = 0; j < dims[1]; ++j)
+                for (int k = 0; k < dims[2]; ++k) {
+                    ASSERT_EQ(one.test(i, j, k), two.test(i, j, k)) << i << "," << j << "," << k;
+                    inside += one.test(i, j, k);
+                }
+        EXPECT_GT(inside, 1000u);
     }
 }
 

@@ -3,7 +3,9 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "solid/solid_angle_sum.h"
 
@@ -15,10 +17,50 @@ namespace {
 // re-stores them rarely.
 constexpr double kBlock = 64;
 
+// Twice sheet_sum.cpp's tie distance: the count must not miss a column the float test poisons.
+constexpr double kNearEdge = 2e-3;
+
+// The voxel columns (i + 0.5, j + 0.5) of the grid, and of a brick's width around it where
+// samples may lie, within kNearEdge of the open edges in xy (the sheets are in voxel space),
+// an edge's and another's counted apart: row by row, the edge's stretch inside the row's
+// band of half-width kNearEdge, widened by it.
+std::uint64_t columnsNearEdges(const std::vector<GradientBound::Sheet>& sheets, const GridSpec& grid) {
+    constexpr double kMargin = 8;
+    const double lo_i = -kMargin, hi_i = grid.dims[0] + kMargin, lo_j = -kMargin, hi_j = grid.dims[1] + kMargin;
+    std::uint64_t columns = 0;
+    for (const auto& sheet : sheets) {
+        const auto& a = sheet.a;
+        const auto& b = sheet.b;
+        const double first_row = std::max(lo_j, std::ceil(std::min(a[1], b[1]) - kNearEdge - 0.5));
+        const double last_row = std::min(hi_j - 1, std::floor(std::max(a[1], b[1]) + kNearEdge - 0.5));
+        for (double j = first_row; j <= last_row; ++j) {
+            const double y = j + 0.5, dy = b[1] - a[1];
+            double t0 = 0, t1 = 1;
+            if (std::fabs(dy) > 0) {
+                t0 = (y - kNearEdge - a[1]) / dy, t1 = (y + kNearEdge - a[1]) / dy;
+                if (t0 > t1) std::swap(t0, t1);
+                t0 = std::max(t0, 0.0), t1 = std::min(t1, 1.0);
+            }
+            const double x0 = a[0] + t0 * (b[0] - a[0]), x1 = a[0] + t1 * (b[0] - a[0]);
+            const double first = std::max(lo_i, std::ceil(std::min(x0, x1) - kNearEdge - 0.5));
+            const double last = std::min(hi_i - 1, std::floor(std::max(x0, x1) + kNearEdge - 0.5));
+            if (last >= first) columns += std::uint64_t(last - first + 1);
+        }
+    }
+    return columns;
+}
+
 }  // namespace
 
-SheetWinding::SheetWinding(const ValidatedMesh& mesh, const GridSpec& grid, const GradientBound& bound, double beta)
-    : mesh_(mesh), grid_(grid), beta_(beta), sheets_(bound.allSheets()) {}
+SheetWinding::SheetWinding(const ValidatedMesh& mesh, const GridSpec& grid, const GradientBound& bound, double beta,
+                           std::uint64_t exact_work)
+    : mesh_(mesh),
+      grid_(grid),
+      beta_(beta),
+      sheets_(bound.allSheets()),
+      undefined_columns_(columnsNearEdges(sheets_, grid)),
+      exact_where_undefined_(double(undefined_columns_) * grid.dims[2] * double(mesh.usable.size()) <=
+                             double(exact_work)) {}
 
 SheetWinding::~SheetWinding() = default;
 
@@ -61,8 +103,8 @@ void SheetWinding::at(const Vec3* points, const int* below, std::size_t count, b
         if (std::isnan(out[n])) undefined.push_back(n);
     }
     if (undefined.empty()) return;
-    const std::uint64_t before = undefined_points_.fetch_add(undefined.size(), std::memory_order_relaxed);
-    if (before + undefined.size() <= kExactPoints) {
+    undefined_points_.fetch_add(undefined.size(), std::memory_order_relaxed);
+    if (exact_where_undefined_) {
         for (const std::size_t n : undefined) out[n] = exactWinding(points[n]) - below[n];
         return;
     }

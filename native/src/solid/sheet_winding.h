@@ -7,10 +7,13 @@
 // tree a walk of thousands of nodes and triangles after a build of n log n: for a mesh with
 // few open edges and many triangles (a sculpt, a scan with a hole at its base) the sheets
 // are cheaper. Where a point's column passes within 1e-3 voxel of an open edge in xy the
-// sheets' sum is not defined (the rays' tie-breaking decides there): the first
-// kExactPoints such points take the exact sum of every triangle's solid angle, any further
-// ones the fast winding numbers' tree, built then (a mesh whose open edges run along the
-// voxel columns' centre lines has many).
+// sheets' sum is not defined (the rays' tie-breaking decides there). Such points take the
+// exact sum of every triangle's solid angle when the columns near the open edges are few
+// enough for that sum to cost at most `exact_work` triangles' solid angles (each column's
+// points counted as the grid's height: an upper bound in practice), otherwise the fast
+// winding numbers' tree, built when the first of them comes (a mesh whose open edges run
+// along the voxel columns' centre lines has many). Decided once, from the geometry, so
+// the answer does not depend on which thread asks first.
 #include <array>
 #include <atomic>
 #include <cmath>
@@ -31,10 +34,17 @@ namespace hyvox::solid {
 
 class SheetWinding final : public WindingLessCrossings {
 public:
-    static constexpr std::uint64_t kExactPoints = 256;
-    SheetWinding(const ValidatedMesh& mesh, const GridSpec& grid, const GradientBound& bound, double beta);
+    // About the work of building the tree over 130k triangles: on one core the build over the
+    // Buddha's 100k costs as much as 1.2e7 triangles' solid angles, over the 871k dragon 9e7.
+    static constexpr std::uint64_t kExactWork = std::uint64_t(1) << 24;
+    SheetWinding(const ValidatedMesh& mesh, const GridSpec& grid, const GradientBound& bound, double beta,
+                 std::uint64_t exact_work = kExactWork);
     ~SheetWinding() override;
     void at(const Vec3* points, const int* below, std::size_t count, bool together, double* out) const override;
+    // The columns (at most) where the sheets' sum is not defined, and whether their points take
+    // the exact sum (else the tree).
+    std::uint64_t undefinedColumns() const { return undefined_columns_; }
+    bool exactWhereUndefined() const { return exact_where_undefined_; }
     // The points the sheets could not take (all threads'), and whether the tree was built.
     std::uint64_t undefinedPoints() const { return undefined_points_.load(std::memory_order_relaxed); }
     bool treeBuilt() const { return tree_ != nullptr; }
@@ -48,6 +58,8 @@ private:
     const GridSpec& grid_;
     double beta_;
     std::vector<GradientBound::Sheet> sheets_;
+    std::uint64_t undefined_columns_;
+    bool exact_where_undefined_;
     // Each thread's sheets, stored relative to a corner near its points (SheetSum keeps them in
     // floats): re-stored when a point lies in another block of kBlock³ voxels.
     struct Local {
