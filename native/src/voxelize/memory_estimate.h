@@ -13,8 +13,9 @@
 // tile's bits are all touched (a surface crosses nearly every 2 MiB page of them), and the
 // solid pass's trees take per triangle what their nodes do (fast winding numbers, ray
 // columns). What the surface and the solid hold is unknown until they are made: the surface's
-// leaves and voxels are estimated from the triangles' area in voxel units, the inside's bricks
-// from the mesh's enclosed volume.
+// leaves are counted on large grids (the mesh voxelized on the grid of the bricks) and
+// estimated from the triangles' area in voxel units on small ones, its voxels from the area,
+// the inside's bricks from the mesh's enclosed volume.
 #include <cstdint>
 #include <string>
 
