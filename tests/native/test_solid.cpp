@@ -948,15 +948,35 @@ struct OpenBox {
     MeshView view() const { return test::viewOf(positions, triangles); }
 };
 
+// What solid::fillInside takes for a mesh on a grid: the solid options, the surface voxels,
+// the validated mesh and its edge check.
+struct InsideInputs {
+    VoxelizeOptions options;
+    VoxelizeResult surface;
+    ValidatedMesh validated;
+    solid::EdgeClosure closure;
+    InsideInputs(const MeshView& view, const GridOptions& grid_options)
+        : options(withGrid(grid_options)),
+          surface(voxelize(view, options)),
+          validated(validate(view)),
+          closure(solid::checkEdges(validated, surface.grid)) {
+        options.mode = Mode::Solid;
+    }
+    static VoxelizeOptions withGrid(const GridOptions& grid_options) {
+        VoxelizeOptions options;
+        options.grid = grid_options;
+        return options;
+    }
+};
+
 // The voxels off the surface (every `stride`-th along the grid's order) against the exact
 // winding number (those within 0.05 of 0.5 left out), sampled from the sheets and from the tree.
 void expectBothSamplingsExact(const MeshView& view, const GridOptions& grid_options, int stride) {
-    VoxelizeOptions options;
-    options.grid = grid_options;
-    const VoxelizeResult surface = voxelize(view, options);
-    options.mode = Mode::Solid;
-    const ValidatedMesh validated = validate(view);
-    const solid::EdgeClosure closure = solid::checkEdges(validated, surface.grid);
+    const InsideInputs in(view, grid_options);
+    const VoxelizeOptions& options = in.options;
+    const VoxelizeResult& surface = in.surface;
+    const ValidatedMesh& validated = in.validated;
+    const solid::EdgeClosure& closure = in.closure;
     ASSERT_FALSE(closure.open_edges.empty());
     const VoxelTriangles exact(validated, surface.grid);
     const auto dims = surface.grid.dims;
@@ -1072,23 +1092,18 @@ TEST(SolidWinding, SheetsGiveTheSameVoxelsOnAnyNumberOfThreads) {
     const std::vector<std::pair<MeshView, GridOptions>> cases{
         {test::viewOf(bunny.positions, bunny.triangles), bunny_grid}, {box.view(), box.grid}};
     for (const auto& [view, grid_options] : cases) {
-        VoxelizeOptions options;
-        options.grid = grid_options;
-        const VoxelizeResult surface = voxelize(view, options);
-        options.mode = Mode::Solid;
-        const ValidatedMesh validated = validate(view);
-        const solid::EdgeClosure closure = solid::checkEdges(validated, surface.grid);
+        const InsideInputs in(view, grid_options);
         auto insideOn = [&](int threads) {
             tbb::task_arena arena(threads);
             return arena.execute([&] {
                 SolidStats stats;
-                return solid::fillInside(validated, surface.grid, surface.occupancy, options, closure, nullptr, stats,
-                                         nullptr, solid::OpenSampling::Sheets);
+                return solid::fillInside(in.validated, in.surface.grid, in.surface.occupancy, in.options, in.closure,
+                                         nullptr, stats, nullptr, solid::OpenSampling::Sheets);
             });
         };
         const SparseGrid one = insideOn(1), two = insideOn(2);
         std::size_t inside = 0;
-        const auto dims = surface.grid.dims;
+        const auto dims = in.surface.grid.dims;
         for (int i = 0; i < dims[0]; ++i)
             for (int j = 0; j < dims[1]; ++j)
                 for (int k = 0; k < dims[2]; ++k) {

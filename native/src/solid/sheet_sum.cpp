@@ -14,8 +14,7 @@ namespace {
 
 constexpr std::size_t kLanes = 8;  // the sheets are padded to a multiple of this
 constexpr double kTwoPi = 2.0 * M_PI;
-// The column through a point passing this close to an edge in xy (voxels): see at().
-constexpr float kTie = 1e-3f;
+constexpr float kTie = SheetSum::kTie;
 
 // The sheet (b, a, a + ∞z, b + ∞z) (up -1: to -∞z) subtends the solid angle of the spherical
 // triangle of the directions to b, to a and up (down): by van Oosterom & Strackee,

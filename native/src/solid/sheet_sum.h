@@ -19,6 +19,8 @@ namespace hyvox::solid {
 
 class SheetSum {
 public:
+    // A column through a point passing this close to an edge in xy (voxels) makes at() NaN.
+    static constexpr float kTie = 1e-3f;
     // The sheets of `sheets` (above their edges, or below them when `upward`), seen from points
     // near `origin`, an integer point of voxel space.
     void assign(const std::vector<GradientBound::Sheet>& sheets, bool upward, const std::array<double, 3>& origin);

@@ -17,8 +17,8 @@ namespace {
 // re-stores them rarely.
 constexpr double kBlock = 64;
 
-// Twice sheet_sum.cpp's tie distance: the count must not miss a column the float test poisons.
-constexpr double kNearEdge = 2e-3;
+// Twice the sheets' tie distance: the count must not miss a column their float test poisons.
+constexpr double kNearEdge = 2.0 * SheetSum::kTie;
 
 // The voxel columns (i + 0.5, j + 0.5) of the grid, and of a brick's width around it where
 // samples may lie, within kNearEdge of the open edges in xy (the sheets are in voxel space),
