@@ -25,6 +25,8 @@
 #include "hyvox/hyvox.h"
 #include "hyvox/vdb.h"
 #include "io/vdb_grid.h"
+#include "sdf/band_bins.h"
+#include "sdf/band_distances.h"
 #include "solid/fast_winding.h"
 #include "support/temp_dir.h"
 #include "support/test_mesh_loader.h"
@@ -225,6 +227,76 @@ TEST(SdfDistances, BoundsThatCutTheMeshKeepTheBandInTheGrid) {
         options.grid.bounds = bounds;
         expectExactBand(soup, options, ("cut after " + std::to_string(17 + cut) + " voxels").c_str());
     }
+}
+
+// Every block of the band computed both ways, its small triangles swept and (wherever it has
+// any) queried (sdf/band_queries.h), against the brute-force distance at every voxel of the
+// grid: below the band, within 1e-5 voxel; beyond it, band² exactly. Counts the blocks
+// queried into `queried_blocks`.
+void expectBlocksMatchTheBruteForce(const test::TriangleSoup& soup, const VoxelizeOptions& options, const char* what,
+                                    int& queried_blocks) {
+    SCOPED_TRACE(what);
+    const ValidatedMesh validated = validate(soup.view());
+    VoxelizeOptions surface = options;
+    surface.attributes = {};
+    const GridSpec grid = voxelize(soup.view(), surface).grid;
+    const Oracle oracle(validated, grid);
+    const double band = options.sdf.band;
+    const sdf::BandBins bins = sdf::binBand(validated, grid, band, std::uint64_t(1) << 32, 4096, nullptr);
+    const sdf::BlockLayout blocks(grid);
+    std::vector<double> swept(sdf::kBlockVoxels), queried(sdf::kBlockVoxels);
+    sdf::BlockQueries queries;
+    queried_blocks = 0;
+    for (std::size_t number = 0; number < bins.blocks.size(); ++number) {
+        std::uint64_t evaluations = 0;
+        sdf::blockDistances(validated, grid, band, bins, number, swept.data(), evaluations, nullptr);
+        sdf::blockDistances(validated, grid, band, bins, number, queried.data(), evaluations, &queries, 0.0);
+        queried_blocks += queries.triangleCount() > 0;
+        const std::array<std::int32_t, 3> block = blocks.at(bins.blocks[number]);
+        constexpr int kSide = sdf::BlockLayout::kSide;
+        for (int x = 0; x < kSide; ++x)
+            for (int y = 0; y < kSide; ++y)
+                for (int z = 0; z < kSide; ++z) {
+                    const int i = kSide * block[0] + x, j = kSide * block[1] + y, k = kSide * block[2] + z;
+                    if (i >= grid.dims[0] || j >= grid.dims[1] || k >= grid.dims[2]) continue;
+                    const double d = oracle.distance(i, j, k, band + 1.0);
+                    if (std::fabs(d - band) < 1e-9) continue;
+                    for (const double d2 : {swept[std::size_t(sdf::blockOffset(x, y, z))],
+                                            queried[std::size_t(sdf::blockOffset(x, y, z))]}) {
+                        if (d > band)
+                            ASSERT_EQ(d2, band * band) << i << "," << j << "," << k;
+                        else
+                            ASSERT_NEAR(std::sqrt(d2), d, 1e-5) << i << "," << j << "," << k;
+                    }
+                }
+    }
+}
+
+TEST(SdfDistances, QueriedAndSweptBlocksMatchTheBruteForceDistance) {
+    // Spot at 24 and the spider at 16: triangles smaller than a voxel, bands of 2, 3 and 5.
+    for (const int band : {2, 3, 5}) {
+        for (const auto& [name, resolution] : {std::pair{"spot_vcolor.ply", 24}, std::pair{"spider_messy.ply", 16}}) {
+            const std::string what = std::string(name) + ", band " + std::to_string(band);
+            int queried_blocks = 0;
+            expectBlocksMatchTheBruteForce(soupOf(test::loadTestMesh(test::meshPath(name))),
+                                           sdfOptions(resolution, Mode::Conservative, band), what.c_str(),
+                                           queried_blocks);
+            EXPECT_GT(queried_blocks, 0) << what;
+        }
+    }
+    // Slivers, a needle and a triangle that is a point (queried: the only small one) beside
+    // a box's faces on voxel planes and through voxel centres.
+    test::TriangleSoup soup;
+    soup.addBox({2.0, 2.5, 3.0}, {9.0, 7.5, 11.0});
+    soup.add({3.0, 12.0, 2.0}, {11.0, 12.0000001, 9.0}, {7.0, 12.00000005, 5.5});
+    soup.add({1.0, 1.0, 13.0}, {12.0, 13.0, 13.5}, {12.0, 13.0, 13.5000001});
+    soup.add({14.0, 2.0, 2.0}, {14.0, 2.0, 2.0}, {14.0, 2.0, 2.0000001});
+    soup.add({5.3, 9.1, 4.2}, {5.9, 9.4, 4.25}, {5.5, 9.8, 4.9});
+    VoxelizeOptions options = sdfOptions(1, Mode::Conservative, 3);
+    options.grid.voxel_size = 1.0;
+    int queried_blocks = 0;
+    expectBlocksMatchTheBruteForce(soup, options, "box, slivers, needle, point", queried_blocks);
+    EXPECT_GT(queried_blocks, 0);
 }
 
 // The signs: off the conservative surface, the solid run's own occupancy; on it, the exact

@@ -113,7 +113,14 @@ LevelSetGrid makeLevelSet(const ValidatedMesh& mesh, const GridSpec& grid, const
     // Every brick of a reached block a leaf of 512 floats: an upper bound of the grid as OpenVDB
     // (and Blender) will hold it.
     const std::uint64_t reached_bricks = std::uint64_t(bins.blocks.size()) * kBlockBricks * kBlockBricks * kBlockBricks;
-    const std::uint64_t need = reached_bricks * (sizeof(Leaf) + 512 * sizeof(float)) + bins.byteSize();
+    // Each thread's queries hold up to its block's triangles (the most any block has).
+    std::uint64_t most_in_a_block = 0;
+    for (std::size_t n = 0; n < bins.blocks.size(); ++n)
+        most_in_a_block = std::max(most_in_a_block, bins.start[n + 1] - bins.start[n]);
+    const std::uint64_t threads = std::min<std::uint64_t>(std::uint64_t(arena.max_concurrency()), bins.blocks.size());
+    const std::uint64_t queries_bytes =
+        threads * (most_in_a_block * BlockQueries::kBytesPerTriangle + BlockQueries::bytesAtMost(band));
+    const std::uint64_t need = reached_bricks * (sizeof(Leaf) + 512 * sizeof(float)) + bins.byteSize() + queries_bytes;
     if (need > left)
         throw ResourceError("the sdf's band needs about " + mib(need) + " beside " + mib(held_bytes) +
                             " held, more than the memory budget of " + std::to_string(options.memoryBudgetMib()) +
@@ -121,13 +128,18 @@ LevelSetGrid makeLevelSet(const ValidatedMesh& mesh, const GridSpec& grid, const
 
     const BlockLayout blocks(grid);
     std::vector<Chunk> chunks(bins.blocks.size());
-    tbb::enumerable_thread_specific<std::vector<double>> scratch([] { return std::vector<double>(kBlockVoxels); });
+    struct Scratch {
+        std::vector<double> d2 = std::vector<double>(kBlockVoxels);
+        BlockQueries queries;
+    };
+    tbb::enumerable_thread_specific<Scratch> scratch;
     arena.execute([&] {
         tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t number) {
             throwIfInterrupted(interrupter);
-            double* d2 = scratch.local().data();
+            Scratch& mine = scratch.local();
+            double* d2 = mine.d2.data();
             const std::uint64_t touched =
-                blockDistances(mesh, grid, band, bins, number, d2, chunks[number].evaluations);
+                blockDistances(mesh, grid, band, bins, number, d2, chunks[number].evaluations, &mine.queries);
             leavesOf(blocks.at(bins.blocks[number]), d2, touched, band * band, grid, centres, chunks[number]);
         });
     });

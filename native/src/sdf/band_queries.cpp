@@ -1,0 +1,262 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "sdf/band_queries.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sdf/band_distances.h"
+
+namespace hyvox::sdf {
+namespace {
+
+constexpr int kSide = BlockLayout::kSide;
+
+// Cells around the block on each side: a small triangle within the band of a block's voxel
+// centre has its centroid less than band + 1/2 voxels outside the block.
+int marginFor(double band) { return int(std::ceil(band)) + 1; }
+
+Vec3 centroidOf(const std::array<Vec3, 3>& c) {
+    return {(c[0][0] + c[1][0] + c[2][0]) / 3.0, (c[0][1] + c[1][1] + c[2][1]) / 3.0,
+            (c[0][2] + c[1][2] + c[2][2]) / 3.0};
+}
+
+// How far a point is from the interval [lo, hi] (0 inside it).
+double gap(double point, double lo, double hi) { return std::max({lo - point, 0.0, point - hi}); }
+
+// Bits first..last (each clamped to 0..63) of a word.
+std::uint64_t bitsBetween(int first, int last) {
+    first = std::max(first, 0);
+    last = std::min(last, 63);
+    if (first > last) return 0;
+    const std::uint64_t upto = last == 63 ? ~std::uint64_t(0) : (std::uint64_t(1) << (last + 1)) - 1;
+    return upto & ~((std::uint64_t(1) << first) - 1);
+}
+
+void grow(std::array<double, 6>& box, const std::array<Vec3, 3>& corners) {
+    for (const Vec3& corner : corners)
+        for (int a = 0; a < 3; ++a) {
+            box[std::size_t(a)] = std::min(box[std::size_t(a)], corner[a]);
+            box[std::size_t(a + 3)] = std::max(box[std::size_t(a + 3)], corner[a]);
+        }
+}
+constexpr std::array<double, 6> kEmptyBox{HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+
+}  // namespace
+
+bool BlockQueries::fits(double band) { return kSide + 2 * marginFor(band) <= 64; }
+
+// A triangle's corners, cell key and place in the order, a whole pack (at most: an octant of
+// one triangle), and a cell and an octant (at most).
+const std::size_t BlockQueries::kBytesPerTriangle =
+    sizeof(std::array<Vec3, 3>) + 2 * sizeof(std::uint32_t) + sizeof(DistanceTriangles4) + sizeof(Cell) + sizeof(Group);
+
+std::size_t BlockQueries::bytesAtMost(double band) {
+    if (!fits(band)) return 0;
+    const std::size_t side = std::size_t(kSide + 2 * marginFor(band));
+    // The cells' slots, rows and their boxes, and the reach.
+    return side * side * side * sizeof(std::uint32_t) + side * side * (sizeof(std::uint64_t) + 4 * sizeof(double)) +
+        std::size_t(kSide * kSide) * sizeof(std::uint64_t);
+}
+
+int BlockQueries::cellOf(double voxel_coordinate, int axis) const {
+    const double cell = std::floor(voxel_coordinate - origin_[axis]) + margin_;
+    return cell >= 0 && cell < side_ ? int(cell) : -1;
+}
+
+void BlockQueries::begin(const std::array<std::int32_t, 3>& origin, double band) {
+    origin_ = origin;
+    band_ = band;
+    margin_ = marginFor(band);
+    side_ = kSide + 2 * margin_;
+    pending_.clear();
+    pending_key_.clear();
+    const std::size_t side = std::size_t(side_);
+    if (slot_of_key_.size() < side * side * side) slot_of_key_.resize(side * side * side);
+    rows_.assign(side * side, 0);
+    row_boxes_.assign(side * side, {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
+    cells_.clear();
+}
+
+bool BlockQueries::takes(const std::array<Vec3, 3>& corners) const {
+    for (int a = 0; a < 3; ++a) {
+        const double lo = std::min({corners[0][a], corners[1][a], corners[2][a]});
+        const double hi = std::max({corners[0][a], corners[1][a], corners[2][a]});
+        if (!(hi - lo <= 1.0)) return false;
+    }
+    const Vec3 centroid = centroidOf(corners);
+    return cellOf(centroid[0], 0) >= 0 && cellOf(centroid[1], 1) >= 0 && cellOf(centroid[2], 2) >= 0;
+}
+
+void BlockQueries::add(const std::array<Vec3, 3>& corners) {
+    const Vec3 centroid = centroidOf(corners);
+    const int x = cellOf(centroid[0], 0), y = cellOf(centroid[1], 1), z = cellOf(centroid[2], 2);
+    std::uint64_t& row = rows_[std::size_t(x * side_ + y)];
+    const std::uint32_t key = std::uint32_t((x * side_ + y) * side_ + z);
+    if (!((row >> z) & 1)) {
+        row |= std::uint64_t(1) << z;
+        slot_of_key_[key] = std::uint32_t(cells_.size());
+        cells_.push_back({key, 0, 0, 0, kEmptyBox});
+    }
+    Cell& cell = cells_[slot_of_key_[key]];
+    ++cell.count;
+    grow(cell.box, corners);
+    std::array<double, 4>& row_box = row_boxes_[std::size_t(x * side_ + y)];
+    for (int a = 0; a < 2; ++a) {
+        row_box[std::size_t(a)] = std::min(row_box[std::size_t(a)], cell.box[std::size_t(a)]);
+        row_box[std::size_t(a + 2)] = std::max(row_box[std::size_t(a + 2)], cell.box[std::size_t(a + 3)]);
+    }
+    // The octant: which half of the cell along each axis.
+    int octant = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double within = centroid[a] - origin_[a] - std::floor(centroid[a] - origin_[a]);
+        octant |= int(within >= 0.5) << a;
+    }
+    pending_.push_back(corners);
+    pending_key_.push_back((key << 3) | std::uint32_t(octant));
+}
+
+void BlockQueries::sortIntoCells() {
+    // By cell, then octant: a counting sort over the cells, then each cell's few by octant.
+    std::vector<std::uint32_t> start(cells_.size() + 1, 0);
+    for (std::size_t c = 0; c < cells_.size(); ++c) start[c + 1] = start[c] + cells_[c].count;
+    std::vector<std::uint32_t> order(pending_.size());
+    {
+        std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+        for (std::size_t p = 0; p < pending_.size(); ++p)
+            order[fill[slot_of_key_[pending_key_[p] >> 3]]++] = std::uint32_t(p);
+    }
+    packs_.clear();
+    packs_.reserve(order.size() / 2 + cells_.size());
+    octants_.clear();
+    std::vector<DistanceTriangle> octant;  // one octant's triangles, packed when it ends
+    auto pack = [&] {
+        for (std::size_t at = 0; at < octant.size(); at += DistanceTriangles4::kLanes)
+            packs_.emplace_back(octant.data() + at,
+                                int(std::min<std::size_t>(DistanceTriangles4::kLanes, octant.size() - at)));
+        octant.clear();
+        octants_.back().end = std::uint32_t(packs_.size());
+    };
+    for (std::size_t c = 0; c < cells_.size(); ++c) {
+        Cell& cell = cells_[c];
+        auto first = order.begin() + start[c], end = order.begin() + start[c + 1];
+        std::sort(first, end, [&](std::uint32_t a, std::uint32_t b) { return pending_key_[a] < pending_key_[b]; });
+        cell.octant_first = std::uint32_t(octants_.size());
+        for (auto it = first; it != end; ++it) {
+            const std::uint32_t octant_bits = pending_key_[*it] & 7;
+            if (it == first || octant_bits != (pending_key_[*(it - 1)] & 7)) {
+                if (it != first) pack();
+                octants_.push_back({std::uint32_t(packs_.size()), 0, kEmptyBox});
+            }
+            grow(octants_.back().box, pending_[*it]);
+            octant.emplace_back(pending_[*it]);
+        }
+        pack();
+        cell.octant_end = std::uint32_t(octants_.size());
+    }
+}
+
+std::uint64_t BlockQueries::reachedVoxels(const std::array<std::int32_t, 2>& limit) {
+    // The voxels whose centres lie within the band of a cell's box (a lower bound of its
+    // triangles' distances), each box's rows marked at once.
+    reach_.assign(std::size_t(kSide * kSide), 0);
+    const double band2 = band_ * band_;
+    const int i_end = std::min(kSide, limit[0]), j_end = std::min(kSide, limit[1]);
+    // Voxels [first, last] along `axis` whose centres lie within `reach` of [lo, hi], clipped.
+    auto span = [&](double lo, double hi, double reach, int axis, int end, int& first, int& last) {
+        first = int(std::max(std::ceil(lo - origin_[axis] - reach - 0.5), 0.0));
+        last = int(std::min(std::floor(hi - origin_[axis] + reach - 0.5), double(end - 1)));
+        return first <= last;
+    };
+    for (const Cell& cell : cells_) {
+        const std::array<double, 6>& box = cell.box;
+        int i_first, i_last, j_first, j_last;
+        if (!span(box[0], box[3], band_, 0, i_end, i_first, i_last) ||
+            !span(box[1], box[4], band_, 1, j_end, j_first, j_last))
+            continue;
+        for (int i = i_first; i <= i_last; ++i) {
+            const double gx = gap(origin_[0] + i + 0.5, box[0], box[3]);
+            for (int j = j_first; j <= j_last; ++j) {
+                const double gy = gap(origin_[1] + j + 0.5, box[1], box[4]);
+                const double left = band2 - gx * gx - gy * gy;
+                int k_first, k_last;
+                if (left <= 0 || !span(box[2], box[5], std::sqrt(left), 2, kSide, k_first, k_last)) continue;
+                reach_[std::size_t(i * kSide + j)] |= bitsBetween(k_first, k_last);
+            }
+        }
+    }
+    std::uint64_t voxels = 0;
+    for (const std::uint64_t word : reach_) voxels += std::uint64_t(__builtin_popcountll(word));
+    return voxels;
+}
+
+HYVOX_SDF_CLONES
+std::uint64_t BlockQueries::lower(double* d2, std::uint64_t& evaluations) {
+    sortIntoCells();
+    const int m = margin_, side = side_;
+    // The squared distance from (x, y, z) to a box: a lower bound of its triangles', less a
+    // rounding's slack (a triangle it rounds away could still lower a distance by a rounding).
+    auto boxDistance2 = [](const std::array<double, 6>& box, double x, double y, double z) {
+        const double dx = gap(x, box[0], box[3]), dy = gap(y, box[1], box[4]), dz = gap(z, box[2], box[5]);
+        return (dx * dx + dy * dy + dz * dz) * (1 - 1e-12);
+    };
+    std::vector<Near>& near = near_;
+    const double band2 = band_ * band_;
+    std::uint64_t touched = 0;
+    const DistanceTriangles4* seed = nullptr;  // the last triangles that lowered a distance
+    for (int i = 0; i < kSide; ++i)
+        for (int j = 0; j < kSide; ++j) {
+            for (std::uint64_t voxels = reach_[std::size_t(i * kSide + j)]; voxels; voxels &= voxels - 1) {
+                const int k = __builtin_ctzll(voxels);
+                double& best = d2[blockOffset(i, j, k)];
+                const double x = origin_[0] + i + 0.5, y = origin_[1] + j + 0.5, z = origin_[2] + k + 0.5;
+                if (seed) {
+                    best = seed->minDistance2(x, y, z, best);
+                    evaluations += DistanceTriangles4::kLanes;
+                }
+                // Cells whose grown box [c - 1, c + 2) comes within sqrt(best) of the voxel.
+                const double r = std::sqrt(best);
+                const double xr = i + 0.5, yr = j + 0.5, zr = k + 0.5;
+                const int x_lo = std::max(0, int(std::floor(xr - r - 2)) + m);
+                const int x_hi = std::min(side - 1, int(std::floor(xr + r + 1)) + m);
+                const int y_lo = std::max(0, int(std::floor(yr - r - 2)) + m);
+                const int y_hi = std::min(side - 1, int(std::floor(yr + r + 1)) + m);
+                const std::uint64_t z_bits =
+                    bitsBetween(int(std::floor(zr - r - 2)) + m, int(std::floor(zr + r + 1)) + m);
+                for (int cx = x_lo; cx <= x_hi; ++cx) {
+                    for (int cy = y_lo; cy <= y_hi; ++cy) {
+                        const std::array<double, 4>& row_box = row_boxes_[std::size_t(cx * side + cy)];
+                        const double gx_row = gap(x, row_box[0], row_box[2]), gy_row = gap(y, row_box[1], row_box[3]);
+                        if (gx_row * gx_row + gy_row * gy_row >= best) continue;
+                        for (std::uint64_t bits = rows_[std::size_t(cx * side + cy)] & z_bits; bits; bits &= bits - 1) {
+                            const std::uint32_t slot =
+                                slot_of_key_[std::size_t((cx * side + cy) * side + __builtin_ctzll(bits))];
+                            const double lower_bound = boxDistance2(cells_[slot].box, x, y, z);
+                            if (lower_bound < best) near.push_back({lower_bound, slot});
+                        }
+                    }
+                }
+                // Nearest box first: the first triangles measured then bound the rest best.
+                std::sort(near.begin(), near.end(),
+                          [](const Near& a, const Near& b) { return a.lower_bound < b.lower_bound; });
+                for (const Near& candidate : near) {
+                    if (candidate.lower_bound >= best) break;
+                    const Cell& cell = cells_[candidate.slot];
+                    for (std::uint32_t o = cell.octant_first; o < cell.octant_end; ++o) {
+                        const Group& octant = octants_[o];
+                        if (boxDistance2(octant.box, x, y, z) >= best) continue;
+                        for (std::uint32_t p = octant.first; p < octant.end; ++p) {
+                            const double before = best;
+                            best = packs_[p].minDistance2(x, y, z, best);
+                            if (best < before) seed = &packs_[p];
+                        }
+                        evaluations += DistanceTriangles4::kLanes * (octant.end - octant.first);
+                    }
+                }
+                near.clear();
+                if (best < band2) touched |= std::uint64_t(1) << brickBit(i >> 3, j >> 3, k >> 3);
+            }
+        }
+    return touched;
+}
+
+}  // namespace hyvox::sdf

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// A block's distances to its small triangles by nearest-triangle queries, for blocks crowded
+// with triangles smaller than a voxel (the 871k dragon at 128: some 7 for each voxel of the
+// band). Sweeping such a triangle costs the ~150 voxels within the band of it, nearly all of
+// which a nearer triangle claims; a query measures only the triangles that may be nearer.
+//
+// The small triangles (each no wider than a voxel along every axis) are sorted into the unit
+// cells of their centroids, each cell with the box of its triangles; a triangle's box then lies
+// within its cell grown by one voxel on every side. Within a cell they are grouped by the
+// octant of the cell their centroids lie in, each octant with its box, and packed four to a
+// vector (DistanceTriangles4). The voxels visited are those within the band of a cell's box.
+// For each, its bound starts as the least of its distance so far and its distance to the
+// triangles that last lowered one (a neighbour's nearest); the cells whose boxes come nearer
+// than the bound are measured nearest box first, an octant only when its box still does, and
+// the bound shrinks as they are. The result is the least distance over the same triangles as
+// a sweep's (to a rounding error).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "hyvox/grid.h"
+#include "sdf/point_triangle.h"
+
+namespace hyvox::sdf {
+
+// The queries' working memory, reused from block to block by one thread.
+class BlockQueries {
+public:
+    // Whether `band` leaves the cells around a block narrow enough (a row of them one word).
+    static bool fits(double band);
+    // What the queries hold for each triangle added (at most), and beside them for a band.
+    static const std::size_t kBytesPerTriangle;
+    static std::size_t bytesAtMost(double band);
+
+    // Whether the triangle of voxel-space `corners` is one the queries take: no wider than a
+    // voxel along any axis, its centroid within the cells around the block at `origin` (its
+    // first voxel). Call `begin` first.
+    bool takes(const std::array<Vec3, 3>& corners) const;
+
+    // Starts a block: `origin` its first voxel, `band` the band's half-width (fits(band)).
+    void begin(const std::array<std::int32_t, 3>& origin, double band);
+    // Adds a triangle that `takes` accepts.
+    void add(const std::array<Vec3, 3>& corners);
+    // The triangles added.
+    std::size_t triangleCount() const { return pending_.size(); }
+
+    // The voxels (within the grid's first `limit` voxels along x and y) that may lie within
+    // the band of an added triangle: those `lower` visits. Call once all are added.
+    std::uint64_t reachedVoxels(const std::array<std::int32_t, 2>& limit);
+
+    // Lowers `d2` (the block's squared distances, blockOffset order, each already at most
+    // band²) to the least over the added triangles at the voxels reachedVoxels counted.
+    // Returns the bricks where a distance fell below band²; adds the distances computed to
+    // `evaluations` (four for each group of up to four triangles measured at once).
+    std::uint64_t lower(double* d2, std::uint64_t& evaluations);
+
+private:
+    // Triangles with a box around them (lo xyz, hi xyz; voxel space).
+    struct Group {
+        std::uint32_t first, end;  // into `packs_`
+        std::array<double, 6> box;
+    };
+    // A unit cell: its triangles, and the same split by the octant of the cell their centroids
+    // lie in (the octants' boxes hold fewer triangles' worth of empty space).
+    struct Cell {
+        std::uint32_t key;                       // (x * side + y) * side + z, cells counted from origin - margin
+        std::uint32_t count;                     // triangles, until sortIntoCells
+        std::uint32_t octant_first, octant_end;  // into `octants_`
+        std::array<double, 6> box;
+    };
+    std::array<std::int32_t, 3> origin_{0, 0, 0};
+    double band_ = 0;
+    int margin_ = 0, side_ = 0;
+    std::vector<std::array<Vec3, 3>> pending_;
+    std::vector<std::uint32_t> pending_key_;        // (the cell's key << 3) | the octant
+    std::vector<std::uint32_t> slot_of_key_;        // side³ entries; valid where the cell is occupied
+    std::vector<std::uint64_t> rows_;               // side² words: bit z set where cell (x, y, z) is occupied
+    std::vector<std::array<double, 4>> row_boxes_;  // side² boxes (lo xy, hi xy) of each row's cells
+    std::vector<std::uint64_t> reach_;              // 32² words: bit z of voxel row (x, y) set where lower visits
+    std::vector<Cell> cells_;
+    std::vector<Group> octants_;
+    std::vector<DistanceTriangles4> packs_;
+    // A cell whose box comes nearer a voxel than its bound, by that box's squared distance.
+    struct Near {
+        double lower_bound;
+        std::uint32_t slot;
+    };
+    std::vector<Near> near_;
+
+    int cellOf(double voxel_coordinate, int axis) const;
+    void sortIntoCells();
+};
+
+}  // namespace hyvox::sdf
