@@ -107,10 +107,7 @@ std::uint64_t blockDistances(const ValidatedMesh& mesh, const GridSpec& grid, do
         std::vector<std::uint32_t> swept;
         for (std::uint64_t p = first; p < end; ++p) {
             const auto corners = voxelCorners(mesh, grid, bins.triangles[p]);
-            if (queries->takes(corners))
-                queries->add(corners);
-            else
-                swept.push_back(bins.triangles[p]);
+            if (!queries->offer(corners)) swept.push_back(bins.triangles[p]);
         }
         const std::array<std::int32_t, 2> limit{grid.dims[0] - origin[0], grid.dims[1] - origin[1]};
         const std::uint64_t reached = queries->reachedVoxels(limit);

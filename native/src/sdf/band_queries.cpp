@@ -58,18 +58,13 @@ std::size_t BlockQueries::bytesAtMost(double band) {
         std::size_t(kSide * kSide) * sizeof(std::uint64_t);
 }
 
-int BlockQueries::cellOf(double voxel_coordinate, int axis) const {
-    const double cell = std::floor(voxel_coordinate - origin_[axis]) + margin_;
-    return cell >= 0 && cell < side_ ? int(cell) : -1;
-}
-
 void BlockQueries::begin(const std::array<std::int32_t, 3>& origin, double band) {
     origin_ = origin;
     band_ = band;
     margin_ = marginFor(band);
     side_ = kSide + 2 * margin_;
     pending_.clear();
-    pending_key_.clear();
+    pending_place_.clear();
     const std::size_t side = std::size_t(side_);
     if (slot_of_key_.size() < side * side * side) slot_of_key_.resize(side * side * side);
     rows_.assign(side * side, 0);
@@ -77,80 +72,71 @@ void BlockQueries::begin(const std::array<std::int32_t, 3>& origin, double band)
     cells_.clear();
 }
 
-bool BlockQueries::takes(const std::array<Vec3, 3>& corners) const {
+bool BlockQueries::offer(const std::array<Vec3, 3>& corners) {
     for (int a = 0; a < 3; ++a) {
         const double lo = std::min({corners[0][a], corners[1][a], corners[2][a]});
         const double hi = std::max({corners[0][a], corners[1][a], corners[2][a]});
         if (!(hi - lo <= 1.0)) return false;
     }
     const Vec3 centroid = centroidOf(corners);
-    return cellOf(centroid[0], 0) >= 0 && cellOf(centroid[1], 1) >= 0 && cellOf(centroid[2], 2) >= 0;
-}
-
-void BlockQueries::add(const std::array<Vec3, 3>& corners) {
-    const Vec3 centroid = centroidOf(corners);
-    const int x = cellOf(centroid[0], 0), y = cellOf(centroid[1], 1), z = cellOf(centroid[2], 2);
-    std::uint64_t& row = rows_[std::size_t(x * side_ + y)];
-    const std::uint32_t key = std::uint32_t((x * side_ + y) * side_ + z);
-    if (!((row >> z) & 1)) {
-        row |= std::uint64_t(1) << z;
-        slot_of_key_[key] = std::uint32_t(cells_.size());
-        cells_.push_back({key, 0, 0, 0, kEmptyBox});
+    int at[3], octant = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double from_origin = centroid[a] - origin_[a], cell = std::floor(from_origin);
+        if (!(cell + margin_ >= 0 && cell + margin_ < side_)) return false;
+        at[a] = int(cell) + margin_;
+        octant |= int(from_origin - cell >= 0.5) << a;  // which half of the cell along axis a
     }
-    Cell& cell = cells_[slot_of_key_[key]];
-    ++cell.count;
+    std::uint64_t& row = rows_[std::size_t(at[0] * side_ + at[1])];
+    const std::size_t key = std::size_t((at[0] * side_ + at[1]) * side_ + at[2]);
+    if (!((row >> at[2]) & 1)) {
+        row |= std::uint64_t(1) << at[2];
+        slot_of_key_[key] = std::uint32_t(cells_.size());
+        cells_.push_back({0, 0, kEmptyBox});
+    }
+    const std::uint32_t slot = slot_of_key_[key];
+    Cell& cell = cells_[slot];
     grow(cell.box, corners);
-    std::array<double, 4>& row_box = row_boxes_[std::size_t(x * side_ + y)];
+    std::array<double, 4>& row_box = row_boxes_[std::size_t(at[0] * side_ + at[1])];
     for (int a = 0; a < 2; ++a) {
         row_box[std::size_t(a)] = std::min(row_box[std::size_t(a)], cell.box[std::size_t(a)]);
         row_box[std::size_t(a + 2)] = std::max(row_box[std::size_t(a + 2)], cell.box[std::size_t(a + 3)]);
     }
-    // The octant: which half of the cell along each axis.
-    int octant = 0;
-    for (int a = 0; a < 3; ++a) {
-        const double within = centroid[a] - origin_[a] - std::floor(centroid[a] - origin_[a]);
-        octant |= int(within >= 0.5) << a;
-    }
     pending_.push_back(corners);
-    pending_key_.push_back((key << 3) | std::uint32_t(octant));
+    pending_place_.push_back((slot << 3) | std::uint32_t(octant));
+    return true;
 }
 
 void BlockQueries::sortIntoCells() {
-    // By cell, then octant: a counting sort over the cells, then each cell's few by octant.
-    std::vector<std::uint32_t> start(cells_.size() + 1, 0);
-    for (std::size_t c = 0; c < cells_.size(); ++c) start[c + 1] = start[c] + cells_[c].count;
+    // A counting sort by cell, then octant.
+    std::vector<std::uint32_t> start(8 * cells_.size() + 1, 0);
+    for (const std::uint32_t place : pending_place_) ++start[place + 1];
+    for (std::size_t n = 1; n < start.size(); ++n) start[n] += start[n - 1];
     std::vector<std::uint32_t> order(pending_.size());
     {
         std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-        for (std::size_t p = 0; p < pending_.size(); ++p)
-            order[fill[slot_of_key_[pending_key_[p] >> 3]]++] = std::uint32_t(p);
+        for (std::size_t p = 0; p < pending_.size(); ++p) order[fill[pending_place_[p]]++] = std::uint32_t(p);
     }
     packs_.clear();
     packs_.reserve(order.size() / 2 + cells_.size());
     octants_.clear();
-    std::vector<DistanceTriangle> octant;  // one octant's triangles, packed when it ends
-    auto pack = [&] {
-        for (std::size_t at = 0; at < octant.size(); at += DistanceTriangles4::kLanes)
-            packs_.emplace_back(octant.data() + at,
-                                int(std::min<std::size_t>(DistanceTriangles4::kLanes, octant.size() - at)));
-        octant.clear();
-        octants_.back().end = std::uint32_t(packs_.size());
-    };
+    std::vector<DistanceTriangle> octant;  // one octant's triangles, packed four at a time
     for (std::size_t c = 0; c < cells_.size(); ++c) {
         Cell& cell = cells_[c];
-        auto first = order.begin() + start[c], end = order.begin() + start[c + 1];
-        std::sort(first, end, [&](std::uint32_t a, std::uint32_t b) { return pending_key_[a] < pending_key_[b]; });
         cell.octant_first = std::uint32_t(octants_.size());
-        for (auto it = first; it != end; ++it) {
-            const std::uint32_t octant_bits = pending_key_[*it] & 7;
-            if (it == first || octant_bits != (pending_key_[*(it - 1)] & 7)) {
-                if (it != first) pack();
-                octants_.push_back({std::uint32_t(packs_.size()), 0, kEmptyBox});
+        for (std::size_t o = 8 * c; o < 8 * c + 8; ++o) {
+            if (start[o] == start[o + 1]) continue;
+            Group group{std::uint32_t(packs_.size()), 0, kEmptyBox};
+            for (std::uint32_t n = start[o]; n < start[o + 1]; ++n) {
+                grow(group.box, pending_[order[n]]);
+                octant.emplace_back(pending_[order[n]]);
             }
-            grow(octants_.back().box, pending_[*it]);
-            octant.emplace_back(pending_[*it]);
+            for (std::size_t at = 0; at < octant.size(); at += DistanceTriangles4::kLanes)
+                packs_.emplace_back(octant.data() + at,
+                                    int(std::min<std::size_t>(DistanceTriangles4::kLanes, octant.size() - at)));
+            octant.clear();
+            group.end = std::uint32_t(packs_.size());
+            octants_.push_back(group);
         }
-        pack();
         cell.octant_end = std::uint32_t(octants_.size());
     }
 }

@@ -33,20 +33,17 @@ public:
     static const std::size_t kBytesPerTriangle;
     static std::size_t bytesAtMost(double band);
 
-    // Whether the triangle of voxel-space `corners` is one the queries take: no wider than a
-    // voxel along any axis, its centroid within the cells around the block at `origin` (its
-    // first voxel). Call `begin` first.
-    bool takes(const std::array<Vec3, 3>& corners) const;
-
     // Starts a block: `origin` its first voxel, `band` the band's half-width (fits(band)).
     void begin(const std::array<std::int32_t, 3>& origin, double band);
-    // Adds a triangle that `takes` accepts.
-    void add(const std::array<Vec3, 3>& corners);
+    // Adds the triangle of voxel-space `corners` when the queries take it: no wider than a
+    // voxel along any axis, its centroid within the cells around the block. False when not.
+    bool offer(const std::array<Vec3, 3>& corners);
     // The triangles added.
     std::size_t triangleCount() const { return pending_.size(); }
 
-    // The voxels (within the grid's first `limit` voxels along x and y) that may lie within
-    // the band of an added triangle: those `lower` visits. Call once all are added.
+    // The voxels (within the grid's first `limit` voxels along x and y, where it ends) that
+    // may lie within the band of an added triangle: those `lower` visits. Call once all are
+    // added.
     std::uint64_t reachedVoxels(const std::array<std::int32_t, 2>& limit);
 
     // Lowers `d2` (the block's squared distances, blockOffset order, each already at most
@@ -64,8 +61,6 @@ private:
     // A unit cell: its triangles, and the same split by the octant of the cell their centroids
     // lie in (the octants' boxes hold fewer triangles' worth of empty space).
     struct Cell {
-        std::uint32_t key;                       // (x * side + y) * side + z, cells counted from origin - margin
-        std::uint32_t count;                     // triangles, until sortIntoCells
         std::uint32_t octant_first, octant_end;  // into `octants_`
         std::array<double, 6> box;
     };
@@ -73,8 +68,10 @@ private:
     double band_ = 0;
     int margin_ = 0, side_ = 0;
     std::vector<std::array<Vec3, 3>> pending_;
-    std::vector<std::uint32_t> pending_key_;        // (the cell's key << 3) | the octant
-    std::vector<std::uint32_t> slot_of_key_;        // side³ entries; valid where the cell is occupied
+    std::vector<std::uint32_t> pending_place_;  // (the cell's slot << 3) | the octant
+    // side³ entries, cell (x, y, z) at (x * side + y) * side + z, the cells counted from
+    // origin - margin along each axis; valid where the cell is occupied.
+    std::vector<std::uint32_t> slot_of_key_;
     std::vector<std::uint64_t> rows_;               // side² words: bit z set where cell (x, y, z) is occupied
     std::vector<std::array<double, 4>> row_boxes_;  // side² boxes (lo xy, hi xy) of each row's cells
     std::vector<std::uint64_t> reach_;              // 32² words: bit z of voxel row (x, y) set where lower visits
@@ -88,7 +85,6 @@ private:
     };
     std::vector<Near> near_;
 
-    int cellOf(double voxel_coordinate, int axis) const;
     void sortIntoCells();
 };
 
