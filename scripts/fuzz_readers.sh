@@ -1,18 +1,21 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Fuzzes the strict mesh readers (PLY, OBJ, STL, OFF, glTF), the formats read through assimp (in
-# the assimp reader process, as readMesh reads them), the gzip input, voxelize() and solid
-# mode with attributes (tests/fuzz/: libFuzzer + ASan + UBSan, clang) for a fixed time each
+# the assimp reader process, as readMesh reads them), the gzip input, voxelize(), solid mode
+# with attributes and the sdf's band distances (tests/fuzz/: libFuzzer + ASan + UBSan, clang)
+# for a fixed time each
 # and fails on any finding: a crash, a sanitizer report, an exception other than
 # InvalidInput, an out-of-range index, cpu voxels the reference does not explain, solid
-# voxels or attribute values against their oracle (tests/fuzz/fuzz_solid.cpp), a 10 s input
+# voxels or attribute values against their oracle (tests/fuzz/fuzz_solid.cpp), band distances
+# against a brute-force closest point (tests/fuzz/fuzz_sdf.cpp), a 10 s input
 # or 2 GiB of memory. A finding's input is left in build-fuzz/findings/<target>/; make it a
 # regression case (readers: tests/native/test_io_mesh_strict.cpp, test_io_mesh_formats.cpp,
 # tests/regressions/meshes/) before fixing it.
 #   FUZZ_SECONDS=600 bash scripts/fuzz_readers.sh   (default: 60 s for PLY and OBJ, 20 s for
 #                                                     STL, OFF, glTF and the FBX check, 30 s for
 #                                                     the assimp formats,
-#                                                     gzip and voxelize, 45 s for solid;
+#                                                     gzip, voxelize and sdf, 45 s for
+#                                                     solid;
 #                                                     FUZZ_SECONDS sets all)
 #   FUZZ_TARGETS="stl_reader off_reader" ...        (only these)
 set -euo pipefail
@@ -23,7 +26,7 @@ meshes=${HYVOX_MESH_DIR:-../shared/data/meshes}
 
 cmake -S tests/fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build-fuzz
-targets=${FUZZ_TARGETS:-ply_reader obj_reader stl_reader off_reader gltf_reader fbx_check assimp_formats gzip_input voxelize solid}
+targets=${FUZZ_TARGETS:-ply_reader obj_reader stl_reader off_reader gltf_reader fbx_check assimp_formats gzip_input voxelize solid sdf}
 wanted() { [[ " $targets " == *" $1 "* ]]; }
 
 # fresh TARGET: an empty corpus and findings folder for TARGET (build-fuzz/{corpus,findings}/TARGET).
@@ -89,10 +92,10 @@ for target in stl_reader off_reader gltf_reader fbx_check assimp_formats; do
   fuzz "$target" "${FUZZ_SECONDS:-$default_seconds}"
 done
 # The gzip input (with the PLY reader behind it), seeded with the PLY seeds compressed,
-# voxelize() on random small meshes, cpu against the reference, and solid mode with
-# attributes against a brute-force winding number (their own bytes, seeded with hand-made
-# shapes and the decided findings).
-for target in gzip_input voxelize solid; do
+# voxelize() on random small meshes, cpu against the reference, solid mode with attributes
+# against a brute-force winding number, and the sdf's band distances against a brute-force
+# closest point (their own bytes, seeded with hand-made shapes and the decided findings).
+for target in gzip_input voxelize solid sdf; do
   wanted "$target" || continue
   fresh "$target"
   if [ "$target" = gzip_input ]; then

@@ -44,6 +44,6 @@ ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
 section "Linters and format checks: ruff, clang-tidy, clang-format (any finding fails)"
 bash scripts/lint.sh build
 
-section "libFuzzer (clang, ASan + UBSan): the PLY and OBJ readers 60 s each, STL, OFF, glTF and the FBX check 20 s, the assimp formats, gzip input and voxelize 30 s, solid 45 s; any finding fails"
+section "libFuzzer (clang, ASan + UBSan): the PLY and OBJ readers 60 s each, STL, OFF, glTF and the FBX check 20 s, the assimp formats, gzip input, voxelize and sdf 30 s, solid 45 s; any finding fails"
 bash scripts/fuzz_readers.sh
 section "done"

@@ -175,26 +175,31 @@ std::uint64_t BlockQueries::reachedVoxels(const std::array<std::int32_t, 2>& lim
     return voxels;
 }
 
-HYVOX_SDF_CLONES
 std::uint64_t BlockQueries::lower(double* d2, std::uint64_t& evaluations) {
     sortIntoCells();
-    const int m = margin_, side = side_;
+    return lowerVoxels(*this, d2, evaluations);
+}
+
+HYVOX_SDF_CLONES
+std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& evaluations) {
+    const int m = queries.margin_, side = queries.side_;
     // The squared distance from (x, y, z) to a box: a lower bound of its triangles', less a
     // rounding's slack (a triangle it rounds away could still lower a distance by a rounding).
     auto boxDistance2 = [](const std::array<double, 6>& box, double x, double y, double z) {
         const double dx = gap(x, box[0], box[3]), dy = gap(y, box[1], box[4]), dz = gap(z, box[2], box[5]);
         return (dx * dx + dy * dy + dz * dz) * (1 - 1e-12);
     };
-    std::vector<Near>& near = near_;
-    const double band2 = band_ * band_;
+    std::vector<BlockQueries::Near>& near = queries.near_;
+    const double band2 = queries.band_ * queries.band_;
     std::uint64_t touched = 0;
     const DistanceTriangles4* seed = nullptr;  // the last triangles that lowered a distance
     for (int i = 0; i < kSide; ++i)
         for (int j = 0; j < kSide; ++j) {
-            for (std::uint64_t voxels = reach_[std::size_t(i * kSide + j)]; voxels; voxels &= voxels - 1) {
+            for (std::uint64_t voxels = queries.reach_[std::size_t(i * kSide + j)]; voxels; voxels &= voxels - 1) {
                 const int k = __builtin_ctzll(voxels);
                 double& best = d2[blockOffset(i, j, k)];
-                const double x = origin_[0] + i + 0.5, y = origin_[1] + j + 0.5, z = origin_[2] + k + 0.5;
+                const double x = queries.origin_[0] + i + 0.5, y = queries.origin_[1] + j + 0.5,
+                             z = queries.origin_[2] + k + 0.5;
                 if (seed) {
                     best = seed->minDistance2(x, y, z, best);
                     evaluations += DistanceTriangles4::kLanes;
@@ -210,30 +215,32 @@ std::uint64_t BlockQueries::lower(double* d2, std::uint64_t& evaluations) {
                     bitsBetween(int(std::floor(zr - r - 2)) + m, int(std::floor(zr + r + 1)) + m);
                 for (int cx = x_lo; cx <= x_hi; ++cx) {
                     for (int cy = y_lo; cy <= y_hi; ++cy) {
-                        const std::array<double, 4>& row_box = row_boxes_[std::size_t(cx * side + cy)];
+                        const std::array<double, 4>& row_box = queries.row_boxes_[std::size_t(cx * side + cy)];
                         const double gx_row = gap(x, row_box[0], row_box[2]), gy_row = gap(y, row_box[1], row_box[3]);
                         if (gx_row * gx_row + gy_row * gy_row >= best) continue;
-                        for (std::uint64_t bits = rows_[std::size_t(cx * side + cy)] & z_bits; bits; bits &= bits - 1) {
+                        for (std::uint64_t bits = queries.rows_[std::size_t(cx * side + cy)] & z_bits; bits;
+                             bits &= bits - 1) {
                             const std::uint32_t slot =
-                                slot_of_key_[std::size_t((cx * side + cy) * side + __builtin_ctzll(bits))];
-                            const double lower_bound = boxDistance2(cells_[slot].box, x, y, z);
+                                queries.slot_of_key_[std::size_t((cx * side + cy) * side + __builtin_ctzll(bits))];
+                            const double lower_bound = boxDistance2(queries.cells_[slot].box, x, y, z);
                             if (lower_bound < best) near.push_back({lower_bound, slot});
                         }
                     }
                 }
                 // Nearest box first: the first triangles measured then bound the rest best.
-                std::sort(near.begin(), near.end(),
-                          [](const Near& a, const Near& b) { return a.lower_bound < b.lower_bound; });
-                for (const Near& candidate : near) {
+                std::sort(near.begin(), near.end(), [](const BlockQueries::Near& a, const BlockQueries::Near& b) {
+                    return a.lower_bound < b.lower_bound;
+                });
+                for (const BlockQueries::Near& candidate : near) {
                     if (candidate.lower_bound >= best) break;
-                    const Cell& cell = cells_[candidate.slot];
+                    const BlockQueries::Cell& cell = queries.cells_[candidate.slot];
                     for (std::uint32_t o = cell.octant_first; o < cell.octant_end; ++o) {
-                        const Group& octant = octants_[o];
+                        const BlockQueries::Group& octant = queries.octants_[o];
                         if (boxDistance2(octant.box, x, y, z) >= best) continue;
                         for (std::uint32_t p = octant.first; p < octant.end; ++p) {
                             const double before = best;
-                            best = packs_[p].minDistance2(x, y, z, best);
-                            if (best < before) seed = &packs_[p];
+                            best = queries.packs_[p].minDistance2(x, y, z, best);
+                            if (best < before) seed = &queries.packs_[p];
                         }
                         evaluations += DistanceTriangles4::kLanes * (octant.end - octant.first);
                     }

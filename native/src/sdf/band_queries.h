@@ -86,6 +86,8 @@ private:
     std::vector<Near> near_;
 
     void sortIntoCells();
+    // lower's voxels, a free function: compilers build target clones of those (point_triangle.h).
+    friend std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& evaluations);
 };
 
 }  // namespace hyvox::sdf

@@ -1,0 +1,162 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// libFuzzer target for the sdf's band distances (native/src/sdf/): the input bytes become a
+// soup of up to 16 triangles on up to 16 vertices (as fuzz_voxelize decodes them: raw float32
+// with NaN, Inf, slivers and needles, or 16-bit integers in 1/64 steps scaled by a power of
+// two, so faces on voxel planes and through voxel centres occur often), a small resolution
+// (up to 32) and a band of 1 to 6 voxels. The oracle (abort on violation):
+//  - voxelize() with the sdf attribute either succeeds or refuses with InvalidInput or
+//    ResourceError, as the surface alone does;
+//  - every block of the band, computed both ways (every triangle swept, and the small ones
+//    queried wherever a block has any: sdf/band_queries.h), holds at every voxel of the grid
+//    the brute-force closest distance over the usable triangles (Ericson's closest point, in
+//    double) within 1e-5 voxel where that is below the band, and band² exactly where it is
+//    beyond (voxels within 1e-9 of the band's edge skipped); every voxel of a block the bins
+//    leave out lies beyond the band.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "fuzz_bytes.h"
+#include "hyvox/errors.h"
+#include "hyvox/voxelize.h"
+#include "sdf/band_bins.h"
+#include "sdf/band_distances.h"
+
+namespace {
+
+using hyvox::fuzz::Bytes;
+using Vec3 = std::array<double, 3>;
+
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 along(const Vec3& a, const Vec3& d, double t) { return {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}; }
+double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
+
+// Ericson, Real-Time Collision Detection 5.1.5: the distance from p to triangle abc by its
+// Voronoi regions (not the library's formula).
+double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
+    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) return length(ap);
+    const Vec3 bp = sub(p, b);
+    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) return length(bp);
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return length(sub(p, along(a, ab, d1 / (d1 - d3))));
+    const Vec3 cp = sub(p, c);
+    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) return length(cp);
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return length(sub(p, along(a, ac, d2 / (d2 - d6))));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+        return length(sub(p, along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)))));
+    const double denom = 1.0 / (va + vb + vc);
+    return length(sub(p, along(along(a, ab, vb * denom), ac, vc * denom)));
+}
+
+#define REQUIRE(condition)                                                                 \
+    do {                                                                                   \
+        if (!(condition)) {                                                                \
+            std::fprintf(stderr, "fuzz_sdf.cpp:%d: violated: %s\n", __LINE__, #condition); \
+            std::abort();                                                                  \
+        }                                                                                  \
+    } while (false)
+
+std::string errorOf(const hyvox::MeshView& mesh, const hyvox::VoxelizeOptions& options, hyvox::GridSpec& grid) {
+    try {
+        grid = hyvox::voxelize(mesh, options).grid;
+        return "";
+    } catch (const hyvox::InvalidInput&) {
+        return "InvalidInput";
+    } catch (const hyvox::ResourceError&) {
+        return "ResourceError";
+    }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    Bytes bytes(data, size);
+    const std::uint8_t counts = bytes.take<std::uint8_t>();
+    const std::size_t vertex_count = 1 + (counts & 15), triangle_count = 1 + (counts >> 4);
+    const std::uint8_t knobs = bytes.take<std::uint8_t>();
+    hyvox::VoxelizeOptions options;
+    options.grid.resolution = 1 + bytes.take<std::uint8_t>() % 32;  // small: the oracle is brute force
+    options.mode = hyvox::Mode::Conservative;
+    options.sdf.band = 1 + (knobs & 7) % 6;
+    options.threads = 1;
+    std::vector<float> positions(3 * vertex_count);
+    if (knobs & 128) {
+        for (float& p : positions) p = bytes.take<float>();
+    } else {
+        const float scale = std::ldexp(1.0f / 64, int(bytes.take<std::uint8_t>() % 32) - 16);
+        for (float& p : positions) p = float(bytes.take<std::int16_t>()) * scale;
+    }
+    std::vector<std::uint32_t> triangles(3 * triangle_count);
+    for (std::uint32_t& t : triangles) t = bytes.take<std::uint8_t>() % (vertex_count + 1);
+    const hyvox::MeshView mesh{positions.data(), vertex_count, triangles.data(), triangle_count};
+
+    hyvox::GridSpec grid, sdf_grid;
+    hyvox::VoxelizeOptions with_sdf = options;
+    with_sdf.attributes.sdf = true;
+    const std::string error = errorOf(mesh, options, grid);
+    REQUIRE(errorOf(mesh, with_sdf, sdf_grid) == error);
+    if (!error.empty()) return 0;
+
+    // The blocks on the sdf run's grid (padded by the band), both ways, against brute force.
+    const hyvox::ValidatedMesh validated = hyvox::validate(mesh);
+    std::vector<std::array<Vec3, 3>> corners;
+    for (const std::uint32_t t : validated.usable)
+        corners.push_back({sdf_grid.toVoxel(validated.vertex(t, 0)), sdf_grid.toVoxel(validated.vertex(t, 1)),
+                           sdf_grid.toVoxel(validated.vertex(t, 2))});
+    const double band = double(options.sdf.band);
+    const hyvox::sdf::BandBins bins =
+        hyvox::sdf::binBand(validated, sdf_grid, band, std::uint64_t(1) << 31, 2048, nullptr);
+    const hyvox::sdf::BlockLayout blocks(sdf_grid);
+    std::vector<double> swept(hyvox::sdf::kBlockVoxels), queried(hyvox::sdf::kBlockVoxels);
+    hyvox::sdf::BlockQueries queries;
+    std::size_t number = 0;  // the next of the bins' blocks (ascending)
+    for (std::uint64_t index = 0; index < std::uint64_t(blocks.counts[0]) * blocks.counts[1] * blocks.counts[2];
+         ++index) {
+        const bool binned = number < bins.blocks.size() && bins.blocks[number] == index;
+        if (binned) {
+            std::uint64_t evaluations = 0;
+            hyvox::sdf::blockDistances(validated, sdf_grid, band, bins, number, swept.data(), evaluations, nullptr);
+            hyvox::sdf::blockDistances(validated, sdf_grid, band, bins, number, queried.data(), evaluations, &queries,
+                                       0.0);
+            ++number;
+        }
+        const std::array<std::int32_t, 3> block = blocks.at(index);
+        constexpr int kSide = hyvox::sdf::BlockLayout::kSide;
+        for (int x = 0; x < kSide; ++x)
+            for (int y = 0; y < kSide; ++y)
+                for (int z = 0; z < kSide; ++z) {
+                    const int i = kSide * block[0] + x, j = kSide * block[1] + y, k = kSide * block[2] + z;
+                    if (i >= sdf_grid.dims[0] || j >= sdf_grid.dims[1] || k >= sdf_grid.dims[2]) continue;
+                    const Vec3 p{i + 0.5, j + 0.5, k + 0.5};
+                    double d = HUGE_VAL;
+                    for (const auto& c : corners) d = std::min(d, pointTriangleDistance(p, c[0], c[1], c[2]));
+                    if (std::fabs(d - band) < 1e-9) continue;
+                    if (!binned) {
+                        REQUIRE(d > band);
+                        continue;
+                    }
+                    const std::size_t at = std::size_t(hyvox::sdf::blockOffset(x, y, z));
+                    for (const double d2 : {swept[at], queried[at]}) {
+                        if (d > band)
+                            REQUIRE(d2 == band * band);
+                        else
+                            REQUIRE(std::fabs(std::sqrt(d2) - d) < 1e-5);
+                    }
+                }
+    }
+    REQUIRE(number == bins.blocks.size());
+    return 0;
+}
