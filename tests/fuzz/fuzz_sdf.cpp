@@ -8,8 +8,8 @@
 //    ResourceError, as the surface alone does;
 //  - every block of the band, computed both ways (every triangle swept, and the small ones
 //    queried wherever a block has any: sdf/band_queries.h), holds at every voxel of the grid
-//    the brute-force closest distance over the usable triangles (Ericson's closest point, in
-//    double) within 1e-5 voxel where that is below the band, and band² exactly where it is
+//    the brute-force closest distance over the usable triangles (Ericson's closest point in
+//    double, the edges' for a triangle without area) within 1e-5 voxel where that is below the band, and band² exactly where it is
 //    beyond (voxels within 1e-9 of the band's edge skipped); every voxel of a block the bins
 //    leave out lies beyond the band.
 #include <algorithm>
@@ -38,9 +38,17 @@ double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[
 Vec3 along(const Vec3& a, const Vec3& d, double t) { return {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}; }
 double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
 
-// Ericson, Real-Time Collision Detection 5.1.5: the distance from p to triangle abc by its
-// Voronoi regions (not the library's formula).
-double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+// The distance from p to segment ab (a point when a = b).
+double pointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 ab = sub(b, a);
+    const double length2 = dot(ab, ab);
+    const double t = length2 > 0 ? std::clamp(dot(sub(p, a), ab) / length2, 0.0, 1.0) : 0.0;
+    return length(sub(p, along(a, ab, t)));
+}
+
+// Ericson, Real-Time Collision Detection 5.1.5: the closest point of triangle abc to p, by
+// its Voronoi regions (an algorithm the library does not use).
+double voronoiDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
     const Vec3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
     const double d1 = dot(ab, ap), d2 = dot(ac, ap);
     if (d1 <= 0 && d2 <= 0) return length(ap);
@@ -59,6 +67,15 @@ double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const 
         return length(sub(p, along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)))));
     const double denom = 1.0 / (va + vb + vc);
     return length(sub(p, along(along(a, ab, vb * denom), ac, vc * denom)));
+}
+
+// The distance from p to triangle abc. A triangle without area (coincident corners) divides 0
+// by 0 in voronoiDistance: its edges, as segments, give the distance.
+double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const double edges =
+        std::min({pointSegmentDistance(p, a, b), pointSegmentDistance(p, b, c), pointSegmentDistance(p, c, a)});
+    const double voronoi = voronoiDistance(p, a, b, c);
+    return std::isnan(voronoi) ? edges : std::min(voronoi, edges);
 }
 
 #define REQUIRE(condition)                                                                 \

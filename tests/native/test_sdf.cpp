@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The sdf attribute (hyvox/level_set.h) against independent oracles: every voxel's distance
-// against a brute-force closest point in double (Ericson's, over every triangle), the band
+// against a brute-force closest point in double (Ericson's, or the edges' for a triangle
+// without area, over every triangle), the band
 // complete (a voxel is active exactly when that distance is below the band); the signs against
 // the same run's solid occupancy and the exact winding number (every triangle's solid angle
 // summed) on the surface's own voxels; the .vdb grid accepted by OpenVDB's level-set tools
@@ -42,9 +43,17 @@ double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[
 Vec3 along(const Vec3& a, const Vec3& d, double t) { return {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}; }
 double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
 
+// The distance from p to segment ab (a point when a = b).
+double pointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 ab = sub(b, a);
+    const double length2 = dot(ab, ab);
+    const double t = length2 > 0 ? std::clamp(dot(sub(p, a), ab) / length2, 0.0, 1.0) : 0.0;
+    return length(sub(p, along(a, ab, t)));
+}
+
 // Ericson, Real-Time Collision Detection 5.1.5: the closest point of triangle abc to p, by
 // its Voronoi regions (an algorithm the library does not use).
-double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+double voronoiDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
     const Vec3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
     const double d1 = dot(ab, ap), d2 = dot(ac, ap);
     if (d1 <= 0 && d2 <= 0) return length(ap);
@@ -64,6 +73,15 @@ double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const 
     const double denom = 1.0 / (va + vb + vc);
     const Vec3 q = along(along(a, ab, vb * denom), ac, vc * denom);
     return length(sub(p, q));
+}
+
+// The distance from p to triangle abc. A triangle without area (coincident corners) divides 0
+// by 0 in voronoiDistance: its edges, as segments, give the distance.
+double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const double edges =
+        std::min({pointSegmentDistance(p, a, b), pointSegmentDistance(p, b, c), pointSegmentDistance(p, c, a)});
+    const double voronoi = voronoiDistance(p, a, b, c);
+    return std::isnan(voronoi) ? edges : std::min(voronoi, edges);
 }
 
 // The usable triangles in voxel space, with each one's box, for brute-force distances and
