@@ -104,16 +104,16 @@ std::uint64_t blockDistances(const ValidatedMesh& mesh, const GridSpec& grid, do
     if (queries && BlockQueries::fits(band)) {
         const std::array<std::int32_t, 3> origin{kSide * block[0], kSide * block[1], kSide * block[2]};
         queries->begin(origin, band);
-        std::vector<std::uint32_t> swept;
-        for (std::uint64_t p = first; p < end; ++p) {
-            const auto corners = voxelCorners(mesh, grid, bins.triangles[p]);
-            if (!queries->offer(corners)) swept.push_back(bins.triangles[p]);
-        }
-        const std::array<std::int32_t, 2> limit{grid.dims[0] - origin[0], grid.dims[1] - origin[1]};
-        const std::uint64_t reached = queries->reachedVoxels(limit);
-        if (queries->triangleCount() > 0 && double(queries->triangleCount()) >= queried_from * double(reached)) {
+        for (std::uint64_t p = first; p < end; ++p) queries->count(voxelCorners(mesh, grid, bins.triangles[p]));
+        if (queries->countedTriangles() > 0 &&
+            double(queries->countedTriangles()) >= queried_from * double(queries->countedCells())) {
+            queries->begin(origin, band);
+            std::vector<std::uint32_t> swept;
+            for (std::uint64_t p = first; p < end; ++p)
+                if (!queries->offer(voxelCorners(mesh, grid, bins.triangles[p]))) swept.push_back(bins.triangles[p]);
             for (const std::uint32_t t : swept)
                 touched |= sweep(voxelCorners(mesh, grid, t), grid, band, block, d2, evaluations);
+            queries->markReached({grid.dims[0] - origin[0], grid.dims[1] - origin[1]});
             return touched | queries->lower(d2, evaluations);
         }
     }

@@ -27,12 +27,13 @@ constexpr int kBlockBricks = BlockLayout::kSide / BrickLayout::kSide;
 static_assert(kBlockBricks * kBlockBricks * kBlockBricks == 64, "a block's bricks are the bits of one word");
 inline int brickBit(int bx, int by, int bz) { return (bx * kBlockBricks + by) * kBlockBricks + bz; }
 
-// A block's small triangles (BlockQueries::takes) go to the queries when there are at least
-// this many for each voxel the queries would visit (BlockQueries::reachedVoxels). Measured on
-// one thread: the 871k dragon at 128 (some 7 a voxel) 2.0 s swept, 1.0 s queried; at 512
-// (0.3) 2.9 s swept, 3.5 s queried; the Buddha at 128 (1.2) 0.30 s against 0.23 s, at 256
-// (0.36) even; the armadillo at 128 (0.14) 0.17 s against 0.21 s.
-constexpr double kQueriedFrom = 0.5;
+// A block's small triangles (BlockQueries::count) go to the queries when there are at least
+// this many for each cell they lie in, on average. Measured on one thread (the band's time,
+// swept against queried from 2, 3, 4 and 6 a cell): the 871k dragon at 128 1.84 s against
+// 0.83-0.86 s; at 256 2.10 s against 1.63 s at 4 (1.82 s at 2); at 512 2.57 s against
+// 2.57 s at 4 (3.29 s at 2); the Buddha at 128 0.28 s against 0.20 s; the bunny at 256 and
+// the armadillo at 128 the same every way (few small triangles a cell: swept).
+constexpr double kQueriedFrom = 4.0;
 
 // Block `number` of `bins` into `d2` (kBlockVoxels values); adds the distances computed to
 // `evaluations`. Returns the bricks where a distance was computed (elsewhere d2 is band²).

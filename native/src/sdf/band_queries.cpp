@@ -65,6 +65,7 @@ void BlockQueries::begin(const std::array<std::int32_t, 3>& origin, double band)
     side_ = kSide + 2 * margin_;
     pending_.clear();
     pending_place_.clear();
+    counted_triangles_ = counted_cells_ = 0;
     const std::size_t side = std::size_t(side_);
     if (slot_of_key_.size() < side * side * side) slot_of_key_.resize(side * side * side);
     rows_.assign(side * side, 0);
@@ -72,20 +73,35 @@ void BlockQueries::begin(const std::array<std::int32_t, 3>& origin, double band)
     cells_.clear();
 }
 
-bool BlockQueries::offer(const std::array<Vec3, 3>& corners) {
+bool BlockQueries::placeOf(const std::array<Vec3, 3>& corners, int at[3], int& octant) const {
     for (int a = 0; a < 3; ++a) {
         const double lo = std::min({corners[0][a], corners[1][a], corners[2][a]});
         const double hi = std::max({corners[0][a], corners[1][a], corners[2][a]});
         if (!(hi - lo <= 1.0)) return false;
     }
     const Vec3 centroid = centroidOf(corners);
-    int at[3], octant = 0;
+    octant = 0;
     for (int a = 0; a < 3; ++a) {
         const double from_origin = centroid[a] - origin_[a], cell = std::floor(from_origin);
         if (!(cell + margin_ >= 0 && cell + margin_ < side_)) return false;
         at[a] = int(cell) + margin_;
         octant |= int(from_origin - cell >= 0.5) << a;  // which half of the cell along axis a
     }
+    return true;
+}
+
+void BlockQueries::count(const std::array<Vec3, 3>& corners) {
+    int at[3], octant;
+    if (!placeOf(corners, at, octant)) return;
+    ++counted_triangles_;
+    std::uint64_t& row = rows_[std::size_t(at[0] * side_ + at[1])];
+    counted_cells_ += !((row >> at[2]) & 1);
+    row |= std::uint64_t(1) << at[2];
+}
+
+bool BlockQueries::offer(const std::array<Vec3, 3>& corners) {
+    int at[3], octant;
+    if (!placeOf(corners, at, octant)) return false;
     std::uint64_t& row = rows_[std::size_t(at[0] * side_ + at[1])];
     const std::size_t key = std::size_t((at[0] * side_ + at[1]) * side_ + at[2]);
     if (!((row >> at[2]) & 1)) {
@@ -141,7 +157,7 @@ void BlockQueries::sortIntoCells() {
     }
 }
 
-std::uint64_t BlockQueries::reachedVoxels(const std::array<std::int32_t, 2>& limit) {
+void BlockQueries::markReached(const std::array<std::int32_t, 2>& limit) {
     // The voxels whose centres lie within the band of a cell's box (a lower bound of its
     // triangles' distances), each box's rows marked at once.
     reach_.assign(std::size_t(kSide * kSide), 0);
@@ -170,9 +186,6 @@ std::uint64_t BlockQueries::reachedVoxels(const std::array<std::int32_t, 2>& lim
             }
         }
     }
-    std::uint64_t voxels = 0;
-    for (const std::uint64_t word : reach_) voxels += std::uint64_t(__builtin_popcountll(word));
-    return voxels;
 }
 
 std::uint64_t BlockQueries::lower(double* d2, std::uint64_t& evaluations) {

@@ -35,19 +35,25 @@ public:
 
     // Starts a block: `origin` its first voxel, `band` the band's half-width (fits(band)).
     void begin(const std::array<std::int32_t, 3>& origin, double band);
-    // Adds the triangle of voxel-space `corners` when the queries take it: no wider than a
-    // voxel along any axis, its centroid within the cells around the block. False when not.
+    // Counts the triangle of voxel-space `corners`, and its cell when new, when the queries
+    // would take it: no wider than a voxel along any axis, its centroid within the cells
+    // around the block. What a block's triangles count to decides whether to offer them
+    // (after begin again).
+    void count(const std::array<Vec3, 3>& corners);
+    std::size_t countedTriangles() const { return counted_triangles_; }
+    std::size_t countedCells() const { return counted_cells_; }
+    // Adds the triangle when the queries take it (as count); false when not.
     bool offer(const std::array<Vec3, 3>& corners);
     // The triangles added.
     std::size_t triangleCount() const { return pending_.size(); }
 
-    // The voxels (within the grid's first `limit` voxels along x and y, where it ends) that
-    // may lie within the band of an added triangle: those `lower` visits. Call once all are
-    // added.
-    std::uint64_t reachedVoxels(const std::array<std::int32_t, 2>& limit);
+    // Marks the voxels (within the grid's first `limit` voxels along x and y, where it ends)
+    // that may lie within the band of an added triangle: those `lower` visits. Call once all
+    // are added.
+    void markReached(const std::array<std::int32_t, 2>& limit);
 
     // Lowers `d2` (the block's squared distances, blockOffset order, each already at most
-    // band²) to the least over the added triangles at the voxels reachedVoxels counted.
+    // band²) to the least over the added triangles at the voxels markReached marked.
     // Returns the bricks where a distance fell below band²; adds the distances computed to
     // `evaluations` (four for each group of up to four triangles measured at once).
     std::uint64_t lower(double* d2, std::uint64_t& evaluations);
@@ -85,6 +91,11 @@ private:
     };
     std::vector<Near> near_;
 
+    std::size_t counted_triangles_ = 0, counted_cells_ = 0;
+
+    // The cell (x, y, z) of the triangle, counted from origin - margin, and the octant of
+    // that cell its centroid lies in; false when the queries do not take it.
+    bool placeOf(const std::array<Vec3, 3>& corners, int at[3], int& octant) const;
     void sortIntoCells();
     // lower's voxels, a free function: compilers build target clones of those (point_triangle.h).
     friend std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& evaluations);
