@@ -28,29 +28,21 @@ struct Sweep {
         h0 = -(n[0] * c[0] + n[1] * c[1] + n[2] * c[2]);
     }
 
-    // Narrows [k_lo, k_hi] of row (x, y) to the voxels whose centres lie both in the slab of
-    // half-width band around the triangle's plane (a stretch of 2 band / |hz| along the row)
-    // and in its bounding sphere grown by the band (the chord through it: what bounds the
-    // row for a triangle much smaller than the band), solved for rather than tested voxel by
-    // voxel; false when the row misses either.
+    // Narrows [k_lo, k_hi] of row (x, y) to the voxels whose centres lie in the slab of
+    // half-width band around the triangle's plane (a stretch of 2 band / |hz| along the row),
+    // solved for rather than tested voxel by voxel; false when the row misses the slab or the
+    // bounding sphere grown by the band. (Cutting the row to the chord through that sphere
+    // too measured slower: its square root costs more than the voxels it saves.)
     bool narrow(double x, double y, int& k_lo, int& k_hi) const {
         const double dx = x - t.centre[0], dy = y - t.centre[1];
-        const double off_axis2 = dx * dx + dy * dy;
-        if (off_axis2 >= reach2) return false;
-        const double chord = std::sqrt(reach2 - off_axis2);
-        double lo = t.centre[2] - chord, hi = t.centre[2] + chord;
+        if (dx * dx + dy * dy >= reach2) return false;
         const double height_xy = hx * x + hy * y + h0;
-        if (hz == 0) {
-            if (std::fabs(height_xy) >= band) return false;
-        } else {
-            const double a = (-band - height_xy) * inverse_hz, b = (band - height_xy) * inverse_hz;
-            lo = std::max(lo, std::min(a, b));
-            hi = std::min(hi, std::max(a, b));
-        }
-        // Centres k + 0.5 in [lo, hi], a rounding's width more on each side.
+        if (hz == 0) return std::fabs(height_xy) < band;
+        const double a = (-band - height_xy) * inverse_hz, b = (band - height_xy) * inverse_hz;
+        // Centres k + 0.5 in [min(a, b), max(a, b)], a rounding's width more on each side.
         constexpr double kSlack = 1e-9;
-        const double first = std::ceil(lo - 0.5 - kSlack);
-        const double last = std::floor(hi - 0.5 + kSlack);
+        const double first = std::ceil(std::min(a, b) - 0.5 - kSlack);
+        const double last = std::floor(std::max(a, b) - 0.5 + kSlack);
         if (first > double(k_lo)) k_lo = first > double(k_hi) ? k_hi + 1 : int(first);
         if (last < double(k_hi)) k_hi = last < double(k_lo) ? k_lo - 1 : int(last);
         return k_lo <= k_hi;
@@ -102,20 +94,21 @@ std::uint64_t blockDistances(const ValidatedMesh& mesh, const GridSpec& grid, do
     const std::uint64_t first = bins.start[number], end = bins.start[number + 1];
     std::uint64_t touched = 0;
     if (queries && BlockQueries::fits(band)) {
+        // Each triangle's corners once: counted, then offered or swept.
+        std::vector<std::array<Vec3, 3>>& corners = queries->block_corners;
+        corners.resize(end - first);
+        for (std::uint64_t p = first; p < end; ++p) corners[p - first] = voxelCorners(mesh, grid, bins.triangles[p]);
         const std::array<std::int32_t, 3> origin{kSide * block[0], kSide * block[1], kSide * block[2]};
         queries->begin(origin, band);
-        for (std::uint64_t p = first; p < end; ++p) queries->count(voxelCorners(mesh, grid, bins.triangles[p]));
-        if (queries->countedTriangles() > 0 &&
-            double(queries->countedTriangles()) >= queried_from * double(queries->countedCells())) {
-            queries->begin(origin, band);
-            std::vector<std::uint32_t> swept;
-            for (std::uint64_t p = first; p < end; ++p)
-                if (!queries->offer(voxelCorners(mesh, grid, bins.triangles[p]))) swept.push_back(bins.triangles[p]);
-            for (const std::uint32_t t : swept)
-                touched |= sweep(voxelCorners(mesh, grid, t), grid, band, block, d2, evaluations);
-            queries->markReached({grid.dims[0] - origin[0], grid.dims[1] - origin[1]});
-            return touched | queries->lower(d2, evaluations);
-        }
+        for (const auto& triangle : corners) queries->count(triangle);
+        const bool queried = queries->countedTriangles() > 0 &&
+            double(queries->countedTriangles()) >= queried_from * double(queries->countedCells());
+        if (queried) queries->begin(origin, band);
+        for (const auto& triangle : corners)
+            if (!queried || !queries->offer(triangle)) touched |= sweep(triangle, grid, band, block, d2, evaluations);
+        if (!queried) return touched;
+        queries->markReached({grid.dims[0] - origin[0], grid.dims[1] - origin[1]});
+        return touched | queries->lower(d2, evaluations);
     }
     for (std::uint64_t p = first; p < end; ++p)
         touched |= sweep(voxelCorners(mesh, grid, bins.triangles[p]), grid, band, block, d2, evaluations);

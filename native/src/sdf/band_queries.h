@@ -46,6 +46,8 @@ public:
     bool offer(const std::array<Vec3, 3>& corners);
     // The triangles added.
     std::size_t triangleCount() const { return pending_.size(); }
+    // The caller's: a block's triangles' corners, kept from block to block.
+    std::vector<std::array<Vec3, 3>> block_corners;
 
     // Marks the voxels (within the grid's first `limit` voxels along x and y, where it ends)
     // that may lie within the band of an added triangle: those `lower` visits. Call once all
