@@ -27,56 +27,14 @@
 #include "hyvox/voxelize.h"
 #include "sdf/band_bins.h"
 #include "sdf/band_distances.h"
+#include "support/closest_point.h"
 
 namespace {
 
 using hyvox::fuzz::Bytes;
 using Vec3 = std::array<double, 3>;
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 along(const Vec3& a, const Vec3& d, double t) { return {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}; }
-double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
-
-// The distance from p to segment ab (a point when a = b).
-double pointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b) {
-    const Vec3 ab = sub(b, a);
-    const double length2 = dot(ab, ab);
-    const double t = length2 > 0 ? std::clamp(dot(sub(p, a), ab) / length2, 0.0, 1.0) : 0.0;
-    return length(sub(p, along(a, ab, t)));
-}
-
-// Ericson, Real-Time Collision Detection 5.1.5: the closest point of triangle abc to p, by
-// its Voronoi regions (an algorithm the library does not use).
-double voronoiDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
-    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return length(ap);
-    const Vec3 bp = sub(p, b);
-    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return length(bp);
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return length(sub(p, along(a, ab, d1 / (d1 - d3))));
-    const Vec3 cp = sub(p, c);
-    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return length(cp);
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return length(sub(p, along(a, ac, d2 / (d2 - d6))));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
-        return length(sub(p, along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)))));
-    const double denom = 1.0 / (va + vb + vc);
-    return length(sub(p, along(along(a, ab, vb * denom), ac, vc * denom)));
-}
-
-// The distance from p to triangle abc. A triangle without area (coincident corners) divides 0
-// by 0 in voronoiDistance: its edges, as segments, give the distance.
-double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const double edges =
-        std::min({pointSegmentDistance(p, a, b), pointSegmentDistance(p, b, c), pointSegmentDistance(p, c, a)});
-    const double voronoi = voronoiDistance(p, a, b, c);
-    return std::isnan(voronoi) ? edges : std::min(voronoi, edges);
-}
+using hyvox::test::closest_point::pointTriangleDistance;
 
 #define REQUIRE(condition)                                                                 \
     do {                                                                                   \
@@ -109,16 +67,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.mode = hyvox::Mode::Conservative;
     options.sdf.band = 1 + (knobs & 7) % 6;
     options.threads = 1;
-    std::vector<float> positions(3 * vertex_count);
-    if (knobs & 128) {
-        for (float& p : positions) p = bytes.take<float>();
-    } else {
-        const float scale = std::ldexp(1.0f / 64, int(bytes.take<std::uint8_t>() % 32) - 16);
-        for (float& p : positions) p = float(bytes.take<std::int16_t>()) * scale;
-    }
-    std::vector<std::uint32_t> triangles(3 * triangle_count);
-    for (std::uint32_t& t : triangles) t = bytes.take<std::uint8_t>() % (vertex_count + 1);
-    const hyvox::MeshView mesh{positions.data(), vertex_count, triangles.data(), triangle_count};
+    const hyvox::fuzz::Soup soup = hyvox::fuzz::takeSoup(bytes, vertex_count, triangle_count, knobs & 128);
+    const hyvox::MeshView mesh{soup.positions.data(), vertex_count, soup.triangles.data(), triangle_count};
 
     hyvox::GridSpec grid, sdf_grid;
     hyvox::VoxelizeOptions with_sdf = options;

@@ -77,16 +77,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.grid.padding = (knobs >> 1) & 3;
     options.tile_size = (knobs & 8) ? 8 * (1 + ((knobs >> 4) & 3)) : 0;  // tile borders too
     options.threads = 1;
-    std::vector<float> positions(3 * vertex_count);
-    if (knobs & 128) {
-        for (float& p : positions) p = bytes.take<float>();
-    } else {
-        const float scale = std::ldexp(1.0f / 64, int(bytes.take<std::uint8_t>() % 32) - 16);
-        for (float& p : positions) p = float(bytes.take<std::int16_t>()) * scale;
-    }
-    std::vector<std::uint32_t> triangles(3 * triangle_count);
-    for (std::uint32_t& t : triangles) t = bytes.take<std::uint8_t>() % (vertex_count + 1);
-    const hyvox::MeshView mesh{positions.data(), vertex_count, triangles.data(), triangle_count};
+    const hyvox::fuzz::Soup soup = hyvox::fuzz::takeSoup(bytes, vertex_count, triangle_count, knobs & 128);
+    const hyvox::MeshView mesh{soup.positions.data(), vertex_count, soup.triangles.data(), triangle_count};
 
     Coords cpu, reference;
     hyvox::GridSpec grid;
