@@ -8,10 +8,10 @@
 //    ResourceError, as the surface alone does;
 //  - every block of the band, computed both ways (every triangle swept, and the small ones
 //    queried wherever a block has any: sdf/band_queries.h), holds at every voxel of the grid
-//    the brute-force closest distance over the usable triangles (Ericson's closest point in
-//    double, the edges' for a triangle without area) within 1e-5 voxel where that is below the band, and band² exactly where it is
-//    beyond (voxels within 1e-9 of the band's edge skipped); every voxel of a block the bins
-//    leave out lies beyond the band.
+//    the brute-force closest distance over the usable triangles (tests/native/support/
+//    closest_point.h) within 1e-5 voxel where that is below the band, and band² exactly
+//    where it is beyond (voxels within 1e-9 of the band's edge skipped); every voxel of a
+//    block the bins leave out lies beyond the band.
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -226,7 +226,7 @@ void expectBlocksMatchTheBruteForce(const test::TriangleSoup& soup, const Voxeli
         std::uint64_t evaluations = 0;
         sdf::blockDistances(validated, grid, band, bins, number, swept.data(), evaluations, nullptr);
         sdf::blockDistances(validated, grid, band, bins, number, queried.data(), evaluations, &queries, 0.0);
-        queried_blocks += queries.triangleCount() > 0;
+        queried_blocks += queries.taken() > 0;
         const std::array<std::int32_t, 3> block = blocks.at(bins.blocks[number]);
         constexpr int kSide = sdf::BlockLayout::kSide;
         for (int x = 0; x < kSide; ++x)

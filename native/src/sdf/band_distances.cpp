@@ -49,7 +49,7 @@ struct Sweep {
     }
 };
 
-// Sweeps triangle `corners` over the rows of the block at (x0, y0, z0) within its band.
+// Sweeps triangle `corners` over the rows of block `block` (in blocks) within its band.
 HYVOX_SDF_CLONES
 std::uint64_t sweep(const std::array<Vec3, 3>& corners, const GridSpec& grid, double band,
                     const std::array<std::int32_t, 3>& block, double* d2, std::uint64_t& evaluations) {
@@ -94,18 +94,14 @@ std::uint64_t blockDistances(const ValidatedMesh& mesh, const GridSpec& grid, do
     const std::uint64_t first = bins.start[number], end = bins.start[number + 1];
     std::uint64_t touched = 0;
     if (queries && BlockQueries::fits(band)) {
-        // Each triangle's corners once: counted, then offered or swept.
-        std::vector<std::array<Vec3, 3>>& corners = queries->block_corners;
-        corners.resize(end - first);
-        for (std::uint64_t p = first; p < end; ++p) corners[p - first] = voxelCorners(mesh, grid, bins.triangles[p]);
         const std::array<std::int32_t, 3> origin{kSide * block[0], kSide * block[1], kSide * block[2]};
         queries->begin(origin, band);
-        for (const auto& triangle : corners) queries->count(triangle);
-        const bool queried = queries->countedTriangles() > 0 &&
-            double(queries->countedTriangles()) >= queried_from * double(queries->countedCells());
-        if (queried) queries->begin(origin, band);
-        for (const auto& triangle : corners)
-            if (!queried || !queries->offer(triangle)) touched |= sweep(triangle, grid, band, block, d2, evaluations);
+        for (std::uint64_t p = first; p < end; ++p) queries->add(voxelCorners(mesh, grid, bins.triangles[p]));
+        const bool queried = queries->placedTriangles() > 0 &&
+            double(queries->placedTriangles()) >= queried_from * double(queries->occupiedCells());
+        for (std::size_t n = 0; n < queries->triangles(); ++n)
+            if (!queried || !queries->take(n))
+                touched |= sweep(queries->corners(n), grid, band, block, d2, evaluations);
         if (!queried) return touched;
         queries->markReached({grid.dims[0] - origin[0], grid.dims[1] - origin[1]});
         return touched | queries->lower(d2, evaluations);

@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// One block's distances: for each of its 32³ voxels, the least squared distance (voxel units)
-// from its centre to the block's triangles (BandBins), where that is below band²; band² where
-// none comes nearer. A block crowded with triangles smaller than a voxel measures those by
-// queries (band_queries.h) and sweeps the rest. A swept triangle is measured only along the
-// rows of the block its band can reach, and along each row over the stretch inside the slab of half-width band around its
-// plane, rounded out to whole quads of the row: every distance of the stretch is computed, four
-// at a time, without a test per voxel (a test that skipped the voxels a nearer triangle had
-// already claimed cost more than the distances it saved, as short rows ran scalar remainders).
+// One block's distances: for each of its 32³ voxels, the least squared distance (voxel units) from
+// its centre to the block's triangles (BandBins), where that is below band²; band² where none
+// comes nearer. A block crowded with triangles smaller than a voxel measures those by queries
+// (band_queries.h) and sweeps the rest. A swept triangle is measured only along the rows of the
+// block its band can reach, and along each row over the stretch inside the slab of half-width band
+// around its plane, rounded out to whole quads of the row: every distance of the stretch is
+// computed, four at a time, without a test per voxel (a test that skipped the voxels a nearer
+// triangle had already claimed cost more than the distances it saved, as short rows ran scalar
+// remainders).
 #include <cstdint>
 
 #include "hyvox/grid.h"

@@ -45,17 +45,16 @@ constexpr std::array<double, 6> kEmptyBox{HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VA
 
 bool BlockQueries::fits(double band) { return kSide + 2 * marginFor(band) <= 64; }
 
-// A triangle's corners, cell key and place in the order, a whole pack (at most: an octant of
-// one triangle), and a cell and an octant (at most).
-const std::size_t BlockQueries::kBytesPerTriangle =
-    sizeof(std::array<Vec3, 3>) + 2 * sizeof(std::uint32_t) + sizeof(DistanceTriangles4) + sizeof(Cell) + sizeof(Group);
-
-std::size_t BlockQueries::bytesAtMost(double band) {
+std::size_t BlockQueries::bytesAtMost(double band, std::size_t triangles) {
     if (!fits(band)) return 0;
     const std::size_t side = std::size_t(kSide + 2 * marginFor(band));
-    // The cells' slots, rows and their boxes, and the reach.
-    return side * side * side * sizeof(std::uint32_t) + side * side * (sizeof(std::uint64_t) + 4 * sizeof(double)) +
-        std::size_t(kSide * kSide) * sizeof(std::uint64_t);
+    // For each triangle: its corners, place and place among the taken, a whole pack (at most:
+    // an octant of one triangle), a cell and an octant (at most). Beside them the cells' slots,
+    // rows and their boxes, and the reach.
+    const std::size_t per_triangle = sizeof(std::array<Vec3, 3>) + 2 * sizeof(std::uint32_t) +
+        sizeof(DistanceTriangles4) + sizeof(Cell) + sizeof(Group);
+    return triangles * per_triangle + side * side * side * sizeof(std::uint32_t) +
+        side * side * (sizeof(std::uint64_t) + 4 * sizeof(double)) + std::size_t(kSide * kSide) * sizeof(std::uint64_t);
 }
 
 void BlockQueries::begin(const std::array<std::int32_t, 3>& origin, double band) {
@@ -63,9 +62,10 @@ void BlockQueries::begin(const std::array<std::int32_t, 3>& origin, double band)
     band_ = band;
     margin_ = marginFor(band);
     side_ = kSide + 2 * margin_;
-    pending_.clear();
-    pending_place_.clear();
-    counted_triangles_ = counted_cells_ = 0;
+    corners_.clear();
+    places_.clear();
+    placed_ = 0;
+    taken_.clear();
     const std::size_t side = std::size_t(side_);
     if (slot_of_key_.size() < side * side * side) slot_of_key_.resize(side * side * side);
     rows_.assign(side * side, 0);
@@ -73,64 +73,58 @@ void BlockQueries::begin(const std::array<std::int32_t, 3>& origin, double band)
     cells_.clear();
 }
 
-bool BlockQueries::placeOf(const std::array<Vec3, 3>& corners, int at[3], int& octant) const {
+void BlockQueries::add(const std::array<Vec3, 3>& corners) {
+    corners_.push_back(corners);
+    places_.push_back(kNotPlaced);
     for (int a = 0; a < 3; ++a) {
         const double lo = std::min({corners[0][a], corners[1][a], corners[2][a]});
         const double hi = std::max({corners[0][a], corners[1][a], corners[2][a]});
-        if (!(hi - lo <= 1.0)) return false;
+        if (!(hi - lo <= 1.0)) return;
     }
     const Vec3 centroid = centroidOf(corners);
-    octant = 0;
+    int at[3], octant = 0;
     for (int a = 0; a < 3; ++a) {
         const double from_origin = centroid[a] - origin_[a], cell = std::floor(from_origin);
-        if (!(cell + margin_ >= 0 && cell + margin_ < side_)) return false;
+        if (!(cell + margin_ >= 0 && cell + margin_ < side_)) return;
         at[a] = int(cell) + margin_;
         octant |= int(from_origin - cell >= 0.5) << a;  // which half of the cell along axis a
     }
-    return true;
-}
-
-void BlockQueries::count(const std::array<Vec3, 3>& corners) {
-    int at[3], octant;
-    if (!placeOf(corners, at, octant)) return;
-    ++counted_triangles_;
     std::uint64_t& row = rows_[std::size_t(at[0] * side_ + at[1])];
-    counted_cells_ += !((row >> at[2]) & 1);
-    row |= std::uint64_t(1) << at[2];
-}
-
-bool BlockQueries::offer(const std::array<Vec3, 3>& corners) {
-    int at[3], octant;
-    if (!placeOf(corners, at, octant)) return false;
-    std::uint64_t& row = rows_[std::size_t(at[0] * side_ + at[1])];
-    const std::size_t key = std::size_t((at[0] * side_ + at[1]) * side_ + at[2]);
+    const std::uint32_t key = std::uint32_t((at[0] * side_ + at[1]) * side_ + at[2]);
     if (!((row >> at[2]) & 1)) {
         row |= std::uint64_t(1) << at[2];
         slot_of_key_[key] = std::uint32_t(cells_.size());
         cells_.push_back({0, 0, kEmptyBox});
     }
-    const std::uint32_t slot = slot_of_key_[key];
-    Cell& cell = cells_[slot];
-    grow(cell.box, corners);
-    std::array<double, 4>& row_box = row_boxes_[std::size_t(at[0] * side_ + at[1])];
+    places_.back() = (key << 3) | std::uint32_t(octant);
+    ++placed_;
+}
+
+bool BlockQueries::take(std::size_t n) {
+    const std::uint32_t place = places_[n];
+    if (place == kNotPlaced) return false;
+    const std::uint32_t key = place >> 3;
+    Cell& cell = cells_[slot_of_key_[key]];
+    grow(cell.box, corners_[n]);
+    std::array<double, 4>& row_box = row_boxes_[key / std::uint32_t(side_)];
     for (int a = 0; a < 2; ++a) {
         row_box[std::size_t(a)] = std::min(row_box[std::size_t(a)], cell.box[std::size_t(a)]);
         row_box[std::size_t(a + 2)] = std::max(row_box[std::size_t(a + 2)], cell.box[std::size_t(a + 3)]);
     }
-    pending_.push_back(corners);
-    pending_place_.push_back((slot << 3) | std::uint32_t(octant));
+    taken_.push_back(std::uint32_t(n));
     return true;
 }
 
 void BlockQueries::sortIntoCells() {
-    // A counting sort by cell, then octant.
+    // A counting sort of the taken triangles by cell, then octant.
+    auto slotOf = [&](std::uint32_t n) { return 8 * std::size_t(slot_of_key_[places_[n] >> 3]) + (places_[n] & 7); };
     std::vector<std::uint32_t> start(8 * cells_.size() + 1, 0);
-    for (const std::uint32_t place : pending_place_) ++start[place + 1];
-    for (std::size_t n = 1; n < start.size(); ++n) start[n] += start[n - 1];
-    std::vector<std::uint32_t> order(pending_.size());
+    for (const std::uint32_t n : taken_) ++start[slotOf(n) + 1];
+    for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+    std::vector<std::uint32_t> order(taken_.size());
     {
         std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-        for (std::size_t p = 0; p < pending_.size(); ++p) order[fill[pending_place_[p]]++] = std::uint32_t(p);
+        for (const std::uint32_t n : taken_) order[fill[slotOf(n)]++] = n;
     }
     packs_.clear();
     packs_.reserve(order.size() / 2 + cells_.size());
@@ -142,9 +136,9 @@ void BlockQueries::sortIntoCells() {
         for (std::size_t o = 8 * c; o < 8 * c + 8; ++o) {
             if (start[o] == start[o + 1]) continue;
             Group group{std::uint32_t(packs_.size()), 0, kEmptyBox};
-            for (std::uint32_t n = start[o]; n < start[o + 1]; ++n) {
-                grow(group.box, pending_[order[n]]);
-                octant.emplace_back(pending_[order[n]]);
+            for (std::uint32_t i = start[o]; i < start[o + 1]; ++i) {
+                grow(group.box, corners_[order[i]]);
+                octant.emplace_back(corners_[order[i]]);
             }
             for (std::size_t at = 0; at < octant.size(); at += DistanceTriangles4::kLanes)
                 packs_.emplace_back(octant.data() + at,

@@ -29,25 +29,24 @@ class BlockQueries {
 public:
     // Whether `band` leaves the cells around a block narrow enough (a row of them one word).
     static bool fits(double band);
-    // What the queries hold for each triangle added (at most), and beside them for a band.
-    static const std::size_t kBytesPerTriangle;
-    static std::size_t bytesAtMost(double band);
+    // What one thread's queries hold at most for a block of `triangles` triangles (0 when the
+    // band does not fit).
+    static std::size_t bytesAtMost(double band, std::size_t triangles);
 
     // Starts a block: `origin` its first voxel, `band` the band's half-width (fits(band)).
     void begin(const std::array<std::int32_t, 3>& origin, double band);
-    // Counts the triangle of voxel-space `corners`, and its cell when new, when the queries
-    // would take it: no wider than a voxel along any axis, its centroid within the cells
-    // around the block. What a block's triangles count to decides whether to offer them
-    // (after begin again).
-    void count(const std::array<Vec3, 3>& corners);
-    std::size_t countedTriangles() const { return counted_triangles_; }
-    std::size_t countedCells() const { return counted_cells_; }
-    // Adds the triangle when the queries take it (as count); false when not.
-    bool offer(const std::array<Vec3, 3>& corners);
-    // The triangles added.
-    std::size_t triangleCount() const { return pending_.size(); }
-    // The caller's: a block's triangles' corners, kept from block to block.
-    std::vector<std::array<Vec3, 3>> block_corners;
+    // Keeps the block's next triangle, of voxel-space `corners`, and places it in its cell
+    // when the queries can take it: no wider than a voxel along any axis, its centroid within
+    // the cells around the block.
+    void add(const std::array<Vec3, 3>& corners);
+    std::size_t triangles() const { return corners_.size(); }
+    const std::array<Vec3, 3>& corners(std::size_t n) const { return corners_[n]; }
+    // The triangles placed in cells, and the cells they occupy.
+    std::size_t placedTriangles() const { return placed_; }
+    std::size_t occupiedCells() const { return cells_.size(); }
+    // Takes triangle n into the queries; false when it was not placed (it is to be swept).
+    bool take(std::size_t n);
+    std::size_t taken() const { return taken_.size(); }
 
     // Marks the voxels (within the grid's first `limit` voxels along x and y, where it ends)
     // that may lie within the band of an added triangle: those `lower` visits. Call once all
@@ -75,8 +74,11 @@ private:
     std::array<std::int32_t, 3> origin_{0, 0, 0};
     double band_ = 0;
     int margin_ = 0, side_ = 0;
-    std::vector<std::array<Vec3, 3>> pending_;
-    std::vector<std::uint32_t> pending_place_;  // (the cell's slot << 3) | the octant
+    static constexpr std::uint32_t kNotPlaced = ~std::uint32_t(0);
+    std::vector<std::array<Vec3, 3>> corners_;  // the block's triangles
+    std::vector<std::uint32_t> places_;         // each one's (cell key << 3) | octant, or kNotPlaced
+    std::size_t placed_ = 0;
+    std::vector<std::uint32_t> taken_;  // the triangles taken
     // side³ entries, cell (x, y, z) at (x * side + y) * side + z, the cells counted from
     // origin - margin along each axis; valid where the cell is occupied.
     std::vector<std::uint32_t> slot_of_key_;
@@ -93,11 +95,6 @@ private:
     };
     std::vector<Near> near_;
 
-    std::size_t counted_triangles_ = 0, counted_cells_ = 0;
-
-    // The cell (x, y, z) of the triangle, counted from origin - margin, and the octant of
-    // that cell its centroid lies in; false when the queries do not take it.
-    bool placeOf(const std::array<Vec3, 3>& corners, int at[3], int& octant) const;
     void sortIntoCells();
     // lower's voxels, a free function: compilers build target clones of those (point_triangle.h).
     friend std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& evaluations);

@@ -118,8 +118,7 @@ LevelSetGrid makeLevelSet(const ValidatedMesh& mesh, const GridSpec& grid, const
     for (std::size_t n = 0; n < bins.blocks.size(); ++n)
         most_in_a_block = std::max(most_in_a_block, bins.start[n + 1] - bins.start[n]);
     const std::uint64_t threads = std::min<std::uint64_t>(std::uint64_t(arena.max_concurrency()), bins.blocks.size());
-    const std::uint64_t queries_bytes =
-        threads * (most_in_a_block * BlockQueries::kBytesPerTriangle + BlockQueries::bytesAtMost(band));
+    const std::uint64_t queries_bytes = threads * BlockQueries::bytesAtMost(band, most_in_a_block);
     const std::uint64_t need = reached_bricks * (sizeof(Leaf) + 512 * sizeof(float)) + bins.byteSize() + queries_bytes;
     if (need > left)
         throw ResourceError("the sdf's band needs about " + mib(need) + " beside " + mib(held_bytes) +

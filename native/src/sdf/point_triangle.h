@@ -167,13 +167,14 @@ public:
     DistanceTriangles4(const DistanceTriangle* triangles, int count) {
         for (int lane = 0; lane < kLanes; ++lane) {
             const DistanceTriangle& t = triangles[std::min(lane, count - 1)];
-            const Flat f = t.flat();
-            const double fields[kFields] = {t.origin[0], t.origin[1], t.origin[2], t.u_axis[0], t.u_axis[1],
-                                            t.u_axis[2], t.v_axis[0], t.v_axis[1], t.v_axis[2], t.h_axis[0],
-                                            t.h_axis[1], t.h_axis[2], f.bu,        f.cu,        f.cv,
-                                            f.e0u,       f.e0v,       f.e1u,       f.e1v,       f.e2u,
-                                            f.e2v,       f.l0,        f.l1,        f.l2,        f.turn};
-            for (int field = 0; field < kFields; ++field) lanes_[field][lane] = fields[field];
+            for (int a = 0; a < 3; ++a) {
+                frame_[kOrigin + a][lane] = t.origin[a];
+                frame_[kU + a][lane] = t.u_axis[a];
+                frame_[kV + a][lane] = t.v_axis[a];
+                frame_[kH + a][lane] = t.h_axis[a];
+            }
+            const Flat flat = t.flat();
+            for (int f = 0; f < kFlatFields; ++f) flat_[f][lane] = flat.*kFlat[f];
         }
     }
 
@@ -181,21 +182,28 @@ public:
     double minDistance2(double x, double y, double z, double best) const {
         double out[kLanes];
         for (int lane = 0; lane < kLanes; ++lane) {
-            const double qx = x - lanes_[0][lane], qy = y - lanes_[1][lane], qz = z - lanes_[2][lane];
-            const double u = qx * lanes_[3][lane] + qy * lanes_[4][lane] + qz * lanes_[5][lane];
-            const double v = qx * lanes_[6][lane] + qy * lanes_[7][lane] + qz * lanes_[8][lane];
-            const double h = qx * lanes_[9][lane] + qy * lanes_[10][lane] + qz * lanes_[11][lane];
-            const Flat flat{lanes_[12][lane], lanes_[13][lane], lanes_[14][lane], lanes_[15][lane], lanes_[16][lane],
-                            lanes_[17][lane], lanes_[18][lane], lanes_[19][lane], lanes_[20][lane], lanes_[21][lane],
-                            lanes_[22][lane], lanes_[23][lane], lanes_[24][lane]};
-            out[lane] = flat.distance2(u, v, h);
+            const double qx = x - frame_[kOrigin][lane], qy = y - frame_[kOrigin + 1][lane],
+                         qz = z - frame_[kOrigin + 2][lane];
+            auto along = [&](int axis) {
+                return qx * frame_[axis][lane] + qy * frame_[axis + 1][lane] + qz * frame_[axis + 2][lane];
+            };
+            Flat flat;
+            for (int f = 0; f < kFlatFields; ++f) flat.*kFlat[f] = flat_[f][lane];
+            out[lane] = flat.distance2(along(kU), along(kV), along(kH));
         }
         return std::min({best, out[0], out[1], out[2], out[3]});
     }
 
 private:
-    static constexpr int kFields = 25;
-    double lanes_[kFields][kLanes];
+    // The frames' rows: the origin and the u, v and h axes, x y z each.
+    enum : int { kOrigin = 0, kU = 3, kV = 6, kH = 9, kFrameRows = 12 };
+    double frame_[kFrameRows][kLanes];
+    // Flat's fields, each a row of its own too (rows of lanes vectorise; Flats side by side do not).
+    static constexpr int kFlatFields = 13;
+    static constexpr double Flat::*kFlat[kFlatFields] = {&Flat::bu,  &Flat::cu,  &Flat::cv,  &Flat::e0u, &Flat::e0v,
+                                                         &Flat::e1u, &Flat::e1v, &Flat::e2u, &Flat::e2v, &Flat::l0,
+                                                         &Flat::l1,  &Flat::l2,  &Flat::turn};
+    double flat_[kFlatFields][kLanes];
 };
 
 }  // namespace hyvox::sdf
