@@ -274,6 +274,81 @@ TEST(SdfDistances, QueriedAndSweptBlocksMatchTheBruteForceDistance) {
     EXPECT_GT(queried_blocks, 0);
 }
 
+TEST(SdfBins, EveryBlockWithinTheBandOfATriangleListsItInOrder) {
+    // Small triangles scattered over grids of 64 blocks (one pass of the bins' radix sort)
+    // and of 32 x 64 x 64 blocks (two passes: more than 65536). Each block's list holds
+    // exactly the triangles whose box, grown by the band along each axis, holds one of its
+    // voxel centres (brute force over the blocks; a triangle reaching at most 8 blocks is
+    // binned into all of them without a distance test), ascending; the blocks ascend.
+    for (const std::array<std::int32_t, 3> dims :
+         {std::array<std::int32_t, 3>{128, 128, 128}, std::array<std::int32_t, 3>{1024, 2048, 2048}}) {
+        SCOPED_TRACE(std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]));
+        GridSpec grid;
+        grid.dims = dims;
+        std::mt19937 random(7);
+        test::TriangleSoup soup;
+        for (int n = 0; n < 400; ++n) {
+            Vec3 corner;
+            for (int a = 0; a < 3; ++a)
+                corner[std::size_t(a)] =
+                    std::uniform_real_distribution<double>(0, double(dims[std::size_t(a)]))(random);
+            auto near = [&] {
+                Vec3 c = corner;
+                for (double& x : c) x += std::uniform_real_distribution<double>(-1.5, 1.5)(random);
+                return c;
+            };
+            soup.add(corner, near(), near());
+        }
+        const ValidatedMesh validated = validate(soup.view());
+        const double band = 3;
+        const sdf::BandBins bins = sdf::binBand(validated, grid, band, std::uint64_t(1) << 32, 4096, nullptr);
+        const sdf::BlockLayout blocks(grid);
+        std::map<std::uint64_t, std::vector<std::uint32_t>> expected;
+        constexpr int kSide = sdf::BlockLayout::kSide;
+        for (const std::uint32_t t : validated.usable) {
+            const auto corners = sdf::voxelCorners(validated, grid, t);
+            // Along each axis, the blocks holding a voxel centre within the band of the box.
+            std::array<std::vector<std::int32_t>, 3> near;
+            for (int a = 0; a < 3; ++a) {
+                const double lo = std::min({corners[0][a], corners[1][a], corners[2][a]});
+                const double hi = std::max({corners[0][a], corners[1][a], corners[2][a]});
+                for (int b = 0; b < blocks.counts[std::size_t(a)]; ++b) {
+                    double least = HUGE_VAL;
+                    for (int i = kSide * b; i < std::min(kSide * b + kSide, dims[std::size_t(a)]); ++i)
+                        least = std::min(least, std::max({lo - (i + 0.5), 0.0, i + 0.5 - hi}));
+                    if (least <= band) near[std::size_t(a)].push_back(b);
+                }
+            }
+            for (std::size_t i = 0; i < near[0].size(); ++i)
+                for (std::size_t j = 0; j < near[1].size(); ++j)
+                    for (std::size_t k = 0; k < near[2].size(); ++k)
+                        expected[blocks.index(near[0][i], near[1][j], near[2][k])].push_back(t);
+        }
+        ASSERT_EQ(bins.blocks.size(), expected.size());
+        ASSERT_EQ(bins.start.size(), bins.blocks.size() + 1);
+        std::size_t number = 0;
+        for (const auto& [block, triangles] : expected) {
+            ASSERT_EQ(bins.blocks[number], block) << number;
+            const std::vector<std::uint32_t> listed(bins.triangles.begin() + long(bins.start[number]),
+                                                    bins.triangles.begin() + long(bins.start[number + 1]));
+            ASSERT_EQ(listed, triangles) << "block " << block;
+            ++number;
+        }
+        if (dims[0] > 128) {
+            EXPECT_GT(std::uint64_t(blocks.counts[0]) * blocks.counts[1] * blocks.counts[2], 65536u);
+        }
+        // A budget below what the pairs take: refused, naming it.
+        const std::uint64_t pairs = bins.triangles.size();
+        try {
+            sdf::binBand(validated, grid, band, pairs * 8, 1, nullptr);
+            ADD_FAILURE() << "bins over the budget were made";
+        } catch (const ResourceError& e) {
+            EXPECT_NE(std::string(e.what()).find("(triangle, block) pairs"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("memory budget of 1 MiB"), std::string::npos) << e.what();
+        }
+    }
+}
+
 // The signs: off the conservative surface, the solid run's own occupancy; on it, the exact
 // winding number at the centre (>= 0.5 inside), where that is not within `margin` of 0.5 (the
 // fast winding numbers' accuracy on open meshes) nor the centre within 1e-3 voxel of the mesh.

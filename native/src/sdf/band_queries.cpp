@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/triangle_normal.h"
 #include "sdf/band_distances.h"
 
 namespace hyvox::sdf {
@@ -41,6 +42,12 @@ void grow(std::array<double, 6>& box, const std::array<Vec3, 3>& corners) {
 }
 constexpr std::array<double, 6> kEmptyBox{HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
 
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 unit(const Vec3& a) {
+    const double length = std::sqrt(dot(a, a));
+    return {a[0] / length, a[1] / length, a[2] / length};
+}
+
 }  // namespace
 
 bool BlockQueries::fits(double band) { return kSide + 2 * marginFor(band) <= 64; }
@@ -65,6 +72,7 @@ void BlockQueries::begin(const std::array<std::int32_t, 3>& origin, double band)
     corners_.clear();
     places_.clear();
     placed_ = 0;
+    overhang_ = 0;
     taken_.clear();
     const std::size_t side = std::size_t(side_);
     if (slot_of_key_.size() < side * side * side) slot_of_key_.resize(side * side * side);
@@ -83,18 +91,23 @@ void BlockQueries::add(const std::array<Vec3, 3>& corners) {
     }
     const Vec3 centroid = centroidOf(corners);
     int at[3], octant = 0;
+    double overhang = 0;
     for (int a = 0; a < 3; ++a) {
         const double from_origin = centroid[a] - origin_[a], cell = std::floor(from_origin);
         if (!(cell + margin_ >= 0 && cell + margin_ < side_)) return;
         at[a] = int(cell) + margin_;
         octant |= int(from_origin - cell >= 0.5) << a;  // which half of the cell along axis a
+        const double cell_lo = origin_[a] + cell;
+        overhang = std::max({overhang, cell_lo - std::min({corners[0][a], corners[1][a], corners[2][a]}),
+                             std::max({corners[0][a], corners[1][a], corners[2][a]}) - (cell_lo + 1)});
     }
+    overhang_ = std::max(overhang_, overhang);
     std::uint64_t& row = rows_[std::size_t(at[0] * side_ + at[1])];
     const std::uint32_t key = std::uint32_t((at[0] * side_ + at[1]) * side_ + at[2]);
     if (!((row >> at[2]) & 1)) {
         row |= std::uint64_t(1) << at[2];
         slot_of_key_[key] = std::uint32_t(cells_.size());
-        cells_.push_back({0, 0, kEmptyBox});
+        cells_.push_back({0, 0, kEmptyBox, {}});
     }
     places_.back() = (key << 3) | std::uint32_t(octant);
     ++placed_;
@@ -115,6 +128,37 @@ bool BlockQueries::take(std::size_t n) {
     return true;
 }
 
+Slab Slab::around(const DistanceTriangle* first, std::size_t count, const Vec3& centre) {
+    Slab slab;
+    slab.centre = centre;
+    // The unit normals summed: a patch of a surface keeps its plane; triangles facing every way
+    // leave it uncertain, and the box is then only as thin as they allow (any frame bounds them).
+    Vec3 sum{0, 0, 0};
+    for (std::size_t n = 0; n < count; ++n)
+        for (std::size_t a = 0; a < 3; ++a) sum[a] += first[n].h_axis[a];
+    const double length2 = dot(sum, sum);
+    if (length2 > 1e-12 && std::isfinite(length2)) {
+        const Vec3 h = unit(sum);
+        const Vec3 other = std::fabs(h[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+        const Vec3 u = unit(triangle_normal_detail::cross(h, other));
+        slab.axis = {u, unit(triangle_normal_detail::cross(h, u)), h};
+    } else {
+        slab.axis = {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
+    }
+    slab.lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+    slab.hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (std::size_t n = 0; n < count; ++n)
+        for (const Vec3& corner : first[n].corner) {
+            const Vec3 q{corner[0] - centre[0], corner[1] - centre[1], corner[2] - centre[2]};
+            for (std::size_t a = 0; a < 3; ++a) {
+                const double along = dot(q, slab.axis[a]);
+                slab.lo[a] = std::min(slab.lo[a], along);
+                slab.hi[a] = std::max(slab.hi[a], along);
+            }
+        }
+    return slab;
+}
+
 void BlockQueries::sortIntoCells() {
     // A counting sort of the taken triangles by cell, then octant.
     auto slotOf = [&](std::uint32_t n) { return 8 * std::size_t(slot_of_key_[places_[n] >> 3]) + (places_[n] & 7); };
@@ -129,21 +173,25 @@ void BlockQueries::sortIntoCells() {
     packs_.clear();
     packs_.reserve(order.size() / 2 + cells_.size());
     octants_.clear();
-    std::vector<DistanceTriangle> octant;  // one octant's triangles, packed four at a time
+    std::vector<DistanceTriangle> triangles;  // one cell's, octant by octant
+    auto centreOf = [](const std::array<double, 6>& box) {
+        return Vec3{0.5 * (box[0] + box[3]), 0.5 * (box[1] + box[4]), 0.5 * (box[2] + box[5])};
+    };
     for (std::size_t c = 0; c < cells_.size(); ++c) {
         Cell& cell = cells_[c];
+        triangles.clear();
+        for (std::uint32_t i = start[8 * c]; i < start[8 * c + 8]; ++i) triangles.emplace_back(corners_[order[i]]);
+        cell.slab = Slab::around(triangles.data(), triangles.size(), centreOf(cell.box));
         cell.octant_first = std::uint32_t(octants_.size());
         for (std::size_t o = 8 * c; o < 8 * c + 8; ++o) {
             if (start[o] == start[o + 1]) continue;
-            Group group{std::uint32_t(packs_.size()), 0, kEmptyBox};
-            for (std::uint32_t i = start[o]; i < start[o + 1]; ++i) {
-                grow(group.box, corners_[order[i]]);
-                octant.emplace_back(corners_[order[i]]);
-            }
-            for (std::size_t at = 0; at < octant.size(); at += DistanceTriangles4::kLanes)
-                packs_.emplace_back(octant.data() + at,
-                                    int(std::min<std::size_t>(DistanceTriangles4::kLanes, octant.size() - at)));
-            octant.clear();
+            Group group{std::uint32_t(packs_.size()), 0, kEmptyBox, {}};
+            for (std::uint32_t i = start[o]; i < start[o + 1]; ++i) grow(group.box, corners_[order[i]]);
+            const DistanceTriangle* first = triangles.data() + (start[o] - start[8 * c]);
+            const std::size_t count = start[o + 1] - start[o];
+            group.slab = Slab::around(first, count, centreOf(group.box));
+            for (std::size_t at = 0; at < count; at += DistanceTriangles4::kLanes)
+                packs_.emplace_back(first + at, int(std::min<std::size_t>(DistanceTriangles4::kLanes, count - at)));
             group.end = std::uint32_t(packs_.size());
             octants_.push_back(group);
         }
@@ -190,11 +238,16 @@ std::uint64_t BlockQueries::lower(double* d2, std::uint64_t& evaluations) {
 HYVOX_SDF_CLONES
 std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& evaluations) {
     const int m = queries.margin_, side = queries.side_;
+    const double overhang = queries.overhang_;
     // The squared distance from (x, y, z) to a box: a lower bound of its triangles', less a
     // rounding's slack (a triangle it rounds away could still lower a distance by a rounding).
-    auto boxDistance2 = [](const std::array<double, 6>& box, double x, double y, double z) {
+    auto boxBound = [](const std::array<double, 6>& box, double x, double y, double z) {
         const double dx = gap(x, box[0], box[3]), dy = gap(y, box[1], box[4]), dz = gap(z, box[2], box[5]);
         return (dx * dx + dy * dy + dz * dz) * (1 - 1e-12);
+    };
+    // An octant's: the farther of its two boxes.
+    auto octantBound = [&](const BlockQueries::Group& octant, double x, double y, double z) {
+        return std::max(boxBound(octant.box, x, y, z), octant.slab.distance2(x, y, z) * (1 - 1e-12));
     };
     std::vector<BlockQueries::Near>& near = queries.near_;
     const double band2 = queries.band_ * queries.band_;
@@ -211,15 +264,15 @@ std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& eval
                     best = seed->minDistance2(x, y, z, best);
                     evaluations += DistanceTriangles4::kLanes;
                 }
-                // Cells whose grown box [c - 1, c + 2) comes within sqrt(best) of the voxel.
-                const double r = std::sqrt(best);
+                // Cells whose box, within [c - overhang, c + 1 + overhang], may come within
+                // sqrt(best) of the voxel (a rounding's width more).
+                const double r = std::sqrt(best) + 1e-9 + overhang;
                 const double xr = i + 0.5, yr = j + 0.5, zr = k + 0.5;
-                const int x_lo = std::max(0, int(std::floor(xr - r - 2)) + m);
-                const int x_hi = std::min(side - 1, int(std::floor(xr + r + 1)) + m);
-                const int y_lo = std::max(0, int(std::floor(yr - r - 2)) + m);
-                const int y_hi = std::min(side - 1, int(std::floor(yr + r + 1)) + m);
-                const std::uint64_t z_bits =
-                    bitsBetween(int(std::floor(zr - r - 2)) + m, int(std::floor(zr + r + 1)) + m);
+                const int x_lo = std::max(0, int(std::floor(xr - r - 1)) + m);
+                const int x_hi = std::min(side - 1, int(std::floor(xr + r)) + m);
+                const int y_lo = std::max(0, int(std::floor(yr - r - 1)) + m);
+                const int y_hi = std::min(side - 1, int(std::floor(yr + r)) + m);
+                const std::uint64_t z_bits = bitsBetween(int(std::floor(zr - r - 1)) + m, int(std::floor(zr + r)) + m);
                 for (int cx = x_lo; cx <= x_hi; ++cx) {
                     for (int cy = y_lo; cy <= y_hi; ++cy) {
                         const std::array<double, 4>& row_box = queries.row_boxes_[std::size_t(cx * side + cy)];
@@ -229,7 +282,11 @@ std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& eval
                              bits &= bits - 1) {
                             const std::uint32_t slot =
                                 queries.slot_of_key_[std::size_t((cx * side + cy) * side + __builtin_ctzll(bits))];
-                            const double lower_bound = boxDistance2(queries.cells_[slot].box, x, y, z);
+                            // The axis-aligned box first: the turned one only for the cells it passes.
+                            const BlockQueries::Cell& cell = queries.cells_[slot];
+                            const double box_bound = boxBound(cell.box, x, y, z);
+                            if (box_bound >= best) continue;
+                            const double lower_bound = std::max(box_bound, cell.slab.distance2(x, y, z) * (1 - 1e-12));
                             if (lower_bound < best) near.push_back({lower_bound, slot});
                         }
                     }
@@ -243,7 +300,7 @@ std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& eval
                     const BlockQueries::Cell& cell = queries.cells_[candidate.slot];
                     for (std::uint32_t o = cell.octant_first; o < cell.octant_end; ++o) {
                         const BlockQueries::Group& octant = queries.octants_[o];
-                        if (boxDistance2(octant.box, x, y, z) >= best) continue;
+                        if (octantBound(octant, x, y, z) >= best) continue;
                         for (std::uint32_t p = octant.first; p < octant.end; ++p) {
                             const double before = best;
                             best = queries.packs_[p].minDistance2(x, y, z, best);

@@ -11,10 +11,19 @@
 // octant of the cell their centroids lie in, each octant with its box, and packed four to a
 // vector (DistanceTriangles4). The voxels visited are those within the band of a cell's box.
 // For each, its bound starts as the least of its distance so far and its distance to the
-// triangles that last lowered one (a neighbour's nearest); the cells whose boxes come nearer
-// than the bound are measured nearest box first, an octant only when its box still does, and
+// triangles that last lowered one (a neighbour's nearest); the cells whose bounds come nearer
+// than the bound are measured nearest first, an octant only when its bound still does, and
 // the bound shrinks as they are. The result is the least distance over the same triangles as
 // a sweep's (to a rounding error).
+//
+// An octant's bound is the farther of two boxes around its triangles: the axis-aligned one,
+// and one turned to their summed normal (a Slab). On a patch of a smooth surface the turned
+// box is thin where the axis-aligned one is as thick as it is wide, so a voxel above a crowded
+// surface measures the triangles near the point below it, not all within its distance's reach
+// (the 871k dragon at 128: 9.6 million distances instead of 22 million). A cell's bound is
+// its axis-aligned box alone: a cell is scanned for every voxel near it, and the turned box's
+// three projections cost more there than the octants they would spare.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -23,6 +32,29 @@
 #include "sdf/point_triangle.h"
 
 namespace hyvox::sdf {
+
+// A box around triangles in a frame of their own: axis (u, v, h), h along their summed normal,
+// and along each axis the span [lo, hi] of their corners, measured from `centre`.
+struct Slab {
+    Vec3 centre;
+    std::array<Vec3, 3> axis;
+    std::array<double, 3> lo, hi;
+
+    // Around `count` triangles from `first`, measured from `centre`.
+    static Slab around(const DistanceTriangle* first, std::size_t count, const Vec3& centre);
+    // The squared distance from (x, y, z) to the box (exact up to rounding: the axes are
+    // orthonormal up to rounding).
+    double distance2(double x, double y, double z) const {
+        const double qx = x - centre[0], qy = y - centre[1], qz = z - centre[2];
+        double sum = 0;
+        for (std::size_t a = 0; a < 3; ++a) {
+            const double along = qx * axis[a][0] + qy * axis[a][1] + qz * axis[a][2];
+            const double gap = std::max({lo[a] - along, 0.0, along - hi[a]});
+            sum += gap * gap;
+        }
+        return sum;
+    }
+};
 
 // The queries' working memory, reused from block to block by one thread.
 class BlockQueries {
@@ -60,16 +92,18 @@ public:
     std::uint64_t lower(double* d2, std::uint64_t& evaluations);
 
 private:
-    // Triangles with a box around them (lo xyz, hi xyz; voxel space).
+    // Triangles with boxes around them (box: lo xyz, hi xyz; voxel space).
     struct Group {
         std::uint32_t first, end;  // into `packs_`
         std::array<double, 6> box;
+        Slab slab;
     };
     // A unit cell: its triangles, and the same split by the octant of the cell their centroids
     // lie in (the octants' boxes hold fewer triangles' worth of empty space).
     struct Cell {
         std::uint32_t octant_first, octant_end;  // into `octants_`
         std::array<double, 6> box;
+        Slab slab;
     };
     std::array<std::int32_t, 3> origin_{0, 0, 0};
     double band_ = 0;
@@ -78,6 +112,7 @@ private:
     std::vector<std::array<Vec3, 3>> corners_;  // the block's triangles
     std::vector<std::uint32_t> places_;         // each one's (cell key << 3) | octant, or kNotPlaced
     std::size_t placed_ = 0;
+    double overhang_ = 0;               // how far past its cell a placed triangle reaches, at most (below 1)
     std::vector<std::uint32_t> taken_;  // the triangles taken
     // side³ entries, cell (x, y, z) at (x * side + y) * side + z, the cells counted from
     // origin - margin along each axis; valid where the cell is occupied.

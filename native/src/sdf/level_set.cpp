@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "sdf/level_set.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -132,15 +133,28 @@ LevelSetGrid makeLevelSet(const ValidatedMesh& mesh, const GridSpec& grid, const
         BlockQueries queries;
     };
     tbb::enumerable_thread_specific<Scratch> scratch;
+    // The blocks with the most triangles first, one a task: a few crowded blocks can take
+    // much of the band's time, and started last they would leave the other threads idle.
+    std::vector<std::uint32_t> by_work(chunks.size());
+    for (std::size_t n = 0; n < by_work.size(); ++n) by_work[n] = std::uint32_t(n);
+    std::stable_sort(by_work.begin(), by_work.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return bins.start[a + 1] - bins.start[a] > bins.start[b + 1] - bins.start[b];
+    });
     arena.execute([&] {
-        tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t number) {
-            throwIfInterrupted(interrupter);
-            Scratch& mine = scratch.local();
-            double* d2 = mine.d2.data();
-            const std::uint64_t touched =
-                blockDistances(mesh, grid, band, bins, number, d2, chunks[number].evaluations, &mine.queries);
-            leavesOf(blocks.at(bins.blocks[number]), d2, touched, band * band, grid, centres, chunks[number]);
-        });
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, by_work.size(), 1),
+            [&](const auto& range) {
+                for (std::size_t at = range.begin(); at != range.end(); ++at) {
+                    const std::size_t number = by_work[at];
+                    throwIfInterrupted(interrupter);
+                    Scratch& mine = scratch.local();
+                    double* d2 = mine.d2.data();
+                    const std::uint64_t touched =
+                        blockDistances(mesh, grid, band, bins, number, d2, chunks[number].evaluations, &mine.queries);
+                    leavesOf(blocks.at(bins.blocks[number]), d2, touched, band * band, grid, centres, chunks[number]);
+                }
+            },
+            tbb::simple_partitioner());
     });
     throwIfInterrupted(interrupter);
 
