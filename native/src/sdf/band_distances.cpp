@@ -15,12 +15,21 @@ constexpr int kSide = BlockLayout::kSide;
 struct Sweep {
     const DistanceTriangle& t;
     double band;
+    Vec3 centre;            // of a sphere holding the triangle: its centroid
     double reach2;          // (radius + band)²: rows farther from the centre in xy miss its sphere
     double hx, hy, hz, h0;  // the height above the plane: hx x + hy y + hz z + h0
     double inverse_hz;      // 1 / hz (0 for a plane parallel to z)
 
     Sweep(const DistanceTriangle& triangle, double band_voxels) : t(triangle), band(band_voxels) {
-        reach2 = (t.radius + band) * (t.radius + band);
+        // The sphere's radius: the farthest corner, a rounding more (it still holds the corners).
+        double radius2 = 0;
+        for (int a = 0; a < 3; ++a) centre[a] = (t.corner[0][a] + t.corner[1][a] + t.corner[2][a]) / 3.0;
+        for (const Vec3& c : t.corner) {
+            const double dx = c[0] - centre[0], dy = c[1] - centre[1], dz = c[2] - centre[2];
+            radius2 = std::max(radius2, dx * dx + dy * dy + dz * dz);
+        }
+        const double radius = std::sqrt(radius2) * (1.0 + 1e-12);
+        reach2 = (radius + band) * (radius + band);
         const Vec3& n = t.h_axis;
         const Vec3& c = t.corner[0];
         hx = n[0], hy = n[1], hz = n[2];
@@ -34,7 +43,7 @@ struct Sweep {
     // bounding sphere grown by the band. (Cutting the row to the chord through that sphere
     // too measured slower: its square root costs more than the voxels it saves.)
     bool narrow(double x, double y, int& k_lo, int& k_hi) const {
-        const double dx = x - t.centre[0], dy = y - t.centre[1];
+        const double dx = x - centre[0], dy = y - centre[1];
         if (dx * dx + dy * dy >= reach2) return false;
         const double height_xy = hx * x + hy * y + h0;
         if (hz == 0) return std::fabs(height_xy) < band;

@@ -28,12 +28,12 @@ constexpr int kBlockBricks = BlockLayout::kSide / BrickLayout::kSide;
 static_assert(kBlockBricks * kBlockBricks * kBlockBricks == 64, "a block's bricks are the bits of one word");
 inline int brickBit(int bx, int by, int bz) { return (bx * kBlockBricks + by) * kBlockBricks + bz; }
 
-// A block's small triangles (BlockQueries::count) go to the queries when there are at least
-// this many for each cell they lie in, on average. Measured on one thread (the band's time,
-// swept against queried from 2, 3, 4 and 6 a cell): the 871k dragon at 128 1.84 s against
-// 0.83-0.86 s; at 256 2.10 s against 1.63 s at 4 (1.82 s at 2); at 512 2.57 s against
-// 2.57 s at 4 (3.29 s at 2); the Buddha at 128 0.28 s against 0.20 s; the bunny at 256 and
-// the armadillo at 128 the same every way (few small triangles a cell: swept).
+// A block's small triangles go to the queries when there are at least this many for each cell
+// they lie in, on average. Measured on one thread (the band's time in ms, all swept against
+// queried from 2, 3, 4 and 6 a cell): the 871k dragon at 128 2080 against 753-767; at 256
+// 2358 against 1670-1706 (1910 at 6); at 512 2877 against 2875 at 3 and 4 (3684 at 2); the
+// Buddha at 128 304 against 217-270, at 512 554 against 551-581; the armadillo at 128 229
+// against 178-180, at 256 260 against 243 (279 at 6).
 constexpr double kQueriedFrom = 4.0;
 
 // Block `number` of `bins` into `d2` (kBlockVoxels values); adds the distances computed to

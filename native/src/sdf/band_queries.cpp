@@ -56,10 +56,11 @@ std::size_t BlockQueries::bytesAtMost(double band, std::size_t triangles) {
     if (!fits(band)) return 0;
     const std::size_t side = std::size_t(kSide + 2 * marginFor(band));
     // For each triangle: its corners, place and place among the taken, a whole pack (at most:
-    // an octant of one triangle), a cell and an octant (at most). Beside them the cells' slots,
-    // rows and their boxes, and the reach.
+    // an octant of one triangle), a cell and an octant (at most), and its set-up while its cell
+    // is packed (at most: a cell of all). Beside them the cells' slots, rows and their boxes,
+    // and the reach.
     const std::size_t per_triangle = sizeof(std::array<Vec3, 3>) + 2 * sizeof(std::uint32_t) +
-        sizeof(DistanceTriangles4) + sizeof(Cell) + sizeof(Group);
+        sizeof(DistanceTriangles4) + sizeof(Cell) + sizeof(Group) + sizeof(DistanceTriangle);
     return triangles * per_triangle + side * side * side * sizeof(std::uint32_t) +
         side * side * (sizeof(std::uint64_t) + 4 * sizeof(double)) + std::size_t(kSide * kSide) * sizeof(std::uint64_t);
 }

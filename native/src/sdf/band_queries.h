@@ -7,7 +7,8 @@
 //
 // The small triangles (each no wider than a voxel along every axis) are sorted into the unit
 // cells of their centroids, each cell with the box of its triangles; a triangle's box then lies
-// within its cell grown by one voxel on every side. Within a cell they are grouped by the
+// within its cell grown on every side by the block's overhang (how far its triangles reach past
+// their cells: less than a voxel), which bounds the cells a voxel scans. Within a cell they are grouped by the
 // octant of the cell their centroids lie in, each octant with its box, and packed four to a
 // vector (DistanceTriangles4). The voxels visited are those within the band of a cell's box.
 // For each, its bound starts as the least of its distance so far and its distance to the
@@ -16,13 +17,13 @@
 // the bound shrinks as they are. The result is the least distance over the same triangles as
 // a sweep's (to a rounding error).
 //
-// An octant's bound is the farther of two boxes around its triangles: the axis-aligned one,
-// and one turned to their summed normal (a Slab). On a patch of a smooth surface the turned
-// box is thin where the axis-aligned one is as thick as it is wide, so a voxel above a crowded
-// surface measures the triangles near the point below it, not all within its distance's reach
-// (the 871k dragon at 128: 9.6 million distances instead of 22 million). A cell's bound is
-// its axis-aligned box alone: a cell is scanned for every voxel near it, and the turned box's
-// three projections cost more there than the octants they would spare.
+// A cell's or an octant's bound is the farther of two boxes around its triangles: the
+// axis-aligned one, and one turned to their summed normal (a Slab). On a patch of a smooth
+// surface the turned box is thin where the axis-aligned one is as thick as it is wide, so a
+// voxel above a crowded surface measures the triangles near the point below it, not all within
+// its distance's reach (the 871k dragon at 128: 9.9 million distances instead of 22 million).
+// A cell's turned box is measured only when its axis-aligned one comes near enough: a voxel
+// scans some 30 cells, a third of which pass.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -99,7 +100,8 @@ private:
         Slab slab;
     };
     // A unit cell: its triangles, and the same split by the octant of the cell their centroids
-    // lie in (the octants' boxes hold fewer triangles' worth of empty space).
+    // lie in (the octants' boxes hold fewer triangles' worth of empty space); each with its
+    // boxes.
     struct Cell {
         std::uint32_t octant_first, octant_end;  // into `octants_`
         std::array<double, 6> box;

@@ -109,11 +109,6 @@ public:
         // (v of its third corner above the u axis), else to the right; a flat triangle of no
         // area (a segment) has no inside.
         orientation = flat_v[2] > 0 ? 1.0 : flat_v[2] < 0 ? -1.0 : 0.0;
-        // A sphere holding the triangle: its centroid and farthest corner.
-        for (int a = 0; a < 3; ++a) centre[a] = (corners[0][a] + corners[1][a] + corners[2][a]) / 3.0;
-        radius = 0;
-        for (const Vec3& c : corners) radius = std::max(radius, std::sqrt(dot(minus(c, centre), minus(c, centre))));
-        radius *= 1.0 + 1e-12;  // still holds the corners after rounding
     }
 
     // The squared distances from the points (x, y, z + n), n < count, each taken as the least
@@ -143,8 +138,6 @@ public:
     }
 
     std::array<Vec3, 3> corner;
-    Vec3 centre;  // of a sphere holding the triangle
-    double radius;
     Vec3 h_axis;  // the unit normal (any unit vector across a triangle without a plane)
 
 private:
