@@ -5,7 +5,7 @@
 // comes nearer. A block crowded with triangles smaller than a voxel measures those by queries
 // (band_queries.h) and sweeps the rest. A swept triangle is measured only along the rows of the
 // block its band can reach, and along each row over the stretch inside the slab of half-width band
-// around its plane, rounded out to whole quads of the row: every distance of the stretch is
+// around its plane, lengthened to whole quads (four voxels): every distance of the stretch is
 // computed, four at a time, without a test per voxel (a test that skipped the voxels a nearer
 // triangle had already claimed cost more than the distances it saved, as short rows ran scalar
 // remainders).
