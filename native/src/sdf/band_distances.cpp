@@ -22,12 +22,9 @@ struct Sweep {
 
     Sweep(const DistanceTriangle& triangle, double band_voxels) : t(triangle), band(band_voxels) {
         // The sphere's radius: the farthest corner, a rounding more (it still holds the corners).
+        centre = centroidOf(t.corner);
         double radius2 = 0;
-        for (int a = 0; a < 3; ++a) centre[a] = (t.corner[0][a] + t.corner[1][a] + t.corner[2][a]) / 3.0;
-        for (const Vec3& c : t.corner) {
-            const double dx = c[0] - centre[0], dy = c[1] - centre[1], dz = c[2] - centre[2];
-            radius2 = std::max(radius2, dx * dx + dy * dy + dz * dz);
-        }
+        for (const Vec3& c : t.corner) radius2 = std::max(radius2, dot(minus(c, centre), minus(c, centre)));
         const double radius = std::sqrt(radius2) * (1.0 + 1e-12);
         reach2 = (radius + band) * (radius + band);
         const Vec3& n = t.h_axis;
@@ -81,9 +78,10 @@ std::uint64_t sweep(const std::array<Vec3, 3>& corners, const GridSpec& grid, do
             int k_lo = lo[2], k_hi = hi[2];
             if (!row_sweep.narrow(x, y, k_lo, k_hi)) continue;
             // Whole quads from the stretch's start (moved back where they would leave the
-            // block's row): the loop then runs whole vectors, never a scalar remainder. The voxels it adds get their true distance to this triangle
-            // too (a voxel's value is the least over any triangles that include its
-            // nearest); those past the grid's end are left out of the leaves.
+            // block's row): the loop then runs whole vectors, never a scalar remainder. The
+            // voxels it adds get their true distance to this triangle too (a voxel's value is
+            // the least over any triangles that include its nearest); those past the grid's end
+            // are left out of the leaves.
             const int quads = (k_hi - k_lo + 4) / 4;        // 4 * quads: the compiler sees no remainder
             k_lo = std::min(k_lo, z0 + kSide - 4 * quads);  // kept within the block's row
             k_hi = k_lo + 4 * quads - 1;

@@ -16,14 +16,6 @@ constexpr int kSide = BlockLayout::kSide;
 // centre has its centroid less than band + 1/2 voxels outside the block.
 int marginFor(double band) { return int(std::ceil(band)) + 1; }
 
-Vec3 centroidOf(const std::array<Vec3, 3>& c) {
-    return {(c[0][0] + c[1][0] + c[2][0]) / 3.0, (c[0][1] + c[1][1] + c[2][1]) / 3.0,
-            (c[0][2] + c[1][2] + c[2][2]) / 3.0};
-}
-
-// How far a point is from the interval [lo, hi] (0 inside it).
-double gap(double point, double lo, double hi) { return std::max({lo - point, 0.0, point - hi}); }
-
 // Bits first..last (each clamped to 0..63) of a word.
 std::uint64_t bitsBetween(int first, int last) {
     first = std::max(first, 0);
@@ -42,12 +34,6 @@ void grow(std::array<double, 6>& box, const std::array<Vec3, 3>& corners) {
 }
 constexpr std::array<double, 6> kEmptyBox{HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 unit(const Vec3& a) {
-    const double length = std::sqrt(dot(a, a));
-    return {a[0] / length, a[1] / length, a[2] / length};
-}
-
 }  // namespace
 
 bool BlockQueries::fits(double band) { return kSide + 2 * marginFor(band) <= 64; }
@@ -60,7 +46,7 @@ std::size_t BlockQueries::bytesAtMost(double band, std::size_t triangles) {
     // is packed (at most: a cell of all). Beside them the cells' slots, rows and their boxes,
     // and the reach.
     const std::size_t per_triangle = sizeof(std::array<Vec3, 3>) + 2 * sizeof(std::uint32_t) +
-        sizeof(DistanceTriangles4) + sizeof(Cell) + sizeof(Group) + sizeof(DistanceTriangle);
+        sizeof(DistanceTriangles4) + 2 * sizeof(Group) + sizeof(DistanceTriangle);
     return triangles * per_triangle + side * side * side * sizeof(std::uint32_t) +
         side * side * (sizeof(std::uint64_t) + 4 * sizeof(double)) + std::size_t(kSide * kSide) * sizeof(std::uint64_t);
 }
@@ -118,7 +104,7 @@ bool BlockQueries::take(std::size_t n) {
     const std::uint32_t place = places_[n];
     if (place == kNotPlaced) return false;
     const std::uint32_t key = place >> 3;
-    Cell& cell = cells_[slot_of_key_[key]];
+    Group& cell = cells_[slot_of_key_[key]];
     grow(cell.box, corners_[n]);
     std::array<double, 4>& row_box = row_boxes_[key / std::uint32_t(side_)];
     for (int a = 0; a < 2; ++a) {
@@ -179,11 +165,11 @@ void BlockQueries::sortIntoCells() {
         return Vec3{0.5 * (box[0] + box[3]), 0.5 * (box[1] + box[4]), 0.5 * (box[2] + box[5])};
     };
     for (std::size_t c = 0; c < cells_.size(); ++c) {
-        Cell& cell = cells_[c];
+        Group& cell = cells_[c];
         triangles.clear();
         for (std::uint32_t i = start[8 * c]; i < start[8 * c + 8]; ++i) triangles.emplace_back(corners_[order[i]]);
         cell.slab = Slab::around(triangles.data(), triangles.size(), centreOf(cell.box));
-        cell.octant_first = std::uint32_t(octants_.size());
+        cell.first = std::uint32_t(octants_.size());
         for (std::size_t o = 8 * c; o < 8 * c + 8; ++o) {
             if (start[o] == start[o + 1]) continue;
             Group group{std::uint32_t(packs_.size()), 0, kEmptyBox, {}};
@@ -196,7 +182,7 @@ void BlockQueries::sortIntoCells() {
             group.end = std::uint32_t(packs_.size());
             octants_.push_back(group);
         }
-        cell.octant_end = std::uint32_t(octants_.size());
+        cell.end = std::uint32_t(octants_.size());
     }
 }
 
@@ -212,7 +198,7 @@ void BlockQueries::markReached(const std::array<std::int32_t, 2>& limit) {
         last = int(std::min(std::floor(hi - origin_[axis] + reach - 0.5), double(end - 1)));
         return first <= last;
     };
-    for (const Cell& cell : cells_) {
+    for (const Group& cell : cells_) {
         const std::array<double, 6>& box = cell.box;
         int i_first, i_last, j_first, j_last;
         if (!span(box[0], box[3], band_, 0, i_end, i_first, i_last) ||
@@ -240,15 +226,15 @@ HYVOX_SDF_CLONES
 std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& evaluations) {
     const int m = queries.margin_, side = queries.side_;
     const double overhang = queries.overhang_;
-    // The squared distance from (x, y, z) to a box: a lower bound of its triangles', less a
-    // rounding's slack (a triangle it rounds away could still lower a distance by a rounding).
-    auto boxBound = [](const std::array<double, 6>& box, double x, double y, double z) {
+    // The squared distance from (x, y, z) to the farther of a group's two boxes: a lower bound
+    // of its triangles', less a rounding's slack (a triangle it rounds away could still lower
+    // a distance by a rounding). The turned box is measured only when the axis-aligned one
+    // comes nearer than `best`: past it, the group is out either way.
+    auto boundOf = [](const BlockQueries::Group& group, double x, double y, double z, double best) {
+        const std::array<double, 6>& box = group.box;
         const double dx = gap(x, box[0], box[3]), dy = gap(y, box[1], box[4]), dz = gap(z, box[2], box[5]);
-        return (dx * dx + dy * dy + dz * dz) * (1 - 1e-12);
-    };
-    // An octant's: the farther of its two boxes.
-    auto octantBound = [&](const BlockQueries::Group& octant, double x, double y, double z) {
-        return std::max(boxBound(octant.box, x, y, z), octant.slab.distance2(x, y, z) * (1 - 1e-12));
+        const double aligned = (dx * dx + dy * dy + dz * dz) * (1 - 1e-12);
+        return aligned >= best ? aligned : std::max(aligned, group.slab.distance2(x, y, z) * (1 - 1e-12));
     };
     std::vector<BlockQueries::Near>& near = queries.near_;
     const double band2 = queries.band_ * queries.band_;
@@ -283,11 +269,7 @@ std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& eval
                              bits &= bits - 1) {
                             const std::uint32_t slot =
                                 queries.slot_of_key_[std::size_t((cx * side + cy) * side + __builtin_ctzll(bits))];
-                            // The axis-aligned box first: the turned one only for the cells it passes.
-                            const BlockQueries::Cell& cell = queries.cells_[slot];
-                            const double box_bound = boxBound(cell.box, x, y, z);
-                            if (box_bound >= best) continue;
-                            const double lower_bound = std::max(box_bound, cell.slab.distance2(x, y, z) * (1 - 1e-12));
+                            const double lower_bound = boundOf(queries.cells_[slot], x, y, z, best);
                             if (lower_bound < best) near.push_back({lower_bound, slot});
                         }
                     }
@@ -298,10 +280,10 @@ std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& eval
                 });
                 for (const BlockQueries::Near& candidate : near) {
                     if (candidate.lower_bound >= best) break;
-                    const BlockQueries::Cell& cell = queries.cells_[candidate.slot];
-                    for (std::uint32_t o = cell.octant_first; o < cell.octant_end; ++o) {
+                    const BlockQueries::Group& cell = queries.cells_[candidate.slot];
+                    for (std::uint32_t o = cell.first; o < cell.end; ++o) {
                         const BlockQueries::Group& octant = queries.octants_[o];
-                        if (octantBound(octant, x, y, z) >= best) continue;
+                        if (boundOf(octant, x, y, z, best) >= best) continue;
                         for (std::uint32_t p = octant.first; p < octant.end; ++p) {
                             const double before = best;
                             best = queries.packs_[p].minDistance2(x, y, z, best);

@@ -24,7 +24,6 @@
 // its distance's reach (the 871k dragon at 128: 9.8 million distances instead of 22 million).
 // A cell's turned box is measured only when its axis-aligned one comes near enough: a voxel
 // scans some 30 cells, a third of which pass.
-#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -46,12 +45,11 @@ struct Slab {
     // The squared distance from (x, y, z) to the box (exact up to rounding: the axes are
     // orthonormal up to rounding).
     double distance2(double x, double y, double z) const {
-        const double qx = x - centre[0], qy = y - centre[1], qz = z - centre[2];
+        const Vec3 q{x - centre[0], y - centre[1], z - centre[2]};
         double sum = 0;
         for (std::size_t a = 0; a < 3; ++a) {
-            const double along = qx * axis[a][0] + qy * axis[a][1] + qz * axis[a][2];
-            const double gap = std::max({lo[a] - along, 0.0, along - hi[a]});
-            sum += gap * gap;
+            const double g = gap(dot(q, axis[a]), lo[a], hi[a]);
+            sum += g * g;
         }
         return sum;
     }
@@ -93,17 +91,12 @@ public:
     std::uint64_t lower(double* d2, std::uint64_t& evaluations);
 
 private:
-    // Triangles with boxes around them (box: lo xyz, hi xyz; voxel space).
+    // Triangles with boxes around them (box: lo xyz, hi xyz; voxel space): an octant, its
+    // packs [first, end) of `packs_`, or a unit cell, its octants [first, end) of `octants_`
+    // (a cell's triangles split by the octant of the cell their centroids lie in: the octants'
+    // boxes hold fewer triangles' worth of empty space).
     struct Group {
-        std::uint32_t first, end;  // into `packs_`
-        std::array<double, 6> box;
-        Slab slab;
-    };
-    // A unit cell: its triangles, and the same split by the octant of the cell their centroids
-    // lie in (the octants' boxes hold fewer triangles' worth of empty space); each with its
-    // boxes.
-    struct Cell {
-        std::uint32_t octant_first, octant_end;  // into `octants_`
+        std::uint32_t first, end;
         std::array<double, 6> box;
         Slab slab;
     };
@@ -122,7 +115,7 @@ private:
     std::vector<std::uint64_t> rows_;               // side² words: bit z set where cell (x, y, z) is occupied
     std::vector<std::array<double, 4>> row_boxes_;  // side² boxes (lo xy, hi xy) of each row's cells
     std::vector<std::uint64_t> reach_;              // 32² words: bit z of voxel row (x, y) set where lower visits
-    std::vector<Cell> cells_;
+    std::vector<Group> cells_;
     std::vector<Group> octants_;
     std::vector<DistanceTriangles4> packs_;
     // A cell whose box comes nearer a voxel than its bound, by that box's squared distance.

@@ -35,6 +35,17 @@ namespace hyvox::sdf {
 
 using Vec3 = std::array<double, 3>;
 
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 minus(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline Vec3 scaled(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+inline Vec3 unit(const Vec3& a) { return scaled(a, 1.0 / std::sqrt(dot(a, a))); }
+// How far a point is from the interval [lo, hi] (0 inside it).
+inline double gap(double point, double lo, double hi) { return std::max({lo - point, 0.0, point - hi}); }
+inline Vec3 centroidOf(const std::array<Vec3, 3>& c) {
+    return {(c[0][0] + c[1][0] + c[2][0]) / 3.0, (c[0][1] + c[1][1] + c[2][1]) / 3.0,
+            (c[0][2] + c[1][2] + c[2][2]) / 3.0};
+}
+
 // A triangle laid flat in its own frame (u, v): corners (0, 0), (bu, 0), (cu, cv), edges
 // (e0, e1, e2) from each corner to the next with their inverse squared lengths, and the
 // orientation (+1 counterclockwise, -1 clockwise, 0 for a segment or a point).
@@ -141,10 +152,6 @@ public:
     Vec3 h_axis;  // the unit normal (any unit vector across a triangle without a plane)
 
 private:
-    static double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-    static Vec3 minus(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-    static Vec3 scaled(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-
     friend class DistanceTriangles4;
     Vec3 origin, u_axis, v_axis;
     double flat_u[3], flat_v[3], edge_u[3], edge_v[3], inverse_length2[3];
