@@ -118,9 +118,3 @@ def combine(parts: Sequence[Tuple[np.ndarray, np.ndarray, Optional[PartColour]]]
         corner_colors = np.ascontiguousarray(corner_colors[:, :3])  # opaque: no `alpha` grid
     return vertices, triangles, {"colors": corner_colors}, warning
 
-
-def voxelize_colour_kwargs(colour_kwargs: dict, wanted: bool) -> dict:
-    """The colour arguments and the attributes option for a run that wants colour."""
-    if not wanted or not colour_kwargs:
-        return {}
-    return dict(colour_kwargs, attributes="color")
