@@ -6,6 +6,7 @@ Every HyvoxError becomes a report and {'CANCELLED'} with the scene unchanged."""
 
 import time
 import traceback
+import warnings
 
 import bpy
 
@@ -113,6 +114,25 @@ class _Run:
         return objects
 
 
+FILL_INTERIOR_DEPRECATED = (
+    "hyvox: fill_interior= is deprecated and will be removed; use mode= instead "
+    "(fill_interior={value} runs as mode='{mode}')"
+)
+OLD_SURFACE_MODE = "conservative"  # Mode's default while Fill Interior existed
+
+
+def fill_interior_mode(fill_interior: bool, given_mode, scene_mode: str) -> str:
+    """The mode a run with the old fill_interior= keyword meant. On, the run was solid
+    whatever Mode said; off, Mode decided: the mode= a script gave beside it, else the
+    scene's unless that is the Solid this version defaults to (then the surface mode that
+    version defaulted to)."""
+    if fill_interior:
+        return "solid"
+    if given_mode is not None:
+        return given_mode
+    return scene_mode if scene_mode != "solid" else OLD_SURFACE_MODE
+
+
 class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
     """Voxelize the selected meshes into OpenVDB volumes aligned with them"""
 
@@ -131,6 +151,14 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
             options={"HIDDEN", "SKIP_SAVE"},
             description="Write this run's files under new names (off: rewrite the same names each run)",
         ),
+        # Deprecated (docs/compatibility.md): the switch Mode replaced, kept so that scripts
+        # written against earlier versions still run; execute() maps it onto mode.
+        fill_interior=bpy.props.BoolProperty(
+            name="Fill Interior",
+            default=True,
+            options={"HIDDEN", "SKIP_SAVE"},
+            description="Deprecated: use mode='solid' (on) or a surface mode (off)",
+        ),
     )
 
     _active = None  # the running modal operator's _Run: one run at a time
@@ -140,11 +168,26 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
         # Selection problems are reported by execute(), not hidden by a failing poll.
         return context.scene is not None and context.mode == "OBJECT"
 
+    def _map_old_keywords(self, context):
+        """fill_interior=, the switch Mode replaced, mapped onto mode once
+        (fill_interior_mode), with a deprecation warning naming mode=."""
+        props = self.properties
+        if not props.is_property_set("fill_interior"):
+            return
+        given = self.mode if props.is_property_set("mode") else None
+        mode = fill_interior_mode(props.fill_interior, given, context.scene.hyvox.mode)
+        text = FILL_INTERIOR_DEPRECATED.format(value=props.fill_interior, mode=mode)
+        warnings.warn(text, FutureWarning, stacklevel=2)  # shown by default: meant for scripts
+        self.report({"WARNING"}, text)
+        self.mode = mode
+        props.property_unset("fill_interior")  # a redo keeps the mode, not the old switch
+
     # -- synchronous ------------------------------------------------------------------
     def execute(self, context):
         if OBJECT_OT_hyvox_voxelize._active is not None:
             self.report({"ERROR"}, "A voxelization is already running")
             return {"CANCELLED"}
+        self._map_old_keywords(context)
         run = None
         try:
             run = _Run(context, self)
@@ -175,6 +218,7 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
         if OBJECT_OT_hyvox_voxelize._active is not None:
             self.report({"ERROR"}, "A voxelization is already running")
             return {"CANCELLED"}
+        self._map_old_keywords(context)
         try:
             self._run = _Run(context, self)
             self._run.pipeline.start_next_frame()

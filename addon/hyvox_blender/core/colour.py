@@ -117,4 +117,3 @@ def combine(parts: Sequence[Tuple[np.ndarray, np.ndarray, Optional[PartColour]]]
     if np.all(corner_colors[:, 3] == 1.0):
         corner_colors = np.ascontiguousarray(corner_colors[:, :3])  # opaque: no `alpha` grid
     return vertices, triangles, {"colors": corner_colors}, warning
-
