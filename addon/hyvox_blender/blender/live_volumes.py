@@ -158,7 +158,7 @@ def settings_of(context, obj):
 def fingerprint(settings) -> str:
     return live_key.options_fingerprint(
         dict(
-            settings.voxelize_options(),
+            settings.options,
             method=settings.method,
             color=settings.color,
             sdf=settings.sdf,

@@ -36,9 +36,6 @@ class _Run:
 
     def __init__(self, context, op):
         settings, folder, self.override, used = gather(context, op)
-        self.live_digests = {} if used["live"] else None  # the sources' evaluated state, for Live
-        if used["live"]:
-            used = live.prepare_run(settings, used)
         self.scene = context.scene
         self.original_frame = context.scene.frame_current
         self.op = op
@@ -47,10 +44,7 @@ class _Run:
         # New file names per run, so that undo never brings back a volume whose file a later
         # run overwrote (farm chunks ask for fixed names to assemble one sequence).
         run_tag = naming.new_run_tag() if op.unique_file_names else None
-        export_frame = (
-            self.export_frame if self.live_digests is None else live.recording(self.export_frame, self.live_digests)
-        )
-        self.pipeline = Pipeline(settings, folder, export_frame, run_tag=run_tag)  # validates the settings
+        self.pipeline = Pipeline(settings, folder, self.export_frame, run_tag=run_tag)  # validates the settings
         if self.pipeline.ignored_options:
             op.report({"INFO"}, backend.ignored_message(self.pipeline.ignored_options, self.pipeline.method))
         # The redo panel shows, and a redo repeats, exactly what this run used.
@@ -100,9 +94,7 @@ class _Run:
         )
         pipeline.timings.import_ms += (time.perf_counter() - start) * 1000.0
         self.show_results(context, objects)
-        live.remember_results(objects, pipeline.results, self.used)  # for its Live switch, now or later
-        if self.live_digests is not None:
-            live.make_live(objects, pipeline.results, self.live_digests)
+        live.take_over(objects, pipeline.results, self.used)
         lines = summary.long_report(pipeline.results, pipeline.timings)
         last_summary[:] = lines
         last_run_record.clear()
