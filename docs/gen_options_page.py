@@ -7,7 +7,7 @@ native/python/gen_stubs.py writes the .pyi: one source, so the page cannot disag
     python3 docs/gen_options_page.py --compare GENERATED COMMITTED  # the test: exit 1 if they differ
 
 PACKAGE_PARENT is the folder holding the built hyvox/ package (B/python). Which options the
-Blender add-on shows, and where, is read from addon/hyvox_blender/blender/properties.py
+Blender add-on shows, and where, is read from addon/hyvox_blender/blender/ui/properties.py
 without importing it (it needs bpy)."""
 
 import ast

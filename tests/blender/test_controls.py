@@ -36,7 +36,7 @@ class ControlsTest(AddonTestCase):
 
     def save_as_earlier_version(self, path, fill_interior, mode):
         """A .blend as earlier versions saved it: no settings stamp, the old switch stored."""
-        legacy_settings = helpers.addon("blender.legacy_settings")
+        legacy_settings = helpers.addon("blender.ui.legacy_settings")
         settings = bpy.context.scene.hyvox
         settings.property_unset("mode")
         if mode is not None:
@@ -52,7 +52,7 @@ class ControlsTest(AddonTestCase):
             bpy.app.handlers.save_pre.append(legacy_settings.stamp_before_save)
 
     def test_files_of_earlier_versions_open_with_the_mode_they_meant(self):
-        legacy_settings = helpers.addon("blender.legacy_settings")
+        legacy_settings = helpers.addon("blender.ui.legacy_settings")
         for (fill_interior, mode), meant in OLD_FILES:
             with self.subTest(fill_interior=fill_interior, mode=mode):
                 path = os.path.join(self.out, "old.blend")

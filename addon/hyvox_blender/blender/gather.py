@@ -8,7 +8,7 @@ import bpy
 
 from ..core import naming
 from ..core.settings import VoxelizeSettings
-from .properties import PREFERENCE_OPTIONS, SCENE_OPTIONS, preferences
+from .ui.properties import PREFERENCE_OPTIONS, SCENE_OPTIONS, preferences
 
 
 def _op_set(op, name) -> bool:

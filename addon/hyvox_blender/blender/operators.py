@@ -13,7 +13,10 @@ import bpy
 from ..core import backend, naming, summary
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
-from . import export, frame_export, importer, live, properties
+from .export import frames as frame_export, sources as export
+from .live import driver as live
+from .ui import properties
+from .volume import importer
 from .gather import gather
 
 # The last run's summary lines (shown in the panel) and record (for scripts).

@@ -44,7 +44,7 @@ def object_offset(voxel_size: float, version: Sequence[int], override: str = "AU
 # volumetric tile size, samples, start/end, render space, interpolation, a Volume Displace
 # modifier); active voxels of any grid of the Volume beyond them do. So for these versions
 # the add-on gives the Volume object a Geometry Nodes modifier that adds a small second
-# grid beyond the bounds (blender/eevee_bounds.py); the file and its voxels stay the
+# grid beyond the bounds (blender/volume/eevee_bounds.py); the file and its voxels stay the
 # voxelization's. Cycles draws the layer whole either way; 5.0 bounds the grid by its
 # voxels' faces and EEVEE draws it whole. Measured by tests/blender/test_render_alignment.py
 # (EEVEE, 2x2x2 cube, voxel 0.25, voxels 0..7; darkest value of the -x/+x walls, edges):

@@ -23,6 +23,8 @@ from typing import Optional, Sequence, Tuple
 
 import numpy as np
 
+from .pipeline import merge_meshes
+
 DEFAULT_GREY = (0.8, 0.8, 0.8, 1.0)  # what Blender renders an object without material as
 
 
@@ -93,8 +95,6 @@ def combine(parts: Sequence[Tuple[np.ndarray, np.ndarray, Optional[PartColour]]]
     keyword arguments for hyvox.voxelize, a warning or ""). No part with a colour: no
     colour arguments. The vertices and triangles are merged like pipeline.merge_meshes; in
     the texture form they are unshared (one vertex per corner) so each corner keeps its UV."""
-    from .pipeline import merge_meshes
-
     vertices, triangles = merge_meshes([(v, t) for v, t, _ in parts])
     colours = [c for _, _, c in parts]
     if all(c is None for c in colours):

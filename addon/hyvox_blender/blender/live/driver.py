@@ -34,13 +34,14 @@ import traceback
 import bpy
 from bpy.app.handlers import persistent
 
-from ..core import live_key
-from ..core.errors import HyvoxError
-from ..core.live_cache import CacheEntry, LiveCache
-from ..core.live_run import LiveInput, LiveRun
-from ..core.live_scheduler import FAILED, SHOWN, LiveScheduler
-from . import live_dependencies, live_volumes, render_depsgraph
-from .live_volumes import LIVE_ID, SourcesUnavailable
+from ...core import live_key
+from ...core.errors import HyvoxError
+from ...core.live_cache import CacheEntry, LiveCache
+from ...core.live_run import LiveInput, LiveRun
+from ...core.live_scheduler import FAILED, SHOWN, LiveScheduler
+from . import dependencies as live_dependencies, volumes as live_volumes
+from ..export import render_depsgraph
+from .volumes import LIVE_ID, SourcesUnavailable
 
 POLL_SECONDS = 0.01  # the timer's interval while a run is on (Blender's loop sleeps ~5 ms)
 IDLE_POLL_SECONDS = 0.2  # while live volumes exist and nothing runs (the tick reads flags only)

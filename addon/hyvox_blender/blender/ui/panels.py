@@ -6,9 +6,10 @@ not apply to the chosen method hidden, and the last run's summary in short lines
 
 import bpy
 
-from ..core import backend, panel_rules
-from ..core.errors import HyvoxError
-from . import operators, properties
+from ...core import backend, panel_rules
+from ...core.errors import HyvoxError
+from . import properties
+from .. import operators
 
 
 def _resolved_method(context, settings) -> str:
