@@ -15,7 +15,7 @@ import pathlib
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-PROPERTIES = ROOT / "addon" / "hyvox_blender" / "blender" / "properties.py"
+PROPERTIES = ROOT / "addon" / "hyvox_blender" / "blender" / "ui" / "properties.py"
 
 GROUPS = [
     ("grid", "The grid", "Where the voxels are and how big."),

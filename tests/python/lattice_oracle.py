@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The lattice fixed in world space, worked out in the tests (numpy), for the module's
-snap_origin to be checked against: the origin at the largest whole multiple of the voxel
-size at or below the min of the vertices the triangles use."""
+snap_origin to be checked against: the origin at floor(min / voxel size) voxel sizes (one
+lower where that product rounds above the min), the min of the vertices the triangles use.
+The floor of the rounded quotient, as the add-on's lattice had it: frames and Live runs of
+earlier versions land on the same voxels."""
 
 import numpy as np
 

@@ -84,8 +84,8 @@ struct GridOptions {
     std::optional<std::array<double, 3>> origin;  ///< default: mesh bounds min (minus padding)
     std::optional<Bounds> bounds;                 ///< default: mesh bounds; geometry outside is clipped
     int padding = 0;                              ///< empty voxels added on every side
-    /// Origin (unless given) at the largest whole multiple of the voxel size at or below the
-    /// bounds min: a lattice fixed in world space, so calls whose bounds differ (frames, Live
+    /// Origin (unless given) at floor(bounds min / voxel size) whole voxel sizes, at or below
+    /// the min: a lattice fixed in world space, so calls whose bounds differ (frames, Live
     /// edits) share their voxels where the mesh is the same.
     bool snap_origin = false;
 };

@@ -46,9 +46,10 @@ void refuseSpeckMesh(double longest_mesh_side, double voxel_size, bool from_boun
                        shortNumber(kMaxVoxelsPerMeshSide * longest_mesh_side));
 }
 
-// The largest whole multiple of s at or below x. x / s may round up to the next whole number
-// (0.7 / 0.1 is 6.999999999999999, but 0.3 / 0.1 rounds the other way), so floor alone can
-// land one multiple above x: then one lower.
+// A whole multiple of s at or below x: floor(x / s) · s, one lower where x / s rounded up to
+// the next whole number (0.7 / 0.1 is 6.999999999999999, but 0.3 / 0.1 rounds the other way)
+// and the product lands above x. (A quotient that rounded down floors one voxel lower: still
+// on the lattice, with one more empty layer.)
 double snapDown(double x, double s) {
     double k = std::floor(x / s);
     if (k * s > x) k -= 1;

@@ -514,8 +514,8 @@ std::vector<OptionSpec> buildSchema() {
          "grid",
          "Snap Origin",
          "",
-         "origin (unless given) at the largest whole multiple of the voxel size at or below the bounds min: a "
-         "lattice fixed in world space, so runs whose bounds differ keep the voxels of what did not move",
+         "origin (unless given) at a whole multiple of the voxel size at or below the bounds min: a lattice "
+         "fixed in world space, so runs whose bounds differ keep the voxels of what did not move",
          false,
          0,
          0,

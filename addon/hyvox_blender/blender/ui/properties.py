@@ -319,7 +319,9 @@ def _preferences_properties():
     }
 
 
-ADDON_NAME = __package__.rpartition(".")[0]
+# The add-on's package (hyvox_blender, or bl_ext.<repository>.hyvox_blender as an extension):
+# this module's, less blender.ui.
+ADDON_NAME = __package__.rsplit(".", 2)[0]
 
 
 class HyvoxPreferences(bpy.types.AddonPreferences):
