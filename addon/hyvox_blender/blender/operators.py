@@ -15,7 +15,7 @@ from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
 from .export import frames as frame_export, sources as export
 from .live import driver as live
-from .ui import properties
+from .ui import legacy_settings, properties
 from .volume import importer
 from .gather import gather
 
@@ -109,25 +109,6 @@ class _Run:
         return objects
 
 
-FILL_INTERIOR_DEPRECATED = (
-    "hyvox: fill_interior= is deprecated and will be removed; use mode= instead "
-    "(fill_interior={value} runs as mode='{mode}')"
-)
-OLD_SURFACE_MODE = "conservative"  # Mode's default while Fill Interior existed
-
-
-def fill_interior_mode(fill_interior: bool, given_mode, scene_mode: str) -> str:
-    """The mode a run with the old fill_interior= keyword meant. On, the run was solid
-    whatever Mode said; off, Mode decided: the mode= a script gave beside it, else the
-    scene's unless that is the Solid this version defaults to (then the surface mode that
-    version defaulted to)."""
-    if fill_interior:
-        return "solid"
-    if given_mode is not None:
-        return given_mode
-    return scene_mode if scene_mode != "solid" else OLD_SURFACE_MODE
-
-
 class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
     """Voxelize the selected meshes into OpenVDB volumes aligned with them"""
 
@@ -165,13 +146,13 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
 
     def _map_old_keywords(self, context):
         """fill_interior=, the switch Mode replaced, mapped onto mode once
-        (fill_interior_mode), with a deprecation warning naming mode=."""
+        (legacy_settings.fill_interior_mode), with a deprecation warning naming mode=."""
         props = self.properties
         if not props.is_property_set("fill_interior"):
             return
         given = self.mode if props.is_property_set("mode") else None
-        mode = fill_interior_mode(props.fill_interior, given, context.scene.hyvox.mode)
-        text = FILL_INTERIOR_DEPRECATED.format(value=props.fill_interior, mode=mode)
+        mode = legacy_settings.fill_interior_mode(props.fill_interior, given, context.scene.hyvox.mode)
+        text = legacy_settings.FILL_INTERIOR_DEPRECATED.format(value=props.fill_interior, mode=mode)
         warnings.warn(text, FutureWarning, stacklevel=2)  # shown by default: meant for scripts
         self.report({"WARNING"}, text)
         self.mode = mode
