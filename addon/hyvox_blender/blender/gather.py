@@ -50,6 +50,8 @@ def settings_from_used(context, used: dict, live: bool = False):
     """(settings, output folder, half-voxel override) from the values of used_values()
     (a Live volume keeps those it was made with); live: the run makes live volumes."""
     options = {name: used[name] for name in SCENE_OPTIONS}
+    # Size (the panel's switch) says which of the two the artist set; the other, still in the
+    # Scene settings, is not passed on. How the grid follows from it is the module's to say.
     options.pop("resolution" if used["size_mode"] == "VOXEL_SIZE" else "voxel_size")
     frames = list(range(used["frame_start"], used["frame_end"] + 1)) if used["use_frame_range"] else None
 
