@@ -509,6 +509,21 @@ std::vector<OptionSpec> buildSchema() {
          {},
          nullptr,
          HYVOX_FIELD(asFlag, tessellation.counts)});
+    add({"snap_origin",
+         T::Flag,
+         "grid",
+         "Snap Origin",
+         "",
+         "origin (unless given) at a whole multiple of the voxel size at or below the bounds min: a lattice "
+         "fixed in world space, so runs whose bounds differ keep the voxels of what did not move",
+         false,
+         0,
+         0,
+         false,
+         {},
+         {},
+         nullptr,
+         HYVOX_FIELD(asFlag, grid.snap_origin)});
     return s;
 }
 
