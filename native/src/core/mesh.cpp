@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // validate(): one pass over the vertices and one over the triangles, each cut into chunks
-// that TBB checks in parallel (in the caller's arena). A chunk stops at its first problem;
+// that TBB checks in parallel (in the caller's arena). The pass over the triangles also sums
+// what the memory estimate needs of them (TriangleSums), so that it need not read them again. A chunk stops at its first problem;
 // the problem of the lowest chunk is reported, so the message names the same first bad
 // vertex or triangle as a serial pass would.
 #include "hyvox/mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -36,14 +38,25 @@ namespace {
 // twice as long per coordinate) errs by under 40 * 2^-53 * L^2, L the largest coordinate of
 // e0 and e1; a component above 2^-40 * L^2 here therefore has a true value, and a value in the
 // stable normal, far from zero.
-bool isZeroArea(const float* a, const float* b, const float* c) {
+// The cross product of the edges from corner a, in double, and the largest coordinate of
+// those edges: the zero-area test's first look, and the triangle's term in validate()'s sums.
+struct CornerCross {
+    double n[3];
+    double largest;
+};
+
+CornerCross crossFromA(const float* a, const float* b, const float* c) {
     const double e0[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
     const double e1[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-    const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
-    double largest = 0.0;
-    for (int i = 0; i < 3; ++i) largest = std::max({largest, std::fabs(e0[i]), std::fabs(e1[i])});
-    const double surely_not_zero = 0x1p-40 * largest * largest;
-    if (std::fabs(n[0]) > surely_not_zero || std::fabs(n[1]) > surely_not_zero || std::fabs(n[2]) > surely_not_zero)
+    CornerCross x{{e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]}, 0.0};
+    for (int i = 0; i < 3; ++i) x.largest = std::max({x.largest, std::fabs(e0[i]), std::fabs(e1[i])});
+    return x;
+}
+
+bool isZeroArea(const float* a, const float* b, const float* c, const CornerCross& x) {
+    const double surely_not_zero = 0x1p-40 * x.largest * x.largest;
+    if (std::fabs(x.n[0]) > surely_not_zero || std::fabs(x.n[1]) > surely_not_zero ||
+        std::fabs(x.n[2]) > surely_not_zero)
         return false;
     const auto corner = [](const float* p) { return Corner3{double(p[0]), double(p[1]), double(p[2])}; };
     const Corner3 stable = stableTriangleNormal(corner(a), corner(b), corner(c));
@@ -103,11 +116,18 @@ void checkVerticesFinite(const MeshView& mesh) {
 }
 
 // One chunk of triangles: its usable indices written from `usable` on (at most one per
-// triangle), their bounds, and its degenerate count, or the first problem in it.
+// triangle), their bounds, their sums and its degenerate count, or the first problem in it.
+// The volume is summed with its apex at the chunk's first usable corner, near every corner of
+// the mesh, and moved to the mesh's bounds once they are known: an apex far from the mesh (the
+// world's origin) would add large terms that cancel, and lose the volume's digits with them.
 struct TriangleChunk {
     std::size_t usable_count = 0;
     std::size_t degenerate_count = 0;
     Bounds bounds;
+    double crossed_twice = 0;               // Σ |n|₁
+    double volume_six = 0;                  // Σ (a - apex) · n
+    std::array<double, 3> normal{0, 0, 0};  // Σ n
+    std::array<double, 3> apex{0, 0, 0};
     std::string problem;
 };
 
@@ -132,11 +152,18 @@ void checkTriangles(const MeshView& mesh, std::size_t begin, std::size_t end, st
         const float* a = mesh.positions + 3 * std::size_t(idx[0]);
         const float* b = mesh.positions + 3 * std::size_t(idx[1]);
         const float* c = mesh.positions + 3 * std::size_t(idx[2]);
-        if (idx[0] == idx[1] || idx[1] == idx[2] || idx[0] == idx[2] || isZeroArea(a, b, c)) {
+        const CornerCross x = crossFromA(a, b, c);
+        if (idx[0] == idx[1] || idx[1] == idx[2] || idx[0] == idx[2] || isZeroArea(a, b, c, x)) {
             ++out.degenerate_count;
             continue;
         }
+        if (out.usable_count == 0) out.apex = {double(a[0]), double(a[1]), double(a[2])};
         usable[out.usable_count++] = std::uint32_t(t);
+        out.crossed_twice += std::fabs(x.n[0]) + std::fabs(x.n[1]) + std::fabs(x.n[2]);
+        for (int axis = 0; axis < 3; ++axis) {
+            out.volume_six += (double(a[axis]) - out.apex[axis]) * x.n[axis];
+            out.normal[axis] += x.n[axis];
+        }
         for (const float* p : {a, b, c})
             for (int axis = 0; axis < 3; ++axis) {
                 lo[axis] = std::min(lo[axis], double(p[axis]));
@@ -145,6 +172,24 @@ void checkTriangles(const MeshView& mesh, std::size_t begin, std::size_t end, st
     }
     out.bounds.min = {lo[0], lo[1], lo[2]};
     out.bounds.max = {hi[0], hi[1], hi[2]};
+}
+
+// The chunks' sums as the mesh's (TriangleSums), the volume's apex moved to the bounds' min.
+void sumChunks(const std::vector<TriangleChunk>& chunks, ValidatedMesh& out) {
+    double crossed_twice = 0, volume_six = 0;
+    std::array<double, 3> normal{0, 0, 0};
+    for (const TriangleChunk& chunk : chunks) {
+        if (chunk.usable_count == 0) continue;
+        crossed_twice += chunk.crossed_twice;
+        volume_six += chunk.volume_six;
+        for (int axis = 0; axis < 3; ++axis) {
+            volume_six -= (out.bounds.min[axis] - chunk.apex[axis]) * chunk.normal[axis];
+            normal[axis] += chunk.normal[axis];
+        }
+    }
+    out.sums.crossed_area = crossed_twice / 2;
+    out.sums.volume = volume_six / 6;
+    for (int axis = 0; axis < 3; ++axis) out.sums.normal[axis] = normal[axis] / 6;
 }
 
 }  // namespace
@@ -205,6 +250,7 @@ ValidatedMesh validate(const MeshView& mesh, Interrupter* interrupter) {
     if (out.usable.empty())
         throw InvalidInput("all " + std::to_string(mesh.triangle_count) +
                            " triangles are degenerate (zero area); nothing to voxelize");
+    sumChunks(chunks, out);
     return out;
 }
 

@@ -185,7 +185,8 @@ struct Surface {
             const Tile tile = plan.tile(t);
             ValidatedMesh part;
             if (!plan.whole())
-                part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds};
+                part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds,
+                                     validated.sums};
             const ValidatedMesh& tile_mesh = plan.whole() ? validated : part;
             progress.setTile(t);
             TileOutput out{BitGrid(tile.dims), {}, {}, 0, {}};
