@@ -37,24 +37,24 @@ namespace {
 // them. Each way of computing a component (these edges or the two shortest, each at most
 // twice as long per coordinate) errs by under 40 * 2^-53 * L^2, L the largest coordinate of
 // e0 and e1; a component above 2^-40 * L^2 here therefore has a true value, and a value in the
-// stable normal, far from zero.
-// The cross product of the edges from corner a, in double, and the largest coordinate of
-// those edges: the zero-area test's first look, and the triangle's term in validate()'s sums.
+// stable normal, far from zero. L^2 is bounded by the sum of the squares of the six
+// coordinates (a few multiplications, where the largest of six takes a chain of comparisons):
+// the bound is at most 6 L^2, and a larger bound only sends more triangles to the stable
+// normal.
 struct CornerCross {
-    double n[3];
-    double largest;
+    double n[3];        // (b - a) x (c - a)
+    double square_sum;  // |b - a|^2 + |c - a|^2, at least L^2
 };
 
 CornerCross crossFromA(const float* a, const float* b, const float* c) {
     const double e0[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
     const double e1[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-    CornerCross x{{e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]}, 0.0};
-    for (int i = 0; i < 3; ++i) x.largest = std::max({x.largest, std::fabs(e0[i]), std::fabs(e1[i])});
-    return x;
+    return {{e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]},
+            (e0[0] * e0[0] + e0[1] * e0[1] + e0[2] * e0[2]) + (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2])};
 }
 
 bool isZeroArea(const float* a, const float* b, const float* c, const CornerCross& x) {
-    const double surely_not_zero = 0x1p-40 * x.largest * x.largest;
+    const double surely_not_zero = 0x1p-40 * x.square_sum;
     if (std::fabs(x.n[0]) > surely_not_zero || std::fabs(x.n[1]) > surely_not_zero ||
         std::fabs(x.n[2]) > surely_not_zero)
         return false;
@@ -133,8 +133,12 @@ struct TriangleChunk {
 
 void checkTriangles(const MeshView& mesh, std::size_t begin, std::size_t end, std::uint32_t* usable,
                     TriangleChunk& out) {
-    const double inf = std::numeric_limits<double>::infinity();
-    double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};
+    // Bounds over floats (exact, as the doubles they widen to) and sums held in locals, each
+    // sum taking one addition a triangle: the loop's chains of dependent operations stay short.
+    const float inf = std::numeric_limits<float>::infinity();
+    float lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};
+    double crossed_twice = 0, volume_six = 0, normal[3] = {0, 0, 0}, apex[3] = {0, 0, 0};
+    std::size_t kept = 0, degenerate = 0;
     for (std::size_t t = begin; t < end; ++t) {
         // Vertices are spread over megabytes: those of a triangle a few ahead are requested now.
         if (t + kPrefetchAhead < end)
@@ -154,24 +158,34 @@ void checkTriangles(const MeshView& mesh, std::size_t begin, std::size_t end, st
         const float* c = mesh.positions + 3 * std::size_t(idx[2]);
         const CornerCross x = crossFromA(a, b, c);
         if (idx[0] == idx[1] || idx[1] == idx[2] || idx[0] == idx[2] || isZeroArea(a, b, c, x)) {
-            ++out.degenerate_count;
+            ++degenerate;
             continue;
         }
-        if (out.usable_count == 0) out.apex = {double(a[0]), double(a[1]), double(a[2])};
-        usable[out.usable_count++] = std::uint32_t(t);
-        out.crossed_twice += std::fabs(x.n[0]) + std::fabs(x.n[1]) + std::fabs(x.n[2]);
+        if (kept == 0)
+            for (int axis = 0; axis < 3; ++axis) apex[axis] = a[axis];
+        usable[kept++] = std::uint32_t(t);
+        crossed_twice += std::fabs(x.n[0]) + std::fabs(x.n[1]) + std::fabs(x.n[2]);
+        volume_six +=
+            (double(a[0]) - apex[0]) * x.n[0] + (double(a[1]) - apex[1]) * x.n[1] + (double(a[2]) - apex[2]) * x.n[2];
         for (int axis = 0; axis < 3; ++axis) {
-            out.volume_six += (double(a[axis]) - out.apex[axis]) * x.n[axis];
-            out.normal[axis] += x.n[axis];
+            normal[axis] += x.n[axis];
+            const float pa = a[axis], pb = b[axis], pc = c[axis];
+            const float least = pb < pa ? pb : pa, most = pb > pa ? pb : pa;
+            const float least3 = pc < least ? pc : least, most3 = pc > most ? pc : most;
+            lo[axis] = least3 < lo[axis] ? least3 : lo[axis];
+            hi[axis] = most3 > hi[axis] ? most3 : hi[axis];
         }
-        for (const float* p : {a, b, c})
-            for (int axis = 0; axis < 3; ++axis) {
-                lo[axis] = std::min(lo[axis], double(p[axis]));
-                hi[axis] = std::max(hi[axis], double(p[axis]));
-            }
     }
-    out.bounds.min = {lo[0], lo[1], lo[2]};
-    out.bounds.max = {hi[0], hi[1], hi[2]};
+    out.usable_count = kept;
+    out.degenerate_count = degenerate;
+    out.crossed_twice = crossed_twice;
+    out.volume_six = volume_six;
+    for (int axis = 0; axis < 3; ++axis) {
+        out.normal[axis] = normal[axis];
+        out.apex[axis] = apex[axis];
+        out.bounds.min[axis] = lo[axis];
+        out.bounds.max[axis] = hi[axis];
+    }
 }
 
 // The chunks' sums as the mesh's (TriangleSums), the volume's apex moved to the bounds' min.
