@@ -166,6 +166,55 @@ TEST(MeshValidation, ChunkedPassEqualsASerialPass) {
     }
 }
 
+// The sums the memory estimate takes from validate() (TriangleSums), against a serial pass in
+// long double over the triangles the serial pass above keeps: a mesh of several chunks, moved
+// far from the world's origin (the volume's apex must follow the mesh, not the origin).
+TEST(MeshValidation, TheTriangleSumsEqualASerialSum) {
+    ScatteredMesh m = scatteredMesh(300000, 9);
+    for (std::size_t i = 0; i < m.positions.size(); ++i) m.positions[i] += i % 3 == 0 ? 20000.0f : -7000.0f;
+    const auto mesh = hyvox::validate(view(m.positions, m.triangles));
+    long double crossed = 0, volume = 0, normal[3] = {0, 0, 0};
+    for (const std::uint32_t t : mesh.usable) {
+        const std::uint32_t* idx = &m.triangles[3 * std::size_t(t)];
+        long double p[3][3];
+        for (int c = 0; c < 3; ++c)
+            for (int axis = 0; axis < 3; ++axis)
+                p[c][axis] = (long double)m.positions[3 * std::size_t(idx[c]) + axis] - mesh.bounds.min[axis];
+        const long double e0[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+        const long double e1[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+        const long double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2],
+                                  e0[0] * e1[1] - e0[1] * e1[0]};
+        crossed += (std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2])) / 2;
+        volume += (p[0][0] * n[0] + p[0][1] * n[1] + p[0][2] * n[2]) / 6;
+        for (int axis = 0; axis < 3; ++axis) normal[axis] += n[axis] / 6;
+    }
+    EXPECT_NEAR(mesh.sums.crossed_area, double(crossed), 1e-12 * double(crossed));
+    // The volume of a soup of random triangles is a sum of terms of both signs: compared with
+    // the size of those terms.
+    const double scale = double(crossed) * 100.0;
+    EXPECT_NEAR(mesh.sums.volume, double(volume), 1e-12 * scale);
+    for (int axis = 0; axis < 3; ++axis)
+        EXPECT_NEAR(mesh.sums.normal[axis], double(normal[axis]), 1e-12 * double(crossed));
+}
+
+// A closed cube of side 2 far from the origin, faces outward, and a triangle with a repeated
+// corner (skipped): the volume is the cube's (8), the normals cancel, the crossed area is the
+// cube's area (its faces are axis-aligned: |n|₁ is twice a face triangle's area).
+TEST(MeshValidation, TheTriangleSumsOfACubeAreItsVolumeAndArea) {
+    std::vector<float> p;
+    for (int v = 0; v < 8; ++v)
+        p.insert(
+            p.end(),
+            {1000.0f + 2.0f * float(v & 1), -500.0f + 2.0f * float((v >> 1) & 1), 3.0f + 2.0f * float((v >> 2) & 1)});
+    const std::vector<std::uint32_t> t{0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6,
+                                       3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5, 1, 1, 3};
+    const auto mesh = hyvox::validate(view(p, t));
+    EXPECT_EQ(mesh.degenerate_count, 1u);
+    EXPECT_DOUBLE_EQ(mesh.sums.volume, 8.0);
+    EXPECT_DOUBLE_EQ(mesh.sums.crossed_area, 24.0);
+    for (int axis = 0; axis < 3; ++axis) EXPECT_EQ(mesh.sums.normal[axis], 0.0);
+}
+
 // Problems in several chunks: the message names the first, as a serial pass would.
 TEST(MeshValidation, TheFirstProblemIsReportedWhateverTheChunk) {
     ScatteredMesh m = scatteredMesh(300000, 9);

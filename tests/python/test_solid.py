@@ -390,3 +390,47 @@ def test_tiled_and_tessellation_runs_fill_the_same_inside(bunny):
     )
     assert tess_tiled.stats["tiles"] > 1
     assert np.array_equal(tess_tiled.to_dense(), tess_tiled_surface.to_dense() | (whole.to_dense() & ~cpu_surface))
+
+
+def numpy_edge_closure(vertices, triangles):
+    """The edge check's counts computed here: vertices welded on their exact position (-0 as +0),
+    each edge's uses one way and the other."""
+    _, weld = np.unique(vertices + np.float32(0.0), axis=0, return_inverse=True)
+    welded = weld.reshape(-1)[triangles]
+    uses = {}
+    for a, b in np.concatenate([welded[:, [0, 1]], welded[:, [1, 2]], welded[:, [2, 0]]]):
+        if a != b:
+            forward = uses.setdefault((min(a, b), max(a, b)), [0, 0])
+            forward[0 if a < b else 1] += 1
+    counts = {"boundary_edges": 0, "nonmanifold_edges": 0, "misoriented_edges": 0}
+    for forward, backward in uses.values():
+        if forward + backward == 1:
+            counts["boundary_edges"] += 1
+        elif forward + backward > 2:
+            counts["nonmanifold_edges"] += 1
+        elif forward != backward:
+            counts["misoriented_edges"] += 1
+    return counts
+
+
+def test_the_edge_check_welds_vertices_at_one_position():
+    # A sphere as a soup (each triangle its own corners, some zeros negative), then with one
+    # corner moved by a float's last bit and one triangle doubled: the counts equal numpy's.
+    vertices, triangles = icosphere(2)
+    soup = vertices[triangles.reshape(-1)].copy()
+    soup[np.abs(soup) < 1e-7] = 0.0
+    soup[::5][soup[::5] == 0.0] = -0.0
+    soup_triangles = np.arange(len(soup), dtype=np.uint32).reshape(-1, 3)
+    nudged = soup.copy()
+    nudged[7, 0] = np.nextafter(nudged[7, 0], np.float32(np.inf))
+    doubled = np.concatenate([soup_triangles, soup_triangles[:1]])
+    for v, t in ((soup, soup_triangles), (nudged, soup_triangles), (soup, doubled)):
+        stats = hyvox.voxelize(v, t, resolution=16, mode="solid", method="cpu").stats["solid"]
+        expected = numpy_edge_closure(v, t)
+        assert {key: stats[key] for key in expected} == expected
+    assert numpy_edge_closure(soup, soup_triangles) == {
+        "boundary_edges": 0,
+        "nonmanifold_edges": 0,
+        "misoriented_edges": 0,
+    }
+    assert numpy_edge_closure(nudged, soup_triangles)["boundary_edges"] > 0

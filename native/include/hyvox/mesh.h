@@ -56,6 +56,16 @@ struct Bounds {
     std::array<double, 3> max{0, 0, 0};  ///< the corner of the largest x, y, z
 };
 
+/// Sums over the usable triangles that validate() gathers in its pass over them, world units,
+/// for the memory estimate (which scales them to the grid instead of reading the triangles
+/// again). n is a triangle's cross product (b - a) × (c - a) in double, a its first corner.
+struct TriangleSums {
+    double crossed_area = 0;  ///< Σ |n|₁ / 2: a plane of area A crosses A·|n̂|₁ / s² cells of side s
+    double volume = 0;        ///< Σ (a - bounds.min) · n / 6: the signed volume, apex at bounds.min
+    /// Σ n / 6: the signed volume with its apex at p is volume - (p - bounds.min) · normal
+    std::array<double, 3> normal{0, 0, 0};
+};
+
 /// The result of validate(): the view plus which triangles are usable.
 /// Degenerate triangles (a repeated index, or an exactly zero cross product in double
 /// precision) are skipped by every backend alike and counted here.
@@ -64,6 +74,7 @@ struct ValidatedMesh {
     std::vector<std::uint32_t> usable;  ///< indices of non-degenerate triangles, ascending
     std::size_t degenerate_count = 0;   ///< triangles skipped as degenerate
     Bounds bounds;                      ///< of the vertices referenced by usable triangles, world units
+    TriangleSums sums;                  ///< over the usable triangles (a tile's part: the whole mesh's)
 
     /// The position of corner `corner` (0, 1, 2) of triangle `triangle` (an index into the
     /// view's triangles), world units; no checks.

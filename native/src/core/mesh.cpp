@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // validate(): one pass over the vertices and one over the triangles, each cut into chunks
-// that TBB checks in parallel (in the caller's arena). A chunk stops at its first problem;
+// that TBB checks in parallel (in the caller's arena). The pass over the triangles also sums
+// what the memory estimate needs of them (TriangleSums), so that it need not read them again. A chunk stops at its first problem;
 // the problem of the lowest chunk is reported, so the message names the same first bad
 // vertex or triangle as a serial pass would.
 #include "hyvox/mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -35,15 +37,26 @@ namespace {
 // them. Each way of computing a component (these edges or the two shortest, each at most
 // twice as long per coordinate) errs by under 40 * 2^-53 * L^2, L the largest coordinate of
 // e0 and e1; a component above 2^-40 * L^2 here therefore has a true value, and a value in the
-// stable normal, far from zero.
-bool isZeroArea(const float* a, const float* b, const float* c) {
+// stable normal, far from zero. L^2 is bounded by the sum of the squares of the six
+// coordinates (a few multiplications, where the largest of six takes a chain of comparisons):
+// the bound is at most 6 L^2, and a larger bound only sends more triangles to the stable
+// normal.
+struct CornerCross {
+    double n[3];        // (b - a) x (c - a)
+    double square_sum;  // |b - a|^2 + |c - a|^2, at least L^2
+};
+
+CornerCross crossFromA(const float* a, const float* b, const float* c) {
     const double e0[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
     const double e1[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-    const double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
-    double largest = 0.0;
-    for (int i = 0; i < 3; ++i) largest = std::max({largest, std::fabs(e0[i]), std::fabs(e1[i])});
-    const double surely_not_zero = 0x1p-40 * largest * largest;
-    if (std::fabs(n[0]) > surely_not_zero || std::fabs(n[1]) > surely_not_zero || std::fabs(n[2]) > surely_not_zero)
+    return {{e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]},
+            (e0[0] * e0[0] + e0[1] * e0[1] + e0[2] * e0[2]) + (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2])};
+}
+
+bool isZeroArea(const float* a, const float* b, const float* c, const CornerCross& x) {
+    const double surely_not_zero = 0x1p-40 * x.square_sum;
+    if (std::fabs(x.n[0]) > surely_not_zero || std::fabs(x.n[1]) > surely_not_zero ||
+        std::fabs(x.n[2]) > surely_not_zero)
         return false;
     const auto corner = [](const float* p) { return Corner3{double(p[0]), double(p[1]), double(p[2])}; };
     const Corner3 stable = stableTriangleNormal(corner(a), corner(b), corner(c));
@@ -103,18 +116,29 @@ void checkVerticesFinite(const MeshView& mesh) {
 }
 
 // One chunk of triangles: its usable indices written from `usable` on (at most one per
-// triangle), their bounds, and its degenerate count, or the first problem in it.
+// triangle), their bounds, their sums and its degenerate count, or the first problem in it.
+// The volume is summed with its apex at the chunk's first usable corner, near every corner of
+// the mesh, and moved to the mesh's bounds once they are known: an apex far from the mesh (the
+// world's origin) would add large terms that cancel, and lose the volume's digits with them.
 struct TriangleChunk {
     std::size_t usable_count = 0;
     std::size_t degenerate_count = 0;
     Bounds bounds;
+    double crossed_twice = 0;               // Σ |n|₁
+    double volume_six = 0;                  // Σ (a - apex) · n
+    std::array<double, 3> normal{0, 0, 0};  // Σ n
+    std::array<double, 3> apex{0, 0, 0};
     std::string problem;
 };
 
 void checkTriangles(const MeshView& mesh, std::size_t begin, std::size_t end, std::uint32_t* usable,
                     TriangleChunk& out) {
-    const double inf = std::numeric_limits<double>::infinity();
-    double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};
+    // Bounds over floats (exact, as the doubles they widen to) and sums held in locals, each
+    // sum taking one addition a triangle: the loop's chains of dependent operations stay short.
+    const float inf = std::numeric_limits<float>::infinity();
+    float lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};
+    double crossed_twice = 0, volume_six = 0, normal[3] = {0, 0, 0}, apex[3] = {0, 0, 0};
+    std::size_t kept = 0, degenerate = 0;
     for (std::size_t t = begin; t < end; ++t) {
         // Vertices are spread over megabytes: those of a triangle a few ahead are requested now.
         if (t + kPrefetchAhead < end)
@@ -132,19 +156,54 @@ void checkTriangles(const MeshView& mesh, std::size_t begin, std::size_t end, st
         const float* a = mesh.positions + 3 * std::size_t(idx[0]);
         const float* b = mesh.positions + 3 * std::size_t(idx[1]);
         const float* c = mesh.positions + 3 * std::size_t(idx[2]);
-        if (idx[0] == idx[1] || idx[1] == idx[2] || idx[0] == idx[2] || isZeroArea(a, b, c)) {
-            ++out.degenerate_count;
+        const CornerCross x = crossFromA(a, b, c);
+        if (idx[0] == idx[1] || idx[1] == idx[2] || idx[0] == idx[2] || isZeroArea(a, b, c, x)) {
+            ++degenerate;
             continue;
         }
-        usable[out.usable_count++] = std::uint32_t(t);
-        for (const float* p : {a, b, c})
-            for (int axis = 0; axis < 3; ++axis) {
-                lo[axis] = std::min(lo[axis], double(p[axis]));
-                hi[axis] = std::max(hi[axis], double(p[axis]));
-            }
+        if (kept == 0)
+            for (int axis = 0; axis < 3; ++axis) apex[axis] = a[axis];
+        usable[kept++] = std::uint32_t(t);
+        crossed_twice += std::fabs(x.n[0]) + std::fabs(x.n[1]) + std::fabs(x.n[2]);
+        volume_six +=
+            (double(a[0]) - apex[0]) * x.n[0] + (double(a[1]) - apex[1]) * x.n[1] + (double(a[2]) - apex[2]) * x.n[2];
+        for (int axis = 0; axis < 3; ++axis) {
+            normal[axis] += x.n[axis];
+            const float pa = a[axis], pb = b[axis], pc = c[axis];
+            const float least = pb < pa ? pb : pa, most = pb > pa ? pb : pa;
+            const float least3 = pc < least ? pc : least, most3 = pc > most ? pc : most;
+            lo[axis] = least3 < lo[axis] ? least3 : lo[axis];
+            hi[axis] = most3 > hi[axis] ? most3 : hi[axis];
+        }
     }
-    out.bounds.min = {lo[0], lo[1], lo[2]};
-    out.bounds.max = {hi[0], hi[1], hi[2]};
+    out.usable_count = kept;
+    out.degenerate_count = degenerate;
+    out.crossed_twice = crossed_twice;
+    out.volume_six = volume_six;
+    for (int axis = 0; axis < 3; ++axis) {
+        out.normal[axis] = normal[axis];
+        out.apex[axis] = apex[axis];
+        out.bounds.min[axis] = lo[axis];
+        out.bounds.max[axis] = hi[axis];
+    }
+}
+
+// The chunks' sums as the mesh's (TriangleSums), the volume's apex moved to the bounds' min.
+void sumChunks(const std::vector<TriangleChunk>& chunks, ValidatedMesh& out) {
+    double crossed_twice = 0, volume_six = 0;
+    std::array<double, 3> normal{0, 0, 0};
+    for (const TriangleChunk& chunk : chunks) {
+        if (chunk.usable_count == 0) continue;
+        crossed_twice += chunk.crossed_twice;
+        volume_six += chunk.volume_six;
+        for (int axis = 0; axis < 3; ++axis) {
+            volume_six -= (out.bounds.min[axis] - chunk.apex[axis]) * chunk.normal[axis];
+            normal[axis] += chunk.normal[axis];
+        }
+    }
+    out.sums.crossed_area = crossed_twice / 2;
+    out.sums.volume = volume_six / 6;
+    for (int axis = 0; axis < 3; ++axis) out.sums.normal[axis] = normal[axis] / 6;
 }
 
 }  // namespace
@@ -205,6 +264,7 @@ ValidatedMesh validate(const MeshView& mesh, Interrupter* interrupter) {
     if (out.usable.empty())
         throw InvalidInput("all " + std::to_string(mesh.triangle_count) +
                            " triangles are degenerate (zero area); nothing to voxelize");
+    sumChunks(chunks, out);
     return out;
 }
 

@@ -3,11 +3,10 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cstring>
-#include <tuple>
+#include <limits>
 
 namespace hyvox::solid {
 namespace {
@@ -23,26 +22,31 @@ std::array<std::uint32_t, 3> positionKey(const float* p) {
 }
 
 // One id per distinct position, for every vertex: the lowest index of the vertices there.
+// A table open-addressed by the position's bits, at most half full, its slots holding the first
+// vertex met at a position: the vertices are visited in index order, so that one is the lowest.
+// One pass over the vertices where sorting their keys took several; the ids are the sort's.
 std::vector<std::uint32_t> weldVertices(const MeshView& view) {
-    // Keys copied beside their vertex and sorted as plain words (a comparison that fetched both
-    // positions cost three times as much); the index breaks ties, so the ids do not depend on
-    // how the parallel sort splits the work.
-    struct KeyedVertex {
-        std::array<std::uint32_t, 3> key;
-        std::uint32_t vertex;
-        bool operator<(const KeyedVertex& o) const { return std::tie(key, vertex) < std::tie(o.key, o.vertex); }
-    };
-    std::vector<KeyedVertex> order(view.vertex_count);
-    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, view.vertex_count, 65536), [&](const auto& range) {
-        for (std::uint32_t v = range.begin(); v < range.end(); ++v)
-            order[v] = {positionKey(view.positions + 3 * std::size_t(v)), v};
-    });
-    // Sorted on all threads: on meshes of a million triangles this check is a large part of
-    // solid mode's own time.
-    tbb::parallel_sort(order.begin(), order.end());
-    std::vector<std::uint32_t> weld(view.vertex_count);
-    for (std::size_t n = 0; n < order.size(); ++n)
-        weld[order[n].vertex] = n > 0 && order[n].key == order[n - 1].key ? weld[order[n - 1].vertex] : order[n].vertex;
+    constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
+    const std::size_t n = view.vertex_count;
+    std::size_t size = 16;
+    while (size < 2 * n) size *= 2;
+    std::vector<std::uint32_t> slots(size, kEmpty);
+    std::vector<std::uint32_t> weld(n);
+    for (std::uint32_t v = 0; v < n; ++v) {
+        const std::array<std::uint32_t, 3> key = positionKey(view.positions + 3 * std::size_t(v));
+        std::uint64_t hash = ((std::uint64_t(key[0]) << 32) | key[1]) * 0x9E3779B97F4A7C15ull;
+        hash = (hash ^ (hash >> 29) ^ key[2]) * 0xBF58476D1CE4E5B9ull;
+        for (std::size_t slot = (hash ^ (hash >> 32)) & (size - 1);; slot = (slot + 1) & (size - 1)) {
+            if (slots[slot] == kEmpty) {
+                slots[slot] = weld[v] = v;
+                break;
+            }
+            if (positionKey(view.positions + 3 * std::size_t(slots[slot])) == key) {
+                weld[v] = slots[slot];
+                break;
+            }
+        }
+    }
     return weld;
 }
 

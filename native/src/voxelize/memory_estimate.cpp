@@ -62,39 +62,49 @@ constexpr double kInsideValuingLeaf = 400, kRegion = 112, kRegionChannel = 8, kR
 constexpr double kPieceVoxels = 4, kPieceBudget = 3, kPieceFloor = 100000;
 
 struct Measures {
-    double area = 0;           // voxel units²
     double crossed_area = 0;   // each triangle's area times its normal's L1 norm: a plane of
-                               // area A crosses A·|n|₁/s² cells of side s
+                               // area A crosses A·|n|₁/s² cells of side s (voxel units²)
     double signed_volume = 0;  // voxel units³ (the divergence theorem over the triangles)
     double ray_entries = 0;    // the 8×8 ray columns each triangle's xy box reaches
     double pieces = 0;         // the fast winding numbers' pieces (cut to kPieceVoxels)
 };
 
-// A region's run (plan.region) holds the surface of its box only: the triangles whose bounding
-// box, one voxel wider, misses the box add no surface (the solid pass's trees and rays still
-// take every triangle).
-Measures measure(const ValidatedMesh& mesh, const GridSpec& grid, const tiling::TilePlan& plan) {
-    return tbb::parallel_reduce(
+// What depends on the grid only through its scale and origin comes from validate()'s sums
+// (TriangleSums): a surface-only run reads no triangle here. A region's run (plan.region)
+// holds the surface of its box only: the triangles whose bounding box, one voxel wider, misses
+// the box add no surface, so its crossed area is summed over the triangles again; the inside
+// pass (`inside`: solid mode, the sdf's sign) needs the ray columns and winding pieces, which
+// depend on where the triangles fall in the grid. The solid pass's trees and rays take every
+// triangle, so the volume stays the whole mesh's.
+Measures measure(const ValidatedMesh& mesh, const GridSpec& grid, const tiling::TilePlan& plan, bool inside) {
+    const double s = grid.voxel_size;
+    Measures whole;
+    whole.crossed_area = mesh.sums.crossed_area / (s * s);
+    double apex_shift = 0;  // (origin - bounds.min) · normal
+    for (int a = 0; a < 3; ++a) apex_shift += (grid.origin[a] - mesh.bounds.min[a]) * mesh.sums.normal[a];
+    whole.signed_volume = (mesh.sums.volume - apex_shift) / (s * s * s);
+    if (!plan.region && !inside) return whole;
+    Measures passed = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, mesh.usable.size(), 1 << 14), Measures{},
         [&](const tbb::blocked_range<std::size_t>& range, Measures m) {
             for (std::size_t n = range.begin(); n != range.end(); ++n) {
                 const std::uint32_t t = mesh.usable[n];
                 const std::array<std::array<double, 3>, 3> p{
                     grid.toVoxel(mesh.vertex(t, 0)), grid.toVoxel(mesh.vertex(t, 1)), grid.toVoxel(mesh.vertex(t, 2))};
-                const double e0[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
-                const double e1[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
-                const double c[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2],
-                                     e0[0] * e1[1] - e0[1] * e1[0]};
-                const double twice_area = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-                bool in_box = true;
-                for (int a = 0; plan.region && a < 3; ++a)
-                    in_box = in_box && std::max({p[0][a], p[1][a], p[2][a]}) >= plan.lo[a] - 1 &&
-                        std::min({p[0][a], p[1][a], p[2][a]}) <= plan.hi[a];
-                if (in_box) {
-                    m.area += 0.5 * twice_area;
-                    m.crossed_area += 0.5 * (std::fabs(c[0]) + std::fabs(c[1]) + std::fabs(c[2]));
+                if (plan.region) {
+                    bool in_box = true;
+                    for (int a = 0; a < 3; ++a)
+                        in_box = in_box && std::max({p[0][a], p[1][a], p[2][a]}) >= plan.lo[a] - 1 &&
+                            std::min({p[0][a], p[1][a], p[2][a]}) <= plan.hi[a];
+                    if (in_box) {
+                        const double e0[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+                        const double e1[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+                        m.crossed_area += 0.5 *
+                            (std::fabs(e0[1] * e1[2] - e0[2] * e1[1]) + std::fabs(e0[2] * e1[0] - e0[0] * e1[2]) +
+                             std::fabs(e0[0] * e1[1] - e0[1] * e1[0]));
+                    }
                 }
-                m.signed_volume += (p[0][0] * c[0] + p[0][1] * c[1] + p[0][2] * c[2]) / 6.0;
+                if (!inside) continue;
                 double span[2], longest2 = 0;
                 for (int a = 0; a < 2; ++a)
                     span[a] = std::floor(std::max({p[0][a], p[1][a], p[2][a]}) / 8) -
@@ -114,13 +124,14 @@ Measures measure(const ValidatedMesh& mesh, const GridSpec& grid, const tiling::
             return m;
         },
         [](Measures a, const Measures& b) {
-            a.area += b.area;
             a.crossed_area += b.crossed_area;
-            a.signed_volume += b.signed_volume;
             a.ray_entries += b.ray_entries;
             a.pieces += b.pieces;
             return a;
         });
+    if (!plan.region) passed.crossed_area = whole.crossed_area;
+    passed.signed_volume = whole.signed_volume;
+    return passed;
 }
 
 // The fast winding numbers' build at its fullest (fast_winding.cpp): the triangles read, the
@@ -202,7 +213,8 @@ Estimate estimate(const ValidatedMesh& mesh, const GridSpec& grid, const Voxeliz
                   const tiling::TilePlan& plan, int attribute_channels, const solid::EdgeClosure* closure) {
     Estimate e;
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-    const Measures m = arena.execute([&] { return measure(mesh, grid, plan); });
+    const bool inside = (options.mode == Mode::Solid || options.attributes.sdf) && closure;
+    const Measures m = arena.execute([&] { return measure(mesh, grid, plan, inside); });
     const double triangles = double(mesh.usable.size());
     const double bricks = double(plan.region ? BrickLayout::over(plan.boxDims()).total() : grid.bricks().total());
     // A surface of area A crosses A·|n|₁/64 leaves (bricks of 8³) and sets about A·|n|₁ voxels
@@ -231,7 +243,7 @@ Estimate estimate(const ValidatedMesh& mesh, const GridSpec& grid, const Voxeliz
     const double leaves = L;
     double voxels = V, tile_bricks = 0;
     // The inside pass: solid mode's inside, and the sdf's sign.
-    if ((options.mode == Mode::Solid || options.attributes.sdf) && closure) {
+    if (inside) {
         // The inside: about as many leaves as the surface (its inner side), and the bricks of the
         // enclosed volume as tiles (runs of bricks: 16 bytes a run, at most two per brick row).
         e.inside_bricks = std::min(std::fabs(m.signed_volume) / 512.0, bricks);

@@ -15,7 +15,9 @@
 // columns). What the surface and the solid hold is unknown until they are made: the surface's
 // leaves are counted on large grids (the mesh voxelized on the grid of the bricks) and
 // estimated from the triangles' area in voxel units on small ones, its voxels from the area,
-// the inside's bricks from the mesh's enclosed volume.
+// the inside's bricks from the mesh's enclosed volume. The area and the volume are validate()'s
+// sums (TriangleSums) scaled to the grid: only a region's run and the inside pass read the
+// triangles again, for what depends on where they fall in the grid.
 #include <cstdint>
 #include <string>
 

@@ -185,7 +185,8 @@ struct Surface {
             const Tile tile = plan.tile(t);
             ValidatedMesh part;
             if (!plan.whole())
-                part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds};
+                part = ValidatedMesh{validated.view, std::move(bins[t]), validated.degenerate_count, validated.bounds,
+                                     validated.sums};
             const ValidatedMesh& tile_mesh = plan.whole() ? validated : part;
             progress.setTile(t);
             TileOutput out{BitGrid(tile.dims), {}, {}, 0, {}};
@@ -312,11 +313,14 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
     const tiling::TilePlan plan = tiling::planTiles(grid, options, device_limit);
     if (plan.region) stats.region = regionBox(grid, options.region);
     // The inside test's edge check first (solid mode, and the sdf's sign): it decides the solid
-    // pass's trees, and so its memory.
+    // pass's trees, and so its memory. It sorts the mesh's edges, which no other mode needs: its
+    // own stage in the stats, apart from the checks every mode pays.
     std::optional<solid::EdgeClosure> closure;
     if (options.mode == Mode::Solid || options.attributes.sdf) {
+        stats.addTiming("validate", watch.restart());
         tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
         closure = arena.execute([&] { return solid::checkEdges(validated, grid); });
+        stats.addTiming("edges", watch.restart());
     }
     const memory::Estimate need = memory::estimate(validated, grid, options, plan, surface ? surface->channels() : 0,
                                                    closure ? &*closure : nullptr);
