@@ -13,7 +13,7 @@
 namespace hyvox::farm {
 
 // The options of the Blender job: those the add-on's headless script takes (cli_blender.py:
-// method and the scene's settings, blender/properties.py SCENE_OPTIONS).
+// method and the scene's settings, blender/ui/properties.py SCENE_OPTIONS).
 const std::vector<const OptionSpec*>& blenderJobOptions();
 // The options of the region job (the hyvox CLI takes every one): the Blender job's, the
 // attribute grids and the resources a task may use.

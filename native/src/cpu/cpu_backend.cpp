@@ -210,7 +210,7 @@ void voxelizeChunk(const TileWork& work, std::size_t begin, std::size_t end) {
             else
                 deferred[--later_begin] = std::uint16_t(n - block);
         }
-        std::reverse(deferred + later_begin, deferred + block_end - block);
+        std::reverse(deferred + later_begin, deferred + (block_end - block));
         std::copy(deferred + later_begin, deferred + (block_end - block), deferred + deferred_count);
         deferred_count += block_end - block - later_begin;
         for (std::size_t d = 0; d != deferred_count; ++d) {
