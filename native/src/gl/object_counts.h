@@ -8,9 +8,9 @@ namespace hyvox::gl {
 
 enum class GlKind { Buffer, VertexArray, Framebuffer, Program, Shader, Query, Count };
 
-inline std::atomic<long> live_gl_objects[int(GlKind::Count)];
+inline std::atomic<long> object_counts[int(GlKind::Count)];
 
-inline void countCreated(GlKind kind) { live_gl_objects[int(kind)].fetch_add(1, std::memory_order_relaxed); }
-inline void countDeleted(GlKind kind) { live_gl_objects[int(kind)].fetch_sub(1, std::memory_order_relaxed); }
+inline void countCreated(GlKind kind) { object_counts[int(kind)].fetch_add(1, std::memory_order_relaxed); }
+inline void countDeleted(GlKind kind) { object_counts[int(kind)].fetch_sub(1, std::memory_order_relaxed); }
 
 }  // namespace hyvox::gl
