@@ -1,19 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesh_io/assimp_reader.h"
 
-#include <poll.h>
-#include <signal.h>
-#include <sys/socket.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -38,11 +32,6 @@ constexpr std::size_t kErrorTailBytes = 2048;
 constexpr double kBaseSeconds = 60.0;
 constexpr double kSecondsPerMiB = 2.0;
 
-std::string signalName(int signal) {
-    const char* abbreviation = sigabbrev_np(signal);
-    return abbreviation ? std::string("SIG") + abbreviation : "signal " + std::to_string(signal);
-}
-
 // The last line of what the process wrote to its standard error, for a message.
 std::string lastLine(std::string text) {
     while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
@@ -66,27 +55,35 @@ public:
         try {
             child = std::make_unique<os::ChildProcess>(
                 program,
-                std::vector<std::string>{program, wire::kProtocol, std::to_string(::getpid()),
+                std::vector<std::string>{program, wire::kProtocol, os::ChildProcess::thisProcessId(),
                                          std::to_string(limits_.memory_bytes), extension, source, path_});
         } catch (const std::runtime_error& e) {
             throw BackendError("reading '" + path_ + "' needs the assimp reader process: " + e.what());
         }
-        input_ = input;
-        input_left_ = input_size;
-        if (input_left_ == 0) child->closeInput();
+        os::ChildProcess::Input left{input, input_size};
+        const auto output = [&](const char* bytes, std::size_t size) {
+            try {
+                decoder_.feed(bytes, size);
+            } catch (const wire::StreamError& e) {
+                child->kill();
+                os::failMeshFile(path_, "the assimp reader sent back no valid mesh (" + e.what + ")");
+            }
+        };
+        const auto errors = [&](const char* bytes, std::size_t size) {
+            errors_.append(bytes, size);
+            if (errors_.size() > 2 * kErrorTailBytes) errors_.erase(0, errors_.size() - kErrorTailBytes);
+        };
         const auto start = std::chrono::steady_clock::now();
-        int status = 0;
-        std::uint64_t peak = 0;
-        bool ended = false;
-        while (child->output() >= 0 || child->errors() >= 0 || !ended) {
-            pollOnce(*child);
-            if (!ended && child->output() < 0 && child->errors() < 0) ended = child->reaped(status, peak);
+        std::optional<os::ChildExit> exit;
+        while (child->writing() || !exit) {
+            child->exchange(left, output, errors, kPollMs);
+            if (!exit && !child->writing()) exit = child->reaped();
             if (interrupter_ && interrupter_->wasInterrupted(decoder_.percent())) {
                 child->kill();
                 throw Cancelled();
             }
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            if (!ended && seconds > limits_.seconds) {
+            if (!exit && seconds > limits_.seconds) {
                 child->kill();
                 char text[160];
                 std::snprintf(text, sizeof text,
@@ -95,73 +92,24 @@ public:
                 os::failMeshFile(path_, text);
             }
         }
-        return outcome(status, peak);
+        return outcome(*exit);
     }
 
 private:
-    // Waits up to kPollMs for the process's pipes and moves what is ready.
-    void pollOnce(os::ChildProcess& child) {
-        pollfd fds[3];
-        nfds_t n = 0;
-        if (child.output() >= 0) fds[n++] = {child.output(), POLLIN, 0};
-        if (child.errors() >= 0) fds[n++] = {child.errors(), POLLIN, 0};
-        if (child.input() >= 0) fds[n++] = {child.input(), POLLOUT, 0};
-        if (n == 0) {
-            ::poll(nullptr, 0, kPollMs);  // only the exit to wait for
-            return;
-        }
-        if (::poll(fds, n, kPollMs) <= 0) return;  // timeout or EINTR: the caller looks again
-        char buffer[1 << 16];
-        for (nfds_t f = 0; f < n; ++f) {
-            if (!fds[f].revents) continue;
-            const int fd = fds[f].fd;
-            if (fd == child.input()) {
-                const ssize_t sent =
-                    ::send(fd, input_, std::min<std::size_t>(input_left_, 1 << 20), MSG_NOSIGNAL | MSG_DONTWAIT);
-                if (sent > 0) {
-                    input_ += sent;
-                    input_left_ -= std::size_t(sent);
-                }
-                // Done, or the process stopped reading (it ended: its status tells why).
-                if (input_left_ == 0 || (sent < 0 && errno != EAGAIN && errno != EINTR)) child.closeInput();
-                continue;
-            }
-            const ssize_t got = ::read(fd, buffer, sizeof buffer);
-            if (got < 0 && (errno == EAGAIN || errno == EINTR)) continue;
-            if (got <= 0) {
-                fd == child.output() ? child.closeOutput() : child.closeErrors();
-                continue;
-            }
-            if (fd == child.errors()) {
-                errors_.append(buffer, std::size_t(got));
-                if (errors_.size() > 2 * kErrorTailBytes) errors_.erase(0, errors_.size() - kErrorTailBytes);
-                continue;
-            }
-            try {
-                decoder_.feed(buffer, std::size_t(got));
-            } catch (const wire::StreamError& e) {
-                child.kill();
-                os::failMeshFile(path_, "the assimp reader sent back no valid mesh (" + e.what + ")");
-            }
-        }
-    }
-
-    Mesh outcome(int status, std::uint64_t peak_bytes) {
-        if (WIFSIGNALED(status)) {
+    Mesh outcome(const os::ChildExit& exit) {
+        if (!exit.signal.empty()) {
             // An allocation that failed at the limit can end in a crash in C code that does not
             // check it: a peak at the limit says which it was.
-            if (double(peak_bytes) >= 0.9 * double(limits_.memory_bytes)) outOfMemory();
+            if (double(exit.peak_rss_bytes) >= 0.9 * double(limits_.memory_bytes)) outOfMemory();
             const std::string said = lastLine(errors_);
-            os::failMeshFile(path_,
-                             "the assimp reader crashed on it (" + signalName(WTERMSIG(status)) +
-                                 (said.empty() ? "" : ": " + said) + ")");
+            os::failMeshFile(
+                path_, "the assimp reader crashed on it (" + exit.signal + (said.empty() ? "" : ": " + said) + ")");
         }
-        const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        if (code == wire::kExitOutOfMemory) outOfMemory();
-        if (code != 0) {
+        if (exit.exit_code == wire::kExitOutOfMemory) outOfMemory();
+        if (exit.exit_code != 0) {
             const std::string said = lastLine(errors_);
             os::failMeshFile(path_,
-                             "the assimp reader failed on it (exit status " + std::to_string(code) +
+                             "the assimp reader failed on it (exit status " + std::to_string(exit.exit_code) +
                                  (said.empty() ? "" : ": " + said) + ")");
         }
         if (decoder_.error()) throw InvalidInput(*decoder_.error());
@@ -183,8 +131,6 @@ private:
     Interrupter* interrupter_;
     wire::Decoder decoder_;
     std::string errors_;
-    const char* input_ = nullptr;
-    std::size_t input_left_ = 0;
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include <elf.h>
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/resource.h>
@@ -10,6 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -128,7 +130,9 @@ ChildProcess::ChildProcess(const std::string& program, const std::vector<std::st
     std::vector<char*> argv;
     for (std::string& a : argv_strings) argv.push_back(a.data());
     argv.push_back(nullptr);
-    const int error = ::posix_spawn(&pid_, path.c_str(), &setup.actions, &setup.attributes, argv.data(), environ);
+    pid_t pid = -1;
+    const int error = ::posix_spawn(&pid, path.c_str(), &setup.actions, &setup.attributes, argv.data(), environ);
+    pid_ = pid;
     if (error != 0) {
         pid_ = -1;
         closeInput();
@@ -143,9 +147,9 @@ ChildProcess::~ChildProcess() {
     closeOutput();
     closeErrors();
     if (pid_ > 0) {
-        ::kill(pid_, SIGKILL);
+        ::kill(pid_t(pid_), SIGKILL);
         int status = 0;
-        while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {}
+        while (::waitpid(pid_t(pid_), &status, 0) < 0 && errno == EINTR) {}
     }
 }
 
@@ -153,21 +157,68 @@ void ChildProcess::closeInput() { closeFd(input_); }
 void ChildProcess::closeOutput() { closeFd(output_); }
 void ChildProcess::closeErrors() { closeFd(errors_); }
 
-void ChildProcess::kill() {
-    if (pid_ > 0) ::kill(pid_, SIGKILL);
+void ChildProcess::exchange(Input& input, const Sink& output, const Sink& errors, int wait_ms) {
+    if (input_ >= 0 && input.size == 0) closeInput();
+    pollfd fds[3];
+    nfds_t n = 0;
+    if (output_ >= 0) fds[n++] = {output_, POLLIN, 0};
+    if (errors_ >= 0) fds[n++] = {errors_, POLLIN, 0};
+    if (input_ >= 0) fds[n++] = {input_, POLLOUT, 0};
+    if (n == 0) {
+        ::poll(nullptr, 0, wait_ms);  // only the exit to wait for
+        return;
+    }
+    if (::poll(fds, n, wait_ms) <= 0) return;  // timeout or EINTR: the caller looks again
+    char buffer[1 << 16];
+    for (nfds_t f = 0; f < n; ++f) {
+        if (!fds[f].revents) continue;
+        const int fd = fds[f].fd;
+        if (fd == input_) {
+            // MSG_NOSIGNAL: a child that stopped reading is an error code here, not a SIGPIPE.
+            const ssize_t sent =
+                ::send(fd, input.data, std::min<std::size_t>(input.size, 1 << 20), MSG_NOSIGNAL | MSG_DONTWAIT);
+            if (sent > 0) {
+                input.data += sent;
+                input.size -= std::size_t(sent);
+            }
+            if (input.size == 0 || (sent < 0 && errno != EAGAIN && errno != EINTR)) closeInput();
+            continue;
+        }
+        const ssize_t got = ::read(fd, buffer, sizeof buffer);
+        if (got < 0 && (errno == EAGAIN || errno == EINTR)) continue;
+        if (got <= 0) {
+            fd == output_ ? closeOutput() : closeErrors();
+            continue;
+        }
+        (fd == output_ ? output : errors)(buffer, std::size_t(got));
+    }
 }
 
-bool ChildProcess::reaped(int& status, std::uint64_t& peak_rss_bytes) {
-    if (pid_ <= 0) return false;
+void ChildProcess::kill() {
+    if (pid_ > 0) ::kill(pid_t(pid_), SIGKILL);
+}
+
+std::optional<ChildExit> ChildProcess::reaped() {
+    if (pid_ <= 0) return std::nullopt;
     struct rusage usage {};
+    int status = 0;
     pid_t got;
     do {
-        got = ::wait4(pid_, &status, WNOHANG, &usage);
+        got = ::wait4(pid_t(pid_), &status, WNOHANG, &usage);
     } while (got < 0 && errno == EINTR);
-    if (got != pid_) return false;
+    if (got != pid_t(pid_)) return std::nullopt;
     pid_ = -1;
-    peak_rss_bytes = std::uint64_t(usage.ru_maxrss) * 1024;  // Linux reports KiB
-    return true;
+    ChildExit exit;
+    exit.peak_rss_bytes = std::uint64_t(usage.ru_maxrss) * 1024;  // Linux reports KiB
+    if (WIFSIGNALED(status)) {
+        const char* abbreviation = sigabbrev_np(WTERMSIG(status));
+        exit.signal = abbreviation ? std::string("SIG") + abbreviation : "signal " + std::to_string(WTERMSIG(status));
+    } else if (WIFEXITED(status)) {
+        exit.exit_code = WEXITSTATUS(status);
+    }
+    return exit;
 }
+
+std::string ChildProcess::thisProcessId() { return std::to_string(::getpid()); }
 
 }  // namespace hyvox::os
