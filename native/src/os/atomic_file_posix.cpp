@@ -165,13 +165,13 @@ void AtomicFile::syncPath(const std::string& path, const char* what) const {
 
 void AtomicFile::writeWith(const std::function<void(std::ostream&)>& write) {
     {
-        std::ofstream os;
+        std::ofstream file;
         errno = 0;  // so a failure below never quotes an older error
-        os.exceptions(std::ios::failbit | std::ios::badbit);
+        file.exceptions(std::ios::failbit | std::ios::badbit);
         try {
-            os.open(temp_, std::ios::out | std::ios::binary | std::ios::trunc);
-            write(os);
-            os.close();
+            file.open(temp_, std::ios::out | std::ios::binary | std::ios::trunc);
+            write(file);
+            file.close();
         } catch (const std::ios_base::failure&) {
             throw ResourceError("writing '" + destination_ +
                                 "' failed: " + (errno ? std::strerror(errno) : "I/O error"));

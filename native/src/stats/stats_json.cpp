@@ -112,8 +112,8 @@ std::string statsToJson(const VoxelizeResult& result) {
 }
 
 void writeTextFileAtomic(const std::string& path, const std::string& text, bool durable) {
-    os::AtomicFile(path, durable ? os::Durability::Durable : os::Durability::Atomic).writeWith([&](std::ostream& os) {
-        os << text;
+    os::AtomicFile(path, durable ? os::Durability::Durable : os::Durability::Atomic).writeWith([&](std::ostream& out) {
+        out << text;
     });
 }
 

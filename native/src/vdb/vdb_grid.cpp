@@ -188,9 +188,9 @@ openvdb::GridPtrVec makeGrids(const VoxelizeResult& result) {
 void writeGridsAtomic(const openvdb::GridCPtrVec& grids, const std::string& path) {
     initializeOpenVdb();
     // The temporary is removed unless the whole write and commit succeed.
-    os::AtomicFile(path).writeWith([&](std::ostream& os) {
+    os::AtomicFile(path).writeWith([&](std::ostream& out) {
         try {
-            CheckedArchive().writeTo(os, grids);
+            CheckedArchive().writeTo(out, grids);
         } catch (const openvdb::Exception& e) {
             throw ResourceError("writing '" + path + "' failed: " + e.what());
         }
