@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """hyvox: voxelize meshes into OpenVDB volumes with a native GPU/CPU voxelizer.
 
-Only registration lives here. bpy is imported inside register() so that the bpy-free
+Only registration lives here, and the entry point the render-farm jobs call (farm_main). bpy is imported inside register() so that the bpy-free
 layer (hyvox_blender.core) can be imported by pytest and pipelines outside Blender."""
 
 bl_info = {
@@ -26,3 +26,12 @@ def unregister():
     from .blender import registration
 
     registration.unregister()
+
+
+def farm_main(argv):
+    """The entry point of the farm jobs (`hyvox job-template`): their Blender enables this
+    add-on by its name and calls farm_main with the arguments after "--", so a job knows
+    nothing of the add-on's inside. A farm command (run, assemble, serve), see farm/."""
+    from . import farm
+
+    farm.main(argv)

@@ -33,10 +33,10 @@ std::unique_ptr<tbb::global_control> limitThreads(int threads);
 // the input mesh, or both are the same file (UsageError).
 void checkOutputPaths(const std::string& mesh, const std::string& output, const std::string& stats_json);
 
-// Sets up TBB's thread pool as its first use would. That costs about 0.6 ms of one thread here
+// Sets up TBB's thread pool as its first use would. That is a noticeable part of a small run
 // (TBB loads libtbbmalloc, looks for optional libraries along the library path and reads
 // /proc): a command calls this while another thread reads its input. The workers themselves
-// start with the first parallel loop (about 0.07 ms).
+// start with the first parallel loop, which costs little (docs/why/startup.md).
 void initializeThreadPool();
 
 // The mesh is read within the run's memory budget (--memory-budget-mib), as it is voxelized.

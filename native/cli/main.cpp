@@ -37,9 +37,9 @@ int main(int argc, char** argv) {
     using namespace hyvox;
     // One run, then exit: blocks of 128 KiB to 32 MiB (mesh arrays, per-vertex cells, the
     // .vdb's buffers) come from the heap and go back to it. By default glibc maps each afresh
-    // and unmaps it when freed: every page is then faulted in anew (~1.3 us each here) and
-    // each unmapping interrupts the CPUs of the worker threads (a TLB shootdown); from the
-    // heap, a freed block's pages serve the next block. Larger blocks are still mapped.
+    // and unmaps it when freed: every page is then faulted in anew and each unmapping
+    // interrupts the CPUs of the worker threads (a TLB shootdown); from the heap, a freed
+    // block's pages serve the next block. Larger blocks are still mapped.
     // (docs/why/startup.md; the Python module leaves its host's malloc alone.)
     mallopt(M_MMAP_THRESHOLD, 32 << 20);
     mallopt(M_TRIM_THRESHOLD, 64 << 20);

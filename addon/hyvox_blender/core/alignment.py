@@ -10,12 +10,11 @@ need it. The headless render test measures this on the Blender it runs in."""
 
 from typing import Sequence, Tuple
 
-# First Blender version that renders voxel centres where OpenVDB puts them. Measured by
-# tests/blender/test_render_alignment.py (Cycles, 2x2x2 cube, voxel 0.25; edges at +-1):
-#   3.4.1 (Debian): uncorrected edges off by s/2, corrected ones by < 0.01 s;
-#   4.5.15 LTS (PyPI bpy): uncorrected -0.8725/+1.1221 (off by s/2), corrected +-0.997;
-#   5.0.1 (PyPI bpy): uncorrected -1.019/+1.012 (within 0.08 s), so no correction.
-# The add-on preference "Half-Voxel Fix" forces the correction on or off regardless.
+# First Blender version that renders voxel centres where OpenVDB puts them: 3.4 and 4.5 draw
+# a cube's edges half a voxel off without the correction, 5.0 within a small fraction of a
+# voxel. Measured by tests/blender/test_render_alignment.py; the figures per version:
+# docs/blender-quirks.md. The add-on preference "Half-Voxel Fix" forces the correction on or
+# off regardless.
 FIRST_CENTRED_VERSION = (5, 0, 0)
 
 
@@ -40,22 +39,14 @@ def object_offset(voxel_size: float, version: Sequence[int], override: str = "AU
 # the bounds end where the top leaf's last voxel layer begins, as 4.x draws voxel i over
 # [i, i+1). Voxels in that layer (an object's +x/+y/+z side whenever its extent is a
 # multiple of 8 voxels, as at the usual resolutions) are drawn faint or not at all. No
-# setting of the object, the Volume or the scene moves those bounds (measured with 4.5.15:
-# volumetric tile size, samples, start/end, render space, interpolation, a Volume Displace
-# modifier); active voxels of any grid of the Volume beyond them do. So for these versions
-# the add-on gives the Volume object a Geometry Nodes modifier that adds a small second
-# grid beyond the bounds (blender/eevee_bounds.py); the file and its voxels stay the
-# voxelization's. Cycles draws the layer whole either way; 5.0 bounds the grid by its
+# setting of the object, the Volume or the scene moves those bounds (those tried:
+# docs/blender-quirks.md); active voxels of any grid of the Volume beyond them do. So for
+# these versions the add-on gives the Volume object a Geometry Nodes modifier that adds a
+# small second grid beyond the bounds (blender/eevee_bounds.py); the file and its voxels stay
+# the voxelization's. Cycles draws the layer whole either way; 5.0 bounds the grid by its
 # voxels' faces and EEVEE draws it whole. Measured by tests/blender/test_render_alignment.py
-# (EEVEE, 2x2x2 cube, voxel 0.25, voxels 0..7; darkest value of the -x/+x walls, edges):
-#   4.5.15 without the modifier: Volume bounds -1..0.75, 0.356/0.627, +x edge at -0.758;
-#          with it: 0.293-0.296 on every wall, edges within 0.01 of +-1 (Cycles: +-0.997);
-#   4.2.23, 4.4.0 (opt-in tests, scripts/test_bpy_extra.sh): as 4.5.15, without the
-#          modifier 0.356/0.626 and 0.357/0.627, +x edge at -0.758; with it 0.292-0.296;
-#   4.3.0: Blender's bounds end as in 4.5 (test_bounds_without_the_modifier); its EEVEE
-#          draws the whole frame black with a Volume in view, so it is taken to clip as
-#          4.2 and 4.4 do (unmeasured by rendering);
-#   5.0.1: bounds -1..1, 0.306-0.309 on every wall, edges +-0.97.
+# in 4.2, 4.4, 4.5 and 5.0 (the figures: docs/blender-quirks.md); 4.3.0's EEVEE draws no frame
+# with a Volume in view, but its bounds end as in 4.5, so it is taken to clip as 4.2 and 4.4 do.
 EEVEE_CLIPPING_VERSIONS = ((4, 2, 0), (5, 0, 0))  # [first, end)
 
 

@@ -55,8 +55,8 @@ def load_module():
 
 def gl_available(module, gl_device: str = "") -> bool:
     """Whether a hardware GL device can run the GL methods here. Mesa's llvmpipe runs them
-    too, but about 8x slower than the CPU method (bunny at 256: 330 vs 40 ms), so "auto"
-    only picks a GL method for hardware."""
+    too, but on the CPU and much slower than the CPU method, so "auto" only picks a
+    GL method for hardware (docs/why/addon-core.md)."""
     with _lock:
         if gl_device in _gl_probe:
             return _gl_probe[gl_device]

@@ -21,7 +21,8 @@ MARGIN = 0.25  # of the rest's longest side: vertices this close to it are not f
 
 def box(vertices: np.ndarray):
     """(low, high) float64 (3,) of (N,3) vertices, N > 0. Column by column: numpy's min and
-    max along axis 0 of an (N,3) array run 20x slower than over its three strided columns."""
+    max along axis 0 of an (N,3) array run far slower than over its three strided columns
+    (docs/why/addon-core.md)."""
     vertices = np.asarray(vertices).reshape(-1, 3)
     low = np.array([vertices[:, axis].min() for axis in range(3)], np.float64)
     high = np.array([vertices[:, axis].max() for axis in range(3)], np.float64)

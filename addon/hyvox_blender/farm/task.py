@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """A farm task inside Blender: `run` voxelizes frames, `assemble` checks them and saves the
 .blend that plays them back. Both take the job's options as the headless script does
-(cli_blender.py), plus the job's own:
+(cli_blender.py), plus the job's own (the farm task's table, farm/arguments.py):
 
     run      --frames CHUNK --job-frames ALL --output DIR [--objects A,B] [--blend FILE]
              [--resolution N] [--voxel-size S] [cli_blender.py's other options]
@@ -16,7 +16,6 @@ the frames it finished and a re-run rewrites only its own. --voxel-size 0 means 
 farm parameter always has a value). --blend: open this file first (a session's Blender
 runs task after task; each starts from the file as saved)."""
 
-import argparse
 import contextlib
 import importlib
 import os
@@ -30,6 +29,7 @@ from ..core import backend, frame_ranges, naming
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import GroupResult
 from ..blender import export, frame_export, importer, properties
+from .arguments import parse as parse_arguments
 
 PACKAGE = __package__.rpartition(".")[0]  # the add-on: hyvox_blender or bl_ext.<repo>.hyvox_blender
 
@@ -59,22 +59,6 @@ def cancel_on_sigterm():
         yield
     finally:
         signal.signal(signal.SIGTERM, previous)
-
-
-def _parser(command):
-    parser = argparse.ArgumentParser(prog=f"hyvox farm {command}", add_help=False)
-    if command == "run":
-        parser.add_argument("--frames", required=True, help="the frames of this task, e.g. 11-20")
-    parser.add_argument("--job-frames", required=True, help="every frame of the job, e.g. 1-250")
-    parser.add_argument("--output", "-o", required=True, help="folder of the .vdb files")
-    parser.add_argument("--objects", default="", help="comma-separated object names ('': cli_blender's choice)")
-    parser.add_argument("--blend", help="open this .blend first")
-    parser.add_argument("--resolution", "-r", type=int)
-    parser.add_argument("--voxel-size", type=float, default=0.0)
-    parser.add_argument("--viewport", action="store_true")
-    if command == "assemble":
-        parser.add_argument("--save", help="the .blend to write (default: OUTPUT/<scene>_voxels.blend)")
-    return parser
 
 
 def _cli():
@@ -222,15 +206,13 @@ def run_command(argv) -> int:
     _cancelled.clear()
     try:
         with cancel_on_sigterm():
-            known, rest = _parser(command).parse_known_args(args)
+            known, rest = parse_arguments(command, args, backend.load_module()._core.FARM_TASK_ARGUMENTS)
             output = known.output
             if known.blend:
                 bpy.ops.wm.open_mainfile(filepath=os.path.abspath(known.blend))
             if command == "run":
                 run_frames(known, rest)
             else:
-                if rest:
-                    raise FarmError(f"assemble does not take {' '.join(rest)}")
                 assemble(known)
         return 0
     except Cancelled as exc:

@@ -42,7 +42,7 @@ std::string optionSetting(const OptionSpec& spec) {
             break;
         case OptionType::Number:
             fields.push_back({"type", quoted("float")});
-            fields.push_back({"default", number(spec.nullable ? unsetValue(spec) : std::get<double>(def))});
+            fields.push_back({"default", number(spec.nullable ? farmUnsetValue(spec) : std::get<double>(def))});
             fields.push_back({"propargs", object(limits)});
             break;
         case OptionType::Flag:
@@ -72,11 +72,12 @@ std::string argumentTable(const std::vector<Argument>& args) {
     for (const Argument& a : args) {
         std::string key;
         switch (a.source) {
-            case Source::TaskFrames: key = "@chunk"; break;
-            case Source::JobFrames: key = "frames"; break;
-            case Source::OutputDir: key = "output_dir"; break;
-            case Source::Objects: key = "objects"; break;
-            case Source::Option: key = a.option->name; break;
+            case FarmJobValue::TaskFrames: key = "@chunk"; break;
+            case FarmJobValue::JobFrames: key = "frames"; break;
+            case FarmJobValue::OutputDir: key = "output_dir"; break;
+            case FarmJobValue::Objects: key = "objects"; break;
+            case FarmJobValue::Option: key = a.option->name; break;
+            case FarmJobValue::None: break;  // jobArguments() gives none
         }
         out += "    [" + quoted(a.flag) + ", " + quoted(key) + "],\n";
     }

@@ -4,20 +4,33 @@
 #include <stdexcept>
 
 #include "farm/job_options.h"
+#include "farm/yaml_writer.h"
+#include "hyvox/errors.h"
 
 namespace hyvox::farm {
+namespace {
+
+// What the add-on declares for the jobs: its module name and its farm entry point
+// (addon/hyvox_blender/__init__.py), a function taking the farm command's arguments.
+constexpr const char* kAddon = "hyvox_blender";
+constexpr const char* kEntryPoint = "farm_main";
+
+}  // namespace
 
 const std::string& blenderBootstrap() {
     static const std::string expression = [] {
+        const std::string addon = kAddon;
         const std::string text =
             "import addon_utils, importlib, sys; "
-            "found = [m.__name__ for m in addon_utils.modules() if m.__name__.rpartition(\".\")[2] == "
-            "\"hyvox_blender\"]; "
+            "found = [m.__name__ for m in addon_utils.modules() if m.__name__.rpartition(\".\")[2] == \"" +
+            addon +
+            "\"]; "
             "found or sys.exit(\"hyvox: error: this Blender has no hyvox add-on (install the extension, or the "
             "add-on in $BLENDER_USER_SCRIPTS/addons/)\"); "
             "addon_utils.enable(found[0], default_set=False, handle_error=None) or "
             "sys.exit(\"hyvox: error: could not enable the add-on \" + found[0]); "
-            "importlib.import_module(found[0] + \".farm\").main(sys.argv[sys.argv.index(\"--\") + 1:])";
+            "importlib.import_module(found[0])." +
+            kEntryPoint + "(sys.argv[sys.argv.index(\"--\") + 1:])";
         if (text.find('\'') != std::string::npos) throw std::logic_error("the bootstrap must not hold a '");
         return text;
     }();
@@ -30,29 +43,55 @@ std::vector<std::string> blenderArgsAfterFile() {
 
 namespace {
 
-std::vector<Argument> withOptions(std::vector<Argument> args, bool size_only) {
-    for (const OptionSpec* spec : blenderJobOptions()) {
-        const std::string name = spec->name;
-        if (size_only && name != "resolution" && name != "voxel_size") continue;
-        args.push_back({spec->cliFlag(), Source::Option, spec});
+bool takesOption(FarmCommand command, const OptionSpec& spec) {
+    for (const FarmTaskArgument& arg : farmTaskArguments())
+        if (arg.option == &spec && arg.takenBy(command)) return true;
+    return false;
+}
+
+// A value of the kind the job fills in, for checking its command line against the task's.
+std::string sampleValue(const Argument& arg) {
+    switch (arg.source) {
+        case FarmJobValue::TaskFrames: return "1-10";
+        case FarmJobValue::JobFrames: return "1-250";
+        case FarmJobValue::OutputDir: return "out";
+        case FarmJobValue::Objects: return "";
+        case FarmJobValue::Option:
+            return arg.option->nullable ? shortestNumber(farmUnsetValue(*arg.option))
+                                        : formatOptionValue(arg.option->get(VoxelizeOptions{}));
+        case FarmJobValue::None: break;
     }
-    return args;
+    throw std::logic_error("a job writes no argument " + arg.flag);
+}
+
+// The job's arguments of `command`: the table's that a job fills, then the job's voxelize
+// options that the command takes (`run` every one: it passes on what it does not parse).
+std::vector<Argument> jobArguments(FarmCommand command) {
+    std::vector<Argument> out;
+    for (const FarmTaskArgument& arg : farmTaskArguments())
+        if (arg.takenBy(command) && arg.job != FarmJobValue::None && arg.job != FarmJobValue::Option)
+            out.push_back({arg.flag, arg.job});
+    for (const OptionSpec* spec : blenderJobOptions())
+        if (command == FarmCommand::Run || takesOption(command, *spec))
+            out.push_back({spec->cliFlag(), FarmJobValue::Option, spec});
+    // A job's command line with values of each kind is one its task accepts.
+    std::vector<std::string> sample;
+    for (const Argument& arg : out) {
+        sample.push_back(arg.flag);
+        sample.push_back(sampleValue(arg));
+    }
+    try {
+        checkFarmTask(command, sample);
+    } catch (const InvalidInput& e) {
+        throw std::logic_error(std::string("a job would write a command line its task refuses: ") + e.what());
+    }
+    return out;
 }
 
 }  // namespace
 
-std::vector<Argument> runArguments() {
-    return withOptions({{"--frames", Source::TaskFrames},
-                        {"--job-frames", Source::JobFrames},
-                        {"--output", Source::OutputDir},
-                        {"--objects", Source::Objects}},
-                       false);
-}
+std::vector<Argument> runArguments() { return jobArguments(FarmCommand::Run); }
 
-std::vector<Argument> assembleArguments() {
-    // The voxel size is checked against the job's: the size options are the job's too.
-    return withOptions(
-        {{"--job-frames", Source::JobFrames}, {"--output", Source::OutputDir}, {"--objects", Source::Objects}}, true);
-}
+std::vector<Argument> assembleArguments() { return jobArguments(FarmCommand::Assemble); }
 
 }  // namespace hyvox::farm

@@ -53,15 +53,13 @@ std::string parameterName(const OptionSpec& spec) {
     return out;
 }
 
-double unsetValue(const OptionSpec& spec) { return spec.min; }
-
 std::string parameterDescription(const OptionSpec& spec) {
     std::string text = spec.help;
     if (*spec.unit) text += std::string(" [") + spec.unit + "]";
     std::string valid = describeOption(spec);  // "a whole number between 1 and 16384"
     valid[0] = char(std::toupper(static_cast<unsigned char>(valid[0])));
     text += ". " + valid;
-    if (spec.nullable) text += "; " + shortestNumber(unsetValue(spec)) + " = unset";
+    if (spec.nullable) text += "; " + shortestNumber(farmUnsetValue(spec)) + " = unset";
     return text + ".";
 }
 

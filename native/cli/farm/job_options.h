@@ -3,12 +3,12 @@
 // The voxelize options a farm job offers, as job parameters derived from the options
 // schema (hyvox/option_schema.h): the parameter's name is the option's in CamelCase
 // (voxel_size -> VoxelSize), and its type, default, limits, choices and help are the
-// schema's. A farm parameter always has a value, so an option the schema lets be unset
-// (voxel_size) takes its excluded minimum (0) to mean unset; the task leaves it out then.
+// schema's. A farm parameter always has a value: an option the schema lets be unset
+// (voxel_size) takes farmUnsetValue() (hyvox/farm_task.h) then, and the task leaves it out.
 #include <string>
 #include <vector>
 
-#include "hyvox/option_schema.h"
+#include "hyvox/farm_task.h"
 
 namespace hyvox::farm {
 
@@ -20,8 +20,6 @@ const std::vector<const OptionSpec*>& blenderJobOptions();
 const std::vector<const OptionSpec*>& regionJobOptions();
 
 std::string parameterName(const OptionSpec& spec);  // "VoxelSize"
-// The value that stands for "unset" (nullable options only): the excluded minimum.
-double unsetValue(const OptionSpec& spec);
 // The parameter's description: the schema's help, unit, what a valid value is, and for a
 // nullable option what the unset value means.
 std::string parameterDescription(const OptionSpec& spec);

@@ -128,7 +128,7 @@ Yaml optionParameter(const OptionSpec& spec) {
             break;
         case OptionType::Number:
             out.add("type", Yaml::text("FLOAT"))
-                .add("default", Yaml::number(spec.nullable ? unsetValue(spec) : std::get<double>(def)));
+                .add("default", Yaml::number(spec.nullable ? farmUnsetValue(spec) : std::get<double>(def)));
             // OpenJD's limits are inclusive: an excluded minimum is the task's to refuse
             // (with the schema's message), or stands for unset.
             if (std::isfinite(spec.min)) out.add("minValue", Yaml::number(spec.min));
@@ -163,11 +163,12 @@ std::vector<std::string> farmArgs(const std::string& command, const std::vector<
     for (const Argument& a : args) {
         out.push_back(a.flag);
         switch (a.source) {
-            case Source::TaskFrames: out.push_back("{{Task.Param.Frame}}"); break;
-            case Source::JobFrames: out.push_back(param("Frames")); break;
-            case Source::OutputDir: out.push_back(param("OutputDir")); break;
-            case Source::Objects: out.push_back(param("Objects")); break;
-            case Source::Option: out.push_back(param(parameterName(*a.option))); break;
+            case FarmJobValue::TaskFrames: out.push_back("{{Task.Param.Frame}}"); break;
+            case FarmJobValue::JobFrames: out.push_back(param("Frames")); break;
+            case FarmJobValue::OutputDir: out.push_back(param("OutputDir")); break;
+            case FarmJobValue::Objects: out.push_back(param("Objects")); break;
+            case FarmJobValue::Option: out.push_back(param(parameterName(*a.option))); break;
+            case FarmJobValue::None: break;  // jobArguments() gives none
         }
     }
     return out;
@@ -326,7 +327,7 @@ std::string regionJobTemplate() {
         const std::string arg = spec->cliFlag() + "=" + param(parameterName(*spec));
         if (spec->nullable) {
             unset_pairs.push_back(arg);
-            unset_pairs.push_back(shortestNumber(unsetValue(*spec)));
+            unset_pairs.push_back(shortestNumber(farmUnsetValue(*spec)));
         } else {
             options.push_back(arg);
         }

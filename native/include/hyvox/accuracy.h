@@ -76,7 +76,7 @@ struct SealReport {
 /// the result's empty voxels must not reach a voxel that the exact voxels enclose (empty there,
 /// and cut off from outside by them). Pass the exact *thin* (6-separating) voxels as `exact`:
 /// the thicker conservative set also walls off small pockets of outside space between nearby
-/// sheets of a surface (3 voxels on the Buddha at 256), which a thinner result rightly floods.
+/// sheets of a surface (docs/why/tessellation-gamma.md), which a thinner result rightly floods.
 /// The SparseGrid form makes both dense first.
 ///@{
 SealReport floodFromOutside(const BitGrid& result, const BitGrid& exact);

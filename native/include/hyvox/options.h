@@ -125,10 +125,10 @@ struct HeightImage {
 
 /// Options of the tessellation method.
 struct TessellationOptions {
-    /// Safety factor γ of Eq. 1 (edge factor = γ · the edge's largest per-axis extent in voxels).
-    /// 2, not the paper's 1: at γ = 1 one point per micro-triangle leaves pinholes that let a
-    /// flood from outside fill a closed mesh (the Buddha, armadillo and Spot at 256). From 2 on,
-    /// every closed mesh measured is sealed with a margin (docs/why/tessellation-gamma.md).
+    /// Safety factor γ of Eq. 1 (edge factor = γ · the edge's length in voxels). 2, not the
+    /// paper's 1: from 2 on, the micro-triangles are small enough that one point each seals a
+    /// closed mesh against a flood from outside, an argument the closed meshes measured bear
+    /// out; below 2 it does not hold and a closed mesh may leak (docs/why/tessellation-gamma.md).
     double gamma = 2.0;
     bool pn_triangles = false;  ///< smooth the surface by PN-triangles (Vlachos et al.) before the points
     /// Displacement (section 3.3), Blender Displace modifier semantics: each point moves along

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file
-/// An allocator for large arrays that start as all zeros (the bit grid). Zeroing 16 MiB with
-/// memset costs ~30 ms of page faults on one thread before any work starts; fresh anonymous
-/// pages are zero already, so this allocator hands those out untouched (asking for huge
-/// pages) and lets the voxelizer's threads fault in only the pages the surface touches.
+/// An allocator for large arrays that start as all zeros (the bit grid). Zeroing them with
+/// memset costs page faults on one thread before any work starts (docs/why/startup.md); fresh
+/// anonymous pages are zero already, so this allocator hands those out untouched (asking for
+/// huge pages) and lets the voxelizer's threads fault in only the pages the surface touches.
 /// Value-initialising construct() is a no-op because the memory is already zero.
 #include <cstddef>
 #include <new>

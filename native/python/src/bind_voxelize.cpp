@@ -22,9 +22,9 @@ namespace hyvox::python {
 namespace {
 
 // The private copies of the caller's arrays. Their memory is fresh pages asking for huge
-// pages, filled by one memcpy: a std::vector would zero them first, and 4 KiB first touches
-// of the 871k-triangle dragon's 15 MiB cost more than the copy itself (the CLI's mesh
-// arrays get the same hint before they are filled).
+// pages, filled by one memcpy: a std::vector would zero them first, and a large mesh's 4 KiB
+// first touches cost more than the copy itself (docs/why/startup.md; the CLI's mesh arrays get
+// the same hint before they are filled).
 template <typename T>
 using PrivateRows = std::vector<T, ZeroPageAllocator<T>>;
 

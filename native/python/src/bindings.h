@@ -24,6 +24,7 @@ void bindVoxelize(py::module_& m);
 void bindMeshIo(py::module_& m);
 void bindPlanGrid(py::module_& m);
 void bindMerge(py::module_& m);
+void bindFarmTask(py::module_& m);
 
 // write_vdb's options: the schema's write options by name from `given` (None = unset), checked
 // as voxelize() checks its own; an unset option that is also a voxelize option takes the value

@@ -38,5 +38,6 @@ PYBIND11_MODULE(_core, m) {
     bindVoxelize(m);
     bindMeshIo(m);
     bindPlanGrid(m);
+    bindFarmTask(m);
     bindMerge(m);
 }

@@ -84,7 +84,7 @@ private:
 // A mean normal shorter than this has no direction and is written as zero, as an exact zero
 // is. Opposite faces within one voxel (a two-sided wall) cancel exactly in the definition,
 // but not in rounding, which would then pick the direction: a random one, different for every
-// way of computing the areas (cpu and hybrid differed in 668 of Sponza's 26,342 voxels at 64).
+// way of computing the areas, so cpu and hybrid would differ (docs/why/attributes.md).
 // Rounding leaves ~1e-16 in double and ~1e-7 from the GL methods' float areas; a real surface
 // averaging to this little spans more than 179.99° of normals inside the voxel.
 constexpr double kCancelledNormalLength = 1e-5;

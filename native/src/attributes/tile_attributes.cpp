@@ -40,8 +40,8 @@ VoxelRange candidates(const Corners& c, const std::array<int, 3>& clip_lo, const
 }
 
 // Leaves are taken in regions of 4³ (32³ voxels), one region per task: a triangle is set up
-// and swept once per region it reaches rather than once per leaf (half as many times on
-// Sponza at 512), and its sweep cuts fewer leaf boundaries.
+// and swept once per region it reaches rather than once per leaf, and its sweep cuts fewer
+// leaf boundaries (docs/why/attributes.md).
 constexpr int kRegionLog2 = 2;
 constexpr int kRegionSide = 1 << kRegionLog2;  // leaves per region side
 constexpr int kRegionLeaves = kRegionSide * kRegionSide * kRegionSide;

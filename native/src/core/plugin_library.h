@@ -3,9 +3,8 @@
 // Parts of hyvox that need a large shared library are built as shared objects of their own
 // ("plugins": libhyvox_<name>.so) and loaded the first time they are used, so a run that
 // does not need them never loads those libraries. Process start is a large part of a small
-// run: an empty program linked with libassimp (which brings libdraco and 8 more) costs
-// 2.7 ms of CPU in the dynamic linker, with libepoxy 1.8 ms, with neither 0.45 ms
-// (docs/why/startup.md).
+// run, and the dynamic linker's work for those libraries (libassimp brings libdraco and more)
+// is most of it (docs/why/startup.md).
 //
 //   libhyvox_gl_methods.so  the GL methods: triangle, fragment, hybrid, tessellation
 //                           (core/gl_methods.h)

@@ -157,8 +157,8 @@ void voxelizeChunk(const TileWork& work, std::size_t begin, std::size_t end) {
     };
     // This chunk's triangles checked against the voxels set, and skipped, per kind
     // (within one voxel's range along one axis, or none). Where few of a kind are
-    // skipped (coarser triangles: the 203k dragon at 512 skips 3%, the bunny none)
-    // its check stops for the rest of the chunk.
+    // skipped (coarser triangles, whose voxels their neighbours rarely cover) its
+    // check stops for the rest of the chunk (docs/why/cpu-voxelize.md).
     std::uint64_t checked[2] = {0, 0}, skipped[2] = {0, 0};
     auto coveredAlready = [&](const cpu::CandidateRange& range) {
         const int kind = range.singleAxes() == 0 ? 0 : 1;
@@ -188,8 +188,7 @@ void voxelizeChunk(const TileWork& work, std::size_t begin, std::size_t end) {
     // Two passes over each block of the chunk: the triangles decided from integers
     // alone mark their voxels first, then the widest of the rest (within one
     // voxel's range along no axis), then the others, so that more of them find all
-    // of their candidates set when their turn comes (one thread, the 203k dragon at
-    // 128: 54,051 triangles skipped, 40,299 in the mesh's order in chunks of 1024).
+    // of their candidates set when their turn comes (docs/why/cpu-voxelize.md).
     std::uint16_t deferred[kTrianglesPerChunk];
     for (std::size_t block = begin; block < end; block += kTrianglesPerChunk) {
         const std::size_t block_end = std::min(end, block + kTrianglesPerChunk);

@@ -37,10 +37,10 @@ struct Sweep {
     // Narrows [k_lo, k_hi] of row (x, y) to the voxels whose centres lie in the slab of
     // half-width band around the triangle's plane (a stretch of 2 band / |hz| along the row),
     // solved for rather than tested voxel by voxel; false when the row misses the slab or the
-    // bounding sphere grown by the band. (Cutting the row further measured slower: to the chord
+    // bounding sphere grown by the band. (Cutting the row further was slower: to the chord
     // through that sphere, as its square root costs more than the voxels it saves; to the
-    // triangle's span along its longest edge and across it, grown by the band, which spared 10%
-    // of the distances on the Buddha at 512 and took 615 ms on one thread against 536.)
+    // triangle's span along its longest edge and across it, as the cut costs more than the few
+    // distances it spares: docs/why/sdf.md.)
     bool narrow(double x, double y, int& k_lo, int& k_hi) const {
         const double dx = x - centre[0], dy = y - centre[1];
         if (dx * dx + dy * dy >= reach2) return false;

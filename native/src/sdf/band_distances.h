@@ -29,11 +29,8 @@ static_assert(kBlockBricks * kBlockBricks * kBlockBricks == 64, "a block's brick
 inline int brickBit(int bx, int by, int bz) { return (bx * kBlockBricks + by) * kBlockBricks + bz; }
 
 // A block's small triangles go to the queries when there are at least this many for each cell
-// they lie in, on average. Measured on one thread (the band's time in ms, all swept against
-// queried from 2, 3, 4 and 6 a cell): the 871k dragon at 128 2080 against 753-767; at 256
-// 2358 against 1670-1706 (1910 at 6); at 512 2877 against 2875 at 3 and 4 (3684 at 2); the
-// Buddha at 128 304 against 217-270, at 512 554 against 551-581; the armadillo at 128 229
-// against 178-180, at 256 260 against 243 (279 at 6).
+// they lie in, on average: a lower threshold queries blocks too sparse to gain from it, a
+// higher one sweeps crowded blocks that the queries do faster (docs/why/sdf.md).
 constexpr double kQueriedFrom = 4.0;
 
 // Block `number` of `bins` into `d2` (kBlockVoxels values); adds the distances computed to

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // A block's distances to its small triangles by nearest-triangle queries, for blocks crowded
-// with triangles smaller than a voxel (the 871k dragon at 128: some 7 for each voxel of the
-// band). Sweeping such a triangle costs the ~150 voxels within the band of it, nearly all of
-// which a nearer triangle claims; a query measures only the triangles that may be nearer.
+// with triangles smaller than a voxel (several for each voxel of the band on a fine scan).
+// Sweeping such a triangle costs the ~150 voxels within the band of it, nearly all of which a
+// nearer triangle claims; a query measures only the triangles that may be nearer
+// (docs/why/sdf.md).
 //
 // The small triangles (each no wider than a voxel along every axis) are sorted into the unit
 // cells of their centroids, each cell with the box of its triangles; a triangle's box then lies
@@ -21,9 +22,9 @@
 // axis-aligned one, and one turned to their summed normal (a Slab). On a patch of a smooth
 // surface the turned box is thin where the axis-aligned one is as thick as it is wide, so a
 // voxel above a crowded surface measures the triangles near the point below it, not all within
-// its distance's reach (the 871k dragon at 128: 9.8 million distances instead of 22 million).
-// A cell's turned box is measured only when its axis-aligned one comes near enough: a voxel
-// scans some 30 cells, a third of which pass.
+// its distance's reach. A cell's turned box is measured only when its axis-aligned one comes
+// near enough: most of the cells a voxel scans fail that first, cheaper check
+// (docs/why/sdf.md).
 #include <array>
 #include <cstdint>
 #include <vector>

@@ -4,13 +4,14 @@
 // corners and the middle of each brick's box, evaluated a block of bricks at a time.
 //
 // A corner is shared by up to eight bricks and must have one value whichever thread asks
-// first. One at a time (FastWinding::atMany, a few points a walk) they cost about 12 µs each
-// on Sponza at 1024, a million of them. Here the corners and middles of a block of 4×4×4
-// bricks are evaluated together by one walk of the tree (FastWinding::atBox: the clusters far
-// from the whole block as one local expansion about its centre), about 2.6 µs each, by
-// whichever thread first asks for one of them. Each value depends on its block alone, never
-// on the threads or the order: a block two threads compute at once is computed the same way
-// by both, and the first one stored is kept.
+// first, and an open mesh at a high resolution has very many. One at a time
+// (FastWinding::atMany, a few points a walk) each walks the tree; here the corners and
+// middles of a block of 4×4×4 bricks are evaluated together by one walk of the tree
+// (FastWinding::atBox: the clusters far from the whole block as one local expansion about its
+// centre), far cheaper a point (docs/why/solid.md), by whichever thread first asks
+// for one of them. Each value depends on its block alone, never on the threads or the order:
+// a block two threads compute at once is computed the same way by both, and the first one
+// stored is kept.
 //
 // Along each axis, brick k's box runs from 8k to top(k) = 8k + 8 (the next brick's first
 // voxel) or, at the grid's end, the last voxel. Its corners' coordinates are 8k and the

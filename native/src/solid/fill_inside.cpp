@@ -73,8 +73,8 @@ struct InsideField {
     // of an ordinary winding number (0 or 1, off by a few hundredths in the fast winding
     // numbers): a region whose value lies farther from 0.5 (inside nested or duplicated
     // shells: 2 or more, -1 or less) and whose bound lies between would have held, and is now
-    // decided by its parts, as when holds() fails (more work, the same answer). With 1.5 here,
-    // Sponza at 1024 evaluated 316k fast winding numbers for 18k regions that held.
+    // decided by its parts, as when holds() fails (more work, the same answer). A wider margin
+    // evaluates many regions whose bound then fails (docs/why/solid.md).
     static constexpr double kLikelyMargin = 0.6;
     bool mayHold(const Box& box, double path, double& slope_bound) const {
         slope_bound = path <= 0 ? 0.0 : slope(box, kLikelyMargin / path);

@@ -34,8 +34,8 @@ namespace hyvox::solid {
 
 class SheetWinding final : public WindingLessCrossings {
 public:
-    // About the work of building the tree over 130k triangles: on one core the build over the
-    // Buddha's 100k costs as much as 1.2e7 triangles' solid angles, over the 871k dragon 9e7.
+    // About the work of building the tree over 130k triangles: below it the exact sum costs
+    // less than the tree's build would (docs/why/solid.md).
     static constexpr std::uint64_t kExactWork = std::uint64_t(1) << 24;
     SheetWinding(const ValidatedMesh& mesh, const GridSpec& grid, const GradientBound& bound, double beta,
                  std::uint64_t exact_work = kExactWork);

@@ -21,9 +21,8 @@ constexpr double kMargin = 0.06;
 // The sheets of open edges this many box sides from a box are taken out of its smooth part.
 constexpr double kNearSides = 0.5;
 // A brick's voxels evaluated outright share the clusters far from all of them (one walk of the
-// tree for the box, FastWinding::atBox) when there are at least this many. Even two pay on
-// Sponza (CPU seconds at 1024, one thread: 21.6 with 32 here, 20.1 with 8, 19.7 with 2; at
-// 256 and 512 the same within the noise).
+// tree for the box, FastWinding::atBox) when there are at least this many. Even two pay: the
+// walk shared by two voxels costs less than two walks (docs/why/solid.md).
 constexpr std::size_t kSharedFarField = 2;
 
 using Int3 = std::array<std::int32_t, 3>;
@@ -41,10 +40,10 @@ struct ColumnBlock {
 // The crossings of a block of columns are whole lines: the same for every brick of a stack
 // along z. Each thread keeps the blocks of its recent bricks, one slot per brick column (x
 // and y modulo 16): the octree's order visits the bricks of a 16×16 window of columns before
-// it moves on, and comes back to each for the next bricks along z (Sponza at 1024: the
-// columns' share of the time 12% with the last eight kept, 3% now). A block is found there
-// before the rays are asked (the blocks are the same whichever thread finds them). One
-// window per thread and per SmoothWinding: released with the call, never another call's.
+// it moves on, and comes back to each for the next bricks along z, which a cache of the last
+// few blocks has lost by then (docs/why/solid.md). A block is found there before the rays are
+// asked (the blocks are the same whichever thread finds them). One window per thread and per
+// SmoothWinding: released with the call, never another call's.
 class ColumnWindow {
 public:
     const ColumnBlock& columnsOf(const RayCrossings& rays, int i0, int j0, int ni, int nj) {

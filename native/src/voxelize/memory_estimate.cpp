@@ -34,8 +34,8 @@ constexpr double kGrowing = 3.0;
 // freed).
 constexpr double kHeapKeptBelow = 32.0 * (1 << 20);
 // A margin for what the surface pass holds beyond its tile and its list of leaves (the tiles'
-// triangle lists, the allocator's partly used pages): without it the model comes within 1% of
-// the peak of the surface runs in bench/results/memory_estimate, on either side.
+// triangle lists, the allocator's partly used pages), which the model leaves out
+// (docs/why/memory-estimate.md).
 constexpr double kSurfaceMargin = 1.02;
 // The solid pass (solid/): the edge check's sort (every edge once with its vertices); the ray
 // columns (a snapped triangle, and per 8×8 column its box reaches an entry and its rays'
@@ -43,21 +43,19 @@ constexpr double kSurfaceMargin = 1.02;
 // triangles cut into pieces (the triangles and longest edges read, the pieces twice, a node
 // per two pieces at most: its build record beside what the traversal keeps); the inside
 // found, per leaf of surface (the threads' leaves and their gather; an open mesh's winding
-// numbers near its open edges, measured over the shared meshes, take more).
+// numbers near its open edges take more: docs/why/memory-estimate.md).
 constexpr double kEdgesPerTriangle = 48;
 constexpr double kRayTriangle = 112, kRayEntry = 8, kRayVertex = 25;
 constexpr double kWholeTriangle = 80, kPiece = 72, kNodeBuild = double(solid::FastWinding::kBuildNodeBytes) + 48 + 104,
                  kNodeKept = 48 + 104 + 4;
 constexpr double kInsidePerLeaf = kGrowing * kLeaf + 24, kOpenInsidePerLeaf = 600;
 // The attribute evaluator's per-triangle data and a leaf's record of its values (with what
-// gathering the values beside them holds: Spot's coloured surface at 4096 and 8192 holds 74-78
-// bytes a leaf); in solid
-// mode the inside voxels of a surface brick that take values beyond its surface voxels (the
-// surface cuts a brick about in half: 242-252 measured on Spot at 512-2048), a leaf brick's
-// record while they are valued (attributes/inside_values.cpp: its masks, neighbours and
-// offsets), and a tile region's (its box, value, layer and sums: 112 bytes and 8 a channel).
-// Regions of one brick lie within a 128³ node of the surface: about 8 per leaf of surface
-// (Spot: 2.8 at 512, 4.8 at 1024, 6.2 at 2048).
+// gathering the values beside them holds); in solid mode the inside voxels of a surface brick
+// that take values beyond its surface voxels (the surface cuts a brick about in half), a leaf
+// brick's record while they are valued (attributes/inside_values.cpp: its masks, neighbours
+// and offsets), and a tile region's (its box, value, layer and sums: 112 bytes and 8 a
+// channel). Regions of one brick lie within a 128³ node of the surface: at most about 8 per
+// leaf of surface. The measured counts these rest on: docs/why/memory-estimate.md.
 constexpr double kAttributesPerTriangle = 64, kAttributeLeaf = 96, kInsideValuedPerLeaf = 256;
 constexpr double kInsideValuingLeaf = 400, kRegion = 112, kRegionChannel = 8, kRegionsPerLeaf = 8;
 // fast_winding.cpp's cut: pieces of at most 4 voxels, at most 3 a triangle plus 100000.
@@ -142,8 +140,9 @@ double windingBytes(double triangles, double pieces) {
 // push_back at a time from empty (capacities 1, 2, 4, ...), and once SparseGrid::finish has
 // shrunk the list to its size (a copy beside the old one; the tile is freed by then). At each
 // doubling the old buffer and its copy are resident, beside the old buffers the heap kept; the
-// new buffer's untouched pages are not. `leaves` is taken 10% over the estimate, which is within
-// 0.2% for conservative surfaces: a count just past a power of two doubles once more.
+// new buffer's untouched pages are not. `leaves` is taken 10% over the estimate, which is close
+// for conservative surfaces (docs/why/memory-estimate.md): a count just past a power of two
+// doubles once more.
 struct ListBytes {
     double growing = 0, shrinking = 0;
 };
@@ -163,10 +162,9 @@ ListBytes surfaceListBytes(double leaves) {
 // (conservative, cpu) on the grid of the bricks themselves, voxels 8 wide, whose set voxels
 // are the bricks that some triangle meets, which are the leaves of the conservative surface.
 // The area model (A·|n|₁/64) counts a brick once for every sheet of surface through it, so
-// it overcounts where surfaces crowd within a brick (Sponza at 1024: 159k leaves modelled
-// against 111k); smaller grids keep it, their passes being small and their runs short. The
-// count costs what a surface at an eighth of the resolution does (the 871k dragon at 1024:
-// about 30 ms of a 245 ms run; Sponza at 1024: 15 of 196).
+// it overcounts where surfaces crowd within a brick; smaller grids keep it, their passes being
+// small and their runs short. The count costs what a surface at an eighth of the resolution
+// does, a small part of a large run (docs/why/memory-estimate.md).
 constexpr double kCountFromBricks = double(1 << 18), kCountBitsMax = double(32 << 20);
 std::optional<double> countedLeaves(const ValidatedMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options) {
     const BrickLayout bricks = grid.bricks();
@@ -282,8 +280,7 @@ Estimate estimate(const ValidatedMesh& mesh, const GridSpec& grid, const Voxeliz
 
     // The .vdb writer beside the result (its leaves, tile runs and values).
     // The attribute values beside the writer's own bytes: the result's, and a part of them again
-    // while a grid's leaves are filled (measured: Spot solid with colour at 512 peaks about 15%
-    // of the values above one copy).
+    // while a grid's leaves are filled (docs/why/memory-estimate.md).
     e.write = kLeaf * leaves + 16.0 * tile_bricks / 64.0 + 1.15 * voxels * channels * 4.0 +
         vdb::vdbWriterBytes(leaves, tile_bricks, voxels, channels);
     return e;

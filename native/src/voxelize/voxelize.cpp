@@ -396,10 +396,10 @@ VoxelizeResult voxelizeValidated(const ValidatedMesh& validated, const VoxelizeO
 
 // glibc keeps what the passes freed (the solid pass's trees and leaf lists) in its heap, where
 // the .vdb writer's buffers, made on other threads' heaps, do not go: without this the write's
-// memory comes on top of it (the bunny's solid peaked 17% above the estimate at 1024, in one
-// run of three, and 37% at 2048), and in Blender the artist's session keeps it. Only for runs
-// estimated at 64 MiB or more: handing memory back walks the heap, and the next run faults to
-// take it again, which Live's small repeated runs (the bunny's solid at 256: 31 MiB) would pay.
+// memory comes on top of it, past the estimate, and in Blender the artist's session keeps it.
+// Only for runs estimated at 64 MiB or more: handing memory back walks the heap, and the next
+// run faults to take it again, which Live's small repeated runs would pay
+// (docs/why/memory-estimate.md).
 void returnFreedMemory(const VoxelizeResult& result) {
     constexpr std::uint64_t kLargeRun = std::uint64_t(64) << 20;
     if (!result.stats.memory_estimate || result.stats.memory_estimate->peak < kLargeRun) return;
