@@ -189,7 +189,7 @@ def hyvox_live(source, voxel_size, mode, colour, edits, out):
     )
     assert result == {"FINISHED"}, result
     volume = bpy.data.objects[source.name + "_voxels"]
-    live = addon("blender.live")
+    live = addon("blender.live.driver")
     ident = volume["hyvox_live_id"]
     stages = []
 
@@ -280,7 +280,7 @@ def animated_suzanne(mode, frames, out, resolution=128):
         resolution=resolution, mode="solid" if mode == "solid" else "conservative", live=True, output_dir=out
     )
     volume = bpy.data.objects[obj.name + "_voxels"]
-    live = addon("blender.live")
+    live = addon("blender.live.driver")
     ident = volume["hyvox_live_id"]
     before = live._Live.runs_started.get(ident, 0)
     start = time.perf_counter()

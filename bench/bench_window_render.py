@@ -69,7 +69,7 @@ def rounds_in_blender():
             if python == "live":
                 bpy.ops.object.hyvox_voxelize(resolution=32, method="cpu", output_dir=out, live=True)
                 bpy.app.handlers.render_post.append(on_render_post)
-            elif helpers.addon("blender.live").follow_live_volumes():
+            elif helpers.addon("blender.live.driver").follow_live_volumes():
                 os._exit(4)  # no live volume, yet hyvox's handlers are registered
             for frame, x in ((1, 0.0), (10, 1.8)):
                 source.location.x = x

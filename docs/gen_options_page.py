@@ -7,7 +7,7 @@ native/python/gen_stubs.py writes the .pyi: one source, so the page cannot disag
     python3 docs/gen_options_page.py --compare GENERATED COMMITTED  # the test: exit 1 if they differ
 
 PACKAGE_PARENT is the folder holding the built hyvox/ package (B/python). Which options the
-Blender add-on shows, and where, is read from addon/hyvox_blender/blender/properties.py
+Blender add-on shows, and where, is read from addon/hyvox_blender/blender/ui/properties.py
 without importing it (it needs bpy)."""
 
 import ast
@@ -15,7 +15,7 @@ import pathlib
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-PROPERTIES = ROOT / "addon" / "hyvox_blender" / "blender" / "properties.py"
+PROPERTIES = ROOT / "addon" / "hyvox_blender" / "blender" / "ui" / "properties.py"
 
 GROUPS = [
     ("grid", "The grid", "Where the voxels are and how big."),

@@ -17,13 +17,15 @@ bl_info = {
 
 
 def register():
+    # Imported here, not above: the bpy layer imports bpy, and core/ must stay importable
+    # without it (pytest, pipelines outside Blender).
     from .blender import registration
 
     registration.register()
 
 
 def unregister():
-    from .blender import registration
+    from .blender import registration  # (see register)
 
     registration.unregister()
 

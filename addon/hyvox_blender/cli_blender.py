@@ -28,7 +28,7 @@ def parse_args(argv, package):
     """Options of the add-on's own (output, frames, objects...) plus the voxelize options the
     operator takes, with the schema's names, types and help (hyvox.OPTIONS). Values are
     checked by the operator, which refuses them with the schema's message."""
-    properties = importlib.import_module(package + ".blender.properties")
+    properties = importlib.import_module(package + ".blender.ui.properties")
     SCENE_OPTIONS, option_spec = properties.SCENE_OPTIONS, properties.option_spec
     AUTO_METHOD = importlib.import_module(package + ".core.backend").AUTO_METHOD
     parser = argparse.ArgumentParser(
@@ -122,7 +122,7 @@ def main(argv):
     package = enable_addon()
     args = parse_args(argv, package)
     operators = importlib.import_module(package + ".blender.operators")
-    SCENE_OPTIONS = importlib.import_module(package + ".blender.properties").SCENE_OPTIONS
+    SCENE_OPTIONS = importlib.import_module(package + ".blender.ui.properties").SCENE_OPTIONS
     parse_frame_range = importlib.import_module(package + ".core.settings").parse_frame_range
 
     choose_objects(args.objects.split(",") if args.objects else None)

@@ -434,7 +434,7 @@ public:
     // Live's updates as its worker runs them (core/live_run.py), Blender's part aside: each
     // update moves another vertex by a tenth of a voxel (a new state every time), puts the
     // grid on the lattice fixed in world space (the voxel size of the first evaluation, the
-    // origin the whole multiple of it at or below the bounds: core/lattice.py) and voxelizes
+    // origin the whole multiple of it at or below the bounds: snap_origin) and voxelizes
     // and writes the .vdb. Per mode (surface and solid, the add-on's default) cpu, then hybrid
     // checked against cpu on the last state. wall_ms: the median update (voxelize + write);
     // updates a second = 1000 / wall_ms; stage_ms: its voxelize part.
@@ -455,6 +455,7 @@ public:
                 o.mode = mode;
                 o.method = method;
                 o.grid.voxel_size = voxel_size;
+                o.grid.snap_origin = true;
                 Row row;
                 std::vector<double> update, voxelize, write;
                 try {
@@ -462,15 +463,6 @@ public:
                         hyvox::Stopwatch watch;
                         edited.positions[3 * ((std::size_t(edit) * 7919) % edited.vertexCount()) + 2] +=
                             float(0.1 * voxel_size);
-                        std::array<double, 3> low = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
-                        for (std::size_t v = 0; v < edited.vertexCount(); ++v)
-                            for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], double(edited.positions[3 * v + a]));
-                        for (double& x : low) {
-                            double k = std::floor(x / voxel_size);
-                            if (k * voxel_size > x) k -= 1;
-                            x = k * voxel_size;
-                        }
-                        o.grid.origin = low;
                         row.last = hyvox::voxelize(edited.view(), o);
                         const double voxelized = watch.elapsedMs();
                         hyvox::writeVdb(row.last, path);

@@ -84,7 +84,7 @@ class Hold:
 
 
 def live():
-    from hyvox_blender.blender import live as module
+    from hyvox_blender.blender.live import driver as module
 
     return module
 

@@ -117,7 +117,8 @@ def room(where, content, unit):
 
 
 def panels():
-    from hyvox_blender.blender import live_ui, ui
+    from hyvox_blender.blender.live import panel as live_ui
+    from hyvox_blender.blender.ui import panels as ui
 
     return ui.CLASSES + (live_ui.VIEW3D_PT_hyvox_live,)
 

@@ -128,7 +128,7 @@ class ColourTest(_ColourCase):
                 path, volume = self.volume_file()
                 # Bytes hold sRGB-encoded colours: a linear value comes back within rounding.
                 self.assert_halves(path, RED, GREEN, tol=0.01 if data_type == "BYTE_COLOR" else 1e-5)
-                volume_material = helpers.addon("blender.volume_material")
+                volume_material = helpers.addon("blender.volume.material")
                 nodes = volume.data.materials[0].node_tree.nodes
                 self.assertEqual(nodes[volume_material.COLOR].attribute_name, "color")
                 shader = next(n for n in nodes if n.type == "PRINCIPLED_VOLUME")

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""When the EEVEE bounds modifier (blender/eevee_bounds.py) cannot be added, the
+"""When the EEVEE bounds modifier (blender/volume/eevee_bounds.py) cannot be added, the
 voxelization still finishes, the volume is made, nothing half-made is left behind, and the
 operator warns in plain words, naming the object.
 
@@ -23,7 +23,7 @@ SIZE = 0.25  # the 2x2x2 cube: an 8^3 shell, 8^3 - 6^3 = 296 voxels
 class EeveeBoundsFallbackTest(AddonTestCase):
     def setUp(self):
         super().setUp()
-        self.bounds = helpers.addon("blender.eevee_bounds")
+        self.bounds = helpers.addon("blender.volume.eevee_bounds")
         self.alignment = helpers.addon("core.alignment")
         self.rule = self.alignment.eevee_clips_last_voxel_layer
         self.patch(self.alignment, "eevee_clips_last_voxel_layer", lambda version: True)

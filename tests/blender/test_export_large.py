@@ -11,7 +11,7 @@ from helpers import AddonTestCase
 
 class ExportLargeMeshTest(AddonTestCase):
     def test_million_triangles(self):
-        object_triangles = helpers.addon("blender.export").object_triangles
+        object_triangles = helpers.addon("blender.export.sources").object_triangles
         bpy.ops.mesh.primitive_monkey_add()
         monkey = bpy.context.active_object
         monkey.modifiers.new("Subdivision", "SUBSURF").levels = 5

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The export's triangles (blender/mesh_triangles.py, read the fast way each Blender allows)
+"""The export's triangles (blender/export/triangles.py, read the fast way each Blender allows)
 are Blender's own loop triangles, read here one by one through the per-item API: the same
 vertex triples in the same order, for triangles, planar, non-planar, concave and folded
 quads, convex, concave and non-planar n-gons, each kind alone and all mixed, as plain
@@ -97,7 +97,7 @@ def blender_triangles(mesh):
 
 class ExportTrianglesTest(AddonTestCase):
     def assert_blender_triangles(self, obj):
-        mesh_triangles = helpers.addon("blender.mesh_triangles")
+        mesh_triangles = helpers.addon("blender.export.triangles")
         evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get()).data
         got = mesh_triangles.loop_triangles(evaluated)
         self.assertEqual(got.dtype, np.uint32)
@@ -105,7 +105,9 @@ class ExportTrianglesTest(AddonTestCase):
         self.assertGreater(len(expected), 0)
         np.testing.assert_array_equal(got.astype(np.int64), expected)
         # And through the export itself (world space, the same triangles).
-        _, exported = helpers.addon("blender.export").object_triangles(obj, bpy.context.evaluated_depsgraph_get())
+        _, exported = helpers.addon("blender.export.sources").object_triangles(
+            obj, bpy.context.evaluated_depsgraph_get()
+        )
         np.testing.assert_array_equal(exported.astype(np.int64), expected)
         return expected
 

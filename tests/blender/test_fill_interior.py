@@ -112,7 +112,7 @@ class FillInteriorTest(AddonTestCase):
             centre = np.add(item.min, item.max) / 2.0
             expected = RED if to_world(tuple(centre))[0] < 0 else GREEN
             np.testing.assert_allclose(item.value, expected[:3], atol=1e-5)
-        volume_material = helpers.addon("blender.volume_material")
+        volume_material = helpers.addon("blender.volume.material")
         nodes = volume.data.materials[0].node_tree.nodes
         self.assertEqual(nodes[volume_material.COLOR].attribute_name, "color")
         shader = next(n for n in nodes if n.type == "PRINCIPLED_VOLUME")

@@ -16,7 +16,7 @@ from helpers import AddonTestCase
 
 
 def live():
-    return helpers.addon("blender.live")
+    return helpers.addon("blender.live.driver")
 
 
 def evaluated_world_mesh(obj):
@@ -317,7 +317,7 @@ class LiveErrorsTest(LiveTestCase):
 
 class LiveColourTest(LiveTestCase):
     def test_a_texture_is_read_once_and_again_when_the_image_changes(self):
-        colour_export = helpers.addon("blender.colour_export")
+        colour_export = helpers.addon("blender.export.colour")
         bpy.ops.mesh.primitive_cube_add(size=1.0)  # with UVs
         cube = bpy.context.active_object
         image = bpy.data.images.new("Paint", 4, 4)

@@ -14,7 +14,7 @@ from helpers import AddonTestCase
 
 
 def live():
-    return helpers.addon("blender.live")
+    return helpers.addon("blender.live.driver")
 
 
 def voxel_files(folder):

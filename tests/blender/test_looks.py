@@ -113,7 +113,7 @@ class LooksCase(AddonTestCase):
 
 class LooksTest(LooksCase):
     def test_color_volume_renders_as_bright_as_without_color(self):
-        volume_material = helpers.addon("blender.volume_material")
+        volume_material = helpers.addon("blender.volume.material")
         source = sphere()
         helpers.select_only(source)
         # A shell: its every voxel is where the grids fade.
@@ -157,7 +157,7 @@ class LooksTest(LooksCase):
         return node("DIVIDE", node("MULTIPLY", color, (4.0, 4.0, 4.0)), node("MULTIPLY", total, total))
 
     def test_color_is_on_by_default_and_a_rerun_follows_the_grids(self):
-        volume_material = helpers.addon("blender.volume_material")
+        volume_material = helpers.addon("blender.volume.material")
         from test_colour import GREEN, RED, face_halves, principled_material, split_cube
 
         source = split_cube()

@@ -34,7 +34,7 @@ class DensityTest(LooksCase):
         return source, self.volume()
 
     def test_density_does_not_depend_on_the_resolution(self):
-        volume_material = helpers.addon("blender.volume_material")
+        volume_material = helpers.addon("blender.volume.material")
         # Absorber scales that let a fair share of the light through: the filled sphere is
         # SOLID_MEAN_FREE_PATHS deep across, a shell two walls of a voxel layer or two.
         scales = {"solid": 0.04, "conservative": 0.3}

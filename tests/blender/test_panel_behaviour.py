@@ -32,7 +32,7 @@ class PanelBehaviourTest(AddonTestCase):
     def test_methods_auto_first_and_the_panel_names_the_gl_device(self):
         # The method list is fixed (enabling asks for no device, test_enable.py); the panel's
         # note under Method says where a GL method runs, from the module's device list.
-        from hyvox_blender.blender import ui
+        from hyvox_blender.blender.ui import panels as ui
 
         devices = helpers.hyvox_module().gl_devices()
         items = list(bpy.context.scene.hyvox.bl_rna.properties["method"].enum_items)
@@ -60,7 +60,7 @@ class PanelBehaviourTest(AddonTestCase):
         self.assertIn(expected, texts)
 
     def test_tooltips_start_in_plain_words(self):
-        from hyvox_blender.blender import properties
+        from hyvox_blender.blender.ui import properties
 
         scene = bpy.context.scene.hyvox.bl_rna.properties
         prefs = helpers.addon_preferences().bl_rna.properties

@@ -189,7 +189,7 @@ class RenderAlignmentTest(AddonTestCase):
 
     def test_eevee_voxels_on_leaf_faces(self):
         """The +x/+y walls on the leaf's top faces: drawn whole with the add-on's bounds
-        modifier in 4.2-4.5 (blender/eevee_bounds.py), and there, without it, measurably
+        modifier in 4.2-4.5 (blender/volume/eevee_bounds.py), and there, without it, measurably
         faint (so the version rule of core/alignment.py is measured both ways)."""
         if self.eevee_draws_nothing(SIZE):
             return
@@ -227,7 +227,7 @@ class RenderAlignmentTest(AddonTestCase):
         if not helpers.addon("core.alignment").eevee_clips_last_voxel_layer(bpy.app.version):
             self.assertEqual(grids, ["density"])
             return
-        self.assertEqual(grids, ["density", helpers.addon("blender.eevee_bounds").GRID_NAME])
+        self.assertEqual(grids, ["density", helpers.addon("blender.volume.eevee_bounds").GRID_NAME])
         corners = np.array([tuple(evaluated.matrix_world @ Vector(c)) for c in evaluated.bound_box])
         low, high = corners.min(axis=0), corners.max(axis=0)
         offset = np.asarray(obj["hyvox_offset"])

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """A run at render settings skips the render evaluation only where it would change nothing
-(blender/render_equivalence.py): checked against what a render evaluation actually exports
-(render_depsgraph.py), for a plain mesh (skipped: the same arrays) and for each thing that
+(blender/export/render_equivalence.py): checked against what a render evaluation actually exports
+(blender/export/render_depsgraph.py), for a plain mesh (skipped: the same arrays) and for each thing that
 makes renders differ (not skipped)."""
 
 import bpy
@@ -13,12 +13,12 @@ from helpers import AddonTestCase
 
 def exported(names, depsgraph):
     """{name: [(vertices, triangles)]} of what the export takes from depsgraph."""
-    parts = helpers.addon("blender.export").evaluated_parts(names, depsgraph)
+    parts = helpers.addon("blender.export.sources").evaluated_parts(names, depsgraph)
     return {name: [(v.copy(), t.copy()) for v, t, _ in found] for name, found in parts.items()}
 
 
 def render_and_viewport(names):
-    render_depsgraph = helpers.addon("blender.render_depsgraph")
+    render_depsgraph = helpers.addon("blender.export.render_depsgraph")
     in_render = render_depsgraph.with_render_depsgraph(bpy.context, lambda depsgraph: exported(names, depsgraph))
     return in_render, exported(names, bpy.context.evaluated_depsgraph_get())
 
@@ -32,7 +32,7 @@ def same_arrays(a, b):
 
 class RenderEquivalenceTest(AddonTestCase):
     def claim(self, obj):
-        same_in_renders = helpers.addon("blender.render_equivalence").same_in_renders
+        same_in_renders = helpers.addon("blender.export.render_equivalence").same_in_renders
         return same_in_renders([obj.name], bpy.context.view_layer)
 
     def assert_claim_holds(self, obj, expected_claim):
@@ -104,7 +104,7 @@ class RenderEquivalenceTest(AddonTestCase):
     def test_operator_skips_the_render_only_when_the_rule_says_so(self):
         # The same voxels either way; the render evaluation runs only when the rule says no.
         # The operator exports each frame through frame_export, which asks these two modules.
-        exporter = helpers.addon("blender.frame_export")
+        exporter = helpers.addon("blender.export.frames")
         render_calls = []
         real_render = exporter.render_depsgraph.with_render_depsgraph
         real_rule = exporter.render_equivalence.same_in_renders

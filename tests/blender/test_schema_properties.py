@@ -29,7 +29,7 @@ def close(a, b):
 class SchemaPropertiesTest(AddonTestCase):
     def setUp(self):
         super().setUp()
-        self.properties = helpers.addon("blender.properties")
+        self.properties = helpers.addon("blender.ui.properties")
         self.hyvox = helpers.hyvox_module()
         self.scene_rna = bpy.context.scene.hyvox.bl_rna.properties
         self.op_rna = bpy.ops.object.hyvox_voxelize.get_rna_type().properties

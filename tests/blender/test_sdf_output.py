@@ -25,7 +25,7 @@ class SignedDistanceTest(AddonTestCase):
         self.assertEqual({g.name for g in volume.grids}, {"density", "sdf"})
         self.assertEqual(volume.grids["sdf"].data_type, "FLOAT")
         # The file's level set is the module's for the same triangles.
-        export = helpers.addon("blender.export").object_triangles
+        export = helpers.addon("blender.export.sources").object_triangles
         vertices, triangles = export(sphere, bpy.context.evaluated_depsgraph_get())
         grid = helpers.hyvox_module().voxelize(vertices, triangles, voxel_size=0.1, method="cpu", attributes="sdf")
         coords, size, zero, _ = helpers.read_vdb(bpy.path.abspath(volume.filepath), "sdf")

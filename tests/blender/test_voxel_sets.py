@@ -57,7 +57,7 @@ class VoxelSetTest(AddonTestCase):
         np.testing.assert_allclose(centres.max(axis=0) + size / 2, [1, 1, 1], atol=1e-6)
         # A hollow shell: 8^3 minus the 6^3 interior.
         self.assertEqual(len(centres), 8**3 - 6**3)
-        object_triangles = helpers.addon("blender.export").object_triangles
+        object_triangles = helpers.addon("blender.export.sources").object_triangles
         vertices, triangles = object_triangles(cube, bpy.context.evaluated_depsgraph_get())
         expected, _ = module_centres(vertices, triangles, voxel_size=size, method="cpu")
         np.testing.assert_allclose(helpers.sorted_rows(centres), helpers.sorted_rows(expected), atol=1e-6)

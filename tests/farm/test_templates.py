@@ -20,7 +20,7 @@ def headless_options(env):
     """method + the Scene's settings: the voxelize options cli_blender.py takes."""
     expr = (
         "import addon_utils, sys; addon_utils.enable('hyvox_blender', default_set=False, handle_error=None); "
-        "from hyvox_blender.blender.properties import SCENE_OPTIONS; print('OPTIONS', ','.join(SCENE_OPTIONS))"
+        "from hyvox_blender.blender.ui.properties import SCENE_OPTIONS; print('OPTIONS', ','.join(SCENE_OPTIONS))"
     )
     done = check(run([BLENDER, "-b", "--factory-startup", "-noaudio", "--python-expr", expr], env=env))
     line = next(text for text in done.stdout.splitlines() if text.startswith("OPTIONS "))

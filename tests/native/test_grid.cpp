@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "hyvox/bit_grid.h"
 #include "hyvox/errors.h"
 #include "hyvox/grid.h"
@@ -94,6 +97,62 @@ TEST(Grid, SpecFormulasFollowTheConvention) {
         EXPECT_EQ(bricks.index(at[0], at[1], at[2]), b);
     }
     EXPECT_EQ(hyvox::BitGrid(grid.dims).bricks().counts, bricks.counts);
+}
+
+// snap_origin against a brute-force oracle: the origin is k·s for a whole k (the very double
+// k * s), at or below the bounds min and less than a voxel below it (up to the rounding of
+// min / s: a quotient just under a whole number floors one lower). Sizes that divide
+// decimals inexactly (0.1, 0.15) and minima on exact multiples included.
+TEST(Grid, SnapOriginIsAWholeMultipleWithinAVoxelBelowTheMin) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> coordinate(-50.0, 50.0);
+    std::uniform_int_distribution<int> step(-30, 30);
+    for (const double s : {0.15, 0.1, 1e-3, 3.0, 0.3}) {
+        for (int i = 0; i < 2000; ++i) {
+            // Half on whole (or nearly whole) multiples, where the quotient rounds either way.
+            const double x = i % 2 ? coordinate(rng) : step(rng) * s * (i % 4 ? 1.0 : 1.0 + 1e-16);
+            hyvox::GridOptions options;
+            options.voxel_size = s;
+            options.snap_origin = true;
+            const auto grid = hyvox::makeGrid(box(x, x, x, x + 1.0, x + 2.0, x + 3.0), options);
+            for (int a = 0; a < 3; ++a) {
+                const double origin = grid.origin[a];
+                const double k = std::round(origin / s);
+                ASSERT_EQ(origin, k * s) << "x " << x << " s " << s;
+                ASSERT_LE(origin, x) << "x " << x << " s " << s;
+                ASSERT_LE(x - origin, s * (1 + 1e-9)) << "x " << x << " s " << s;
+                // The grid still reaches the bounds max, and not a voxel beyond (up to rounding).
+                const double max = x + 1.0 + a, slack = 1e-12 * (1 + std::fabs(max));
+                ASSERT_GE(origin + grid.dims[a] * s, max - slack);
+                ASSERT_LT(origin + (grid.dims[a] - 1) * s, max + slack);
+            }
+        }
+    }
+}
+
+TEST(Grid, SnapOriginKeepsAGivenOriginAndPadsAfterSnapping) {
+    hyvox::GridOptions options;
+    options.voxel_size = 0.5;
+    options.snap_origin = true;
+    options.origin = std::array<double, 3>{0.3, 0.3, 0.3};
+    EXPECT_EQ(hyvox::makeGrid(box(0.3, 0.3, 0.3, 1, 1, 1), options).origin[0], 0.3);
+    options.origin.reset();
+    options.padding = 2;
+    const auto grid = hyvox::makeGrid(box(0.7, -0.2, 1.0, 2, 2, 2), options);
+    EXPECT_EQ(grid.origin[0], 0.5 - 2 * 0.5);
+    EXPECT_EQ(grid.origin[1], -0.5 - 2 * 0.5);
+    EXPECT_EQ(grid.origin[2], 1.0 - 2 * 0.5);
+    EXPECT_EQ(grid.dims[0], 3 + 4);  // 0.5 .. 2.0
+}
+
+TEST(Grid, SnapOriginWithAResolutionSnapsToItsVoxelSize) {
+    hyvox::GridOptions options;
+    options.resolution = 4;
+    options.snap_origin = true;
+    const auto grid = hyvox::makeGrid(box(0.25, 0, 0, 2.25, 1, 1), options);
+    EXPECT_EQ(grid.voxel_size, 0.5);
+    EXPECT_EQ(grid.origin[0], 0.0);
+    EXPECT_EQ(grid.dims[0], 5);  // 0 .. 2.5 covers 2.25
 }
 
 }  // namespace

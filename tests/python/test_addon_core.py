@@ -42,9 +42,15 @@ def test_settings_rejected(bad):
         VoxelizeSettings(**bad).validate()
 
 
-def test_settings_voxel_size_wins_over_resolution():
-    settings = VoxelizeSettings(resolution=0, voxel_size=0.1).validate()
-    assert settings.voxelize_options() == {"voxel_size": 0.1}
+def test_settings_pass_both_sizes_and_the_module_lets_voxel_size_win():
+    from hyvox_blender.core import backend
+
+    settings = VoxelizeSettings(resolution=8, voxel_size=0.1).validate()
+    assert settings.options == {"resolution": 8, "voxel_size": 0.1}  # no rule of its own
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32)
+    t = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], np.uint32)
+    grid = backend.voxelize(backend.load_module(), v, t, settings, "cpu")
+    assert grid.voxel_size == 0.1 and tuple(grid.dims) == (10, 10, 10)
     assert not settings.is_sequence
     assert VoxelizeSettings(frames=[1, 2]).is_sequence
 

@@ -64,7 +64,7 @@ def test_the_graph_sees_the_add_ons_imports():
     graph = import_graph()
     assert f"{PACKAGE}.core.backend" in graph[f"{PACKAGE}.core.settings"]
     assert f"{PACKAGE}.core.settings" in graph[f"{PACKAGE}.core.pipeline"]
-    assert f"{PACKAGE}.blender.properties" in graph[f"{PACKAGE}.blender.gather"]
+    assert f"{PACKAGE}.blender.ui.properties" in graph[f"{PACKAGE}.blender.gather"]
     assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == [["a", "b", "c", "a"]]
 
 

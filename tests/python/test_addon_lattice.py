@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The lattice fixed in world space (core/lattice.py): sequence frames (and Live runs) put
-their voxels on one lattice, so a static part keeps its voxels while another part moves."""
+"""The lattice fixed in world space (the module's snap_origin, which the add-on asks for):
+sequence frames (and Live runs) put their voxels on one lattice, so a static part keeps its
+voxels while another part moves."""
 
 import math
 import os
@@ -11,9 +12,9 @@ import pytest
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "addon"))
 
-from hyvox_blender.core import lattice  # noqa: E402
 from hyvox_blender.core.pipeline import Group, GroupMesh, Pipeline, merge_meshes  # noqa: E402
 from hyvox_blender.core.settings import VoxelizeSettings  # noqa: E402
+from lattice_oracle import snapped_origin  # noqa: E402
 from shapes import icosphere  # noqa: E402
 
 
@@ -24,39 +25,30 @@ def hyvox():
     return module
 
 
-def test_snapped_origin_is_the_multiple_at_or_below():
+def test_snap_origin_is_the_oracles_lattice(hyvox):
+    v, t = icosphere(2)
     rng = np.random.default_rng(7)
-    for size in (0.15, 0.1, 1e-3, 3.0):
-        for low in rng.uniform(-50, 50, (200, 3)):
-            origin = lattice.snapped_origin(low, size)
-            for o, x in zip(origin, low):
-                k = round(o / size)
-                assert o == k * size  # a whole multiple, as the same double every time
-                assert o <= x < o + size * (1 + 1e-9)
+    for size in (0.15, 0.1, 1e-3 * 40, 3.0):
+        for shift in rng.uniform(-50, 50, (20, 3)):
+            moved = (v + shift).astype(np.float32)
+            plan = hyvox.plan_grid(moved, t, voxel_size=size, snap_origin=True)
+            assert tuple(plan["origin"]) == snapped_origin(moved, t, size)
 
 
-def test_snapped_origin_on_exact_multiples_and_rounding_up():
-    # 0.3 / 0.1 rounds to 2.9999999999999996 and 0.7 / 0.1 to 6.999999999999999: floor still
-    # lands on the multiple at or below; a quotient that rounds up is caught.
-    assert lattice.snapped_origin(np.array([0.3, 0.7, -0.2]), 0.1)[0] <= 0.3
-    for x in np.linspace(-3, 3, 601):
-        (o, _, _) = lattice.snapped_origin(np.array([x, 0, 0]), 0.1)
-        assert o <= x
-
-
-def test_resolution_gives_the_modules_voxel_size(hyvox):
+def test_snap_origin_with_a_resolution_keeps_the_modules_voxel_size(hyvox):
     v, t = icosphere(2)
     v = v * np.float32([1.0, 2.0, 0.5]) + np.float32([3.0, -1.0, 0.2])
-    fixed = lattice.fixed_lattice(v, t, 40, None)
-    grid = hyvox.voxelize(v, t, resolution=40, method="cpu")
-    assert fixed.voxel_size == grid.voxel_size
+    snapped = hyvox.voxelize(v, t, resolution=40, method="cpu", snap_origin=True)
+    free = hyvox.voxelize(v, t, resolution=40, method="cpu")
+    assert snapped.voxel_size == free.voxel_size
+    assert tuple(snapped.origin) == snapped_origin(v, t, free.voxel_size)
 
 
-def test_unused_vertices_do_not_widen_the_bounds():
+def test_unused_vertices_do_not_widen_the_bounds(hyvox):
     v, t = icosphere(1)
-    far = np.vstack([v, [[100.0, 100.0, 100.0]]]).astype(np.float32)
-    low, high = lattice.used_bounds(far, t)
-    assert high.max() <= 1.0 + 1e-6 and low.min() >= -1.0 - 1e-6
+    far = np.vstack([v, [[-100.0, -100.0, -100.0]]]).astype(np.float32)
+    plan = hyvox.plan_grid(far, t, voxel_size=0.1, snap_origin=True)
+    assert min(plan["origin"]) >= -1.1
 
 
 def _cube_and_sphere(sphere_x):
@@ -114,10 +106,10 @@ def test_a_static_part_keeps_its_voxels_across_a_sequence(hyvox, tmp_path, mode)
     grids = []
     for frame in (1, 2, 3):
         v, t = _cube_and_sphere(xs[frame])
-        fixed = lattice.fixed_lattice(v, t, 0, 0.15)
-        for o in fixed.origin:
+        origin = snapped_origin(v, t, 0.15)
+        for o in origin:
             assert math.isclose(o / 0.15, round(o / 0.15), abs_tol=1e-9)
-        grids.append(hyvox.voxelize(v, t, voxel_size=0.15, origin=fixed.origin, method="cpu", mode=mode))
+        grids.append(hyvox.voxelize(v, t, voxel_size=0.15, origin=origin, method="cpu", mode=mode))
     for grid, path in zip(grids, result.files):
         assert _file_world_indices(path) == _grid_world_indices(grid)
     # ... so the cube (x from 0.3; the sphere ends before 0) has the same voxels every frame.
@@ -137,8 +129,8 @@ def test_a_static_part_keeps_its_voxels_across_a_sequence(hyvox, tmp_path, mode)
     assert not corners[0] == corners[1] == corners[2]
 
 
-def test_a_non_finite_vertex_is_refused_in_plain_words():
+def test_a_non_finite_vertex_is_refused_in_plain_words(hyvox):
     v, t = icosphere(1)
     v[5, 1] = np.nan
-    with pytest.raises(ValueError, match="non-finite"):
-        lattice.fixed_lattice(v, t, 16, None)
+    with pytest.raises(ValueError, match="non-finite|NaN"):
+        hyvox.voxelize(v, t, resolution=16, method="cpu", snap_origin=True)

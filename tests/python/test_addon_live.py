@@ -12,12 +12,13 @@ import pytest
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "addon"))
 
-from hyvox_blender.core import lattice, live_key  # noqa: E402
+from hyvox_blender.core import live_key  # noqa: E402
 from hyvox_blender.core.live_cache import CacheEntry, LiveCache  # noqa: E402
 from hyvox_blender.core.live_run import LiveInput, LiveRun  # noqa: E402
 from hyvox_blender.core.live_scheduler import DROPPED, FAILED, SHOWN, LiveScheduler  # noqa: E402
 from hyvox_blender.core.pipeline import Group, GroupMesh, GroupResult  # noqa: E402
 from hyvox_blender.core.settings import VoxelizeSettings  # noqa: E402
+from lattice_oracle import snapped_origin  # noqa: E402
 from shapes import icosphere  # noqa: E402
 
 GROUP = Group("Ball", ["Ball"])
@@ -37,7 +38,7 @@ def ball(shift=0.0, scale=1.0):
 
 def live_input(tmp_path, mesh, voxel_size=0.1, mode="conservative", **kw):
     settings = VoxelizeSettings(method="cpu", voxel_size=voxel_size, mode=mode, fixed_lattice=True)
-    fingerprint = live_key.options_fingerprint(dict(settings.voxelize_options(), method="cpu"))
+    fingerprint = live_key.options_fingerprint(dict(settings.options, method="cpu"))
     return LiveInput([mesh], settings, str(tmp_path), fingerprint, owner="Ball_voxels", **kw)
 
 
@@ -148,10 +149,8 @@ def test_a_run_writes_the_modules_voxels_on_the_fixed_lattice(hyvox, tmp_path, m
     cache = LiveCache()
     output = LiveRun(live_input(tmp_path, mesh, mode=mode), cache)()
     assert not output.cached and len(output.result.files) == 1
-    fixed = lattice.fixed_lattice(mesh.vertices, mesh.triangles, 0, 0.1)
-    oracle = hyvox.voxelize(
-        mesh.vertices, mesh.triangles, voxel_size=0.1, origin=fixed.origin, method="reference", mode=mode
-    )
+    origin = snapped_origin(mesh.vertices, mesh.triangles, 0.1)
+    oracle = hyvox.voxelize(mesh.vertices, mesh.triangles, voxel_size=0.1, origin=origin, method="reference", mode=mode)
     offset = np.array([round(o / 0.1) for o in oracle.origin])
     assert _file_world_voxels(output.result.files[0]) == {tuple(p) for p in oracle.coords().astype(np.int64) + offset}
     assert os.listdir(tmp_path) == [os.path.basename(output.result.files[0])]  # nothing staged is left

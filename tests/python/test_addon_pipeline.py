@@ -90,9 +90,9 @@ def test_auto_method_resolves(hyvox):
     # cpu method); the expected answer comes from the device list, not from the add-on.
     # (It used to accept either answer, so it could not fail.)
     hardware = any(not device["software"] for device in hyvox.gl_devices())
-    method = backend.resolve_method(hyvox, VoxelizeSettings(method="auto"))
+    method = backend.resolve_method(hyvox, "auto")
     assert method == ("hybrid" if hardware else "cpu")
-    assert backend.resolve_method(hyvox, VoxelizeSettings(method="fragment")) == "fragment"
+    assert backend.resolve_method(hyvox, "fragment") == "fragment"
 
 
 def test_native_errors_become_hyvox_errors(hyvox, tmp_path):

@@ -8,7 +8,7 @@ import bpy
 
 from ..core import naming
 from ..core.settings import VoxelizeSettings
-from .properties import PREFERENCE_OPTIONS, SCENE_OPTIONS, preferences
+from .ui.properties import PREFERENCE_OPTIONS, SCENE_OPTIONS, preferences
 
 
 def _op_set(op, name) -> bool:
@@ -39,13 +39,19 @@ def used_values(context, op=None) -> dict:
 def gather(context, op=None):
     """(settings, output folder, half-voxel override, the values used) for this run."""
     used = used_values(context, op)
-    return settings_from_used(context, used) + (used,)
+    if used["live"]:
+        # Live volumes are evaluated as Live evaluates while editing (the viewport's
+        # depsgraph), and not parented: their voxels are already where the sources are.
+        used = dict(used, evaluation="VIEWPORT", parent_to_source=False)
+    return settings_from_used(context, used, live=used["live"]) + (used,)
 
 
-def settings_from_used(context, used: dict):
+def settings_from_used(context, used: dict, live: bool = False):
     """(settings, output folder, half-voxel override) from the values of used_values()
-    (a Live volume keeps those it was made with)."""
+    (a Live volume keeps those it was made with); live: the run makes live volumes."""
     options = {name: used[name] for name in SCENE_OPTIONS}
+    # Size (the panel's switch) says which of the two the artist set; the other, still in the
+    # Scene settings, is not passed on. How the grid follows from it is the module's to say.
     options.pop("resolution" if used["size_mode"] == "VOXEL_SIZE" else "voxel_size")
     frames = list(range(used["frame_start"], used["frame_end"] + 1)) if used["use_frame_range"] else None
 
@@ -61,6 +67,7 @@ def settings_from_used(context, used: dict):
         export_vox=used["export_vox"],
         color=used["color"],
         sdf=used["signed_distance"],
+        live=live,
         **options,
     )
     folder = used["output_dir"]

@@ -6,13 +6,17 @@ Every HyvoxError becomes a report and {'CANCELLED'} with the scene unchanged."""
 
 import time
 import traceback
+import warnings
 
 import bpy
 
 from ..core import backend, naming, summary
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import Pipeline
-from . import export, frame_export, importer, live, properties
+from .export import frames as frame_export, sources as export
+from .live import driver as live
+from .ui import legacy_settings, properties
+from .volume import importer
 from .gather import gather
 
 # The last run's summary lines (shown in the panel) and record (for scripts).
@@ -35,9 +39,6 @@ class _Run:
 
     def __init__(self, context, op):
         settings, folder, self.override, used = gather(context, op)
-        self.live_digests = {} if used["live"] else None  # the sources' evaluated state, for Live
-        if used["live"]:
-            used = live.prepare_run(settings, used)
         self.scene = context.scene
         self.original_frame = context.scene.frame_current
         self.op = op
@@ -46,10 +47,7 @@ class _Run:
         # New file names per run, so that undo never brings back a volume whose file a later
         # run overwrote (farm chunks ask for fixed names to assemble one sequence).
         run_tag = naming.new_run_tag() if op.unique_file_names else None
-        export_frame = (
-            self.export_frame if self.live_digests is None else live.recording(self.export_frame, self.live_digests)
-        )
-        self.pipeline = Pipeline(settings, folder, export_frame, run_tag=run_tag)  # validates the settings
+        self.pipeline = Pipeline(settings, folder, self.export_frame, run_tag=run_tag)  # validates the settings
         if self.pipeline.ignored_options:
             op.report({"INFO"}, backend.ignored_message(self.pipeline.ignored_options, self.pipeline.method))
         # The redo panel shows, and a redo repeats, exactly what this run used.
@@ -99,9 +97,7 @@ class _Run:
         )
         pipeline.timings.import_ms += (time.perf_counter() - start) * 1000.0
         self.show_results(context, objects)
-        live.remember_results(objects, pipeline.results, self.used)  # for its Live switch, now or later
-        if self.live_digests is not None:
-            live.make_live(objects, pipeline.results, self.live_digests)
+        live.take_over(objects, pipeline.results, self.used)
         lines = summary.long_report(pipeline.results, pipeline.timings)
         last_summary[:] = lines
         last_run_record.clear()
@@ -131,6 +127,14 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
             options={"HIDDEN", "SKIP_SAVE"},
             description="Write this run's files under new names (off: rewrite the same names each run)",
         ),
+        # Deprecated (docs/compatibility.md): the switch Mode replaced, kept so that scripts
+        # written against earlier versions still run; execute() maps it onto mode.
+        fill_interior=bpy.props.BoolProperty(
+            name="Fill Interior",
+            default=True,
+            options={"HIDDEN", "SKIP_SAVE"},
+            description="Deprecated: use mode='solid' (on) or a surface mode (off)",
+        ),
     )
 
     _active = None  # the running modal operator's _Run: one run at a time
@@ -140,11 +144,26 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
         # Selection problems are reported by execute(), not hidden by a failing poll.
         return context.scene is not None and context.mode == "OBJECT"
 
+    def _map_old_keywords(self, context):
+        """fill_interior=, the switch Mode replaced, mapped onto mode once
+        (legacy_settings.fill_interior_mode), with a deprecation warning naming mode=."""
+        props = self.properties
+        if not props.is_property_set("fill_interior"):
+            return
+        given = self.mode if props.is_property_set("mode") else None
+        mode = legacy_settings.fill_interior_mode(props.fill_interior, given, context.scene.hyvox.mode)
+        text = legacy_settings.FILL_INTERIOR_DEPRECATED.format(value=props.fill_interior, mode=mode)
+        warnings.warn(text, FutureWarning, stacklevel=2)  # shown by default: meant for scripts
+        self.report({"WARNING"}, text)
+        self.mode = mode
+        props.property_unset("fill_interior")  # a redo keeps the mode, not the old switch
+
     # -- synchronous ------------------------------------------------------------------
     def execute(self, context):
         if OBJECT_OT_hyvox_voxelize._active is not None:
             self.report({"ERROR"}, "A voxelization is already running")
             return {"CANCELLED"}
+        self._map_old_keywords(context)
         run = None
         try:
             run = _Run(context, self)
@@ -175,6 +194,7 @@ class OBJECT_OT_hyvox_voxelize(bpy.types.Operator):
         if OBJECT_OT_hyvox_voxelize._active is not None:
             self.report({"ERROR"}, "A voxelization is already running")
             return {"CANCELLED"}
+        self._map_old_keywords(context)
         try:
             self._run = _Run(context, self)
             self._run.pipeline.start_next_frame()

@@ -3,7 +3,10 @@
 
 import bpy
 
-from . import clean_files, file_handlers, file_history, legacy_settings, live, live_ui, operators, properties, ui
+from . import operators
+from .files import clean as clean_files, handlers as file_handlers, history as file_history
+from .live import driver as live, panel as live_ui
+from .ui import legacy_settings, panels as ui, properties
 
 _CLASSES = properties.CLASSES + operators.CLASSES + clean_files.CLASSES + ui.CLASSES + live_ui.CLASSES
 

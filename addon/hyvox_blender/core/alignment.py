@@ -42,9 +42,9 @@ def object_offset(voxel_size: float, version: Sequence[int], override: str = "AU
 # setting of the object, the Volume or the scene moves those bounds (those tried:
 # docs/blender-quirks.md); active voxels of any grid of the Volume beyond them do. So for
 # these versions the add-on gives the Volume object a Geometry Nodes modifier that adds a
-# small second grid beyond the bounds (blender/eevee_bounds.py); the file and its voxels stay
-# the voxelization's. Cycles draws the layer whole either way; 5.0 bounds the grid by its
-# voxels' faces and EEVEE draws it whole. Measured by tests/blender/test_render_alignment.py
+# small second grid beyond the bounds (blender/volume/eevee_bounds.py); the file and its
+# voxels stay the voxelization's. Cycles draws the layer whole either way; 5.0 bounds the
+# grid by its voxels' faces and EEVEE draws it whole. Measured by tests/blender/test_render_alignment.py
 # in 4.2, 4.4, 4.5 and 5.0 (the figures: docs/blender-quirks.md); 4.3.0's EEVEE draws no frame
 # with a Volume in view, but its bounds end as in 4.5, so it is taken to clip as 4.2 and 4.4 do.
 EEVEE_CLIPPING_VERSIONS = ((4, 2, 0), (5, 0, 0))  # [first, end)

@@ -9,7 +9,7 @@ import importlib
 import importlib.util
 import os
 import threading
-from typing import List, Optional, Tuple
+from typing import List, Optional
 
 import numpy as np
 
@@ -81,17 +81,19 @@ def gl_available(module, gl_device: str = "") -> bool:
         return ok
 
 
-def resolve_method(module, settings) -> str:
-    if settings.method != AUTO_METHOD:
-        return settings.method
-    return "hybrid" if gl_available(module, settings.options.get("gl_device", "")) else "cpu"
+def resolve_method(module, method: str, gl_device: str = "") -> str:
+    """The hyvox method a run of `method` uses: "auto" is hybrid where a hardware GL
+    device runs it (gl_available), else cpu. module None (not loaded): no GL."""
+    if method != AUTO_METHOD:
+        return method
+    return "hybrid" if module is not None and gl_available(module, gl_device) else "cpu"
 
 
 def ignored_settings(module, settings, method: str) -> List[str]:
     """The options set away from the schema's default that `method` does not use, by the
     module's one rule (hyvox.ignored_options). The add-on passes every setting it has, so an
     option still at its default is no news and is not listed."""
-    options = settings.voxelize_options()
+    options = settings.options
     return [name for name in module.ignored_options(method, options) if options[name] != module.option(name).default]
 
 
@@ -128,15 +130,15 @@ def voxelize(
     voxel_size: Optional[float] = None,
     token=None,
     colour: Optional[dict] = None,
-    origin: Optional[Tuple[float, float, float]] = None,
 ):
-    """hyvox.voxelize with the run's settings; voxel_size (when given) wins over the
-    settings, so every frame of a sequence shares the first frame's voxel size, and origin
-    (when given) puts voxel (0,0,0) there (core/lattice.py). colour:
-    the colour source's keyword arguments (colour.combine); given, a `color` grid is made.
-    With settings.sdf, an `sdf` level set too."""
-    kwargs = settings.voxelize_options()
-    kwargs["method"] = method
+    """hyvox.voxelize with the run's settings. voxel_size: a sequence's first frame's, for
+    every later frame (the module's rule lets it win over the resolution); with
+    settings.fixed_lattice the module snaps the origin to whole multiples of it. colour: the
+    colour source's keyword arguments (colour.combine); given, a `color` grid is made. With
+    settings.sdf, an `sdf` level set too."""
+    kwargs = dict(settings.options, method=method, snap_origin=settings.fixed_lattice)
+    if voxel_size:
+        kwargs["voxel_size"] = float(voxel_size)
     # Settings another method would use are dropped here (reported once per run by the
     # operator, see ignored_settings), so hyvox.voxelize has nothing to warn about.
     for name in module.ignored_options(method, list(kwargs)):
@@ -146,11 +148,6 @@ def voxelize(
         kwargs.update(colour)
     if attributes:
         kwargs["attributes"] = attributes
-    if voxel_size:
-        kwargs.pop("resolution", None)
-        kwargs["voxel_size"] = float(voxel_size)
-    if origin is not None:
-        kwargs["origin"] = tuple(float(x) for x in origin)
     if token is not None:
         kwargs["cancel"] = token
     try:

@@ -23,6 +23,8 @@ from typing import Optional, Sequence, Tuple
 
 import numpy as np
 
+from .pipeline import merge_meshes
+
 DEFAULT_GREY = (0.8, 0.8, 0.8, 1.0)  # what Blender renders an object without material as
 
 
@@ -93,8 +95,6 @@ def combine(parts: Sequence[Tuple[np.ndarray, np.ndarray, Optional[PartColour]]]
     keyword arguments for hyvox.voxelize, a warning or ""). No part with a colour: no
     colour arguments. The vertices and triangles are merged like pipeline.merge_meshes; in
     the texture form they are unshared (one vertex per corner) so each corner keeps its UV."""
-    from .pipeline import merge_meshes
-
     vertices, triangles = merge_meshes([(v, t) for v, t, _ in parts])
     colours = [c for _, _, c in parts]
     if all(c is None for c in colours):
@@ -117,10 +117,3 @@ def combine(parts: Sequence[Tuple[np.ndarray, np.ndarray, Optional[PartColour]]]
     if np.all(corner_colors[:, 3] == 1.0):
         corner_colors = np.ascontiguousarray(corner_colors[:, :3])  # opaque: no `alpha` grid
     return vertices, triangles, {"colors": corner_colors}, warning
-
-
-def voxelize_colour_kwargs(colour_kwargs: dict, wanted: bool) -> dict:
-    """The colour arguments and the attributes option for a run that wants colour."""
-    if not wanted or not colour_kwargs:
-        return {}
-    return dict(colour_kwargs, attributes="color")

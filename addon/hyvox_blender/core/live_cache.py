@@ -157,12 +157,6 @@ class LiveCache:
             keys = [k for k, e in self._entries.items() if e.owner == owner]
         return [p for key in keys for p in self.remove(key, protected)]
 
-    def discard_files(self, paths: Iterable[str], protected: Iterable[str] = ()) -> List[str]:
-        """Delete files a run wrote that will not be shown or cached (a run whose volume went
-        away), unless protected or held by an entry."""
-        keep = {_norm(p) for p in protected} | {_norm(p) for p in self.files()}
-        return [p for p in paths if _norm(p) not in keep and _delete(p)]
-
     def clear(self, protected: Iterable[str] = ()) -> List[str]:
         """Forget every entry and delete the files the cache wrote, except the protected ones
         (a saved .blend's, the shown ones when the session goes on), which are the cache's no

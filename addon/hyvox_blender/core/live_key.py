@@ -12,8 +12,6 @@ from typing import Any, Iterable, Mapping
 
 import numpy as np
 
-from .pipeline import GroupMesh
-
 
 def options_fingerprint(options: Mapping[str, Any]) -> str:
     """The options as canonical text (sorted, JSON): equal options, equal text."""
@@ -26,8 +24,9 @@ def _add_array(digest, array: np.ndarray) -> None:
     digest.update(memoryview(array).cast("B"))  # hashlib releases the GIL on large buffers
 
 
-def geometry_digest(meshes: Iterable[GroupMesh]) -> str:
-    """A hex digest of the groups' arrays (vertices, triangles, colour sources)."""
+def geometry_digest(meshes: Iterable) -> str:
+    """A hex digest of the groups' arrays (vertices, triangles, colour sources) of
+    pipeline.GroupMesh objects (not imported: the pipeline digests with this module)."""
     digest = hashlib.sha256()  # with SHA extensions the fastest of hashlib here
     for mesh in meshes:
         digest.update(mesh.group.key.encode() + b"\0")

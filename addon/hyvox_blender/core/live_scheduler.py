@@ -17,7 +17,7 @@
   never overlaps the next one.
 - Threaded (the UI: the caller polls collect() from a timer) or synchronous (background
   mode and renders: start() returns when the run has ended).
-Nothing here imports bpy; the Blender side (blender/live.py) exports, swaps and reports."""
+Nothing here imports bpy; the Blender side (blender/live/driver.py) exports, swaps and reports."""
 
 import threading
 import traceback

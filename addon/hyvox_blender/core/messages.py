@@ -4,7 +4,7 @@
 
 import re
 
-# Where the add-on shows the module's options that are not in the panel (blender/properties.py:
+# Where the add-on shows the module's options that are not in the panel (blender/ui/properties.py:
 # the preference's name is the schema's label).
 PREFERENCES = {"memory_budget_mib": "Preferences \u25b8 Memory Budget"}
 

@@ -12,7 +12,7 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import backend, lattice, naming, vox
+from . import backend, live_key, naming, vox
 from .blocks import BlocksMesh, blocks_mesh
 from .errors import CancelledError, HyvoxError
 from .settings import VoxelizeSettings
@@ -57,6 +57,7 @@ class GroupResult:
     blocks: Optional[BlocksMesh] = None  # settings.blocks: the blocks of the (one) frame
     vox_files: List[str] = field(default_factory=list)  # settings.export_vox: one per frame
     has_color: bool = False  # the .vdb has a `color` grid (the volume's material shows it)
+    geometry_digest: str = ""  # settings.live: the exported geometry's (live_key), for Live's cache
 
 
 @dataclass
@@ -102,7 +103,7 @@ class Pipeline:
         self.run_tag = run_tag
         self.export_frame = export_frame
         self.module = module if module is not None else backend.load_module()
-        self.method = backend.resolve_method(self.module, settings)
+        self.method = backend.resolve_method(self.module, settings.method, settings.options.get("gl_device", ""))
         # Settings changed for another method: the operator reports them (INFO).
         self.ignored_options: List[str] = backend.ignored_settings(self.module, settings, self.method)
         self.frames: List[Optional[int]] = list(settings.frames) if settings.is_sequence else [None]
@@ -264,11 +265,7 @@ class Pipeline:
                 self.results[mesh.group.key] = result
             # Every frame of a sequence uses the first frame's voxel size: the Volume
             # object's half-voxel correction and the look must not change per frame.
-            fixed_size = result.voxel_size if result.voxel_size else None
-            origin = None
-            if self.settings.fixed_lattice:
-                fixed = self._fixed_lattice(mesh, fixed_size)
-                fixed_size, origin = fixed.voxel_size, fixed.origin
+            first_size = result.voxel_size if result.voxel_size else None
             self._token = backend.make_token(self.module)
             start = time.perf_counter()
             # Solid runs too: the inside voxels take their colour from the surface inward
@@ -280,10 +277,9 @@ class Pipeline:
                 mesh.triangles,
                 self.settings,
                 self.method,
-                voxel_size=fixed_size,
+                voxel_size=first_size,
                 token=self._token,
                 colour=colour,
-                origin=origin,
             )
             self.timings.voxelize_ms += (time.perf_counter() - start) * 1000.0
             if self._cancelled:
@@ -323,17 +319,9 @@ class Pipeline:
             result.voxel_counts.append(int(grid.voxel_count))
             result.triangles = int(len(mesh.triangles))
             result.has_color = bool(colour)
+            if self.settings.live:
+                result.geometry_digest = live_key.geometry_digest([mesh])
         self._group_index = len(meshes)
-
-    def _fixed_lattice(self, mesh: GroupMesh, voxel_size: Optional[float]) -> lattice.Lattice:
-        options = self.settings.voxelize_options()
-        resolution = options.get("resolution", backend.load_module().option("resolution").default)
-        try:
-            return lattice.fixed_lattice(
-                mesh.vertices, mesh.triangles, int(resolution), voxel_size or options.get("voxel_size")
-            )
-        except ValueError as exc:
-            raise HyvoxError(f"{mesh.group.name}: {exc}") from exc
 
     def _blocks_and_vox(self, grid, result: GroupResult, final_vdb: str) -> None:
         """The other outputs of the same voxels: the blocks mesh (imported on the main

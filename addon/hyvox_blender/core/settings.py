@@ -12,7 +12,9 @@ from .errors import SettingsError
 
 class VoxelizeSettings:
     """method (a hyvox method or "auto"), separate, frames, and the hyvox.voxelize options
-    by their schema names (hyvox.OPTIONS); an option left out takes the native default."""
+    by their schema names (hyvox.OPTIONS), passed to it as they are (the module decides the
+    grid: voxel_size, when given, wins over resolution); an option left out takes the native
+    default."""
 
     def __init__(
         self,
@@ -24,6 +26,7 @@ class VoxelizeSettings:
         color: bool = False,
         sdf: bool = False,
         fixed_lattice: bool = False,
+        live: bool = False,
         **options: Any,
     ):
         self.method = method
@@ -32,9 +35,12 @@ class VoxelizeSettings:
         self.blocks = blocks  # also build the blocks mesh (core/blocks.py)
         self.export_vox = export_vox  # also write a MagicaVoxel .vox beside each .vdb
         self.color = color  # also a `color` grid, from what the materials show
-        # The grid on a lattice fixed in world space (core/lattice.py): always for sequences;
-        # for Live, whose every run must land on the voxels of the one before.
-        self.fixed_lattice = fixed_lattice or frames is not None
+        # The run makes live volumes (the operator's live=True): one frame, and each group's
+        # exported geometry is digested (GroupResult.geometry_digest) for Live's cache.
+        self.live = live
+        # The grid on a lattice fixed in world space (the module's snap_origin): always for
+        # sequences; for Live, whose every run must land on the voxels of the one before.
+        self.fixed_lattice = fixed_lattice or live or frames is not None
         self.sdf = sdf  # also an `sdf` level set, for Blender 5's SDF nodes
         self.options: Dict[str, Any] = options
 
@@ -42,23 +48,16 @@ class VoxelizeSettings:
     def is_sequence(self) -> bool:
         return self.frames is not None
 
-    def voxelize_options(self) -> Dict[str, Any]:
-        """The options hyvox.voxelize gets: a voxel size replaces the resolution."""
-        options = dict(self.options)
-        if options.get("voxel_size") is not None:
-            options.pop("resolution", None)
-        else:
-            options.pop("voxel_size", None)
-        return options
-
     def validate(self) -> "VoxelizeSettings":
         """Refuses with the schema's own message (the one the CLI and hyvox.voxelize give)."""
         module = backend.load_module()
         if self.method != AUTO_METHOD:
             self._check(module, "method", self.method)
-        for name, value in self.voxelize_options().items():
+        for name, value in self.options.items():
             self._check(module, name, value)
         if self.frames is not None:
+            if self.live:
+                raise SettingsError("Live volumes follow the animation by themselves: turn off the frame range")
             if not self.frames:
                 raise SettingsError("the frame range is empty")
             if self.blocks:

@@ -3,7 +3,7 @@
 on the resolution it was made at.
 
 The `density` grid is 1 in every occupied voxel. The volume's material (its Density, set by
-each run unless the artist changed it: blender/volume_material.py) multiplies it by:
+each run unless the artist changed it: blender/volume/material.py) multiplies it by:
 
 - A filled (solid) volume gets a density in world units: SOLID_MEAN_FREE_PATHS mean free
   paths across the longest side of what was voxelized, the same at every resolution (and for

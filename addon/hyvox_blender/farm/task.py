@@ -28,7 +28,9 @@ import bpy
 from ..core import backend, frame_ranges, naming
 from ..core.errors import CancelledError, HyvoxError
 from ..core.pipeline import GroupResult
-from ..blender import export, frame_export, importer, properties
+from ..blender.export import frames as frame_export, sources as export
+from ..blender.ui import properties
+from ..blender.volume import importer
 from .arguments import parse as parse_arguments
 
 PACKAGE = __package__.rpartition(".")[0]  # the add-on: hyvox_blender or bl_ext.<repo>.hyvox_blender

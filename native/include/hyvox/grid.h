@@ -84,12 +84,17 @@ struct GridOptions {
     std::optional<std::array<double, 3>> origin;  ///< default: mesh bounds min (minus padding)
     std::optional<Bounds> bounds;                 ///< default: mesh bounds; geometry outside is clipped
     int padding = 0;                              ///< empty voxels added on every side
+    /// Origin (unless given) at floor(bounds min / voxel size) whole voxel sizes, at or below
+    /// the min: a lattice fixed in world space, so calls whose bounds differ (frames, Live
+    /// edits) share their voxels where the mesh is the same.
+    bool snap_origin = false;
 };
 
 /// The most voxels along any axis of a grid.
 constexpr int kMaxResolution = 16384;
 
-/// Lays out the grid by the convention: origin = bounds min (unless given), s = longest extent /
+/// Lays out the grid by the convention: origin = bounds min (unless given; snapped down to a
+/// whole multiple of s with snap_origin), s = longest extent /
 /// resolution (unless given), dims = ceil(extent / s) per axis, at least 1; padding voxels
 /// added on every side. Pure (thread-safe).
 /// @param mesh_bounds the mesh's bounds (ValidatedMesh::bounds), world units

@@ -46,6 +46,16 @@ void refuseSpeckMesh(double longest_mesh_side, double voxel_size, bool from_boun
                        shortNumber(kMaxVoxelsPerMeshSide * longest_mesh_side));
 }
 
+// A whole multiple of s at or below x: floor(x / s) · s, one lower where x / s rounded up to
+// the next whole number (0.7 / 0.1 is 6.999999999999999, but 0.3 / 0.1 rounds the other way)
+// and the product lands above x. (A quotient that rounded down floors one voxel lower: still
+// on the lattice, with one more empty layer.)
+double snapDown(double x, double s) {
+    double k = std::floor(x / s);
+    if (k * s > x) k -= 1;
+    return k * s;
+}
+
 }  // namespace
 
 std::string GridSpec::dimsText() const {
@@ -73,7 +83,9 @@ GridSpec makeGrid(const Bounds& mesh_bounds, const GridOptions& options) {
     for (int a = 0; a < 3; ++a)
         longest_mesh_side = std::max(longest_mesh_side, mesh_bounds.max[a] - mesh_bounds.min[a]);
     refuseSpeckMesh(longest_mesh_side, grid.voxel_size, !options.voxel_size);
-    const std::array<double, 3> origin = options.origin.value_or(bounds.min);
+    std::array<double, 3> origin = options.origin.value_or(bounds.min);
+    if (options.snap_origin && !options.origin)
+        for (int a = 0; a < 3; ++a) origin[a] = snapDown(origin[a], grid.voxel_size);
     for (int a = 0; a < 3; ++a) {
         // The grid starts at the origin and must reach the bounds max; ceil of the exact ratio,
         // so a box whose size is a multiple of the voxel size gets exactly that many voxels.

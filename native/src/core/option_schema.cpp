@@ -299,6 +299,13 @@ std::vector<OptionSpec> buildSchema() {
             .label("Point Counts")
             .help("tessellation: also keep the points per voxel (the 'count' grid)")
             .field(HYVOX_FIELD(asFlag, tessellation.counts)));
+    add(Option("snap_origin")
+            .flag()
+            .group("grid")
+            .label("Snap Origin")
+            .help("origin (unless given) at a whole multiple of the voxel size at or below the bounds min: a lattice "
+                  "fixed in world space, so runs whose bounds differ keep the voxels of what did not move")
+            .field(HYVOX_FIELD(asFlag, grid.snap_origin)));
     return s;
 }
 

@@ -6,8 +6,8 @@ it (stopping playback, closing a menu)."""
 
 import bpy
 
-from . import live, live_volumes
-from .ui import _HyvoxSubPanel
+from . import driver as live, volumes as live_volumes
+from ..ui.panels import _HyvoxSubPanel
 
 
 class VIEW3D_PT_hyvox_live(_HyvoxSubPanel, bpy.types.Panel):

@@ -16,7 +16,7 @@ from typing import Dict, Iterable, Set
 import bpy
 from bpy.app.handlers import persistent
 
-from ..core import cleanup
+from ...core import cleanup
 
 RESULT_VOX_PROPERTY = "hyvox_vox"  # on a result object: its (first) .vox file
 

@@ -6,7 +6,7 @@ take its voxel size (farm_task.py)."""
 
 import bpy
 
-from . import export, render_depsgraph, render_equivalence
+from . import render_depsgraph, render_equivalence, sources as export
 
 
 def export_meshes(groups, evaluation: str, colour: bool, warn):

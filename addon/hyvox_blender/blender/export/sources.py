@@ -2,18 +2,18 @@
 """Evaluated meshes (modifiers, shape keys, constraints applied, instances included) in
 world space as numpy arrays. foreach_get with buffers of the exact RNA types (float32 co, uint32 indices)
 takes Blender's raw-copy path; other dtypes fall back to per-element RNA access, 5x
-slower. The triangles: mesh_triangles.py."""
+slower. The triangles: triangles.py."""
 
 from typing import Dict, List, Optional, Tuple
 
 import bpy
 import numpy as np
 
-from ..core import mesh_checks
-from ..core.errors import HyvoxError, SelectionError
-from ..core.colour import combine as combine_colours
-from ..core.pipeline import Group, GroupMesh
-from . import colour_export, mesh_triangles
+from ...core import mesh_checks, naming
+from ...core.errors import HyvoxError, SelectionError
+from ...core.colour import combine as combine_colours
+from ...core.pipeline import Group, GroupMesh
+from . import colour as colour_export, triangles as mesh_triangles
 
 # Object types whose evaluated geometry is (or converts to) a mesh.
 GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "FONT", "META"}
@@ -124,8 +124,6 @@ def pick_sources(objects, warn=None) -> List[bpy.types.Object]:
 
 
 def make_groups(sources, separate: bool, active: Optional[bpy.types.Object]) -> List[Group]:
-    from ..core import naming
-
     names = [o.name for o in sources]
     if separate or len(names) == 1:
         return [Group(name, [name]) for name in names]
@@ -163,7 +161,7 @@ def export_groups(
     group left without triangles is an error (the scene stays unchanged). An object the
     depsgraph leaves out (hidden in renders) is taken from fallback_depsgraph (the
     viewport's) with a warning, or without one when there is no fallback. colour: also
-    export what the objects' materials show (colour_export.py), combined per group by
+    export what the objects' materials show (colour.py), combined per group by
     core/colour.combine. images: the textures' pixels already read (colour_export.ImageCache;
     Live keeps one across its exports), else read afresh."""
     names = [name for group in groups for name in group.sources if name in bpy.data.objects]

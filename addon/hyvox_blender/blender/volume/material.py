@@ -20,7 +20,7 @@ from typing import Optional
 
 import bpy
 
-from ..core import volume_look
+from ...core import volume_look
 
 NODE_PREFIX = "hyvox "
 # The Principled Volume's Color without a `color` grid: the albedo of Blender's grey surface.

@@ -6,16 +6,16 @@ the face's corners) that the material reads, so the blocks render with their vox
 Flat shading is set on every face: a new face is flat in Blender 3.x but smooth from 4.1 on
 (no `sharp_face` attribute means smooth), and smooth blocks show dark triangles at every
 step. A kept material (a re-run) gets or loses the add-on's colour node with the grids, as
-the volume's does (volume_material.py): a missing "Col" attribute would read black."""
+the volume's does (material.py): a missing "Col" attribute would read black."""
 
 from typing import Optional, Tuple
 
 import bpy
 import numpy as np
 
-from ..core import naming
-from ..core.pipeline import GroupResult
-from . import volume_material
+from ...core import naming
+from ...core.pipeline import GroupResult
+from . import material as volume_material
 
 BLOCKS_SUFFIX = "_blocks"
 COLOR_ATTRIBUTE = "Col"

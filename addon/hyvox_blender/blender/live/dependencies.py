@@ -11,7 +11,7 @@ render-time run (live.py) exports it from the render's own evaluation."""
 
 import bpy
 
-from .node_groups import geometry_group
+from ..volume.node_groups import geometry_group
 
 GROUP_NAME = "hyvox Live Source"
 MODIFIER_NAME = "hyvox Live Source"

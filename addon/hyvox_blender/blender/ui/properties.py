@@ -10,7 +10,7 @@ an exclusive minimum (voxel size > 0) becomes min + EXCLUSIVE_STEP."""
 import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
-from ..core import backend
+from ...core import backend, panel_rules
 
 FLOAT_LIMIT = 3.4028234e38  # Blender float properties are float32
 INT_LIMIT = 2**31 - 1  # ... and int properties int32
@@ -94,8 +94,6 @@ def method_items():
     """Auto first, then the schema's methods. The list is fixed: which GL device the GL methods
     would run on here is asked only when the panel first draws (its note under Method,
     ui.py), so enabling the add-on loads neither the GL plugin nor a device list."""
-    from ..core import panel_rules
-
     labels = CHOICE_LABELS["method"]
     items = []
     for number, choice in enumerate([backend.AUTO_METHOD] + list(option_spec("method").choices)):
@@ -321,7 +319,9 @@ def _preferences_properties():
     }
 
 
-ADDON_NAME = __package__.rpartition(".")[0]
+# The add-on's package (hyvox_blender, or bl_ext.<repository>.hyvox_blender as an extension):
+# this module's, less blender.ui.
+ADDON_NAME = __package__.rsplit(".", 2)[0]
 
 
 class HyvoxPreferences(bpy.types.AddonPreferences):

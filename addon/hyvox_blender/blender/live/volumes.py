@@ -22,12 +22,15 @@ from typing import Dict, List, Optional
 
 import bpy
 
-from ..core import live_key, naming
-from ..core.errors import HyvoxError
-from ..core.pipeline import Group, GroupMesh
-from . import blocks_object, export, file_history, live_dependencies
-from .export import RESULT_KEY
-from .gather import settings_from_used, used_values
+from ...core import live_key, naming
+from ...core.errors import HyvoxError
+from ...core.pipeline import Group, GroupMesh
+from . import dependencies as live_dependencies
+from ..export import sources as export
+from ..files import history as file_history
+from ..volume import blocks as blocks_object
+from ..export.sources import RESULT_KEY
+from ..gather import settings_from_used, used_values
 
 LIVE_ID = "hyvox_live_id"
 LIVE_SETTINGS = "hyvox_live_settings"
@@ -158,7 +161,7 @@ def settings_of(context, obj):
 def fingerprint(settings) -> str:
     return live_key.options_fingerprint(
         dict(
-            settings.voxelize_options(),
+            settings.options,
             method=settings.method,
             color=settings.color,
             sdf=settings.sdf,

@@ -29,16 +29,19 @@ import os
 import sys
 import threading
 import time
+import traceback
 
 import bpy
 from bpy.app.handlers import persistent
 
-from ..core.errors import HyvoxError
-from ..core.live_cache import LiveCache
-from ..core.live_run import LiveInput, LiveRun
-from ..core.live_scheduler import FAILED, SHOWN, LiveScheduler
-from . import live_dependencies, live_volumes, render_depsgraph
-from .live_volumes import LIVE_ID, SourcesUnavailable
+from ...core import live_key
+from ...core.errors import HyvoxError
+from ...core.live_cache import CacheEntry, LiveCache
+from ...core.live_run import LiveInput, LiveRun
+from ...core.live_scheduler import FAILED, SHOWN, LiveScheduler
+from . import dependencies as live_dependencies, volumes as live_volumes
+from ..export import render_depsgraph
+from .volumes import LIVE_ID, SourcesUnavailable
 
 POLL_SECONDS = 0.01  # the timer's interval while a run is on (Blender's loop sleeps ~5 ms)
 IDLE_POLL_SECONDS = 0.2  # while live volumes exist and nothing runs (the tick reads flags only)
@@ -236,8 +239,6 @@ def _tick():
         try:
             drive(bpy.context.scene, synchronous=False)
         except Exception:  # a timer that raises is dropped by Blender: keep Live alive
-            import traceback
-
             traceback.print_exc()
     if _Live.scheduler.active():
         return POLL_SECONDS
@@ -466,57 +467,27 @@ def _switched(obj, context):
     follow_live_volumes()
 
 
-def prepare_run(settings, used) -> dict:
-    """A run that makes live volumes (operator, live=True): its voxels on the fixed lattice,
-    evaluated as Live evaluates while editing (the viewport's depsgraph), not parented.
-    Returns the values the run uses."""
-    from ..core.errors import SettingsError
-
-    if settings.is_sequence:
-        raise SettingsError("Live volumes follow the animation by themselves: turn off the frame range")
-    settings.fixed_lattice = True
-    return dict(used, evaluation="VIEWPORT", parent_to_source=False)
-
-
-def recording(export_frame, digests):
-    """export_frame that also keeps each group's geometry digest (live_key), so the new live
-    volumes know the state their voxels are of."""
-    from ..core import live_key
-
-    def export(frame):
-        meshes = export_frame(frame)
-        for mesh in meshes:
-            digests[mesh.group.key] = live_key.geometry_digest([mesh])
-        return meshes
-
-    return export
-
-
-def remember_results(objects, results, used) -> None:
-    """Every result records the settings and sources its Live switch will use."""
+def take_over(objects, results, used) -> None:
+    """The operator's finished run, handed over once. Every result records the settings and
+    sources its Live switch will use (now or later). A run that made live volumes (live=True)
+    turns Live on for them: their voxels are those of the current state, so they go into the
+    cache under its key (the run's geometry digests) and no run follows until something
+    changes."""
     for obj, result in zip(objects, results.values()):
         live_volumes.remember(obj, used, result.group, files=list(result.files) + list(result.vox_files))
-
-
-def make_live(objects, results, digests) -> None:
-    """Turn Live on for the volumes a run just made (operator, live=True). Their voxels are
-    those of the current state: they go into the cache under its key, so no run follows
-    until something changes."""
-    from ..core import live_key
-    from ..core.live_cache import CacheEntry
-
+    if not used["live"]:
+        return
     for obj, result in zip(objects, results.values()):
-        settings, _, fingerprint = live_volumes.settings_of(bpy.context, obj)
-        digest = digests.get(result.group.key)
+        _, _, fingerprint = live_volumes.settings_of(bpy.context, obj)
         _quiet.append(obj)
         try:
             obj.hyvox_live = True
         finally:
             _quiet.pop()
-        if digest is None:
+        if not result.geometry_digest:
             request(obj)
             continue
-        key = live_key.run_key(digest, fingerprint)
+        key = live_key.run_key(result.geometry_digest, fingerprint)
         obj[live_volumes.LIVE_KEY] = key
         _Live.cache.put(CacheEntry(key, result, owner=obj[LIVE_ID], frame=bpy.context.scene.frame_current))
     _refresh_shown()

@@ -16,7 +16,7 @@ from typing import Dict, Optional, Tuple
 import bpy
 import numpy as np
 
-from ..core.colour import DEFAULT_GREY, PartColour, sample_bilinear
+from ...core.colour import DEFAULT_GREY, PartColour, sample_bilinear
 
 # image name -> (key, texture in hyvox's form), filled once per export
 ImageCache = Dict[str, Tuple[str, np.ndarray]]

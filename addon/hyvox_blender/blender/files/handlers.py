@@ -2,7 +2,7 @@
 """Results made before the first save live in this session's own temporary folder
 (naming.unsaved_output_dir). When the file is saved, they move next to the .blend
 (hyvox_cache/<blend name>/): the .vdb and .vox files of the volumes and Blocks, and those of
-replaced results that undo can bring back (file_history.py points an undone volume at its
+replaced results that undo can bring back (history.py points an undone volume at its
 moved file); the volumes and results point there by relative paths, and the folder is
 removed once empty. So the saved file does not depend on a temporary
 folder that is gone after a reboot.
@@ -22,8 +22,8 @@ import shutil
 import bpy
 from bpy.app.handlers import persistent
 
-from ..core import cleanup, naming, session_folder
-from . import file_history
+from ...core import cleanup, naming, session_folder
+from . import history as file_history
 
 _saving_again = False
 

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Scene settings saved by earlier versions of the add-on, read as they were meant.
+"""Scene settings saved by earlier versions of the add-on, and the operator keyword their
+scripts used, read as they were meant.
 
 Earlier versions had a Fill Interior switch beside Mode: on (its default) the run was solid
 whatever Mode said, off Mode decided. Mode is now the one control (Solid by default). A .blend
@@ -15,6 +16,24 @@ SETTINGS_VERSION_KEY = "hyvox_settings_version"
 SETTINGS_VERSION = 2
 OLD_FILL_INTERIOR_KEY = "fill_interior"
 OLD_MODE_DEFAULT = "conservative"  # the schema's default, which Mode had beside Fill Interior
+
+# Scripts of earlier versions: the operator's fill_interior= keyword (operators.py).
+FILL_INTERIOR_DEPRECATED = (
+    "hyvox: fill_interior= is deprecated and will be removed; use mode= instead "
+    "(fill_interior={value} runs as mode='{mode}')"
+)
+
+
+def fill_interior_mode(fill_interior: bool, given_mode, scene_mode: str) -> str:
+    """The mode a run with the old fill_interior= keyword meant. On, the run was solid
+    whatever Mode said; off, Mode decided: the mode= a script gave beside it, else the
+    scene's unless that is the Solid this version defaults to (then the surface mode that
+    version defaulted to)."""
+    if fill_interior:
+        return "solid"
+    if given_mode is not None:
+        return given_mode
+    return scene_mode if scene_mode != "solid" else OLD_MODE_DEFAULT
 
 
 def upgrade(settings) -> bool:

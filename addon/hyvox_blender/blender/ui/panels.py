@@ -6,19 +6,21 @@ not apply to the chosen method hidden, and the last run's summary in short lines
 
 import bpy
 
-from ..core import backend, panel_rules
-from . import operators, properties
+from ...core import backend, panel_rules
+from ...core.errors import HyvoxError
+from . import properties
+from .. import operators
 
 
-def _resolved_method(settings) -> str:
-    if settings.method != backend.AUTO_METHOD:
-        return settings.method
+def _resolved_method(context, settings) -> str:
+    """The method a run would use: the run's own rule (backend.resolve_method) with the
+    preferences' GL device (its probe is cached after the first call)."""
     try:
         module = backend.load_module()
-    except Exception:
-        return "cpu"
-    # The same probe the run uses (cached after its first call).
-    return "hybrid" if backend.gl_available(module, "") else "cpu"
+    except HyvoxError:  # not loaded: a run would say why; the panel shows cpu
+        module = None
+    prefs = properties.preferences(context)
+    return backend.resolve_method(module, settings.method, prefs.gl_device_string if prefs is not None else "")
 
 
 _device_cache = []
@@ -69,7 +71,7 @@ class VIEW3D_PT_hyvox_voxelize(_HyvoxPanel, bpy.types.Panel):
         col.prop(settings, "size_mode", expand=True)
         col.prop(settings, "resolution" if settings.size_mode == "RESOLUTION" else "voxel_size")
         col.prop(settings, "method")
-        method = _resolved_method(settings)
+        method = _resolved_method(context, settings)
         note = panel_rules.method_note(settings.method, method, _gl_device())
         if note:
             software = settings.method in panel_rules.GL_METHODS and (_gl_device() or {}).get("software", True)
@@ -131,7 +133,7 @@ class VIEW3D_PT_hyvox_advanced(_HyvoxSubPanel, bpy.types.Panel):
     def draw(self, context):
         layout = self.layout_split()
         settings = context.scene.hyvox
-        method = _resolved_method(settings)
+        method = _resolved_method(context, settings)
         col = layout.column()
         col.prop(settings, "padding")
         col.prop(settings, "evaluation", text="Modifiers")

@@ -3,7 +3,7 @@
 sequence), an object named "<source>_voxels" carrying the half-voxel correction (and in
 Blender 4.2-4.5 the bounds EEVEE Next needs: eevee_bounds.py), a
 Principled Volume material reading `density`, and its Color from the `color` grid when the
-run made one (volume_material.py; its density: core/volume_look.py).
+run made one (material.py; its density: core/volume_look.py).
 
 What a re-run replaces: every earlier volume made from any of the objects it voxelizes (so
 changing the grouping, or the selection, never leaves two volumes of one object). From the
@@ -18,12 +18,13 @@ from typing import Callable, Dict, List, Optional
 import bpy
 from mathutils import Vector
 
-from ..core import alignment, naming, volume_look
-from ..core.pipeline import GroupResult
-from . import blocks_object, eevee_bounds, file_history, volume_material
+from ...core import alignment, naming, volume_look
+from ...core.pipeline import GroupResult
+from . import blocks as blocks_object, eevee_bounds, material as volume_material
+from ..files import history as file_history
 
-from .export import RESULT_KEY as KEY  # custom property: which sources a result came from
-from .export import RESULT_LEAD_KEY as LEAD_KEY
+from ..export.sources import RESULT_KEY as KEY  # custom property: which sources a result came from
+from ..export.sources import RESULT_LEAD_KEY as LEAD_KEY
 
 
 def _configure_volume(volume: bpy.types.Volume, result: GroupResult) -> None:

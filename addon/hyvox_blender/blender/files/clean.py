@@ -4,14 +4,15 @@ each time, so replaced results leave theirs behind). It looks in the folders hyv
 (the cache next to the .blend, this session's unsaved folder, the scene's output folder, the
 folders of hyvox volumes) and only at files named as hyvox names them. It keeps the files of
 the open file's volumes and results (a result's .vox with its .vdb) and those an undo or redo
-could bring back (file_history.py); those go once the file is opened again."""
+could bring back (history.py); those go once the file is opened again."""
 
 import os
 
 import bpy
 
-from ..core import cleanup, naming
-from . import file_history, importer
+from ...core import cleanup, naming
+from . import history as file_history
+from ..volume import importer
 
 
 def candidate_folders(context):
