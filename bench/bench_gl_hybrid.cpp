@@ -20,7 +20,7 @@
 #include "bench_args.h"
 #include "bench_results.h"
 #include "core/stopwatch.h"
-#include "gl/bindings.h"
+#include "gl/binding_points.h"
 #include "gl/gl_debug.h"
 #include "gl/gl_objects.h"
 #include "gl/gl_worker.h"

@@ -37,8 +37,8 @@
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/version.h"
-#include "io/vdb_grid.h"
 #include "openvdb_arrays.h"
+#include "vdb/vdb_grid.h"
 
 namespace {
 
@@ -122,7 +122,7 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
             hyvox::Stopwatch watch;
             hyvox::VoxelizeResult result = hyvox::voxelize(mesh.view(), options);
             call.push_back(watch.elapsedMs());
-            auto vdb = hyvox::io::makeDensityGrid(result.grid, result.occupancy);
+            auto vdb = hyvox::vdb::makeDensityGrid(result.grid, result.occupancy);
             with_vdb.push_back(watch.elapsedMs());
             stage.push_back(result.stats.timingMs("voxelize"));
             m.voxels = result.stats.voxel_count;
@@ -152,7 +152,7 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
         const std::vector<openvdb::Vec3s>& points = arrays.points;
         const std::vector<openvdb::Vec3I>& triangles = arrays.triangles;
         const std::vector<openvdb::Vec4I> quads;
-        const auto transform = hyvox::io::makeTransform(grid);  // same voxels as hyvox's grid
+        const auto transform = hyvox::vdb::makeTransform(grid);  // same voxels as hyvox's grid
         std::vector<double> times;
         Measured m;
         for (int r = 0; r < runs; ++r) {
@@ -201,7 +201,7 @@ int main(int argc, char** argv) {
         if (resolutions.empty()) resolutions = {256, 512};
         if (meshes.empty())
             meshes = {"bunny_stanford_69k.ply", "dragon_stanford_871k.ply.gz", "sponza_crytek_262k_vcolor.ply.gz"};
-        hyvox::io::initializeOpenVdb();
+        hyvox::vdb::initializeOpenVdb();
 
         std::printf(
             "hyvox %s cpu vs OpenVDB %s meshToUnsignedDistanceField (band 1 voxel); median of %d runs, "

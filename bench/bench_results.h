@@ -29,8 +29,8 @@
 #include <variant>
 #include <vector>
 
+#include "hyvox/json_text.h"
 #include "hyvox/version.h"
-#include "io/json_text.h"
 
 namespace hyvox::bench {
 
@@ -227,7 +227,6 @@ private:
 
     std::string json(const Machine& m) const {
         using detail::jsonNumber;
-        using io::jsonQuote;
         std::ostringstream out;
         out << "{\n \"benchmark\": " << jsonQuote(name_) << ",\n \"title\": " << jsonQuote(title_)
             << ",\n \"command\": " << jsonQuote(command_) << ",\n \"date\": " << jsonQuote(date_)

@@ -34,9 +34,9 @@
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
 #include "hyvox/version.h"
-#include "io/vdb_grid.h"
 #include "openvdb_arrays.h"
 #include "solid/fast_winding.h"
+#include "vdb/vdb_grid.h"
 
 namespace {
 
@@ -93,7 +93,7 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
     row.hyvox_active = result.sdf.activeCount();
 
     // OpenVDB on the same voxels: index (i,j,k) is voxel (i,j,k)'s centre.
-    const auto transform = hyvox::io::makeTransform(result.grid);
+    const auto transform = hyvox::vdb::makeTransform(result.grid);
     const hyvox::bench::OpenVdbArrays arrays = hyvox::bench::openvdbArrays(mesh);
     openvdb::FloatGrid::Ptr level_set;
     for (int r = 0; r < runs; ++r) {
@@ -166,7 +166,7 @@ int main(int argc, char** argv) try {
         args.files = {"spot_vcolor.ply", "happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz",
                       "bunny_stanford_69k.ply", "sponza_crytek_262k_vcolor.ply.gz"};
     const int runs = args.runs;
-    hyvox::io::initializeOpenVdb();
+    hyvox::vdb::initializeOpenVdb();
     hyvox::bench::ResultTable table("sdf", "The signed distance grid against OpenVDB's meshToLevelSet",
                                     {{"mesh"},
                                      {"res"},

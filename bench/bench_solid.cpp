@@ -34,8 +34,8 @@
 #include "core/stopwatch.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/mesh_io.h"
-#include "io/vdb_grid.h"
 #include "openvdb_arrays.h"
+#include "vdb/vdb_grid.h"
 
 namespace {
 
@@ -63,7 +63,7 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
         hyvox::Stopwatch watch;
         result = hyvox::voxelize(mesh.view(), options);
         ours.push_back(watch.restart());
-        auto grid = hyvox::io::makeDensityGrid(result.grid, result.occupancy);
+        auto grid = hyvox::vdb::makeDensityGrid(result.grid, result.occupancy);
         ours_vdb.push_back(ours.back() + watch.restart());
     }
     row.rule = result.stats.solid->inside_rule + " by " + result.stats.solid->evaluation;
@@ -72,7 +72,7 @@ Row runCase(const std::string& name, const hyvox::Mesh& mesh, int resolution, in
 
     // OpenVDB on the same grid: index (i,j,k) is voxel (i,j,k)'s centre.
     // The adapter form of meshToVolume takes index-space points (as Blender passes them).
-    const auto transform = hyvox::io::makeTransform(result.grid);
+    const auto transform = hyvox::vdb::makeTransform(result.grid);
     const hyvox::bench::OpenVdbArrays arrays = hyvox::bench::openvdbArrays(mesh, transform.get());
     const std::vector<openvdb::Vec3s>& points = arrays.points;
     const std::vector<openvdb::Vec3I>& triangles = arrays.triangles;
@@ -163,7 +163,7 @@ int main(int argc, char** argv) try {
     if (resolutions.empty()) resolutions = {256, 512, 1024};
     if (files.empty())
         files = {"happy_buddha_100k.ply", "dragon_stanford_871k.ply.gz", "sponza_crytek_262k_vcolor.ply.gz"};
-    hyvox::io::initializeOpenVdb();
+    hyvox::vdb::initializeOpenVdb();
     std::printf("%-34s %5s %-34s %9s %9s %9s %7s %12s %12s %10s %10s\n", "mesh", "res", "hyvox rule", "hyvox", "+vdb",
                 "openvdb", "x +vdb", "hyvox vox", "openvdb vox", "vdb-only", "hyvox-only");
     hyvox::bench::ResultTable table("solid", "Solid: hyvox mode=solid against OpenVDB meshToVolume + sdfToFogVolume",

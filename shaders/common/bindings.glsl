@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Binding points and uniform locations, declared once: the GLSL includes this file and so
-// does the C++ driver (native/src/gl/bindings.h), which is why it holds nothing but
+// does the C++ driver (native/src/gl/binding_points.h), which is why it holds nothing but
 // #defines. tests/native/test_gl_layer.cpp checks the linked programs agree.
 #ifndef HYVOX_BINDINGS_GLSL
 #define HYVOX_BINDINGS_GLSL

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer target for the formats read through assimp, read as readMesh reads them: in the
-// assimp reader process (native/src/io/assimp_reader.h). The first byte picks the format
+// assimp reader process (native/src/mesh_io/assimp_reader.h). The first byte picks the format
 // (fbx, 3mf), the rest is the file; an FBX's container is checked first (fbx_check.h). Whatever assimp does with the bytes,
 // this process must get a mesh whose arrays agree and whose indices are in range, or an
 // InvalidInput (a crash, a hang or memory past the budget in the reader process is one).
@@ -15,14 +15,14 @@
 #include <string>
 
 #include "hyvox/errors.h"
-#include "io/assimp_reader.h"
-#include "io/fbx_check.h"
+#include "mesh_io/assimp_reader.h"
+#include "mesh_io/fbx_check.h"
 
 namespace {
 
 constexpr const char* kFormats[] = {"fbx", "3mf"};
 // Small enough that a damaged file's allocations fail fast, large enough for the seeds.
-constexpr hyvox::io::AssimpReadLimits kLimits{512ull << 20, 5.0};
+constexpr hyvox::mesh_io::AssimpReadLimits kLimits{512ull << 20, 5.0};
 
 }  // namespace
 
@@ -31,8 +31,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string extension = kFormats[data[0] % (sizeof kFormats / sizeof kFormats[0])];
     const char* bytes = reinterpret_cast<const char*>(data + 1);
     try {
-        if (extension == "fbx") hyvox::io::checkFbxContainer(bytes, size - 1, "fuzz.fbx", kLimits.memory_bytes);
-        const hyvox::Mesh mesh = hyvox::io::readWithAssimp(bytes, size - 1, extension, "fuzz." + extension, kLimits);
+        if (extension == "fbx") hyvox::mesh_io::checkFbxContainer(bytes, size - 1, "fuzz.fbx", kLimits.memory_bytes);
+        const hyvox::Mesh mesh =
+            hyvox::mesh_io::readWithAssimp(bytes, size - 1, extension, "fuzz." + extension, kLimits);
         if (mesh.triangles.empty() || mesh.positions.size() % 3 != 0) std::abort();
         if (mesh.hasColors() && mesh.colors.size() != 4 * mesh.vertexCount()) std::abort();
         if (mesh.hasUvs() && mesh.uvs.size() != 2 * mesh.vertexCount()) std::abort();

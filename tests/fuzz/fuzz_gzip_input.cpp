@@ -10,16 +10,16 @@
 #include <vector>
 
 #include "hyvox/errors.h"
-#include "io/gzip_input.h"
-#include "io/ply_reader.h"
+#include "mesh_io/gzip_input.h"
+#include "mesh_io/ply_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     constexpr std::uint64_t kMaxOutput = 16u << 20;
     try {
         const std::vector<char> compressed(data, data + size);
-        const std::vector<char> plain = hyvox::io::gunzip(compressed, "fuzz.ply.gz", kMaxOutput);
+        const std::vector<char> plain = hyvox::mesh_io::gunzip(compressed, "fuzz.ply.gz", kMaxOutput);
         if (plain.empty() || plain.size() > kMaxOutput) std::abort();
-        const hyvox::Mesh mesh = hyvox::io::readPly(plain.data(), plain.size(), "fuzz.ply.gz");
+        const hyvox::Mesh mesh = hyvox::mesh_io::readPly(plain.data(), plain.size(), "fuzz.ply.gz");
         if (mesh.triangles.empty() || mesh.positions.size() % 3 != 0) std::abort();
         for (std::uint32_t i : mesh.triangles)
             if (i >= mesh.vertexCount()) std::abort();

@@ -13,32 +13,32 @@
 #include <cstdlib>
 
 #include "hyvox/errors.h"
-#include "io/gltf_reader.h"
-#include "io/mtl_reader.h"
-#include "io/obj_reader.h"
-#include "io/off_reader.h"
-#include "io/ply_reader.h"
-#include "io/stl_reader.h"
+#include "mesh_io/gltf_reader.h"
+#include "mesh_io/mtl_reader.h"
+#include "mesh_io/obj_reader.h"
+#include "mesh_io/off_reader.h"
+#include "mesh_io/ply_reader.h"
+#include "mesh_io/stl_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const char* bytes = reinterpret_cast<const char*>(data);
 #if defined(HYVOX_FUZZ_OBJ)
     try {
-        for (const hyvox::io::MtlMaterial& m : hyvox::io::readMtl(bytes, size, "fuzz.mtl"))
+        for (const hyvox::mesh_io::MtlMaterial& m : hyvox::mesh_io::readMtl(bytes, size, "fuzz.mtl"))
             if (m.name.empty()) std::abort();
     } catch (const hyvox::InvalidInput&) {}
 #endif
     try {
 #if defined(HYVOX_FUZZ_PLY)
-        const hyvox::Mesh mesh = hyvox::io::readPly(bytes, size, "fuzz.ply");
+        const hyvox::Mesh mesh = hyvox::mesh_io::readPly(bytes, size, "fuzz.ply");
 #elif defined(HYVOX_FUZZ_STL)
-        const hyvox::Mesh mesh = hyvox::io::readStl(bytes, size, "fuzz.stl");
+        const hyvox::Mesh mesh = hyvox::mesh_io::readStl(bytes, size, "fuzz.stl");
 #elif defined(HYVOX_FUZZ_OFF)
-        const hyvox::Mesh mesh = hyvox::io::readOff(bytes, size, "fuzz.off");
+        const hyvox::Mesh mesh = hyvox::mesh_io::readOff(bytes, size, "fuzz.off");
 #elif defined(HYVOX_FUZZ_GLTF)
-        const hyvox::Mesh mesh = hyvox::io::readGltf(bytes, size, "fuzz.gltf", 256u << 20);
+        const hyvox::Mesh mesh = hyvox::mesh_io::readGltf(bytes, size, "fuzz.gltf", 256u << 20);
 #else
-        const hyvox::Mesh mesh = hyvox::io::readObj(bytes, size, "fuzz.obj");
+        const hyvox::Mesh mesh = hyvox::mesh_io::readObj(bytes, size, "fuzz.obj");
 #endif
         if (mesh.triangles.empty() || mesh.positions.size() % 3 != 0) std::abort();
         if (mesh.hasColors() && mesh.colors.size() != 4 * mesh.vertexCount()) std::abort();

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <thread>
 
-#include "gl/bindings.h"
+#include "gl/binding_points.h"
 #include "gl/egl_device.h"
 #include "gl/gl_debug.h"
 #include "gl/gl_objects.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The assimp reader process (src/io/assimp_reader.h): whatever happens to the process that
+// The assimp reader process (src/mesh_io/assimp_reader.h): whatever happens to the process that
 // reads the file (it crashes, hangs, runs out of memory, writes garbage or a mesh with bad
 // indices, is cancelled), readMesh returns with a clear InvalidInput naming the file (or
 // hyvox::Cancelled), and no process is left behind. The fake readers are small shell scripts
@@ -22,7 +22,7 @@
 
 #include "hyvox/errors.h"
 #include "hyvox/mesh_io.h"
-#include "io/mesh_wire.h"
+#include "mesh_io/mesh_wire.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -124,7 +124,7 @@ TEST(AssimpProcess, ACrashOrAnExitIsAnErrorNamingTheFile) {
     EXPECT_HAS(errorOf(mesh), "the assimp reader crashed on it (SIGSEGV)");
     fakeReader(plugins, "echo 'something went wrong' >&2\nexit 7");
     EXPECT_HAS(errorOf(mesh), "the assimp reader failed on it (exit status 7: something went wrong)");
-    fakeReader(plugins, "exit " + std::to_string(hyvox::io::wire::kExitOutOfMemory));
+    fakeReader(plugins, "exit " + std::to_string(hyvox::mesh_io::wire::kExitOutOfMemory));
     EXPECT_HAS(errorOf(mesh), "reading it through assimp needs more than the memory budget of");
     EXPECT_EQ(children(), std::vector<std::string>{});
 }
@@ -142,20 +142,21 @@ TEST(AssimpProcess, WhatTheProcessSendsIsNotTrusted) {
     hyvox::Mesh bad;
     bad.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     bad.triangles = {0, 1, 3};
-    const fs::path bytes = files.write("bad.bin", hyvox::io::wire::meshMessage(bad));
+    const fs::path bytes = files.write("bad.bin", hyvox::mesh_io::wire::meshMessage(bad));
     fakeReader(plugins, "cat '" + bytes.string() + "'");
     EXPECT_HAS(errorOf(mesh), "the assimp reader sent back no valid mesh (a triangle index past the vertices)");
     // A mesh message declaring more than the budget is refused before anything is allocated.
-    std::string huge = hyvox::io::wire::meshMessage(bad);
+    std::string huge = hyvox::mesh_io::wire::meshMessage(bad);
     const std::uint64_t vertices = 1ull << 40;
     std::memcpy(&huge[1], &vertices, sizeof vertices);
     fakeReader(plugins, "cat '" + files.write("huge.bin", huge).string() + "'");
     EXPECT_HAS(errorOf(mesh), "the assimp reader sent back no valid mesh (a mesh larger than the memory budget)");
     // Its error message is passed on as it is.
-    fakeReader(plugins,
-               "cat '" +
-                   files.write("error.bin", hyvox::io::wire::errorMessage("cannot read mesh file 'x': why")).string() +
-                   "'");
+    fakeReader(
+        plugins,
+        "cat '" +
+            files.write("error.bin", hyvox::mesh_io::wire::errorMessage("cannot read mesh file 'x': why")).string() +
+            "'");
     EXPECT_EQ(errorOf(mesh), "cannot read mesh file 'x': why");
     EXPECT_EQ(children(), std::vector<std::string>{});
 }
@@ -200,5 +201,5 @@ TEST(AssimpProcess, ReaderOfAnotherProtocolRefusesToRun) {
     const std::size_t n = std::fread(text, 1, sizeof text - 1, run);
     const int status = ::pclose(run);
     EXPECT_HAS(std::string(text, n), "started by hyvox to read one mesh file");
-    EXPECT_EQ(WEXITSTATUS(status), hyvox::io::wire::kExitUsage);
+    EXPECT_EQ(WEXITSTATUS(status), hyvox::mesh_io::wire::kExitUsage);
 }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The FBX container check (src/io/fbx_check.h), on the binary FBX files the fuzzer starts from
+// The FBX container check (src/mesh_io/fbx_check.h), on the binary FBX files the fuzzer starts from
 // (tests/fuzz/seeds/fbx/: FBX 7.4 with plain arrays, 7.5 with 64-bit records and zlib
 // arrays, written by tests/python/mesh_writers.py): they pass, and each kind of disagreement
 // inside the container that assimp reads as another mesh is refused, naming the byte.
@@ -13,7 +13,7 @@
 #include <string>
 
 #include "hyvox/errors.h"
-#include "io/fbx_check.h"
+#include "mesh_io/fbx_check.h"
 
 namespace fs = std::filesystem;
 
@@ -26,7 +26,7 @@ std::string seed(const char* name) {
 
 std::string errorOf(const std::string& bytes) {
     try {
-        hyvox::io::checkFbxContainer(bytes.data(), bytes.size(), "m.fbx", 1ull << 30);
+        hyvox::mesh_io::checkFbxContainer(bytes.data(), bytes.size(), "m.fbx", 1ull << 30);
     } catch (const hyvox::InvalidInput& e) {
         return e.what();
     }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The strict glTF reader (src/io/gltf_reader.h) and its JSON parser: files written here read
+// The strict glTF reader (src/mesh_io/gltf_reader.h) and its JSON parser: files written here read
 // back as the triangles written, through node transforms, strips, fans and every index and
 // attribute encoding; damaged files are clear errors naming the object; no cut reads.
 #include <gtest/gtest.h>
@@ -14,8 +14,8 @@
 
 #include "hyvox/errors.h"
 #include "hyvox/mesh_io.h"
-#include "io/gltf_reader.h"
-#include "io/json_value.h"
+#include "mesh_io/gltf_reader.h"
+#include "mesh_io/json_value.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -77,7 +77,7 @@ std::string squareJson(const std::string& uri, const std::string& nodes = R"([{"
 }
 
 hyvox::Mesh read(const std::string& bytes, const std::string& name = "m.glb", std::uint64_t max_bytes = 1ull << 30) {
-    return hyvox::io::readGltf(bytes.data(), bytes.size(), name, max_bytes);
+    return hyvox::mesh_io::readGltf(bytes.data(), bytes.size(), name, max_bytes);
 }
 
 std::string errorOf(const std::string& bytes, const std::string& name = "m.glb", std::uint64_t max_bytes = 1ull << 30) {
@@ -227,14 +227,14 @@ TEST(IoGltf, DamagedFilesAreErrorsNamingTheObject) {
 TEST(IoGltf, JsonIsStrict) {
     auto error = [](const std::string& text) {
         try {
-            hyvox::io::parseJson(text.data(), text.size());
-        } catch (const hyvox::io::JsonError& e) {
+            hyvox::mesh_io::parseJson(text.data(), text.size());
+        } catch (const hyvox::mesh_io::JsonError& e) {
             return e.what;
         }
         return std::string("(no error)");
     };
     const std::string ok = R"( {"a": [1, -2.5e3, true, false, null, "x\u00e9\ud83d\ude00\n"], "b": {}} )";
-    const hyvox::io::JsonValue v = hyvox::io::parseJson(ok.data(), ok.size());
+    const hyvox::mesh_io::JsonValue v = hyvox::mesh_io::parseJson(ok.data(), ok.size());
     EXPECT_EQ(v.find("a")->items()[1].number(), -2500.0);
     EXPECT_EQ(v.find("a")->items()[5].string(), "x\xc3\xa9\xf0\x9f\x98\x80\n");
     for (const char* bad : {"[1,]", "{\"a\":1,}", "01", "1.", ".5", "1e", "+1", "\"\\x\"", "\"\\ud800\"", "[1] 2",
@@ -260,7 +260,7 @@ TEST(IoGltf, EveryTruncationAndByteFlipIsReadOrRefused) {
         for (std::size_t cut = 0; cut < bytes.size(); ++cut) {
             const std::vector<char> part(bytes.begin(), bytes.begin() + std::ptrdiff_t(cut));
             try {
-                hyvox::io::readGltf(part.data(), part.size(), name, 1ull << 30);
+                hyvox::mesh_io::readGltf(part.data(), part.size(), name, 1ull << 30);
                 EXPECT_GT(cut, last) << "cut at " << cut;
                 ++read_count;
             } catch (const hyvox::InvalidInput&) {
@@ -272,7 +272,7 @@ TEST(IoGltf, EveryTruncationAndByteFlipIsReadOrRefused) {
             for (int n = 1 + int(rng() % 3); n > 0; --n)
                 changed[rng() % changed.size()] = interesting[rng() % sizeof interesting];
             try {
-                const hyvox::Mesh mesh = hyvox::io::readGltf(changed.data(), changed.size(), name, 1ull << 30);
+                const hyvox::Mesh mesh = hyvox::mesh_io::readGltf(changed.data(), changed.size(), name, 1ull << 30);
                 for (std::uint32_t index : mesh.triangles) ASSERT_LT(index, mesh.vertexCount());
                 ++read_count;
             } catch (const hyvox::InvalidInput&) {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// readMesh maps uncompressed files (src/io/mapped_file.h). A file another process cuts short
+// readMesh maps uncompressed files (src/os/mapped_file.h). A file another process cuts short
 // while it is read must end in the same clear error as with read(), not in SIGBUS: here the
 // interrupter, asked before the body is parsed, truncates the file to its header.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The strict STL and OFF readers (src/io/stl_reader.h, off_reader.h): files written here read
+// The strict STL and OFF readers (src/mesh_io/stl_reader.h, off_reader.h): files written here read
 // back as the triangles written, damaged files are clear errors naming the file and the
 // place, no cut of a file reads as a shorter mesh, and a format hyvox does not read is
 // refused by name.
@@ -18,8 +18,8 @@
 
 #include "hyvox/errors.h"
 #include "hyvox/mesh_io.h"
-#include "io/off_reader.h"
-#include "io/stl_reader.h"
+#include "mesh_io/off_reader.h"
+#include "mesh_io/stl_reader.h"
 #include "support/read_error.h"
 #include "support/temp_dir.h"
 
@@ -273,9 +273,9 @@ TEST(IoMeshFormats, EveryTruncationAndByteFlipIsReadOrRefused) {
     t.triangles.back() = 4;
     using Reader = hyvox::Mesh (*)(const char*, std::size_t, const std::string&, hyvox::Interrupter*);
     const std::vector<std::tuple<std::string, std::string, Reader>> seeds = {
-        {"b.stl", stlBinary(t), hyvox::io::readStl},
-        {"a.stl", stlAscii(t), hyvox::io::readStl},
-        {"o.off", off(t), hyvox::io::readOff}};
+        {"b.stl", stlBinary(t), hyvox::mesh_io::readStl},
+        {"a.stl", stlAscii(t), hyvox::mesh_io::readStl},
+        {"o.off", off(t), hyvox::mesh_io::readOff}};
     std::mt19937 rng(6);
     const char interesting[] = {'\0', '\n', ' ', '-', '9', 'e', '#', '\xff', '\x7f', '3'};
     for (const auto& [name, bytes, reader] : seeds) {

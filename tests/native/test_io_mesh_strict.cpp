@@ -21,7 +21,7 @@
 
 #include "hyvox/errors.h"
 #include "hyvox/mesh_io.h"
-#include "io/gzip_input.h"
+#include "mesh_io/gzip_input.h"
 #include "support/assimp_mesh.h"
 #include "support/read_error.h"
 #include "support/temp_dir.h"
@@ -389,15 +389,15 @@ TEST(IoMeshStrict, GzipOutputIsBounded) {
     writeGzip(dir.path / "bomb.ply.gz", zeros);
     const std::string path = (dir.path / "bomb.ply.gz").string();
     try {
-        hyvox::io::readGzipFile(path, 1 << 20);
+        hyvox::mesh_io::readGzipFile(path, 1 << 20);
         ADD_FAILURE() << "no error";
     } catch (const hyvox::InvalidInput& e) {
         EXPECT_NE(std::string(e.what()).find("decompresses to more than 1 MiB"), std::string::npos) << e.what();
     }
     // The limit: 100x the compressed size, at least 256 MiB, at most the budget.
-    EXPECT_EQ(hyvox::io::gzipOutputLimit(1000, 4096ull << 20), 256ull << 20);
-    EXPECT_EQ(hyvox::io::gzipOutputLimit(10ull << 20, 4096ull << 20), 1000ull << 20);
-    EXPECT_EQ(hyvox::io::gzipOutputLimit(1ull << 40, 4096ull << 20), 4096ull << 20);
+    EXPECT_EQ(hyvox::mesh_io::gzipOutputLimit(1000, 4096ull << 20), 256ull << 20);
+    EXPECT_EQ(hyvox::mesh_io::gzipOutputLimit(10ull << 20, 4096ull << 20), 1000ull << 20);
+    EXPECT_EQ(hyvox::mesh_io::gzipOutputLimit(1ull << 40, 4096ull << 20), 4096ull << 20);
     // The 64 MiB bomb is within the default (256 MiB) and is then refused as a PLY.
     EXPECT_READ_ERROR(path, "not a PLY file");
 }

@@ -11,7 +11,7 @@
 
 #include "hyvox/errors.h"
 #include "hyvox/mesh_io.h"
-#include "io/mtl_reader.h"
+#include "mesh_io/mtl_reader.h"
 #include "support/temp_dir.h"
 
 using hyvox::test::TempDir;
@@ -81,7 +81,7 @@ TEST(IoObjMaterials, AFileWithoutUsemtlHasNoMaterials) {
 TEST(IoObjMaterials, MtlErrorsNameTheFileAndLine) {
     auto errorOf = [](const std::string& text) {
         try {
-            hyvox::io::readMtl(text.data(), text.size(), "m.mtl");
+            hyvox::mesh_io::readMtl(text.data(), text.size(), "m.mtl");
         } catch (const hyvox::InvalidInput& e) {
             return std::string(e.what());
         }
@@ -94,7 +94,7 @@ TEST(IoObjMaterials, MtlErrorsNameTheFileAndLine) {
     EXPECT_NE(errorOf("newmtl\n").find("needs a material name"), std::string::npos);
     EXPECT_NE(errorOf("newmtl a\nmap_Kd\n").find("needs a file name"), std::string::npos);
     const std::string good = "newmtl a b\nKd 0.5\nmap_Kd -bm 1 -s 2 2 2 dir\\t.png\nnewmtl c\nmap_Kd my file.png\n";
-    const auto materials = hyvox::io::readMtl(good.data(), good.size(), "m.mtl");
+    const auto materials = hyvox::mesh_io::readMtl(good.data(), good.size(), "m.mtl");
     ASSERT_EQ(materials.size(), 2u);
     EXPECT_EQ(materials[0].name, "a b");
     EXPECT_EQ(*materials[0].diffuse, (std::array<float, 3>{0.5f, 0.5f, 0.5f}));

@@ -15,8 +15,8 @@
 
 #include "hyvox/errors.h"
 #include "hyvox/vdb.h"
-#include "io/vdb_grid.h"
 #include "support/temp_dir.h"
+#include "vdb/vdb_grid.h"
 
 namespace fs = std::filesystem;
 
@@ -60,7 +60,7 @@ std::vector<Ijk> activeCoords(const openvdb::FloatGrid& grid) {
 }
 
 openvdb::FloatGrid::Ptr readGrid(const std::string& path, const std::string& name) {
-    hyvox::io::initializeOpenVdb();
+    hyvox::vdb::initializeOpenVdb();
     openvdb::io::File file(path);
     file.open();
     auto base = file.readGrid(name);
@@ -89,7 +89,7 @@ std::string slurp(const fs::path& path) {
 TEST(IoVdb, LeafCopyEqualsVoxelByVoxel) {
     for (double fill : {0.0, 0.02, 0.5, 1.0}) {
         const auto r = sampleResult(11, fill);
-        const auto fast = hyvox::io::makeDensityGrid(r.grid, r.occupancy);
+        const auto fast = hyvox::vdb::makeDensityGrid(r.grid, r.occupancy);
         const auto slow = densityVoxelByVoxel(r.occupancy);
         EXPECT_EQ(fast->activeVoxelCount(), r.occupancy.count()) << "fill " << fill;
         EXPECT_EQ(fast->tree().leafCount(), slow->tree().leafCount());
@@ -107,7 +107,7 @@ TEST(IoVdb, LeafCopyEqualsVoxelByVoxel) {
 TEST(IoVdb, LeafOriginsFollowBrickLayout) {
     hyvox::VoxelizeResult r = sampleResult(1, 0.0);  // only the two corner voxels
     r.occupancy.set(17, 9, 3);                       // brick (2,1,0)
-    const auto grid = hyvox::io::makeDensityGrid(r.grid, r.occupancy);
+    const auto grid = hyvox::vdb::makeDensityGrid(r.grid, r.occupancy);
     EXPECT_EQ(grid->tree().leafCount(), 3u);
     const auto* leaf = grid->tree().probeConstLeaf(openvdb::Coord(16, 8, 0));
     ASSERT_NE(leaf, nullptr);
@@ -243,7 +243,7 @@ TEST(IoVdb, AGridOverTheMemoryBudgetIsRefusedBeforeItIsBuilt) {
     const hyvox::VoxelizeResult r = sampleResult(5, 1.0);  // 37x20x9 all set: 5x3x2 = 30 leaves, ~66 KB as floats
     hyvox::WriteOptions one_mib;
     one_mib.memory_budget_mib = 1;
-    const std::uint64_t need = hyvox::io::densityGridBytes(r.occupancy);
+    const std::uint64_t need = hyvox::vdb::densityGridBytes(r.occupancy);
     EXPECT_GT(need, 30u * 512u * sizeof(float));  // at least the leaves' values
     EXPECT_LT(need, 1u << 20);
     const std::string path = (dir.path / "fits.vdb").string();
@@ -257,7 +257,7 @@ TEST(IoVdb, AGridOverTheMemoryBudgetIsRefusedBeforeItIsBuilt) {
     for (int bx = 0; bx < 32; ++bx)
         for (int by = 0; by < 24; ++by)
             for (int bz = 0; bz < 20; ++bz) big.occupancy.set(bx * 8, by * 8, bz * 8);
-    EXPECT_GT(hyvox::io::vdbWriterBytes(15360, 0, 0, 0), double(1 << 20));
+    EXPECT_GT(hyvox::vdb::vdbWriterBytes(15360, 0, 0, 0), double(1 << 20));
     const std::string refused = (dir.path / "refused.vdb").string();
     EXPECT_THROW(hyvox::writeVdb(big, refused, one_mib), hyvox::ResourceError);
     EXPECT_FALSE(fs::exists(refused));

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The directly serialized .vdb (io/vdb_direct_writer.h) against OpenVDB's own writer: both
+// The directly serialized .vdb (vdb/vdb_direct_writer.h) against OpenVDB's own writer: both
 // files read back with OpenVDB must hold the same grid (tree shape, every leaf's mask and
 // values, background, transform) and the same metadata, on grids spanning several upper and
 // lower internal nodes, full and empty leaves, and an empty grid.
@@ -14,10 +14,10 @@
 #include <string>
 
 #include "hyvox/vdb.h"
-#include "io/vdb_direct_writer.h"
-#include "io/vdb_grid.h"
 #include "support/temp_dir.h"
 #include "support/vdb_grid_checks.h"
+#include "vdb/vdb_direct_writer.h"
+#include "vdb/vdb_grid.h"
 
 namespace {
 
@@ -75,9 +75,9 @@ void checkAgainstOpenVdb(const hyvox::VoxelizeResult& r, int threads) {
     hyvox::WriteOptions write;
     write.threads = threads;
     hyvox::writeVdb(r, direct_path, write);
-    const openvdb::GridPtrVec grids = hyvox::io::makeGrids(r);
-    hyvox::io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), reference_path);
-    hyvox::io::initializeOpenVdb();
+    const openvdb::GridPtrVec grids = hyvox::vdb::makeGrids(r);
+    hyvox::vdb::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), reference_path);
+    hyvox::vdb::initializeOpenVdb();
     const auto direct = readVdbGrid<openvdb::FloatGrid>(direct_path, "density");
     const auto reference = readVdbGrid<openvdb::FloatGrid>(reference_path, "density");
     ASSERT_TRUE(direct && reference);
@@ -88,7 +88,7 @@ void checkAgainstOpenVdb(const hyvox::VoxelizeResult& r, int threads) {
     EXPECT_EQ(firstGridBuffers(direct_path), firstGridBuffers(reference_path));
     expectSameGrids(*direct, *reference);
     // The memory figure the direct writer states is OpenVDB's own for the built grid.
-    EXPECT_EQ(hyvox::io::vdbTreeMemUsage(hyvox::io::densityGrid(r.occupancy)), grids[0]->memUsage());
+    EXPECT_EQ(hyvox::vdb::vdbTreeMemUsage(hyvox::vdb::densityGrid(r.occupancy)), grids[0]->memUsage());
     if (r.counts.empty()) return;
     const auto direct_count = readVdbGrid<openvdb::FloatGrid>(direct_path, "count");
     const auto reference_count = readVdbGrid<openvdb::FloatGrid>(reference_path, "count");
@@ -124,9 +124,9 @@ TEST(IoVdbDirect, LeavesOverSeveralWriteBatchesEqualOpenVdbsFile) {
     // Leaves scattered one voxel each, more than two batches of the writer (it compresses and
     // writes kVdbLeavesPerBatch at a time and puts each grid's end position in afterwards),
     // with a count grid after them.
-    const int scattered = int(2 * hyvox::io::kVdbLeavesPerBatch + 1000);
+    const int scattered = int(2 * hyvox::vdb::kVdbLeavesPerBatch + 1000);
     auto r = makeResult({6000, 2000, 3000}, 0.1, 6, scattered);
-    ASSERT_GT(r.occupancy.leafCount(), 2 * hyvox::io::kVdbLeavesPerBatch);
+    ASSERT_GT(r.occupancy.leafCount(), 2 * hyvox::vdb::kVdbLeavesPerBatch);
     for (const auto& ijk : r.occupancy.coords()) r.counts.push_back({ijk[0], ijk[1], ijk[2], 7u});
     checkAgainstOpenVdb(r, 2);
 }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The direct .vdb writer's tiles and value grids (io/vdb_direct_writer.h) against OpenVDB:
+// The direct .vdb writer's tiles and value grids (vdb/vdb_direct_writer.h) against OpenVDB:
 // a grid of leaves and active tiles (as a solid's interior makes them, merged upwards as
 // prune() merges them), and Vec3f / float attribute grids with per-voxel values, each
 // written by both writers and read back with OpenVDB, must hold the same trees (leaves,
@@ -14,17 +14,17 @@
 
 #include "hyvox/errors.h"
 #include "hyvox/vdb.h"
-#include "io/vdb_direct_writer.h"
-#include "io/vdb_grid.h"
 #include "support/temp_dir.h"
 #include "support/vdb_grid_checks.h"
+#include "vdb/vdb_direct_writer.h"
+#include "vdb/vdb_grid.h"
 
 namespace {
 
-using hyvox::io::VdbGrid;
-using hyvox::io::VdbValueType;
 using hyvox::test::expectSameGrids;
 using hyvox::test::TempDir;
+using hyvox::vdb::VdbGrid;
+using hyvox::vdb::VdbValueType;
 
 hyvox::VoxelizeResult makeResult(std::array<std::int32_t, 3> dims, double fill, std::uint32_t seed,
                                  std::array<std::int32_t, 3> box) {
@@ -47,13 +47,13 @@ hyvox::VoxelizeResult makeResult(std::array<std::int32_t, 3> dims, double fill, 
 void writeFile(const std::string& path, const hyvox::VoxelizeResult& r, const std::vector<VdbGrid>& grids,
                int threads) {
     std::ofstream out(path, std::ios::binary);
-    hyvox::io::writeVdbGrids(out, r, grids, threads);
+    hyvox::vdb::writeVdbGrids(out, r, grids, threads);
 }
 
 // The direct writer's bytes of `grids`, in memory (a string stream is seekable, as the writer needs).
 std::string writtenBytes(const hyvox::VoxelizeResult& r, const std::vector<VdbGrid>& grids) {
     std::ostringstream out;
-    hyvox::io::writeVdbGrids(out, r, grids, 1);
+    hyvox::vdb::writeVdbGrids(out, r, grids, 1);
     return out.str();
 }
 
@@ -62,7 +62,7 @@ std::string writtenBytes(const hyvox::VoxelizeResult& r, const std::vector<VdbGr
 openvdb::FloatGrid::Ptr referenceShell(const hyvox::VoxelizeResult& r) {
     hyvox::VoxelizeResult empty = r;
     empty.occupancy = hyvox::SparseGrid(r.grid.dims);
-    return openvdb::gridPtrCast<openvdb::FloatGrid>(hyvox::io::makeGrids(empty)[0]);
+    return openvdb::gridPtrCast<openvdb::FloatGrid>(hyvox::vdb::makeGrids(empty)[0]);
 }
 
 // The solid branch's SparseGrid stand-in: its leaves, plus runs of whole bricks as tiles.
@@ -96,7 +96,7 @@ TEST(IoVdbDirectGrids, LeavesAndTilesEqualOpenVdbsPrunedTree) {
     std::sort(tile_bricks.begin(), tile_bricks.end());
     for (std::uint64_t b : tile_bricks) occupancy.runs.push_back({b, b + 1});
 
-    const VdbGrid density = hyvox::io::densityGrid(occupancy);
+    const VdbGrid density = hyvox::vdb::densityGrid(occupancy);
     ASSERT_EQ(density.tiles.size(), tile_bricks.size());
     TempDir dir;
     const std::string direct_path = (dir.path / "direct.vdb").string(),
@@ -115,20 +115,20 @@ TEST(IoVdbDirectGrids, LeavesAndTilesEqualOpenVdbsPrunedTree) {
     }
     reference->tree().prune();
     EXPECT_EQ(reference->tree().activeTileCount(), tile_bricks.size() - 4096 + 1);  // the full node merged
-    hyvox::io::writeGridsAtomic({reference}, reference_path);
+    hyvox::vdb::writeGridsAtomic({reference}, reference_path);
 
-    hyvox::io::initializeOpenVdb();
+    hyvox::vdb::initializeOpenVdb();
     const auto direct = hyvox::test::readVdbGrid<openvdb::FloatGrid>(direct_path, "density");
     const auto read_reference = hyvox::test::readVdbGrid<openvdb::FloatGrid>(reference_path, "density");
     ASSERT_TRUE(direct && read_reference);
     expectSameGrids(*direct, *read_reference);
-    EXPECT_EQ(hyvox::io::vdbTreeMemUsage(density), reference->memUsage());
+    EXPECT_EQ(hyvox::vdb::vdbTreeMemUsage(density), reference->memUsage());
 }
 
 TEST(IoVdbDirectGrids, TilesOfOtherValuesAndLevelsEqualOpenVdbs) {
     // Tiles given at every level, with values other than 1, and a Vec3f grid of tiles.
     hyvox::VoxelizeResult r = makeResult({9000, 200, 200}, 0.3, 3, {12, 12, 12});
-    VdbGrid grid = hyvox::io::densityGrid(r.occupancy);
+    VdbGrid grid = hyvox::vdb::densityGrid(r.occupancy);
     grid.tiles = {{{64, 0, 0}, 1, {2.5f, 0, 0}},
                   {{72, 0, 0}, 1, {-1.0f, 0, 0}},
                   {{128, 128, 0}, 2, {3.0f, 0, 0}},
@@ -164,7 +164,7 @@ TEST(IoVdbDirectGrids, TilesOfOtherValuesAndLevelsEqualOpenVdbs) {
     const std::string direct_path = (dir.path / "direct.vdb").string(),
                       reference_path = (dir.path / "openvdb.vdb").string();
     writeFile(direct_path, r, {grid, vectors}, 2);
-    hyvox::io::writeGridsAtomic({reference, reference_vectors}, reference_path);
+    hyvox::vdb::writeGridsAtomic({reference, reference_vectors}, reference_path);
     const auto direct = hyvox::test::readVdbGrid<openvdb::FloatGrid>(direct_path, "density");
     const auto read_reference = hyvox::test::readVdbGrid<openvdb::FloatGrid>(reference_path, "density");
     ASSERT_TRUE(direct && read_reference);
@@ -227,9 +227,9 @@ TEST(IoVdbDirectGrids, AttributeGridsEqualOpenVdbs) {
                       reference_path = (dir.path / "openvdb.vdb").string(),
                       made_path = (dir.path / "made.vdb").string();
     hyvox::writeVdb(r, direct_path);
-    hyvox::io::writeGridsAtomic({density, color, alpha, normal}, reference_path);
-    const openvdb::GridPtrVec made = hyvox::io::makeGrids(r);
-    hyvox::io::writeGridsAtomic(openvdb::GridCPtrVec(made.begin(), made.end()), made_path);
+    hyvox::vdb::writeGridsAtomic({density, color, alpha, normal}, reference_path);
+    const openvdb::GridPtrVec made = hyvox::vdb::makeGrids(r);
+    hyvox::vdb::writeGridsAtomic(openvdb::GridCPtrVec(made.begin(), made.end()), made_path);
     for (const std::string& other : {reference_path, made_path}) {
         SCOPED_TRACE(other);
         for (const char* name : {"color", "normal"}) {
@@ -326,9 +326,9 @@ TEST(IoVdbDirectGrids, LevelSetEqualsOpenVdbs) {
                       reference_path = (dir.path / "openvdb.vdb").string(),
                       made_path = (dir.path / "made.vdb").string();
     hyvox::writeVdb(r, direct_path);
-    hyvox::io::writeGridsAtomic({density, reference}, reference_path);
-    const openvdb::GridPtrVec made = hyvox::io::makeGrids(r);
-    hyvox::io::writeGridsAtomic(openvdb::GridCPtrVec(made.begin(), made.end()), made_path);
+    hyvox::vdb::writeGridsAtomic({density, reference}, reference_path);
+    const openvdb::GridPtrVec made = hyvox::vdb::makeGrids(r);
+    hyvox::vdb::writeGridsAtomic(openvdb::GridCPtrVec(made.begin(), made.end()), made_path);
     for (const std::string& other : {reference_path, made_path}) {
         SCOPED_TRACE(other);
         const auto direct = hyvox::test::readVdbGrid<openvdb::FloatGrid>(direct_path, "sdf");
@@ -345,7 +345,7 @@ TEST(IoVdbDirectGrids, LevelSetEqualsOpenVdbs) {
 
 TEST(IoVdbDirectGrids, OverlapsAndOffLatticeTilesAreRefused) {
     hyvox::VoxelizeResult r = makeResult({64, 64, 64}, 0.5, 2, {8, 8, 8});
-    VdbGrid grid = hyvox::io::densityGrid(r.occupancy);
+    VdbGrid grid = hyvox::vdb::densityGrid(r.occupancy);
     grid.tiles = {{{0, 0, 0}, 1}};  // on the leaf at 0
     EXPECT_THROW(writtenBytes(r, {grid}), hyvox::InvalidInput);
     grid.tiles = {{{0, 0, 0}, 2}};  // over the lower node that holds that leaf

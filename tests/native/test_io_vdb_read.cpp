@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The .vdb reader (io/vdb_reader.h) against OpenVDB itself: grids OpenVDB builds and writes
+// The .vdb reader (vdb/vdb_reader.h) against OpenVDB itself: grids OpenVDB builds and writes
 // (fog volumes with per-voxel values and tiles of every level, a level set with its
 // -background inside, a Vec3f grid with inactive values of its own), under every compression
 // OpenVDB offers, must read back as OpenVDB's own trees: the same leaves, masks, active and
@@ -17,15 +17,15 @@
 #include <vector>
 
 #include "hyvox/errors.h"
-#include "io/vdb_direct_writer.h"
-#include "io/vdb_grid.h"
-#include "io/vdb_reader.h"
 #include "support/temp_dir.h"
+#include "vdb/vdb_direct_writer.h"
+#include "vdb/vdb_grid.h"
+#include "vdb/vdb_reader.h"
 
 namespace {
 
-using hyvox::io::VdbReadGrid;
 using hyvox::test::TempDir;
+using hyvox::vdb::VdbReadGrid;
 
 hyvox::GridSpec spec() {
     hyvox::GridSpec grid;
@@ -40,7 +40,7 @@ openvdb::FloatGrid::Ptr fogGrid() {
     auto grid = openvdb::FloatGrid::create(0.0f);
     grid->setName("density");
     grid->setGridClass(openvdb::GRID_FOG_VOLUME);
-    grid->setTransform(hyvox::io::makeTransform(spec()));
+    grid->setTransform(hyvox::vdb::makeTransform(spec()));
     std::mt19937 rng(7);
     std::uniform_int_distribution<int> at(-40, 300);
     std::uniform_real_distribution<float> value(0.1f, 9.0f);
@@ -65,7 +65,7 @@ openvdb::Vec3SGrid::Ptr vectorGrid() {
     auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
     grid->setName("color");
     grid->setVectorType(openvdb::VEC_INVARIANT);
-    grid->setTransform(hyvox::io::makeTransform(spec()));
+    grid->setTransform(hyvox::vdb::makeTransform(spec()));
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> value(-1.0f, 1.0f);
     auto accessor = grid->getAccessor();
@@ -139,7 +139,7 @@ void expectSameTree(const GridType& grid, const VdbReadGrid& read) {
         else if (!std::equal(value.begin(), value.begin() + width, background.begin()))
             off.emplace_back(std::array<std::int32_t, 3>{c.x(), c.y(), c.z()}, int(it.getLevel()), value);
     }
-    auto tiles = [](const std::vector<hyvox::io::VdbTile>& from) {
+    auto tiles = [](const std::vector<hyvox::vdb::VdbTile>& from) {
         std::vector<Tile> out;
         for (const auto& t : from) out.emplace_back(t.origin, t.level, t.value);
         std::sort(out.begin(), out.end());
@@ -152,13 +152,13 @@ void expectSameTree(const GridType& grid, const VdbReadGrid& read) {
 }
 
 TEST(IoVdbRead, EveryCompressionReadsBackAsOpenVdbsTrees) {
-    hyvox::io::initializeOpenVdb();
+    hyvox::vdb::initializeOpenVdb();
     TempDir dir;
     const auto fog = fogGrid();
     const auto sdf = levelSet();
     const auto color = vectorGrid();
     ASSERT_GT(fog->tree().activeTileCount(), 0u);
-    const std::string transform = hyvox::io::vdbTransformBytes(spec());
+    const std::string transform = hyvox::vdb::vdbTransformBytes(spec());
     using namespace openvdb::io;
     for (const std::uint32_t compression :
          {std::uint32_t(COMPRESS_NONE), std::uint32_t(COMPRESS_ZIP), std::uint32_t(COMPRESS_BLOSC),
@@ -170,7 +170,7 @@ TEST(IoVdbRead, EveryCompressionReadsBackAsOpenVdbsTrees) {
         file.setCompression(compression);
         file.write({fog, sdf, color});
         file.close();
-        const hyvox::io::VdbFile read = hyvox::io::readVdbFile(path);
+        const hyvox::vdb::VdbFile read = hyvox::vdb::readVdbFile(path);
         ASSERT_EQ(read.grids.size(), 3u);
         expectSameTree(*fog, read.grids[0]);
         expectSameTree(*sdf, read.grids[1]);
@@ -183,7 +183,7 @@ TEST(IoVdbRead, EveryCompressionReadsBackAsOpenVdbsTrees) {
 }
 
 TEST(IoVdbRead, OneValueOnEveryLeafIsKeptOnce) {
-    hyvox::io::initializeOpenVdb();
+    hyvox::vdb::initializeOpenVdb();
     TempDir dir;
     auto grid = openvdb::FloatGrid::create(0.0f);
     grid->setName("density");
@@ -191,7 +191,7 @@ TEST(IoVdbRead, OneValueOnEveryLeafIsKeptOnce) {
     for (int n = 0; n < 300; ++n) accessor.setValueOn(openvdb::Coord(n, n / 3, 2 * n), 1.0f);
     const std::string path = (dir.path / "ones.vdb").string();
     openvdb::io::File(path).write({grid});
-    const VdbReadGrid read = hyvox::io::readVdbFile(path).grids[0];
+    const VdbReadGrid read = hyvox::vdb::readVdbFile(path).grids[0];
     EXPECT_TRUE(read.uniform);
     EXPECT_EQ(read.uniform_value[0], 1.0f);
     EXPECT_TRUE(read.values.empty());
@@ -204,11 +204,11 @@ std::string fileBytes(const std::string& path) {
 }
 
 TEST(IoVdbRead, FilesItCannotReadAreRefused) {
-    hyvox::io::initializeOpenVdb();
+    hyvox::vdb::initializeOpenVdb();
     TempDir dir;
     auto refused = [&](const std::string& path, const std::string& why) {
         try {
-            hyvox::io::readVdbFile(path);
+            hyvox::vdb::readVdbFile(path);
             ADD_FAILURE() << path << " was read";
         } catch (const hyvox::InvalidInput& e) {
             EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
@@ -238,7 +238,7 @@ TEST(IoVdbRead, FilesItCannotReadAreRefused) {
         std::string broken = bytes;
         for (int n = 0; n < 4; ++n) broken[rng() % broken.size()] = char(rng());
         try {
-            hyvox::io::readVdbFile(dir.write("broken.vdb", broken).string());
+            hyvox::vdb::readVdbFile(dir.write("broken.vdb", broken).string());
         } catch (const hyvox::InvalidInput&) {
             ++refusals;
         }

@@ -25,7 +25,6 @@
 #include "hyvox/errors.h"
 #include "hyvox/hyvox.h"
 #include "hyvox/vdb.h"
-#include "io/vdb_grid.h"
 #include "sdf/band_bins.h"
 #include "sdf/band_distances.h"
 #include "solid/fast_winding.h"
@@ -33,6 +32,7 @@
 #include "support/temp_dir.h"
 #include "support/test_mesh_loader.h"
 #include "support/triangle_soup.h"
+#include "vdb/vdb_grid.h"
 
 namespace hyvox {
 namespace {
@@ -475,7 +475,7 @@ openvdb::FloatGrid::Ptr writtenLevelSet(const VoxelizeResult& r, const test::Tem
 }
 
 TEST(SdfOpenVdb, LevelSetToolsAcceptItAndMeshItWatertightOnTheSource) {
-    io::initializeOpenVdb();
+    vdb::initializeOpenVdb();
     const test::TestMesh mesh = test::loadTestMesh(test::meshPath("spot_vcolor.ply"));
     const ValidatedMesh validated = validate(mesh.view());
     const VoxelizeResult r = voxelize(mesh.view(), sdfOptions(48));
@@ -524,11 +524,11 @@ TEST(SdfOpenVdb, OpenMeshSignSurvivesWhereTheFloodFillLeaks) {
     // from outside, which leaks through the elephant's holes. Where the two signs differ on
     // voxels both hold in the band, the exact winding number decides: hyvox right everywhere
     // it is clear (|w - 0.5| >= 0.1), OpenVDB wrong on a counted share.
-    io::initializeOpenVdb();
+    vdb::initializeOpenVdb();
     const test::TestMesh mesh = test::loadTestMesh(test::meshPath("elephant_holes.ply"));
     const ValidatedMesh validated = validate(mesh.view());
     const VoxelizeResult r = voxelize(mesh.view(), sdfOptions(64));
-    const auto transform = io::makeTransform(r.grid);
+    const auto transform = vdb::makeTransform(r.grid);
     std::vector<openvdb::Vec3s> points(mesh.positions.size() / 3);
     for (std::size_t v = 0; v < points.size(); ++v)
         points[v] = openvdb::Vec3s(transform->worldToIndex(

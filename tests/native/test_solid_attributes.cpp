@@ -14,10 +14,10 @@
 #include "attributes/tile_regions.h"
 #include "hyvox/vdb.h"
 #include "hyvox/voxelize.h"
-#include "io/vdb_grid.h"
 #include "support/mesh_arrays.h"
 #include "support/temp_dir.h"
 #include "support/vdb_grid_checks.h"
+#include "vdb/vdb_grid.h"
 
 namespace {
 
@@ -242,9 +242,9 @@ TEST(SolidAttributes, DirectFileEqualsOpenVdbsAndSharesTheDensitysTree) {
     const std::string direct_path = (dir.path / "direct.vdb").string(),
                       reference_path = (dir.path / "openvdb.vdb").string();
     writeVdb(r, direct_path);
-    const openvdb::GridPtrVec grids = io::makeGrids(r);
-    io::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), reference_path);
-    io::initializeOpenVdb();
+    const openvdb::GridPtrVec grids = vdb::makeGrids(r);
+    vdb::writeGridsAtomic(openvdb::GridCPtrVec(grids.begin(), grids.end()), reference_path);
+    vdb::initializeOpenVdb();
     const auto density = test::readVdbGrid<openvdb::FloatGrid>(direct_path, "density");
     ASSERT_TRUE(density);
     test::expectSameGrids(*density, *test::readVdbGrid<openvdb::FloatGrid>(reference_path, "density"));

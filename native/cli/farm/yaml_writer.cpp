@@ -5,12 +5,12 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "io/json_text.h"
+#include "hyvox/json_text.h"
 
 namespace hyvox::farm {
 
 // A JSON string literal is also a YAML double-quoted scalar and a JavaScript string.
-std::string quoted(const std::string& value) { return io::jsonQuote(value); }
+std::string quoted(const std::string& value) { return jsonQuote(value); }
 
 std::string shortestNumber(double value) {
     char buf[32];

@@ -2,10 +2,10 @@
 #pragma once
 /// @file
 /// Reading triangle meshes from files into an owning mesh. PLY, OBJ, STL, OFF and glTF are
-/// read by hyvox's own strict readers (src/io/*_reader.h): every declared count is checked
+/// read by hyvox's own strict readers (src/mesh_io/*_reader.h): every declared count is checked
 /// against the bytes present before allocating, and a damaged file is an InvalidInput naming
 /// the file and the place. The other formats go through assimp in a separate process
-/// (src/io/assimp_reader.h). Triangles are kept exactly as the file lists them: degenerate and
+/// (src/mesh_io/assimp_reader.h). Triangles are kept exactly as the file lists them: degenerate and
 /// duplicate triangles stay (validate() skips and counts them), so triangle counts match the
 /// file.
 #include <cstddef>
@@ -78,7 +78,7 @@ struct MeshReadOptions {
 /// OFF and glTF/GLB by hyvox's own strict readers; FBX (binary; its container checked first)
 /// and 3MF through assimp in a process of its own, so nothing in the file can crash, hang or
 /// exhaust this process.
-/// A name ending in ".gz" is decompressed first (bounded: see io/gzip_input.h; a stream cut
+/// A name ending in ".gz" is decompressed first (bounded: see mesh_io/gzip_input.h; a stream cut
 /// short is an error) and read as the extension before ".gz" (e.g. "x.ply.gz" as PLY); a
 /// file whose first line is "ply" is read as PLY whatever its name. Points and lines in the
 /// file are ignored (a PLY face or OBJ "f" with fewer than 3 corners is an error); polygons

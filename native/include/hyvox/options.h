@@ -213,7 +213,7 @@ struct WriteOptions {
     /// Output files (.vdb, stats JSON) synced to disk before their write returns (fsync of the
     /// file and its folder): they then survive a power loss too. Off: the atomic rename alone
     /// (no half-written file whatever happens to hyvox), as OpenVDB and Blender write
-    /// (src/io/atomic_file.h says why).
+    /// (src/os/atomic_file.h says why).
     bool durable = false;
     /// What the grids being built may hold beside the result they are made from (MiB);
     /// 0 = defaultMemoryBudgetMib().

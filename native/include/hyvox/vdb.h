@@ -2,7 +2,7 @@
 #pragma once
 /// @file
 /// Writing a voxelization to an OpenVDB file. OpenVDB types stay out of this header (its
-/// headers compile slowly); src/io/vdb_grid.h has the grid builders for code that links
+/// headers compile slowly); src/vdb/vdb_grid.h has the grid builders for code that links
 /// OpenVDB itself.
 ///
 /// The file holds:
@@ -47,8 +47,8 @@ void checkVdbVoxelSize(double voxel_size);
 /// Atomic: a temporary file in the same folder, renamed over `path` only after everything was
 /// written. On any failure the temporary file is removed and an existing file at `path` is
 /// left as it was. Synced to disk (file and folder) only when options.durable says so
-/// (src/io/atomic_file.h: why not by default). The file is serialized leaf by leaf on up to
-/// options.threads cores (src/io/vdb_direct_writer.h).
+/// (src/os/atomic_file.h: why not by default). The file is serialized leaf by leaf on up to
+/// options.threads cores (src/vdb/vdb_direct_writer.h).
 ///
 /// Thread safety: `result` is only read; several writes of one result may run at once (to
 /// different paths).

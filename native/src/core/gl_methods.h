@@ -24,7 +24,7 @@ struct GlMethods {
     // block and `budget` bytes.
     std::uint64_t (*tessellation_tile_bytes)(const std::string& device, std::uint64_t budget, int channels);
     std::vector<GlDevice> (*list_devices)();
-    GlObjectCounts (*live_objects)();
+    GlObjectCounts (*object_counts)();  // the GL objects alive in the plugin, by kind
 };
 
 // The plugin's table, loading it on first use; BackendError naming the plugin (and why it

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "core/option_row.h"
 #include "hyvox/errors.h"
 #include "hyvox/region.h"
 
@@ -16,17 +17,14 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Accessors: one line per field, captureless so they fit the spec's function pointers.
-// HYVOX_FIELD: a field of VoxelizeOptions; HYVOX_WRITE_FIELD: one of WriteOptions (after
-// HYVOX_FIELD, or after NO_VOXELIZE_FIELD for an option of the write alone); NO_WRITE_FIELD
-// before the fields after them (text_form...) of an option of the voxelization alone.
+// HYVOX_FIELD: a field of VoxelizeOptions (for Option::field); HYVOX_WRITE_FIELD: one of
+// WriteOptions (for Option::writeField).
 #define HYVOX_FIELD(type_get, expr)                                           \
     [](const VoxelizeOptions& o) -> OptionValue { return type_get(o.expr); }, \
         [](VoxelizeOptions& o, const OptionValue& v) { o.expr = fieldValue(v, o.expr); }
 #define HYVOX_WRITE_FIELD(type_get, expr)                                  \
     [](const WriteOptions& o) -> OptionValue { return type_get(o.expr); }, \
         [](WriteOptions& o, const OptionValue& v) { o.expr = fieldValue(v, o.expr); }
-#define NO_VOXELIZE_FIELD nullptr, nullptr
-#define NO_WRITE_FIELD nullptr, nullptr
 
 OptionValue asInteger(std::int64_t v) { return v; }
 OptionValue asNumber(double v) { return v; }
@@ -70,467 +68,249 @@ std::optional<T> fieldValue(const OptionValue& v, const std::optional<T>&) {
 static_assert(kMaxRegions == 2048, "the region's text_rule below names its limit");
 
 std::vector<OptionSpec> buildSchema() {
-    using T = OptionType;
     std::vector<OptionSpec> s;
-    auto add = [&](OptionSpec spec) { s.push_back(std::move(spec)); };
+    auto add = [&](const Option& row) { s.push_back(row.spec()); };
     // --- grid ---
-    add({"resolution",
-         T::Integer,
-         "grid",
-         "Resolution",
-         "voxels",
-         "voxels along the longest side of the bounds (voxel_size overrides it)",
-         false,
-         1,
-         kMaxResolution,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asInteger, grid.resolution)});
-    add({"voxel_size",
-         T::Number,
-         "grid",
-         "Voxel Size",
-         "world units",
-         "edge length of one voxel; unset: the longest side / resolution",
-         true,
-         0,
-         kInf,
-         true,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asOptionalNumber, grid.voxel_size)});
-    add({"origin",
-         T::Vector3,
-         "grid",
-         "Origin",
-         "world units",
-         "world position of voxel (0,0,0)'s min corner; unset: the bounds min",
-         true,
-         0,
-         0,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asOptionalVector, grid.origin)});
-    add({"bounds",
-         T::Box,
-         "grid",
-         "Bounds",
-         "world units",
-         "the box to voxelize (min and max corner); unset: the mesh bounds; geometry outside is clipped",
-         true,
-         0,
-         0,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asOptionalBox, grid.bounds)});
-    add({"padding",
-         T::Integer,
-         "grid",
-         "Padding",
-         "voxels",
-         "empty voxels added on every side",
-         false,
-         0,
-         1024,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asInteger, grid.padding)});
-    add({"region",
-         T::Text,
-         "grid",
-         "Region",
-         "",
-         "voxelize only box K (from 0) of the N the grid is cut into along its longest side, at whole 8³ "
-         "leaves: one farm task's part, on the whole grid's transform, for hyvox merge to join into the whole "
-         "grid's file; '' = the whole grid; not for solid mode with attributes",
-         false,
-         0,
-         0,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asRegion, region),
-         NO_WRITE_FIELD,
-         "K/N",
-         "K/N with whole numbers 0 <= K < N <= 2048, or '' for the whole grid",
-         isRegionText});
+    add(Option("resolution")
+            .integer(1, kMaxResolution)
+            .group("grid")
+            .label("Resolution")
+            .unit("voxels")
+            .help("voxels along the longest side of the bounds (voxel_size overrides it)")
+            .field(HYVOX_FIELD(asInteger, grid.resolution)));
+    add(Option("voxel_size")
+            .number(0, kInf)
+            .excludingMin()
+            .group("grid")
+            .label("Voxel Size")
+            .unit("world units")
+            .help("edge length of one voxel; unset: the longest side / resolution")
+            .nullable()
+            .field(HYVOX_FIELD(asOptionalNumber, grid.voxel_size)));
+    add(Option("origin")
+            .vector3()
+            .group("grid")
+            .label("Origin")
+            .unit("world units")
+            .help("world position of voxel (0,0,0)'s min corner; unset: the bounds min")
+            .nullable()
+            .field(HYVOX_FIELD(asOptionalVector, grid.origin)));
+    add(Option("bounds")
+            .box()
+            .group("grid")
+            .label("Bounds")
+            .unit("world units")
+            .help("the box to voxelize (min and max corner); unset: the mesh bounds; geometry outside is clipped")
+            .nullable()
+            .field(HYVOX_FIELD(asOptionalBox, grid.bounds)));
+    add(Option("padding")
+            .integer(0, 1024)
+            .group("grid")
+            .label("Padding")
+            .unit("voxels")
+            .help("empty voxels added on every side")
+            .field(HYVOX_FIELD(asInteger, grid.padding)));
+    add(Option("region")
+            .text()
+            .group("grid")
+            .label("Region")
+            .help("voxelize only box K (from 0) of the N the grid is cut into along its longest side, at whole 8³ "
+                  "leaves: one farm task's part, on the whole grid's transform, for hyvox merge to join into the whole "
+                  "grid's file; '' = the whole grid; not for solid mode with attributes")
+            .field(HYVOX_FIELD(asRegion, region))
+            .textForm("K/N", "K/N with whole numbers 0 <= K < N <= 2048, or '' for the whole grid", isRegionText));
     // --- the run ---
-    add({"mode",
-         T::Choice,
-         "run",
-         "Mode",
-         "",
-         "conservative: every voxel the surface touches (26-separating); thin: 6-separating; solid: "
-         "conservative plus every voxel whose centre is inside",
-         false,
-         0,
-         0,
-         false,
-         modeNames(),
-         {},
-         nullptr,
-         HYVOX_FIELD(asMode, mode)});
-    add({"method",
-         T::Choice,
-         "run",
-         "Method",
-         "",
-         "cpu and reference run anywhere; triangle, fragment, hybrid and tessellation need GL 4.5",
-         false,
-         0,
-         0,
-         false,
-         methodNames(),
-         {},
-         nullptr,
-         HYVOX_FIELD(asMethod, method)});
-    add({"threads",
-         T::Integer,
-         "run",
-         "Threads",
-         "threads",
-         "CPU threads of the voxelization and of the write; 0 = all cores",
-         false,
-         0,
-         4096,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asInteger, threads),
-         HYVOX_WRITE_FIELD(asInteger, threads)});
-    add({"memory_budget_mib",
-         T::Integer,
-         "run",
-         "Memory Budget",
-         "MiB",
-         "memory a run may take beside its mesh (every pass and the .vdb it writes; a run estimated to need more "
-         "is refused before it starts); 0 = half of this machine's memory",
-         false,
-         0,
-         double(1 << 30),
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asInteger, memory_budget_mib),
-         HYVOX_WRITE_FIELD(asInteger, memory_budget_mib)});
-    add({"tile_size",
-         T::Integer,
-         "run",
-         "Tile Size",
-         "voxels",
-         "side of the boxes voxelized one after the other (rounded up to a multiple of 8); 0 = from the "
-         "memory budget",
-         false,
-         0,
-         kMaxResolution,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asInteger, tile_size)});
+    add(Option("mode")
+            .choice(modeNames())
+            .group("run")
+            .label("Mode")
+            .help("conservative: every voxel the surface touches (26-separating); thin: 6-separating; solid: "
+                  "conservative plus every voxel whose centre is inside")
+            .field(HYVOX_FIELD(asMode, mode)));
+    add(Option("method")
+            .choice(methodNames())
+            .group("run")
+            .label("Method")
+            .help("cpu and reference run anywhere; triangle, fragment, hybrid and tessellation need GL 4.5")
+            .field(HYVOX_FIELD(asMethod, method)));
+    add(Option("threads")
+            .integer(0, 4096)
+            .group("run")
+            .label("Threads")
+            .unit("threads")
+            .help("CPU threads of the voxelization and of the write; 0 = all cores")
+            .field(HYVOX_FIELD(asInteger, threads))
+            .writeField(HYVOX_WRITE_FIELD(asInteger, threads)));
+    add(Option("memory_budget_mib")
+            .integer(0, double(1 << 30))
+            .group("run")
+            .label("Memory Budget")
+            .unit("MiB")
+            .help("memory a run may take beside its mesh (every pass and the .vdb it writes; a run estimated to need "
+                  "more "
+                  "is refused before it starts); 0 = half of this machine's memory")
+            .field(HYVOX_FIELD(asInteger, memory_budget_mib))
+            .writeField(HYVOX_WRITE_FIELD(asInteger, memory_budget_mib)));
+    add(Option("tile_size")
+            .integer(0, kMaxResolution)
+            .group("run")
+            .label("Tile Size")
+            .unit("voxels")
+            .help("side of the boxes voxelized one after the other (rounded up to a multiple of 8); 0 = from the "
+                  "memory budget")
+            .field(HYVOX_FIELD(asInteger, tile_size)));
     // --- attribute voxels ---
-    add({"attributes",
-         T::Choices,
-         "run",
-         "Attributes",
-         "",
-         "what to compute beside the voxels, a comma list: color (linear RGB, alpha when the source has "
-         "it) and normal per voxel (solid mode: the inside takes the surface's values, layer by layer "
-         "inward); sdf, a narrow-band signed distance grid (negative inside by the inside rule, in "
-         "every mode); '' = none",
-         false,
-         0,
-         0,
-         false,
-         attributeNames(),
-         {},
-         nullptr,
-         HYVOX_FIELD(asAttributes, attributes)});
-    add({"sdf_band",
-         T::Integer,
-         "run",
-         "SDF Band",
-         "voxels",
-         "sdf: half-width of the narrow band (the grid is padded by at least this much)",
-         false,
-         1,
-         64,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asInteger, sdf.band)});
+    add(Option("attributes")
+            .choiceList(attributeNames())
+            .group("run")
+            .label("Attributes")
+            .help("what to compute beside the voxels, a comma list: color (linear RGB, alpha when the source has "
+                  "it) and normal per voxel (solid mode: the inside takes the surface's values, layer by layer "
+                  "inward); sdf, a narrow-band signed distance grid (negative inside by the inside rule, in "
+                  "every mode); '' = none")
+            .field(HYVOX_FIELD(asAttributes, attributes)));
+    add(Option("sdf_band")
+            .integer(1, 64)
+            .group("run")
+            .label("SDF Band")
+            .unit("voxels")
+            .help("sdf: half-width of the narrow band (the grid is padded by at least this much)")
+            .field(HYVOX_FIELD(asInteger, sdf.band)));
     // --- output files (WriteOptions alone) ---
-    add({"durable_write",
-         T::Flag,
-         "output",
-         "Durable Write",
-         "",
-         "sync each output file (.vdb, stats JSON) and its folder to disk before the write returns, so it "
-         "survives a power loss; off: written to a temporary and renamed (never half-written), not synced",
-         false,
-         0,
-         0,
-         false,
-         {},
-         {},
-         nullptr,
-         NO_VOXELIZE_FIELD,
-         HYVOX_WRITE_FIELD(asFlag, durable)});
+    add(Option("durable_write")
+            .flag()
+            .group("output")
+            .label("Durable Write")
+            .help("sync each output file (.vdb, stats JSON) and its folder to disk before the write returns, so it "
+                  "survives a power loss; off: written to a temporary and renamed (never half-written), not synced")
+            .writeField(HYVOX_WRITE_FIELD(asFlag, durable)));
     // --- solid mode ---
-    add({"inside",
-         T::Choice,
-         "solid",
-         "Inside Rule",
-         "",
-         "solid and sdf: parity = odd ray crossings (closed meshes); winding = winding number >= 0.5 (holes, "
-         "flipped faces); auto = the winding number, by ray crossings when the mesh is closed and "
-         "consistently oriented, else by fast winding numbers",
-         false,
-         0,
-         0,
-         false,
-         insideRuleNames(),
-         {},
-         nullptr,
-         HYVOX_FIELD(asInsideRule, solid.inside)});
-    add({"winding_beta",
-         T::Number,
-         "solid",
-         "Winding Accuracy",
-         "",
-         "solid and sdf, winding: accuracy of the fast winding numbers (a cluster of triangles counts as one "
-         "expansion where the point is farther than beta times the cluster's radius); larger is more exact "
-         "and slower",
-         false,
-         1,
-         100,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asNumber, solid.winding_beta)});
+    add(Option("inside")
+            .choice(insideRuleNames())
+            .group("solid")
+            .label("Inside Rule")
+            .help("solid and sdf: parity = odd ray crossings (closed meshes); winding = winding number >= 0.5 (holes, "
+                  "flipped faces); auto = the winding number, by ray crossings when the mesh is closed and "
+                  "consistently oriented, else by fast winding numbers")
+            .field(HYVOX_FIELD(asInsideRule, solid.inside)));
+    add(Option("winding_beta")
+            .number(1, 100)
+            .group("solid")
+            .label("Winding Accuracy")
+            .help("solid and sdf, winding: accuracy of the fast winding numbers (a cluster of triangles counts as one "
+                  "expansion where the point is farther than beta times the cluster's radius); larger is more exact "
+                  "and slower")
+            .field(HYVOX_FIELD(asNumber, solid.winding_beta)));
     // --- GL methods ---
-    add({"gl_device",
-         T::Text,
-         "gl",
-         "GL Device",
-         "",
-         "EGL device: '' = a hardware GPU if any, else software; 'software'; or a device index",
-         false,
-         0,
-         0,
-         false,
-         {},
-         {},
-         "HYVOX_GL_DEVICE",
-         HYVOX_FIELD(asText, gl.device)});
-    add({"shader_dir",
-         T::Text,
-         "gl",
-         "Shader Folder",
-         "",
-         "read the GLSL from this copy of shaders/ instead of the embedded one",
-         false,
-         0,
-         0,
-         false,
-         {},
-         {},
-         "HYVOX_SHADER_DIR",
-         HYVOX_FIELD(asText, gl.shader_dir)});
-    add({"gl_tile_bytes",
-         T::Integer,
-         "gl",
-         "GL Tile Size",
-         "bytes",
-         "largest bit-grid tile on the GPU; 0 = one storage block (the device's limit)",
-         false,
-         0,
-         double(1ull << 40),
-         false,
-         {},
-         {},
-         "HYVOX_GL_TILE_BYTES",
-         HYVOX_FIELD(asInteger, gl.tile_bytes)});
-    add({"gl_pair_list_bytes",
-         T::Integer,
-         "gl",
-         "GL Pair List Size",
-         "bytes",
-         "largest list of (voxel, triangle) pairs the GL methods' colour/normal pass holds at once (a tile whose "
-         "pairs do not fit runs as halves); 0 = one storage block (the device's limit)",
-         false,
-         0,
-         double(1ull << 40),
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asInteger, gl.pair_list_bytes)});
-    add({"gl_wall_timing",
-         T::Flag,
-         "gl",
-         "Wall-Clock GPU Timing",
-         "",
-         "time GL passes by the wall clock instead of GPU timer queries (always on for software GL)",
-         false,
-         0,
-         0,
-         false,
-         {},
-         {},
-         "HYVOX_GL_WALL_TIMING",
-         HYVOX_FIELD(asFlag, gl.wall_timing)});
-    add({"tess_instanced",
-         T::Flag,
-         "tessellation",
-         "Instanced Patches",
-         "",
-         "tessellation: draw one instance per patch (always on for software GL)",
-         false,
-         0,
-         0,
-         false,
-         {},
-         {},
-         "HYVOX_TESS_INSTANCED",
-         HYVOX_FIELD(asFlag, gl.tess_instanced)});
+    add(Option("gl_device")
+            .text()
+            .group("gl")
+            .label("GL Device")
+            .help("EGL device: '' = a hardware GPU if any, else software; 'software'; or a device index")
+            .env("HYVOX_GL_DEVICE")
+            .field(HYVOX_FIELD(asText, gl.device)));
+    add(Option("shader_dir")
+            .text()
+            .group("gl")
+            .label("Shader Folder")
+            .help("read the GLSL from this copy of shaders/ instead of the embedded one")
+            .env("HYVOX_SHADER_DIR")
+            .field(HYVOX_FIELD(asText, gl.shader_dir)));
+    add(Option("gl_tile_bytes")
+            .integer(0, double(1ull << 40))
+            .group("gl")
+            .label("GL Tile Size")
+            .unit("bytes")
+            .help("largest bit-grid tile on the GPU; 0 = one storage block (the device's limit)")
+            .env("HYVOX_GL_TILE_BYTES")
+            .field(HYVOX_FIELD(asInteger, gl.tile_bytes)));
+    add(Option("gl_pair_list_bytes")
+            .integer(0, double(1ull << 40))
+            .group("gl")
+            .label("GL Pair List Size")
+            .unit("bytes")
+            .help("largest list of (voxel, triangle) pairs the GL methods' colour/normal pass holds at once (a tile "
+                  "whose "
+                  "pairs do not fit runs as halves); 0 = one storage block (the device's limit)")
+            .field(HYVOX_FIELD(asInteger, gl.pair_list_bytes)));
+    add(Option("gl_wall_timing")
+            .flag()
+            .group("gl")
+            .label("Wall-Clock GPU Timing")
+            .help("time GL passes by the wall clock instead of GPU timer queries (always on for software GL)")
+            .env("HYVOX_GL_WALL_TIMING")
+            .field(HYVOX_FIELD(asFlag, gl.wall_timing)));
+    add(Option("tess_instanced")
+            .flag()
+            .group("tessellation")
+            .label("Instanced Patches")
+            .help("tessellation: draw one instance per patch (always on for software GL)")
+            .env("HYVOX_TESS_INSTANCED")
+            .field(HYVOX_FIELD(asFlag, gl.tess_instanced)));
     // --- hybrid ---
-    add({"hybrid_cutoff",
-         T::Number,
-         "hybrid",
-         "Hybrid Cutoff",
-         "voxels²",
-         "hybrid: projected triangle area above which a triangle is rasterized; negative = automatic",
-         false,
-         -1,
-         kInf,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asNumber, hybrid.cutoff)});
+    add(Option("hybrid_cutoff")
+            .number(-1, kInf)
+            .group("hybrid")
+            .label("Hybrid Cutoff")
+            .unit("voxels²")
+            .help("hybrid: projected triangle area above which a triangle is rasterized; negative = automatic")
+            .field(HYVOX_FIELD(asNumber, hybrid.cutoff)));
     // --- tessellation ---
-    add({"tess_gamma",
-         T::Number,
-         "tessellation",
-         "Tessellation Density",
-         "",
-         "tessellation: safety factor γ of Eq. 1 (higher misses fewer voxels, costs more points; below 2 a "
-         "closed mesh may leak)",
-         false,
-         0,
-         1024,
-         true,
-         {},
-         {"--gamma"},
-         nullptr,
-         HYVOX_FIELD(asNumber, tessellation.gamma)});
-    add({"pn_triangles",
-         T::Flag,
-         "tessellation",
-         "PN-Triangles",
-         "",
-         "tessellation: PN-triangle smoothing",
-         false,
-         0,
-         0,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asFlag, tessellation.pn_triangles)});
-    add({"displacement_image",
-         T::Text,
-         "tessellation",
-         "Displacement Image",
-         "",
-         "tessellation: an 8/16-bit PNG height image sampled at the mesh's UVs (Blender Displace)",
-         false,
-         0,
-         0,
-         false,
-         {},
-         {"--displacement"},
-         nullptr,
-         HYVOX_FIELD(asText, tessellation.displacement_image)});
-    add({"displacement_strength",
-         T::Number,
-         "tessellation",
-         "Displacement Strength",
-         "world units",
-         "tessellation: displacement along the normal per unit of height",
-         false,
-         -kInf,
-         kInf,
-         false,
-         {},
-         {"--strength"},
-         nullptr,
-         HYVOX_FIELD(asNumber, tessellation.displacement_strength)});
-    add({"displacement_midlevel",
-         T::Number,
-         "tessellation",
-         "Displacement Midlevel",
-         "",
-         "tessellation: the height that stays in place",
-         false,
-         -kInf,
-         kInf,
-         false,
-         {},
-         {"--midlevel"},
-         nullptr,
-         HYVOX_FIELD(asNumber, tessellation.displacement_midlevel)});
-    add({"tess_counts",
-         T::Flag,
-         "tessellation",
-         "Point Counts",
-         "",
-         "tessellation: also keep the points per voxel (the 'count' grid)",
-         false,
-         0,
-         0,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asFlag, tessellation.counts)});
-    add({"snap_origin",
-         T::Flag,
-         "grid",
-         "Snap Origin",
-         "",
-         "origin (unless given) at a whole multiple of the voxel size at or below the bounds min: a lattice "
-         "fixed in world space, so runs whose bounds differ keep the voxels of what did not move",
-         false,
-         0,
-         0,
-         false,
-         {},
-         {},
-         nullptr,
-         HYVOX_FIELD(asFlag, grid.snap_origin)});
+    add(Option("tess_gamma")
+            .number(0, 1024)
+            .excludingMin()
+            .group("tessellation")
+            .label("Tessellation Density")
+            .help("tessellation: safety factor γ of Eq. 1 (higher misses fewer voxels, costs more points; below 2 a "
+                  "closed mesh may leak)")
+            .cliAlias("--gamma")
+            .field(HYVOX_FIELD(asNumber, tessellation.gamma)));
+    add(Option("pn_triangles")
+            .flag()
+            .group("tessellation")
+            .label("PN-Triangles")
+            .help("tessellation: PN-triangle smoothing")
+            .field(HYVOX_FIELD(asFlag, tessellation.pn_triangles)));
+    add(Option("displacement_image")
+            .text()
+            .group("tessellation")
+            .label("Displacement Image")
+            .help("tessellation: an 8/16-bit PNG height image sampled at the mesh's UVs (Blender Displace)")
+            .cliAlias("--displacement")
+            .field(HYVOX_FIELD(asText, tessellation.displacement_image)));
+    add(Option("displacement_strength")
+            .number(-kInf, kInf)
+            .group("tessellation")
+            .label("Displacement Strength")
+            .unit("world units")
+            .help("tessellation: displacement along the normal per unit of height")
+            .cliAlias("--strength")
+            .field(HYVOX_FIELD(asNumber, tessellation.displacement_strength)));
+    add(Option("displacement_midlevel")
+            .number(-kInf, kInf)
+            .group("tessellation")
+            .label("Displacement Midlevel")
+            .help("tessellation: the height that stays in place")
+            .cliAlias("--midlevel")
+            .field(HYVOX_FIELD(asNumber, tessellation.displacement_midlevel)));
+    add(Option("tess_counts")
+            .flag()
+            .group("tessellation")
+            .label("Point Counts")
+            .help("tessellation: also keep the points per voxel (the 'count' grid)")
+            .field(HYVOX_FIELD(asFlag, tessellation.counts)));
+    add(Option("snap_origin")
+            .flag()
+            .group("grid")
+            .label("Snap Origin")
+            .help("origin (unless given) at a whole multiple of the voxel size at or below the bounds min: a lattice "
+                  "fixed in world space, so runs whose bounds differ keep the voxels of what did not move")
+            .field(HYVOX_FIELD(asFlag, grid.snap_origin)));
     return s;
 }
 
 #undef HYVOX_FIELD
 #undef HYVOX_WRITE_FIELD
-#undef NO_VOXELIZE_FIELD
-#undef NO_WRITE_FIELD
 
 const char* typeName(OptionType type) {
     switch (type) {

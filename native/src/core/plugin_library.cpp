@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "core/plugin_library.h"
 
-#include <dlfcn.h>
-#include <sys/stat.h>
-
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -12,6 +9,7 @@
 
 #include "hyvox/errors.h"
 #include "hyvox_build_id.h"
+#include "os/shared_library.h"
 
 namespace hyvox {
 namespace {
@@ -25,15 +23,7 @@ std::string folderOf(const std::string& path) {
 std::vector<std::string> searchFolders() {
     if (const char* forced = std::getenv("HYVOX_PLUGIN_DIR"); forced && *forced) return {forced};
     std::vector<std::string> folders;
-    Dl_info self{};
-    if (::dladdr(reinterpret_cast<void*>(&searchFolders), &self) && self.dli_fname && *self.dli_fname) {
-        // dli_fname is the path the binary was loaded by (absolute for shared objects; for a
-        // program, as it was started): resolved, so a symlink to the CLI finds its plugins.
-        std::string binary = self.dli_fname;
-        if (char* real = ::realpath(binary.c_str(), nullptr)) {
-            binary = real;
-            std::free(real);
-        }
+    if (const std::string binary = os::thisBinaryPath(); !binary.empty()) {
         folders.push_back(folderOf(binary));
         folders.push_back(folderOf(folders.back()));
     }
@@ -46,33 +36,26 @@ std::vector<std::string> searchFolders() {
 // Refuses (and unloads) a plugin that is not of this build: nothing of it has been called yet
 // but its static initializers, which see none of the host's types.
 void checkBuildId(void* handle, const std::string& path, const std::string& purpose) {
-    const auto* id = static_cast<const char*>(::dlsym(handle, "hyvox_plugin_build_id"));
+    const auto* id = static_cast<const char*>(os::librarySymbol(handle, "hyvox_plugin_build_id"));
     if (id && std::strcmp(id, HYVOX_BUILD_ID) == 0) return;
     const std::string what = id
         ? std::string("is from another hyvox build (") + id + "; this hyvox is " + HYVOX_BUILD_ID + ")"
         : std::string("has no hyvox build id (not a hyvox plugin)");
-    ::dlclose(handle);
+    os::closeLibrary(handle);
     throw BackendError(purpose + " needs " + path + ", which " + what +
                        ": install hyvox and its plugins from one build");
 }
 
-bool isFile(const std::string& path) {
-    struct stat st {};
-    return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
-}
-
 std::mutex mutex;
-std::map<std::string, void*> loaded;  // name -> dlopen handle, never closed
+std::map<std::string, void*> loaded;  // name -> open library, never closed
 
 void* load(const std::string& name, const std::string& purpose) {
     const std::string path = pluginFile("libhyvox_" + name + ".so", purpose);
-    // RTLD_LOCAL: its symbols (its own copy of hyvox's internals, all hidden but the
-    // entry point) never stand in for anyone else's. RTLD_NOW: a missing symbol fails here.
-    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-        const char* why = ::dlerror();
-        throw BackendError(purpose + " needs " + path + ", which cannot be loaded: " + (why ? why : "unknown error"));
-    }
+    // Its symbols (its own copy of hyvox's internals, all hidden but the entry point) are
+    // kept to itself.
+    std::string why;
+    void* handle = os::openLibrary(path, why);
+    if (!handle) throw BackendError(purpose + " needs " + path + ", which cannot be loaded: " + why);
     checkBuildId(handle, path, purpose);
     return handle;
 }
@@ -83,7 +66,7 @@ std::string pluginFile(const std::string& file, const std::string& purpose) {
     std::string looked;
     for (const std::string& folder : searchFolders()) {
         const std::string path = folder + "/" + file;
-        if (isFile(path)) return path;
+        if (os::isRegularFile(path)) return path;
         looked += (looked.empty() ? "" : ", ") + folder;
     }
     throw BackendError(purpose + " needs " + file + ", which is not installed with hyvox (looked in " +
@@ -101,8 +84,7 @@ void* pluginSymbol(const std::string& name, const char* symbol, const std::strin
             throw;
         }
     }
-    ::dlerror();
-    void* address = ::dlsym(handle, symbol);
+    void* address = os::librarySymbol(handle, symbol);
     if (!address)
         throw BackendError(purpose + " needs the symbol " + symbol + " of libhyvox_" + name +
                            ".so, which does not have it (a plugin from another hyvox build?)");

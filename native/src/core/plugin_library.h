@@ -10,7 +10,7 @@
 //                           (core/gl_methods.h)
 //
 // The same folders hold the helper programs hyvox starts as processes of their own:
-//   hyvox_assimp_reader     the mesh formats read through assimp (io/assimp_reader.h)
+//   hyvox_assimp_reader     the mesh formats read through assimp (mesh_io/assimp_reader.h)
 //
 // Where a plugin is looked for, in order (the first folder that has the file is used):
 //   - $HYVOX_PLUGIN_DIR, when set (only there: to point a relocated build at its plugins,

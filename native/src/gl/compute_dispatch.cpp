@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "gl/bindings.h"
+#include "gl/binding_points.h"
 
 namespace hyvox::gl {
 

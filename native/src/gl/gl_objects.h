@@ -2,13 +2,13 @@
 #pragma once
 // Move-only owners of GL object names, created with direct state access (glCreate*).
 // They must be created and destroyed on the GL worker thread (inside GlWorker::run).
-// Each one is counted while it holds a name (live_objects.h).
+// Each one is counted while it holds a name (object_counts.h).
 #include <epoxy/gl.h>
 
 #include <cstddef>
 #include <utility>
 
-#include "gl/live_objects.h"
+#include "gl/object_counts.h"
 
 namespace hyvox::gl {
 

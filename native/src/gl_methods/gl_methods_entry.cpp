@@ -5,7 +5,7 @@
 
 #include "gl/device_limits.h"
 #include "gl/egl_device.h"
-#include "gl/live_objects.h"
+#include "gl/object_counts.h"
 #include "tessellation/point_values.h"
 
 namespace hyvox {
@@ -17,15 +17,15 @@ std::vector<GlDevice> listDevices() {
     return out;
 }
 
-GlObjectCounts liveObjects() {
-    auto live = [](gl::GlKind kind) { return gl::live_gl_objects[int(kind)].load(std::memory_order_relaxed); };
+GlObjectCounts objectCounts() {
+    auto count = [](gl::GlKind kind) { return gl::object_counts[int(kind)].load(std::memory_order_relaxed); };
     GlObjectCounts counts;
-    counts.buffers = live(gl::GlKind::Buffer);
-    counts.vertex_arrays = live(gl::GlKind::VertexArray);
-    counts.framebuffers = live(gl::GlKind::Framebuffer);
-    counts.programs = live(gl::GlKind::Program);
-    counts.shaders = live(gl::GlKind::Shader);
-    counts.queries = live(gl::GlKind::Query);
+    counts.buffers = count(gl::GlKind::Buffer);
+    counts.vertex_arrays = count(gl::GlKind::VertexArray);
+    counts.framebuffers = count(gl::GlKind::Framebuffer);
+    counts.programs = count(gl::GlKind::Program);
+    counts.shaders = count(gl::GlKind::Shader);
+    counts.queries = count(gl::GlKind::Query);
     return counts;
 }
 
@@ -34,7 +34,7 @@ std::uint64_t tessellationTileBytes(const std::string& device, std::uint64_t bud
     return channels > 0 ? tessellation::tileBitBytesForSums(block, budget, channels) : block;
 }
 
-const GlMethods table{runHybridBackend, runTessellationBackend, tessellationTileBytes, listDevices, liveObjects};
+const GlMethods table{runHybridBackend, runTessellationBackend, tessellationTileBytes, listDevices, objectCounts};
 
 }  // namespace
 }  // namespace hyvox

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "attributes/clip_to_voxel.h"
-#include "gl/bindings.h"
+#include "gl/binding_points.h"
 #include "gl/compute_dispatch.h"
 #include "gl/gl_debug.h"
 #include "gl/gl_limits.h"

@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "gl/active_uniforms.h"
-#include "gl/bindings.h"
+#include "gl/binding_points.h"
 #include "gl/compute_dispatch.h"
 #include "gl/gl_debug.h"
 #include "gl/gl_limits.h"
@@ -16,7 +16,7 @@
 #include "gl/pass_timer.h"
 #include "gl/shader_library.h"
 #include "hyvox/errors.h"
-#include "tessellation/bindings.h"
+#include "tessellation/binding_points.h"
 
 namespace hyvox::tessellation {
 namespace {

@@ -17,7 +17,7 @@ std::vector<GlDevice> listGlDevices() { return glMethods("listing the GL devices
 GlObjectCounts liveGlObjects() {
     // No GL object can exist before the plugin is loaded: asking must not load it.
     if (!pluginLoaded("gl_methods")) return {};
-    return glMethods("counting GL objects").live_objects();
+    return glMethods("counting GL objects").object_counts();
 }
 
 }  // namespace hyvox

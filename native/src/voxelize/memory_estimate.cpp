@@ -16,9 +16,9 @@
 #include "hyvox/errors.h"
 #include "hyvox/sparse_grid.h"
 #include "hyvox/zero_page_allocator.h"
-#include "io/vdb_direct_writer.h"
 #include "solid/fast_winding.h"
 #include "solid/fill_inside.h"
+#include "vdb/vdb_direct_writer.h"
 
 namespace hyvox::memory {
 namespace {
@@ -287,14 +287,14 @@ Estimate estimate(const ValidatedMesh& mesh, const GridSpec& grid, const Voxeliz
         const double band_leaves = std::min(L * (1.0 + 2.0 * std::ceil(band / 8.0)), bricks);
         const double band_voxels = std::min(V * (2.0 * band + 1.0), 512.0 * band_leaves);
         e.sdf = e.solid + kGrowing * (band_leaves * (2 * kLeaf + 8) + band_voxels * 4.0) +
-            io::vdbWriterBytes(band_leaves, 0, 512.0 * band_leaves, 1.0);
+            vdb::vdbWriterBytes(band_leaves, 0, 512.0 * band_leaves, 1.0);
     }
 
     // The .vdb writer beside the result (its leaves, tile runs and values).
     // The attribute values beside the writer's own bytes: the result's, and a part of them again
     // while a grid's leaves are filled (docs/why/memory-estimate.md).
     e.write = kLeaf * leaves + 16.0 * tile_bricks / 64.0 + 1.15 * voxels * channels * 4.0 +
-        io::vdbWriterBytes(leaves, tile_bricks, voxels, channels);
+        vdb::vdbWriterBytes(leaves, tile_bricks, voxels, channels);
     return e;
 }
 

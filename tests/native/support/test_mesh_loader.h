@@ -2,7 +2,7 @@
 #pragma once
 // Test-only reader for the shared meshes' one format (../shared/data/meshes/README.md):
 // binary little-endian PLY, vertex = float x,y,z + optional float/uchar extras, faces =
-// uchar 3 + 3 int32, optionally gzip-compressed. Independent of native/src/io on purpose.
+// uchar 3 + 3 int32, optionally gzip-compressed. Independent of native/src/mesh_io on purpose.
 #include <cstdint>
 #include <string>
 #include <vector>
