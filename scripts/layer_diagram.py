@@ -50,10 +50,7 @@ def diagram(links: dict) -> str:
     level = levels(links)
     order = sorted(links, key=lambda t: (level[t], t))
     width = max(len(t) for t in order)
-    lines = [
-        f"{t.ljust(width)}  -> {' '.join(links[t])}" if links[t] else t
-        for t in order
-    ]
+    lines = [f"{t.ljust(width)}  -> {' '.join(links[t])}" if links[t] else t for t in order]
     return "```\n" + "\n".join(line.rstrip() for line in lines) + "\n```"
 
 

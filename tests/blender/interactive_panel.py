@@ -207,8 +207,11 @@ def step():
     if s == 1:
         if shots:
             screenshot(shots, "panel_before_run.png")
+        # The size from the panel's own setting, so the picture after the run shows the
+        # setting that made its result.
+        bpy.context.scene.hyvox.resolution = 64
         with bpy.context.temp_override(window=window, area=area, region=region):
-            result = bpy.ops.object.hyvox_voxelize(method="cpu", resolution=64, output_dir=OUT)
+            result = bpy.ops.object.hyvox_voxelize(method="cpu", output_dir=OUT)
         if result != {"FINISHED"}:
             fail(f"the run returned {result}")
         # After a run the result is selected, active and visible.

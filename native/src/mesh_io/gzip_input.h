@@ -13,8 +13,8 @@
 namespace hyvox::mesh_io {
 
 // The largest output readMesh accepts from `compressed_bytes` of gzip: at most the read's
-// memory budget (`budget_bytes`), and at most 100 times the input but never below 256 MiB.
-// Real meshes compress 2-5x (the shared ones: 2.2-3.6x); bombs reach 1000x.
+// memory budget (`budget_bytes`), and at most 100 times the input but never below 256 MiB:
+// real meshes compress a few times, bombs a thousand times (docs/mesh-formats.md).
 std::uint64_t gzipOutputLimit(std::uint64_t compressed_bytes, std::uint64_t budget_bytes);
 
 // Decompresses gzip bytes already in memory (`path` is quoted in errors), as readGzipFile

@@ -22,8 +22,7 @@ namespace hyvox::os {
 // a rename over an existing file even starts writing the new data out. This is what OpenVDB's
 // own writer (no sync at all: it writes straight to the path), Blender's .blend save
 // (temporary + rename, no fsync: neither binary imports fsync) and the cuda_voxelizer peer
-// do; an fsync costs 4-45 ms of wall time on the test VM's ext4, as long as a whole
-// voxelization at 128 (docs/why/vdb-output.md).
+// do; an fsync costs as much wall time as a whole small voxelization (docs/why/vdb-output.md).
 //
 // Durable (WriteOptions::durable, the durable_write option): fsync the temporary before the rename and the folder
 // after it, so that once commit() returns the new file survives a power loss too. (A failed

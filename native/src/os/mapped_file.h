@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // A mesh file mapped into memory (read-only, pages taken straight from the page cache): no
-// fresh memory to fault in and zero, and no copy. Reading a 16 MB PLY this way costs ~3 ms
-// of CPU where read() into a buffer cost ~16 ms.
+// fresh memory to fault in and zero, and no copy: a fraction of the CPU that read() into a
+// buffer costs (docs/why/startup.md).
 //
 // A mapped file that another process shortens while it is read would raise SIGBUS on the
 // pages past its new end. While a MappedFile lives, a SIGBUS inside its mapping instead

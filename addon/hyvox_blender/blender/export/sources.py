@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Evaluated meshes (modifiers, shape keys, constraints applied, instances included) in
 world space as numpy arrays. foreach_get with buffers of the exact RNA types (float32 co, uint32 indices)
-takes Blender's raw-copy path; other dtypes fall back to per-element RNA access, 5x
-slower. The triangles: triangles.py."""
+takes Blender's raw-copy path; other dtypes fall back to per-element RNA access, several
+times slower (docs/why/addon-export.md). The triangles: triangles.py."""
 
 from typing import Dict, List, Optional, Tuple
 

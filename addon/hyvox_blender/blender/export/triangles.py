@@ -5,16 +5,15 @@ triangles in the same order (tests/blender/test_export_triangles.py checks them 
 `loop_triangles`' vertices, quads non-planar and concave and n-gons included;
 docs/why/addon-export.md says why quads are not split here).
 
-On 1M triangles `loop_triangles.foreach_get("vertices")` costs 30-35 ms of CPU in every
-version (a getter per triangle), and computing the loop triangles 10-15 ms more. Faster:
+`loop_triangles.foreach_get("vertices")` calls a getter per triangle, and computing the loop
+triangles costs more again (docs/why/addon-export.md has the figures). Cheaper:
 - a mesh of triangles only needs no triangulation: its face corners, three by three, are
   its loop triangles (Blender makes face f's triangle of corners s, s+1, s+2);
 - Blender 3.6 onwards keeps the corners' vertices as the `.corner_vert` attribute, which
-  foreach_get copies in one go (under 1 ms), and `loop_triangles`' `loops` (the corners of
-  each triangle) also copy in one go with a uint32 buffer (2-5 ms): their vertices are one
-  numpy gather away.
-In Blender 3.4 the loops' `vertex_index` (17 ms of CPU) plus loop triangles' `loops` (22 ms)
-cost more than their `vertices` (30 ms), which quads and n-gons keep reading there.
+  foreach_get copies in one go, and `loop_triangles`' `loops` (the corners of each triangle)
+  also copy in one go with a uint32 buffer: their vertices are one numpy gather away.
+In Blender 3.4 the loops' `vertex_index` plus loop triangles' `loops` cost more than their
+`vertices`, which quads and n-gons keep reading there.
 Quads are not split here: which diagonal Blender takes depends on a float32 test (and, in
 3.4, on whether face normals were cached), and the other diagonal of a non-planar quad is
 another surface."""
