@@ -2,8 +2,6 @@
 # Colour from an OBJ's materials (mtllib/usemtl, MTL Kd and map_Kd): read_mesh, voxelize and
 # the CLI give the colours of the same mesh passed as arrays, and the numpy oracle's; what the
 # reader cannot use (a missing image or .mtl) is a warning and the material's Kd (or grey).
-import subprocess
-
 import numpy as np
 import pytest
 import pyopenvdb as vdb
@@ -71,7 +69,7 @@ def test_read_mesh_gives_the_materials(tmp_path):
     assert attrs["textures"] == [str(tmp_path / "painted.png"), None]
 
 
-def test_file_colours_equal_the_arrays_and_the_oracle(tmp_path, cli):
+def test_file_colours_equal_the_arrays_and_the_oracle(tmp_path, cli_voxelize):
     path = write_obj(tmp_path)
     v, t, attrs = hyvox.read_mesh(path, attributes=True)
     from_file = hyvox.voxelize(
@@ -119,23 +117,7 @@ def test_file_colours_equal_the_arrays_and_the_oracle(tmp_path, cli):
 
     # The CLI takes the materials from the file by itself (no --texture).
     out = tmp_path / "scene.vdb"
-    done = subprocess.run(
-        [
-            str(cli),
-            "voxelize",
-            str(path),
-            "-o",
-            str(out),
-            "-q",
-            "--resolution",
-            str(RESOLUTION),
-            "--attributes",
-            "color",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    done = cli_voxelize(path, out, "-q", "--resolution", RESOLUTION, "--attributes", "color")
     assert done.returncode == 0, done.stderr
     assert "warning" not in done.stderr
     written = {tuple(item["min"]): item["value"] for item in vdb.read(str(out), "color").iterOnValues()}
@@ -144,7 +126,7 @@ def test_file_colours_equal_the_arrays_and_the_oracle(tmp_path, cli):
     np.testing.assert_array_equal(got, colors)
 
 
-def test_a_missing_image_is_a_warning_and_the_material_keeps_its_kd(tmp_path, cli):
+def test_a_missing_image_is_a_warning_and_the_material_keeps_its_kd(tmp_path, cli_voxelize):
     path = write_obj(tmp_path, image="missing.png", write_image=False)
     with pytest.warns(UserWarning, match="missing.png.*cannot be opened"):
         v, t, attrs = hyvox.read_mesh(path, attributes=True)
@@ -164,23 +146,7 @@ def test_a_missing_image_is_a_warning_and_the_material_keeps_its_kd(tmp_path, cl
     np.testing.assert_allclose(colors[on_quad], np.tile(PAINTED_KD, (on_quad.sum(), 1)), atol=1e-6)
     np.testing.assert_allclose(colors[~on_quad], np.tile(PLAIN_KD, ((~on_quad).sum(), 1)), atol=1e-6)
 
-    done = subprocess.run(
-        [
-            str(cli),
-            "voxelize",
-            str(path),
-            "-o",
-            str(tmp_path / "out.vdb"),
-            "-q",
-            "--resolution",
-            str(RESOLUTION),
-            "--attributes",
-            "color",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    done = cli_voxelize(path, tmp_path / "out.vdb", "-q", "--resolution", RESOLUTION, "--attributes", "color")
     assert done.returncode == 0, done.stderr
     assert "warning" in done.stderr and "missing.png" in done.stderr
 
