@@ -27,6 +27,7 @@ import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_results import Column, Table, add_out_argument  # noqa: E402  (beside this script)
+from blender_bench import exit_1_on_error, mesh_to_volume  # noqa: E402
 
 
 def parse_args():
@@ -99,22 +100,16 @@ def time_hyvox(obj, voxel_size, method, out):
 
 
 def time_mesh_to_volume(obj, voxel_size):
-    volume = bpy.data.volumes.new("MeshToVolume")
-    target = bpy.data.objects.new("MeshToVolume", volume)
-    bpy.context.scene.collection.objects.link(target)
-    modifier = target.modifiers.new("MeshToVolume", "MESH_TO_VOLUME")
-    modifier.object = obj
-    modifier.resolution_mode = "VOXEL_SIZE"
-    modifier.voxel_size = voxel_size
+    target, modifier = mesh_to_volume(obj, voxel_size)
     if hasattr(modifier, "use_fill_volume"):
         modifier.use_fill_volume = False  # surface band, like hyvox
-    modifier.interior_band_width = voxel_size
     if hasattr(modifier, "exterior_band_width"):
         modifier.exterior_band_width = voxel_size
     start = time.perf_counter()
     evaluated = target.evaluated_get(bpy.context.evaluated_depsgraph_get()).data
     ms = (time.perf_counter() - start) * 1000.0
     assert len(evaluated.grids) >= 1, "Mesh to Volume produced no grid"
+    volume = target.data
     bpy.data.objects.remove(target, do_unlink=True)
     bpy.data.volumes.remove(volume)
     return ms
@@ -236,11 +231,4 @@ def main():
 
 
 if __name__ == "__main__":
-    try:
-        main()
-    except Exception:
-        import traceback
-
-        traceback.print_exc()
-        sys.stdout.flush()
-        os._exit(1)
+    exit_1_on_error(main)

@@ -38,6 +38,7 @@ sys.path[:0] = [
     os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "demo"),
 ]
 from bench_results import add_out_argument  # noqa: E402
+import blender_bench  # noqa: E402
 from run_demo import enable_addon, mesh_from_arrays  # noqa: E402  (the demo's scene helpers)
 
 MESHES = {
@@ -252,15 +253,9 @@ def density_grid_node(source, voxel_size, edits):
 
 
 def mesh_to_volume(source, voxel_size, edits):
-    volume = bpy.data.volumes.new("MeshToVolume")
-    target = bpy.data.objects.new("MeshToVolume", volume)
-    bpy.context.scene.collection.objects.link(target)
-    modifier = target.modifiers.new("MeshToVolume", "MESH_TO_VOLUME")
-    modifier.object = source
-    modifier.resolution_mode = "VOXEL_SIZE"
-    modifier.voxel_size = voxel_size
-    modifier.interior_band_width = voxel_size  # the default, 0.2, is in world units
+    target, _ = blender_bench.mesh_to_volume(source, voxel_size)
     times = timed_edits(Edit(source, voxel_size), lambda: loaded(target), edits)
+    volume = target.data
     bpy.data.objects.remove(target, do_unlink=True)
     bpy.data.volumes.remove(volume)
     return statistics.median(times)
@@ -486,13 +481,6 @@ def main():
 
 
 if __name__ == "__main__":
-    try:
-        main()
-    except Exception:
-        import traceback
-
-        traceback.print_exc()
-        sys.stdout.flush()
-        os._exit(1)
+    blender_bench.exit_1_on_error(main)
     sys.stdout.flush()
     os._exit(0)

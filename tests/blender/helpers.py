@@ -40,6 +40,29 @@ def enable_addon(build_dir):
     return module
 
 
+def run_blender(*args, env=None, timeout=120):
+    """`blender -b --factory-startup -noaudio ARGS...`, a child Blender, its output captured
+    as text: what a test cannot see in its own Blender (a .blend opened fresh, a headless
+    script's exit code) it sees in one started the same way as every other test's."""
+    return subprocess.run(
+        [bpy.app.binary_path, "-b", "--factory-startup", "-noaudio", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env=env,
+    )
+
+
+def run_cli_script(blend, *args, blender_args=(), timeout=120):
+    """The add-on's headless entry point, cli_blender.py, on `blend` in a child Blender
+    (run_blender): `args` go to the script, `blender_args` to Blender after the script
+    (-a renders the animation)."""
+    import hyvox_blender
+
+    script = os.path.join(os.path.dirname(hyvox_blender.__file__), "cli_blender.py")
+    return run_blender(blend, "--python", script, *blender_args, "--", *args, timeout=timeout)
+
+
 def addon(submodule=""):
     """The enabled add-on's package, or one of its submodules ("core.backend")."""
     return importlib.import_module(ADDON_PACKAGE + ("." + submodule if submodule else ""))

@@ -4,7 +4,6 @@ frame chunks, stats JSON, saving, and exit code 1 on failure."""
 
 import json
 import os
-import subprocess
 
 import bpy
 import numpy as np
@@ -13,27 +12,7 @@ import helpers
 from helpers import AddonTestCase
 
 
-def cli_path():
-    import hyvox_blender
-
-    return os.path.join(os.path.dirname(hyvox_blender.__file__), "cli_blender.py")
-
-
 class CliScriptTest(AddonTestCase):
-    def run_cli(self, blend, *args):
-        command = [
-            bpy.app.binary_path,
-            "-b",
-            "--factory-startup",
-            "-noaudio",
-            blend,
-            "--python",
-            cli_path(),
-            "--",
-            *args,
-        ]
-        return subprocess.run(command, capture_output=True, text=True, timeout=120)
-
     def save_scene(self):
         cube = helpers.cube(size=1.0)
         cube.keyframe_insert("location", frame=1)
@@ -48,7 +27,7 @@ class CliScriptTest(AddonTestCase):
         vdb_dir = os.path.join(self.out, "vdb")
         stats = os.path.join(self.out, "stats.json")
         saved = os.path.join(self.out, "voxelized.blend")
-        done = self.run_cli(
+        done = helpers.run_cli_script(
             blend,
             "--frames",
             "3-4",
@@ -88,7 +67,7 @@ class CliScriptTest(AddonTestCase):
         for extra, grids in (((), ["color", "density"]), (("--no-color",), ["density"])):
             vdb_dir = os.path.join(self.out, "vdb" + "".join(extra))
             # A surface run, so the grids' voxels are the cube's shell.
-            done = self.run_cli(
+            done = helpers.run_cli_script(
                 blend, "--output", vdb_dir, "--resolution", "8", "--objects", "Cube", "--mode", "conservative", *extra
             )
             self.assertEqual(done.returncode, 0, done.stdout[-2000:] + done.stderr[-2000:])
@@ -101,11 +80,11 @@ class CliScriptTest(AddonTestCase):
 
     def test_failure_exits_1(self):
         blend = self.save_scene()
-        done = self.run_cli(blend, "--objects", "NoSuchObject", "--output", self.out)
+        done = helpers.run_cli_script(blend, "--objects", "NoSuchObject", "--output", self.out)
         self.assertEqual(done.returncode, 1)
         self.assertIn("NoSuchObject", done.stderr)
         # A value out of the schema's limits is refused with its message, and nothing is written.
-        done = self.run_cli(blend, "--objects", "Cube", "--resolution", "0", "--output", self.out)
+        done = helpers.run_cli_script(blend, "--objects", "Cube", "--resolution", "0", "--output", self.out)
         self.assertEqual(done.returncode, 1)
         self.assertIn("resolution must be a whole number between 1 and 16384, got 0", done.stderr)
         self.assertEqual([f for f in os.listdir(self.out) if f != "scene.blend"], [])
@@ -128,16 +107,8 @@ class CliScriptTest(AddonTestCase):
         blend = os.path.join(self.out, "animated.blend")
         bpy.ops.wm.save_as_mainfile(filepath=blend, copy=True)
         vdb_dir = os.path.join(self.out, "vdb")
-        command = [
-            bpy.app.binary_path,
-            "-b",
-            "--factory-startup",
-            "-noaudio",
+        done = helpers.run_cli_script(
             blend,
-            "--python",
-            cli_path(),
-            "-a",
-            "--",
             "--live",
             "--output",
             vdb_dir,
@@ -145,8 +116,9 @@ class CliScriptTest(AddonTestCase):
             "12",
             "--objects",
             "Cube",
-        ]
-        done = subprocess.run(command, capture_output=True, text=True, timeout=300)
+            blender_args=["-a"],
+            timeout=300,
+        )
         self.assertEqual(done.returncode, 0, done.stdout[-2000:] + done.stderr[-2000:])
         images = read_frames(render_dir, (1, 2, 3))
         # The cube's voxels darken the white background where the cube is in each frame.

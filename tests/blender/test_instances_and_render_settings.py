@@ -6,7 +6,6 @@ settings by default (viewport settings on request, also in the headless script).
 import json
 import math
 import os
-import subprocess
 
 import bpy
 import numpy as np
@@ -150,36 +149,21 @@ class InstancesAndRenderSettingsTest(AddonTestCase):
         subdivided_cube(viewport_levels=1, render_levels=3)
         blend = os.path.join(self.out, "scene.blend")
         bpy.ops.wm.save_as_mainfile(filepath=blend, copy=True)
-        import hyvox_blender
-
-        script = os.path.join(os.path.dirname(hyvox_blender.__file__), "cli_blender.py")
         for extra, levels in (([], 3), (["--viewport"], 1)):
             stats = os.path.join(self.out, f"stats{levels}.json")
-            done = subprocess.run(
-                [
-                    bpy.app.binary_path,
-                    "-b",
-                    "--factory-startup",
-                    "-noaudio",
-                    blend,
-                    "--python",
-                    script,
-                    "--",
-                    "--objects",
-                    "Smooth",
-                    "--voxel-size",
-                    "0.1",
-                    "--method",
-                    "cpu",
-                    "--output",
-                    self.out,
-                    "--stats-json",
-                    stats,
-                    *extra,
-                ],
-                capture_output=True,
-                text=True,
-                timeout=120,
+            done = helpers.run_cli_script(
+                blend,
+                "--objects",
+                "Smooth",
+                "--voxel-size",
+                "0.1",
+                "--method",
+                "cpu",
+                "--output",
+                self.out,
+                "--stats-json",
+                stats,
+                *extra,
             )
             self.assertEqual(done.returncode, 0, done.stderr[-2000:])
             with open(stats) as f:

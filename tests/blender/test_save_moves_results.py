@@ -8,7 +8,6 @@ unsaved file's results in it, and a stale folder of an ended session goes when B
 
 import json
 import os
-import subprocess
 import tempfile
 import time
 
@@ -18,16 +17,6 @@ import helpers
 from helpers import AddonTestCase
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def blender(*args, env=None, timeout=120):
-    return subprocess.run(
-        [bpy.app.binary_path, "-b", "--factory-startup", "-noaudio", *args],
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-        env=env,
-    )
 
 
 class SaveMovesResultsTest(AddonTestCase):
@@ -85,7 +74,7 @@ class SaveMovesResultsTest(AddonTestCase):
             "for v in sorted(bpy.data.volumes, key=lambda v: v.name):\n"
             "    print('VOLUME', v.filepath, os.path.exists(bpy.path.abspath(v.filepath)), v.grids.load())\n"
         )
-        done = blender(blend, "--python-expr", check)
+        done = helpers.run_blender(blend, "--python-expr", check)
         lines = [line.split() for line in done.stdout.splitlines() if line.startswith("VOLUME ")]
         self.assertEqual(len(lines), 2, done.stdout[-2000:])
         for _, path, exists, loaded in lines:
@@ -110,11 +99,15 @@ class SaveMovesResultsTest(AddonTestCase):
                 for path in [folder] + [os.path.join(folder, n) for n in os.listdir(folder)]:
                     os.utime(path, (then, then))
             script = os.path.join(HERE, "session_quit.py")
-            unsaved = blender("--python", script, "--", os.path.dirname(helpers.ADDON_DIR), "unsaved", env=env)
-            saved = blender(
+            unsaved = helpers.run_blender(
+                "--python", script, "--", os.path.dirname(helpers.ADDON_DIR), "unsaved", env=env
+            )
+            saved = helpers.run_blender(
                 "--python", script, "--", os.path.dirname(helpers.ADDON_DIR), os.path.join(tmp, "saved.blend"), env=env
             )
-            failed = blender("--python", script, "--", os.path.dirname(helpers.ADDON_DIR), "failed", env=env)
+            failed = helpers.run_blender(
+                "--python", script, "--", os.path.dirname(helpers.ADDON_DIR), "failed", env=env
+            )
             folders = {}
             for done in (unsaved, saved, failed):
                 line = next((text for text in done.stdout.splitlines() if text.startswith("SESSION ")), None)

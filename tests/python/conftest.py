@@ -4,6 +4,7 @@
 # BUILD/hyvox next to BUILD/python; meshes from $HYVOX_MESH_DIR, else ../shared/data/meshes.
 import os
 import pathlib
+import subprocess
 
 import pytest
 
@@ -28,6 +29,21 @@ def cli() -> pathlib.Path:
     if not path.exists():
         pytest.fail(f"hyvox CLI not found at {path} (set HYVOX_CLI)")
     return path
+
+
+@pytest.fixture(scope="session")
+def cli_voxelize(cli):
+    """run(mesh, out, *args, timeout=120, **kwargs): `hyvox voxelize MESH -o OUT ARGS...` in a
+    child process, its output captured as text, `kwargs` (env, cwd, ...) passed to
+    subprocess.run. One way for every test to start the CLI, so that a test names only what
+    it varies; the CLI's path is absolute, so a test may run it in another folder (cwd)."""
+    program = os.path.abspath(cli)
+
+    def run(mesh, out, *args, timeout=120, **kwargs):
+        command = [program, "voxelize", str(mesh), "-o", str(out), *map(str, args)]
+        return subprocess.run(command, capture_output=True, text=True, timeout=timeout, **kwargs)
+
+    return run
 
 
 def shared_mesh(name, file):

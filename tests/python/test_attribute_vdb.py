@@ -2,7 +2,6 @@
 # The attribute grids in the .vdb (CLI --attributes / --texture, VoxelGrid.write_vdb) read
 # back with pyopenvdb: active exactly on the density's voxels, with the module's values.
 import json
-import subprocess
 
 import numpy as np
 import pyopenvdb as vdb
@@ -28,26 +27,18 @@ def assert_grid_matches(path, name, grid, expected):
     np.testing.assert_array_equal(got.reshape(expected.shape), expected)
 
 
-def test_cli_writes_colour_and_normal_grids_from_file_colours(cli, mesh_dir, tmp_path):
+def test_cli_writes_colour_and_normal_grids_from_file_colours(cli_voxelize, mesh_dir, tmp_path):
     out, stats = tmp_path / "spot.vdb", tmp_path / "stats.json"
-    done = subprocess.run(
-        [
-            str(cli),
-            "voxelize",
-            str(mesh_dir / "spot_vcolor.ply"),
-            "-o",
-            str(out),
-            "-q",
-            "--resolution",
-            "40",
-            "--attributes",
-            "color,normal",
-            "--stats-json",
-            str(stats),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
+    done = cli_voxelize(
+        mesh_dir / "spot_vcolor.ply",
+        out,
+        "-q",
+        "--resolution",
+        "40",
+        "--attributes",
+        "color,normal",
+        "--stats-json",
+        stats,
     )
     assert done.returncode == 0, done.stderr
     names = sorted(meta["name"] for meta in vdb.readAllGridMetadata(str(out)))
@@ -61,27 +52,11 @@ def test_cli_writes_colour_and_normal_grids_from_file_colours(cli, mesh_dir, tmp
     assert_grid_matches(out, "normal", grid, grid.attributes()["normal"])
 
 
-def test_cli_texture_flag(cli, mesh_dir, tmp_path):
+def test_cli_texture_flag(cli_voxelize, mesh_dir, tmp_path):
     out = tmp_path / "spot.vdb"
     png = mesh_dir / "spot_texture.png"
-    done = subprocess.run(
-        [
-            str(cli),
-            "voxelize",
-            str(mesh_dir / "spot_uv.ply"),
-            "-o",
-            str(out),
-            "-q",
-            "--resolution",
-            "32",
-            "--attributes",
-            "color",
-            "--texture",
-            str(png),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
+    done = cli_voxelize(
+        mesh_dir / "spot_uv.ply", out, "-q", "--resolution", "32", "--attributes", "color", "--texture", png
     )
     assert done.returncode == 0, done.stderr
     v, t, attrs = hyvox.read_mesh(mesh_dir / "spot_uv.ply", attributes=True)
@@ -89,21 +64,8 @@ def test_cli_texture_flag(cli, mesh_dir, tmp_path):
     assert_grid_matches(out, "color", grid, grid.attributes()["color"])
 
     # A mesh without UVs cannot take a texture: a clear error, no file.
-    bad = subprocess.run(
-        [
-            str(cli),
-            "voxelize",
-            str(mesh_dir / "spot_vcolor.ply"),
-            "-o",
-            str(tmp_path / "no.vdb"),
-            "--attributes",
-            "color",
-            "--texture",
-            str(png),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=60,
+    bad = cli_voxelize(
+        mesh_dir / "spot_vcolor.ply", tmp_path / "no.vdb", "--attributes", "color", "--texture", png, timeout=60
     )
     assert bad.returncode != 0 and "needs the mesh's UVs" in bad.stderr
     assert not (tmp_path / "no.vdb").exists()
@@ -128,31 +90,23 @@ def test_alpha_grid_when_the_colours_have_alpha(tmp_path):
     assert_grid_matches(path, "color", grid, grid.attributes()["color"])
 
 
-def test_cli_writes_the_gl_methods_attribute_grids(cli, mesh_dir, tmp_path):
+def test_cli_writes_the_gl_methods_attribute_grids(cli_voxelize, mesh_dir, tmp_path):
     # The GL methods' colour and normal voxels (clipped on the GPU) go into the .vdb as the
     # cpu's do, and read back as the module computed them.
     v, t, attrs = hyvox.read_mesh(mesh_dir / "spot_vcolor.ply", attributes=True)
     colors = (attrs["colors"][:, :3] * 255).round().astype(np.uint8)
     for method in ("triangle", "fragment", "hybrid"):
         out = tmp_path / f"spot_{method}.vdb"
-        done = subprocess.run(
-            [
-                str(cli),
-                "voxelize",
-                str(mesh_dir / "spot_vcolor.ply"),
-                "-o",
-                str(out),
-                "-q",
-                "--resolution",
-                "32",
-                "--method",
-                method,
-                "--attributes",
-                "color,normal",
-            ],
-            capture_output=True,
-            text=True,
-            timeout=120,
+        done = cli_voxelize(
+            mesh_dir / "spot_vcolor.ply",
+            out,
+            "-q",
+            "--resolution",
+            "32",
+            "--method",
+            method,
+            "--attributes",
+            "color,normal",
         )
         assert done.returncode == 0, done.stderr
         grid = hyvox.voxelize(v, t, resolution=32, method=method, attributes="color,normal", colors=colors)

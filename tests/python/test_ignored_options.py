@@ -3,7 +3,6 @@
 # the CLI's warning (test_option_schema.py), hyvox.IgnoredOptionWarning from the module, an
 # INFO report from the add-on, all from the schema's one rule (OptionSpec.applies_to).
 import os
-import subprocess
 import sys
 import warnings
 
@@ -46,22 +45,10 @@ def test_voxelize_warns_about_an_option_the_method_ignores_and_really_ignores_it
     assert np.array_equal(grid.coords(), hyvox.voxelize(*TETRA, resolution=8, method="cpu").coords())
 
 
-def test_the_warning_says_what_the_cli_says(cli, tmp_path, tetra_obj):
+def test_the_warning_says_what_the_cli_says(cli_voxelize, tmp_path, tetra_obj):
     spec = hyvox.option("tess_gamma")
-    done = subprocess.run(
-        [
-            str(cli),
-            "voxelize",
-            str(tetra_obj),
-            "-o",
-            str(tmp_path / "o.vdb"),
-            "-q",
-            "--method=reference",
-            f"{spec.cli_flag}={cli_text(good_value(spec))}",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
+    done = cli_voxelize(
+        tetra_obj, tmp_path / "o.vdb", "-q", "--method=reference", f"{spec.cli_flag}={cli_text(good_value(spec))}"
     )
     with pytest.warns(hyvox.IgnoredOptionWarning) as caught:
         hyvox.voxelize(*TETRA, resolution=8, method="reference", tess_gamma=good_value(spec))

@@ -2,7 +2,6 @@
 # Colour from an OBJ's materials (mtllib/usemtl, MTL Kd and map_Kd): read_mesh, voxelize and
 # the CLI give the colours of the same mesh passed as arrays, and the numpy oracle's; what the
 # reader cannot use (a missing image or .mtl) is a warning and the material's Kd (or grey).
-import subprocess
 
 import numpy as np
 import pytest
@@ -54,6 +53,40 @@ def arrays():
     return vertices, triangles, uvs, np.array([0, 0, 1]), np.array([PAINTED_KD, PLAIN_KD], dtype=np.float32)
 
 
+def voxelize_as_read(v, t, attrs):
+    """voxelize() in colour with all that read_mesh(attributes=True) gave of the file's
+    materials, as an artist's script would pass them on."""
+    return hyvox.voxelize(
+        v,
+        t,
+        resolution=RESOLUTION,
+        attributes="color",
+        uvs=attrs["uvs"],
+        material_ids=attrs["material_ids"],
+        palette=attrs["palette"],
+        textures=attrs["textures"],
+    )
+
+
+def voxelize_arrays(textures, resolution=RESOLUTION, with_uvs=True, **options):
+    """voxelize() in colour of arrays() (the OBJ's mesh and materials as arrays) with
+    `textures`: the tests vary only the textures, the resolution, whether the UVs are
+    passed, and the method."""
+    vertices, triangles, uvs, material_ids, palette = arrays()
+    if with_uvs:
+        options["uvs"] = uvs
+    return hyvox.voxelize(
+        vertices,
+        triangles,
+        resolution=resolution,
+        attributes="color",
+        material_ids=material_ids,
+        palette=palette,
+        textures=textures,
+        **options,
+    )
+
+
 def by_key(ijk, dims):
     ijk = np.asarray(ijk, dtype=np.int64)
     return (ijk[:, 0] * dims[1] + ijk[:, 1]) * dims[2] + ijk[:, 2]
@@ -71,36 +104,18 @@ def test_read_mesh_gives_the_materials(tmp_path):
     assert attrs["textures"] == [str(tmp_path / "painted.png"), None]
 
 
-def test_file_colours_equal_the_arrays_and_the_oracle(tmp_path, cli):
+def test_file_colours_equal_the_arrays_and_the_oracle(tmp_path, cli_voxelize):
     path = write_obj(tmp_path)
     v, t, attrs = hyvox.read_mesh(path, attributes=True)
-    from_file = hyvox.voxelize(
-        v,
-        t,
-        resolution=RESOLUTION,
-        attributes="color",
-        uvs=attrs["uvs"],
-        material_ids=attrs["material_ids"],
-        palette=attrs["palette"],
-        textures=attrs["textures"],
-    )
-    vertices, triangles, uvs, material_ids, palette = arrays()
-    from_arrays = hyvox.voxelize(
-        vertices,
-        triangles,
-        resolution=RESOLUTION,
-        attributes="color",
-        uvs=uvs,
-        material_ids=material_ids,
-        palette=palette,
-        textures=[pixels(), None],
-    )
+    from_file = voxelize_as_read(v, t, attrs)
+    from_arrays = voxelize_arrays([pixels(), None])
     assert np.array_equal(from_file.coords(), from_arrays.coords())
     colors = from_arrays.attributes()["color"]
     assert np.array_equal(from_file.attributes()["color"], colors)
 
     # The oracle, part by part (no voxel holds both): the image at the quad's UVs, Kd on the triangle.
     grid = from_arrays
+    vertices, triangles, uvs, _, palette = arrays()
     texels = srgb_to_linear(pixels() / 255.0)
     quad_ijk, quad = voxel_attributes(
         vertices, triangles[:2], grid.origin, grid.voxel_size, grid.dims, uvs=uvs, texture=texels
@@ -119,23 +134,7 @@ def test_file_colours_equal_the_arrays_and_the_oracle(tmp_path, cli):
 
     # The CLI takes the materials from the file by itself (no --texture).
     out = tmp_path / "scene.vdb"
-    done = subprocess.run(
-        [
-            str(cli),
-            "voxelize",
-            str(path),
-            "-o",
-            str(out),
-            "-q",
-            "--resolution",
-            str(RESOLUTION),
-            "--attributes",
-            "color",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    done = cli_voxelize(path, out, "-q", "--resolution", RESOLUTION, "--attributes", "color")
     assert done.returncode == 0, done.stderr
     assert "warning" not in done.stderr
     written = {tuple(item["min"]): item["value"] for item in vdb.read(str(out), "color").iterOnValues()}
@@ -144,43 +143,18 @@ def test_file_colours_equal_the_arrays_and_the_oracle(tmp_path, cli):
     np.testing.assert_array_equal(got, colors)
 
 
-def test_a_missing_image_is_a_warning_and_the_material_keeps_its_kd(tmp_path, cli):
+def test_a_missing_image_is_a_warning_and_the_material_keeps_its_kd(tmp_path, cli_voxelize):
     path = write_obj(tmp_path, image="missing.png", write_image=False)
     with pytest.warns(UserWarning, match="missing.png.*cannot be opened"):
         v, t, attrs = hyvox.read_mesh(path, attributes=True)
     assert attrs["textures"] == [None, None]
-    grid = hyvox.voxelize(
-        v,
-        t,
-        resolution=RESOLUTION,
-        attributes="color",
-        uvs=attrs["uvs"],
-        material_ids=attrs["material_ids"],
-        palette=attrs["palette"],
-        textures=attrs["textures"],
-    )
+    grid = voxelize_as_read(v, t, attrs)
     colors = grid.attributes()["color"]
     on_quad = grid.coords()[:, 0] < 5 * RESOLUTION / 9  # the quad's voxels (x < 5 world units)
     np.testing.assert_allclose(colors[on_quad], np.tile(PAINTED_KD, (on_quad.sum(), 1)), atol=1e-6)
     np.testing.assert_allclose(colors[~on_quad], np.tile(PLAIN_KD, ((~on_quad).sum(), 1)), atol=1e-6)
 
-    done = subprocess.run(
-        [
-            str(cli),
-            "voxelize",
-            str(path),
-            "-o",
-            str(tmp_path / "out.vdb"),
-            "-q",
-            "--resolution",
-            str(RESOLUTION),
-            "--attributes",
-            "color",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    done = cli_voxelize(path, tmp_path / "out.vdb", "-q", "--resolution", RESOLUTION, "--attributes", "color")
     assert done.returncode == 0, done.stderr
     assert "warning" in done.stderr and "missing.png" in done.stderr
 
@@ -205,52 +179,14 @@ def test_geometry_alone_reads_without_warnings(tmp_path, recwarn):
 
 
 def test_textures_must_match_the_palette(tmp_path):
-    vertices, triangles, uvs, material_ids, palette = arrays()
     with pytest.raises(ValueError, match="one entry .* per palette colour"):
-        hyvox.voxelize(
-            vertices,
-            triangles,
-            resolution=8,
-            attributes="color",
-            uvs=uvs,
-            material_ids=material_ids,
-            palette=palette,
-            textures=[pixels()],
-        )
+        voxelize_arrays([pixels()], resolution=8)
     with pytest.raises(ValueError, match="texture must be a path or an array"):
-        hyvox.voxelize(
-            vertices,
-            triangles,
-            resolution=8,
-            attributes="color",
-            uvs=uvs,
-            material_ids=material_ids,
-            palette=palette,
-            textures=[7, None],
-        )
+        voxelize_arrays([7, None], resolution=8)
     with pytest.raises(ValueError, match="needs the mesh's UVs"):
-        hyvox.voxelize(
-            vertices,
-            triangles,
-            resolution=8,
-            attributes="color",
-            material_ids=material_ids,
-            palette=palette,
-            textures=[pixels(), None],
-        )
+        voxelize_arrays([pixels(), None], resolution=8, with_uvs=False)
 
 
 def test_the_tessellation_refuses_a_texture_per_material():
-    vertices, triangles, uvs, material_ids, palette = arrays()
     with pytest.raises(ValueError, match="not one per material"):
-        hyvox.voxelize(
-            vertices,
-            triangles,
-            resolution=8,
-            method="tessellation",
-            attributes="color",
-            uvs=uvs,
-            material_ids=material_ids,
-            palette=palette,
-            textures=[pixels(), None],
-        )
+        voxelize_arrays([pixels(), None], resolution=8, method="tessellation")

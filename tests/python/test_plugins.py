@@ -200,27 +200,20 @@ def test_a_missing_plugin_is_a_clear_error_and_nothing_else_needs_it(cli, tetrah
     )
 
 
-def test_a_plugin_that_does_not_load_says_why(cli, tetra_obj, tmp_path):
+def hybrid_run_with_plugins_in(cli_voxelize, tetra_obj, out, folder):
+    """The CLI's hybrid method (it needs the GL plugin) on the tetrahedron, with plugins looked
+    for in `folder` alone: the tests below differ only in the plugin they put there."""
+    return cli_voxelize(
+        tetra_obj, out, "-q", "--resolution=8", "--method=hybrid", env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)}
+    )
+
+
+def test_a_plugin_that_does_not_load_says_why(cli_voxelize, tetra_obj, tmp_path):
     # A file of the plugin's name that is no shared object: dlopen's own reason is shown.
     folder = tmp_path / "damaged"
     folder.mkdir()
     (folder / "libhyvox_gl_methods.so").write_bytes(b"not a shared object\n" * 64)
-    done = subprocess.run(
-        [
-            str(cli),
-            "voxelize",
-            str(tetra_obj),
-            "-o",
-            str(tmp_path / "o.vdb"),
-            "-q",
-            "--resolution=8",
-            "--method=hybrid",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)},
-    )
+    done = hybrid_run_with_plugins_in(cli_voxelize, tetra_obj, tmp_path / "o.vdb", folder)
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
     assert f"needs {folder}/libhyvox_gl_methods.so, which cannot be loaded: " in done.stderr, done.stderr
     assert "invalid ELF header" in done.stderr, done.stderr
@@ -232,7 +225,7 @@ def plugin_copy(folder, data):
     return folder
 
 
-def test_a_plugin_from_another_build_is_refused(cli, tetra_obj, tmp_path):
+def test_a_plugin_from_another_build_is_refused(cli_voxelize, tetra_obj, tmp_path):
     # The real plugin with one digit of its build id changed: the same code, but another
     # build's id. The unchanged copy beside it shows that the copy itself loads.
     data = (pathlib.Path(hyvox.__file__).parent / "libhyvox_gl_methods.so").read_bytes()
@@ -242,28 +235,12 @@ def test_a_plugin_from_another_build_is_refused(cli, tetra_obj, tmp_path):
     own = data[at : at + 32].decode()
     assert len(own) == 32 and all(c in "0123456789abcdef" for c in own), own
     other = ("1" if own[0] != "1" else "2") + own[1:]
-    run = lambda folder: subprocess.run(
-        [
-            str(cli),
-            "voxelize",
-            str(tetra_obj),
-            "-o",
-            str(tmp_path / "o.vdb"),
-            "-q",
-            "--resolution=8",
-            "--method=hybrid",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)},
-    )
-    done = run(plugin_copy(tmp_path / "same", data))
+    done = hybrid_run_with_plugins_in(cli_voxelize, tetra_obj, tmp_path / "o.vdb", plugin_copy(tmp_path / "same", data))
     assert done.returncode == 0 and (tmp_path / "o.vdb").exists(), done.stderr
     (tmp_path / "o.vdb").unlink()
 
     folder = plugin_copy(tmp_path / "other", data[:at] + other.encode() + data[at + 32 :])
-    done = run(folder)
+    done = hybrid_run_with_plugins_in(cli_voxelize, tetra_obj, tmp_path / "o.vdb", folder)
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
     assert (
         f"the hybrid method needs {folder}/libhyvox_gl_methods.so, which is from another hyvox build "
@@ -272,34 +249,19 @@ def test_a_plugin_from_another_build_is_refused(cli, tetra_obj, tmp_path):
     ) in done.stderr, done.stderr
 
 
-def test_a_shared_library_without_a_build_id_is_no_plugin(cli, tetra_obj, tmp_path):
+def test_a_shared_library_without_a_build_id_is_no_plugin(cli_voxelize, tetra_obj, tmp_path):
     # libtbb (loaded with the module here): a shared object that loads, but no hyvox plugin.
     with open("/proc/self/maps") as maps:
         tbb = next(line.split()[5] for line in maps if len(line.split()) >= 6 and "/libtbb.so" in line.split()[5])
     folder = plugin_copy(tmp_path / "tbb", pathlib.Path(tbb).read_bytes())
-    done = subprocess.run(
-        [
-            str(cli),
-            "voxelize",
-            str(tetra_obj),
-            "-o",
-            str(tmp_path / "o.vdb"),
-            "-q",
-            "--resolution=8",
-            "--method=hybrid",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)},
-    )
+    done = hybrid_run_with_plugins_in(cli_voxelize, tetra_obj, tmp_path / "o.vdb", folder)
     assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
     assert (
         f"the hybrid method needs {folder}/libhyvox_gl_methods.so, which has no hyvox build id (not a hyvox plugin)"
     ) in done.stderr, done.stderr
 
 
-def test_a_reader_program_that_does_not_start_says_why(cli, tetrahedron, tmp_path):
+def test_a_reader_program_that_does_not_start_says_why(cli_voxelize, tetrahedron, tmp_path):
     folder = tmp_path / "damaged"
     folder.mkdir()
     reader = folder / "hyvox_assimp_reader"
@@ -308,19 +270,13 @@ def test_a_reader_program_that_does_not_start_says_why(cli, tetrahedron, tmp_pat
     for mode, reason in ((0o755, "Exec format error"), (0o644, "not executable, and not an ELF program")):
         reader.write_bytes(b"not a program\n" * 64)
         reader.chmod(mode)
-        done = subprocess.run(
-            [str(cli), "voxelize", str(model), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=8"],
-            capture_output=True,
-            text=True,
-            timeout=120,
-            env=env,
-        )
+        done = cli_voxelize(model, tmp_path / "o.vdb", "-q", "--resolution=8", env=env)
         assert done.returncode != 0 and not (tmp_path / "o.vdb").exists()
         assert f"reading '{model}' needs the assimp reader process: cannot start {reader}" in done.stderr, done.stderr
         assert reason in done.stderr, done.stderr
 
 
-def test_a_reader_program_without_its_execute_bit_still_reads(cli, tetrahedron, tmp_path):
+def test_a_reader_program_without_its_execute_bit_still_reads(cli_voxelize, tetrahedron, tmp_path):
     # A zip (the legacy add-on, Blender's extension and wheel installs) keeps no file modes:
     # the program is then started through the program interpreter its ELF header names.
     built = pathlib.Path(hyvox.__file__).parent / "hyvox_assimp_reader"
@@ -330,12 +286,8 @@ def test_a_reader_program_without_its_execute_bit_still_reads(cli, tetrahedron, 
     (folder / "hyvox_assimp_reader").chmod(0o644)
     assert not os.access(folder / "hyvox_assimp_reader", os.X_OK)
     model = tetra_3mf(tmp_path / "tetra.3mf", *tetrahedron)
-    done = subprocess.run(
-        [str(cli), "voxelize", str(model), "-o", str(tmp_path / "o.vdb"), "-q", "--resolution=16"],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)},
+    done = cli_voxelize(
+        model, tmp_path / "o.vdb", "-q", "--resolution=16", env={**os.environ, "HYVOX_PLUGIN_DIR": str(folder)}
     )
     assert done.returncode == 0, done.stderr
     assert voxels_of(tmp_path / "o.vdb")
