@@ -4,22 +4,31 @@
 # (demo/run_demo.py, as `bash scripts/run_demo.sh` makes them) and screenshots of the add-on's
 # panel in a real Blender window under Xvfb (tests/blender/interactive_panel.py), cropped to
 # the sidebar and made small enough to commit.
-#   bash docs/images/make_images.sh [BUILD]       (default build/; needs xvfb-run, python3-pil)
+#   bash docs/images/make_images.sh [BUILD [PART...]]   (default build/, both parts: demo, the
+#                                                       renders, and panel, the screenshots;
+#                                                       needs xvfb-run, python3-pil)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 BUILD=${1:-build}
+parts=("${@:2}")
+[ ${#parts[@]} -gt 0 ] || parts=(demo panel)
+wanted() { [[ " ${parts[*]} " == *" $1 "* ]]; }
 [ -d "$BUILD/addon/hyvox_blender" ] || { echo "make_images.sh: build the project first ($BUILD/addon)" >&2; exit 2; }
 export PATH=/usr/bin:/bin:$PATH
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-blender -b --factory-startup --python demo/run_demo.py -- --build "$BUILD" --output "$work/demo" \
-  >"$work/demo.log" 2>&1 ||
-  { tail -20 "$work/demo.log"; exit 1; }
-mkdir -p "$work/shots"
-xvfb-run -a -s "-screen 0 1400x1300x24" blender --factory-startup --enable-event-simulate -p 0 0 1400 1300 \
-  --python tests/blender/interactive_panel.py -- "$BUILD" "$work/shots" >"$work/panel.log" 2>&1 ||
-  { tail -20 "$work/panel.log"; exit 1; }
+if wanted demo; then
+  blender -b --factory-startup --python demo/run_demo.py -- --build "$BUILD" --output "$work/demo" \
+    >"$work/demo.log" 2>&1 ||
+    { tail -20 "$work/demo.log"; exit 1; }
+fi
+if wanted panel; then
+  mkdir -p "$work/shots"
+  xvfb-run -a -s "-screen 0 1400x1300x24" blender --factory-startup --enable-event-simulate -p 0 0 1400 1300 \
+    --python-exit-code 1 --python tests/blender/interactive_panel.py -- "$BUILD" "$work/shots" >"$work/panel.log" 2>&1 ||
+    { tail -20 "$work/panel.log"; exit 1; }
+fi
 
 /usr/bin/python3 - "$work" docs/images <<'PY'
 import json
@@ -55,9 +64,11 @@ def sidebar(name):
     return panels.crop((0, 0, panels.width, min(end + 4, panels.height)))
 
 
-save(Image.open(work / "demo" / "render.png"), "demo_render.jpg", 800)
-save(Image.open(work / "demo" / "render_colour.png"), "demo_render_colour.jpg", 640)
-save(Image.open(work / "demo" / "render_colour_sponza.png"), "demo_render_colour_sponza.jpg", 640)
-save(sidebar("panel_before_run.png"), "panel.png", 400)
-save(sidebar("panel_after_run.png"), "panel_after_run.png", 400)
+if (work / "demo").is_dir():
+    save(Image.open(work / "demo" / "render.png"), "demo_render.jpg", 800)
+    save(Image.open(work / "demo" / "render_colour.png"), "demo_render_colour.jpg", 640)
+    save(Image.open(work / "demo" / "render_colour_sponza.png"), "demo_render_colour_sponza.jpg", 640)
+if (work / "shots").is_dir():
+    save(sidebar("panel_before_run.png"), "panel.png", 400)
+    save(sidebar("panel_after_run.png"), "panel_after_run.png", 400)
 PY
