@@ -10,34 +10,23 @@ Each run is one fresh `hyvox voxelize --method cpu --stats-json` process; the bu
 within each round. Per build, mesh, resolution and mode: the medians of the stages the CLI's
 stats name (read_mesh, validate: the checks and the grid's planning, edges: solid mode's edge
 check, voxelize, write_vdb), of their sum, and of the whole process's wall and CPU time (its
-rusage: all threads). .ply.gz meshes are unpacked into a temporary folder first, as the
-comparison with cuda_voxelizer does. The table goes to DIR/NAME.{json,md} (default
+rusage: all threads). The meshes are read from a plain copy in a temporary folder (.ply.gz
+unpacked), made as the comparison with cuda_voxelizer makes it. The table goes to DIR/NAME.{json,md} (default
 bench/results/fixed_costs).
 """
 
 import argparse
-import gzip
 import json
 import os
-import shutil
 import statistics
 import tempfile
 import time
 
 from bench_results import Column, Table, add_out_argument
+from bench_vs_cuda_voxelizer import plain_copy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 STAGES = ("read_mesh", "validate", "edges", "voxelize", "write_vdb")
-
-
-def plain_mesh(path, work):
-    """The mesh as a plain file in `work` (.gz unpacked), so that reading it is the reader's."""
-    if not path.endswith(".gz"):
-        return path
-    out = os.path.join(work, os.path.basename(path)[: -len(".gz")])
-    with gzip.open(path, "rb") as packed, open(out, "wb") as plain:
-        shutil.copyfileobj(packed, plain)
-    return out
 
 
 def run_once(binary, mesh, res, mode, threads, work):
@@ -80,7 +69,7 @@ def main():
     table = Table(args.name, "The costs around the voxelizer, stage by stage", columns)
     with tempfile.TemporaryDirectory(prefix="hyvox_fixed_costs_") as work:
         for name in args.meshes.split(","):
-            mesh = plain_mesh(os.path.join(args.mesh_dir, name), work)
+            mesh = plain_copy(args.mesh_dir, name, work)
             for mode in args.modes.split(","):
                 for res in map(int, args.res.split(",")):
                     got = {b: {"stages": {}, "wall": [], "cpu": []} for b in args.binaries}

@@ -2,8 +2,7 @@
 """The parser of the farm commands (`run`, `assemble`), built from the farm task's table that
 the native module declares (hyvox._core.FARM_TASK_ARGUMENTS, native/include/hyvox/farm_task.h):
 the jobs (`hyvox job-template`) write their command lines from the same table, so the flags a
-job writes are the flags this parser takes. bpy-free: the native parser of the table
-(hyvox._core.check_farm_task) is tested against it outside Blender."""
+job writes are the flags this parser takes. bpy-free, so it is tested outside Blender."""
 
 import argparse
 
@@ -11,9 +10,8 @@ _TYPES = {"str": str, "int": int, "float": float}
 
 
 def parser(command, table):
-    """The argparse parser of `command` ("run" or "assemble") from `table`. No abbreviations:
-    a job writes every flag whole, and the native parser takes them whole."""
-    out = argparse.ArgumentParser(prog=f"hyvox farm {command}", add_help=False, allow_abbrev=False)
+    """The argparse parser of `command` ("run" or "assemble") from `table`."""
+    out = argparse.ArgumentParser(prog=f"hyvox farm {command}", add_help=False)
     for arg in table:
         if command not in arg.commands:
             continue

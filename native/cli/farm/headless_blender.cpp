@@ -4,8 +4,6 @@
 #include <stdexcept>
 
 #include "farm/job_options.h"
-#include "farm/yaml_writer.h"
-#include "hyvox/errors.h"
 
 namespace hyvox::farm {
 namespace {
@@ -49,21 +47,6 @@ bool takesOption(FarmCommand command, const OptionSpec& spec) {
     return false;
 }
 
-// A value of the kind the job fills in, for checking its command line against the task's.
-std::string sampleValue(const Argument& arg) {
-    switch (arg.source) {
-        case FarmJobValue::TaskFrames: return "1-10";
-        case FarmJobValue::JobFrames: return "1-250";
-        case FarmJobValue::OutputDir: return "out";
-        case FarmJobValue::Objects: return "";
-        case FarmJobValue::Option:
-            return arg.option->nullable ? shortestNumber(farmUnsetValue(*arg.option))
-                                        : formatOptionValue(arg.option->get(VoxelizeOptions{}));
-        case FarmJobValue::None: break;
-    }
-    throw std::logic_error("a job writes no argument " + arg.flag);
-}
-
 // The job's arguments of `command`: the table's that a job fills, then the job's voxelize
 // options that the command takes (`run` every one: it passes on what it does not parse).
 std::vector<Argument> jobArguments(FarmCommand command) {
@@ -74,17 +57,6 @@ std::vector<Argument> jobArguments(FarmCommand command) {
     for (const OptionSpec* spec : blenderJobOptions())
         if (command == FarmCommand::Run || takesOption(command, *spec))
             out.push_back({spec->cliFlag(), FarmJobValue::Option, spec});
-    // A job's command line with values of each kind is one its task accepts.
-    std::vector<std::string> sample;
-    for (const Argument& arg : out) {
-        sample.push_back(arg.flag);
-        sample.push_back(sampleValue(arg));
-    }
-    try {
-        checkFarmTask(command, sample);
-    } catch (const InvalidInput& e) {
-        throw std::logic_error(std::string("a job would write a command line its task refuses: ") + e.what());
-    }
     return out;
 }
 

@@ -8,8 +8,7 @@
 ///
 /// Both sides of the contract are built from this table: the job generators (`hyvox
 /// job-template`) write their command lines from it, and the add-on builds its parser from it
-/// (hyvox._core.FARM_TASK_ARGUMENTS). checkFarmTask() accepts and refuses what that parser
-/// does, for the forms a job writes.
+/// (hyvox._core.FARM_TASK_ARGUMENTS).
 #include <string>
 #include <vector>
 
@@ -60,19 +59,8 @@ struct FarmTaskArgument {
 /// Every flag of the farm commands, in the order the jobs write them.
 const std::vector<FarmTaskArgument>& farmTaskArguments();
 
-/// "run" or "assemble" as a FarmCommand.
-/// @throws InvalidInput "unknown farm command 'x' (run, assemble)"
-FarmCommand parseFarmCommand(const std::string& name);
-
 /// A farm job's parameter always has a value: a voxelize option the schema lets be unset (a
 /// nullable Number with an excluded minimum: voxel_size) takes that minimum to mean unset.
 double farmUnsetValue(const OptionSpec& spec);
-
-/// Parses a farm command's arguments (`--flag VALUE` or `--flag=VALUE`; the last of a
-/// repeated flag wins) as the add-on's parser does: every required flag present, a value
-/// after each flag that takes one, an option's value of the option's type; the arguments
-/// `run` does not know are passed on, those `assemble` does not know refused.
-/// @throws InvalidInput naming the flag or the arguments refused
-void checkFarmTask(FarmCommand command, const std::vector<std::string>& args);
 
 }  // namespace hyvox

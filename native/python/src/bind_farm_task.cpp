@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // hyvox._core.FARM_TASK_ARGUMENTS (the farm task's table, hyvox/farm_task.h), from which the
-// Blender add-on builds the parser of its farm commands, and check_farm_task, the native
-// parser of the same table (the job generators check their command lines with it).
+// Blender add-on builds the parser of its farm commands (the job generators write their command
+// lines from the same table).
 #include <pybind11/stl.h>
 
 #include "bindings.h"
@@ -55,13 +55,6 @@ void bindFarmTask(py::module_& m) {
     for (const FarmTaskArgument& arg : farmTaskArguments())
         table.append(py::cast(&arg, py::return_value_policy::reference));
     m.attr("FARM_TASK_ARGUMENTS") = py::tuple(table);
-    m.def(
-        "check_farm_task",
-        [](const std::string& command, const std::vector<std::string>& args) {
-            checkFarmTask(parseFarmCommand(command), args);
-        },
-        py::arg("command"), py::arg("args"),
-        "Raise ValueError for the arguments the farm command (run, assemble) refuses; None if it takes them.");
 }
 
 }  // namespace hyvox::python

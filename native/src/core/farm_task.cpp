@@ -1,12 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hyvox/farm_task.h"
 
-#include <cstdlib>
-#include <map>
-#include <regex>
-
-#include "hyvox/errors.h"
-
 namespace hyvox {
 namespace {
 
@@ -23,39 +17,6 @@ FarmTaskArgument option(const char* name, std::vector<std::string> aliases) {
 
 FarmTaskArgument toggle(const char* flag, const char* help) {
     return {flag, {}, true, true, false, FarmValue::Switch, nullptr, nullptr, help, FarmJobValue::None};
-}
-
-// The flag's spellings as argparse names it in messages: "--output/-o".
-std::string spelled(const FarmTaskArgument& arg) {
-    std::string out = arg.flag;
-    for (const std::string& alias : arg.aliases) out += "/" + alias;
-    return out;
-}
-
-// What argparse takes for a flag's value rather than for another flag: not starting with '-',
-// or a negative number, a lone "-", or text with a space.
-bool isValue(const std::string& token) {
-    static const std::regex negative_number("^-\\d+$|^-\\d*\\.\\d+$");
-    if (token.empty() || token[0] != '-' || token == "-") return true;
-    if (token == "--") return false;
-    return std::regex_match(token, negative_number) || token.find(' ') != std::string::npos;
-}
-
-// Whether `text` is what Python's int() / float() reads (the decimal forms a job writes).
-bool parses(OptionType type, const std::string& text) {
-    if (text.empty() || text.find_first_of("xX") != std::string::npos) return false;
-    char* end = nullptr;
-    if (type == OptionType::Integer)
-        static_cast<void>(std::strtoll(text.c_str(), &end, 10));  // out of range: still a whole number
-    else
-        static_cast<void>(std::strtod(text.c_str(), &end));
-    return *end == '\0';
-}
-
-void checkValue(const FarmTaskArgument& arg, const std::string& value) {
-    if (arg.value != FarmValue::Option || parses(arg.option->type, value)) return;
-    const char* kind = arg.option->type == OptionType::Integer ? "int" : "float";
-    throw InvalidInput("argument " + spelled(arg) + ": invalid " + kind + " value: '" + value + "'");
 }
 
 }  // namespace
@@ -84,64 +45,6 @@ const std::vector<FarmTaskArgument>& farmTaskArguments() {
     return table;
 }
 
-FarmCommand parseFarmCommand(const std::string& name) {
-    if (name == "run") return FarmCommand::Run;
-    if (name == "assemble") return FarmCommand::Assemble;
-    throw InvalidInput("unknown farm command '" + name + "' (run, assemble)");
-}
-
 double farmUnsetValue(const OptionSpec& spec) { return spec.min; }
-
-void checkFarmTask(FarmCommand command, const std::vector<std::string>& args) {
-    std::map<std::string, const FarmTaskArgument*> flags;
-    for (const FarmTaskArgument& arg : farmTaskArguments()) {
-        if (!arg.takenBy(command)) continue;
-        flags[arg.flag] = &arg;
-        for (const std::string& alias : arg.aliases) flags[alias] = &arg;
-    }
-    std::map<const FarmTaskArgument*, bool> given;
-    std::vector<std::string> unknown;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& token = args[i];
-        if (token == "--") {  // the rest is not the task's
-            unknown.insert(unknown.end(), args.begin() + std::ptrdiff_t(i), args.end());
-            break;
-        }
-        auto found = flags.find(token);
-        const std::size_t equals = token.find('=');
-        if (found == flags.end() && equals != std::string::npos && !token.empty() && token[0] == '-')
-            found = flags.find(token.substr(0, equals));
-        if (found == flags.end()) {
-            unknown.push_back(token);
-            continue;
-        }
-        const FarmTaskArgument& arg = *found->second;
-        given[&arg] = true;
-        const bool inline_value = found->first != token;
-        if (arg.value == FarmValue::Switch) {
-            if (inline_value)
-                throw InvalidInput("argument " + spelled(arg) + ": ignored explicit argument '" +
-                                   token.substr(equals + 1) + "'");
-            continue;
-        }
-        if (inline_value) {
-            checkValue(arg, token.substr(equals + 1));
-        } else {
-            if (i + 1 == args.size() || !isValue(args[i + 1]))
-                throw InvalidInput("argument " + spelled(arg) + ": expected one argument");
-            checkValue(arg, args[++i]);
-        }
-    }
-    std::string missing;
-    for (const FarmTaskArgument& arg : farmTaskArguments())
-        if (arg.takenBy(command) && arg.required && !given.count(&arg))
-            missing += (missing.empty() ? "" : ", ") + spelled(arg);
-    if (!missing.empty()) throw InvalidInput("the following arguments are required: " + missing);
-    if (command == FarmCommand::Assemble && !unknown.empty()) {
-        std::string text;
-        for (const std::string& token : unknown) text += (text.empty() ? "" : " ") + token;
-        throw InvalidInput("assemble does not take " + text);
-    }
-}
 
 }  // namespace hyvox

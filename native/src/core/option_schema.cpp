@@ -147,8 +147,7 @@ std::vector<OptionSpec> buildSchema() {
             .label("Memory Budget")
             .unit("MiB")
             .help("memory a run may take beside its mesh (every pass and the .vdb it writes; a run estimated to need "
-                  "more "
-                  "is refused before it starts); 0 = half of this machine's memory")
+                  "more is refused before it starts); 0 = half of this machine's memory")
             .field(HYVOX_FIELD(asInteger, memory_budget_mib))
             .writeField(HYVOX_WRITE_FIELD(asInteger, memory_budget_mib)));
     add(Option("tile_size")
@@ -230,8 +229,7 @@ std::vector<OptionSpec> buildSchema() {
             .label("GL Pair List Size")
             .unit("bytes")
             .help("largest list of (voxel, triangle) pairs the GL methods' colour/normal pass holds at once (a tile "
-                  "whose "
-                  "pairs do not fit runs as halves); 0 = one storage block (the device's limit)")
+                  "whose pairs do not fit runs as halves); 0 = one storage block (the device's limit)")
             .field(HYVOX_FIELD(asInteger, gl.pair_list_bytes)));
     add(Option("gl_wall_timing")
             .flag()
