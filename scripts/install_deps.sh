@@ -19,6 +19,7 @@ packages=(
   libopenvdb-dev libboost-dev libimath-dev libtbb-dev zlib1g-dev   # OpenVDB headers need Boost
   libblosc-dev                                                      # .vdb leaf compression (OpenVDB's own)
   libassimp-dev libpng-dev                                          # mesh and image reading
+  libfast-float-dev                                                 # the text readers' numbers
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri              # headless GL (Mesa llvmpipe)
   # python3-dev: the module's build, and quickjs's from its sdist on 3.13 (requirements/py313/farm.txt)
   pybind11-dev python3-dev python3-numpy python3-pytest python3-openvdb python3-pil  # PIL: the attribute oracle reads textures

@@ -34,9 +34,23 @@ std::uint64_t tessellationTileBytes(const std::string& device, std::uint64_t bud
     return channels > 0 ? tessellation::tileBitBytesForSums(block, budget, channels) : block;
 }
 
-const GlMethods table{runHybridBackend, runTessellationBackend, tessellationTileBytes, listDevices, objectCounts};
+// Each entry reports what it throws instead of letting it cross into the host
+// (core/plugin_fault.h).
+const GlMethodsTable table{
+    [](const BackendJob& job, TileOutput& out, Stats& stats, PluginFault& fault) {
+        guardPluginCall(fault, [&] { runHybridBackend(job, out, stats); });
+    },
+    [](const BackendJob& job, TileOutput& out, Stats& stats, PluginFault& fault) {
+        guardPluginCall(fault, [&] { runTessellationBackend(job, out, stats); });
+    },
+    [](const std::string& device, std::uint64_t budget, int channels, PluginFault& fault) {
+        return guardPluginCall(fault, [&] { return tessellationTileBytes(device, budget, channels); });
+    },
+    [](PluginFault& fault) { return guardPluginCall(fault, [] { return listDevices(); }); },
+    [](PluginFault& fault) { return guardPluginCall(fault, [] { return objectCounts(); }); },
+};
 
 }  // namespace
 }  // namespace hyvox
 
-extern "C" HYVOX_PLUGIN_ENTRY const hyvox::GlMethods* hyvox_gl_methods() { return &hyvox::table; }
+extern "C" HYVOX_PLUGIN_ENTRY const hyvox::GlMethodsTable* hyvox_gl_methods() { return &hyvox::table; }

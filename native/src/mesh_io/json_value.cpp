@@ -2,10 +2,11 @@
 #include "mesh_io/json_value.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <unordered_set>
+
+#include "mesh_io/parse_number.h"
 
 namespace hyvox::mesh_io {
 
@@ -150,9 +151,8 @@ private:
             if (!digits()) fail("a number needs digits in its exponent");
         }
         double value = 0;
-        const auto [ptr, error] = std::from_chars(start, pos_, value);
         // Out of range (1e999): not a number glTF could use.
-        if (error != std::errc() || ptr != pos_ || !std::isfinite(value)) fail("a number out of range");
+        if (!parseWholeNumber(start, pos_, value) || !std::isfinite(value)) fail("a number out of range");
         return value;
     }
 

@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Words and numbers out of a text mesh file (ASCII PLY, OBJ), with the line number kept so
-// every error can say where the file is wrong. Numbers are parsed with std::from_chars:
+// every error can say where the file is wrong. Numbers are parsed by parse_number.h:
 // strict (the whole word must be the number, "a" is never 0), locale-independent and
 // correctly rounded.
-#include <charconv>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
+
+#include "mesh_io/parse_number.h"
 
 namespace hyvox::mesh_io {
 
@@ -76,9 +77,7 @@ inline std::string_view withoutPlus(std::string_view word) {
 template <typename T>
 bool parseNumber(std::string_view word, T& out) {
     word = withoutPlus(word);
-    const char* end = word.data() + word.size();
-    const auto [ptr, error] = std::from_chars(word.data(), end, out);
-    return error == std::errc() && ptr == end;
+    return parseWholeNumber(word.data(), word.data() + word.size(), out);
 }
 
 // A word from the file as it may appear in an error message: at most 40 characters, so a

@@ -16,6 +16,8 @@
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 extern char** environ;
 
@@ -198,6 +200,22 @@ void ChildProcess::kill() {
     if (pid_ > 0) ::kill(pid_t(pid_), SIGKILL);
 }
 
+namespace {
+// The name of a signal a child may die of. glibc's sigabbrev_np is 2.32's and newer; the
+// release runs on 2.28, and other systems have none.
+std::string signalName(int signal) {
+    static const std::pair<int, const char*> kNames[] = {
+        {SIGHUP, "SIGHUP"},   {SIGINT, "SIGINT"},   {SIGQUIT, "SIGQUIT"}, {SIGILL, "SIGILL"},   {SIGTRAP, "SIGTRAP"},
+        {SIGABRT, "SIGABRT"}, {SIGBUS, "SIGBUS"},   {SIGFPE, "SIGFPE"},   {SIGKILL, "SIGKILL"}, {SIGUSR1, "SIGUSR1"},
+        {SIGSEGV, "SIGSEGV"}, {SIGUSR2, "SIGUSR2"}, {SIGPIPE, "SIGPIPE"}, {SIGALRM, "SIGALRM"}, {SIGTERM, "SIGTERM"},
+        {SIGXCPU, "SIGXCPU"}, {SIGXFSZ, "SIGXFSZ"}, {SIGSYS, "SIGSYS"},
+    };
+    for (const auto& [number, name] : kNames)
+        if (number == signal) return name;
+    return "signal " + std::to_string(signal);
+}
+}  // namespace
+
 std::optional<ChildExit> ChildProcess::reaped() {
     if (pid_ <= 0) return std::nullopt;
     struct rusage usage {};
@@ -211,8 +229,7 @@ std::optional<ChildExit> ChildProcess::reaped() {
     ChildExit exit;
     exit.peak_rss_bytes = std::uint64_t(usage.ru_maxrss) * 1024;  // Linux reports KiB
     if (WIFSIGNALED(status)) {
-        const char* abbreviation = sigabbrev_np(WTERMSIG(status));
-        exit.signal = abbreviation ? std::string("SIG") + abbreviation : "signal " + std::to_string(WTERMSIG(status));
+        exit.signal = signalName(WTERMSIG(status));
     } else if (WIFEXITED(status)) {
         exit.exit_code = WEXITSTATUS(status);
     }

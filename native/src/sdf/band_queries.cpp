@@ -217,11 +217,6 @@ void BlockQueries::markReached(const std::array<std::int32_t, 2>& limit) {
     }
 }
 
-std::uint64_t BlockQueries::lower(double* d2, std::uint64_t& evaluations) {
-    sortIntoCells();
-    return lowerVoxels(*this, d2, evaluations);
-}
-
 HYVOX_SDF_CLONES
 std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& evaluations) {
     const int m = queries.margin_, side = queries.side_;
@@ -297,6 +292,12 @@ std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& eval
             }
         }
     return touched;
+}
+
+// After lowerVoxels: a function built as clones is declared so before its first use (clang).
+std::uint64_t BlockQueries::lower(double* d2, std::uint64_t& evaluations) {
+    sortIntoCells();
+    return lowerVoxels(*this, d2, evaluations);
 }
 
 }  // namespace hyvox::sdf

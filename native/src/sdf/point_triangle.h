@@ -22,7 +22,9 @@
 // Built twice on x86-64, for AVX2 and for the baseline, the one the processor runs chosen at
 // load time: loops over minDistance2Along run four doubles wide instead of two.
 // No FMA: both give the same bits.
-#if defined(__x86_64__) && defined(__has_attribute)
+// Not where the toolchain cannot link them (HYVOX_NO_TARGET_CLONES, CMakeLists.txt: zig's runtime
+// has no CPU model for the resolver).
+#if defined(__x86_64__) && defined(__has_attribute) && !defined(HYVOX_NO_TARGET_CLONES)
 #if __has_attribute(target_clones)
 #define HYVOX_SDF_CLONES __attribute__((target_clones("avx2", "default")))
 #endif

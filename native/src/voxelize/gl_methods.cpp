@@ -7,9 +7,42 @@
 
 namespace hyvox {
 
-const GlMethods& glMethods(const std::string& purpose) {
+GlMethods glMethods(const std::string& purpose) {
     using Entry = decltype(&hyvox_gl_methods);
-    return *reinterpret_cast<Entry>(pluginSymbol("gl_methods", "hyvox_gl_methods", purpose))();
+    return {*reinterpret_cast<Entry>(pluginSymbol("gl_methods", "hyvox_gl_methods", purpose))(), purpose};
+}
+
+void GlMethods::run_hybrid(const BackendJob& job, TileOutput& out, Stats& stats) const {
+    PluginFault fault;
+    table_.run_hybrid(job, out, stats, fault);
+    throwPluginFault(fault, purpose_);
+}
+
+void GlMethods::run_tessellation(const BackendJob& job, TileOutput& out, Stats& stats) const {
+    PluginFault fault;
+    table_.run_tessellation(job, out, stats, fault);
+    throwPluginFault(fault, purpose_);
+}
+
+std::uint64_t GlMethods::tessellation_tile_bytes(const std::string& device, std::uint64_t budget, int channels) const {
+    PluginFault fault;
+    const std::uint64_t bytes = table_.tessellation_tile_bytes(device, budget, channels, fault);
+    throwPluginFault(fault, purpose_);
+    return bytes;
+}
+
+std::vector<GlDevice> GlMethods::list_devices() const {
+    PluginFault fault;
+    auto devices = table_.list_devices(fault);
+    throwPluginFault(fault, purpose_);
+    return devices;
+}
+
+GlObjectCounts GlMethods::object_counts() const {
+    PluginFault fault;
+    const GlObjectCounts counts = table_.object_counts(fault);
+    throwPluginFault(fault, purpose_);
+    return counts;
 }
 
 std::vector<GlDevice> listGlDevices() { return glMethods("listing the GL devices").list_devices(); }
