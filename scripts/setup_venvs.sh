@@ -19,12 +19,22 @@
 #   setup_venvs.sh --lists   prints the list folder for this machine's Python and exits
 #                            (CMake asks this, so the folder rule is written only here).
 #   setup_venvs.sh DIR NAME...   makes only the venvs of those lists (scripts/lint.sh: lint).
+#   setup_venvs.sh --python PY ...   the same with another Python than /usr/bin/python3, and
+#                            its version's lists: the release builds a wheel for each Python
+#                            Blender uses and tests it in that Python's bpy releases
+#                            (scripts/build_release.sh, tests/release/).
+#   release     scikit-build-core, pybind11, zig, meson, twine...: builds the release
 set -euo pipefail
 cd "$(dirname "$0")/.."
-python_tag=$(/usr/bin/python3 -c 'import sys; print("py%d%d" % sys.version_info[:2])')
+base_python=/usr/bin/python3
+if [ "${1:-}" = --python ]; then
+  base_python=$(command -v "$2") || { echo "setup_venvs: no Python '$2' on PATH" >&2; exit 1; }
+  shift 2
+fi
+python_tag=$("$base_python" -c 'import sys; print("py%d%d" % sys.version_info[:2])')
 lists="scripts/requirements/$python_tag"
 if [ ! -d "$lists" ]; then
-  echo "setup_venvs: no pinned lists for /usr/bin/python3 ($python_tag): $lists is missing;" \
+  echo "setup_venvs: no pinned lists for $base_python ($python_tag): $lists is missing;" \
        "make one from the newest scripts/requirements/py*/ (every version pinned, wheels for that Python)" >&2
   exit 1
 fi
@@ -37,7 +47,7 @@ only=("${@:2}")  # list names; none = every list
 mkdir -p "$dir"
 make_venv() {  # make_venv LIST VENV
   rm -rf "$2"
-  /usr/bin/python3 -m venv "$2"
+  "$base_python" -m venv "$2"
   "$2/bin/pip" install --disable-pip-version-check -q -r "$1"
   cp "$1" "$2/requirements.txt"
 }

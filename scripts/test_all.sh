@@ -10,12 +10,16 @@
 #   test      all native, Python and headless-Blender tests of that build, the wheel in a clean
 #             venv and in the official Blender releases from PyPI, the farm jobs for real, and
 #             the sweeps over every mesh, size and mode (ctest label `sweep`)
+#   release   (by name only: bash scripts/test_all.sh release) the release
+#             (scripts/build_release.sh: dist/, its libraries cached outside the repo) and its
+#             tests (tests/release/): glibc 2.28, the CLI archive, each wheel in a clean venv,
+#             the extension in the bpy releases of Python 3.11 and 3.13
 #   sanitize  one clang build with AddressSanitizer + UndefinedBehaviorSanitizer and libFuzzer's
 #             coverage (build-sanitize/): the native tests without the sweeps, whose code paths
 #             the other cases reach (tests/native/CMakeLists.txt says which and why)
 #   fuzz      the libFuzzer targets of that same build, a fixed time each (scripts/fuzz_readers.sh)
 #
-#   bash scripts/test_all.sh               every section, in that order (CI runs this)
+#   bash scripts/test_all.sh               every section but release, in that order (CI runs this)
 #   bash scripts/test_all.sh lint tidy     only those sections (each sets up what it needs)
 # GL tests run on whatever EGL device is there (Mesa llvmpipe without a GPU); none skip.
 set -euo pipefail
@@ -24,9 +28,11 @@ cd "$(dirname "$0")/.."
 # otherwise become the Python home of Debian's Blender.
 export PATH="/usr/bin:/bin:$PATH"
 jobs=$(nproc)
-all_sections=(deps lint build tidy test sanitize fuzz)
+all_sections=(deps lint build tidy test release sanitize fuzz)
+# The release section is not yet part of the default run (CI): run it by name.
+default_sections=(deps lint build tidy test sanitize fuzz)
 sections=("$@")
-[ ${#sections[@]} -gt 0 ] || sections=("${all_sections[@]}")
+[ ${#sections[@]} -gt 0 ] || sections=("${default_sections[@]}")
 for name in "${sections[@]}"; do
   [[ " ${all_sections[*]} " == *" $name "* ]] ||
     { echo "test_all: no section '$name' (sections: ${all_sections[*]})" >&2; exit 2; }
@@ -72,7 +78,24 @@ run_tidy() {
 run_test() {
   section "test: the Release build's tests"
   [ -f build/CTestTestfile.cmake ] || run_build
-  ctest --test-dir build --output-on-failure -j "$jobs"
+  ctest --test-dir build --output-on-failure -j "$jobs" -LE release
+}
+
+run_release() {
+  section "release: dist/ by scripts/build_release.sh (linux-x64, cp311 + cp313, glibc 2.28)"
+  [ -f build/CTestTestfile.cmake ] || run_build
+  bash scripts/build_release.sh
+  section "release: its tests (tests/release/): the binaries, the CLI archive, the wheels, the extension in bpy 4.5, 5.0, 5.1, 5.3"
+  # The venvs of the Python that /usr/bin/python3 is not come from that Python (pyenv's here).
+  system=$(/usr/bin/python3 -c 'import sys; print("%d.%d" % sys.version_info[:2])')
+  for version in 3.11 3.13; do
+    [ "$version" = "$system" ] && continue
+    tag=py${version/./}
+    names=(wheel-test $(cd "scripts/requirements/$tag" && ls bpy*.txt | sed 's/\.txt$//'))
+    bash scripts/setup_venvs.sh --python "$(bash scripts/find_python.sh "$version")" "build/venv/$tag" "${names[@]}"
+  done
+  cmake -S . -B build -DHYVOX_RELEASE_DIR="$PWD/dist" >/dev/null
+  ctest --test-dir build --output-on-failure -j "$jobs" -L release
 }
 
 run_sanitize() {

@@ -5,7 +5,7 @@ add-on installed as an extension the way an artist installs it:
     B/venv/bpy45/bin/python tests/blender/run_bpy_tests.py BUILD_DIR [test_x ...]
 
 A fresh, empty Blender user folder (BLENDER_USER_RESOURCES) per run; the extension zip
-B/hyvox_blender-*-linux_x64.zip is installed there with Install from Disk's operator,
+B/hyvox_blender-*-linux_x64.zip (or $HYVOX_EXTENSION_ZIP: a release's) is installed there with Install from Disk's operator,
 which also installs its bundled wheel into that folder's site-packages and enables it.
 Then the named unittest files run as under run_tests.py (no skips allowed)."""
 
@@ -21,7 +21,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 def install_extension(build_dir, user_dir):
     import bpy
 
-    (zip_path,) = glob.glob(os.path.join(build_dir, "hyvox_blender-*-linux_x64.zip"))
+    given = os.environ.get("HYVOX_EXTENSION_ZIP")
+    (zip_path,) = [given] if given else glob.glob(os.path.join(build_dir, "hyvox_blender-*-linux_x64.zip"))
     result = bpy.ops.extensions.package_install_files(filepath=zip_path, repo="user_default", enable_on_install=True)
     if result != {"FINISHED"}:
         raise RuntimeError(f"installing {zip_path} returned {result}")

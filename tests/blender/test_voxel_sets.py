@@ -2,6 +2,8 @@
 """The Volume's voxels are exactly the module's voxels, in the right place."""
 
 import os
+import subprocess
+import tempfile
 
 import bpy
 import numpy as np
@@ -44,6 +46,33 @@ class VoxelSetTest(AddonTestCase):
             helpers.sorted_rows(got), helpers.sorted_rows(expected), atol=1e-5 * grid.voxel_size + 1e-7
         )
         self.assertAlmostEqual(obj["hyvox_voxel_size"], grid.voxel_size, places=9)
+
+    def test_bunny_equals_the_reference_oracle(self):
+        # The brute-force double-precision method of the build tree's own hyvox command (not
+        # the add-on's module, which may be a release built by another compiler).
+        build_dir = os.environ.get("HYVOX_BUILD_DIR", "")
+        command = os.path.join(build_dir, "hyvox")
+        self.assertTrue(os.access(command, os.X_OK), f"no build tree hyvox command in {build_dir!r}")
+        bunny = helpers.bunny()
+        helpers.select_only(bunny)
+        self.assertEqual(self.voxelize(resolution=96, method="cpu"), {"FINISHED"})
+        (obj,) = self.volumes()
+        with tempfile.TemporaryDirectory(prefix="hyvox-oracle-") as tmp:
+            oracle = os.path.join(tmp, "oracle.vdb")
+            mesh = os.path.join(helpers.MESH_DIR, "bunny_stanford_69k.ply")
+            subprocess.run(
+                [command, "voxelize", mesh, "-o", oracle, "-q", "--resolution", "96", "--mode", "conservative"]
+                + ["--method", "reference"],
+                check=True,
+                timeout=300,
+            )
+            expected = helpers.vdb_world_centres(oracle)
+        got = helpers.vdb_world_centres(self.check_volume(obj))
+        self.assertGreater(len(expected), 1000)
+        self.assertEqual(len(got), len(expected))
+        np.testing.assert_allclose(
+            helpers.sorted_rows(got), helpers.sorted_rows(expected), atol=1e-5 * obj["hyvox_voxel_size"] + 1e-7
+        )
 
     def test_cube_covers_its_bounds(self):
         cube = helpers.cube(size=2.0)

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Blender's own extension validator (the one `blender --command extension validate`
-runs, shipped inside the bpy module) accepts the built extension zip:
+runs, shipped inside the bpy module) accepts the built extension zip (or
+$HYVOX_EXTENSION_ZIP: a release's):
     B/venv/bpyXY/bin/python validate_extension.py BUILD_DIR"""
 
 import glob
@@ -11,7 +12,8 @@ import sys
 
 
 def main(build_dir):
-    (zip_path,) = glob.glob(os.path.join(build_dir, "hyvox_blender-*-linux_x64.zip"))
+    given = os.environ.get("HYVOX_EXTENSION_ZIP")
+    (zip_path,) = [given] if given else glob.glob(os.path.join(build_dir, "hyvox_blender-*-linux_x64.zip"))
     bpy_dir = os.path.dirname(importlib.util.find_spec("bpy").origin)  # without starting Blender
     (tool,) = glob.glob(os.path.join(bpy_dir, "*", "scripts", "addons_core", "bl_pkg", "cli", "blender_ext.py"))
     run = subprocess.run([sys.executable, tool, "validate", zip_path], capture_output=True, text=True, timeout=120)

@@ -1,11 +1,13 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The self-contained wheel installs into a clean venv and works there on its own:
-    python3 check_installed_wheel.py BUILD_DIR VENV MESH
+    python3 check_installed_wheel.py BUILD_DIR VENV MESH [WHEEL]
 (Debian's python3: it has pyopenvdb and the build tree's hyvox to compare with.)
 
-- the wheel (B/wheel/hyvox-*.whl) is tagged for this Python (cp311 on Debian 12, cp313 on
-  Debian 13: the venvs that build and install it are made from it) manylinux x86_64, bundles no part of
-  the GL driver stack, and carries one licence record per bundled library;
+- the wheel (WHEEL, else the build tree's B/wheel/hyvox-*.whl) is tagged for VENV's Python
+  manylinux x86_64 and bundles no part of the GL driver stack. The build tree's wheel has the
+  machine's libraries grafted in (hyvox.libs/, one Debian copyright file each); a release
+  wheel (scripts/build_release.sh) has them linked in and carries the licence text of each
+  one that scripts/release/licences.txt names;
 - pip installs it into VENV (numpy only, no system site-packages) without the network;
 - in a process started with an empty environment (no LD_LIBRARY_PATH, no PYTHONPATH),
   `import hyvox` + a CPU voxelization map only libraries from the installed wheel plus
@@ -34,6 +36,8 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BUILD_DIR, VENV, MESH = sys.argv[1:4] if len(sys.argv) >= 4 else ("", "", "")
+WHEEL = sys.argv[4] if len(sys.argv) >= 5 else ""
+RELEASE_LICENCES = os.path.join(HERE, "..", "..", "scripts", "release", "licences.txt")
 # The GL driver stack (glvnd): always the machine's own, never in the wheel.
 GL_STACK = ("libEGL.so", "libGL.so", "libOpenGL.so", "libGLX.so", "libGLdispatch.so")
 # What a manylinux wheel may take from the system (auditwheel's policy) and this one needs.
@@ -65,7 +69,9 @@ def run(command, **kw):
 class InstalledWheelTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        (cls.wheel,) = glob.glob(os.path.join(BUILD_DIR, "wheel", "hyvox-*.whl"))
+        (cls.wheel,) = [WHEEL] if WHEEL else glob.glob(os.path.join(BUILD_DIR, "wheel", "hyvox-*.whl"))
+        with zipfile.ZipFile(cls.wheel) as whl:
+            cls.grafted = any(n.startswith("hyvox.libs/") for n in whl.namelist())
         cls.python = os.path.join(VENV, "bin", "python")
         run(
             [
@@ -103,20 +109,30 @@ class InstalledWheelTest(unittest.TestCase):
         )
 
     def test_tags_contents_and_licences(self):
-        cp = "cp%d%d" % sys.version_info[:2]
+        cp = run([self.python, "-c", 'import sys; print("cp%d%d" % sys.version_info[:2])']).stdout.strip()
         self.assertRegex(os.path.basename(self.wheel), rf"^hyvox-[\d.]+-{cp}-{cp}-manylinux_2_\d+_x86_64\.whl$")
         with zipfile.ZipFile(self.wheel) as whl:
             names = whl.namelist()
-            bundled = [n for n in names if n.startswith("hyvox.libs/")]
-            record = [n for n in names if n.endswith("licenses/bundled/LIBRARIES")]
-            self.assertEqual(len(record), 1, names)
-            listed = whl.read(record[0]).decode().split("\n")
         self.assertIn("hyvox/bin/hyvox", names)
+        bundled = [n for n in names if n.startswith("hyvox.libs/")]
         for stack in GL_STACK:
             self.assertFalse(
                 [n for n in bundled if os.path.basename(n).startswith(stack.split(".")[0] + "-")],
                 f"{stack} must not be bundled",
             )
+        if self.grafted:
+            self.check_grafted_libraries(names, bundled)
+        else:
+            with open(RELEASE_LICENCES) as f:
+                wanted = [line.split()[0] for line in f if line.strip() and not line.startswith("#")]
+            texts = sorted(os.path.basename(n)[:-4] for n in names if re.search(r"licenses/bundled/[^/]+\.txt$", n))
+            self.assertEqual(texts, sorted(wanted))
+
+    def check_grafted_libraries(self, names, bundled):
+        with zipfile.ZipFile(self.wheel) as whl:
+            record = [n for n in names if n.endswith("licenses/bundled/LIBRARIES")]
+            self.assertEqual(len(record), 1, names)
+            listed = whl.read(record[0]).decode().split("\n")
         # Every library the build tree's module takes from this machine (ldd), other than
         # the base system and the GL stack, is bundled.
         (core,) = glob.glob(os.path.join(BUILD_DIR, "python", "hyvox", "_core*.so"))
@@ -142,7 +158,8 @@ class InstalledWheelTest(unittest.TestCase):
             if not self.in_wheel(p) and soname_of(p) not in BASE_SYSTEM
         ]
         self.assertEqual(outside, [], "libraries loaded from outside the wheel")
-        self.assertTrue(any("/hyvox.libs/libtbb-" in p for p in self.child["loaded_by_import_and_cpu"]))
+        if self.grafted:
+            self.assertTrue(any("/hyvox.libs/libtbb-" in p for p in self.child["loaded_by_import_and_cpu"]))
         plugins = [
             p for p in self.child["loaded_by_import_and_cpu"] if re.search(r"/(libhyvox_|libassimp|libepoxy|libEGL)", p)
         ]
