@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "solid/median_split.h"
 #include "solid/solid_angle_sum.h"
@@ -147,10 +148,12 @@ void FastWinding::build(std::int32_t id, std::uint32_t first, std::uint32_t coun
         for (const Vec3& p : triangles_[t])
             for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
     if (count > kLeafTriangles) {
-        const std::uint32_t half =
-            splitAtMedian(triangles_, first, count, lo, hi, [](const std::array<Vec3, 3>& t, int axis) {
+        const std::uint32_t half = splitAtMedian(
+            triangles_, first, count, lo, hi,
+            [](const std::array<Vec3, 3>& t, int axis) {
                 return t[0][axis] + t[1][axis] + t[2][axis];  // three times the centroid
-            });
+            },
+            std::less<std::array<Vec3, 3>>());
         node.left = id + 1;
         node.right = id + 1 + std::int32_t(treeNodes(half));
         auto left = [&] { build(node.left, first, half); };
@@ -177,6 +180,9 @@ void FastWinding::build(std::int32_t id, std::uint32_t first, std::uint32_t coun
                 node.moment[3 * i + j] = l.moment[3 * i + j] + l.area[i] * (l.centre[j] - node.centre[j]) +
                     r.moment[3 * i + j] + r.area[i] * (r.centre[j] - node.centre[j]);
     } else {
+        // A leaf's triangles in one order on every platform (its sums, and the vectorised sum
+        // over corner_arrays_, add them in this order); equal triangles are interchangeable.
+        std::sort(triangles_.begin() + first, triangles_.begin() + first + count);
         Vec3 weighted{0, 0, 0};
         for (std::uint32_t t = first; t < first + count; ++t) {
             const auto& [a, b, c] = triangles_[t];

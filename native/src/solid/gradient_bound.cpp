@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "solid/median_split.h"
 
@@ -75,9 +76,13 @@ std::int32_t GradientBound::build(std::uint32_t first, std::uint32_t count) {
             node.radius = std::max(node.radius, std::sqrt(r2));
         }
     if (count > kLeafEdges) {
-        const std::uint32_t half =
-            splitAtMedian(edges_, first, count, node.box.lo, node.box.hi, [](const Edge& e, int axis) {
+        const std::uint32_t half = splitAtMedian(
+            edges_, first, count, node.box.lo, node.box.hi,
+            [](const Edge& e, int axis) {
                 return e.box.lo[axis] + e.box.hi[axis];  // twice the centre
+            },
+            [](const Edge& x, const Edge& y) {
+                return std::tie(x.a, x.b, x.excess, x.weight) < std::tie(y.a, y.b, y.excess, y.weight);
             });
         node.left = build(first, half);
         node.right = build(first + half, count - half);
