@@ -77,8 +77,9 @@ for platform in "${release_platforms[@]}"; do
       echo "build_release: auditwheel grafted libraries into the $tag wheel: $(ls "$tree/hyvox.libs")" >&2
       exit 1
     fi
-    mkdir -p "$tree"/hyvox-*.dist-info/licenses/bundled
-    cp "$licences"/*.txt "$tree"/hyvox-*.dist-info/licenses/bundled/
+    dist_info=$(ls -d "$tree"/hyvox-*.dist-info)
+    mkdir -p "$dist_info/licenses/bundled"
+    cp "$licences"/*.txt "$dist_info/licenses/bundled/"
     "${venv_python[$py]}" -m wheel pack -d "$dist" "$tree" >/dev/null
     wheels+=("$(ls "$dist"/hyvox-"$version"-"$tag"-*"$wheel_platform"*.whl)")
   done

@@ -23,7 +23,8 @@
 #                            its version's lists: the release builds a wheel for each Python
 #                            Blender uses and tests it in that Python's bpy releases
 #                            (scripts/build_release.sh, tests/release/).
-#   release     scikit-build-core, pybind11, zig, meson, twine...: builds the release
+#   release     scikit-build-core, pybind11, zig, meson, twine...: builds the release (made
+#               only when named: scripts/build_release.sh asks for it)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 base_python=/usr/bin/python3
@@ -65,6 +66,10 @@ fi
 for list in "$lists"/*.txt "${extra[@]}"; do
   name=$(basename "$list" .txt)
   if [ ${#only[@]} -gt 0 ] && [[ " ${only[*]} " != *" $name "* ]]; then
+    continue
+  fi
+  # The release's tools are made where the release is built, when named (build_release.sh).
+  if [ "$name" = release ] && [ ${#only[@]} -eq 0 ]; then
     continue
   fi
   venv="$dir/$name"

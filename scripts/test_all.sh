@@ -10,16 +10,15 @@
 #   test      all native, Python and headless-Blender tests of that build, the wheel in a clean
 #             venv and in the official Blender releases from PyPI, the farm jobs for real, and
 #             the sweeps over every mesh, size and mode (ctest label `sweep`)
-#   release   (by name only: bash scripts/test_all.sh release) the release
-#             (scripts/build_release.sh: dist/, its libraries cached outside the repo) and its
-#             tests (tests/release/): glibc 2.28, the CLI archive, each wheel in a clean venv,
-#             the extension in the bpy releases of Python 3.11 and 3.13
+#   release   the release (scripts/build_release.sh: dist/, its libraries cached outside the
+#             repo) and its tests (tests/release/): glibc 2.28, the CLI archive, each wheel in
+#             a clean venv, the extension in the bpy releases of Python 3.11 and 3.13
 #   sanitize  one clang build with AddressSanitizer + UndefinedBehaviorSanitizer and libFuzzer's
 #             coverage (build-sanitize/): the native tests without the sweeps, whose code paths
 #             the other cases reach (tests/native/CMakeLists.txt says which and why)
 #   fuzz      the libFuzzer targets of that same build, a fixed time each (scripts/fuzz_readers.sh)
 #
-#   bash scripts/test_all.sh               every section but release, in that order (CI runs this)
+#   bash scripts/test_all.sh               every section, in that order (CI runs this)
 #   bash scripts/test_all.sh lint tidy     only those sections (each sets up what it needs)
 # GL tests run on whatever EGL device is there (Mesa llvmpipe without a GPU); none skip.
 set -euo pipefail
@@ -29,10 +28,8 @@ cd "$(dirname "$0")/.."
 export PATH="/usr/bin:/bin:$PATH"
 jobs=$(nproc)
 all_sections=(deps lint build tidy test release sanitize fuzz)
-# The release section is not yet part of the default run (CI): run it by name.
-default_sections=(deps lint build tidy test sanitize fuzz)
 sections=("$@")
-[ ${#sections[@]} -gt 0 ] || sections=("${default_sections[@]}")
+[ ${#sections[@]} -gt 0 ] || sections=("${all_sections[@]}")
 for name in "${sections[@]}"; do
   [[ " ${all_sections[*]} " == *" $name "* ]] ||
     { echo "test_all: no section '$name' (sections: ${all_sections[*]})" >&2; exit 2; }

@@ -131,7 +131,7 @@ class ReleaseBinariesTest(unittest.TestCase):
         (extension,) = glob.glob(os.path.join(DIST, "hyvox_blender-*-linux_x64.zip"))
         with zipfile.ZipFile(extension) as z:
             manifest = tomllib.loads(z.read("blender_manifest.toml").decode())
-            inside = {n for n in z.namelist() if n.startswith("wheels/")}
+            inside = {n for n in z.namelist() if n.startswith("wheels/") and not n.endswith("/")}
         self.assertEqual(manifest["platforms"], ["linux-x64"])
         self.assertEqual(sorted(manifest["wheels"]), sorted("./" + n for n in inside))
         self.assertEqual(sorted(os.path.basename(n) for n in inside), [os.path.basename(w) for w in self.wheels])
