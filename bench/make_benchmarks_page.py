@@ -118,6 +118,13 @@ SECTIONS = [
         "of hyvox: `PEER=/path/to/cuda_voxelizer bash bench/run_all.sh` adds it.",
         ["vs_cuda_voxelizer"],
     ),
+    (
+        "The release build",
+        "The release's `hyvox` (`scripts/build_release.sh`: zig, glibc 2.28, libc++ and every library linked "
+        "statically) against the build tree's (Debian's GCC and shared libraries), whole processes alternating; and "
+        "the size of each file of the release. `/usr/bin/python3 bench/bench_release.py build/hyvox dist`.",
+        ["release_vs_build", "release_sizes"],
+    ),
 ]
 OTHER = (
     "Other results",
