@@ -32,6 +32,7 @@ def main():
     parser.add_argument("build_hyvox", help="the build tree's hyvox")
     parser.add_argument("dist", help="the release's dist/ folder")
     parser.add_argument("--runs", type=int, default=9)
+    parser.add_argument("--idle-wait", default="60", help="bench_cli_ab.py's wait for an idle machine, per round")
     add_out_argument(parser)
     args = parser.parse_args()
 

@@ -7,11 +7,13 @@
 #include <cerrno>
 #include <clocale>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -52,6 +54,14 @@ Expected<T> oracle(const std::string& text) {
 }
 
 template <typename T>
+std::uint64_t bitsOf(T value) {
+    using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+    Bits bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    return bits;
+}
+
+template <typename T>
 void expectSame(const std::string& text) {
     const Expected<T> want = oracle<T>(text);
     T got = T(-12345);
@@ -63,7 +73,7 @@ void expectSame(const std::string& text) {
         return;
     }
     // Bit for bit: the same double, the sign of zero included.
-    EXPECT_EQ(std::memcmp(&got, &want.value, sizeof(T)), 0) << "'" << text << "': " << got << " vs " << want.value;
+    EXPECT_EQ(bitsOf(got), bitsOf(want.value)) << "'" << text << "': " << got << " vs " << want.value;
 }
 
 class ParseNumberTest : public ::testing::Test {

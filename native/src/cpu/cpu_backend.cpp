@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "core/avx2_clones.h"
 #include "core/backends.h"
 #include "core/stopwatch.h"
 #include "cpu/mark_voxels.h"
@@ -90,12 +91,9 @@ struct TileWork {
     std::atomic<std::uint64_t>& already_covered;
 };
 
-// The triangles usable[begin, end) of one tile. Where the platform dispatches a function by
-// the processor it runs on (GNU ifunc), an AVX2 copy as well (see solid/sheet_sum.cpp); no
-// FMA, so both copies set the same voxels.
-#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+// The triangles usable[begin, end) of one tile; an AVX2 copy where the platform dispatches by
+// processor (core/avx2_clones.h).
+HYVOX_AVX2_CLONES_GCC
 void voxelizeChunk(const TileWork& work, std::size_t begin, std::size_t end) {
     const BackendJob& job = work.job;
     const ValidatedMesh& mesh = work.mesh;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "cpu/rasterize_small.h"
+#include "core/avx2_clones.h"
 
 #include <cstdint>
 
@@ -92,16 +93,11 @@ __attribute__((always_inline)) inline std::uint64_t acceptedFixed(const Triangle
     return std::uint64_t(accepted[0] | accepted[1] | accepted[2] | accepted[3]);
 }
 
-}  // namespace
-
-// Where the platform dispatches a function by the processor it runs on (GNU ifunc), an AVX2
-// copy as well (see solid/sheet_sum.cpp): four lanes a step instead of two. No FMA, so both
-// copies give the same bits.
-#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-std::uint64_t
-acceptedSmallCandidates(const TriangleSetup& t) {
+// An AVX2 copy where the platform dispatches by processor (core/avx2_clones.h): four lanes a
+// step instead of two. Its own name: the header's inline rasterizeSmall uses the public one
+// before this file could define it, and clang builds clones only of a function not yet used.
+HYVOX_AVX2_CLONES
+std::uint64_t acceptedCandidates(const TriangleSetup& t) {
     // One instance per candidate count along each axis (1 to 4): a triangle that lies within
     // one voxel's range along one axis tests half the voxels a 2 x 2 x 2 one does.
 #define HYVOX_SIZE(NU, NV, NW) \
@@ -120,5 +116,9 @@ acceptedSmallCandidates(const TriangleSetup& t) {
 #undef HYVOX_SIZES_W
 #undef HYVOX_SIZE
 }
+
+}  // namespace
+
+std::uint64_t acceptedSmallCandidates(const TriangleSetup& t) { return acceptedCandidates(t); }
 
 }  // namespace hyvox::cpu

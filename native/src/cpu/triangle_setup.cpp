@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/avx2_clones.h"
 #include "core/triangle_normal.h"
 
 namespace hyvox::cpu {
@@ -145,21 +146,19 @@ void setupEdgeTests(const std::array<std::array<double, 3>, 3>& c, double windin
         setupProjection<false>(p, winding, a, b, out);
 }
 
+HYVOX_AVX2_CLONES
+SetupKind setupTriangle(const Corner3& c0, const Corner3& c1, const Corner3& c2, Mode mode, const CandidateRange& range,
+                        TriangleSetup& out) {
+    return mode == Mode::Thin ? setup<true>(c0, c1, c2, range, out) : setup<false>(c0, c1, c2, range, out);
+}
+
+// After the clones: a function built as clones is defined before its first use (clang).
 SetupKind setupTriangle(const std::array<std::array<double, 3>, 3>& corners, Mode mode,
                         const std::array<std::int32_t, 3>& clip_lo, const std::array<std::int32_t, 3>& clip_hi,
                         TriangleSetup& out) {
     const CandidateRange range = candidateRange(corners, clip_lo, clip_hi);
     if (range.outside()) return SetupKind::Outside;
     return setupTriangle(corners[0], corners[1], corners[2], mode, range, out);
-}
-
-#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-SetupKind
-setupTriangle(const Corner3& c0, const Corner3& c1, const Corner3& c2, Mode mode, const CandidateRange& range,
-              TriangleSetup& out) {
-    return mode == Mode::Thin ? setup<true>(c0, c1, c2, range, out) : setup<false>(c0, c1, c2, range, out);
 }
 
 }  // namespace hyvox::cpu

@@ -58,7 +58,7 @@ struct Sweep {
 };
 
 // Sweeps triangle `corners` over the rows of block `block` (in blocks) within its band.
-HYVOX_SDF_CLONES
+HYVOX_AVX2_CLONES_GCC
 std::uint64_t sweep(const std::array<Vec3, 3>& corners, const GridSpec& grid, double band,
                     const std::array<std::int32_t, 3>& block, double* d2, std::uint64_t& evaluations) {
     const int x0 = kSide * block[0], y0 = kSide * block[1], z0 = kSide * block[2];

@@ -217,7 +217,7 @@ void BlockQueries::markReached(const std::array<std::int32_t, 2>& limit) {
     }
 }
 
-HYVOX_SDF_CLONES
+HYVOX_AVX2_CLONES_GCC
 std::uint64_t lowerVoxels(BlockQueries& queries, double* d2, std::uint64_t& evaluations) {
     const int m = queries.margin_, side = queries.side_;
     const double overhang = queries.overhang_;

@@ -17,22 +17,11 @@
 #include <array>
 #include <cmath>
 
+#include "core/avx2_clones.h"
 #include "core/triangle_normal.h"
 
-// Built twice on x86-64, for AVX2 and for the baseline, the one the processor runs chosen at
-// load time: loops over minDistance2Along run four doubles wide instead of two.
-// No FMA: both give the same bits.
-// Not where the toolchain cannot link them (HYVOX_NO_TARGET_CLONES, CMakeLists.txt: zig's runtime
-// has no CPU model for the resolver).
-#if defined(__x86_64__) && defined(__has_attribute) && !defined(HYVOX_NO_TARGET_CLONES)
-#if __has_attribute(target_clones)
-#define HYVOX_SDF_CLONES __attribute__((target_clones("avx2", "default")))
-#endif
-#endif
-#ifndef HYVOX_SDF_CLONES
-#define HYVOX_SDF_CLONES
-#endif
-
+// Loops over minDistance2Along run four doubles wide instead of two in the AVX2 copies
+// (HYVOX_AVX2_CLONES_GCC) of their callers.
 namespace hyvox::sdf {
 
 using Vec3 = std::array<double, 3>;

@@ -2,6 +2,7 @@
 // Built with -fno-math-errno -fno-trapping-math (solid/CMakeLists.txt), as sheet_sum.cpp: the
 // loops over a batch's clusters vectorise. Neither flag changes a result.
 #include "solid/local_expansion.h"
+#include "core/avx2_clones.h"
 
 #include <cmath>
 
@@ -65,28 +66,8 @@ void LocalExpansion::reset(const Vec3& centre) {
     summed_ = true;
 }
 
-void LocalExpansion::add(const Vec3& cluster_centre, const Vec3& area, const std::array<double, 9>* moment) {
-    const int j = pending_;
-    for (int d = 0; d < 3; ++d) {
-        r_[d][j] = cluster_centre[d] - centre_[d];
-        a_[d][j] = area[d];
-    }
-    if (moment) {
-        const auto& m = *moment;
-        m_[0][j] = m[0], m_[1][j] = m[4], m_[2][j] = m[8];
-        m_[3][j] = 0.5 * (m[1] + m[3]), m_[4][j] = 0.5 * (m[2] + m[6]), m_[5][j] = 0.5 * (m[5] + m[7]);
-    } else {
-        for (auto& row : m_) row[j] = 0.0;
-    }
-    summed_ = false;
-    if (++pending_ == kBatch) flush();
-}
-
-// An AVX2 copy where the platform dispatches by processor (GCC; see sheet_sum.cpp); no FMA,
-// so the same bits either way.
-#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+// An AVX2 copy where the platform dispatches by processor (core/avx2_clones.h).
+HYVOX_AVX2_CLONES
 void LocalExpansion::flush() {
     // Unused lanes: a cluster of no area one unit away (finite terms, all zero in the end).
     for (int j = pending_; j < kBatch; ++j) {
@@ -135,6 +116,24 @@ void LocalExpansion::flush() {
             lane[j] += dipole - moment;
         }
     }
+}
+
+// After flush(): a function built as clones is defined before its first use (clang).
+void LocalExpansion::add(const Vec3& cluster_centre, const Vec3& area, const std::array<double, 9>* moment) {
+    const int j = pending_;
+    for (int d = 0; d < 3; ++d) {
+        r_[d][j] = cluster_centre[d] - centre_[d];
+        a_[d][j] = area[d];
+    }
+    if (moment) {
+        const auto& m = *moment;
+        m_[0][j] = m[0], m_[1][j] = m[4], m_[2][j] = m[8];
+        m_[3][j] = 0.5 * (m[1] + m[3]), m_[4][j] = 0.5 * (m[2] + m[6]), m_[5][j] = 0.5 * (m[5] + m[7]);
+    } else {
+        for (auto& row : m_) row[j] = 0.0;
+    }
+    summed_ = false;
+    if (++pending_ == kBatch) flush();
 }
 
 double LocalExpansion::at(const Vec3& q) {

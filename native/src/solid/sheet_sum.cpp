@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/avx2_clones.h"
 #include "solid/float_arctangent.h"
 
 namespace hyvox::solid {
@@ -88,15 +89,10 @@ void SheetSum::assign(const std::vector<GradientBound::Sheet>& sheets, bool upwa
     for (auto* array : {&uxy2_, &vxy2_, &uv_, &eu_, &ev_, &poison_}) array->resize(padded);
 }
 
-// Where the platform dispatches a function by the processor it runs on (GNU ifunc), an AVX2
-// copy as well: eight floats a step instead of four. Same operations in the same order (no
-// FMA), so both give the same bits. GCC only: clang 14 compiles target_clones on a member
-// function but emits no symbol for it (the fuzz targets, built with clang, did not link).
-#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-double
-SheetSum::at(const std::array<double, 3>& point) const {
+// An AVX2 copy where the platform dispatches by processor (core/avx2_clones.h): eight floats a
+// step instead of four.
+HYVOX_AVX2_CLONES
+double SheetSum::at(const std::array<double, 3>& point) const {
     const float qx = float(point[0] - origin_[0]), qy = float(point[1] - origin_[1]), qz = float(point[2] - origin_[2]);
     const float up = up_;
     const std::size_t n = ax_.size();
@@ -110,9 +106,7 @@ SheetSum::at(const std::array<double, 3>& point) const {
     return laneSum(terms, n);
 }
 
-#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+HYVOX_AVX2_CLONES
 void SheetSum::atColumn(double x, double y, const double* z, int count, double* out) const {
     const float qx = float(x - origin_[0]), qy = float(y - origin_[1]);
     const float up = up_;

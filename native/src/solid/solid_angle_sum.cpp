@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/avx2_clones.h"
 #include "solid/float_arctangent.h"
 
 namespace hyvox::solid {
@@ -54,13 +55,10 @@ inline void halfSolidAngle(Real ux, Real uy, Real uz, Real vx, Real vy, Real vz,
 
 }  // namespace
 
-// An AVX2 copy where the platform dispatches by processor (GCC; see sheet_sum.cpp); no FMA,
-// so the same bits either way.
-#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-double
-solidAngleSum(const TriangleArrays& triangles, std::size_t first, std::size_t count, const std::array<double, 3>& q) {
+// An AVX2 copy where the platform dispatches by processor (core/avx2_clones.h).
+HYVOX_AVX2_CLONES
+double solidAngleSum(const TriangleArrays& triangles, std::size_t first, std::size_t count,
+                     const std::array<double, 3>& q) {
     const double *ax = triangles.corners[0] + first, *ay = triangles.corners[1] + first,
                  *az = triangles.corners[2] + first, *bx = triangles.corners[3] + first,
                  *by = triangles.corners[4] + first, *bz = triangles.corners[5] + first,
@@ -86,11 +84,8 @@ solidAngleSum(const TriangleArrays& triangles, std::size_t first, std::size_t co
     return sum / (2.0 * M_PI);  // Ω = 2 atan2(...), over 4π
 }
 
-#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-double
-solidAngleSum(const FloatTriangleArrays& triangles, std::size_t count, const std::array<float, 3>& q) {
+HYVOX_AVX2_CLONES
+double solidAngleSum(const FloatTriangleArrays& triangles, std::size_t count, const std::array<float, 3>& q) {
     const float *ax = triangles.corners[0], *ay = triangles.corners[1], *az = triangles.corners[2],
                 *bx = triangles.corners[3], *by = triangles.corners[4], *bz = triangles.corners[5],
                 *cx = triangles.corners[6], *cy = triangles.corners[7], *cz = triangles.corners[8];
