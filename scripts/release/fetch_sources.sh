@@ -20,15 +20,14 @@ SUDO=""
 
 pinned() { grep -v '^#' "$here/sources.txt" | grep -v '^[[:space:]]*$'; }
 
-have_all=1
-while read -r _ _ file sha; do
-  echo "$sha  $dest/$file" | sha256sum -c --status 2>/dev/null || have_all=0
-done < <(pinned)
-[ $have_all = 1 ] && exit 0
-
-# bookworm's source index, once.
-read -r probe_package probe_version _ < <(pinned)
-if ! apt-cache showsrc "$probe_package" 2>/dev/null | grep -qx "Version: $probe_version"; then
+# bookworm's source index, added at most once, before the first download.
+index_checked=0
+ensure_index() {
+  [ $index_checked = 1 ] && return
+  index_checked=1
+  read -r probe_package probe_version _ < <(pinned)
+  apt-cache showsrc "$probe_package" 2>/dev/null | grep -qx "Version: $probe_version" && return
+  local mirror
   mirror=$(cat /etc/apt/sources.list /etc/apt/sources.list.d/*.list /etc/apt/sources.list.d/*.sources 2>/dev/null |
            grep -oE '^(URIs:|deb) +https?://[^ ]+/debian/?( |$)' | grep -m1 -oE 'https?://[^ ]+' || true)
   mirror=${mirror:-http://deb.debian.org/debian}
@@ -36,12 +35,13 @@ if ! apt-cache showsrc "$probe_package" 2>/dev/null | grep -qx "Version: $probe_
   printf 'Types: deb-src\nURIs: %s\nSuites: bookworm\nComponents: main\nSigned-By: /usr/share/keyrings/debian-archive-keyring.gpg\n' \
     "$mirror" | $SUDO tee /etc/apt/sources.list.d/hyvox-bookworm-src.sources >/dev/null
   $SUDO apt-get update -qq
-fi
+}
 
 while read -r package version file sha; do
   if echo "$sha  $dest/$file" | sha256sum -c --status 2>/dev/null; then
     continue
   fi
+  ensure_index
   # The listed addresses are percent-encoded ('+' as %2b, '~' as %7e): compare them decoded.
   case "$file" in
     *.deb) listing=(apt-get download --print-uris) ;;   # a binary package

@@ -24,8 +24,8 @@ namespace {
 
 using hyvox::mesh_io::parseWholeNumber;
 
-// What the parser must answer for `text`, from the C library: nullopt-like `ok == false` where
-// the text is not one number or its value is out of range (overflow, or zero from non-zero digits).
+// What the parser must answer for `text`, from the C library: `ok == false` where the text is
+// not one number or its value is out of range (overflow, or zero from non-zero digits).
 template <typename T>
 struct Expected {
     bool ok;
@@ -42,14 +42,9 @@ Expected<T> oracle(const std::string& text) {
     if (std::isspace(static_cast<unsigned char>(text[0])) || text[0] == '+' ||
         text.find_first_of("xX") != std::string::npos)
         return {false, 0};
-    const bool inf_word = text.find_first_of("iI") != std::string::npos;
-    if (std::isinf(value) && !inf_word) return {false, 0};  // overflow
-    bool nonzero_digit = false;
-    for (char c : text) {
-        if (c == 'e' || c == 'E') break;
-        nonzero_digit = nonzero_digit || (c >= '1' && c <= '9');
-    }
-    if (value == 0 && nonzero_digit) return {false, 0};  // underflow to zero
+    // Out of range as the C library reports it: ERANGE with an infinite result (overflow) or a
+    // zero one (underflow; a subnormal result sets ERANGE too, and is a number).
+    if (errno == ERANGE && (std::isinf(value) || value == 0)) return {false, 0};
     return {true, value};
 }
 

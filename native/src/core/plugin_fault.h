@@ -9,6 +9,7 @@
 #include <new>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "hyvox/errors.h"
 
@@ -48,7 +49,35 @@ auto guardPluginCall(PluginFault& fault, Fn&& fn) -> decltype(fn()) {
     if constexpr (!std::is_void_v<decltype(fn())>) return {};
 }
 
+// The plugin's entry for function Fn: Fn's parameters and a PluginFault& last, reporting in
+// it what Fn throws (`guardedEntry<&runHybridBackend>` in the plugin's table).
+template <auto Fn>
+struct GuardedEntry;
+template <class R, class... Params, R (*Fn)(Params...)>
+struct GuardedEntry<Fn> {
+    static R call(Params... params, PluginFault& fault) {
+        return guardPluginCall(fault, [&]() -> R { return Fn(params...); });
+    }
+};
+template <auto Fn>
+constexpr auto guardedEntry = &GuardedEntry<Fn>::call;
+
 // The host's side: throws the fault as the host's exception of its kind; nothing if none.
 void throwPluginFault(const PluginFault& fault, const std::string& purpose);
+
+// The host's call of a guarded entry: its result, or the fault it reported thrown as the
+// host's exception.
+template <class Entry, class... Args>
+auto callPlugin(const std::string& purpose, Entry entry, Args&&... args) {
+    PluginFault fault;
+    if constexpr (std::is_void_v<std::invoke_result_t<Entry, Args..., PluginFault&>>) {
+        entry(std::forward<Args>(args)..., fault);
+        throwPluginFault(fault, purpose);
+    } else {
+        auto result = entry(std::forward<Args>(args)..., fault);
+        throwPluginFault(fault, purpose);
+        return result;
+    }
+}
 
 }  // namespace hyvox

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "cpu/rasterize_small.h"
-#include "core/avx2_clones.h"
 
 #include <cstdint>
+
+#include "core/avx2_clones.h"
 
 // The helpers below pass 32-byte vectors by value; they are internal and inlined, so the
 // calling convention GCC warns about (AVX registers or memory) never applies.

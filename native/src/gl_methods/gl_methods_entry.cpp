@@ -36,19 +36,9 @@ std::uint64_t tessellationTileBytes(const std::string& device, std::uint64_t bud
 
 // Each entry reports what it throws instead of letting it cross into the host
 // (core/plugin_fault.h).
-const GlMethodsTable table{
-    [](const BackendJob& job, TileOutput& out, Stats& stats, PluginFault& fault) {
-        guardPluginCall(fault, [&] { runHybridBackend(job, out, stats); });
-    },
-    [](const BackendJob& job, TileOutput& out, Stats& stats, PluginFault& fault) {
-        guardPluginCall(fault, [&] { runTessellationBackend(job, out, stats); });
-    },
-    [](const std::string& device, std::uint64_t budget, int channels, PluginFault& fault) {
-        return guardPluginCall(fault, [&] { return tessellationTileBytes(device, budget, channels); });
-    },
-    [](PluginFault& fault) { return guardPluginCall(fault, [] { return listDevices(); }); },
-    [](PluginFault& fault) { return guardPluginCall(fault, [] { return objectCounts(); }); },
-};
+const GlMethodsTable table{guardedEntry<&runHybridBackend>, guardedEntry<&runTessellationBackend>,
+                           guardedEntry<&tessellationTileBytes>, guardedEntry<&listDevices>,
+                           guardedEntry<&objectCounts>};
 
 }  // namespace
 }  // namespace hyvox

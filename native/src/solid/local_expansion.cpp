@@ -2,9 +2,10 @@
 // Built with -fno-math-errno -fno-trapping-math (solid/CMakeLists.txt), as sheet_sum.cpp: the
 // loops over a batch's clusters vectorise. Neither flag changes a result.
 #include "solid/local_expansion.h"
-#include "core/avx2_clones.h"
 
 #include <cmath>
+
+#include "core/avx2_clones.h"
 
 namespace hyvox::solid {
 namespace {

@@ -13,37 +13,20 @@ GlMethods glMethods(const std::string& purpose) {
 }
 
 void GlMethods::run_hybrid(const BackendJob& job, TileOutput& out, Stats& stats) const {
-    PluginFault fault;
-    table_.run_hybrid(job, out, stats, fault);
-    throwPluginFault(fault, purpose_);
+    callPlugin(purpose_, table_.run_hybrid, job, out, stats);
 }
 
 void GlMethods::run_tessellation(const BackendJob& job, TileOutput& out, Stats& stats) const {
-    PluginFault fault;
-    table_.run_tessellation(job, out, stats, fault);
-    throwPluginFault(fault, purpose_);
+    callPlugin(purpose_, table_.run_tessellation, job, out, stats);
 }
 
 std::uint64_t GlMethods::tessellation_tile_bytes(const std::string& device, std::uint64_t budget, int channels) const {
-    PluginFault fault;
-    const std::uint64_t bytes = table_.tessellation_tile_bytes(device, budget, channels, fault);
-    throwPluginFault(fault, purpose_);
-    return bytes;
+    return callPlugin(purpose_, table_.tessellation_tile_bytes, device, budget, channels);
 }
 
-std::vector<GlDevice> GlMethods::list_devices() const {
-    PluginFault fault;
-    auto devices = table_.list_devices(fault);
-    throwPluginFault(fault, purpose_);
-    return devices;
-}
+std::vector<GlDevice> GlMethods::list_devices() const { return callPlugin(purpose_, table_.list_devices); }
 
-GlObjectCounts GlMethods::object_counts() const {
-    PluginFault fault;
-    const GlObjectCounts counts = table_.object_counts(fault);
-    throwPluginFault(fault, purpose_);
-    return counts;
-}
+GlObjectCounts GlMethods::object_counts() const { return callPlugin(purpose_, table_.object_counts); }
 
 std::vector<GlDevice> listGlDevices() { return glMethods("listing the GL devices").list_devices(); }
 
